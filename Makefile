@@ -1,0 +1,34 @@
+# Convenience front end: `make demo` and `make check` are the two commands of
+# the README.  Everything real is in CMakeLists.txt.
+BUILD ?= build
+ASAN_BUILD ?= build-asan
+JOBS ?= $(shell nproc)
+
+.PHONY: all deps build demo check test asan clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+build: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD) -j$(JOBS)
+
+# Runs the seed's epoxy plate with holes pulled in tension and prints where
+# the output is.
+demo: build
+	@bash scripts/demo.sh $(BUILD)
+
+# Whole test suite: optimised build, then an AddressSanitizer + UBSan build.
+check: build
+	@cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+	@$(MAKE) --no-print-directory asan
+
+asan: deps
+	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPALL_SANITIZE=ON >/dev/null
+	@cmake --build $(ASAN_BUILD) -j$(JOBS)
+	@cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j$(JOBS) -LE no_asan
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD)

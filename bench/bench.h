@@ -1,0 +1,39 @@
+/**
+ * @file bench.h
+ * @brief Throughput benchmarks (`spall bench`).  Never timed tests: numbers
+ *        are printed (and written as JSON), not asserted.
+ */
+#ifndef SPALL_BENCH_H
+#define SPALL_BENCH_H
+
+#include <stddef.h>
+
+struct spall_error;
+
+struct bench_result {
+    char name[48];
+    int threads;
+    size_t particles;
+    size_t bonds;               /**< interactions counted once */
+    long steps;
+    double seconds;             /**< wall time of the time loop only */
+    double particle_steps_per_s;
+    double bond_steps_per_s;
+    double bytes_per_particle;  /**< resident memory growth / particles */
+    char note[160];
+};
+
+struct bench_case {
+    const char *name;
+    const char *title;
+    /** Run with @p threads OpenMP threads; @p scale in (0,1] shrinks the
+     *  problem (1 = the documented size). */
+    int (*run)(int threads, double scale, struct bench_result *out, struct spall_error *err);
+};
+
+const struct bench_case *bench_cases(size_t *n);
+
+/** Resident set size of this process [bytes] (from /proc/self/statm). */
+double bench_rss_bytes(void);
+
+#endif

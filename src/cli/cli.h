@@ -1,0 +1,14 @@
+/** @file cli.h @brief Sub-commands of the `spall` program. */
+#ifndef SPALL_CLI_H
+#define SPALL_CLI_H
+
+int cli_run(int argc, char **argv);
+int cli_validate(int argc, char **argv);
+int cli_bench(int argc, char **argv);
+int cli_calibrate(int argc, char **argv);
+
+/** Map a libspall status to the process exit status: bad input 2,
+ *  unstable run 3, I/O 4, anything else 1. */
+int cli_exit_status(int code);
+
+#endif

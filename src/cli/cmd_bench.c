@@ -1,0 +1,120 @@
+#include "cli/cli.h"
+
+#include "bench/bench.h"
+#include "spall/error.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void bench_usage(FILE *out)
+{
+    fprintf(out, "usage: spall bench [CASE ...] [--list] [--threads N[,M...]] [--scale S]\n"
+                 "                   [--json FILE]\n"
+                 "\n"
+                 "Throughput benchmarks: particle-steps/s, bond-steps/s (bonds counted once)\n"
+                 "and resident memory per particle.  Default threads: 1 and 2.\n");
+}
+
+int cli_bench(int argc, char **argv)
+{
+    size_t n_cases = 0;
+    const struct bench_case *cases = bench_cases(&n_cases);
+    const char *json = NULL;
+    int threads[8] = {1, 2};
+    int n_threads = 2;
+    double scale = 1.0;
+    const char *wanted[32];
+    size_t n_wanted = 0;
+    for (int k = 1; k < argc; k++) {
+        const char *a = argv[k];
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            bench_usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--list") == 0) {
+            for (size_t c = 0; c < n_cases; c++)
+                printf("%-16s %s\n", cases[c].name, cases[c].title);
+            return 0;
+        } else if (strcmp(a, "--json") == 0 && k + 1 < argc) {
+            json = argv[++k];
+        } else if (strcmp(a, "--scale") == 0 && k + 1 < argc) {
+            scale = strtod(argv[++k], NULL);
+            if (!(scale > 0.0 && scale <= 1.0)) {
+                fprintf(stderr, "spall bench: --scale needs a number in (0, 1]\n");
+                return 2;
+            }
+        } else if (strcmp(a, "--threads") == 0 && k + 1 < argc) {
+            n_threads = 0;
+            char *s = argv[++k];
+            while (*s && n_threads < 8) {
+                char *end = NULL;
+                long t = strtol(s, &end, 10);
+                if (t <= 0 || end == s) {
+                    fprintf(stderr, "spall bench: --threads needs positive integers like 1,2\n");
+                    return 2;
+                }
+                threads[n_threads++] = (int)t;
+                s = *end == ',' ? end + 1 : end;
+            }
+        } else if (a[0] == '-') {
+            fprintf(stderr, "spall bench: unknown or incomplete option '%s' (see --help)\n", a);
+            return 2;
+        } else {
+            size_t c = 0;
+            while (c < n_cases && strcmp(cases[c].name, a) != 0)
+                c++;
+            if (c == n_cases) {
+                fprintf(stderr, "spall bench: unknown case '%s' (see spall bench --list)\n", a);
+                return 2;
+            }
+            if (n_wanted < 32)
+                wanted[n_wanted++] = a;
+        }
+    }
+    FILE *jf = NULL;
+    if (json && !(jf = fopen(json, "w"))) {
+        fprintf(stderr, "spall bench: cannot write '%s'\n", json);
+        return 4;
+    }
+    if (jf)
+        fprintf(jf, "[\n");
+    int first = 1, status = 0;
+    printf("%-12s %7s %10s %10s %6s %9s %14s %14s %10s\n", "case", "threads", "particles", "bonds",
+           "steps", "seconds", "particle-st/s", "bond-steps/s", "B/particle");
+    for (size_t c = 0; c < n_cases; c++) {
+        int sel = n_wanted == 0;
+        for (size_t w = 0; w < n_wanted; w++)
+            sel |= strcmp(wanted[w], cases[c].name) == 0;
+        if (!sel)
+            continue;
+        for (int t = 0; t < n_threads; t++) {
+            struct bench_result r;
+            struct spall_error err = {0, ""};
+            int rc = cases[c].run(threads[t], scale, &r, &err);
+            if (rc) {
+                fprintf(stderr, "spall bench: %s: %s\n", cases[c].name, err.msg);
+                status = cli_exit_status(rc);
+                continue;
+            }
+            printf("%-12s %7d %10zu %10zu %6ld %9.3f %14.4g %14.4g %10.1f\n", r.name, r.threads,
+                   r.particles, r.bonds, r.steps, r.seconds, r.particle_steps_per_s,
+                   r.bond_steps_per_s, r.bytes_per_particle);
+            fflush(stdout);
+            if (jf) {
+                fprintf(jf,
+                        "%s  {\"case\": \"%s\", \"threads\": %d, \"particles\": %zu, \"bonds\": %zu, "
+                        "\"steps\": %ld, \"seconds\": %.6g, \"particle_steps_per_s\": %.6g, "
+                        "\"bond_steps_per_s\": %.6g, \"bytes_per_particle\": %.1f}",
+                        first ? "" : ",\n", r.name, r.threads, r.particles, r.bonds, r.steps,
+                        r.seconds, r.particle_steps_per_s, r.bond_steps_per_s,
+                        r.bytes_per_particle);
+                first = 0;
+            }
+        }
+    }
+    if (jf) {
+        fprintf(jf, "\n]\n");
+        fclose(jf);
+    }
+    return status;
+}

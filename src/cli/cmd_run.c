@@ -1,0 +1,79 @@
+#include "cli/cli.h"
+
+#include "spall/spall.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void run_usage(FILE *out)
+{
+    fprintf(out, "usage: spall run DECK.yaml [-o DIR] [--overwrite] [--threads N]\n"
+                 "                 [--progress | --no-progress] [--quiet]\n"
+                 "\n"
+                 "Runs the simulation of DECK.yaml and writes into DIR (default: a directory\n"
+                 "named after the deck): run.log, history.csv, fields_NNNNNN.h5 and\n"
+                 "fields.xdmf (open the .xdmf in ParaView).  An existing result directory is\n"
+                 "never overwritten unless --overwrite is given.\n");
+}
+
+int cli_run(int argc, char **argv)
+{
+    struct spall_run_options opt = {.progress = -1};
+    for (int k = 1; k < argc; k++) {
+        const char *a = argv[k];
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            run_usage(stdout);
+            return 0;
+        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+            if (++k >= argc) {
+                fprintf(stderr, "spall run: %s needs a directory\n", a);
+                return 2;
+            }
+            opt.out_dir = argv[k];
+        } else if (strcmp(a, "--overwrite") == 0) {
+            opt.overwrite = true;
+        } else if (strcmp(a, "--threads") == 0) {
+            char *end = NULL;
+            if (++k >= argc || (opt.threads = (int)strtol(argv[k], &end, 10)) <= 0 || *end) {
+                fprintf(stderr, "spall run: --threads needs a positive integer\n");
+                return 2;
+            }
+        } else if (strcmp(a, "--progress") == 0) {
+            opt.progress = 1;
+        } else if (strcmp(a, "--no-progress") == 0) {
+            opt.progress = 0;
+        } else if (strcmp(a, "--quiet") == 0) {
+            opt.quiet = true;
+        } else if (a[0] == '-') {
+            fprintf(stderr, "spall run: unknown option '%s' (see spall run --help)\n", a);
+            return 2;
+        } else if (!opt.deck_path) {
+            opt.deck_path = a;
+        } else {
+            fprintf(stderr, "spall run: more than one deck given ('%s' and '%s')\n", opt.deck_path,
+                    a);
+            return 2;
+        }
+    }
+    if (!opt.deck_path) {
+        run_usage(stderr);
+        return 2;
+    }
+    struct spall_run_result res;
+    struct spall_error err = {0, ""};
+    int rc = spall_run(&opt, &res, &err);
+    if (rc) {
+        fprintf(stderr, "spall: error: %s\n", err.msg);
+        if (rc == SPALL_ERR_UNSTABLE && res.out_dir[0])
+            fprintf(stderr, "spall: the last good output is in %s\n", res.out_dir);
+        return cli_exit_status(rc);
+    }
+    if (!opt.quiet) {
+        printf("spall: %ld steps, t = %.6g s, %zu particles, %.3g s wall, %.3g particle-steps/s\n",
+               res.steps, res.time, res.particles, res.wall_seconds, res.particle_steps_per_s);
+        printf("spall: results in %s/ (run.log, history.csv, fields.xdmf with %zu frames)\n",
+               res.out_dir, res.frames);
+    }
+    return 0;
+}

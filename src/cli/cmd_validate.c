@@ -1,0 +1,189 @@
+#include "cli/cli.h"
+
+#include "spall/error.h"
+#include "validation/validation.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void validate_usage(FILE *out)
+{
+    fprintf(out, "usage: spall validate [CASE ...] [--list] [--quick] [--json FILE]\n"
+                 "\n"
+                 "Runs the built-in validation cases and prints, per case and quantity:\n"
+                 "reference, measured, error, tolerance and PASS/FAIL (GAP marks a documented,\n"
+                 "known gap, which also counts as a failure).  Exit status 1 on any failure.\n"
+                 "  --list        list the cases\n"
+                 "  --quick       the reduced subset used by the test suite\n"
+                 "  --json FILE   also write the results as JSON\n");
+}
+
+static void json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"' || *s == '\\')
+            fprintf(f, "\\%c", *s);
+        else if ((unsigned char)*s < 0x20)
+            fprintf(f, "\\u%04x", (unsigned char)*s);
+        else
+            fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+static void json_number(FILE *f, double x)
+{
+    if (isfinite(x))
+        fprintf(f, "%.10g", x);
+    else
+        fprintf(f, "null");
+}
+
+static double check_error(const struct vcheck *c)
+{
+    double e = fabs(c->measured - c->reference);
+    if (c->relative && c->reference != 0.0)
+        e /= fabs(c->reference);
+    return e;
+}
+
+static int write_json(const char *path, const struct vreport *r)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return -1;
+    fprintf(f, "{\n  \"checks\": [\n");
+    for (size_t k = 0; k < r->n; k++) {
+        const struct vcheck *c = &r->checks[k];
+        fprintf(f, "    {\"case\": ");
+        json_string(f, c->case_name);
+        fprintf(f, ", \"quantity\": ");
+        json_string(f, c->quantity);
+        fprintf(f, ", \"unit\": ");
+        json_string(f, c->unit);
+        fprintf(f, ", \"reference\": ");
+        json_number(f, c->reference);
+        fprintf(f, ", \"measured\": ");
+        json_number(f, c->measured);
+        fprintf(f, ", \"error\": ");
+        json_number(f, check_error(c));
+        fprintf(f, ", \"tolerance\": ");
+        json_number(f, c->tolerance);
+        fprintf(f, ", \"relative\": %s, \"pass\": %s, \"known_gap\": %s, \"source\": ",
+                c->relative ? "true" : "false", c->pass ? "true" : "false",
+                c->known_gap ? "true" : "false");
+        json_string(f, c->source);
+        fprintf(f, ", \"note\": ");
+        json_string(f, c->note);
+        fprintf(f, "}%s\n", k + 1 < r->n ? "," : "");
+    }
+    fprintf(f, "  ]\n}\n");
+    return fclose(f);
+}
+
+static void print_check(const struct vcheck *c)
+{
+    char tol[48];
+    if (c->relative)
+        snprintf(tol, sizeof tol, "%.3g %%", 100.0 * c->tolerance);
+    else
+        snprintf(tol, sizeof tol, "%.3g %s", c->tolerance, c->unit);
+    char errs[48];
+    if (c->relative)
+        snprintf(errs, sizeof errs, "%.3g %%", 100.0 * check_error(c));
+    else
+        snprintf(errs, sizeof errs, "%.3g", check_error(c));
+    printf("  %-44s %-9s ref %-12.6g meas %-12.6g err %-10s tol %-10s %s\n", c->quantity, c->unit,
+           c->reference, c->measured, errs, tol,
+           c->pass ? "PASS" : (c->known_gap ? "FAIL (known gap)" : "FAIL"));
+    if (c->source[0])
+        printf("      source: %s\n", c->source);
+    if (c->note[0] && (!c->pass || c->known_gap))
+        printf("      note: %s\n", c->note);
+}
+
+int cli_validate(int argc, char **argv)
+{
+    size_t n_cases = 0;
+    const struct vcase *cases = validation_cases(&n_cases);
+    int list = 0, quick = 0;
+    const char *json = NULL;
+    const char *wanted[64];
+    size_t n_wanted = 0;
+    for (int k = 1; k < argc; k++) {
+        const char *a = argv[k];
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            validate_usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--list") == 0) {
+            list = 1;
+        } else if (strcmp(a, "--quick") == 0) {
+            quick = 1;
+        } else if (strcmp(a, "--json") == 0) {
+            if (++k >= argc) {
+                fprintf(stderr, "spall validate: --json needs a file name\n");
+                return 2;
+            }
+            json = argv[k];
+        } else if (a[0] == '-') {
+            fprintf(stderr, "spall validate: unknown option '%s' (see --help)\n", a);
+            return 2;
+        } else {
+            size_t c = 0;
+            while (c < n_cases && strcmp(cases[c].name, a) != 0)
+                c++;
+            if (c == n_cases) {
+                fprintf(stderr, "spall validate: unknown case '%s' (see spall validate --list)\n",
+                        a);
+                return 2;
+            }
+            if (n_wanted < 64)
+                wanted[n_wanted++] = a;
+        }
+    }
+    if (list) {
+        for (size_t c = 0; c < n_cases; c++)
+            printf("%-24s %s%s\n", cases[c].name, cases[c].title,
+                   cases[c].in_quick ? "  [quick]" : "");
+        return 0;
+    }
+    struct vreport rep = {0};
+    rep.log = stdout;
+    rep.quick = quick;
+    int failed_to_run = 0;
+    for (size_t c = 0; c < n_cases; c++) {
+        int selected = n_wanted == 0 ? (!quick || cases[c].in_quick) : 0;
+        for (size_t w = 0; w < n_wanted; w++)
+            selected |= strcmp(wanted[w], cases[c].name) == 0;
+        if (!selected)
+            continue;
+        printf("== %s: %s%s\n", cases[c].name, cases[c].title, quick ? " (quick)" : "");
+        fflush(stdout);
+        rep.current_case = cases[c].name;
+        size_t first = rep.n;
+        struct spall_error err = {0, ""};
+        int rc = cases[c].run(&rep, &err);
+        if (rc) {
+            printf("  ERROR: %s\n", err.msg);
+            failed_to_run++;
+        }
+        for (size_t k = first; k < rep.n; k++)
+            print_check(&rep.checks[k]);
+        fflush(stdout);
+    }
+    size_t pass = 0, fail = 0;
+    for (size_t k = 0; k < rep.n; k++)
+        rep.checks[k].pass ? pass++ : fail++;
+    fail += (size_t)failed_to_run;
+    printf("%zu passed, %zu failed\n", pass, fail);
+    if (json && write_json(json, &rep) != 0) {
+        fprintf(stderr, "spall validate: cannot write '%s'\n", json);
+        vreport_free(&rep);
+        return 4;
+    }
+    vreport_free(&rep);
+    return fail ? 1 : 0;
+}

@@ -1,0 +1,72 @@
+/**
+ * @file main.c
+ * @brief The `spall` command line: a thin layer over libspall that turns
+ *        every error into one line on stderr and a non-zero exit status.
+ */
+#include "cli/cli.h"
+
+#include "spall/spall.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: spall COMMAND [ARGS]\n"
+            "\n"
+            "Particle simulations of dynamic fracture, fragmentation and impact.\n"
+            "\n"
+            "commands:\n"
+            "  run DECK.yaml [-o DIR]   run a simulation described by a YAML deck\n"
+            "  validate [CASE ...]      run the built-in validation cases (--list, --quick, --json)\n"
+            "  bench [CASE ...]         throughput benchmarks (--list, --json, --threads)\n"
+            "  calibrate MODEL ...      model constants from continuum data, with a patch test\n"
+            "\n"
+            "options:\n"
+            "  -h, --help               this help (spall COMMAND --help for a command)\n"
+            "  --version                version and git revision\n"
+            "\n"
+            "Units are SI everywhere.  Decks are documented in docs/decks.md.\n");
+}
+
+int cli_exit_status(int code)
+{
+    switch (code) {
+    case SPALL_OK: return 0;
+    case SPALL_ERR_INPUT:
+    case SPALL_ERR_PHYSICS: return 2;
+    case SPALL_ERR_UNSTABLE: return 3;
+    case SPALL_ERR_IO: return 4;
+    default: return 1;
+    }
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
+        printf("spall %s (git %s)\n", spall_version(), spall_git_revision());
+        return 0;
+    }
+    if (strcmp(cmd, "run") == 0)
+        return cli_run(argc - 1, argv + 1);
+    if (strcmp(cmd, "validate") == 0)
+        return cli_validate(argc - 1, argv + 1);
+    if (strcmp(cmd, "bench") == 0)
+        return cli_bench(argc - 1, argv + 1);
+    if (strcmp(cmd, "calibrate") == 0)
+        return cli_calibrate(argc - 1, argv + 1);
+    fprintf(stderr, "spall: unknown command '%s'; expected run, validate, bench or calibrate "
+                    "(see spall --help)\n",
+            cmd);
+    return 2;
+}

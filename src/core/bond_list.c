@@ -1,0 +1,284 @@
+/**
+ * @file bond_list.c
+ * @brief Fixed bond lists in CSR form (see bond_list.h).
+ *
+ * Bonds come from the cell-list search on the reference positions x0, so
+ * rows are sorted ascending by partner; that order is what lets the reverse
+ * index use a binary search and keeps the list identical for any thread
+ * count.  Every per-bond decision here (rest length, shell, pre-crack cut)
+ * is evaluated from the lower index towards the higher one, or with a
+ * formula symmetric bit for bit, so both halves of a bond always agree.
+ */
+#include "core/bond_list.h"
+
+#include "core/geometry.h"
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+/** Reference length of i-j; (x_j - x_i)^2 == (x_i - x_j)^2 exactly, so
+ *  both halves get the same value. */
+static inline double ref_length(const struct particles *p, size_t i, size_t j)
+{
+    double r2 = 0.0;
+    for (int d = 0; d < p->dim; d++) {
+        double dx = p->x0[d][j] - p->x0[d][i];
+        r2 += dx * dx;
+    }
+    return sqrt(r2);
+}
+
+/** Allocate a list of @p n particles and @p m half-bonds; offset is zeroed. */
+static int bond_list_alloc(struct bond_list **out, size_t n, size_t m, bool with_partner,
+                           struct spall_error *err)
+{
+    struct bond_list *bl = calloc(1, sizeof *bl);
+    if (!bl)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for a bond list");
+    bl->n = n;
+    size_t mm = m ? m : 1;
+    bl->rest = malloc(mm * sizeof *bl->rest);
+    bl->state = calloc(mm, sizeof *bl->state);
+    bl->type = calloc(mm, sizeof *bl->type);
+    if (with_partner) {
+        bl->offset = calloc(n + 1, sizeof *bl->offset);
+        bl->partner = malloc(mm * sizeof *bl->partner);
+    }
+    if (!bl->rest || !bl->state || !bl->type || (with_partner && (!bl->offset || !bl->partner))) {
+        bond_list_destroy(&bl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
+    }
+    *out = bl;
+    return SPALL_OK;
+}
+
+static int search_reference(struct neighbor_list **nl, const struct particles *p, double radius,
+                            struct spall_error *err)
+{
+    if (p->n > (size_t)INT32_MAX)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "bond list: %zu particles exceed the int32 index range", p->n);
+    int rc = neighbor_list_build(nl, p->dim, p->n, p->x0, radius, err);
+    if (rc)
+        spall_error_prefix(err, "building bonds: ");
+    return rc;
+}
+
+int bond_list_build(struct bond_list **out, const struct particles *p, double radius,
+                    struct spall_error *err)
+{
+    *out = NULL;
+    struct neighbor_list *nl = NULL;
+    int rc = search_reference(&nl, p, radius, err);
+    if (rc)
+        return rc;
+    struct bond_list *bl = NULL;
+    rc = bond_list_alloc(&bl, p->n, nl->offset[p->n], false, err);
+    if (rc) {
+        neighbor_list_destroy(&nl);
+        return rc;
+    }
+    /* The neighbour list already is the CSR we need: take its arrays. */
+    bl->offset = nl->offset;
+    bl->partner = nl->idx;
+    nl->offset = NULL;
+    nl->idx = NULL;
+    neighbor_list_destroy(&nl);
+
+    size_t n = p->n;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++)
+            bl->rest[k] = ref_length(p, i, (size_t)bl->partner[k]);
+    *out = bl;
+    return SPALL_OK;
+}
+
+/** Shell of a pair at distance r: the first s with r_lo[s] <= r < r_hi[s], or -1. */
+static inline int shell_of(double r, int n_shells, const double *r_lo, const double *r_hi)
+{
+    for (int s = 0; s < n_shells; s++)
+        if (r >= r_lo[s] && r < r_hi[s])
+            return s;
+    return -1;
+}
+
+int bond_list_build_shells(struct bond_list **out, const struct particles *p, int n_shells,
+                           const double *r_lo, const double *r_hi, struct spall_error *err)
+{
+    *out = NULL;
+    if (n_shells < 1 || n_shells > 256)
+        return spall_error_set(err, SPALL_ERR_INPUT, "bond shells: need 1..256 shells (got %d)",
+                               n_shells);
+    double r_max = 0.0;
+    for (int s = 0; s < n_shells; s++) {
+        if (!(r_lo[s] >= 0.0) || !(r_hi[s] > r_lo[s]) || !isfinite(r_hi[s]))
+            return spall_error_set(err, SPALL_ERR_INPUT,
+                                   "bond shell %d: need 0 <= r_lo < r_hi (got [%g, %g))", s,
+                                   r_lo[s], r_hi[s]);
+        r_max = fmax(r_max, r_hi[s]);
+    }
+    /* Search slightly wider so a pair whose rounded distance is just below
+     * r_hi is never lost to rounding of the squared comparison. */
+    struct neighbor_list *nl = NULL;
+    int rc = search_reference(&nl, p, r_max * (1.0 + 1e-12), err);
+    if (rc)
+        return rc;
+    size_t n = p->n;
+    size_t *cnt = calloc(n + 1, sizeof *cnt);
+    if (!cnt) {
+        neighbor_list_destroy(&nl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for bond shells");
+    }
+    /* Pass 1: count bonds kept per row; pass 2: fill (same order, sorted). */
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        size_t m = 0;
+        for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++)
+            m += shell_of(ref_length(p, i, (size_t)nl->idx[k]), n_shells, r_lo, r_hi) >= 0;
+        cnt[i + 1] = m;
+    }
+    for (size_t i = 0; i < n; i++)
+        cnt[i + 1] += cnt[i];
+    struct bond_list *bl = NULL;
+    rc = bond_list_alloc(&bl, n, cnt[n], true, err);
+    if (rc) {
+        free(cnt);
+        neighbor_list_destroy(&nl);
+        return rc;
+    }
+    memcpy(bl->offset, cnt, (n + 1) * sizeof *cnt);
+    free(cnt);
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        size_t w = bl->offset[i];
+        for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++) {
+            double r = ref_length(p, i, (size_t)nl->idx[k]);
+            int s = shell_of(r, n_shells, r_lo, r_hi);
+            if (s < 0)
+                continue;
+            bl->partner[w] = nl->idx[k];
+            bl->rest[w] = r;
+            bl->type[w] = (uint8_t)s;
+            w++;
+        }
+    }
+    neighbor_list_destroy(&nl);
+    *out = bl;
+    return SPALL_OK;
+}
+
+void bond_list_destroy(struct bond_list **pbl)
+{
+    if (!pbl || !*pbl)
+        return;
+    struct bond_list *bl = *pbl;
+    free(bl->offset);
+    free(bl->partner);
+    free(bl->rest);
+    free(bl->state);
+    free(bl->type);
+    free(bl->reverse);
+    free(bl);
+    *pbl = NULL;
+}
+
+/** Slot of partner @p who in row @p j (rows are sorted), or SIZE_MAX. */
+static size_t find_slot(const struct bond_list *bl, size_t j, int32_t who)
+{
+    size_t a = bl->offset[j], b = bl->offset[j + 1];
+    while (a < b) {
+        size_t mid = a + (b - a) / 2;
+        if (bl->partner[mid] < who)
+            a = mid + 1;
+        else
+            b = mid;
+    }
+    return (a < bl->offset[j + 1] && bl->partner[a] == who) ? a : SIZE_MAX;
+}
+
+int bond_list_build_reverse(struct bond_list *bl, struct spall_error *err)
+{
+    size_t n = bl->n, m = bl->offset[n];
+    size_t *rev = malloc((m ? m : 1) * sizeof *rev);
+    if (!rev)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu reverse slots", m);
+    int missing = 0;
+#pragma omp parallel for schedule(static) reduction(| : missing)
+    for (size_t i = 0; i < n; i++) {
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
+            rev[k] = find_slot(bl, (size_t)bl->partner[k], (int32_t)i);
+            missing |= rev[k] == SIZE_MAX;
+        }
+    }
+    if (missing) {
+        free(rev);
+        return spall_error_set(err, SPALL_ERR_INTERNAL,
+                               "bond list is not symmetric: a bond has no reverse half");
+    }
+    free(bl->reverse);
+    bl->reverse = rev;
+    return SPALL_OK;
+}
+
+size_t bond_list_apply_precrack(struct bond_list *bl, const struct particles *p,
+                                const struct precrack *c)
+{
+    if (!bl || !p || !c)
+        return 0;
+    size_t n = bl->n, cut = 0;
+    int dim = p->dim;
+    /* Gather: each row marks only its own slots, evaluating the pair from the
+     * lower index to the higher so both halves take the same decision. */
+#pragma omp parallel for schedule(dynamic, 1024) reduction(+ : cut)
+    for (size_t i = 0; i < n; i++) {
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
+            size_t j = (size_t)bl->partner[k];
+            size_t a = i < j ? i : j, b = i < j ? j : i;
+            double xa[3] = {0, 0, 0}, xb[3] = {0, 0, 0};
+            for (int d = 0; d < dim; d++) {
+                xa[d] = p->x0[d][a];
+                xb[d] = p->x0[d][b];
+            }
+            if (precrack_cuts(c, xa, xb)) {
+                bl->state[k] |= (uint8_t)(BOND_BROKEN | BOND_PRECUT);
+                cut += j > i;
+            }
+        }
+    }
+    return cut;
+}
+
+size_t bond_list_count(const struct bond_list *bl)
+{
+    return bl ? bl->offset[bl->n] / 2 : 0;
+}
+
+size_t bond_list_count_broken(const struct bond_list *bl)
+{
+    if (!bl)
+        return 0;
+    /* Both halves of a bond are broken together (identical decisions from
+     * both ends), so half the broken slots is the number of bonds. */
+    size_t m = bl->offset[bl->n], broken = 0;
+    const uint8_t *st = bl->state;
+#pragma omp parallel for schedule(static) reduction(+ : broken)
+    for (size_t k = 0; k < m; k++)
+        broken += (st[k] & BOND_BROKEN) != 0;
+    return broken / 2;
+}
+
+size_t bond_list_bytes(const struct bond_list *bl)
+{
+    if (!bl)
+        return 0;
+    size_t m = bl->offset[bl->n];
+    size_t per = sizeof *bl->partner + sizeof *bl->rest + sizeof *bl->state + sizeof *bl->type;
+    return sizeof *bl + (bl->n + 1) * sizeof *bl->offset + m * per +
+           (bl->reverse ? m * sizeof *bl->reverse : 0);
+}

@@ -1,0 +1,65 @@
+/**
+ * @file bond_list.h
+ * @brief Fixed bond lists (lattice springs, peridynamic families) in CSR form.
+ *
+ * Every bond i-j is stored twice, once in i's row and once in j's row
+ * ("half-bonds"), so force loops gather per particle without atomics and the
+ * result does not depend on the thread count.  Decisions taken on a bond
+ * (breaking) are computed identically from both ends because
+ * |x_j - x_i| == |x_i - x_j| bit for bit.
+ * Per-half-bond data: partner index, reference length, state flags and a
+ * model-defined type (e.g. neighbour shell, fiber/matrix).  `reverse[k]` is
+ * the slot of the same bond in the partner's row (built on demand).
+ */
+#ifndef SPALL_BOND_LIST_H
+#define SPALL_BOND_LIST_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+struct particles;
+struct precrack;
+struct spall_error;
+
+enum bond_state_flags {
+    BOND_BROKEN = 1u << 0,  /**< broken: no attraction, repulsion only */
+    BOND_PRECUT = 1u << 1   /**< removed by a pre-crack before the run */
+};
+
+struct bond_list {
+    size_t n;           /**< particles */
+    size_t *offset;     /**< n+1 */
+    int32_t *partner;   /**< local index of the partner */
+    double *rest;       /**< reference length |x0_j - x0_i| [m] */
+    uint8_t *state;     /**< enum bond_state_flags */
+    uint8_t *type;      /**< model-defined */
+    size_t *reverse;    /**< optional: slot of j->i for slot i->j (NULL until built) */
+};
+
+/** Build from reference positions: a bond for every pair closer than
+ *  @p radius (cell list search).  type = 0 for all. */
+int bond_list_build(struct bond_list **out, const struct particles *p, double radius,
+                    struct spall_error *err);
+/** Build bonds only for pairs whose reference distance lies in one of the
+ *  shells [r_lo[s], r_hi[s]); type = s.  Used for lattice neighbour layers. */
+int bond_list_build_shells(struct bond_list **out, const struct particles *p, int n_shells,
+                           const double *r_lo, const double *r_hi, struct spall_error *err);
+void bond_list_destroy(struct bond_list **bl);
+
+/** Build the reverse-slot index (needed by angular springs). */
+int bond_list_build_reverse(struct bond_list *bl, struct spall_error *err);
+
+/** Mark BROKEN|PRECUT every bond crossing the pre-crack (both halves);
+ *  returns the number of bonds cut (each counted once). */
+size_t bond_list_apply_precrack(struct bond_list *bl, const struct particles *p,
+                                const struct precrack *c);
+
+/** Number of bonds, each counted once (half-bonds / 2). */
+size_t bond_list_count(const struct bond_list *bl);
+/** Number of broken bonds, each counted once. */
+size_t bond_list_count_broken(const struct bond_list *bl);
+
+/** Bytes used by the list (for memory reports). */
+size_t bond_list_bytes(const struct bond_list *bl);
+
+#endif

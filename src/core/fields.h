@@ -1,0 +1,79 @@
+/**
+ * @file fields.h
+ * @brief Field registry: every per-particle quantity declared once.
+ *
+ * The core and each model register their per-particle arrays here (name,
+ * components, unit, type, flags).  This single declaration drives HDF5/XDMF
+ * output, restart and (later) MPI ghost exchange and migration packing, so
+ * the I/O and parallel layers never know which model is running.
+ *
+ * A field is either *stored* (pointers to the owner's array pointers, so a
+ * realloc by the owner is seen) or *computed* (a callback fills a buffer,
+ * e.g. displacement = x - x0).
+ */
+#ifndef SPALL_FIELDS_H
+#define SPALL_FIELDS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+struct spall_error;
+
+enum field_type { FIELD_F64, FIELD_I32, FIELD_I64, FIELD_U8 };
+
+enum field_flags {
+    FIELD_OUTPUT = 1u << 0,     /**< may be written to HDF5 */
+    FIELD_DEFAULT = 1u << 1,    /**< written when the deck lists no fields */
+    FIELD_RESTART = 1u << 2,    /**< needed to restart a run */
+    FIELD_GHOST = 1u << 3,      /**< copied to ghosts every step */
+    FIELD_MIGRATE = 1u << 4     /**< travels with a particle to another rank */
+};
+
+#define FIELD_NAME_LEN 48
+
+/** Fills out[i*ncomp + c] for i in [0, n). */
+typedef void (*field_compute_fn)(const void *ctx, size_t n, double *out);
+
+struct field_desc {
+    char name[FIELD_NAME_LEN]; /**< e.g. "velocity" */
+    char unit[16];             /**< SI unit, e.g. "m/s" ("1" for none) */
+    int ncomp;                 /**< 1..9 components */
+    enum field_type type;
+    unsigned flags;
+    /** stored field: address of the owner's array pointer, one per component
+     *  (component c of particle i is (*comp[c])[i]); NULL for computed fields */
+    void **comp[9];
+    field_compute_fn compute; /**< computed field (always FIELD_F64) */
+    const void *ctx;          /**< passed to compute */
+};
+
+struct field_registry {
+    struct field_desc *fields;
+    size_t n, cap;
+};
+
+int field_registry_create(struct field_registry **out, struct spall_error *err);
+void field_registry_destroy(struct field_registry **reg);
+
+/** Register a field; names must be unique. */
+int field_registry_add(struct field_registry *reg, const struct field_desc *desc,
+                       struct spall_error *err);
+
+/** Convenience: register a stored double field with @p ncomp component arrays. */
+int field_registry_add_f64(struct field_registry *reg, const char *name, const char *unit,
+                           int ncomp, double **comp[], unsigned flags, struct spall_error *err);
+
+/** Look a field up by name; NULL if absent. */
+const struct field_desc *field_registry_find(const struct field_registry *reg, const char *name);
+
+/** Copy the values of particles [0, n) into @p out as doubles, interleaved
+ *  (out[i*ncomp + c]); works for stored and computed fields of any type. */
+void field_gather_f64(const struct field_desc *f, size_t n, double *out);
+
+/** Bytes one particle's value of this field occupies when packed. */
+size_t field_packed_size(const struct field_desc *f);
+/** Pack / unpack particle i's value (for MPI exchange and restart). */
+void field_pack(const struct field_desc *f, size_t i, void *buf);
+void field_unpack(const struct field_desc *f, size_t i, const void *buf);
+
+#endif

@@ -1,0 +1,345 @@
+/**
+ * @file integrator.c
+ * @brief Velocity-Verlet time step (equivalent to the leapfrog of seed 000
+ *        Eqs. 22-24: the half-step velocities are the leapfrog velocities),
+ *        boundary conditions, gravity, damping and the energy account.
+ *
+ * One step, t -> t + dt:
+ *   1. v(t+dt/2) = v(t) + dt/2 f(t)/m; prescribed components overwritten
+ *   2. x(t+dt)   = x(t) + dt v(t+dt/2)
+ *   3. f(t+dt)   = model forces + loads + gravity + damping(v(t+dt/2))
+ *   4. v(t+dt)   = v(t+dt/2) + dt/2 f(t+dt)/m; prescribed components set and
+ *      the force that took (the reaction) recorded per BC
+ *   5. model end_step (bond breaking), NaN check.
+ * The integrator knows nothing of the model; it sees only f.
+ */
+#include "core/fields.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "models/model.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Prescribed velocity of BC b at time t, component d. */
+static double bc_velocity(const struct bc *b, int d, double t)
+{
+    if (b->kind == BC_FIXED)
+        return 0.0;
+    return b->value[d] * time_function_eval(&b->tf, t);
+}
+
+static int bc_prescribes_velocity(const struct bc *b)
+{
+    return b->kind == BC_FIXED || b->kind == BC_VELOCITY;
+}
+
+/* Loads (force / traction) shared equally by the group's particles. */
+static void apply_loads(struct sim *s, double t)
+{
+    struct particles *p = s->p;
+    for (size_t k = 0; k < s->n_bcs; k++) {
+        struct bc *b = &s->bcs[k];
+        if (bc_prescribes_velocity(b))
+            continue;
+        const struct group *g = &s->groups[b->group];
+        if (g->n == 0)
+            continue;
+        double scale = time_function_eval(&b->tf, t);
+        double total[3] = {0, 0, 0};
+        for (int d = 0; d < s->dim; d++) {
+            if (!(b->comp_mask & (1u << d)))
+                continue;
+            total[d] = b->value[d] * scale * (b->kind == BC_TRACTION ? b->area : 1.0);
+            double per = total[d] / (double)g->n;
+            for (size_t q = 0; q < g->n; q++)
+                p->f[d][g->idx[q]] += per;
+        }
+        memcpy(b->reaction, total, sizeof total);
+    }
+}
+
+/* Gravity and mass-proportional damping, F = m g - c m v_half. */
+static void apply_body_forces(struct sim *s)
+{
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    for (int d = 0; d < s->dim; d++) {
+        const double g = s->gravity[d];
+        const double c = s->damping;
+        if (g == 0.0 && c == 0.0)
+            continue;
+        double *restrict f = p->f[d];
+        const double *restrict v = p->v[d];
+        const double *restrict m = p->mass;
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++)
+            f[i] += m[i] * (g - c * v[i]);
+    }
+}
+
+/* Energy removed by damping and work of gravity over the drift dx = v dt. */
+static void account_body_work(struct sim *s, double dt)
+{
+    if (s->damping == 0.0 && s->gravity[0] == 0.0 && s->gravity[1] == 0.0 && s->gravity[2] == 0.0)
+        return;
+    const struct particles *p = s->p;
+    double damp = 0.0, grav = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        for (int d = 0; d < s->dim; d++) {
+            double v = p->v[d][i];
+            damp += s->damping * p->mass[i] * v * v * dt;
+            grav += p->mass[i] * s->gravity[d] * v * dt;
+        }
+    s->energy.damping += damp;
+    s->energy.external += grav;
+}
+
+/* Set prescribed velocity components at time t; with @p record, store the
+ * force each BC needed to impose them (m dv/(dt/2) - nothing else), i.e. the
+ * reaction, and accumulate the constraint's work. */
+static void impose_velocities(struct sim *s, double t, double half_dt, int record)
+{
+    struct particles *p = s->p;
+    for (size_t k = 0; k < s->n_bcs; k++) {
+        struct bc *b = &s->bcs[k];
+        if (!bc_prescribes_velocity(b))
+            continue;
+        const struct group *g = &s->groups[b->group];
+        double reaction[3] = {0, 0, 0};
+        double work = 0.0;
+        for (int d = 0; d < s->dim; d++) {
+            if (!(b->comp_mask & (1u << d)))
+                continue;
+            double vb = bc_velocity(b, d, t);
+            for (size_t q = 0; q < g->n; q++) {
+                size_t i = g->idx[q];
+                double dv = vb - p->v[d][i];
+                double r = p->mass[i] * dv / half_dt;
+                reaction[d] += r;
+                /* the constraint point moves at vb, so its impulse m dv does
+                 * the work m dv vb; summed over the two half kicks this is
+                 * the trapezoidal rule for the reaction's power R . vb */
+                work += p->mass[i] * dv * vb;
+                p->v[d][i] = vb;
+            }
+        }
+        if (record) {
+            for (int d = 0; d < 3; d++)
+                b->reaction[d] = reaction[d];
+        }
+        b->work += work;
+        s->energy.external += work;
+    }
+}
+
+/* Prescribed velocities for the predicted state (no work, no reaction). */
+static void impose_velocities_silent(struct sim *s, double t)
+{
+    struct particles *p = s->p;
+    for (size_t k = 0; k < s->n_bcs; k++) {
+        const struct bc *b = &s->bcs[k];
+        if (!bc_prescribes_velocity(b))
+            continue;
+        const struct group *g = &s->groups[b->group];
+        for (int d = 0; d < s->dim; d++)
+            if (b->comp_mask & (1u << d)) {
+                double vb = bc_velocity(b, d, t);
+                for (size_t q = 0; q < g->n; q++)
+                    p->v[d][g->idx[q]] = vb;
+            }
+    }
+}
+
+static void kick(struct sim *s, double half_dt)
+{
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    for (int d = 0; d < s->dim; d++) {
+        double *restrict v = p->v[d];
+        const double *restrict f = p->f[d];
+        const double *restrict m = p->mass;
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++)
+            v[i] += half_dt * f[i] / m[i];
+    }
+}
+
+static void drift(struct sim *s, double dt)
+{
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    for (int d = 0; d < s->dim; d++) {
+        double *restrict x = p->x[d];
+        const double *restrict v = p->v[d];
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++)
+            x[i] += dt * v[i];
+    }
+}
+
+/* Work of the loads over the drift: sum over loaded particles of F . dx. */
+static void account_load_work(struct sim *s, double dt)
+{
+    const struct particles *p = s->p;
+    for (size_t k = 0; k < s->n_bcs; k++) {
+        struct bc *b = &s->bcs[k];
+        if (bc_prescribes_velocity(b))
+            continue;
+        const struct group *g = &s->groups[b->group];
+        if (g->n == 0)
+            continue;
+        double w = 0.0;
+        for (int d = 0; d < s->dim; d++) {
+            if (!(b->comp_mask & (1u << d)))
+                continue;
+            double per = b->reaction[d] / (double)g->n;
+            for (size_t q = 0; q < g->n; q++)
+                w += per * p->v[d][g->idx[q]] * dt;
+        }
+        b->work += w;
+        s->energy.external += w;
+    }
+}
+
+static int compute_all_forces(struct sim *s, struct spall_error *err)
+{
+    particles_zero_forces(s->p);
+    int rc = s->ops->compute_forces(s->model, s, err);
+    if (rc)
+        return rc;
+    apply_loads(s, s->t);
+    apply_body_forces(s);
+    return SPALL_OK;
+}
+
+void sim_update_energy(struct sim *s)
+{
+    const struct particles *p = s->p;
+    /* fixed-order serial sum: diagnostics identical for any thread count */
+    double ke = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        double v2 = 0.0;
+        for (int d = 0; d < s->dim; d++)
+            v2 += p->v[d][i] * p->v[d][i];
+        ke += 0.5 * p->mass[i] * v2;
+    }
+    struct model_energy me = {0, 0};
+    if (s->ops->energy)
+        s->ops->energy(s->model, s, &me);
+    s->energy.kinetic = ke;
+    s->energy.strain = me.strain;
+    s->energy.model_dissipated = me.dissipated;
+    double total = ke + me.strain + me.dissipated + s->energy.damping - s->energy.external;
+    s->energy.balance = total - s->energy.initial_total;
+}
+
+int sim_initial_forces(struct sim *s, struct spall_error *err)
+{
+    int rc = compute_all_forces(s, err);
+    if (rc)
+        return rc;
+    impose_velocities(s, 0.0, 0.5 * s->dt, 1);
+    /* the initial imposition is a set-up, not work done during the run */
+    s->energy.external = 0.0;
+    for (size_t k = 0; k < s->n_bcs; k++)
+        s->bcs[k].work = 0.0;
+    s->energy.initial_total = 0.0;
+    sim_update_energy(s);
+    s->energy.initial_total = s->energy.kinetic + s->energy.strain + s->energy.model_dissipated;
+    s->energy.balance = 0.0;
+    return SPALL_OK;
+}
+
+/* Find the first particle with a non-finite velocity (a non-finite position
+ * makes the forces and hence the velocity non-finite in the same step). */
+static int check_finite(const struct sim *s, size_t *bad)
+{
+    const struct particles *p = s->p;
+    for (int d = 0; d < s->dim; d++) {
+        const double *v = p->v[d];
+        double acc = 0.0;
+        for (size_t i = 0; i < p->n_owned; i++)
+            acc += v[i] * 0.0; /* a NaN or Inf turns acc into NaN */
+        if (acc != 0.0) {
+            for (size_t i = 0; i < p->n_owned; i++)
+                if (!isfinite(v[i]) || !isfinite(p->x[d][i])) {
+                    *bad = i;
+                    return 1;
+                }
+        }
+    }
+    return 0;
+}
+
+int sim_step(struct sim *s, struct spall_error *err)
+{
+    const double dt = s->dt;
+    const double half = 0.5 * dt;
+    const int pc = s->integrator == INTEGRATOR_PREDICTOR_CORRECTOR;
+    kick(s, half);
+    impose_velocities(s, s->t + half, half, 0);
+    drift(s, dt);
+    account_body_work(s, dt);
+    account_load_work(s, dt);
+    s->t += dt;
+    s->step++;
+    int rc = SPALL_OK;
+    if (pc) {
+        /* forces of step n+1 see v_pred = v_n + dt a_n = v_half + dt/2 a_n */
+        for (int d = 0; d < s->dim; d++)
+            memcpy(s->v_half[d], s->p->v[d], s->p->n_owned * sizeof(double));
+        kick(s, half);
+        impose_velocities_silent(s, s->t);
+    }
+    if (s->ops->advance_state && (rc = s->ops->advance_state(s->model, s, dt, 0, err)))
+        return rc;
+    if ((rc = compute_all_forces(s, err)))
+        return rc;
+    if (pc)
+        for (int d = 0; d < s->dim; d++)
+            memcpy(s->p->v[d], s->v_half[d], s->p->n_owned * sizeof(double));
+    kick(s, half);
+    impose_velocities(s, s->t, half, 1);
+    if (s->ops->advance_state && (rc = s->ops->advance_state(s->model, s, dt, 1, err)))
+        return rc;
+    rc = s->ops->end_step(s->model, s, err);
+    if (rc)
+        return rc;
+    if (s->adaptive_dt) {
+        /* e.g. SPH, Eq. 3.38: the limit moves with the sound speed and
+         * particle velocities; never step past end_time */
+        double lim = s->ops->stable_dt(s->model, s);
+        double dt_new = s->dt_factor * lim;
+        if (s->end_time > s->t && dt_new > s->end_time - s->t)
+            dt_new = s->end_time - s->t;
+        if (dt_new > 0.0 && isfinite(dt_new))
+            s->dt = dt_new;
+    }
+    size_t bad = 0;
+    if (check_finite(s, &bad))
+        return spall_error_set(err, SPALL_ERR_UNSTABLE,
+                               "run went unstable at step %ld, t = %.6g s: particle %zu (id %lld) "
+                               "has a non-finite position or velocity",
+                               s->step, s->t, bad, (long long)s->p->gid[bad]);
+    return SPALL_OK;
+}
+
+bool sim_done(const struct sim *s)
+{
+    if (s->adaptive_dt)
+        return s->t >= s->end_time * (1.0 - 1e-12);
+    return s->step >= s->n_steps;
+}
+
+void sim_group_reaction(const struct sim *s, int g, double out[3])
+{
+    out[0] = out[1] = out[2] = 0.0;
+    for (size_t k = 0; k < s->n_bcs; k++) {
+        if (s->bcs[k].group != g)
+            continue;
+        for (int d = 0; d < 3; d++)
+            out[d] += s->bcs[k].reaction[d];
+    }
+}

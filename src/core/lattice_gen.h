@@ -1,0 +1,52 @@
+/**
+ * @file lattice_gen.h
+ * @brief Lattice generators that fill a geometry with particle sites.
+ *
+ * 1D chain (along x), 2D triangular (rows along x rotated by `angle`) and
+ * square, 3D simple cubic and FCC.  `spacing` is the nearest-neighbour
+ * distance r0 for every kind (for FCC the cubic cell edge is sqrt(2) r0).
+ * Sites are generated on the lattice anchored at `origin`, kept when inside
+ * the region, and appended in a deterministic order (row-major), which keeps
+ * neighbours close in memory.
+ */
+#ifndef SPALL_LATTICE_GEN_H
+#define SPALL_LATTICE_GEN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+struct geom;
+struct particles;
+struct spall_error;
+
+enum lattice_kind { LATTICE_CHAIN, LATTICE_TRIANGULAR, LATTICE_SQUARE, LATTICE_SC, LATTICE_FCC };
+
+struct lattice_spec {
+    enum lattice_kind kind;
+    double spacing;    /**< nearest-neighbour distance r0 [m] */
+    double origin[3];  /**< a lattice site sits here [m] */
+    double angle;      /**< 2D: rotation of the lattice about z [rad] */
+};
+
+/** Parse "chain", "triangular", "square", "sc", "fcc"; returns -1 if unknown. */
+int lattice_kind_from_name(const char *name);
+const char *lattice_kind_name(enum lattice_kind kind);
+/** Spatial dimension of a lattice kind (1, 2 or 3). */
+int lattice_kind_dim(enum lattice_kind kind);
+
+/** Append every lattice site inside @p region to @p p with material @p material.
+ *  Fails with SPALL_ERR_INPUT if the region is unbounded, or contains no site
+ *  ("geometry 'name' contains no lattice site": the caller adds the name). */
+int lattice_fill(struct particles *p, const struct lattice_spec *spec, const struct geom *region,
+                 int32_t material, size_t *n_added, struct spall_error *err);
+
+/** Distance of the k-th neighbour shell (k = 1 nearest, 2 second...). */
+double lattice_shell_distance(const struct lattice_spec *spec, int shell);
+/** Number of neighbours in shell k of a bulk site. */
+int lattice_shell_count(enum lattice_kind kind, int shell);
+
+/** Volume per site [m^3].  2D kinds need the plate thickness t (> 0);
+ *  1D needs the cross-section area passed as thickness_or_area. */
+double lattice_site_volume(const struct lattice_spec *spec, double thickness_or_area);
+
+#endif

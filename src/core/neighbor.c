@@ -1,0 +1,376 @@
+/**
+ * @file neighbor.c
+ * @brief Cell-list neighbour search (see neighbor.h).
+ *
+ * Particles are binned into a uniform grid of cells with edge >= radius by a
+ * counting sort (stable: ascending index inside a cell), and their positions
+ * are copied in cell order so the scan reads contiguous memory.  The query
+ * for particle i visits the 3^dim cells around its own; because cells are
+ * numbered x-fastest, the three cells of one x-row are a single contiguous
+ * range, so only 3^(dim-1) ranges are scanned.
+ *
+ * Determinism: each row is built independently by two passes (count, then
+ * fill into the slot given by the serial prefix sum) and sorted ascending, so
+ * the CSR is bitwise identical for any thread count, and identical to the
+ * brute-force twin because both use pair_r2() for the distance test.
+ */
+#include "core/neighbor.h"
+
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+/** Rows longer than this are sorted with qsort instead of insertion sort. */
+#define NEIGHBOR_INSERTION_MAX 48
+
+/** Squared distance, written once so the cell list and the brute force
+ *  take exactly the same decision for every pair. */
+static inline double pair_r2(int dim, const double *xi, double *const xs[3], size_t k)
+{
+    double dx = xs[0][k] - xi[0];
+    double r2 = dx * dx;
+    if (dim > 1) {
+        double dy = xs[1][k] - xi[1];
+        r2 += dy * dy;
+    }
+    if (dim > 2) {
+        double dz = xs[2][k] - xi[2];
+        r2 += dz * dz;
+    }
+    return r2;
+}
+
+static int cmp_i32(const void *a, const void *b)
+{
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+static void sort_row(int32_t *v, size_t m)
+{
+    if (m > NEIGHBOR_INSERTION_MAX) {
+        qsort(v, m, sizeof *v, cmp_i32);
+        return;
+    }
+    for (size_t a = 1; a < m; a++) {
+        int32_t key = v[a];
+        size_t b = a;
+        while (b > 0 && v[b - 1] > key) {
+            v[b] = v[b - 1];
+            b--;
+        }
+        v[b] = key;
+    }
+}
+
+static int list_alloc(struct neighbor_list **out, size_t n, struct spall_error *err)
+{
+    struct neighbor_list *nl = calloc(1, sizeof *nl);
+    if (nl)
+        nl->offset = calloc(n + 1, sizeof *nl->offset);
+    if (!nl || !nl->offset) {
+        free(nl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the neighbour list of %zu",
+                               n);
+    }
+    nl->n = n;
+    *out = nl;
+    return SPALL_OK;
+}
+
+/** offset[i+1] holds row i's count on entry; turn into offsets and allocate. */
+static int list_finish_offsets(struct neighbor_list *nl, struct spall_error *err)
+{
+    size_t n = nl->n;
+    nl->offset[0] = 0;
+    for (size_t i = 0; i < n; i++)
+        nl->offset[i + 1] += nl->offset[i];
+    size_t total = nl->offset[n];
+    nl->idx = malloc((total ? total : 1) * sizeof *nl->idx);
+    if (!nl->idx)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu neighbour pairs", total);
+    return SPALL_OK;
+}
+
+static int check_input(int dim, size_t n, double *const x[3], double radius,
+                       struct spall_error *err)
+{
+    if (dim < 1 || dim > 3)
+        return spall_error_set(err, SPALL_ERR_INPUT, "neighbour search: dimension %d not in 1..3",
+                               dim);
+    if (!(radius > 0.0) || !isfinite(radius))
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "neighbour search: radius must be positive and finite (got %g)",
+                               radius);
+    if (n > (size_t)INT32_MAX)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "neighbour search: %zu particles exceed the int32 index range", n);
+    for (int d = 0; d < dim && n > 0; d++)
+        if (!x[d])
+            return spall_error_set(err, SPALL_ERR_INTERNAL,
+                                   "neighbour search: position component %d missing", d);
+    return SPALL_OK;
+}
+
+/** The binned particles. */
+struct cell_grid {
+    int dim;
+    double lo[3];
+    double inv_edge;
+    long nc[3];       /**< cells per axis (1 for unused axes) */
+    size_t *start;    /**< ncell+1: particles of cell c are [start[c], start[c+1]) */
+    int32_t *order;   /**< sorted slot -> particle index */
+    double *xs[3];    /**< positions in sorted order */
+};
+
+static void grid_free(struct cell_grid *g)
+{
+    free(g->start);
+    free(g->order);
+    for (int d = 0; d < 3; d++)
+        free(g->xs[d]);
+}
+
+static inline long cell_coord(const struct cell_grid *g, int d, double xd)
+{
+    long c = (long)((xd - g->lo[d]) * g->inv_edge);
+    return c < 0 ? 0 : (c >= g->nc[d] ? g->nc[d] - 1 : c);
+}
+
+/** Linear cell index of particle i (x fastest). */
+static inline size_t cell_index(const struct cell_grid *g, double *const x[3], size_t i)
+{
+    size_t c = 0;
+    for (int d = g->dim - 1; d >= 0; d--)
+        c = c * (size_t)g->nc[d] + (size_t)cell_coord(g, d, x[d][i]);
+    return c;
+}
+
+static int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], double radius,
+                      struct spall_error *err)
+{
+    memset(g, 0, sizeof *g);
+    g->dim = dim;
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++) {
+        lo[d] = hi[d] = x[d][0];
+        for (size_t i = 0; i < n; i++) {
+            double v = x[d][i];
+            if (!isfinite(v))
+                return spall_error_set(err, SPALL_ERR_INPUT,
+                                       "neighbour search: particle %zu has a non-finite position",
+                                       i);
+            lo[d] = v < lo[d] ? v : lo[d];
+            hi[d] = v > hi[d] ? v : hi[d];
+        }
+        g->lo[d] = lo[d];
+        if (!isfinite(hi[d] - lo[d]))
+            return spall_error_set(err, SPALL_ERR_INPUT,
+                                   "neighbour search: positions span more than a double holds");
+    }
+    /* Cell edge >= radius keeps every partner within the 3^dim block; cap the
+     * number of cells at ~4n + 1000 (widely spread points) by enlarging it. */
+    double edge = radius;
+    double limit = 4.0 * (double)n + 1000.0;
+    for (;;) {
+        double total = 1.0;
+        for (int d = 0; d < dim; d++)
+            total *= floor((hi[d] - lo[d]) / edge) + 1.0;
+        if (total <= limit)
+            break;
+        edge *= fmax(pow(total / limit, 1.0 / dim), 1.01);
+    }
+    g->inv_edge = 1.0 / edge;
+    size_t ncell = 1;
+    for (int d = 0; d < 3; d++) {
+        g->nc[d] = d < dim ? (long)floor((hi[d] - lo[d]) / edge) + 1 : 1;
+        ncell *= (size_t)g->nc[d];
+    }
+
+    g->start = calloc(ncell + 1, sizeof *g->start);
+    g->order = malloc(n * sizeof *g->order);
+    bool bad = !g->start || !g->order;
+    for (int d = 0; d < dim; d++) {
+        g->xs[d] = malloc(n * sizeof(double));
+        bad = bad || !g->xs[d];
+    }
+    if (bad) {
+        grid_free(g);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu cells", ncell);
+    }
+    /* Counting sort.  The cell of a particle is recomputed in the scatter
+     * rather than stored: cheaper than touching another n-sized array. */
+    for (size_t i = 0; i < n; i++)
+        g->start[cell_index(g, x, i) + 1]++;
+    for (size_t c = 0; c < ncell; c++)
+        g->start[c + 1] += g->start[c];
+    /* Stable scatter: particles of one cell keep ascending index order. */
+    for (size_t i = 0; i < n; i++) {
+        size_t k = g->start[cell_index(g, x, i)]++;
+        g->order[k] = (int32_t)i;
+        for (int d = 0; d < dim; d++)
+            g->xs[d][k] = x[d][i];
+    }
+    /* The scatter advanced start[c] to the old start[c+1]: shift back. */
+    for (size_t c = ncell; c > 0; c--)
+        g->start[c] = g->start[c - 1];
+    g->start[0] = 0;
+    return SPALL_OK;
+}
+
+/** Scan the cells around particle i; write partners to @p outv when not NULL.
+ *  Returns the number of partners. */
+static inline size_t grid_query_dim(const struct cell_grid *g, const int dim, size_t i,
+                                    double *const x[3], double r2max, int32_t *outv)
+{
+    double xi[3] = {0, 0, 0};
+    long c[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++) {
+        xi[d] = x[d][i];
+        c[d] = cell_coord(g, d, xi[d]);
+    }
+    long x0 = c[0] > 0 ? c[0] - 1 : 0;
+    long x1 = c[0] + 1 < g->nc[0] ? c[0] + 1 : g->nc[0] - 1;
+    long z0 = dim > 2 ? (c[2] > 0 ? c[2] - 1 : 0) : 0;
+    long z1 = dim > 2 ? (c[2] + 1 < g->nc[2] ? c[2] + 1 : g->nc[2] - 1) : 0;
+    long y0 = dim > 1 ? (c[1] > 0 ? c[1] - 1 : 0) : 0;
+    long y1 = dim > 1 ? (c[1] + 1 < g->nc[1] ? c[1] + 1 : g->nc[1] - 1) : 0;
+    int32_t self = (int32_t)i;
+    size_t m = 0;
+    for (long cz = z0; cz <= z1; cz++) {
+        for (long cy = y0; cy <= y1; cy++) {
+            size_t row = ((size_t)cz * (size_t)g->nc[1] + (size_t)cy) * (size_t)g->nc[0];
+            size_t k0 = g->start[row + (size_t)x0], k1 = g->start[row + (size_t)x1 + 1];
+            for (size_t k = k0; k < k1; k++) {
+                if (pair_r2(dim, xi, g->xs, k) < r2max && g->order[k] != self) {
+                    if (outv)
+                        outv[m] = g->order[k];
+                    m++;
+                }
+            }
+        }
+    }
+    return m;
+}
+
+/** Dispatch once per particle so each dimension gets its own unrolled loop. */
+static size_t grid_query(const struct cell_grid *g, size_t i, double *const x[3], double r2max,
+                         int32_t *outv)
+{
+    switch (g->dim) {
+    case 1:
+        return grid_query_dim(g, 1, i, x, r2max, outv);
+    case 2:
+        return grid_query_dim(g, 2, i, x, r2max, outv);
+    default:
+        return grid_query_dim(g, 3, i, x, r2max, outv);
+    }
+}
+
+int neighbor_list_build(struct neighbor_list **out, int dim, size_t n, double *const x[3],
+                        double radius, struct spall_error *err)
+{
+    *out = NULL;
+    int rc = check_input(dim, n, x, radius, err);
+    if (rc)
+        return rc;
+    struct neighbor_list *nl = NULL;
+    rc = list_alloc(&nl, n, err);
+    if (rc)
+        return rc;
+    if (n == 0) {
+        rc = list_finish_offsets(nl, err);
+        if (rc)
+            neighbor_list_destroy(&nl);
+        *out = nl;
+        return rc;
+    }
+    struct cell_grid g;
+    rc = grid_build(&g, dim, n, x, radius, err);
+    if (rc) {
+        neighbor_list_destroy(&nl);
+        return rc;
+    }
+    double r2max = radius * radius;
+    size_t *off = nl->offset;
+    /* Pass 1: count per row.  Pass 2: fill at the prefix-sum offsets. */
+#pragma omp parallel for schedule(dynamic, 2048)
+    for (size_t i = 0; i < n; i++)
+        off[i + 1] = grid_query(&g, i, x, r2max, NULL);
+    rc = list_finish_offsets(nl, err);
+    if (!rc) {
+        int32_t *idx = nl->idx;
+#pragma omp parallel for schedule(dynamic, 2048)
+        for (size_t i = 0; i < n; i++) {
+            size_t m = grid_query(&g, i, x, r2max, idx + off[i]);
+            sort_row(idx + off[i], m);
+        }
+    }
+    grid_free(&g);
+    if (rc) {
+        neighbor_list_destroy(&nl);
+        return rc;
+    }
+    *out = nl;
+    return SPALL_OK;
+}
+
+/** Brute-force row i: every j != i in ascending order. */
+static size_t brute_row(int dim, size_t n, double *const x[3], size_t i, double r2max,
+                        int32_t *outv)
+{
+    double xi[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++)
+        xi[d] = x[d][i];
+    size_t m = 0;
+    for (size_t j = 0; j < n; j++) {
+        if (j != i && pair_r2(dim, xi, x, j) < r2max) {
+            if (outv)
+                outv[m] = (int32_t)j;
+            m++;
+        }
+    }
+    return m;
+}
+
+int neighbor_list_build_brute(struct neighbor_list **out, int dim, size_t n, double *const x[3],
+                              double radius, struct spall_error *err)
+{
+    *out = NULL;
+    int rc = check_input(dim, n, x, radius, err);
+    if (rc)
+        return rc;
+    struct neighbor_list *nl = NULL;
+    rc = list_alloc(&nl, n, err);
+    if (rc)
+        return rc;
+    double r2max = radius * radius;
+    size_t *off = nl->offset;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; i++)
+        off[i + 1] = brute_row(dim, n, x, i, r2max, NULL);
+    rc = list_finish_offsets(nl, err);
+    if (rc) {
+        neighbor_list_destroy(&nl);
+        return rc;
+    }
+    int32_t *idx = nl->idx;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t i = 0; i < n; i++)
+        brute_row(dim, n, x, i, r2max, idx + off[i]);
+    *out = nl;
+    return SPALL_OK;
+}
+
+void neighbor_list_destroy(struct neighbor_list **pnl)
+{
+    if (!pnl || !*pnl)
+        return;
+    free((*pnl)->offset);
+    free((*pnl)->idx);
+    free(*pnl);
+    *pnl = NULL;
+}

@@ -1,0 +1,51 @@
+/**
+ * @file particles.h
+ * @brief Structure-of-arrays particle storage shared by every model.
+ *
+ * Positions, velocities and forces are stored per component (x[0], x[1], x[2])
+ * so that per-particle loops vectorise; only the first `dim` components are
+ * allocated.  Particles [0, n_owned) belong to this rank; [n_owned, n) are
+ * ghosts (copies of other ranks' particles, filled by the parallel layer).
+ * The global id `gid` is what survives re-ordering and migration.
+ * Model-specific per-particle state lives in arrays owned by the model, with
+ * the same index.  Units: SI (m, m/s, N, kg).
+ */
+#ifndef SPALL_PARTICLES_H
+#define SPALL_PARTICLES_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+struct spall_error;
+
+struct particles {
+    int dim;          /**< 1, 2 or 3 */
+    size_t n;         /**< owned + ghost particles */
+    size_t n_owned;   /**< particles owned by this rank */
+    size_t cap;       /**< allocated capacity */
+    double *x[3];     /**< current position */
+    double *x0[3];    /**< reference (initial) position */
+    double *v[3];     /**< velocity */
+    double *f[3];     /**< total force of the current step */
+    double *mass;     /**< kg */
+    double *volume;   /**< m^3, volume the particle stands for */
+    int64_t *gid;     /**< global id, unique over all ranks */
+    int32_t *material;/**< index into the material table */
+};
+
+/** Create an empty particle set of dimension @p dim with room for @p cap. */
+int particles_create(struct particles **out, int dim, size_t cap, struct spall_error *err);
+void particles_destroy(struct particles **p);
+
+/** Grow capacity to at least @p cap (keeps contents). */
+int particles_reserve(struct particles *p, size_t cap, struct spall_error *err);
+
+/** Append one owned particle at @p pos (reference = current), zero velocity;
+ *  gid = index.  Returns its index in @p *index. */
+int particles_append(struct particles *p, const double pos[3], int32_t material,
+                     size_t *index, struct spall_error *err);
+
+/** Zero the force arrays of all particles. */
+void particles_zero_forces(struct particles *p);
+
+#endif

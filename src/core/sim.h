@@ -1,0 +1,172 @@
+/**
+ * @file sim.h
+ * @brief The simulation context passed explicitly everywhere (no globals).
+ *
+ * Owns the particles, the field registry, the model instance, materials,
+ * groups, boundary conditions, probes and the energy account.  Built from a
+ * deck by io/deck_build.c or by hand through the library API.
+ */
+#ifndef SPALL_SIM_H
+#define SPALL_SIM_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/lattice_gen.h"
+#include "core/time_function.h"
+
+struct bond_list;
+struct deck_node;
+struct field_registry;
+struct model;
+struct model_ops;
+struct particles;
+struct precrack;
+struct spall_error;
+
+#define SPALL_NAME_LEN 64
+
+struct material {
+    char name[SPALL_NAME_LEN];
+    double density; /**< kg/m^3 */
+};
+
+/** A named set of particles (indices into the particle arrays). */
+struct group {
+    char name[SPALL_NAME_LEN];
+    size_t n;
+    size_t *idx;
+};
+
+enum bc_kind {
+    BC_FIXED,     /**< listed velocity components held at 0 */
+    BC_VELOCITY,  /**< listed components follow value * f(t) */
+    BC_FORCE,     /**< total force value * f(t) shared equally by the group's particles */
+    BC_TRACTION   /**< traction value * f(t) [Pa] times area, shared equally */
+};
+
+struct bc {
+    enum bc_kind kind;
+    int group;          /**< index into sim->groups */
+    unsigned comp_mask; /**< bit d set: component d is prescribed */
+    double value[3];    /**< m/s (velocity), N (force), Pa (traction) */
+    double area;        /**< traction: loaded area [m^2] */
+    struct time_function tf;
+    double reaction[3]; /**< force the BC applied to the group this step [N] */
+    double work;        /**< work done on the body so far [J] */
+};
+
+struct probe {
+    char name[SPALL_NAME_LEN];
+    double pos[3];   /**< requested point */
+    size_t particle; /**< nearest particle at start */
+};
+
+/** Running energy account [J]. */
+struct energy_account {
+    double kinetic;
+    double strain;       /**< model potential energy */
+    double model_dissipated; /**< broken bonds, plasticity (from the model) */
+    double damping;      /**< removed by mass-proportional damping */
+    double external;     /**< work of boundary conditions and gravity */
+    double initial_total;
+    double balance;      /**< kinetic + strain + dissipated + damping - external - initial */
+};
+
+/** Time integrators (both second order, same positions):
+ *  verlet: forces of step n+1 see the half-step velocities;
+ *  predictor_corrector: they see the predicted v_n + dt a_n (seed 004
+ *  Eqs. 3.35-3.37), which velocity-dependent forces (artificial viscosity)
+ *  expect. */
+enum integrator_kind { INTEGRATOR_VERLET, INTEGRATOR_PREDICTOR_CORRECTOR };
+
+struct sim {
+    int dim;
+    enum integrator_kind integrator;
+    struct particles *p;
+    struct field_registry *fields;
+    const struct model_ops *ops;
+    struct model *model;
+
+    struct material *materials;
+    size_t n_materials;
+    struct group *groups;
+    size_t n_groups;
+    struct bc *bcs;
+    size_t n_bcs;
+    struct probe *probes;
+    size_t n_probes;
+    struct precrack *precracks; /**< applied by sim_prepare after model init */
+    size_t n_precracks;
+    size_t n_precut;            /**< bonds removed by pre-cracks */
+
+    struct lattice_spec lattice; /**< lattice used to fill the body */
+    double thickness;            /**< 2D: plate thickness [m]; 1D: cross-section area [m^2] */
+    bool thickness_given;        /**< false: the model's default thickness was used */
+
+    double gravity[3];    /**< m/s^2 */
+    double damping;       /**< mass-proportional damping coefficient [1/s] */
+
+    double t;             /**< current time [s] */
+    double dt;            /**< time step [s] */
+    double dt_limit;      /**< stability limit at start [s] */
+    double dt_factor;     /**< dt = dt_factor * dt_limit unless the deck sets dt */
+    bool dt_override;     /**< allow dt above the limit (explicit deck key) */
+    bool adaptive_dt;     /**< re-evaluate dt = dt_factor * stable_dt every step
+                               (n_steps is then only an estimate) */
+    double end_time;      /**< s */
+    long step;
+    long n_steps;
+
+    double energy_blowup; /**< stop if total energy exceeds this factor x reference */
+    struct energy_account energy;
+    double *v_half[3];    /**< predictor-corrector scratch (owned) */
+    int threads;          /**< OpenMP threads (0 = library default) */
+    uint64_t seed;        /**< random seed for stochastic features */
+};
+
+/** Empty context for a @p dim-dimensional run. */
+int sim_create(struct sim **out, int dim, struct spall_error *err);
+void sim_destroy(struct sim **s);
+
+/** Add a material; returns its index in *index. Refuses duplicates. */
+int sim_add_material(struct sim *s, const char *name, double density, int *index,
+                     struct spall_error *err);
+int sim_find_material(const struct sim *s, const char *name);
+/** Add a group holding copies of @p idx; refuses duplicate names. */
+int sim_add_group(struct sim *s, const char *name, const size_t *idx, size_t n, int *index,
+                  struct spall_error *err);
+int sim_find_group(const struct sim *s, const char *name);
+int sim_add_bc(struct sim *s, const struct bc *bc, struct spall_error *err);
+int sim_add_precrack(struct sim *s, const struct precrack *c, struct spall_error *err);
+int sim_add_probe(struct sim *s, const char *name, const double pos[3], struct spall_error *err);
+
+/** Select a model by name and create it with the deck's params (may be NULL). */
+int sim_set_model(struct sim *s, const char *name, const struct deck_node *params,
+                  struct spall_error *err);
+
+/** After particles, masses and materials exist: init the model, register
+ *  fields, compute the stable dt and initial forces/energies.  Refuses a
+ *  dt above the limit unless dt_override is set. */
+int sim_prepare(struct sim *s, struct spall_error *err);
+
+/** Compute the forces of the initial state (called by sim_prepare) and
+ *  the initial energy account. */
+int sim_initial_forces(struct sim *s, struct spall_error *err);
+
+/** Advance one step (velocity Verlet). Detects NaN / energy blow-up and
+ *  returns SPALL_ERR_UNSTABLE naming step, time and particle. */
+int sim_step(struct sim *s, struct spall_error *err);
+
+/** True when the run has reached its end (steps, or end_time with an
+ *  adaptive time step). */
+bool sim_done(const struct sim *s);
+
+/** Recompute the energy account from the current state. */
+void sim_update_energy(struct sim *s);
+
+/** Resultant force [N] the constraints/loads applied to group @p g this step. */
+void sim_group_reaction(const struct sim *s, int g, double out[3]);
+
+#endif

@@ -1,0 +1,868 @@
+/**
+ * @file deck_build.c
+ * @brief Deck -> simulation.  Reads the sections in dependency order
+ *        (lattice, model, materials, geometry, body, regions, groups,
+ *        pre-cracks, loads, probes, run, output); every mapping is checked
+ *        for unknown keys; every error names file:line:column.
+ */
+#include "io/deck_build.h"
+
+#include "core/geometry.h"
+#include "core/lattice_gen.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "models/model.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SHAPE_DEPTH_MAX 32
+#define DEG_TO_RAD (3.14159265358979323846 / 180.0)
+
+static const char *const top_keys[] = {"title", "description", "model", "materials", "geometry",
+                                       "lattice", "body", "regions", "precracks", "groups",
+                                       "boundary_conditions", "initial_velocity", "gravity",
+                                       "damping", "probes", "run", "output", NULL};
+
+struct build_ctx {
+    const struct deck *deck;
+    const struct deck_node *geometry; /* the `geometry:` mapping, may be NULL */
+    struct sim *sim;
+    int dim;
+};
+
+/* ---- shapes -------------------------------------------------------------- */
+
+static int parse_shape(struct build_ctx *c, const struct deck_node *node, int depth,
+                       struct geom **out, struct spall_error *err);
+
+static int parse_shape_list(struct build_ctx *c, const struct deck_node *seq, int depth,
+                            enum geom_kind kind, struct geom **out, struct spall_error *err)
+{
+    int rc = deck_expect_seq(seq, "a list of shapes (names or shape mappings)", err);
+    if (rc)
+        return rc;
+    if (seq->n == 0 || (kind == GEOM_DIFFERENCE && seq->n < 2))
+        return deck_error(err, seq, "a %s needs at least %d shapes",
+                          kind == GEOM_DIFFERENCE ? "difference" : "combination",
+                          kind == GEOM_DIFFERENCE ? 2 : 1);
+    struct geom **kids = calloc(seq->n, sizeof *kids);
+    if (!kids)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory parsing shapes");
+    for (size_t k = 0; k < seq->n; k++) {
+        rc = parse_shape(c, seq->items[k], depth + 1, &kids[k], err);
+        if (rc) {
+            for (size_t q = 0; q < k; q++)
+                geom_destroy(&kids[q]);
+            free(kids);
+            return rc;
+        }
+    }
+    *out = geom_combine(kind, kids, seq->n);
+    free(kids);
+    if (!*out)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory combining shapes");
+    return SPALL_OK;
+}
+
+static int parse_primitive(struct build_ctx *c, const char *kind, const struct deck_node *body,
+                           struct geom **out, struct spall_error *err)
+{
+    int dim = c->dim;
+    int rc;
+    if (strcmp(kind, "box") == 0 || strcmp(kind, "rectangle") == 0) {
+        static const char *const keys[] = {"min", "max", NULL};
+        double lo[3] = {0}, hi[3] = {0};
+        if ((rc = deck_expect_map(body, "a mapping with min and max", err)) ||
+            (rc = deck_vector(body, "min", true, (size_t)dim, 3, lo, err)) ||
+            (rc = deck_vector(body, "max", true, (size_t)dim, 3, hi, err)) ||
+            (rc = deck_check_unused(body, kind, keys, err)))
+            return rc;
+        for (int d = 0; d < dim; d++)
+            if (!(hi[d] > lo[d]))
+                return deck_error_key(err, body, "max",
+                                      "box max must exceed min in every direction; "
+                                      "component %d has min %g, max %g",
+                                      d, lo[d], hi[d]);
+        if (dim < 3) {
+            lo[2] = hi[2] = 0.0;
+            if (dim < 2)
+                lo[1] = hi[1] = 0.0;
+        }
+        *out = geom_box(lo, hi);
+    } else if (strcmp(kind, "sphere") == 0 || strcmp(kind, "circle") == 0) {
+        static const char *const keys[] = {"center", "radius", NULL};
+        double ctr[3] = {0}, r = 0;
+        if ((rc = deck_expect_map(body, "a mapping with center and radius", err)) ||
+            (rc = deck_vector(body, "center", true, (size_t)dim, 3, ctr, err)) ||
+            (rc = deck_double_pos(body, "radius", true, &r, err)) ||
+            (rc = deck_check_unused(body, kind, keys, err)))
+            return rc;
+        *out = geom_sphere(ctr, r);
+    } else if (strcmp(kind, "cylinder") == 0) {
+        static const char *const keys[] = {"base", "top", "center", "radius", NULL};
+        double p0[3] = {0}, p1[3] = {0}, r = 0;
+        if ((rc = deck_expect_map(body, "a mapping with base, top and radius", err)) ||
+            (rc = deck_double_pos(body, "radius", true, &r, err)))
+            return rc;
+        if (dim == 3) {
+            if ((rc = deck_vector(body, "base", true, 3, 3, p0, err)) ||
+                (rc = deck_vector(body, "top", true, 3, 3, p1, err)))
+                return rc;
+            double l2 = 0;
+            for (int d = 0; d < 3; d++)
+                l2 += (p1[d] - p0[d]) * (p1[d] - p0[d]);
+            if (!(l2 > 0))
+                return deck_error_key(err, body, "top", "cylinder top equals its base");
+        } else {
+            if ((rc = deck_vector(body, "center", true, (size_t)dim, 3, p0, err)))
+                return rc;
+            memcpy(p1, p0, sizeof p1);
+            p1[2] = 1.0;
+        }
+        if ((rc = deck_check_unused(body, kind, keys, err)))
+            return rc;
+        *out = geom_cylinder(p0, p1, r);
+    } else if (strcmp(kind, "halfspace") == 0) {
+        static const char *const keys[] = {"point", "normal", NULL};
+        double pt[3] = {0}, nrm[3] = {0};
+        if ((rc = deck_expect_map(body, "a mapping with point and normal", err)) ||
+            (rc = deck_vector(body, "point", true, (size_t)dim, 3, pt, err)) ||
+            (rc = deck_vector(body, "normal", true, (size_t)dim, 3, nrm, err)) ||
+            (rc = deck_check_unused(body, kind, keys, err)))
+            return rc;
+        if (nrm[0] == 0 && nrm[1] == 0 && nrm[2] == 0)
+            return deck_error_key(err, body, "normal", "half-space normal must not be zero");
+        *out = geom_halfspace(pt, nrm);
+    } else if (strcmp(kind, "polygon") == 0) {
+        static const char *const keys[] = {"points", NULL};
+        if ((rc = deck_expect_map(body, "a mapping with points", err)))
+            return rc;
+        if (dim != 2)
+            return deck_error(err, body, "polygon is a 2D shape; this deck is %dD", dim);
+        const struct deck_node *pts = deck_get(body, "points");
+        if (!pts)
+            return deck_error(err, body, "missing required key 'points' in polygon");
+        if ((rc = deck_expect_seq(pts, "a list of [x, y] points", err)))
+            return rc;
+        if (pts->n < 3)
+            return deck_error(err, pts, "a polygon needs at least 3 points (got %zu)", pts->n);
+        double *xy = malloc(2 * pts->n * sizeof *xy);
+        if (!xy)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory reading polygon");
+        for (size_t k = 0; k < pts->n; k++) {
+            const struct deck_node *pt = pts->items[k];
+            if (pt->kind != DECK_SEQUENCE || pt->n != 2) {
+                free(xy);
+                return deck_error(err, pt, "polygon point must be [x, y]");
+            }
+            if ((rc = deck_node_double(pt->items[0], &xy[2 * k], err)) ||
+                (rc = deck_node_double(pt->items[1], &xy[2 * k + 1], err))) {
+                free(xy);
+                return rc;
+            }
+        }
+        if ((rc = deck_check_unused(body, kind, keys, err))) {
+            free(xy);
+            return rc;
+        }
+        *out = geom_polygon(xy, pts->n);
+        free(xy);
+    } else {
+        return SPALL_ERR_INTERNAL;
+    }
+    if (!*out)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating shape");
+    return SPALL_OK;
+}
+
+static int parse_shape(struct build_ctx *c, const struct deck_node *node, int depth,
+                       struct geom **out, struct spall_error *err)
+{
+    *out = NULL;
+    if (depth > SHAPE_DEPTH_MAX)
+        return deck_error(err, node, "shape references nest deeper than %d (a cycle?)",
+                          SHAPE_DEPTH_MAX);
+    if (node->kind == DECK_SCALAR) {
+        const struct deck_node *named = c->geometry ? deck_peek(c->geometry, node->scalar) : NULL;
+        if (!named)
+            return deck_error(err, node, "unknown geometry '%s'; define it under 'geometry:'",
+                              node->scalar);
+        return parse_shape(c, named, depth + 1, out, err);
+    }
+    if (node->kind != DECK_MAPPING || node->n != 1)
+        return deck_error(err, node,
+                          "a shape must be a geometry name or a mapping with exactly one of: "
+                          "box, circle, sphere, cylinder, halfspace, polygon, union, "
+                          "intersection, difference");
+    const char *kind = node->keys[0];
+    const struct deck_node *body = deck_get(node, kind);
+    if (strcmp(kind, "union") == 0)
+        return parse_shape_list(c, body, depth, GEOM_UNION, out, err);
+    if (strcmp(kind, "intersection") == 0)
+        return parse_shape_list(c, body, depth, GEOM_INTERSECTION, out, err);
+    if (strcmp(kind, "difference") == 0)
+        return parse_shape_list(c, body, depth, GEOM_DIFFERENCE, out, err);
+    static const char *const prims[] = {"box", "rectangle", "circle", "sphere", "cylinder",
+                                        "halfspace", "polygon", NULL};
+    for (const char *const *k = prims; *k; k++)
+        if (strcmp(kind, *k) == 0)
+            return parse_primitive(c, kind, body, out, err);
+    return deck_error_key(err, node, kind,
+                          "unknown shape '%s'; expected one of: box, rectangle, circle, sphere, "
+                          "cylinder, halfspace, polygon, union, intersection, difference",
+                          kind);
+}
+
+/* Shape from a mapping key holding a shape reference. */
+static int shape_at_key(struct build_ctx *c, const struct deck_node *map, const char *key,
+                        struct geom **out, struct spall_error *err)
+{
+    const struct deck_node *n = deck_get(map, key);
+    if (!n)
+        return deck_error(err, map, "missing required key '%s'", key);
+    return parse_shape(c, n, 0, out, err);
+}
+
+/* Indices of particles whose reference position lies in @p g. */
+static int select_particles(const struct sim *s, const struct geom *g, size_t **idx, size_t *n,
+                            struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    *idx = malloc((p->n ? p->n : 1) * sizeof **idx);
+    if (!*idx)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory selecting particles");
+    *n = 0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        double x[3] = {0, 0, 0};
+        for (int d = 0; d < s->dim; d++)
+            x[d] = p->x0[d][i];
+        if (geom_contains(g, x, s->dim))
+            (*idx)[(*n)++] = i;
+    }
+    return SPALL_OK;
+}
+
+/* ---- sections ------------------------------------------------------------ */
+
+static int parse_lattice(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+{
+    static const char *const keys[] = {"type", "spacing", "origin", "angle", "thickness", NULL};
+    static const char *const kinds[] = {"chain", "triangular", "square", "sc", "fcc", NULL};
+    const struct deck_node *lat = deck_get(root, "lattice");
+    if (!lat)
+        return deck_error(err, root, "missing required key 'lattice' (the particle lattice)");
+    int rc = deck_expect_map(lat, "the lattice mapping (type, spacing, ...)", err);
+    if (rc)
+        return rc;
+    int kind = 0;
+    double spacing = 0, origin[3] = {0, 0, 0}, angle_deg = 0, thickness = 0;
+    if ((rc = deck_enum(lat, "type", true, kinds, &kind, err)) ||
+        (rc = deck_double_pos(lat, "spacing", true, &spacing, err)) ||
+        (rc = deck_vector(lat, "origin", false, 1, 3, origin, err)) ||
+        (rc = deck_double(lat, "angle", false, -360.0, 360.0, &angle_deg, err)) ||
+        (rc = deck_double_pos(lat, "thickness", false, &thickness, err)) ||
+        (rc = deck_check_unused(lat, "lattice", keys, err)))
+        return rc;
+    enum lattice_kind lk = (enum lattice_kind)lattice_kind_from_name(kinds[kind]);
+    c->dim = lattice_kind_dim(lk);
+    rc = sim_create(&c->sim, c->dim, err);
+    if (rc)
+        return rc;
+    struct sim *s = c->sim;
+    s->lattice.kind = lk;
+    s->lattice.spacing = spacing;
+    memcpy(s->lattice.origin, origin, sizeof origin);
+    s->lattice.angle = angle_deg * DEG_TO_RAD;
+    s->thickness_given = thickness > 0.0;
+    if (s->thickness_given) {
+        s->thickness = thickness;
+    } else if (lk == LATTICE_TRIANGULAR) {
+        /* seed 000: the constants of Eqs. 16/18 correspond to a volume r0^3 per
+         * particle, i.e. a plate 2 r0 / sqrt(3) thick */
+        s->thickness = 2.0 * spacing / sqrt(3.0);
+    } else if (lk == LATTICE_CHAIN) {
+        s->thickness = spacing * spacing; /* cross-section r0^2: volume r0^3 */
+    } else {
+        s->thickness = spacing;
+    }
+    return SPALL_OK;
+}
+
+static int parse_model(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+{
+    const struct deck_node *m = deck_get(root, "model");
+    if (!m)
+        return deck_error(err, root, "missing required key 'model'");
+    int rc = deck_expect_map(m, "the model mapping (type and parameters)", err);
+    if (rc)
+        return rc;
+    int idx = 0;
+    if ((rc = deck_enum(m, "type", true, model_names(), &idx, err)))
+        return rc;
+    return sim_set_model(c->sim, model_names()[idx], m, err);
+}
+
+static int parse_materials(struct build_ctx *c, const struct deck_node *root,
+                           struct spall_error *err)
+{
+    const struct deck_node *mats = deck_get(root, "materials");
+    if (!mats)
+        return deck_error(err, root, "missing required key 'materials'");
+    int rc = deck_expect_map(mats, "a mapping of material names to properties", err);
+    if (rc)
+        return rc;
+    if (mats->n == 0)
+        return deck_error(err, mats, "no material defined");
+    for (size_t k = 0; k < mats->n; k++) {
+        const struct deck_node *mn = mats->items[k];
+        mats->used[k] = true;
+        if ((rc = deck_expect_map(mn, "a mapping of material properties", err)))
+            return rc;
+        double rho = 0;
+        if ((rc = deck_double_pos(mn, "density", true, &rho, err)))
+            return rc;
+        int index = 0;
+        if ((rc = sim_add_material(c->sim, mats->keys[k], rho, &index, err)))
+            return deck_error_key(err, mats, mats->keys[k], "%s", err->msg);
+        if ((rc = c->sim->ops->parse_material(c->sim->model, c->sim, index, mn, err)))
+            return rc;
+    }
+    return SPALL_OK;
+}
+
+static int material_at_key(struct build_ctx *c, const struct deck_node *map, const char *key,
+                           int *index, struct spall_error *err)
+{
+    const char *name = NULL;
+    int rc = deck_string(map, key, true, &name, err);
+    if (rc)
+        return rc;
+    *index = sim_find_material(c->sim, name);
+    if (*index < 0)
+        return deck_error(err, deck_peek(map, key), "unknown material '%s'; define it under 'materials:'",
+                          name);
+    return SPALL_OK;
+}
+
+static int parse_body(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+{
+    static const char *const keys[] = {"geometry", "material", NULL};
+    const struct deck_node *body = deck_get(root, "body");
+    if (!body)
+        return deck_error(err, root, "missing required key 'body' (geometry and material to fill)");
+    int rc = deck_expect_map(body, "a mapping with geometry and material", err);
+    if (rc)
+        return rc;
+    int mat = 0;
+    struct geom *g = NULL;
+    if ((rc = material_at_key(c, body, "material", &mat, err)) ||
+        (rc = shape_at_key(c, body, "geometry", &g, err)) ||
+        (rc = deck_check_unused(body, "body", keys, err))) {
+        geom_destroy(&g);
+        return rc;
+    }
+    size_t added = 0;
+    rc = lattice_fill(c->sim->p, &c->sim->lattice, g, mat, &added, err);
+    geom_destroy(&g);
+    if (rc) {
+        const struct deck_node *gn = deck_peek(body, "geometry");
+        char msg[SPALL_ERROR_MSG_LEN];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        if (gn && gn->kind == DECK_SCALAR)
+            return deck_error_key(err, body, "geometry", "body: geometry '%s' %s", gn->scalar, msg);
+        return deck_error_key(err, body, "geometry", "body: the geometry %s", msg);
+    }
+    return SPALL_OK;
+}
+
+static int parse_regions(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+{
+    static const char *const keys[] = {"geometry", "material", NULL};
+    const struct deck_node *regs = deck_get(root, "regions");
+    if (!regs)
+        return SPALL_OK;
+    int rc = deck_expect_seq(regs, "a list of {geometry, material}", err);
+    if (rc)
+        return rc;
+    for (size_t k = 0; k < regs->n; k++) {
+        const struct deck_node *r = regs->items[k];
+        int mat = 0;
+        struct geom *g = NULL;
+        size_t *idx = NULL, n = 0;
+        if ((rc = deck_expect_map(r, "a mapping with geometry and material", err)) ||
+            (rc = material_at_key(c, r, "material", &mat, err)) ||
+            (rc = shape_at_key(c, r, "geometry", &g, err)) ||
+            (rc = deck_check_unused(r, "region", keys, err)) ||
+            (rc = select_particles(c->sim, g, &idx, &n, err))) {
+            geom_destroy(&g);
+            free(idx);
+            return rc;
+        }
+        geom_destroy(&g);
+        if (n == 0) {
+            free(idx);
+            return deck_error(err, r, "region contains no particle of the body");
+        }
+        for (size_t q = 0; q < n; q++)
+            c->sim->p->material[idx[q]] = mat;
+        free(idx);
+    }
+    return SPALL_OK;
+}
+
+static void assign_masses(struct sim *s)
+{
+    double vol = lattice_site_volume(&s->lattice, s->thickness);
+    for (size_t i = 0; i < s->p->n; i++) {
+        s->p->volume[i] = vol;
+        s->p->mass[i] = s->materials[s->p->material[i]].density * vol;
+    }
+}
+
+static int parse_groups(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+{
+    size_t *all = malloc((c->sim->p->n ? c->sim->p->n : 1) * sizeof *all);
+    if (!all)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating group 'all'");
+    for (size_t i = 0; i < c->sim->p->n; i++)
+        all[i] = i;
+    int rc = sim_add_group(c->sim, "all", all, c->sim->p->n, NULL, err);
+    free(all);
+    if (rc)
+        return rc;
+    const struct deck_node *gs = deck_get(root, "groups");
+    if (!gs)
+        return SPALL_OK;
+    if ((rc = deck_expect_map(gs, "a mapping of group names to shapes", err)))
+        return rc;
+    for (size_t k = 0; k < gs->n; k++) {
+        gs->used[k] = true;
+        if (strcmp(gs->keys[k], "all") == 0)
+            return deck_error_key(err, gs, "all", "group name 'all' is reserved (every particle)");
+        struct geom *g = NULL;
+        size_t *idx = NULL, n = 0;
+        if ((rc = parse_shape(c, gs->items[k], 0, &g, err)) ||
+            (rc = select_particles(c->sim, g, &idx, &n, err))) {
+            geom_destroy(&g);
+            free(idx);
+            return rc;
+        }
+        geom_destroy(&g);
+        if (n == 0) {
+            free(idx);
+            return deck_error_key(err, gs, gs->keys[k],
+                                  "group '%s' contains no particle; check its geometry against "
+                                  "the body",
+                                  gs->keys[k]);
+        }
+        rc = sim_add_group(c->sim, gs->keys[k], idx, n, NULL, err);
+        free(idx);
+        if (rc)
+            return deck_error_key(err, gs, gs->keys[k], "%s", err->msg);
+    }
+    return SPALL_OK;
+}
+
+static int group_at_key(struct build_ctx *c, const struct deck_node *map, const char *key,
+                        int *g, struct spall_error *err)
+{
+    const char *name = NULL;
+    int rc = deck_string(map, key, true, &name, err);
+    if (rc)
+        return rc;
+    *g = sim_find_group(c->sim, name);
+    if (*g < 0)
+        return deck_error(err, deck_peek(map, key),
+                          "unknown group '%s'; define it under 'groups:' (or use 'all')", name);
+    return SPALL_OK;
+}
+
+static int parse_precracks(struct build_ctx *c, const struct deck_node *root,
+                           struct spall_error *err)
+{
+    const struct deck_node *pcs = deck_get(root, "precracks");
+    if (!pcs)
+        return SPALL_OK;
+    int rc = deck_expect_seq(pcs, "a list of pre-cracks", err);
+    if (rc)
+        return rc;
+    for (size_t k = 0; k < pcs->n; k++) {
+        const struct deck_node *n = pcs->items[k];
+        struct precrack pc;
+        memset(&pc, 0, sizeof pc);
+        pc.dim = c->dim;
+        if ((rc = deck_expect_map(n, "a pre-crack mapping", err)))
+            return rc;
+        if (c->dim == 2) {
+            static const char *const keys[] = {"from", "to", NULL};
+            if ((rc = deck_vector(n, "from", true, 2, 2, pc.a, err)) ||
+                (rc = deck_vector(n, "to", true, 2, 2, pc.b, err)) ||
+                (rc = deck_check_unused(n, "precrack (2D: from, to)", keys, err)))
+                return rc;
+        } else if (c->dim == 3) {
+            static const char *const keys[] = {"origin", "edge1", "edge2", NULL};
+            if ((rc = deck_vector(n, "origin", true, 3, 3, pc.origin, err)) ||
+                (rc = deck_vector(n, "edge1", true, 3, 3, pc.e1, err)) ||
+                (rc = deck_vector(n, "edge2", true, 3, 3, pc.e2, err)) ||
+                (rc = deck_check_unused(n, "precrack (3D: origin, edge1, edge2)", keys, err)))
+                return rc;
+        } else {
+            return deck_error(err, n, "pre-cracks need a 2D or 3D lattice");
+        }
+        if ((rc = sim_add_precrack(c->sim, &pc, err)))
+            return rc;
+    }
+    return SPALL_OK;
+}
+
+static int parse_time_function(const struct deck_node *bcn, struct time_function *tf,
+                               struct spall_error *err)
+{
+    static const char *const kinds[] = {"constant", "linear_ramp", "quadratic_ramp", "table",
+                                        NULL};
+    static const char *const keys[] = {"type", "duration", "points", NULL};
+    memset(tf, 0, sizeof *tf);
+    const struct deck_node *fn = deck_get(bcn, "function");
+    if (!fn)
+        return SPALL_OK;
+    int rc = deck_expect_map(fn, "a time function mapping (type, duration or points)", err);
+    if (rc)
+        return rc;
+    int kind = 0;
+    if ((rc = deck_enum(fn, "type", true, kinds, &kind, err)))
+        return rc;
+    tf->kind = (enum time_function_kind)kind;
+    if (tf->kind == TF_LINEAR_RAMP || tf->kind == TF_QUADRATIC_RAMP) {
+        if ((rc = deck_double_pos(fn, "duration", true, &tf->t_ramp, err)))
+            return rc;
+    } else if (tf->kind == TF_TABLE) {
+        const struct deck_node *pts = deck_get(fn, "points");
+        if (!pts)
+            return deck_error(err, fn, "missing required key 'points' ([[t, f], ...]) in table");
+        if ((rc = deck_expect_seq(pts, "a list of [time, factor] pairs", err)))
+            return rc;
+        if (pts->n < 1)
+            return deck_error(err, pts, "a table needs at least one [time, factor] point");
+        tf->t = malloc(pts->n * sizeof *tf->t);
+        tf->f = malloc(pts->n * sizeof *tf->f);
+        if (!tf->t || !tf->f) {
+            time_function_free(tf);
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory reading table");
+        }
+        tf->n = pts->n;
+        for (size_t k = 0; k < pts->n; k++) {
+            const struct deck_node *pt = pts->items[k];
+            if (pt->kind != DECK_SEQUENCE || pt->n != 2) {
+                time_function_free(tf);
+                return deck_error(err, pt, "table point must be [time, factor]");
+            }
+            if ((rc = deck_node_double(pt->items[0], &tf->t[k], err)) ||
+                (rc = deck_node_double(pt->items[1], &tf->f[k], err))) {
+                time_function_free(tf);
+                return rc;
+            }
+            if (k > 0 && !(tf->t[k] > tf->t[k - 1])) {
+                time_function_free(tf);
+                return deck_error(err, pt, "table times must increase strictly");
+            }
+        }
+    }
+    rc = deck_check_unused(fn, "function", keys, err);
+    if (rc)
+        time_function_free(tf);
+    return rc;
+}
+
+static int parse_components(const struct deck_node *map, int dim, unsigned *mask,
+                            struct spall_error *err)
+{
+    const struct deck_node *cn = deck_get(map, "components");
+    *mask = (1u << dim) - 1u;
+    if (!cn)
+        return SPALL_OK;
+    const struct deck_node *single[1] = {cn};
+    const struct deck_node *const *items = single;
+    size_t n = 1;
+    if (cn->kind == DECK_SEQUENCE) {
+        items = (const struct deck_node *const *)cn->items;
+        n = cn->n;
+    }
+    if (n == 0)
+        return deck_error(err, cn, "components must not be empty; expected x, y, z or all");
+    *mask = 0;
+    for (size_t k = 0; k < n; k++) {
+        const struct deck_node *it = items[k];
+        if (it->kind != DECK_SCALAR)
+            return deck_error(err, it, "expected a component name: x, y, z or all");
+        const char *s = it->scalar;
+        int d = -1;
+        if (strcmp(s, "all") == 0) {
+            *mask = (1u << dim) - 1u;
+            continue;
+        }
+        if (strcmp(s, "x") == 0)
+            d = 0;
+        else if (strcmp(s, "y") == 0)
+            d = 1;
+        else if (strcmp(s, "z") == 0)
+            d = 2;
+        if (d < 0 || d >= dim)
+            return deck_error(err, it, "component '%s' is not valid in %dD; expected %s", s, dim,
+                              dim == 1 ? "x" : dim == 2 ? "x, y or all" : "x, y, z or all");
+        *mask |= 1u << d;
+    }
+    return SPALL_OK;
+}
+
+/* value: a number (applied to every listed component) or a vector of dim */
+static int parse_bc_value(const struct deck_node *map, int dim, unsigned mask, double v[3],
+                          struct spall_error *err)
+{
+    const struct deck_node *vn = deck_peek(map, "value");
+    if (!vn)
+        return deck_error(err, map, "missing required key 'value'");
+    if (vn->kind == DECK_SCALAR) {
+        double x = 0;
+        int rc = deck_double(map, "value", true, -INFINITY, INFINITY, &x, err);
+        if (rc)
+            return rc;
+        for (int d = 0; d < dim; d++)
+            v[d] = (mask & (1u << d)) ? x : 0.0;
+        return SPALL_OK;
+    }
+    return deck_vector(map, "value", true, (size_t)dim, (size_t)dim, v, err);
+}
+
+static int parse_bcs(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+{
+    static const char *const kinds[] = {"fixed", "velocity", "force", "traction", NULL};
+    static const char *const keys[] = {"group", "type", "components", "value", "area", "function",
+                                       NULL};
+    const struct deck_node *bcs = deck_get(root, "boundary_conditions");
+    if (!bcs)
+        return SPALL_OK;
+    int rc = deck_expect_seq(bcs, "a list of boundary conditions", err);
+    if (rc)
+        return rc;
+    for (size_t k = 0; k < bcs->n; k++) {
+        const struct deck_node *n = bcs->items[k];
+        struct bc b;
+        memset(&b, 0, sizeof b);
+        int kind = 0;
+        if ((rc = deck_expect_map(n, "a boundary-condition mapping", err)) ||
+            (rc = group_at_key(c, n, "group", &b.group, err)) ||
+            (rc = deck_enum(n, "type", true, kinds, &kind, err)) ||
+            (rc = parse_components(n, c->dim, &b.comp_mask, err)))
+            return rc;
+        b.kind = (enum bc_kind)kind;
+        if (b.kind != BC_FIXED && (rc = parse_bc_value(n, c->dim, b.comp_mask, b.value, err)))
+            return rc;
+        if (b.kind == BC_TRACTION) {
+            const struct group *g = &c->sim->groups[b.group];
+            /* default loaded area: each boundary particle carries the
+             * cross-section of its lattice cell, volume / spacing */
+            b.area = (double)g->n * lattice_site_volume(&c->sim->lattice, c->sim->thickness) /
+                     c->sim->lattice.spacing;
+            if ((rc = deck_double_pos(n, "area", false, &b.area, err)))
+                return rc;
+        }
+        if ((rc = parse_time_function(n, &b.tf, err)))
+            return rc;
+        if ((rc = deck_check_unused(n, "boundary condition", keys, err)) ||
+            (rc = sim_add_bc(c->sim, &b, err))) {
+            time_function_free(&b.tf);
+            return rc;
+        }
+    }
+    return SPALL_OK;
+}
+
+static int parse_initial_velocity(struct build_ctx *c, const struct deck_node *root,
+                                  struct spall_error *err)
+{
+    static const char *const keys[] = {"group", "value", NULL};
+    const struct deck_node *ivs = deck_get(root, "initial_velocity");
+    if (!ivs)
+        return SPALL_OK;
+    int rc = deck_expect_seq(ivs, "a list of {group, value}", err);
+    if (rc)
+        return rc;
+    for (size_t k = 0; k < ivs->n; k++) {
+        const struct deck_node *n = ivs->items[k];
+        int g = 0;
+        double v[3] = {0, 0, 0};
+        if ((rc = deck_expect_map(n, "a mapping with group and value", err)) ||
+            (rc = group_at_key(c, n, "group", &g, err)) ||
+            (rc = deck_vector(n, "value", true, (size_t)c->dim, (size_t)c->dim, v, err)) ||
+            (rc = deck_check_unused(n, "initial_velocity", keys, err)))
+            return rc;
+        const struct group *gr = &c->sim->groups[g];
+        for (size_t q = 0; q < gr->n; q++)
+            for (int d = 0; d < c->dim; d++)
+                c->sim->p->v[d][gr->idx[q]] = v[d];
+    }
+    return SPALL_OK;
+}
+
+static int parse_probes(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+{
+    static const char *const keys[] = {"name", "position", NULL};
+    const struct deck_node *ps = deck_get(root, "probes");
+    if (!ps)
+        return SPALL_OK;
+    int rc = deck_expect_seq(ps, "a list of {name, position}", err);
+    if (rc)
+        return rc;
+    for (size_t k = 0; k < ps->n; k++) {
+        const struct deck_node *n = ps->items[k];
+        const char *name = NULL;
+        double pos[3] = {0, 0, 0};
+        if ((rc = deck_expect_map(n, "a probe mapping", err)) ||
+            (rc = deck_string(n, "name", true, &name, err)) ||
+            (rc = deck_vector(n, "position", true, (size_t)c->dim, 3, pos, err)) ||
+            (rc = deck_check_unused(n, "probe", keys, err)))
+            return rc;
+        for (size_t q = 0; q < c->sim->n_probes; q++)
+            if (strcmp(c->sim->probes[q].name, name) == 0)
+                return deck_error_key(err, n, "name", "probe '%s' defined twice", name);
+        if (strlen(name) >= SPALL_NAME_LEN)
+            return deck_error_key(err, n, "name", "probe name longer than %d characters",
+                                  SPALL_NAME_LEN - 1);
+        if ((rc = sim_add_probe(c->sim, name, pos, err)))
+            return rc;
+    }
+    return SPALL_OK;
+}
+
+static int parse_run(struct build_ctx *c, const struct deck_node *root, struct run_output *ro,
+                     struct spall_error *err)
+{
+    static const char *const keys[] = {"end_time", "steps", "dt", "dt_factor", "dt_override",
+                                       "threads", "energy_blowup", "seed", NULL};
+    const struct deck_node *r = deck_get(root, "run");
+    if (!r)
+        return deck_error(err, root, "missing required key 'run' (end_time or steps)");
+    struct sim *s = c->sim;
+    long threads = 0, seed = 12345;
+    int rc;
+    if ((rc = deck_expect_map(r, "the run mapping", err)) ||
+        (rc = deck_double_pos(r, "end_time", false, &s->end_time, err)) ||
+        (rc = deck_long(r, "steps", false, 1, 2000000000L, &s->n_steps, err)) ||
+        (rc = deck_double_pos(r, "dt", false, &s->dt, err)) ||
+        (rc = deck_double(r, "dt_factor", false, 1e-6, 1.0, &s->dt_factor, err)) ||
+        (rc = deck_bool(r, "dt_override", false, &s->dt_override, err)) ||
+        (rc = deck_long(r, "threads", false, 0, 4096, &threads, err)) ||
+        (rc = deck_double(r, "energy_blowup", false, 1.0, INFINITY, &s->energy_blowup, err)) ||
+        (rc = deck_long(r, "seed", false, 0, 2147483647L, &seed, err)) ||
+        (rc = deck_check_unused(r, "run", keys, err)))
+        return rc;
+    if (!deck_peek(r, "end_time") && !deck_peek(r, "steps"))
+        return deck_error(err, r, "run needs 'end_time' (s) or 'steps'");
+    if (deck_peek(r, "end_time") && deck_peek(r, "steps"))
+        return deck_error(err, r, "give either 'end_time' or 'steps' in run, not both");
+    s->threads = (int)threads;
+    s->seed = (uint64_t)seed;
+    ro->threads = (int)threads;
+    return SPALL_OK;
+}
+
+static int parse_output(struct build_ctx *c, const struct deck_node *root, struct run_output *ro,
+                        struct spall_error *err)
+{
+    static const char *const keys[] = {"fields", "field_interval", "field_every",
+                                       "history_every", NULL};
+    (void)c;
+    ro->history_every = 0;
+    const struct deck_node *o = deck_get(root, "output");
+    if (!o)
+        return SPALL_OK;
+    int rc;
+    if ((rc = deck_expect_map(o, "the output mapping", err)) ||
+        (rc = deck_double_pos(o, "field_interval", false, &ro->field_interval, err)) ||
+        (rc = deck_long(o, "field_every", false, 0, 2000000000L, &ro->field_every, err)) ||
+        (rc = deck_long(o, "history_every", false, 1, 2000000000L, &ro->history_every, err)))
+        return rc;
+    const struct deck_node *f = deck_get(o, "fields");
+    if (f) {
+        if ((rc = deck_expect_seq(f, "a list of field names", err)))
+            return rc;
+        if (f->n > RUN_MAX_FIELDS)
+            return deck_error(err, f, "at most %d output fields", RUN_MAX_FIELDS);
+        for (size_t k = 0; k < f->n; k++) {
+            if (f->items[k]->kind != DECK_SCALAR)
+                return deck_error(err, f->items[k], "expected a field name");
+            ro->fields[ro->n_fields++] = f->items[k]->scalar;
+        }
+    }
+    return deck_check_unused(o, "output", keys, err);
+}
+
+int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro,
+                   struct spall_error *err)
+{
+    *out = NULL;
+    memset(ro, 0, sizeof *ro);
+    const struct deck_node *root = d->root;
+    if (!root)
+        return spall_error_set(err, SPALL_ERR_INPUT, "%s:1:1: the deck is empty; expected a mapping "
+                               "with model, materials, lattice, body and run",
+                               d->path);
+    int rc = deck_expect_map(root, "a mapping of sections (model, materials, lattice, ...)", err);
+    if (rc)
+        return rc;
+    struct build_ctx c = {.deck = d};
+    const char *title = NULL;
+    if ((rc = deck_string(root, "title", false, &title, err)))
+        return rc;
+    snprintf(ro->title, sizeof ro->title, "%s", title ? title : "");
+    const char *desc = NULL;
+    if ((rc = deck_string(root, "description", false, &desc, err)))
+        return rc;
+    c.geometry = deck_get(root, "geometry");
+    if (c.geometry && (rc = deck_expect_map(c.geometry, "a mapping of shape names to shapes", err)))
+        return rc;
+    if (c.geometry)
+        for (size_t k = 0; k < c.geometry->n; k++)
+            c.geometry->used[k] = true;
+
+    if ((rc = parse_lattice(&c, root, err)))
+        goto fail;
+    if ((rc = parse_model(&c, root, err)) || (rc = parse_materials(&c, root, err)) ||
+        (rc = parse_body(&c, root, err)) || (rc = parse_regions(&c, root, err)))
+        goto fail;
+    assign_masses(c.sim);
+    double gravity[3] = {0, 0, 0};
+    if ((rc = parse_groups(&c, root, err)) || (rc = parse_precracks(&c, root, err)) ||
+        (rc = parse_bcs(&c, root, err)) || (rc = parse_initial_velocity(&c, root, err)) ||
+        (rc = parse_probes(&c, root, err)) ||
+        (rc = deck_vector(root, "gravity", false, (size_t)c.dim, 3, gravity, err)) ||
+        (rc = deck_double(root, "damping", false, 0.0, INFINITY, &c.sim->damping, err)) ||
+        (rc = parse_run(&c, root, ro, err)) || (rc = parse_output(&c, root, ro, err)) ||
+        (rc = deck_check_unused(root, "the deck", top_keys, err)))
+        goto fail;
+    memcpy(c.sim->gravity, gravity, sizeof gravity);
+    if ((rc = sim_prepare(c.sim, err))) {
+        /* point at the key the refusal is about when there is one */
+        const struct deck_node *run = deck_peek(root, "run");
+        int at_dt = rc == SPALL_ERR_PHYSICS && run && deck_peek(run, "dt") &&
+                    strstr(err->msg, "time step") != NULL;
+        char msg[SPALL_ERROR_MSG_LEN];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        if (at_dt)
+            deck_error_key(err, run, "dt", "%s", msg);
+        else
+            spall_error_set(err, rc, "%s: %s", d->path, msg);
+        err->code = rc;
+        goto fail;
+    }
+    *out = c.sim;
+    return SPALL_OK;
+fail:
+    sim_destroy(&c.sim);
+    return rc;
+}

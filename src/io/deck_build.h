@@ -1,0 +1,34 @@
+/**
+ * @file deck_build.h
+ * @brief Turn a parsed YAML deck into a ready-to-prepare simulation plus the
+ *        run's output settings.  Every key is documented in docs/decks.md.
+ */
+#ifndef SPALL_DECK_BUILD_H
+#define SPALL_DECK_BUILD_H
+
+#include <stddef.h>
+
+struct deck;
+struct sim;
+struct spall_error;
+
+#define RUN_MAX_FIELDS 32
+
+/** Output settings read from the deck's `output:` section. */
+struct run_output {
+    char title[128];
+    double field_interval;  /**< s between field frames (0: use field_every) */
+    long field_every;       /**< steps between frames (0 with interval 0: no frames) */
+    long history_every;     /**< steps between history rows */
+    const char *fields[RUN_MAX_FIELDS]; /**< names, pointing into the deck */
+    size_t n_fields;
+    int threads;            /**< run.threads (0 = default) */
+};
+
+/** Build the simulation described by @p d.  On success the model is created,
+ *  particles, masses, groups, BCs and probes exist; call sim_prepare() next
+ *  (deck_build_sim does that too, so *out is ready to step). */
+int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro,
+                   struct spall_error *err);
+
+#endif

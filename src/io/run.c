@@ -1,0 +1,331 @@
+/**
+ * @file run.c
+ * @brief `spall run`: deck -> checked simulation -> output directory with
+ *        run.log, history.csv and HDF5/XDMF frames, with a progress bar.
+ *
+ * Order matters for the "no half-written output" promise: the deck is parsed
+ * and the simulation fully prepared (all input and physics checks) before the
+ * output directory is touched.  An existing non-empty directory is refused
+ * unless `overwrite` is set.  If the run goes unstable, the frames written so
+ * far stay valid (each frame is written to a temporary name and renamed) and
+ * the log says where and why it stopped.
+ */
+#include "spall/spall.h"
+
+#include "core/bond_list.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "io/deck_build.h"
+#include "io/output.h"
+#include "io/run_util.h"
+#include "models/model.h"
+
+#include <errno.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+const char *spall_version(void)
+{
+    return SPALL_VERSION;
+}
+
+const char *spall_git_revision(void)
+{
+    return SPALL_GIT_REV;
+}
+
+#define HIST_MAX 128
+
+struct history_layout {
+    const char *names[HIST_MAX];
+    char storage[HIST_MAX][192];
+    size_t n;
+    size_t n_model; /* model columns start at n - n_model */
+};
+
+static void hist_add(struct history_layout *h, const char *fmt, const char *a, const char *b)
+{
+    if (h->n >= HIST_MAX)
+        return;
+    snprintf(h->storage[h->n], sizeof h->storage[h->n], fmt, a, b);
+    h->names[h->n] = h->storage[h->n];
+    h->n++;
+}
+
+static const char *axis_name(int d)
+{
+    return d == 0 ? "x" : d == 1 ? "y" : "z";
+}
+
+static void history_columns(const struct sim *s, struct history_layout *h)
+{
+    h->n = 0;
+    hist_add(h, "step%s%s", "", "");
+    hist_add(h, "time [s]%s%s", "", "");
+    hist_add(h, "kinetic [J]%s%s", "", "");
+    hist_add(h, "strain [J]%s%s", "", "");
+    hist_add(h, "dissipated [J]%s%s", "", "");
+    hist_add(h, "damping [J]%s%s", "", "");
+    hist_add(h, "external_work [J]%s%s", "", "");
+    hist_add(h, "energy_balance [J]%s%s", "", "");
+    for (size_t k = 0; k < s->n_probes; k++)
+        for (int d = 0; d < s->dim; d++)
+            hist_add(h, "%s_u%s [m]", s->probes[k].name, axis_name(d));
+    for (size_t k = 0; k < s->n_probes; k++)
+        for (int d = 0; d < s->dim; d++)
+            hist_add(h, "%s_v%s [m/s]", s->probes[k].name, axis_name(d));
+    for (size_t k = 0; k < s->n_bcs; k++)
+        for (int d = 0; d < s->dim; d++) {
+            char nm[128];
+            snprintf(nm, sizeof nm, "bc%zu_%s", k, s->groups[s->bcs[k].group].name);
+            hist_add(h, "%s_force_%s [N]", nm, axis_name(d));
+        }
+    h->n_model = 0;
+    if (s->ops->history) {
+        const char *names[MODEL_HISTORY_MAX];
+        double vals[MODEL_HISTORY_MAX];
+        size_t m = s->ops->history(s->model, s, names, vals);
+        for (size_t k = 0; k < m; k++)
+            hist_add(h, "%s%s", names[k], "");
+        h->n_model = m;
+    }
+}
+
+static void history_values(const struct sim *s, const struct history_layout *h, double *v)
+{
+    size_t c = 0;
+    v[c++] = (double)s->step;
+    v[c++] = s->t;
+    v[c++] = s->energy.kinetic;
+    v[c++] = s->energy.strain;
+    v[c++] = s->energy.model_dissipated;
+    v[c++] = s->energy.damping;
+    v[c++] = s->energy.external;
+    v[c++] = s->energy.balance;
+    for (size_t k = 0; k < s->n_probes; k++)
+        for (int d = 0; d < s->dim; d++) {
+            size_t i = s->probes[k].particle;
+            v[c++] = s->p->x[d][i] - s->p->x0[d][i];
+        }
+    for (size_t k = 0; k < s->n_probes; k++)
+        for (int d = 0; d < s->dim; d++)
+            v[c++] = s->p->v[d][s->probes[k].particle];
+    for (size_t k = 0; k < s->n_bcs; k++)
+        for (int d = 0; d < s->dim; d++)
+            v[c++] = s->bcs[k].reaction[d];
+    if (h->n_model) {
+        const char *names[MODEL_HISTORY_MAX];
+        double vals[MODEL_HISTORY_MAX];
+        size_t m = s->ops->history(s->model, s, names, vals);
+        for (size_t k = 0; k < m && c < h->n; k++)
+            v[c++] = vals[k];
+    }
+    while (c < h->n)
+        v[c++] = 0.0;
+}
+
+/* Energy blow-up: mechanical energy far above everything ever put in. */
+static int energy_blew_up(const struct sim *s, double *ratio)
+{
+    double input = fabs(s->energy.initial_total) + fabs(s->energy.external);
+    double now = s->energy.kinetic + fabs(s->energy.strain);
+    if (!(input > 0.0)) {
+        *ratio = 0.0;
+        return 0;
+    }
+    *ratio = now / input;
+    return !isfinite(now) || *ratio > s->energy_blowup;
+}
+
+static size_t fastest_particle(const struct sim *s)
+{
+    size_t best = 0;
+    double vmax = -1.0;
+    for (size_t i = 0; i < s->p->n_owned; i++) {
+        double v2 = 0;
+        for (int d = 0; d < s->dim; d++)
+            v2 += s->p->v[d][i] * s->p->v[d][i];
+        if (!(v2 <= vmax)) {
+            vmax = v2;
+            best = i;
+            if (isnan(v2))
+                break;
+        }
+    }
+    return best;
+}
+
+static void write_log_header(FILE *log, const struct spall_run_options *opt, const struct deck *d,
+                             const struct sim *s, const struct run_output *ro)
+{
+    time_t now = time(NULL);
+    char when[64];
+    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
+    fprintf(log, "# spall run log\n");
+    fprintf(log, "version: %s\ngit_revision: %s\nbuild_type: %s\nstarted: %s\n", spall_version(),
+            spall_git_revision(), SPALL_BUILD_TYPE, when);
+    fprintf(log, "deck: %s\ntitle: %s\nthreads: %d\n", opt->deck_path, ro->title,
+            omp_get_max_threads());
+    fprintf(log, "model: %s\ndimension: %d\nparticles: %zu\n", s->ops->name, s->dim, s->p->n);
+    if (s->ops->interactions)
+        fprintf(log, "interactions: %zu\n", s->ops->interactions(s->model, s));
+    fprintf(log, "lattice: %s, spacing %.6g m, thickness %.6g %s%s\n",
+            lattice_kind_name(s->lattice.kind), s->lattice.spacing, s->thickness,
+            s->dim == 1 ? "m^2 (cross-section)" : "m",
+            s->thickness_given ? "" : " (default: volume r0^3 per particle in 1D/2D triangular)");
+    fprintf(log, "precut_bonds: %zu\n", s->n_precut);
+    fprintf(log, "dt: %.6g s (stability limit %.6g s, factor %.3g)\nsteps: %ld\nend_time: %.6g s\n",
+            s->dt, s->dt_limit, s->dt / s->dt_limit, s->n_steps, s->end_time);
+    if (s->ops->describe) {
+        char buf[4096] = "";
+        s->ops->describe(s->model, s, buf, sizeof buf);
+        fprintf(log, "model_constants: |\n");
+        for (char *line = strtok(buf, "\n"); line; line = strtok(NULL, "\n"))
+            fprintf(log, "  %s\n", line);
+    }
+    fprintf(log, "deck_echo: |\n");
+    const char *t = d->text ? d->text : "";
+    while (*t) {
+        const char *e = strchr(t, '\n');
+        size_t len = e ? (size_t)(e - t) : strlen(t);
+        fprintf(log, "  %.*s\n", (int)len, t);
+        t += len + (e ? 1 : 0);
+    }
+    fflush(log);
+}
+
+int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
+              struct spall_error *err)
+{
+    memset(res, 0, sizeof *res);
+    struct deck *d = NULL;
+    struct sim *s = NULL;
+    struct run_output ro;
+    struct field_writer *fw = NULL;
+    struct history_writer *hw = NULL;
+    FILE *log = NULL;
+    int rc = deck_load_file(&d, opt->deck_path, err);
+    if (rc)
+        return rc;
+    if (opt->threads > 0)
+        omp_set_num_threads(opt->threads);
+    rc = deck_build_sim(d, &s, &ro, err);
+    if (rc)
+        goto done;
+    if (opt->threads <= 0 && ro.threads > 0)
+        omp_set_num_threads(ro.threads);
+
+    /* all checks passed: now, and only now, touch the file system */
+    char dir[1024];
+    if (opt->out_dir)
+        snprintf(dir, sizeof dir, "%s", opt->out_dir);
+    else
+        run_default_out_dir(opt->deck_path, dir, sizeof dir);
+    snprintf(res->out_dir, sizeof res->out_dir, "%s", dir);
+    if ((rc = run_prepare_out_dir(dir, opt->overwrite, err)))
+        goto done;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/run.log", dir);
+    log = fopen(path, "w");
+    if (!log) {
+        rc = spall_error_set(err, SPALL_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
+        goto done;
+    }
+    write_log_header(log, opt, d, s, &ro);
+
+    struct history_layout hl;
+    history_columns(s, &hl);
+    snprintf(path, sizeof path, "%s/history.csv", dir);
+    if ((rc = history_writer_create(&hw, path, hl.names, hl.n, err)))
+        goto done;
+    int frames_on = ro.field_interval > 0.0 || ro.field_every > 0;
+    if (!frames_on) {
+        /* default: 20 frames over the run */
+        ro.field_every = s->n_steps / 20 > 0 ? s->n_steps / 20 : 1;
+        frames_on = 1;
+    }
+    if ((rc = field_writer_create(&fw, dir, s, ro.n_fields ? ro.fields : NULL, ro.n_fields, err)))
+        goto done;
+    long hist_every = ro.history_every > 0 ? ro.history_every
+                                            : (s->n_steps / 2000 > 0 ? s->n_steps / 2000 : 1);
+    double hv[HIST_MAX];
+    history_values(s, &hl, hv);
+    if ((rc = history_writer_append(hw, hv, err)) || (rc = field_writer_write(fw, s, err)))
+        goto done;
+    double next_frame_t = ro.field_interval;
+
+    struct progress pr;
+    progress_start(&pr, opt->progress, s->n_steps, s->p->n_owned);
+    double t0 = omp_get_wtime();
+    while (!sim_done(s)) {
+        rc = sim_step(s, err);
+        if (rc)
+            break;
+        int last = sim_done(s);
+        if (s->step % hist_every == 0 || last) {
+            sim_update_energy(s);
+            double ratio = 0;
+            if (energy_blew_up(s, &ratio)) {
+                size_t i = fastest_particle(s);
+                rc = spall_error_set(err, SPALL_ERR_UNSTABLE,
+                                     "run went unstable at step %ld, t = %.6g s: mechanical energy "
+                                     "is %.3g times the energy put in (limit run.energy_blowup = "
+                                     "%g); fastest particle %zu (id %lld)",
+                                     s->step, s->t, ratio, s->energy_blowup, i,
+                                     (long long)s->p->gid[i]);
+                break;
+            }
+            history_values(s, &hl, hv);
+            if ((rc = history_writer_append(hw, hv, err)))
+                break;
+        }
+        int frame = 0;
+        if (ro.field_interval > 0.0) {
+            if (s->t >= next_frame_t - 1e-12 * ro.field_interval) {
+                frame = 1;
+                while (next_frame_t <= s->t + 1e-12 * ro.field_interval)
+                    next_frame_t += ro.field_interval;
+            }
+        } else if (ro.field_every > 0 && s->step % ro.field_every == 0) {
+            frame = 1;
+        }
+        if (frame || last) {
+            if ((rc = field_writer_write(fw, s, err)))
+                break;
+        }
+        progress_update(&pr, s->step, s->t, s->end_time);
+    }
+    double wall = omp_get_wtime() - t0;
+    progress_finish(&pr);
+    res->steps = s->step;
+    res->time = s->t;
+    res->wall_seconds = wall;
+    res->particles = s->p->n_owned;
+    res->bonds = s->ops->interactions ? s->ops->interactions(s->model, s) : 0;
+    res->particle_steps_per_s = wall > 0 ? (double)s->p->n_owned * (double)s->step / wall : 0;
+    res->frames = field_writer_frames(fw);
+    fprintf(log, "steps_done: %ld\ntime_reached: %.6g s\nwall_seconds: %.3f\n", s->step, s->t,
+            wall);
+    fprintf(log, "particle_steps_per_s: %.4g\nframes: %zu\n", res->particle_steps_per_s,
+            res->frames);
+    fprintf(log, "energy_balance_final: %.6g J (input %.6g J)\n", s->energy.balance,
+            fabs(s->energy.initial_total) + fabs(s->energy.external));
+    if (rc)
+        fprintf(log, "status: FAILED: %s\n", err->msg);
+    else
+        fprintf(log, "status: completed\n");
+done:
+    if (log)
+        fclose(log);
+    field_writer_destroy(&fw);
+    history_writer_destroy(&hw);
+    sim_destroy(&s);
+    deck_destroy(&d);
+    return rc;
+}

@@ -1,0 +1,476 @@
+/**
+ * @file lattice_forces.c
+ * @brief Force loops of the lattice model (seed 000 Eqs. 1, 15, 17).
+ *
+ * Race-free gather: every bond i-j is stored in both rows (half-bonds), and
+ * each particle sums its own row, so each bond is evaluated twice and no two
+ * threads write the same memory.  Bond breaking is fused into this loop: the
+ * thread of particle i decides for its own half-bond only, and both halves of
+ * a bond decide identically because |x_j - x_i| and the rest length are
+ * bitwise symmetric and the pair constants are stored symmetric.  The same
+ * holds for the energy the break releases, which each half books as one half
+ * on its own particle (diss[i]), so the sum is independent of the thread count.
+ *
+ * Angular springs (alpha-beta model, 2D triangular lattice, Eq. 17 with the
+ * energy k_phi dphi^2 / 2 per angle between adjacent first-shell bonds):
+ * pass 1 evaluates every angle where it is centred, adds the centre's force
+ * directly and writes the forces on the two arm particles into per-slot
+ * buffers of the centre's row; pass 2 (the axial loop) lets each particle
+ * gather the buffers of the slots that point at it through the reverse index.
+ * Angles see the bond states of the previous step (breaking is decided in
+ * pass 2), a one-step lag that only delays the de-activation of an angle.
+ *
+ * The hot loop (linear law, one material) is specialised by dimension and
+ * whether the list has more than one bond type; the general loop covers
+ * several materials (pair table) and the non-linear laws with the law a
+ * compile-time constant inside each specialisation.
+ */
+#include "models/lattice/lattice_internal.h"
+
+#include "core/bond_list.h"
+#include "core/particles.h"
+#include "core/sim.h"
+
+#include <math.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/** Rare path: half-bond s of particle i breaks now (stretch st).  Books half
+ *  the released energy (intact minus post-fracture energy) on i and returns
+ *  the post-fracture force coefficient. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static double break_half(struct model *m, size_t i, size_t s, const struct lattice_bond_law *bw,
+                         double rest, double st)
+{
+    m->bl->state[s] |= BOND_BROKEN;
+    double ui = lattice_energy(&m->lp, bw->curve, bw->k, rest, st, 0);
+    double ub = lattice_energy(&m->lp, bw->curve, bw->k, rest, st, 1);
+    m->diss[i] += 0.5 * (ui - ub);
+    return lattice_coef(&m->lp, bw->curve, bw->k, st, 1);
+}
+
+/** Arrays the hot loops read, copied into locals once per call so that the
+ *  compiler need not reload them after every store into the force arrays. */
+struct lattice_view {
+    const size_t *restrict offset;
+    const int32_t *restrict partner;
+    const double *restrict rest;
+    const uint8_t *restrict state;
+    const uint8_t *restrict type;
+    const size_t *restrict reverse;
+    const double *restrict ang_buf;
+    const int32_t *restrict mat;
+    const double *restrict x0, *restrict x1, *restrict x2;
+    double *restrict f0, *restrict f1, *restrict f2;
+};
+
+static struct lattice_view make_view(const struct model *m, struct sim *sim)
+{
+    struct lattice_view v;
+    const struct bond_list *bl = m->bl;
+    struct particles *p = sim->p;
+    v.offset = bl->offset;
+    v.partner = bl->partner;
+    v.rest = bl->rest;
+    v.state = bl->state;
+    v.type = bl->type;
+    v.reverse = bl->reverse;
+    v.ang_buf = m->ang_buf;
+    v.mat = p->material;
+    v.x0 = p->x[0];
+    v.x1 = p->dim > 1 ? p->x[1] : NULL;
+    v.x2 = p->dim > 2 ? p->x[2] : NULL;
+    v.f0 = p->f[0];
+    v.f1 = p->dim > 1 ? p->f[1] : NULL;
+    v.f2 = p->dim > 2 ? p->f[2] : NULL;
+    return v;
+}
+
+/** dx = x_j - x_i for the first @p dim components; returns |dx|^2. */
+LATTICE_INLINE double bond_vec(const struct lattice_view *v, size_t i, size_t j, const int dim,
+                               double dx[3])
+{
+    dx[0] = v->x0[j] - v->x0[i];
+    double r2 = dx[0] * dx[0];
+    if (dim > 1) {
+        dx[1] = v->x1[j] - v->x1[i];
+        r2 += dx[1] * dx[1];
+    }
+    if (dim > 2) {
+        dx[2] = v->x2[j] - v->x2[i];
+        r2 += dx[2] * dx[2];
+    }
+    return r2;
+}
+
+LATTICE_INLINE void add_force(const struct lattice_view *v, size_t i, const int dim,
+                              const double fi[3])
+{
+    v->f0[i] += fi[0];
+    if (dim > 1)
+        v->f1[i] += fi[1];
+    if (dim > 2)
+        v->f2[i] += fi[2];
+}
+
+/** Linear law, one material: f_i += k (1 - r_rest / r) dx, one sqrt and one
+ *  division per half-bond.  @p multi_type: read the bond type (two shells). */
+LATTICE_INLINE void row_linear(struct model *m, const struct lattice_view *v,
+                               const struct lattice_bond_law *pw, size_t i, const int dim,
+                               const int multi_type, const int gather)
+{
+    const double k0 = pw[0].k, tl0 = pw[0].t_lim, cl0 = pw[0].c_lim;
+    double fi[3] = {0, 0, 0};
+    const size_t s1 = v->offset[i + 1];
+    for (size_t s = v->offset[i]; s < s1; s++) {
+        const size_t j = (size_t)v->partner[s];
+        double dx[3] = {0, 0, 0};
+        const double r = sqrt(bond_vec(v, i, j, dim, dx));
+        const double r_rest = v->rest[s];
+        double k = k0, tl = tl0, cl = cl0;
+        if (multi_type) {
+            const struct lattice_bond_law *b = &pw[v->type[s]];
+            k = b->k;
+            tl = b->t_lim;
+            cl = b->c_lim;
+        }
+        double c = k - k * r_rest / r;
+        if (LATTICE_UNLIKELY(v->state[s])) {
+            c = c < 0.0 ? c : 0.0;
+        } else if (LATTICE_UNLIKELY(r > r_rest * tl || r < r_rest * cl)) {
+            c = break_half(m, i, s, &pw[multi_type ? v->type[s] : 0], r_rest, r / r_rest);
+        }
+        for (int d = 0; d < dim; d++)
+            fi[d] += c * dx[d];
+        if (gather) {
+            const double *ab = v->ang_buf + 2 * v->reverse[s];
+            fi[0] += ab[0];
+            fi[1] += ab[1];
+        }
+    }
+    add_force(v, i, dim, fi);
+}
+
+/** Any law, any number of materials (pair table lookup per half-bond). */
+LATTICE_INLINE void row_general(struct model *m, const struct lattice_view *v, size_t i,
+                                const int dim, const enum lattice_law law, const int gather)
+{
+    struct lattice_law_params lp = m->lp;
+    lp.law = law; /* constant: the switch inside the law functions folds */
+    const size_t nm = m->n_mat;
+    const struct lattice_bond_law *prow = m->pair + (size_t)v->mat[i] * nm * LATTICE_MAX_TYPES;
+    double fi[3] = {0, 0, 0};
+    const size_t s1 = v->offset[i + 1];
+    for (size_t s = v->offset[i]; s < s1; s++) {
+        const size_t j = (size_t)v->partner[s];
+        double dx[3] = {0, 0, 0};
+        const double r = sqrt(bond_vec(v, i, j, dim, dx));
+        const double r_rest = v->rest[s];
+        const struct lattice_bond_law *bw =
+            &prow[(size_t)v->mat[j] * LATTICE_MAX_TYPES + v->type[s]];
+        const double st = r / r_rest;
+        double c;
+        if (LATTICE_UNLIKELY(v->state[s]))
+            c = lattice_coef(&lp, bw->curve, bw->k, st, 1);
+        else if (LATTICE_UNLIKELY(r > r_rest * bw->t_lim || r < r_rest * bw->c_lim))
+            c = break_half(m, i, s, bw, r_rest, st);
+        else
+            c = lattice_coef(&lp, bw->curve, bw->k, st, 0);
+        for (int d = 0; d < dim; d++)
+            fi[d] += c * dx[d];
+        if (gather) {
+            const double *ab = v->ang_buf + 2 * v->reverse[s];
+            fi[0] += ab[0];
+            fi[1] += ab[1];
+        }
+    }
+    add_force(v, i, dim, fi);
+}
+
+/** Wrap an angle difference into (-pi, pi]. */
+static inline double wrap_angle(double a)
+{
+    if (a > LATTICE_PI)
+        a -= 2.0 * LATTICE_PI;
+    else if (a <= -LATTICE_PI)
+        a += 2.0 * LATTICE_PI;
+    return a;
+}
+
+/** One angle between arms a and b of particle i (2D).  Returns dphi and
+ *  the forces on the arm particles (Fa, Fb); the centre gets -(Fa + Fb).
+ *  phi = atan2(a x b, a . b) grows when b turns counter-clockwise, so
+ *  dphi/d(x_b) = (-b_y, b_x)/|b|^2 and dphi/d(x_a) = (a_y, -a_x)/|a|^2;
+ *  F = -k_phi dphi grad(phi). */
+static inline double angle_forces(double k_phi, double phi0, const double a[2],
+                                  const double b[2], double Fa[2], double Fb[2])
+{
+    const double cr = a[0] * b[1] - a[1] * b[0];
+    const double dt = a[0] * b[0] + a[1] * b[1];
+    const double dphi = wrap_angle(atan2(cr, dt) - phi0);
+    const double T = k_phi * dphi;
+    const double ia = T / (a[0] * a[0] + a[1] * a[1]);
+    const double ib = T / (b[0] * b[0] + b[1] * b[1]);
+    Fa[0] = -a[1] * ia;
+    Fa[1] = a[0] * ia;
+    Fb[0] = b[1] * ib;
+    Fb[1] = -b[0] * ib;
+    return dphi;
+}
+
+/** Pass 1 for particle i: angles centred at i (writes only row i's buffers,
+ *  row i's angle states, diss[i] and the centre's force). */
+static void angles_row(struct model *m, const int32_t *mat, double *const *x, size_t i,
+                       double fi[2])
+{
+    const struct bond_list *bl = m->bl;
+    const size_t s0 = bl->offset[i], s1 = bl->offset[i + 1];
+    double *buf = m->ang_buf;
+    for (size_t s = s0; s < s1; s++) {
+        buf[2 * s] = 0.0;
+        buf[2 * s + 1] = 0.0;
+    }
+    const double k_phi = m->mat_k_phi[mat[i]];
+    if (k_phi == 0.0)
+        return;
+    const double lim_c = m->mat_dphi_c[mat[i]], lim_t = m->mat_dphi_t[mat[i]];
+    for (size_t s = s0; s < s1; s++) {
+        const unsigned lb = m->ang_b[s];
+        if (lb == LATTICE_NO_ANGLE)
+            continue;
+        const size_t sb = s0 + lb;
+        if (m->ang_state[s] || bl->state[s] || bl->state[sb])
+            continue;
+        const size_t ja = (size_t)bl->partner[s], jb = (size_t)bl->partner[sb];
+        const double a[2] = {x[0][ja] - x[0][i], x[1][ja] - x[1][i]};
+        const double b[2] = {x[0][jb] - x[0][i], x[1][jb] - x[1][i]};
+        double Fa[2], Fb[2];
+        const double dphi = angle_forces(k_phi, m->ang_phi0[s], a, b, Fa, Fb);
+        if (LATTICE_UNLIKELY(dphi < -lim_c || dphi > lim_t)) {
+            m->ang_state[s] = 1;
+            m->diss[i] += 0.5 * k_phi * dphi * dphi;
+            continue;
+        }
+        buf[2 * s] += Fa[0];
+        buf[2 * s + 1] += Fa[1];
+        buf[2 * sb] += Fb[0];
+        buf[2 * sb + 1] += Fb[1];
+        fi[0] -= Fa[0] + Fb[0];
+        fi[1] -= Fa[1] + Fb[1];
+    }
+}
+
+/* ---- specialised ranges ------------------------------------------------------
+ * OpenMP outlines a parallel region before inlining, so constants passed into
+ * a region do not reach the kernels.  The region therefore only splits the
+ * particles into static per-thread ranges, and these functions (called from
+ * inside it) switch once per range to a loop whose dimension, law and
+ * variant are literal constants. */
+
+LATTICE_INLINE void loop_linear(struct model *m, const struct lattice_view *v, size_t lo,
+                                size_t hi, const int dim, const int multi, const int gather)
+{
+    const struct lattice_bond_law *pw = m->pair; /* material 0 with itself: types 0..1 */
+    for (size_t i = lo; i < hi; i++)
+        row_linear(m, v, pw, i, dim, multi, gather);
+}
+
+static void range_linear(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
+                         int dim, int multi, int gather)
+{
+    if (dim == 1)
+        loop_linear(m, v, lo, hi, 1, 0, 0);
+    else if (dim == 2 && gather && multi)
+        loop_linear(m, v, lo, hi, 2, 1, 1);
+    else if (dim == 2 && gather)
+        loop_linear(m, v, lo, hi, 2, 0, 1);
+    else if (dim == 2 && multi)
+        loop_linear(m, v, lo, hi, 2, 1, 0);
+    else if (dim == 2)
+        loop_linear(m, v, lo, hi, 2, 0, 0);
+    else if (multi)
+        loop_linear(m, v, lo, hi, 3, 1, 0);
+    else
+        loop_linear(m, v, lo, hi, 3, 0, 0);
+}
+
+LATTICE_INLINE void loop_general(struct model *m, const struct lattice_view *v, size_t lo,
+                                 size_t hi, const int dim, const enum lattice_law law,
+                                 const int gather)
+{
+    for (size_t i = lo; i < hi; i++)
+        row_general(m, v, i, dim, law, gather);
+}
+
+static void range_general_law(struct model *m, const struct lattice_view *v, size_t lo,
+                              size_t hi, int dim, const enum lattice_law law, int gather)
+{
+    if (dim == 1)
+        loop_general(m, v, lo, hi, 1, law, 0);
+    else if (dim == 2 && gather)
+        loop_general(m, v, lo, hi, 2, law, 1);
+    else if (dim == 2)
+        loop_general(m, v, lo, hi, 2, law, 0);
+    else
+        loop_general(m, v, lo, hi, 3, law, 0);
+}
+
+static void range_general(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
+                          int dim, int gather)
+{
+    switch (m->lp.law) {
+    case LATTICE_LAW_LJ: range_general_law(m, v, lo, hi, dim, LATTICE_LAW_LJ, gather); break;
+    case LATTICE_LAW_PWL: range_general_law(m, v, lo, hi, dim, LATTICE_LAW_PWL, gather); break;
+    case LATTICE_LAW_LINEAR:
+    default: range_general_law(m, v, lo, hi, dim, LATTICE_LAW_LINEAR, gather); break;
+    }
+}
+
+/** Static split of [0, n) over the threads of the current team. */
+static void thread_range(size_t n, size_t *lo, size_t *hi)
+{
+#ifdef _OPENMP
+    size_t nt = (size_t)omp_get_num_threads(), t = (size_t)omp_get_thread_num();
+#else
+    size_t nt = 1, t = 0;
+#endif
+    size_t q = n / nt, r = n % nt;
+    *lo = t * q + (t < r ? t : r);
+    *hi = *lo + q + (t < r ? 1 : 0);
+}
+
+/* ---- loop drivers: the only place with OpenMP pragmas ----------------------- */
+
+static void drive_axial(struct model *m, struct sim *sim, int fast, int dim, int multi,
+                        int gather)
+{
+    const struct lattice_view v = make_view(m, sim);
+    const size_t n = sim->p->n_owned;
+#pragma omp parallel
+    {
+        const struct lattice_view lv = v; /* thread-local copy */
+        size_t lo, hi;
+        thread_range(n, &lo, &hi);
+        if (fast)
+            range_linear(m, &lv, lo, hi, dim, multi, gather);
+        else
+            range_general(m, &lv, lo, hi, dim, gather);
+    }
+}
+
+static void drive_angles(struct model *m, struct sim *sim)
+{
+    struct particles *p = sim->p;
+    double *const *x = p->x;
+    double *const *f = p->f;
+    const int32_t *mat = p->material;
+    const size_t n = p->n; /* ghost rows too: their buffers feed owned particles */
+    const size_t n_owned = p->n_owned;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        double fi[2] = {0.0, 0.0};
+        angles_row(m, mat, x, i, fi);
+        if (i < n_owned) {
+            f[0][i] += fi[0];
+            f[1][i] += fi[1];
+        }
+    }
+}
+
+int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    (void)err;
+    const int dim = m->dim;
+    const int gather = m->angular && dim == 2;
+    if (gather)
+        drive_angles(m, sim);
+    const int fast = m->lp.law == LATTICE_LAW_LINEAR && m->n_mat == 1;
+    drive_axial(m, sim, fast, dim, m->layers > 1, gather);
+    return 0;
+}
+
+/* ---- per-particle diagnostics (no state change) ------------------------- */
+
+static void add_outer(int dim, double *sig, const double *u, const double *v, double w)
+{
+    /* symmetric part of w u (x) v in the component order of the stress field */
+    if (dim == 1) {
+        sig[0] += w * u[0] * v[0];
+    } else if (dim == 2) {
+        sig[0] += w * u[0] * v[0];
+        sig[1] += w * u[1] * v[1];
+        sig[2] += 0.5 * w * (u[0] * v[1] + u[1] * v[0]);
+    } else {
+        sig[0] += w * u[0] * v[0];
+        sig[1] += w * u[1] * v[1];
+        sig[2] += w * u[2] * v[2];
+        sig[3] += 0.5 * w * (u[0] * v[1] + u[1] * v[0]);
+        sig[4] += 0.5 * w * (u[1] * v[2] + u[2] * v[1]);
+        sig[5] += 0.5 * w * (u[0] * v[2] + u[2] * v[0]);
+    }
+}
+
+/*
+ * Virial stress of particle i (tension positive).  For a pair the virial
+ * sum_k x_k (x) f_k = (x_i - x_j) (x) f_i = -dx (x) (c dx), and the stress is
+ * sigma = -(1/V) sum_k x_k (x) f_k; each particle takes half of each of its
+ * bonds: sigma_i = (1 / (2 V_i)) sum_j c_ij dx_ij (x) dx_ij.  An angle centred
+ * at i contributes -(1/V_i) (a (x) F_a + b (x) F_b) (relative arms; its net
+ * torque vanishes, so the symmetric part is the whole).
+ */
+void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t i,
+                           double *energy, double *stress)
+{
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    const int dim = m->dim;
+    const int32_t *mat = p->material;
+    const size_t nm = m->n_mat;
+    double e = 0.0, sig[6] = {0, 0, 0, 0, 0, 0};
+    for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+        const size_t j = (size_t)bl->partner[s];
+        double dx[3] = {0, 0, 0}, r2 = 0.0;
+        for (int d = 0; d < dim; d++) {
+            dx[d] = p->x[d][j] - p->x[d][i];
+            r2 += dx[d] * dx[d];
+        }
+        const double st = sqrt(r2) / bl->rest[s];
+        const struct lattice_bond_law *bw =
+            &m->pair[((size_t)mat[i] * nm + (size_t)mat[j]) * LATTICE_MAX_TYPES + bl->type[s]];
+        const int broken = bl->state[s] != 0;
+        const double c = lattice_coef(&m->lp, bw->curve, bw->k, st, broken);
+        e += 0.5 * lattice_energy(&m->lp, bw->curve, bw->k, bl->rest[s], st, broken);
+        add_outer(dim, sig, dx, dx, 0.5 * c);
+    }
+    if (m->angular && dim == 2) {
+        const double k_phi = m->mat_k_phi[mat[i]];
+        const size_t s0 = bl->offset[i];
+        for (size_t s = s0; s < bl->offset[i + 1] && k_phi != 0.0; s++) {
+            if (m->ang_b[s] == LATTICE_NO_ANGLE)
+                continue;
+            const size_t sb = s0 + m->ang_b[s];
+            if (m->ang_state[s] || bl->state[s] || bl->state[sb])
+                continue;
+            const size_t ja = (size_t)bl->partner[s], jb = (size_t)bl->partner[sb];
+            const double a[2] = {p->x[0][ja] - p->x[0][i], p->x[1][ja] - p->x[1][i]};
+            const double b[2] = {p->x[0][jb] - p->x[0][i], p->x[1][jb] - p->x[1][i]};
+            double Fa[2], Fb[2];
+            const double dphi = angle_forces(k_phi, m->ang_phi0[s], a, b, Fa, Fb);
+            e += 0.5 * k_phi * dphi * dphi;
+            add_outer(dim, sig, a, Fa, -1.0);
+            add_outer(dim, sig, b, Fb, -1.0);
+        }
+    }
+    if (energy)
+        *energy = e;
+    if (stress) {
+        const int nc = dim == 1 ? 1 : dim == 2 ? 3 : 6;
+        const double v = p->volume[i];
+        for (int c = 0; c < nc; c++)
+            stress[c] = sig[c] / v;
+    }
+}

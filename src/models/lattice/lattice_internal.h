@@ -1,0 +1,94 @@
+/**
+ * @file lattice_internal.h
+ * @brief State of the lattice model shared by lattice_model.c (life cycle),
+ *        lattice_forces.c (hot loops) and lattice_calib.c (patch test).
+ *        Not part of the public interface.
+ */
+#ifndef SPALL_LATTICE_INTERNAL_H
+#define SPALL_LATTICE_INTERNAL_H
+
+#include "models/lattice/lattice_laws.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+struct bond_list;
+struct sim;
+struct spall_error;
+
+#define LATTICE_MAX_TYPES 2
+#define LATTICE_NO_ANGLE 0xFFu
+
+/** Model options (deck `model:` section). */
+struct lattice_options {
+    enum lattice_law law;
+    int layers;                /**< 0: lattice default */
+    int angular;               /**< -1 auto, 0 off, 1 on */
+    double second_layer_ratio; /**< 0: default 1/sqrt3 */
+};
+
+/** Per-material input and derived constants. */
+struct lattice_material {
+    bool parsed;
+    double E, nu;
+    bool nu_given;
+    double eps_t;          /**< tensile failure strain; INFINITY: never (LJ: the peak) */
+    bool eps_t_given;
+    double eps_c;          /**< compressive failure strain; INFINITY: never */
+    bool ang_fail;         /**< angular_failure given */
+    double dphi_c, dphi_t; /**< angular failure limits [rad] */
+    double lj_p, lj_q;     /**< LJ exponents */
+    struct lattice_curve curve; /**< PWL curve (owned) */
+    /* derived in init */
+    double k[LATTICE_MAX_TYPES];
+    double k_phi;
+};
+
+struct model {
+    struct sim *sim; /**< borrowed */
+    struct lattice_options opt;
+    int dim;
+    int layers;       /**< resolved */
+    bool angular;     /**< angular springs present */
+    size_t n_mat;
+    struct lattice_material *mat;
+    struct lattice_curve *curves;    /**< view: curves[i] = mat[i].curve (for the law params) */
+    struct lattice_law_params lp;
+    struct lattice_bond_law *pair;   /**< [(ma * n_mat + mb) * LATTICE_MAX_TYPES + type] */
+    double *mat_k_phi;               /**< per material */
+    double *mat_dphi_c, *mat_dphi_t; /**< per material, INFINITY: never breaks */
+
+    struct bond_list *bl;
+    /* angles, indexed by the slot of their first arm (counter-clockwise
+     * from arm a to arm b = row start + ang_b[slot]) */
+    uint8_t *ang_b;       /**< local index of arm b in the row, LATTICE_NO_ANGLE if none */
+    double *ang_phi0;     /**< reference angle [rad] */
+    uint8_t *ang_state;   /**< 1: broken */
+    double *ang_buf;      /**< 2 per slot: force on the slot's partner from angles at the row's particle */
+
+    double *diss;         /**< per particle: energy released by its broken bonds/angles [J] */
+    size_t n_half;
+    bool initialised;
+};
+
+/* lattice_model.c */
+/** Allocate a model with @p opt (no deck). */
+int lattice_model_new(struct model **out, struct sim *sim, const struct lattice_options *opt,
+                      struct spall_error *err);
+/** Set material @p index from a filled struct (takes ownership of its curve). */
+int lattice_model_set_material(struct model *m, int index, struct lattice_material *mt,
+                               struct spall_error *err);
+/** Overwrite the axial and angular constants of material 0 after init
+ *  (patch test with the paper's constants). */
+void lattice_model_override(struct model *m, double k1, double k_phi);
+
+/* lattice_forces.c */
+int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);
+/** Energy [J] (half of each bond + the angles centred at i) and virial
+ *  stress (tension positive; 1D: xx; 2D: xx yy xy; 3D: xx yy zz xy yz xz)
+ *  of particle i from the current positions; changes nothing. */
+void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t i,
+                           double *energy, double *stress);
+
+#endif

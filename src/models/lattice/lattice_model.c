@@ -1,0 +1,783 @@
+/**
+ * @file lattice_model.c
+ * @brief Hybrid lattice particle model (HLPM, seed 000): quasi-particles on a
+ *        lattice joined by breakable axial springs (Eqs. 1, 15) and, on the
+ *        triangular lattice, angular springs (alpha-beta model, Eq. 17).
+ *
+ * Deck keys (copied to docs/decks.md):
+ *
+ *   model:
+ *     type: lattice
+ *     law: linear | lennard_jones | piecewise_linear
+ *           axial law (default linear; seed 000 Eq. 15, Eq. 1, "polynomial")
+ *     layers: 1 | 2
+ *           axial neighbour shells (seed Fig. 3a/3b).  Default: 1 for chain,
+ *           triangular and fcc; 2 for square and sc, which need their diagonals
+ *           (layers: 1 is refused there: no shear stiffness).
+ *     second_layer_ratio: k2/k1 for a two-layer triangular lattice
+ *           (default 1/sqrt3: equal bar modulus k*l; k1 + 3 k2 still gives E)
+ *     angular: auto | on | off
+ *           angular springs (triangular, layers 1 only).  auto: on iff the
+ *           material's nu differs from 1/3 (by more than 1e-3).
+ *
+ *   materials:
+ *     <name>:
+ *       density: [kg/m^3]                (read by the core)
+ *       youngs_modulus: [Pa] > 0         required (piecewise_linear: optional,
+ *                                        taken from the curve's first slope; if
+ *                                        given it must agree within 1%)
+ *       poisson_ratio:                   required except on the chain.
+ *                                        triangular alpha-beta: (-1, 1/3];
+ *                                        central-force lattices: their Cauchy
+ *                                        value within 1e-3 (1/3 for triangular
+ *                                        with layers 2 or angular off and
+ *                                        square; 1/4 for sc and fcc, Voigt)
+ *       tensile_strength: [Pa] > 0       } linear law: exactly one of them;
+ *       failure_strain: > 0              } eps_max = sigma_TS / E (Eq. 26).
+ *                                          lennard_jones: failure_strain only,
+ *                                          optional (default: break at the
+ *                                          force peak r_d, Eq. 4)
+ *       compressive_failure_strain: > 0  optional; default: never breaks in
+ *                                        compression
+ *       angular_failure: [dphi_c, dphi_t] optional [rad], both > 0: an angular
+ *                                        spring breaks when dphi < -dphi_c or
+ *                                        dphi > dphi_t (Eq. 17)
+ *       exponents: [p, q]                lennard_jones only, required,
+ *                                        q > p >= 1 (Eq. 1)
+ *       curve: [[strain, stress], ...]   piecewise_linear only, required;
+ *                                        starts at [0, 0], strictly increasing
+ *                                        strain, first slope > 0; the bond
+ *                                        breaks beyond the last strain
+ *
+ * A bond between materials a and b uses the series stiffness
+ * 2 k_a k_b / (k_a + k_b) and the smaller failure strains (piecewise linear:
+ * the curve of the material with the smaller last strain); an angular spring
+ * uses the constants of its centre particle's material.
+ *
+ * Fields: fracture_density (Eq. 27: broken / original bonds, pre-cut bonds
+ * count as broken), strain_energy [J], stress [Pa] (virial, tension
+ * positive; 1D xx; 2D xx yy xy; 3D xx yy zz xy yz xz).  History columns:
+ * bonds_broken (during the run, each bond once; pre-cut bonds excluded) and
+ * fracture_fraction (all broken bonds / all bonds).
+ */
+#include "models/lattice/lattice_calib.h"
+#include "models/lattice/lattice_internal.h"
+
+#include "core/bond_list.h"
+#include "core/fields.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "models/model.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void curve_free(struct lattice_curve *c)
+{
+    free(c->e);
+    free(c->g);
+    free(c->slope);
+    free(c->G);
+    memset(c, 0, sizeof *c);
+}
+
+int lattice_model_new(struct model **out, struct sim *sim, const struct lattice_options *opt,
+                      struct spall_error *err)
+{
+    *out = NULL;
+    struct model *m = calloc(1, sizeof *m);
+    if (!m)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating the lattice model");
+    m->sim = sim;
+    m->opt = *opt;
+    m->lp.law = opt->law;
+    *out = m;
+    return SPALL_OK;
+}
+
+int lattice_model_set_material(struct model *m, int index, struct lattice_material *mt,
+                               struct spall_error *err)
+{
+    if (index < 0)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "material index %d", index);
+    if ((size_t)index >= m->n_mat) {
+        struct lattice_material *q = realloc(m->mat, ((size_t)index + 1) * sizeof *q);
+        if (!q)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for materials");
+        memset(q + m->n_mat, 0, ((size_t)index + 1 - m->n_mat) * sizeof *q);
+        m->mat = q;
+        m->n_mat = (size_t)index + 1;
+    }
+    curve_free(&m->mat[index].curve);
+    m->mat[index] = *mt;
+    m->mat[index].parsed = true;
+    memset(&mt->curve, 0, sizeof mt->curve); /* ownership moved */
+    return SPALL_OK;
+}
+
+static void lattice_destroy(struct model **pm)
+{
+    if (!pm || !*pm)
+        return;
+    struct model *m = *pm;
+    for (size_t k = 0; k < m->n_mat; k++)
+        curve_free(&m->mat[k].curve);
+    free(m->mat);
+    free(m->curves);
+    free(m->pair);
+    free(m->mat_k_phi);
+    free(m->mat_dphi_c);
+    free(m->mat_dphi_t);
+    bond_list_destroy(&m->bl);
+    free(m->ang_b);
+    free(m->ang_phi0);
+    free(m->ang_state);
+    free(m->ang_buf);
+    free(m->diss);
+    free(m);
+    *pm = NULL;
+}
+
+/* ---- deck ------------------------------------------------------------------ */
+
+static int lattice_create(struct model **out, struct sim *sim, const struct deck_node *params,
+                          struct spall_error *err)
+{
+    static const char *const laws[] = {"linear", "lennard_jones", "piecewise_linear", NULL};
+    static const char *const angs[] = {"auto", "on", "off", NULL};
+    static const char *const keys[] = {"type", "law", "layers", "second_layer_ratio", "angular",
+                                       NULL};
+    struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
+    *out = NULL;
+    if (params) {
+        int law = 0, ang = 0, rc;
+        long layers = 0;
+        if ((rc = deck_enum(params, "law", false, laws, &law, err)) ||
+            (rc = deck_long(params, "layers", false, 1, 2, &layers, err)) ||
+            (rc = deck_double_pos(params, "second_layer_ratio", false, &opt.second_layer_ratio,
+                                  err)) ||
+            (rc = deck_enum(params, "angular", false, angs, &ang, err)) ||
+            (rc = deck_check_unused(params, "model", keys, err)))
+            return rc;
+        opt.law = (enum lattice_law)law;
+        opt.layers = (int)layers;
+        opt.angular = ang == 0 ? -1 : ang == 1 ? 1 : 0;
+        /* lattice-dependent checks with a dummy material of the Cauchy nu */
+        struct lattice_calib c;
+        memset(&c, 0, sizeof c);
+        c.kind = sim->lattice.kind;
+        c.layers = opt.layers;
+        c.angular = opt.angular;
+        c.second_layer_ratio = opt.second_layer_ratio;
+        c.E = 1.0;
+        c.nu = (c.kind == LATTICE_SC || c.kind == LATTICE_FCC) ? 0.25 : 1.0 / 3.0;
+        c.r0 = sim->lattice.spacing > 0.0 ? sim->lattice.spacing : 1.0;
+        c.thickness = 1.0;
+        if (opt.angular == 1)
+            c.nu = 0.2;
+        if (lattice_calibrate(&c, err)) {
+            const char *key = deck_peek(params, "layers") ? "layers" : "angular";
+            if (opt.second_layer_ratio > 0.0 && (opt.layers != 2 || c.kind != LATTICE_TRIANGULAR))
+                key = "second_layer_ratio";
+            char msg[SPALL_ERROR_MSG_LEN];
+            snprintf(msg, sizeof msg, "%s", err->msg);
+            deck_error_key(err, params, key, "%s", msg);
+            err->code = SPALL_ERR_PHYSICS;
+            return SPALL_ERR_PHYSICS;
+        }
+    }
+    return lattice_model_new(out, sim, &opt, err);
+}
+
+/** Read `curve` into a normalised lattice_curve; *E0 = first slope. */
+static int parse_curve(const struct deck_node *node, struct lattice_curve *cv, double *E0,
+                       struct spall_error *err)
+{
+    const struct deck_node *c = deck_get(node, "curve");
+    int rc = deck_expect_seq(c, "a list of [strain, stress] points", err);
+    if (rc)
+        return rc;
+    if (c->n < 2)
+        return deck_error(err, c, "curve needs at least 2 points; expected [[0, 0], [e1, s1], ...]");
+    size_t n = c->n;
+    cv->n = n;
+    cv->e = calloc(n, sizeof *cv->e);
+    cv->g = calloc(n, sizeof *cv->g);
+    cv->slope = calloc(n, sizeof *cv->slope);
+    cv->G = calloc(n, sizeof *cv->G);
+    if (!cv->e || !cv->g || !cv->slope || !cv->G)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for a curve");
+    for (size_t k = 0; k < n; k++) {
+        const struct deck_node *pt = c->items[k];
+        if ((rc = deck_expect_seq(pt, "a [strain, stress] pair", err)))
+            return rc;
+        if (pt->n != 2)
+            return deck_error(err, pt, "curve point has %zu numbers; expected [strain, stress]",
+                              pt->n);
+        if ((rc = deck_node_double(pt->items[0], &cv->e[k], err)) ||
+            (rc = deck_node_double(pt->items[1], &cv->g[k], err)))
+            return rc;
+        if (k == 0 && (cv->e[0] != 0.0 || cv->g[0] != 0.0))
+            return deck_error(err, pt, "curve must start at [0, 0]");
+        if (k > 0 && !(cv->e[k] > cv->e[k - 1]))
+            return deck_error(err, pt, "curve strain %g is not above the previous %g; expected "
+                              "strictly increasing strain", cv->e[k], cv->e[k - 1]);
+    }
+    *E0 = cv->g[1] / cv->e[1];
+    if (!(*E0 > 0.0))
+        return deck_error(err, c->items[1], "curve's first slope must be positive (got %g Pa)",
+                          *E0);
+    for (size_t k = 0; k < n; k++)
+        cv->g[k] /= *E0;
+    for (size_t k = 0; k + 1 < n; k++)
+        cv->slope[k] = (cv->g[k + 1] - cv->g[k]) / (cv->e[k + 1] - cv->e[k]);
+    cv->slope[n - 1] = cv->slope[n - 2];
+    cv->G[0] = 0.0;
+    for (size_t k = 1; k < n; k++) {
+        double d = cv->e[k] - cv->e[k - 1];
+        cv->G[k] = cv->G[k - 1] + 0.5 * (cv->g[k] + cv->g[k - 1]) * d;
+    }
+    return SPALL_OK;
+}
+
+static int lattice_parse_material(struct model *m, struct sim *sim, int index,
+                                  const struct deck_node *node, struct spall_error *err)
+{
+    static const char *const k_lin[] = {"density", "youngs_modulus", "poisson_ratio",
+                                        "tensile_strength", "failure_strain",
+                                        "compressive_failure_strain", "angular_failure", NULL};
+    static const char *const k_lj[] = {"density", "youngs_modulus", "poisson_ratio",
+                                       "failure_strain", "compressive_failure_strain",
+                                       "angular_failure", "exponents", NULL};
+    static const char *const k_pwl[] = {"density", "youngs_modulus", "poisson_ratio", "curve",
+                                        "compressive_failure_strain", "angular_failure", NULL};
+    const char *name = sim->materials[index].name;
+    char what[SPALL_NAME_LEN + 16];
+    snprintf(what, sizeof what, "materials.%s", name);
+    const enum lattice_law law = m->opt.law;
+    const enum lattice_kind kind = sim->lattice.kind;
+    struct lattice_material mt;
+    memset(&mt, 0, sizeof mt);
+    mt.eps_t = mt.eps_c = INFINITY;
+    mt.dphi_c = mt.dphi_t = INFINITY;
+    int rc;
+    if ((rc = deck_double_pos(node, "youngs_modulus", law != LATTICE_LAW_PWL, &mt.E, err)))
+        goto fail;
+    mt.nu_given = deck_peek(node, "poisson_ratio") != NULL;
+    mt.nu = (kind == LATTICE_SC || kind == LATTICE_FCC) ? 0.25 : 1.0 / 3.0;
+    if ((rc = deck_double(node, "poisson_ratio", kind != LATTICE_CHAIN, -1.0, 0.5, &mt.nu, err)))
+        goto fail;
+    double sts = 0.0, eps = 0.0, epc = 0.0;
+    if (law != LATTICE_LAW_PWL &&
+        (rc = deck_double_pos(node, "failure_strain", false, &eps, err)))
+        goto fail;
+    if (law == LATTICE_LAW_LINEAR) {
+        if ((rc = deck_double_pos(node, "tensile_strength", false, &sts, err)))
+            goto fail;
+        if ((sts > 0.0) == (eps > 0.0)) {
+            rc = deck_error(err, node, "%s: give exactly one of tensile_strength [Pa] and "
+                            "failure_strain (seed 000 Eq. 26)", what);
+            goto fail;
+        }
+        mt.eps_t = eps > 0.0 ? eps : sts / mt.E;
+        mt.eps_t_given = true;
+    } else if (law == LATTICE_LAW_LJ) {
+        if (eps > 0.0) {
+            mt.eps_t = eps;
+            mt.eps_t_given = true;
+        }
+        double pq[2] = {0, 0};
+        if ((rc = deck_vector(node, "exponents", true, 2, 2, pq, err)))
+            goto fail;
+        if (!(pq[0] >= 1.0) || !(pq[1] > pq[0])) {
+            rc = deck_error_key(err, node, "exponents", "exponents [%g, %g]; expected [p, q] "
+                                "with q > p >= 1 (seed 000 Eq. 1)", pq[0], pq[1]);
+            goto fail;
+        }
+        mt.lj_p = pq[0];
+        mt.lj_q = pq[1];
+    } else {
+        double E0 = 0.0;
+        if ((rc = parse_curve(node, &mt.curve, &E0, err)))
+            goto fail;
+        if (mt.E > 0.0 && fabs(mt.E - E0) > 0.01 * E0) {
+            rc = deck_error_key(err, node, "youngs_modulus", "youngs_modulus %g Pa differs from "
+                                "the curve's first slope %g Pa by more than 1%%", mt.E, E0);
+            goto fail;
+        }
+        mt.E = E0;
+        mt.eps_t = mt.curve.e[mt.curve.n - 1];
+        mt.eps_t_given = true;
+    }
+    if ((rc = deck_double_pos(node, "compressive_failure_strain", false, &epc, err)))
+        goto fail;
+    if (epc > 0.0)
+        mt.eps_c = epc;
+    if (deck_peek(node, "angular_failure")) {
+        double lim[2] = {0, 0};
+        if ((rc = deck_vector(node, "angular_failure", true, 2, 2, lim, err)))
+            goto fail;
+        if (!(lim[0] > 0.0) || !(lim[1] > 0.0)) {
+            rc = deck_error_key(err, node, "angular_failure", "angular_failure [%g, %g]; "
+                                "expected [dphi_c, dphi_t] both > 0 rad", lim[0], lim[1]);
+            goto fail;
+        }
+        mt.ang_fail = true;
+        mt.dphi_c = lim[0];
+        mt.dphi_t = lim[1];
+    }
+    const char *const *allowed = law == LATTICE_LAW_LINEAR ? k_lin : law == LATTICE_LAW_LJ ? k_lj
+                                                                                          : k_pwl;
+    if ((rc = deck_check_unused(node, what, allowed, err)))
+        goto fail;
+    /* the lattice decides which nu are possible: refuse here, with a position */
+    struct lattice_calib c;
+    memset(&c, 0, sizeof c);
+    c.kind = kind;
+    c.layers = m->opt.layers;
+    c.angular = m->opt.angular;
+    c.second_layer_ratio = m->opt.second_layer_ratio;
+    c.E = mt.E;
+    c.nu = mt.nu;
+    c.r0 = sim->lattice.spacing > 0.0 ? sim->lattice.spacing : 1.0;
+    c.thickness = sim->thickness > 0.0 ? sim->thickness : 1.0;
+    if (lattice_calibrate(&c, err)) {
+        char msg[SPALL_ERROR_MSG_LEN];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        deck_error_key(err, node, "poisson_ratio", "%s: %s", what, msg);
+        err->code = SPALL_ERR_PHYSICS;
+        rc = SPALL_ERR_PHYSICS;
+        goto fail;
+    }
+    return lattice_model_set_material(m, index, &mt, err);
+fail:
+    curve_free(&mt.curve);
+    return rc;
+}
+
+/* ---- init -------------------------------------------------------------------- */
+
+/** Pair table from the per-material constants (symmetric by construction). */
+static void build_pair_table(struct model *m)
+{
+    const size_t nm = m->n_mat;
+    for (size_t a = 0; a < nm; a++)
+        for (size_t b = a; b < nm; b++)
+            for (int t = 0; t < LATTICE_MAX_TYPES; t++) {
+                const struct lattice_material *A = &m->mat[a], *B = &m->mat[b];
+                struct lattice_bond_law w;
+                memset(&w, 0, sizeof w);
+                w.k = a == b ? A->k[t] : 2.0 * A->k[t] * B->k[t] / (A->k[t] + B->k[t]);
+                if (!(w.k > 0.0) || !isfinite(w.k))
+                    w.k = 0.0;
+                double et = fmin(A->eps_t, B->eps_t), ec = fmin(A->eps_c, B->eps_c);
+                w.curve = (int)(B->eps_t < A->eps_t ? b : a);
+                double s_min;
+                if (m->lp.law == LATTICE_LAW_LJ) {
+                    double sd = lattice_lj_peak_stretch(m->lp.p, m->lp.q);
+                    if (!(A->eps_t_given || B->eps_t_given))
+                        et = sd - 1.0;
+                    /* |dF/dr| grows in compression: bound it at the compressive
+                     * limit, or (none) at a compression as large as the tensile
+                     * failure strain */
+                    s_min = isfinite(ec) ? 1.0 - ec : 1.0 - fmin(et, 0.5);
+                    s_min = fmax(s_min, 0.5);
+                    w.dfdr_max = w.k * lattice_lj_slope(m->lp.p, m->lp.q, s_min);
+                } else if (m->lp.law == LATTICE_LAW_PWL) {
+                    const struct lattice_curve *cv = &m->mat[w.curve].curve;
+                    double smax = 1.0;
+                    for (size_t k = 0; k + 1 < cv->n; k++)
+                        smax = fmax(smax, fabs(cv->slope[k]));
+                    w.dfdr_max = w.k * smax;
+                } else {
+                    w.dfdr_max = w.k;
+                }
+                w.t_lim = isfinite(et) ? 1.0 + et : INFINITY;
+                w.c_lim = isfinite(ec) ? 1.0 - ec : -INFINITY;
+                m->pair[(a * nm + b) * LATTICE_MAX_TYPES + (size_t)t] = w;
+                m->pair[(b * nm + a) * LATTICE_MAX_TYPES + (size_t)t] = w;
+            }
+}
+
+void lattice_model_override(struct model *m, double k1, double k_phi)
+{
+    m->mat[0].k[0] = k1;
+    m->mat[0].k_phi = k_phi;
+    m->mat_k_phi[0] = k_phi;
+    build_pair_table(m);
+}
+
+/** Angles between consecutive first-shell bonds (sorted by reference angle)
+ *  that are adjacent in the triangular lattice (60 deg apart; anything wider
+ *  than 90 deg, e.g. the 180 deg gap at a free edge, is not a lattice angle). */
+static int build_angles(struct model *m, const struct particles *p, struct spall_error *err)
+{
+    struct bond_list *bl = m->bl;
+    int rc = bond_list_build_reverse(bl, err);
+    if (rc)
+        return rc;
+    size_t nh = m->n_half;
+    m->ang_b = malloc((nh ? nh : 1) * sizeof *m->ang_b);
+    m->ang_phi0 = calloc(nh ? nh : 1, sizeof *m->ang_phi0);
+    m->ang_state = calloc(nh ? nh : 1, sizeof *m->ang_state);
+    m->ang_buf = calloc(2 * (nh ? nh : 1), sizeof *m->ang_buf);
+    if (!m->ang_b || !m->ang_phi0 || !m->ang_state || !m->ang_buf)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for angular springs");
+    memset(m->ang_b, LATTICE_NO_ANGLE, nh ? nh : 1);
+    for (size_t i = 0; i < bl->n; i++) {
+        size_t s0 = bl->offset[i], len = bl->offset[i + 1] - s0;
+        size_t loc[64];
+        double th[64];
+        size_t cnt = 0;
+        for (size_t q = 0; q < len && cnt < 64; q++) {
+            size_t s = s0 + q;
+            if (bl->type[s] != 0)
+                continue;
+            size_t j = (size_t)bl->partner[s];
+            th[cnt] = atan2(p->x0[1][j] - p->x0[1][i], p->x0[0][j] - p->x0[0][i]);
+            loc[cnt++] = q;
+        }
+        for (size_t a = 1; a < cnt; a++) /* insertion sort by angle */
+            for (size_t b = a; b > 0 && th[b] < th[b - 1]; b--) {
+                double tt = th[b];
+                th[b] = th[b - 1];
+                th[b - 1] = tt;
+                size_t tl = loc[b];
+                loc[b] = loc[b - 1];
+                loc[b - 1] = tl;
+            }
+        for (size_t a = 0; a < cnt && cnt > 1; a++) {
+            size_t b = (a + 1) % cnt;
+            double gap = th[b] - th[a];
+            if (gap <= 0.0)
+                gap += 2.0 * LATTICE_PI;
+            if (!(gap < 0.5 * LATTICE_PI) || loc[b] > 254)
+                continue;
+            size_t sa = s0 + loc[a], sb = s0 + loc[b];
+            size_t ja = (size_t)bl->partner[sa], jb = (size_t)bl->partner[sb];
+            double ax = p->x0[0][ja] - p->x0[0][i], ay = p->x0[1][ja] - p->x0[1][i];
+            double bx = p->x0[0][jb] - p->x0[0][i], by = p->x0[1][jb] - p->x0[1][i];
+            m->ang_b[sa] = (uint8_t)loc[b];
+            m->ang_phi0[sa] = atan2(ax * by - ay * bx, ax * bx + ay * by);
+        }
+    }
+    return SPALL_OK;
+}
+
+static int lattice_init(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct particles *p = sim->p;
+    const struct lattice_spec *spec = &sim->lattice;
+    m->dim = sim->dim;
+    if (lattice_kind_dim(spec->kind) != sim->dim)
+        return spall_error_set(err, SPALL_ERR_INPUT, "lattice model: %s lattice in a %dD run",
+                               lattice_kind_name(spec->kind), sim->dim);
+    size_t nm = sim->n_materials;
+    if (nm == 0 || m->n_mat < nm)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "lattice model: material %zu has no parameters", m->n_mat);
+    for (size_t k = 0; k < nm; k++)
+        if (!m->mat[k].parsed)
+            return spall_error_set(err, SPALL_ERR_INPUT,
+                                   "lattice model: material '%s' has no parameters",
+                                   sim->materials[k].name);
+    m->n_mat = nm;
+    /* law parameters */
+    if (m->opt.law == LATTICE_LAW_LJ) {
+        m->lp.p = m->mat[0].lj_p;
+        m->lp.q = m->mat[0].lj_q;
+        for (size_t k = 1; k < nm; k++)
+            if (m->mat[k].lj_p != m->lp.p || m->mat[k].lj_q != m->lp.q)
+                return spall_error_set(err, SPALL_ERR_INPUT,
+                                       "lattice model: every material needs the same "
+                                       "Lennard-Jones exponents ('%s' differs from '%s')",
+                                       sim->materials[k].name, sim->materials[0].name);
+    }
+    m->curves = calloc(nm, sizeof *m->curves);
+    m->pair = calloc(nm * nm * LATTICE_MAX_TYPES, sizeof *m->pair);
+    m->mat_k_phi = calloc(nm, sizeof *m->mat_k_phi);
+    m->mat_dphi_c = calloc(nm, sizeof *m->mat_dphi_c);
+    m->mat_dphi_t = calloc(nm, sizeof *m->mat_dphi_t);
+    m->diss = calloc(p->n ? p->n : 1, sizeof *m->diss);
+    if (!m->curves || !m->pair || !m->mat_k_phi || !m->mat_dphi_c || !m->mat_dphi_t || !m->diss)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in the lattice model");
+    /* spring constants per material */
+    int layers = 0, angular = 0;
+    for (size_t k = 0; k < nm; k++) {
+        struct lattice_material *mt = &m->mat[k];
+        struct lattice_calib c;
+        memset(&c, 0, sizeof c);
+        c.kind = spec->kind;
+        c.layers = m->opt.layers;
+        c.angular = m->opt.angular;
+        c.second_layer_ratio = m->opt.second_layer_ratio;
+        c.E = mt->E;
+        c.nu = mt->nu;
+        c.rho = sim->materials[k].density;
+        c.r0 = spec->spacing;
+        c.thickness = sim->thickness;
+        int rc = lattice_calibrate(&c, err);
+        if (rc) {
+            spall_error_prefix(err, "material '%s': ", sim->materials[k].name);
+            return rc;
+        }
+        mt->k[0] = c.k1;
+        mt->k[1] = c.k2;
+        mt->k_phi = c.k_phi;
+        layers = c.layers_used;
+        angular |= c.angular_used;
+        m->curves[k] = mt->curve;
+        m->mat_k_phi[k] = c.k_phi;
+        m->mat_dphi_c[k] = mt->dphi_c;
+        m->mat_dphi_t[k] = mt->dphi_t;
+    }
+    m->layers = layers;
+    m->angular = angular && sim->dim == 2;
+    m->lp.law = m->opt.law;
+    m->lp.curves = m->curves;
+    build_pair_table(m);
+    /* bonds: one shell per layer, +-5% around the shell distance (the
+     * lattices' shells are at least 15% apart) */
+    double lo[LATTICE_MAX_TYPES], hi[LATTICE_MAX_TYPES];
+    for (int s = 0; s < layers; s++) {
+        double d = lattice_shell_distance(spec, s + 1);
+        lo[s] = 0.95 * d;
+        hi[s] = 1.05 * d;
+    }
+    bond_list_destroy(&m->bl);
+    int rc = bond_list_build_shells(&m->bl, p, layers, lo, hi, err);
+    if (rc)
+        return rc;
+    m->n_half = m->bl->offset[m->bl->n];
+    if (m->angular && (rc = build_angles(m, p, err)))
+        return rc;
+    m->initialised = true;
+    return SPALL_OK;
+}
+
+static int lattice_precrack(struct model *m, struct sim *sim, const struct precrack *c,
+                            size_t *n_cut, struct spall_error *err)
+{
+    if (!m->bl)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "lattice pre-crack before init");
+    *n_cut = bond_list_apply_precrack(m->bl, sim->p, c);
+    return SPALL_OK;
+}
+
+/* ---- fields ------------------------------------------------------------------ */
+
+static void field_fracture_density(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    const struct bond_list *bl = m->bl;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        size_t nb = 0, len = bl->offset[i + 1] - bl->offset[i];
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            nb += (bl->state[s] & BOND_BROKEN) != 0;
+        out[i] = len ? (double)nb / (double)len : 0.0; /* seed 000 Eq. 27 */
+    }
+}
+
+static void field_strain_energy(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        lattice_particle_eval(m, m->sim, i, &out[i], NULL);
+}
+
+static void field_stress(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    const size_t nc = m->dim == 1 ? 1 : m->dim == 2 ? 3 : 6;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        lattice_particle_eval(m, m->sim, i, NULL, &out[i * nc]);
+}
+
+static int add_computed(struct field_registry *reg, const char *name, const char *unit, int nc,
+                        unsigned flags, field_compute_fn fn, const struct model *m,
+                        struct spall_error *err)
+{
+    struct field_desc d;
+    memset(&d, 0, sizeof d);
+    snprintf(d.name, sizeof d.name, "%s", name);
+    snprintf(d.unit, sizeof d.unit, "%s", unit);
+    d.ncomp = nc;
+    d.type = FIELD_F64;
+    d.flags = flags;
+    d.compute = fn;
+    d.ctx = m;
+    return field_registry_add(reg, &d, err);
+}
+
+static int lattice_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
+                                   struct spall_error *err)
+{
+    int nc = sim->dim == 1 ? 1 : sim->dim == 2 ? 3 : 6;
+    int rc;
+    if ((rc = add_computed(reg, "fracture_density", "1", 1, FIELD_OUTPUT | FIELD_DEFAULT,
+                           field_fracture_density, m, err)) ||
+        (rc = add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_strain_energy, m,
+                           err)) ||
+        (rc = add_computed(reg, "stress", "Pa", nc, FIELD_OUTPUT | FIELD_DEFAULT, field_stress,
+                           m, err)))
+        return rc;
+    return SPALL_OK;
+}
+
+/* ---- step hooks ------------------------------------------------------------------ */
+
+static int lattice_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    return lattice_compute_forces(m, sim, err);
+}
+
+/** Stable dt: see lattice_calib.c for the bound (seed 000 Eq. 25). */
+static double lattice_stable_dt(const struct model *m, const struct sim *sim)
+{
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    const size_t n = p->n, nm = m->n_mat;
+    double *om = calloc(n ? n : 1, sizeof *om);
+    if (!om)
+        return 0.0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            size_t j = (size_t)bl->partner[s];
+            om[i] += m->pair[((size_t)p->material[i] * nm + (size_t)p->material[j]) *
+                                 LATTICE_MAX_TYPES + bl->type[s]].dfdr_max;
+        }
+    if (m->angular)
+        for (size_t i = 0; i < n; i++) {
+            double kp = m->mat_k_phi[p->material[i]];
+            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+                if (m->ang_b[s] == LATTICE_NO_ANGLE)
+                    continue;
+                size_t sb = bl->offset[i] + m->ang_b[s];
+                double ia = 1.0 / bl->rest[s], ib = 1.0 / bl->rest[sb], g = ia + ib;
+                om[i] += kp * g * g;
+                om[bl->partner[s]] += kp * ia * g;
+                om[bl->partner[sb]] += kp * ib * g;
+            }
+        }
+    double w2 = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        w2 = fmax(w2, om[i] / p->mass[i]);
+    free(om);
+    return w2 > 0.0 ? sqrt(2.0 / w2) : INFINITY;
+}
+
+static int lattice_end_step(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    /* Breaking is fused into the force loop (each half-bond decided by its
+     * own particle's thread): nothing left to do here. */
+    (void)m;
+    (void)sim;
+    (void)err;
+    return SPALL_OK;
+}
+
+static void lattice_energy_fn(const struct model *m, const struct sim *sim,
+                              struct model_energy *out)
+{
+    double strain = 0.0, diss = 0.0;
+    for (size_t i = 0; i < sim->p->n_owned; i++) {
+        double e;
+        lattice_particle_eval(m, sim, i, &e, NULL);
+        strain += e;
+        diss += m->diss[i];
+    }
+    out->strain = strain;
+    out->dissipated = diss;
+}
+
+static size_t lattice_history(const struct model *m, const struct sim *sim, const char **names,
+                              double *values)
+{
+    const struct bond_list *bl = m->bl;
+    size_t broken_run = 0, broken_all = 0;
+    size_t nh = bl->offset[sim->p->n_owned];
+    for (size_t s = 0; s < nh; s++) {
+        broken_all += (bl->state[s] & BOND_BROKEN) != 0;
+        broken_run += bl->state[s] == BOND_BROKEN;
+    }
+    names[0] = "bonds_broken";
+    values[0] = 0.5 * (double)broken_run;
+    names[1] = "fracture_fraction";
+    values[1] = nh ? (double)broken_all / (double)nh : 0.0;
+    return 2;
+}
+
+static void lattice_describe(const struct model *m, const struct sim *sim, char *buf,
+                             size_t len)
+{
+    static const char *const lawn[] = {"linear", "lennard_jones", "piecewise_linear"};
+    size_t w = 0;
+#define PUT(...)                                                                                \
+    do {                                                                                        \
+        if (w < len)                                                                            \
+            w += (size_t)snprintf(buf + w, len - w, __VA_ARGS__);                               \
+    } while (0)
+    double r0 = sim->lattice.spacing;
+    PUT("lattice model (HLPM): %s lattice, r0 = %g m, thickness/area = %g, law %s, layers %d, "
+        "angular springs %s\n", lattice_kind_name(sim->lattice.kind), r0, sim->thickness,
+        lawn[m->opt.law], m->layers, m->angular ? "on" : "off");
+    for (size_t k = 0; k < m->n_mat; k++) {
+        const struct lattice_material *mt = &m->mat[k];
+        PUT("  material '%s': E = %g Pa, nu = %g, k1 = %g N/m", sim->materials[k].name, mt->E,
+            mt->nu, mt->k[0]);
+        if (m->layers > 1)
+            PUT(", k2 = %g N/m", mt->k[1]);
+        if (m->angular)
+            PUT(", k_phi = %g N m/rad^2 (seed Eq. 18 would give %g)", mt->k_phi,
+                sim->lattice.kind == LATTICE_TRIANGULAR
+                    ? lattice_paper_k_phi(mt->E, mt->nu, r0, sim->thickness) : 0.0);
+        const struct lattice_bond_law *w0 = &m->pair[(k * m->n_mat + k) * LATTICE_MAX_TYPES];
+        PUT(", eps_max = %g, compressive limit %g\n", w0->t_lim - 1.0,
+            isfinite(w0->c_lim) ? 1.0 - w0->c_lim : INFINITY);
+        if (m->opt.law == LATTICE_LAW_LJ) {
+            double p = m->lp.p, q = m->lp.q, k1 = mt->k[0];
+            double H = k1 * pow(r0, q + 1.0) / (q - p), G = H * pow(r0, p - q);
+            double sd = lattice_lj_peak_stretch(p, q);
+            double Fd = -k1 * r0 * (pow(sd, -q) - pow(sd, -p)) / (q - p);
+            PUT("    Lennard-Jones p = %g, q = %g: G = %g, H = %g (SI, r0 shell), r_d = %g m "
+                "(strain %g), peak force %g N, sigma_TS = F(r_d)/r0^2 = %g Pa (Eq. 4); "
+                "lattice uniaxial estimate E F_d/(k1 r0) = %g Pa\n",
+                p, q, G, H, sd * r0, sd - 1.0, Fd, Fd / (r0 * r0), mt->E * Fd / (k1 * r0));
+        }
+    }
+    PUT("  stable dt = %g s (sqrt2 / max Omega, seed 000 Eq. 25)\n", lattice_stable_dt(m, sim));
+#undef PUT
+}
+
+/* Bonds counted once (pre-cut and broken ones included: they are still
+ * visited every step for contact repulsion). */
+static size_t lattice_interactions(const struct model *m, const struct sim *sim)
+{
+    (void)sim;
+    return m->bl ? bond_list_count(m->bl) : 0;
+}
+
+const struct model_ops lattice_model_ops = {
+    .name = "lattice",
+    .summary = "hybrid lattice particle model (HLPM): breakable axial/angular springs",
+    .create = lattice_create,
+    .parse_material = lattice_parse_material,
+    .init = lattice_init,
+    .precrack = lattice_precrack,
+    .register_fields = lattice_register_fields,
+    .compute_forces = lattice_forces,
+    .stable_dt = lattice_stable_dt,
+    .end_step = lattice_end_step,
+    .energy = lattice_energy_fn,
+    .history = lattice_history,
+    .describe = lattice_describe,
+    .destroy = lattice_destroy,
+    .interactions = lattice_interactions,
+};

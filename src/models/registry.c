@@ -1,0 +1,29 @@
+/**
+ * @file registry.c
+ * @brief The table of particle models known to the engine.  Adding a model:
+ *        one extern declaration and one table entry here, nothing else.
+ */
+#include "models/model.h"
+
+#include <string.h>
+
+extern const struct model_ops lattice_model_ops;
+
+static const struct model_ops *const model_table[] = {
+    &lattice_model_ops,
+};
+
+static const char *const model_name_list[] = {"lattice", NULL};
+
+const struct model_ops *model_find(const char *name)
+{
+    for (size_t k = 0; k < sizeof model_table / sizeof model_table[0]; k++)
+        if (strcmp(model_table[k]->name, name) == 0)
+            return model_table[k];
+    return NULL;
+}
+
+const char *const *model_names(void)
+{
+    return model_name_list;
+}

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# The CLI turns bad input into one line naming file:line:column, exit status
+# 2, and leaves no output directory behind.  Usage: bad_input.sh SPALL SRC
+set -u
+spall="$1"
+src="$2"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"
+fail=0
+pass=0
+check() { # name deck-text expected-substring
+    local name="$1" text="$2" expect="$3"
+    printf '%s' "$text" > deck.yaml
+    rm -rf out
+    "$spall" run deck.yaml -o out >stdout.txt 2>stderr.txt
+    local rc=$?
+    local lines
+    lines=$(wc -l < stderr.txt)
+    if [ "$rc" -ne 2 ]; then echo "FAIL $name: exit $rc, expected 2"; cat stderr.txt; fail=$((fail+1)); return; fi
+    if [ -e out ]; then echo "FAIL $name: output directory was created"; fail=$((fail+1)); return; fi
+    if [ "$lines" -ne 1 ]; then echo "FAIL $name: $lines lines on stderr, expected 1"; cat stderr.txt; fail=$((fail+1)); return; fi
+    if ! grep -Eq "deck\.yaml:[0-9]+:[0-9]+: " stderr.txt; then echo "FAIL $name: no file:line:column"; cat stderr.txt; fail=$((fail+1)); return; fi
+    if ! grep -q -- "$expect" stderr.txt; then echo "FAIL $name: message lacks '$expect'"; cat stderr.txt; fail=$((fail+1)); return; fi
+    pass=$((pass+1))
+}
+base='model: {type: lattice}
+materials:
+  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3333333333333333, failure_strain: 0.05}
+lattice: {type: triangular, spacing: 0.001}
+geometry:
+  plate: {box: {min: [0, 0], max: [0.01, 0.01]}}
+body: {geometry: plate, material: m}
+'
+check "syntax" "${base}run: {steps: [10}
+" "syntax"
+check "unknown key" "${base}run: {steps: 10, stpes: 3}
+" "unknown key 'stpes'"
+check "wrong type" "${base}run: {steps: many}
+" "steps"
+check "dt above limit" "${base}run: {steps: 10, dt: 1.0}
+" "stability limit"
+check "empty geometry" "$(echo "$base" | sed 's/max: \[0.01, 0.01\]/max: [0.0001, 0.0001]/; s/min: \[0, 0\]/min: [0.00002, 0.00002]/')
+run: {steps: 10}
+" "no lattice site"
+
+# a missing deck file: one line, exit 2
+"$spall" run missing.yaml -o out2 2>stderr.txt; rc=$?
+if [ $rc -ne 2 ] || [ -e out2 ]; then echo "FAIL missing deck: exit $rc"; fail=$((fail+1)); else pass=$((pass+1)); fi
+
+# existing results are never overwritten without --overwrite
+printf '%s' "${base}run: {steps: 3}
+" > good.yaml
+if ! "$spall" run good.yaml -o res --no-progress >/dev/null 2>err.txt; then echo "FAIL good deck did not run"; cat err.txt; fail=$((fail+1)); fi
+before=$(stat -c %Y res/history.csv 2>/dev/null || echo none)
+"$spall" run good.yaml -o res >/dev/null 2>err.txt; rc=$?
+if [ $rc -ne 2 ] || ! grep -q -- "--overwrite" err.txt; then echo "FAIL overwrite refused: exit $rc"; cat err.txt; fail=$((fail+1)); else pass=$((pass+1)); fi
+if ! "$spall" run good.yaml -o res --overwrite >/dev/null 2>err.txt; then echo "FAIL --overwrite"; cat err.txt; fail=$((fail+1)); else pass=$((pass+1)); fi
+[ "$before" != none ] && pass=$((pass+1))
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

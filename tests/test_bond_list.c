@@ -1,0 +1,220 @@
+/* Tests for src/core/bond_list.c on a triangular lattice plate: shells,
+ * reverse index, pre-crack and counts. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "core/bond_list.h"
+#include "core/geometry.h"
+#include "core/lattice_gen.h"
+#include "core/particles.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdbool.h>
+#include <string.h>
+
+static const double R0 = 2e-3;
+#define NX 30
+#define NY 20
+
+/** NX x NY triangular plate (even rows x = 0..NX-1, odd rows shifted r0/2). */
+static struct particles *plate(void)
+{
+    struct spall_error err = {0};
+    struct particles *p = NULL;
+    assert_int_equal(particles_create(&p, 2, 0, &err), SPALL_OK);
+    double h = R0 * sqrt(3.0) / 2.0;
+    const double lo[3] = {0, 0, 0}, hi[3] = {(NX - 0.5) * R0, (NY - 1) * h, 0};
+    struct geom *box = geom_box(lo, hi);
+    struct lattice_spec s = {.kind = LATTICE_TRIANGULAR, .spacing = R0};
+    size_t n = 0;
+    assert_int_equal(lattice_fill(p, &s, box, 0, &n, &err), SPALL_OK);
+    assert_int_equal(n, NX * NY);
+    geom_destroy(&box);
+    return p;
+}
+
+static struct bond_list *two_shells(const struct particles *p)
+{
+    struct spall_error err = {0};
+    const double lo[2] = {0.99 * R0, 0.99 * sqrt(3.0) * R0};
+    const double hi[2] = {1.01 * R0, 1.01 * sqrt(3.0) * R0};
+    struct bond_list *bl = NULL;
+    assert_int_equal(bond_list_build_shells(&bl, p, 2, lo, hi, &err), SPALL_OK);
+    return bl;
+}
+
+static void test_shells_coordination(void **state)
+{
+    (void)state;
+    struct particles *p = plate();
+    struct bond_list *bl = two_shells(p);
+    size_t c = (NY / 2) * NX + NX / 2; /* interior site */
+    int n_type[2] = {0, 0};
+    for (size_t k = bl->offset[c]; k < bl->offset[c + 1]; k++) {
+        int t = bl->type[k];
+        assert_true(t == 0 || t == 1);
+        n_type[t]++;
+        double expect = t == 0 ? R0 : sqrt(3.0) * R0;
+        assert_true(fabs(bl->rest[k] - expect) < 1e-12 * R0);
+        assert_int_equal(bl->state[k], 0);
+        if (k > bl->offset[c])
+            assert_true(bl->partner[k - 1] < bl->partner[k]);
+    }
+    assert_int_equal(n_type[0], 6);
+    assert_int_equal(n_type[1], 6);
+    /* Nearest-neighbour bonds of the patch: NY(NX-1) + (NY-1)(2NX-1). */
+    size_t nn = NY * (NX - 1) + (NY - 1) * (2 * NX - 1);
+    size_t n_t0 = 0;
+    for (size_t k = 0; k < bl->offset[bl->n]; k++)
+        n_t0 += bl->type[k] == 0;
+    assert_int_equal(n_t0, 2 * nn);
+
+    /* The plain radius build equals shell 0 alone. */
+    struct spall_error err = {0};
+    struct bond_list *b1 = NULL;
+    assert_int_equal(bond_list_build(&b1, p, 1.01 * R0, &err), SPALL_OK);
+    assert_int_equal(bond_list_count(b1), nn);
+    for (size_t k = 0; k < b1->offset[b1->n]; k++) {
+        assert_int_equal(b1->type[k], 0);
+        assert_true(fabs(b1->rest[k] - R0) < 1e-12 * R0);
+    }
+    size_t m = b1->offset[b1->n];
+    assert_int_equal(bond_list_bytes(b1),
+                     sizeof *b1 + (b1->n + 1) * sizeof(size_t) + m * (4 + 8 + 1 + 1));
+    bond_list_destroy(&b1);
+    assert_null(b1);
+    bond_list_destroy(&bl);
+    particles_destroy(&p);
+}
+
+static void test_reverse(void **state)
+{
+    (void)state;
+    struct particles *p = plate();
+    struct bond_list *bl = two_shells(p);
+    struct spall_error err = {0};
+    size_t bytes0 = bond_list_bytes(bl);
+    assert_int_equal(bond_list_build_reverse(bl, &err), SPALL_OK);
+    assert_non_null(bl->reverse);
+    assert_int_equal(bond_list_bytes(bl), bytes0 + bl->offset[bl->n] * sizeof(size_t));
+    for (size_t i = 0; i < bl->n; i++) {
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
+            size_t r = bl->reverse[k];
+            size_t j = (size_t)bl->partner[k];
+            assert_true(r >= bl->offset[j] && r < bl->offset[j + 1]);
+            assert_int_equal(bl->partner[r], (int32_t)i);
+            assert_int_equal(bl->reverse[r], k);
+            assert_true(bl->rest[r] == bl->rest[k]); /* bit for bit */
+            assert_int_equal(bl->type[r], bl->type[k]);
+        }
+    }
+    /* Same list on 1 and 2 threads. */
+    int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    struct bond_list *b1 = two_shells(p);
+    omp_set_num_threads(2);
+    struct bond_list *b2 = two_shells(p);
+    omp_set_num_threads(saved);
+    size_t m = b1->offset[b1->n];
+    assert_memory_equal(b1->offset, b2->offset, (b1->n + 1) * sizeof(size_t));
+    assert_memory_equal(b1->partner, b2->partner, m * sizeof(int32_t));
+    assert_memory_equal(b1->rest, b2->rest, m * sizeof(double));
+    assert_memory_equal(b1->type, b2->type, m);
+    bond_list_destroy(&b1);
+    bond_list_destroy(&b2);
+    bond_list_destroy(&bl);
+    particles_destroy(&p);
+}
+
+/** Independent reference: does the bond a-b cross y = yc at x in [xa, xb]? */
+static bool crosses_line(double x1, double y1, double x2, double y2, double yc, double xa,
+                         double xb)
+{
+    if ((y1 - yc) * (y2 - yc) > 0 || y1 == y2)
+        return false;
+    double x = x1 + (yc - y1) / (y2 - y1) * (x2 - x1);
+    return x >= xa && x <= xb;
+}
+
+static void test_precrack(void **state)
+{
+    (void)state;
+    struct particles *p = plate();
+    struct bond_list *bl = two_shells(p);
+    struct spall_error err = {0};
+    assert_int_equal(bond_list_build_reverse(bl, &err), SPALL_OK);
+    double h = R0 * sqrt(3.0) / 2.0;
+    double yc = (NY / 2 - 0.5) * h; /* between rows NY/2-1 and NY/2 */
+    double xa = -R0, xb = 12.3 * R0;  /* from outside the left edge to the middle */
+    struct precrack pc = {.dim = 2, .a = {xa, yc, 0}, .b = {xb, yc, 0}};
+    size_t cut = bond_list_apply_precrack(bl, p, &pc);
+
+    size_t expect = 0, expect_nn = 0;
+    for (size_t i = 0; i < bl->n; i++) {
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
+            size_t j = (size_t)bl->partner[k];
+            bool x = crosses_line(p->x0[0][i], p->x0[1][i], p->x0[0][j], p->x0[1][j], yc, xa, xb);
+            uint8_t want = x ? (BOND_BROKEN | BOND_PRECUT) : 0;
+            assert_int_equal(bl->state[k], want);               /* none not crossing */
+            assert_int_equal(bl->state[bl->reverse[k]], want);  /* both halves */
+            if (x && j > i) {
+                expect++;
+                expect_nn += bl->type[k] == 0;
+            }
+        }
+    }
+    assert_int_equal(cut, expect);
+    /* Nearest bonds across the line with crossing x <= 12.3 r0: the crossing
+     * points of one row pair sit every r0/2 from x = 0.25 r0: 0.25..12.25 -> 25. */
+    assert_int_equal(expect_nn, 25);
+    assert_true(expect > expect_nn); /* second-shell bonds are cut too */
+    assert_int_equal(bond_list_count_broken(bl), cut);
+    /* Applying the same crack again finds the same bonds, the count of broken
+     * bonds does not change. */
+    assert_int_equal(bond_list_apply_precrack(bl, p, &pc), cut);
+    assert_int_equal(bond_list_count_broken(bl), cut);
+    bond_list_destroy(&bl);
+
+    /* Full-width crack, nearest neighbours only: all 2 NX - 1 links cut. */
+    struct bond_list *b1 = NULL;
+    assert_int_equal(bond_list_build(&b1, p, 1.01 * R0, &err), SPALL_OK);
+    struct precrack full = {.dim = 2, .a = {-R0, yc, 0}, .b = {NX * R0, yc, 0}};
+    assert_int_equal(bond_list_apply_precrack(b1, p, &full), 2 * NX - 1);
+    assert_int_equal(bond_list_count_broken(b1), 2 * NX - 1);
+    assert_int_equal(bond_list_count(b1), NY * (NX - 1) + (NY - 1) * (2 * NX - 1));
+    bond_list_destroy(&b1);
+    particles_destroy(&p);
+}
+
+static void test_errors(void **state)
+{
+    (void)state;
+    struct particles *p = plate();
+    struct spall_error err = {0};
+    struct bond_list *bl = NULL;
+    const double lo[1] = {2 * R0}, hi[1] = {R0};
+    assert_int_equal(bond_list_build_shells(&bl, p, 1, lo, hi, &err), SPALL_ERR_INPUT);
+    assert_null(bl);
+    assert_int_equal(bond_list_build_shells(&bl, p, 0, lo, hi, &err), SPALL_ERR_INPUT);
+    assert_int_equal(bond_list_build(&bl, p, -1.0, &err), SPALL_ERR_INPUT);
+    assert_null(bl);
+    assert_int_equal(bond_list_count(NULL), 0);
+    particles_destroy(&p);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_shells_coordination),
+        cmocka_unit_test(test_reverse),
+        cmocka_unit_test(test_precrack),
+        cmocka_unit_test(test_errors),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,73 @@
+#include "validation/validation.h"
+
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+int vreport_check(struct vreport *r, const char *quantity, const char *unit, double reference,
+                  double measured, double tolerance, bool relative, const char *source,
+                  const char *note, struct spall_error *err)
+{
+    if (r->n == r->cap) {
+        size_t cap = r->cap * 2 + 16;
+        struct vcheck *c = realloc(r->checks, cap * sizeof *c);
+        if (!c)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in validation report");
+        r->checks = c;
+        r->cap = cap;
+    }
+    struct vcheck *c = &r->checks[r->n++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->case_name, sizeof c->case_name, "%s", r->current_case ? r->current_case : "");
+    snprintf(c->quantity, sizeof c->quantity, "%s", quantity);
+    snprintf(c->unit, sizeof c->unit, "%s", unit ? unit : "");
+    snprintf(c->source, sizeof c->source, "%s", source ? source : "");
+    snprintf(c->note, sizeof c->note, "%s", note ? note : "");
+    c->reference = reference;
+    c->measured = measured;
+    c->tolerance = tolerance;
+    c->relative = relative;
+    double e = fabs(measured - reference);
+    if (relative)
+        e = reference != 0.0 ? e / fabs(reference) : e;
+    c->pass = isfinite(measured) && e <= tolerance;
+    return SPALL_OK;
+}
+
+int vreport_check_true(struct vreport *r, const char *quantity, bool ok, const char *source,
+                       const char *note, struct spall_error *err)
+{
+    return vreport_check(r, quantity, "yes=1", 1.0, ok ? 1.0 : 0.0, 0.0, false, source, note, err);
+}
+
+void vreport_mark_gap(struct vreport *r, const char *note)
+{
+    if (r->n == 0)
+        return;
+    struct vcheck *c = &r->checks[r->n - 1];
+    c->known_gap = !c->pass;
+    if (note)
+        snprintf(c->note, sizeof c->note, "%s", note);
+}
+
+void vreport_info(struct vreport *r, const char *fmt, ...)
+{
+    if (!r->log)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(r->log, "  [%s] ", r->current_case ? r->current_case : "");
+    vfprintf(r->log, fmt, ap);
+    fprintf(r->log, "\n");
+    va_end(ap);
+}
+
+void vreport_free(struct vreport *r)
+{
+    free(r->checks);
+    r->checks = NULL;
+    r->n = r->cap = 0;
+}
