@@ -31,7 +31,21 @@ struct bench_case {
     int (*run)(int threads, double scale, struct bench_result *out, struct spall_error *err);
 };
 
-const struct bench_case *bench_cases(size_t *n);
+/** Number of cases and case k, in registry order (bench/cases.c). */
+size_t bench_case_count(void);
+const struct bench_case *bench_case_at(size_t k);
+
+/* Per-model case tables, each defined in its bench_<model>.c. */
+extern const struct bench_case bench_lattice_cases[];
+extern const size_t bench_lattice_n_cases;
+/* impact bench table */
+
+/* peridynamics bench table */
+
+/* macro-particle bench table */
+
+/* sph bench table */
+
 
 /** Resident set size of this process [bytes] (from /proc/self/statm). */
 double bench_rss_bytes(void);

@@ -99,12 +99,8 @@ static int bench_lattice2d(int threads, double scale, struct bench_result *out,
     return rc;
 }
 
-static const struct bench_case cases[] = {
+/* Lattice cases, listed by bench/cases.c. */
+const struct bench_case bench_lattice_cases[] = {
     {"lattice2d", "2D triangular alpha lattice, 1e6 particles, 500 steps", bench_lattice2d},
 };
-
-const struct bench_case *bench_cases(size_t *n)
-{
-    *n = sizeof cases / sizeof cases[0];
-    return cases;
-}
+const size_t bench_lattice_n_cases = sizeof bench_lattice_cases / sizeof bench_lattice_cases[0];

@@ -4,6 +4,16 @@
  *        Adding a case = one row here; the CLI and the quick test iterate it.
  */
 #include "validation/lattice_cases.h"
+/* impact cases header */
+
+/* peridynamics cases header */
+
+/* macro-particle cases header */
+
+/* sph cases header */
+
+/* penetration cases header */
+
 #include "validation/validation.h"
 
 static const struct vcase cases[] = {
@@ -17,6 +27,16 @@ static const struct vcase cases[] = {
      lattice_case_chain_break},
     {"lattice-threads", "1 and 2 OpenMP threads: bitwise identical fracture run", true,
      lattice_case_threads},
+    /* impact, fragments, thermal lattice (issue 3) */
+
+    /* peridynamics (issue 4) */
+
+    /* macro-particle (issue 5) */
+
+    /* SPH (issue 6) */
+
+    /* penetration (issue 7) */
+
 };
 
 const struct vcase *validation_cases(size_t *n)

@@ -18,8 +18,7 @@ static void bench_usage(FILE *out)
 
 int cli_bench(int argc, char **argv)
 {
-    size_t n_cases = 0;
-    const struct bench_case *cases = bench_cases(&n_cases);
+    size_t n_cases = bench_case_count();
     const char *json = NULL;
     int threads[8] = {1, 2};
     int n_threads = 2;
@@ -33,7 +32,7 @@ int cli_bench(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "--list") == 0) {
             for (size_t c = 0; c < n_cases; c++)
-                printf("%-16s %s\n", cases[c].name, cases[c].title);
+                printf("%-16s %s\n", bench_case_at(c)->name, bench_case_at(c)->title);
             return 0;
         } else if (strcmp(a, "--json") == 0 && k + 1 < argc) {
             json = argv[++k];
@@ -61,7 +60,7 @@ int cli_bench(int argc, char **argv)
             return 2;
         } else {
             size_t c = 0;
-            while (c < n_cases && strcmp(cases[c].name, a) != 0)
+            while (c < n_cases && strcmp(bench_case_at(c)->name, a) != 0)
                 c++;
             if (c == n_cases) {
                 fprintf(stderr, "spall bench: unknown case '%s' (see spall bench --list)\n", a);
@@ -84,15 +83,15 @@ int cli_bench(int argc, char **argv)
     for (size_t c = 0; c < n_cases; c++) {
         int sel = n_wanted == 0;
         for (size_t w = 0; w < n_wanted; w++)
-            sel |= strcmp(wanted[w], cases[c].name) == 0;
+            sel |= strcmp(wanted[w], bench_case_at(c)->name) == 0;
         if (!sel)
             continue;
         for (int t = 0; t < n_threads; t++) {
             struct bench_result r;
             struct spall_error err = {0, ""};
-            int rc = cases[c].run(threads[t], scale, &r, &err);
+            int rc = bench_case_at(c)->run(threads[t], scale, &r, &err);
             if (rc) {
-                fprintf(stderr, "spall bench: %s: %s\n", cases[c].name, err.msg);
+                fprintf(stderr, "spall bench: %s: %s\n", bench_case_at(c)->name, err.msg);
                 status = cli_exit_status(rc);
                 continue;
             }

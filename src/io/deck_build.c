@@ -24,9 +24,13 @@
 #define DEG_TO_RAD (3.14159265358979323846 / 180.0)
 
 static const char *const top_keys[] = {"title", "description", "model", "materials", "geometry",
-                                       "lattice", "body", "regions", "precracks", "groups",
+                                       "lattice", "body", "bodies", "regions", "precracks", "groups",
                                        "boundary_conditions", "initial_velocity", "gravity",
-                                       "damping", "probes", "run", "output", NULL};
+                                       "damping", "probes", "run", "output",
+                                       /* impact (issue 3) keys */
+
+                                       /* other section keys */
+                                       NULL};
 
 struct build_ctx {
     const struct deck *deck;
@@ -349,12 +353,12 @@ static int material_at_key(struct build_ctx *c, const struct deck_node *map, con
     return SPALL_OK;
 }
 
-static int parse_body(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+/* Fill one body: every site of @p spec inside its shape becomes a particle
+ * with the body's material and the site volume of @p spec. */
+static int fill_body(struct build_ctx *c, const struct deck_node *body,
+                     const struct lattice_spec *spec, const char *what, struct spall_error *err)
 {
-    static const char *const keys[] = {"geometry", "material", NULL};
-    const struct deck_node *body = deck_get(root, "body");
-    if (!body)
-        return deck_error(err, root, "missing required key 'body' (geometry and material to fill)");
+    static const char *const keys[] = {"geometry", "material", "lattice", NULL};
     int rc = deck_expect_map(body, "a mapping with geometry and material", err);
     if (rc)
         return rc;
@@ -362,20 +366,69 @@ static int parse_body(struct build_ctx *c, const struct deck_node *root, struct 
     struct geom *g = NULL;
     if ((rc = material_at_key(c, body, "material", &mat, err)) ||
         (rc = shape_at_key(c, body, "geometry", &g, err)) ||
-        (rc = deck_check_unused(body, "body", keys, err))) {
+        (rc = deck_check_unused(body, what, keys, err))) {
         geom_destroy(&g);
         return rc;
     }
-    size_t added = 0;
-    rc = lattice_fill(c->sim->p, &c->sim->lattice, g, mat, &added, err);
+    size_t first = c->sim->p->n, added = 0;
+    rc = lattice_fill(c->sim->p, spec, g, mat, &added, err);
     geom_destroy(&g);
     if (rc) {
         const struct deck_node *gn = deck_peek(body, "geometry");
         char msg[SPALL_ERROR_MSG_LEN];
         snprintf(msg, sizeof msg, "%s", err->msg);
         if (gn && gn->kind == DECK_SCALAR)
-            return deck_error_key(err, body, "geometry", "body: geometry '%s' %s", gn->scalar, msg);
-        return deck_error_key(err, body, "geometry", "body: the geometry %s", msg);
+            return deck_error_key(err, body, "geometry", "%s: geometry '%s' %s", what, gn->scalar,
+                                  msg);
+        return deck_error_key(err, body, "geometry", "%s: the geometry %s", what, msg);
+    }
+    double vol = lattice_site_volume(spec, c->sim->thickness);
+    for (size_t i = first; i < first + added; i++) {
+        c->sim->p->volume[i] = vol;
+        c->sim->p->mass[i] = c->sim->materials[mat].density * vol;
+    }
+    return SPALL_OK;
+}
+
+/* `body: {geometry, material}` or `bodies: [{geometry, material, lattice:
+ * {spacing, origin, angle}}, ...]` — several bodies, each optionally on its
+ * own spacing (graded resolution, projectile and target).  Bodies must not
+ * overlap. */
+static int parse_body(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+{
+    const struct deck_node *body = deck_get(root, "body");
+    const struct deck_node *bodies = deck_get(root, "bodies");
+    if (body && bodies)
+        return deck_error_key(err, root, "bodies", "give either 'body' or 'bodies', not both");
+    if (body)
+        return fill_body(c, body, &c->sim->lattice, "body", err);
+    if (!bodies)
+        return deck_error(err, root, "missing required key 'body' (geometry and material to fill)");
+    int rc = deck_expect_seq(bodies, "a list of bodies {geometry, material, lattice}", err);
+    if (rc)
+        return rc;
+    if (bodies->n == 0)
+        return deck_error(err, bodies, "'bodies' is empty; expected at least one body");
+    for (size_t k = 0; k < bodies->n; k++) {
+        const struct deck_node *b = bodies->items[k];
+        struct lattice_spec spec = c->sim->lattice;
+        const struct deck_node *ln = deck_peek(b, "lattice");
+        if (ln) {
+            static const char *const keys[] = {"spacing", "origin", "angle", NULL};
+            double angle_deg = spec.angle / DEG_TO_RAD;
+            (void)deck_get(b, "lattice");
+            if ((rc = deck_expect_map(ln, "a mapping with spacing, origin, angle", err)) ||
+                (rc = deck_double_pos(ln, "spacing", false, &spec.spacing, err)) ||
+                (rc = deck_vector(ln, "origin", false, 1, 3, spec.origin, err)) ||
+                (rc = deck_double(ln, "angle", false, -360.0, 360.0, &angle_deg, err)) ||
+                (rc = deck_check_unused(ln, "bodies[].lattice", keys, err)))
+                return rc;
+            spec.angle = angle_deg * DEG_TO_RAD;
+        }
+        char what[32];
+        snprintf(what, sizeof what, "bodies[%zu]", k);
+        if ((rc = fill_body(c, b, &spec, what, err)))
+            return rc;
     }
     return SPALL_OK;
 }
@@ -415,13 +468,11 @@ static int parse_regions(struct build_ctx *c, const struct deck_node *root, stru
     return SPALL_OK;
 }
 
+/* Mass = density of the (possibly re-assigned) material x site volume. */
 static void assign_masses(struct sim *s)
 {
-    double vol = lattice_site_volume(&s->lattice, s->thickness);
-    for (size_t i = 0; i < s->p->n; i++) {
-        s->p->volume[i] = vol;
-        s->p->mass[i] = s->materials[s->p->material[i]].density * vol;
-    }
+    for (size_t i = 0; i < s->p->n; i++)
+        s->p->mass[i] = s->materials[s->p->material[i]].density * s->p->volume[i];
 }
 
 static int parse_groups(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)

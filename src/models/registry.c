@@ -8,20 +8,42 @@
 #include <string.h>
 
 extern const struct model_ops lattice_model_ops;
+/* peridynamics extern */
+
+/* macro-particle extern */
+
+/* sph extern */
 
 static const struct model_ops *const model_table[] = {
     &lattice_model_ops,
+    /* peridynamics entry */
+
+    /* macro-particle entry */
+
+    /* sph entry */
+
 };
 
-static const char *const model_name_list[] = {"lattice", NULL};
+#define N_MODELS (sizeof model_table / sizeof model_table[0])
 
 const struct model_ops *model_find(const char *name)
 {
-    for (size_t k = 0; k < sizeof model_table / sizeof model_table[0]; k++)
+    for (size_t k = 0; k < N_MODELS; k++)
         if (strcmp(model_table[k]->name, name) == 0)
             return model_table[k];
     return NULL;
 }
+
+/* Names in table order (kept beside the table: constant data, no state). */
+static const char *const model_name_list[] = {
+    "lattice",
+    /* peridynamics name */
+
+    /* macro-particle name */
+
+    /* sph name */
+
+    NULL};
 
 const char *const *model_names(void)
 {
