@@ -298,17 +298,25 @@ static void assign_masses(struct sim *s)
         s->p->mass[i] = s->materials[s->p->material[i]].density * s->p->volume[i];
 }
 
-static int parse_groups(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+/* The predefined group 'all' is created only when a deck refers to it: its
+ * index array would otherwise cost 8 bytes per particle for nothing. */
+static int ensure_group_all(struct sim *s, struct spall_error *err)
 {
-    size_t *all = malloc((c->sim->p->n ? c->sim->p->n : 1) * sizeof *all);
+    if (sim_find_group(s, "all") >= 0)
+        return SPALL_OK;
+    size_t *all = malloc((s->p->n ? s->p->n : 1) * sizeof *all);
     if (!all)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating group 'all'");
-    for (size_t i = 0; i < c->sim->p->n; i++)
+    for (size_t i = 0; i < s->p->n; i++)
         all[i] = i;
-    int rc = sim_add_group(c->sim, "all", all, c->sim->p->n, NULL, err);
+    int rc = sim_add_group(s, "all", all, s->p->n, NULL, err);
     free(all);
-    if (rc)
-        return rc;
+    return rc;
+}
+
+static int parse_groups(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
+{
+    int rc;
     const struct deck_node *gs = deck_get(root, "groups");
     if (!gs)
         return SPALL_OK;
@@ -348,6 +356,8 @@ static int group_at_key(struct build_ctx *c, const struct deck_node *map, const 
     const char *name = NULL;
     int rc = deck_string(map, key, true, &name, err);
     if (rc)
+        return rc;
+    if (strcmp(name, "all") == 0 && (rc = ensure_group_all(c->sim, err)))
         return rc;
     *g = sim_find_group(c->sim, name);
     if (*g < 0)

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# A run that goes unstable stops with one clear line naming step, time and
+# particle, exit status 3, and keeps the output written before it (the last
+# good frame and history).  Usage: unstable_run.sh SPALL SRC
+set -u
+spall="$1"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"
+cat > deck.yaml <<'YAML'
+model: {type: lattice}
+materials:
+  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3333333333333333, failure_strain: 10}
+lattice: {type: triangular, spacing: 0.001}
+geometry:
+  plate: {box: {min: [0, 0], max: [0.02, 0.02]}}
+body: {geometry: plate, material: m}
+groups:
+  left: {box: {min: [-1, -1], max: [0.0006, 1]}}
+boundary_conditions:
+  - {group: left, type: velocity, components: [x], value: 1.0}
+run: {steps: 400, dt: 2.0e-6, dt_override: true}
+output: {field_every: 1, history_every: 1}
+YAML
+"$spall" run deck.yaml -o out >stdout.txt 2>stderr.txt
+rc=$?
+fail=0
+if [ $rc -ne 3 ]; then echo "FAIL: exit $rc, expected 3"; cat stderr.txt; fail=1; fi
+if ! grep -q "unstable at step [0-9]*, t = .* particle [0-9]*" stderr.txt; then echo "FAIL: message"; cat stderr.txt; fail=1; fi
+if [ ! -s out/fields.xdmf ] || [ ! -s out/history.csv ]; then echo "FAIL: last good output missing"; ls out; fail=1; fi
+if ! grep -q "status: FAILED" out/run.log; then echo "FAIL: run.log lacks the failure"; fail=1; fi
+if [ $fail -eq 0 ]; then echo "1 passed, 0 failed"; else echo "0 passed, 1 failed"; fi
+exit $fail
