@@ -178,12 +178,59 @@ static void test_fit_input(void **state)
     assert_true(f.max_abs < 1e-6 * r.p_max);
 }
 
+/* A square lattice (spacing 0.5 um) with a hole of radius 5 um and failed
+ * particles out to 7 um: D1 ~ 10 um, D2 ~ 14 um within a spacing; one
+ * stray particle on the axis does not close the cavity. */
+static void test_cavity(void **state)
+{
+    (void)state;
+    const double a = 0.5e-6;
+    enum { NMAX = 200000 };
+    double *x = malloc(3 * NMAX * sizeof *x), *y = x + NMAX, *z = y + NMAX;
+    double *dxs = malloc(NMAX * sizeof *dxs);
+    unsigned char *failed = malloc(NMAX);
+    assert_non_null(x);
+    assert_non_null(dxs);
+    assert_non_null(failed);
+    size_t n = 0;
+    for (int k = -1; k <= 1; k++)
+        for (int i = -30; i <= 30; i++)
+            for (int j = -30; j <= 30; j++) {
+                const double px = i * a, py = j * a, r = sqrt(px * px + py * py);
+                if (r < 5.0e-6 + 0.5 * a)
+                    continue;
+                x[n] = px, y[n] = py, z[n] = -15e-6 + k * a, dxs[n] = a;
+                failed[n] = r < 7.0e-6 + 0.5 * a;
+                n++;
+            }
+    x[n] = 0.1e-6, y[n] = 0.0, z[n] = -15e-6, dxs[n] = a, failed[n] = 1; /* stray */
+    n++;
+    struct pen_cavity_opts o = {0.0, 0.0, 15e-6, 0.0, 2.0 * a, 0};
+    double d1 = 0, d2 = 0;
+    struct spall_error e = {0, ""};
+    assert_int_equal(pen_cavity_diameters(n, x, y, z, dxs, failed, &o, &d1, &d2, &e), SPALL_OK);
+    assert_true(fabs(d1 - 10e-6) < 2.0 * a);
+    assert_true(fabs(d2 - 14e-6) < 2.0 * a);
+    assert_int_equal(pen_cavity_diameters(n, x, y, z, dxs, NULL, &o, &d1, &d2, &e), SPALL_OK);
+    assert_true(d1 == d2);
+    o.depth = 1.0; /* empty slab */
+    assert_int_equal(pen_cavity_diameters(n, x, y, z, dxs, failed, &o, &d1, &d2, &e), SPALL_OK);
+    assert_true(d1 == 0.0 && d2 == 0.0);
+    o.slab = 0.0;
+    assert_int_equal(pen_cavity_diameters(n, x, y, z, dxs, failed, &o, &d1, &d2, &e),
+                     SPALL_ERR_INPUT);
+    free(x);
+    free(dxs);
+    free(failed);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_poncelet_limits), cmocka_unit_test(test_liu_reduces_to_poncelet),
         cmocka_unit_test(test_clift_gauvin),    cmocka_unit_test(test_bad_params),
         cmocka_unit_test(test_csv),             cmocka_unit_test(test_fit_input),
+        cmocka_unit_test(test_cavity),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -158,4 +158,29 @@ int pen_csv_read(const char *path, struct pen_csv *csv, struct spall_error *err)
 int pen_csv_column(const struct pen_csv *csv, const char *name);
 void pen_csv_free(struct pen_csv *csv);
 
+/** Settings of the cavity measurement (seed 004 sec. 4.4.2.2, Fig. 4.17-4.18). */
+struct pen_cavity_opts {
+    double axis_x, axis_y; /**< shot line: x = axis_x, y = axis_y, along z */
+    double depth;          /**< slab centre, below the surface z = surface [m] (15 um in Fig. 4.17) */
+    double surface;        /**< z of the undisturbed target surface [m] */
+    double slab;           /**< slab thickness [m] (a few particle spacings) */
+    int sectors;           /**< angular sectors (>= 4); 0: 16 */
+};
+
+/** Cavity diameters at one depth from particle positions (one frame):
+ *  D1, the empty cavity, from the particles nearest the axis whatever
+ *  their state; D2, the cavity including failed particles, from the
+ *  nearest intact ones (the thesis' D1 and D2, Fig. 4.18).  In each
+ *  angular sector the cavity radius is the smallest r - dx/2 (dx: the
+ *  particle's spacing, its extent) of the slab's particles, floored at 0;
+ *  D = 2 x the median over the sectors, so a single stray particle on the
+ *  axis does not close the cavity.  A sector without particles counts as
+ *  infinitely open.  @p failed may be NULL (no failed particles: D2 = D1),
+ *  @p dx may be NULL (point particles).  Sets *d1 = *d2 = 0 if no particle
+ *  lies in the slab. */
+int pen_cavity_diameters(size_t n, const double *x, const double *y, const double *z,
+                         const double *dx, const unsigned char *failed,
+                         const struct pen_cavity_opts *o, double *d1, double *d2,
+                         struct spall_error *err);
+
 #endif
