@@ -68,6 +68,34 @@ static void test_liu_reduces_to_poncelet(void **state)
     assert_true(fabs(rl.t_f / rp.t_f - 1.0) < 1e-10);
 }
 
+/* Liu with a strong viscous term (b^2 > 4ac) has no atan closed form: the
+ * ODE is used; check it against the log form of the same integrals,
+ * with D = b^2 - 4ac > 0 and L(v) = ln((2av + b - sqrt D) / (2av + b + sqrt D)):
+ * T_f = M (L(v0) - L(0)) / sqrt D,
+ * P_max = M [ln(F(v0) / F(0)) / (2a) - b (L(v0) - L(0)) / (2a sqrt D)]. */
+static void test_liu_fallback(void **state)
+{
+    (void)state;
+    struct pen_params l = gel();
+    l.model = PEN_LIU;
+    l.cd = 0.4;
+    l.cv = 1.0e6; /* b^2 >> 4ac */
+    l.sigma0 = 1.0e5;
+    struct spall_error e = {0, ""};
+    struct pen_result r;
+    const double v0 = 300.0;
+    assert_int_equal(pen_solve(&l, v0, 0, NULL, NULL, NULL, 0, &r, &e), SPALL_OK);
+    assert_false(r.closed_form);
+    const double A = PI * l.d * l.d / 4.0, M = pen_mass(&l);
+    const double a = 0.5 * l.cd * l.rho_t * A + A * l.sigma0 / (l.d * l.d * l.edot0 * l.edot0);
+    const double b = l.cv * A, c = l.sigma0 * A, sd = sqrt(b * b - 4.0 * a * c);
+    const double dl = log((2 * a * v0 + b - sd) / (2 * a * v0 + b + sd)) - log((b - sd) / (b + sd));
+    const double tf = M * dl / sd;
+    const double pm = M * (log((a * v0 * v0 + b * v0 + c) / c) / (2 * a) - b * dl / (2 * a * sd));
+    assert_true(fabs(r.t_f / tf - 1.0) < 1e-8);
+    assert_true(fabs(r.p_max / pm - 1.0) < 1e-8);
+}
+
 /* Clift-Gauvin: Stokes limit 24/Re at small Re, ~0.4-0.45 near Re = 1e4. */
 static void test_clift_gauvin(void **state)
 {
@@ -230,7 +258,7 @@ int main(void)
         cmocka_unit_test(test_poncelet_limits), cmocka_unit_test(test_liu_reduces_to_poncelet),
         cmocka_unit_test(test_clift_gauvin),    cmocka_unit_test(test_bad_params),
         cmocka_unit_test(test_csv),             cmocka_unit_test(test_fit_input),
-        cmocka_unit_test(test_cavity),
+        cmocka_unit_test(test_cavity),          cmocka_unit_test(test_liu_fallback),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -20,7 +20,7 @@ static void pen_usage(FILE *out)
 {
     fprintf(out,
             "usage: spall penetrate poncelet|liu|mcg --d M --v0 M_S [--rho-p KG_M3 | --projectile P]\n"
-            "                       [--rho-t KG_M3 | --target T] [coefficients] [--nose] [--ode]\n"
+            "                       [--rho-t KG_M3 | --target T] [coefficients] [--ode]\n"
             "                       [--csv TRAJ.csv] [--n N]\n"
             "       spall penetrate fit --model poncelet|liu|mcg (--trajectory P.csv --d M --v0 M_S\n"
             "                       | --points PTS.csv [--nose]) [densities] [initial coefficients]\n"
@@ -45,7 +45,7 @@ static void pen_usage(FILE *out)
             "  --cd, --R PA             Poncelet (C_d, R), Liu (C_d), MCG (R)\n"
             "  --cv PA_S_M, --sigma0 PA, --edot0 1_S   Liu (edot0 default 1e7 1/s)\n"
             "  --eta PA_S               MCG viscosity\n"
-            "  --nose                   add d/2 to P (experimental convention, Eq. 4.7)\n"
+            "  --nose                   fit (b): measured P_max include the nose d/2 (Eq. 4.7)\n"
             "  --ode                    integrate the ODE even where a closed form exists\n"
             "  --n N                    trajectory samples in --csv (default 201)\n"
             "fit: --trajectory CSV has columns t, P [s, m] (approach a, one curve of given d, v0);\n"
@@ -200,11 +200,11 @@ static int cmd_model(struct pen_opts *o)
     rc = pen_solve(&o->p, o->v0, (size_t)n, t, P, V, o->ode, &r, &e);
     FILE *f = NULL;
     if (!rc && !(rc = write_open(o->csv, &f))) {
-        fprintf(f, "# spall penetrate %s: d = %.9g m, v0 = %.9g m/s%s\n", pen_model_name(o->p.model),
-                o->p.d, o->v0, o->nose ? ", P includes the nose d/2" : "");
+        fprintf(f, "# spall penetrate %s: d = %.9g m, v0 = %.9g m/s\n", pen_model_name(o->p.model),
+                o->p.d, o->v0);
         fprintf(f, "t,P,V\n");
         for (int i = 0; i < n; i++)
-            fprintf(f, "%.10e,%.10e,%.10e\n", t[i], P[i] + (o->nose ? 0.5 * o->p.d : 0.0), V[i]);
+            fprintf(f, "%.10e,%.10e,%.10e\n", t[i], P[i], V[i]);
         if (fclose(f))
             rc = bad("error writing '%s'%s", o->csv, "");
     } else if (rc && rc != 4) {
