@@ -342,7 +342,9 @@ static int cmd_sweep(struct pen_opts *o)
         struct pen_params p = o->p;
         p.d = ds[k];
         double re_worst = 0.0;
-        for (double v = v_from; v <= v_to * (1 + 1e-12) && !rc; v += v_step) {
+        const long nv = (long)floor((v_to - v_from) / v_step * (1.0 + 1e-12)) + 1;
+        for (long iv = 0; iv < nv && !rc; iv++) {
+            const double v = v_from + (double)iv * v_step;
             struct pen_result r;
             if (pen_solve(&p, v, 0, NULL, NULL, NULL, o->ode, &r, &e)) {
                 rc = fail(&e);
