@@ -24,7 +24,7 @@ static void pen_usage(FILE *out)
             "                       [--csv TRAJ.csv] [--n N]\n"
             "       spall penetrate fit --model poncelet|liu|mcg (--trajectory P.csv --d M --v0 M_S\n"
             "                       | --points PTS.csv [--nose]) [densities] [initial coefficients]\n"
-            "                       [--csv FIT.csv]\n"
+            "                       [--csv FIT.csv] [--curve CURVE.csv]\n"
             "       spall penetrate sweep --model poncelet|liu|mcg --v0 FROM:TO:STEP --d D1[,D2,...]\n"
             "                       [densities] [coefficients] --csv TABLE.csv\n"
             "\n"
@@ -51,7 +51,8 @@ static void pen_usage(FILE *out)
             "fit: --trajectory CSV has columns t, P [s, m] (approach a, one curve of given d, v0);\n"
             "     --points CSV has columns d, v0, P_max [m, m/s, m] (approach b).  Coefficient\n"
             "     options give the initial guess.  Prints coefficients, standard errors, 95 %%\n"
-            "     confidence intervals and residuals; --csv writes data, model and residuals.\n"
+            "     confidence intervals and residuals; --csv writes data, model and residuals;\n"
+            "     --curve writes the fitted model densely (a: t, P, V; b: P_max vs v0 per d).\n"
             "sweep: --csv writes d, v0, T_f, P_max, P_max_nose, P_max_over_d (and Re for mcg).\n");
 }
 
@@ -59,7 +60,7 @@ struct pen_opts {
     struct pen_params p;
     double v0;
     int have_d, have_v0, nose, ode, n;
-    const char *csv, *traj, *points, *model, *vrange, *dlist;
+    const char *csv, *curve, *traj, *points, *model, *vrange, *dlist;
 };
 
 static int bad(const char *fmt, const char *a, const char *b)
@@ -116,6 +117,7 @@ static int parse_opts(int argc, char **argv, int first, struct pen_opts *o)
         else if (strcmp(a, "--edot0") == 0) rc = num(a, v, &o->p.edot0);
         else if (strcmp(a, "--eta") == 0) rc = num(a, v, &o->p.eta);
         else if (strcmp(a, "--csv") == 0) o->csv = v;
+        else if (strcmp(a, "--curve") == 0) o->curve = v;
         else if (strcmp(a, "--trajectory") == 0) o->traj = v;
         else if (strcmp(a, "--points") == 0) o->points = v;
         else if (strcmp(a, "--model") == 0) o->model = v;
@@ -222,6 +224,64 @@ static int col(const struct pen_csv *c, const char *name, const char *path, int 
     return 0;
 }
 
+static int cmp_dbl(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Dense curves of the fitted model, for plotting against the data:
+ * (a) t, P, V over [0, T_f]; (b) per distinct diameter, P_max vs v0 over
+ * (0, 1.1 max v0], with the nose if the fit used it. */
+static int write_curve(const struct pen_opts *o, const struct pen_fit_input *in,
+                       const struct pen_params *fitted, const double *d_sorted)
+{
+    struct spall_error e = {0, ""};
+    FILE *f = NULL;
+    int rc = write_open(o->curve, &f);
+    if (rc)
+        return rc;
+    enum { NC = 201 };
+    fprintf(f, "# spall penetrate fit: %s with the fitted coefficients\n",
+            pen_model_name(fitted->model));
+    if (in->kind == PEN_FIT_TRAJECTORY) {
+        double t[NC], P[NC], V[NC];
+        struct pen_result r;
+        if (!(rc = pen_solve(fitted, in->v0, 0, NULL, NULL, NULL, 0, &r, &e))) {
+            for (int i = 0; i < NC; i++)
+                t[i] = r.t_f * i / (NC - 1);
+            rc = pen_solve(fitted, in->v0, NC, t, P, V, 0, &r, &e);
+        }
+        if (!rc) {
+            fprintf(f, "t,P,V\n");
+            for (int i = 0; i < NC; i++)
+                fprintf(f, "%.10e,%.10e,%.10e\n", t[i], P[i], V[i]);
+        }
+    } else {
+        double vmax = 0.0;
+        for (size_t i = 0; i < in->n; i++)
+            vmax = in->v0s[i] > vmax ? in->v0s[i] : vmax;
+        fprintf(f, "d,v0,P_max,P_max_over_d\n");
+        for (size_t k = 0; k < in->n && !rc; k++) {
+            if (k > 0 && d_sorted[k] == d_sorted[k - 1])
+                continue;
+            struct pen_params p = *fitted;
+            p.d = d_sorted[k];
+            for (int i = 1; i <= NC - 1 && !rc; i++) {
+                const double v = 1.1 * vmax * i / (NC - 1);
+                struct pen_result r;
+                if ((rc = pen_solve(&p, v, 0, NULL, NULL, NULL, 0, &r, &e)))
+                    break;
+                const double pm = r.p_max + (in->nose ? 0.5 * p.d : 0.0);
+                fprintf(f, "%.10e,%.10e,%.10e,%.10e\n", p.d, v, pm, pm / p.d);
+            }
+        }
+    }
+    if (fclose(f) && !rc)
+        return bad("error writing '%s'%s", o->curve, "");
+    return rc ? fail(&e) : 0;
+}
+
 static int cmd_fit(struct pen_opts *o)
 {
     struct spall_error e = {0, ""};
@@ -304,6 +364,14 @@ static int cmd_fit(struct pen_opts *o)
         }
         if (fclose(f))
             rc = bad("error writing '%s'%s", o->csv, "");
+    }
+    if (!rc && o->curve) {
+        /* reuse the residual buffer for the sorted diameters */
+        if (o->points) {
+            memcpy(res, a0, in.n * sizeof *res);
+            qsort(res, in.n, sizeof *res, cmp_dbl);
+        }
+        rc = write_curve(o, &in, &fr.fitted, res);
     }
 done:
     free(buf);

@@ -41,6 +41,12 @@ done
 "$spall" penetrate fit --model poncelet --trajectory traj.csv $gel --cd 0.7 --R 9e6 --csv fit.csv > fit.txt 2>&1 || { ko "fit"; cat fit.txt; }
 grep -Eq "^C_d +0\.375" fit.txt && ok || { ko "fit C_d"; cat fit.txt; }
 [ -s fit.csv ] && ok || ko "fit.csv"
+# fit (b) on the recorded MCG references recovers eta; --curve writes 5 x 200 rows
+grep -v '^#' "$src/data/penetration/sebs_mcg_reference.csv" | cut -d, -f1,2,4 > pts_ok.csv
+"$spall" penetrate fit --model mcg --points pts_ok.csv --projectile steel --target sebs \
+    --curve curve.csv > fitb.txt 2>&1 || { ko "fit b"; cat fitb.txt; }
+grep -Eq "^eta +0\.045 " fitb.txt && ok || { ko "fit b eta"; cat fitb.txt; }
+[ "$(grep -vc '^#' curve.csv)" -eq 1001 ] && ok || ko "curve rows"
 # sweep writes the table; MCG warns above Re = 1e5 but succeeds
 "$spall" penetrate sweep --model mcg --projectile steel --target sebs --eta 4.5e-2 --R 25e6 \
     --d 10e-6,20e-6 --v0 100:900:100 --csv sweep.csv >/dev/null || ko "sweep"
