@@ -127,6 +127,9 @@ struct pen_fit_result {
     double std_err[PEN_FIT_MAX_COEF];
     double ci_lo[PEN_FIT_MAX_COEF];
     double ci_hi[PEN_FIT_MAX_COEF];
+    /** correlation of the (log) coefficients: near +-1 means the data
+     *  cannot separate the two (e.g. Liu's C_v from P_max points alone) */
+    double corr[PEN_FIT_MAX_COEF][PEN_FIT_MAX_COEF];
     double rms;       /**< root-mean-square residual [m] ((a)) or [1] (P_max/d, (b)) */
     double max_abs;   /**< largest |residual|, same unit */
     double chisq;     /**< sum of squared residuals */

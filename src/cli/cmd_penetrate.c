@@ -344,6 +344,13 @@ static int cmd_fit(struct pen_opts *o)
     for (int k = 0; k < fr.n_coef; k++)
         printf("%-8s %14.6g %14.4g      [%12.6g, %12.6g]\n", fr.names[k], fr.value[k],
                fr.std_err[k], fr.ci_lo[k], fr.ci_hi[k]);
+    if (fr.n_coef > 1) {
+        printf("correlation:");
+        for (int k = 0; k < fr.n_coef; k++)
+            for (int l = k + 1; l < fr.n_coef; l++)
+                printf("  %s-%s %+.4f", fr.names[k], fr.names[l], fr.corr[k][l]);
+        printf("\n");
+    }
     printf("residuals (%s): rms %.4g, max |r| %.4g, chi^2 %.4g, %d degrees of freedom\n",
            o->traj ? "P_model - P [m]" : "(P_max,model - P_max)/d [1]", fr.rms, fr.max_abs,
            fr.chisq, fr.dof);

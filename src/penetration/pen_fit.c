@@ -220,6 +220,13 @@ int pen_fit(const struct pen_fit_input *in, struct pen_fit_result *out, double *
         out->ci_lo[k] = exp(th - tq * sig);
         out->ci_hi[k] = exp(th + tq * sig);
     }
+    for (int k = 0; k < nc; k++)
+        for (int l = 0; l < nc; l++) {
+            const double ckk = gsl_matrix_get(cov, (size_t)k, (size_t)k);
+            const double cll = gsl_matrix_get(cov, (size_t)l, (size_t)l);
+            const double den = sqrt(fabs(ckk * cll));
+            out->corr[k][l] = den > 0.0 ? gsl_matrix_get(cov, (size_t)k, (size_t)l) / den : 0.0;
+        }
     rc = SPALL_OK;
 done:
     if (w)
