@@ -13,6 +13,7 @@
 /* sph cases header */
 
 /* penetration cases header */
+#include "validation/pen_cases.h"
 
 #include "validation/validation.h"
 
@@ -36,6 +37,16 @@ static const struct vcase cases[] = {
     /* SPH (issue 6) */
 
     /* penetration (issue 7) */
+    {"pen-check-value", "seed 004 Eq. 4.6/4.7: silica 7.38 um into gelatin at 1290 m/s", true,
+     pen_case_check_value},
+    {"pen-ode", "GSL-integrated P(t) vs closed forms (Poncelet, Liu) and quadrature (MCG)", true,
+     pen_case_ode},
+    {"pen-fit-synthetic", "fits (a) and (b) recover known Poncelet/Liu/MCG coefficients", true,
+     pen_case_fit_synthetic},
+    {"pen-thesis-refs", "thesis data files vs Poncelet / Modified-CG; SPH reference tables", true,
+     pen_case_thesis_refs},
+    {"pen-gelatin-time", "Poncelet T_f vs the 200-250 ns of the gelatin experiment (known gap)",
+     false, pen_case_gelatin_time},
 
 };
 

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# `spall penetrate`: the check value, --help for each mode, CSV outputs, and
+# bad input -> one line on stderr, exit 2.  Usage: penetrate.sh SPALL SRC
+set -u
+spall="$1"
+src="$2"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"
+fail=0
+pass=0
+ok() { pass=$((pass+1)); }
+ko() { echo "FAIL $*"; fail=$((fail+1)); }
+
+bad() { # name expected-substring args...
+    local name="$1" expect="$2"
+    shift 2
+    "$spall" penetrate "$@" >stdout.txt 2>stderr.txt
+    local rc=$? lines
+    lines=$(wc -l < stderr.txt)
+    if [ $rc -ne 2 ]; then ko "$name: exit $rc, expected 2"; cat stderr.txt; return; fi
+    if [ "$lines" -ne 1 ]; then ko "$name: $lines lines on stderr"; cat stderr.txt; return; fi
+    if ! grep -q -- "$expect" stderr.txt; then ko "$name: message lacks '$expect'"; cat stderr.txt; return; fi
+    ok
+}
+
+gel="--d 7.38e-6 --v0 1290 --projectile silica --target gelatin --cd 0.375 --R 21e6"
+# check value: 65.78 um (69.47 with the nose)
+out=$("$spall" penetrate poncelet $gel) || ko "poncelet run"
+echo "$out" | grep -q "P_max            6.57794e-05" && ok || { ko "P_max line"; echo "$out"; }
+echo "$out" | grep -q "P_max + d/2      6.94694e-05" && ok || ko "nose line"
+# trajectory CSV: header and 201 rows, last P = P_max
+"$spall" penetrate poncelet $gel --csv traj.csv >/dev/null || ko "csv run"
+[ "$(grep -vc '^#' traj.csv)" -eq 202 ] && ok || ko "traj.csv rows"
+# help for every mode, exit 0
+for m in poncelet liu mcg fit sweep; do
+    "$spall" penetrate $m --help >/dev/null 2>&1 && ok || ko "help $m"
+done
+"$spall" penetrate >/dev/null 2>&1; [ $? -eq 2 ] && ok || ko "no args"
+# fit (a) on a self-made trajectory recovers C_d, R
+"$spall" penetrate fit --model poncelet --trajectory traj.csv $gel --cd 0.7 --R 9e6 --csv fit.csv > fit.txt 2>&1 || { ko "fit"; cat fit.txt; }
+grep -Eq "^C_d +0\.375" fit.txt && ok || { ko "fit C_d"; cat fit.txt; }
+[ -s fit.csv ] && ok || ko "fit.csv"
+# fit (b) on the recorded MCG references recovers eta; --curve writes 5 x 200 rows
+grep -v '^#' "$src/data/penetration/sebs_mcg_reference.csv" | cut -d, -f1,2,4 > pts_ok.csv
+"$spall" penetrate fit --model mcg --points pts_ok.csv --projectile steel --target sebs \
+    --curve curve.csv > fitb.txt 2>&1 || { ko "fit b"; cat fitb.txt; }
+grep -Eq "^eta +0\.045 " fitb.txt && ok || { ko "fit b eta"; cat fitb.txt; }
+[ "$(grep -vc '^#' curve.csv)" -eq 1001 ] && ok || ko "curve rows"
+# sweep writes the table; MCG warns above Re = 1e5 but succeeds
+"$spall" penetrate sweep --model mcg --projectile steel --target sebs --eta 4.5e-2 --R 25e6 \
+    --d 10e-6,20e-6 --v0 100:900:100 --csv sweep.csv >/dev/null || ko "sweep"
+[ "$(grep -vc '^#' sweep.csv)" -eq 19 ] && ok || ko "sweep rows"
+"$spall" penetrate mcg --d 1e-3 --v0 1000 --projectile steel --target sebs --eta 1e-4 --R 25e6 \
+    >/dev/null 2>warn.txt && grep -q "Re = " warn.txt && ok || ko "Re warning"
+
+bad "unknown mode" "unknown mode" bogus
+bad "bad number" "--d needs a number" poncelet --d x
+bad "negative R" "R must be" poncelet --d 1e-5 --v0 100 --rho-p 1 --rho-t 1 --cd 0.4 --R -3
+bad "no densities" "densities" poncelet --d 1e-5 --v0 100 --cd 0.4 --R 3
+bad "unknown option" "unknown option" poncelet --frobnicate 3
+bad "fit without data" "exactly one of" fit --model poncelet --rho-p 1 --rho-t 1
+bad "fit missing file" "cannot open" fit --model poncelet --points nope.csv --rho-p 1 --rho-t 1
+printf 'd,v0\n1e-5,100\n' > pts.csv
+bad "fit missing column" "no column 'P_max'" fit --model poncelet --points pts.csv --rho-p 1 --rho-t 1
+printf 'd,v0,P_max\n1e-5,100,x\n' > pts2.csv
+bad "fit bad cell" "pts2.csv:2:" fit --model poncelet --points pts2.csv --rho-p 1 --rho-t 1
+bad "sweep range" "FROM:TO:STEP" sweep --model poncelet --d 1e-5 --v0 5:1:1 --rho-p 1 --rho-t 1 --cd 1 --R 1 --csv s.csv
+bad "unknown model" "unknown penetration model" sweep --model xx --d 1e-5 --v0 1:2:1 --rho-p 1 --rho-t 1 --csv s.csv
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

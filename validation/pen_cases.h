@@ -1,0 +1,29 @@
+/**
+ * @file pen_cases.h
+ * @brief Validation cases of the analytical penetration models (seed 004
+ *        sec. 4.2, include/spall/penetration.h), registered under the
+ *        penetration marker of validation/cases.c; numbers in
+ *        docs/validation.md.
+ */
+#ifndef SPALL_VALIDATION_PEN_CASES_H
+#define SPALL_VALIDATION_PEN_CASES_H
+
+struct spall_error;
+struct vreport;
+
+/** "pen-check-value": the digest's check value, Eq. 4.6 / 4.7. */
+int pen_case_check_value(struct vreport *r, struct spall_error *err);
+/** "pen-ode": GSL-integrated P(t) against the closed forms (Poncelet, Liu)
+ *  and the ODE end point against an independent quadrature (MCG). */
+int pen_case_ode(struct vreport *r, struct spall_error *err);
+/** "pen-fit-synthetic": fits (approaches a and b, all three models) recover
+ *  the coefficients that generated synthetic data. */
+int pen_case_fit_synthetic(struct vreport *r, struct spall_error *err);
+/** "pen-thesis-refs": the data files of data/penetration against the
+ *  library (recorded references for the SPH cases, Re < 1e5, gelatin P_max). */
+int pen_case_thesis_refs(struct vreport *r, struct spall_error *err);
+/** "pen-gelatin-time": Poncelet stopping time against the experiment's
+ *  200-250 ns (known gap, explained). */
+int pen_case_gelatin_time(struct vreport *r, struct spall_error *err);
+
+#endif
