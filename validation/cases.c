@@ -5,6 +5,7 @@
  */
 #include "validation/lattice_cases.h"
 /* impact cases header */
+#include "validation/impact_cases.h"
 
 /* peridynamics cases header */
 
@@ -28,6 +29,10 @@ static const struct vcase cases[] = {
     {"lattice-threads", "1 and 2 OpenMP threads: bitwise identical fracture run", true,
      lattice_case_threads},
     /* impact, fragments, thermal lattice (issue 3) */
+    {"impact-nylon", "seed 000 sec. 3.2.1 nylon-6,6 drop-weight indentation, no-slip tup", false,
+     impact_case_nylon},
+    {"impact-vinylester", "seed 000 sec. 3.2.2 vinyl ester drop-weight indentation", false,
+     impact_case_vinylester},
 
     /* peridynamics (issue 4) */
 
