@@ -33,6 +33,8 @@ static const struct vcase cases[] = {
      impact_case_nylon},
     {"impact-vinylester", "seed 000 sec. 3.2.2 vinyl ester drop-weight indentation", false,
      impact_case_vinylester},
+    {"impact-spall", "seed 000 sec. 4.2 flyer-plate spall at 260 m/s, long and short flyer",
+     false, impact_case_spall},
 
     /* peridynamics (issue 4) */
 

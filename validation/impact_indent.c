@@ -174,11 +174,12 @@ int impact_case_nylon(struct vreport *r, struct spall_error *err)
 int impact_case_vinylester(struct vreport *r, struct spall_error *err)
 {
     /* sigma_TS: the seed gives 25.6-51.2 MPa.  The midpoint 38.4 MPa put the
-     * first crack at 2.05 mm / 1.08 ms (-21 %, -22 %); we keep 49 MPa, chosen
-     * inside the range so that the first crack falls at the measured
-     * deflection: the deflection check is therefore a calibration, the time of
-     * the peak and the absorbed energy stay independent checks. */
-    const struct indent_material m = {"impact-vinylester", 1050.0, 2.56e9, 49.0e6, 1.91,
+     * first crack at 2.05 mm / 1.08 ms (-21 %, -22 %), 49 MPa at 3.24 mm /
+     * 1.73 ms; we keep 43.5 MPa, chosen inside the range (by interpolating
+     * those two runs) so that the first crack falls near the measured
+     * deflection: the deflection check is therefore a calibration, the time
+     * of the peak and the absorbed energy stay independent checks. */
+    const struct indent_material m = {"impact-vinylester", 1050.0, 2.56e9, 43.5e6, 1.91,
                                       1.38e-3, 2.60e-3, 0.7, 1.42e-3, 2.66e-3, 0.76};
     return run_indent(r, &m, err);
 }
