@@ -35,6 +35,8 @@ static const struct vcase cases[] = {
      impact_case_vinylester},
     {"impact-spall", "seed 000 sec. 4.2 flyer-plate spall at 260 m/s, long and short flyer",
      false, impact_case_spall},
+    {"impact-epoxy", "seed 000 sec. 3.1 epoxy plate with holes in tension: cracks link holes",
+     false, impact_case_epoxy},
 
     /* peridynamics (issue 4) */
 

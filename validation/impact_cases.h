@@ -25,4 +25,7 @@ int impact_case_spall(struct vreport *r, struct spall_error *err);
 /** Deck text of the spall case (flyer + target, interface pre-cut). */
 int impact_spall_deck(char *buf, size_t len, double flyer_width, double r0, double end_time);
 
+/** "impact-epoxy": seed 000 sec. 3.1 epoxy plate with holes, cracks link holes. */
+int impact_case_epoxy(struct vreport *r, struct spall_error *err);
+
 #endif
