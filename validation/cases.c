@@ -37,6 +37,8 @@ static const struct vcase cases[] = {
      false, impact_case_spall},
     {"impact-epoxy", "seed 000 sec. 3.1 epoxy plate with holes in tension: cracks link holes",
      false, impact_case_epoxy},
+    {"impact-punch", "seed 000 sec. 3.2.3 3D vinyl ester punch-shear, no-slip and friction",
+     false, impact_case_punch},
 
     /* peridynamics (issue 4) */
 

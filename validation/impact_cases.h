@@ -28,4 +28,9 @@ int impact_spall_deck(char *buf, size_t len, double flyer_width, double r0, doub
 /** "impact-epoxy": seed 000 sec. 3.1 epoxy plate with holes, cracks link holes. */
 int impact_case_epoxy(struct vreport *r, struct spall_error *err);
 
+/** "impact-punch": seed 000 sec. 3.2.3 3D vinyl ester punch-shear. */
+int impact_case_punch(struct vreport *r, struct spall_error *err);
+/** Deck text of the punch-shear case (also used by bench/bench_impact.c). */
+int impact_punch_deck(char *buf, size_t len, double r0, const char *contact, double end_time);
+
 #endif
