@@ -39,6 +39,8 @@ const struct bench_case *bench_case_at(size_t k);
 extern const struct bench_case bench_lattice_cases[];
 extern const size_t bench_lattice_n_cases;
 /* impact bench table */
+extern const struct bench_case bench_impact_cases[];
+extern const size_t bench_impact_n_cases;
 
 /* peridynamics bench table */
 

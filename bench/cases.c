@@ -15,6 +15,7 @@ struct bench_table {
 static const struct bench_table tables[] = {
     {bench_lattice_cases, &bench_lattice_n_cases},
     /* impact table entry */
+    {bench_impact_cases, &bench_impact_n_cases},
 
     /* peridynamics table entry */
 

@@ -5,6 +5,7 @@
  */
 #include "validation/lattice_cases.h"
 /* impact cases header */
+#include "validation/impact_cases.h"
 
 /* peridynamics cases header */
 
@@ -29,6 +30,16 @@ static const struct vcase cases[] = {
     {"lattice-threads", "1 and 2 OpenMP threads: bitwise identical fracture run", true,
      lattice_case_threads},
     /* impact, fragments, thermal lattice (issue 3) */
+    {"impact-nylon", "seed 000 sec. 3.2.1 nylon-6,6 drop-weight indentation, no-slip tup", false,
+     impact_case_nylon},
+    {"impact-vinylester", "seed 000 sec. 3.2.2 vinyl ester drop-weight indentation", false,
+     impact_case_vinylester},
+    {"impact-spall", "seed 000 sec. 4.2 flyer-plate spall at 260 m/s, long and short flyer",
+     false, impact_case_spall},
+    {"impact-epoxy", "seed 000 sec. 3.1 epoxy plate with holes in tension: cracks link holes",
+     false, impact_case_epoxy},
+    {"impact-punch", "seed 000 sec. 3.2.3 3D vinyl ester punch-shear, no-slip and friction",
+     false, impact_case_punch},
 
     /* peridynamics (issue 4) */
 

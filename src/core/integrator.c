@@ -15,6 +15,7 @@
  */
 #include "core/fields.h"
 #include "core/particles.h"
+#include "core/rigid.h"
 #include "core/sim.h"
 #include "models/model.h"
 #include "spall/error.h"
@@ -209,6 +210,7 @@ static int compute_all_forces(struct sim *s, struct spall_error *err)
     int rc = s->ops->compute_forces(s->model, s, err);
     if (rc)
         return rc;
+    rigid_contact_forces(s); /* impactor contact (issue 3) */
     apply_loads(s, s->t);
     apply_body_forces(s);
     return SPALL_OK;
@@ -228,10 +230,15 @@ void sim_update_energy(struct sim *s)
     struct model_energy me = {0, 0};
     if (s->ops->energy)
         s->ops->energy(s->model, s, &me);
+    double rke, rstrain, rdiss, rext; /* rigid impactors (issue 3) */
+    rigid_energy(s, &rke, &rstrain, &rdiss, &rext);
+    ke += rke;
+    me.strain += rstrain;
+    me.dissipated += rdiss;
     s->energy.kinetic = ke;
     s->energy.strain = me.strain;
     s->energy.model_dissipated = me.dissipated;
-    double total = ke + me.strain + me.dissipated + s->energy.damping - s->energy.external;
+    double total = ke + me.strain + me.dissipated + s->energy.damping - s->energy.external - rext;
     s->energy.balance = total - s->energy.initial_total;
 }
 
@@ -279,8 +286,10 @@ int sim_step(struct sim *s, struct spall_error *err)
     const double half = 0.5 * dt;
     const int pc = s->integrator == INTEGRATOR_PREDICTOR_CORRECTOR;
     kick(s, half);
+    rigid_kick(s, half, s->t + half);
     impose_velocities(s, s->t + half, half, 0);
     drift(s, dt);
+    rigid_drift(s, dt);
     account_body_work(s, dt);
     account_load_work(s, dt);
     s->t += dt;
@@ -301,7 +310,9 @@ int sim_step(struct sim *s, struct spall_error *err)
         for (int d = 0; d < s->dim; d++)
             memcpy(s->p->v[d], s->v_half[d], s->p->n_owned * sizeof(double));
     kick(s, half);
+    rigid_kick(s, half, s->t);
     impose_velocities(s, s->t, half, 1);
+    rigid_no_slip(s, dt);
     if (s->ops->advance_state && (rc = s->ops->advance_state(s->model, s, dt, 1, err)))
         return rc;
     rc = s->ops->end_step(s->model, s, err);

@@ -5,6 +5,7 @@
  * The time step itself lives in integrator.c.
  */
 #include "core/sim.h"
+#include "core/rigid.h"
 
 #include "core/fields.h"
 #include "core/geometry.h"
@@ -58,6 +59,7 @@ void sim_destroy(struct sim **sp)
     for (int d = 0; d < 3; d++)
         free(s->v_half[d]);
     free(s->materials);
+    rigid_set_destroy(&s->rigid);
     free(s);
     *sp = NULL;
 }

@@ -23,6 +23,7 @@ struct model;
 struct model_ops;
 struct particles;
 struct precrack;
+struct rigid_set;
 struct spall_error;
 
 #define SPALL_NAME_LEN 64
@@ -124,6 +125,7 @@ struct sim {
     double *v_half[3];    /**< predictor-corrector scratch (owned) */
     int threads;          /**< OpenMP threads (0 = library default) */
     uint64_t seed;        /**< random seed for stochastic features */
+    struct rigid_set *rigid; /**< rigid impactors / supports (core/rigid.h), may be NULL */
 };
 
 /** Empty context for a @p dim-dimensional run. */

@@ -13,6 +13,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
+#include "io/deck_impactors.h"
 #include "models/model.h"
 #include "spall/error.h"
 
@@ -28,6 +29,7 @@ static const char *const top_keys[] = {"title", "description", "model", "materia
                                        "boundary_conditions", "initial_velocity", "gravity",
                                        "damping", "probes", "run", "output",
                                        /* impact (issue 3) keys */
+                                       "impactors",
 
                                        /* other section keys */
                                        NULL};
@@ -462,6 +464,12 @@ static int parse_time_function(const struct deck_node *bcn, struct time_function
     return rc;
 }
 
+int deck_build_time_function(const struct deck_node *map, struct time_function *tf,
+                             struct spall_error *err)
+{
+    return parse_time_function(map, tf, err);
+}
+
 static int parse_components(const struct deck_node *map, int dim, unsigned *mask,
                             struct spall_error *err)
 {
@@ -723,7 +731,7 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
     double gravity[3] = {0, 0, 0};
     if ((rc = parse_groups(&c, root, err)) || (rc = parse_precracks(&c, root, err)) ||
         (rc = parse_bcs(&c, root, err)) || (rc = parse_initial_velocity(&c, root, err)) ||
-        (rc = parse_probes(&c, root, err)) ||
+        (rc = parse_probes(&c, root, err)) || (rc = deck_parse_impactors(c.sim, root, err)) ||
         (rc = deck_vector(root, "gravity", false, (size_t)c.dim, 3, gravity, err)) ||
         (rc = deck_double(root, "damping", false, 0.0, INFINITY, &c.sim->damping, err)) ||
         (rc = parse_run(&c, root, ro, err)) || (rc = parse_output(&c, root, ro, err)) ||

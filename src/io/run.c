@@ -14,6 +14,7 @@
 
 #include "core/bond_list.h"
 #include "core/particles.h"
+#include "core/rigid.h"
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
@@ -86,6 +87,13 @@ static void history_columns(const struct sim *s, struct history_layout *h)
             snprintf(nm, sizeof nm, "bc%zu_%s", k, s->groups[s->bcs[k].group].name);
             hist_add(h, "%s_force_%s [N]", nm, axis_name(d));
         }
+    if (s->rigid) /* impactors (issue 3) */
+        for (size_t k = 0; k < s->rigid->n; k++) {
+            char nm[RIGID_HISTORY_COLS][96];
+            size_t m = rigid_history_names(s, k, nm);
+            for (size_t q = 0; q < m; q++)
+                hist_add(h, "%.95s%s", nm[q], "");
+        }
     h->n_model = 0;
     if (s->ops->history) {
         const char *names[MODEL_HISTORY_MAX];
@@ -119,6 +127,9 @@ static void history_values(const struct sim *s, const struct history_layout *h, 
     for (size_t k = 0; k < s->n_bcs; k++)
         for (int d = 0; d < s->dim; d++)
             v[c++] = s->bcs[k].reaction[d];
+    if (s->rigid) /* impactors (issue 3) */
+        for (size_t k = 0; k < s->rigid->n && c < h->n; k++)
+            c += rigid_history_values(s, k, v + c);
     if (h->n_model) {
         const char *names[MODEL_HISTORY_MAX];
         double vals[MODEL_HISTORY_MAX];

@@ -1,0 +1,36 @@
+/**
+ * @file impact_cases.h
+ * @brief Validation cases of the rigid impactors with the lattice model
+ *        (issue 3, seed 000 sec. 3.2-4.2), registered in validation/cases.c;
+ *        numbers tabulated in docs/validation.md.
+ */
+#ifndef SPALL_VALIDATION_IMPACT_CASES_H
+#define SPALL_VALIDATION_IMPACT_CASES_H
+
+#include <stddef.h>
+
+struct spall_error;
+struct vreport;
+
+/** "impact-nylon": seed 000 sec. 3.2.1 drop-weight indentation of nylon-6,6. */
+int impact_case_nylon(struct vreport *r, struct spall_error *err);
+/** "impact-vinylester": seed 000 sec. 3.2.2, vinyl ester at 1.91 m/s. */
+int impact_case_vinylester(struct vreport *r, struct spall_error *err);
+/** Deck text of the indentation rig (also behind examples/impact_*). */
+int impact_indent_deck(char *buf, size_t len, double rho, double E, double sigma, double v0,
+                       double r0, double end_time);
+
+/** "impact-spall": seed 000 sec. 4.2 flyer-plate spall, both flyer widths. */
+int impact_case_spall(struct vreport *r, struct spall_error *err);
+/** Deck text of the spall case (flyer + target, interface pre-cut). */
+int impact_spall_deck(char *buf, size_t len, double flyer_width, double r0, double end_time);
+
+/** "impact-epoxy": seed 000 sec. 3.1 epoxy plate with holes, cracks link holes. */
+int impact_case_epoxy(struct vreport *r, struct spall_error *err);
+
+/** "impact-punch": seed 000 sec. 3.2.3 3D vinyl ester punch-shear. */
+int impact_case_punch(struct vreport *r, struct spall_error *err);
+/** Deck text of the punch-shear case (also used by bench/bench_impact.c). */
+int impact_punch_deck(char *buf, size_t len, double r0, const char *contact, double end_time);
+
+#endif
