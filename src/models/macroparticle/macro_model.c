@@ -111,7 +111,7 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
             (rc = deck_double(params, "taper", false, 1.0, 3.0, &m->taper_ratio, err)) ||
             (rc = deck_double(params, "skin", false, 0.0, 1.0, &m->skin_ratio, err)) ||
             (rc = deck_enum(params, "damping", false, damps, &damp, err)) ||
-            (rc = deck_double(params, "temperature", false, 0.0, 1e6, &m->temperature, err)) ||
+            (rc = deck_double(params, "temperature", false, 0.0, INFINITY, &m->temperature, err)) ||
             (rc = deck_double(params, "gamma", false, 0.0, INFINITY, &m->gamma, err)) ||
             (rc = deck_double(params, "mu", false, 0.0, INFINITY, &m->mu, err)) ||
             (rc = deck_double_pos(params, "zeta_cg", false, &m->zeta_cg, err)) ||
