@@ -37,6 +37,10 @@ struct macro_rod {
     size_t particles;
     double r0, E_eq15, E_fcc100;
     double end_time;
+    /** original nearest-neighbour pairs stretched beyond 1.2 r0 at the end,
+     *  by <110> family: (110) (1-10) (101) (10-1) (011) (01-1) */
+    size_t broken[6];
+    size_t bonds0;
 };
 
 int macro_rod_run(struct macro_rod *rod, struct spall_error *err);

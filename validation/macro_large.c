@@ -91,8 +91,40 @@ int macro_case_rod_large(struct vreport *r, struct spall_error *err)
     double drop = 1.0;
     for (size_t k = kp + 1; k < c.n; k++)
         drop = fmin(drop, -c.stress[k] / -c.stress[kp]);
-    vreport_info(r, "compression: peak |stress| %.4g MPa at strain %.3f %%, final/peak = %.3f",
-                 fabs(c.stress[kp]) / 1e6, 100.0 * fabs(c.strain[kp]), drop);
+    vreport_info(r, "compression: peak |stress| %.4g MPa at strain %.3f %% (lateral strain %.3f "
+                 "%%), min stress after / peak = %.3f; at the end strain %.3f %%, lateral "
+                 "strain %.3f %%", fabs(c.stress[kp]) / 1e6, 100.0 * fabs(c.strain[kp]),
+                 100.0 * c.lateral[kp], drop, 100.0 * c.strain[c.n - 1],
+                 100.0 * c.lateral[c.n - 1]);
+    {
+        /* slip planes: on a {111} plane the three <110> bond families lying
+         * in the plane survive, the three crossing it break */
+        static const int nrm[4][3] = {{1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+        static const int fam[6][3] = {{1, 1, 0}, {1, -1, 0}, {1, 0, 1}, {1, 0, -1}, {0, 1, 1},
+                                      {0, 1, -1}};
+        size_t tot = 0;
+        for (int k = 0; k < 6; k++)
+            tot += c.broken[k];
+        char line[400];
+        size_t w = (size_t)snprintf(line, sizeof line, "compression end: %zu of %zu nearest-"
+                                    "neighbour pairs separated (> 1.2 r0); by family (110) "
+                                    "(1-10) (101) (10-1) (011) (01-1):", tot, c.bonds0);
+        for (int k = 0; k < 6 && w < sizeof line; k++)
+            w += (size_t)snprintf(line + w, sizeof line - w, " %zu", c.broken[k]);
+        vreport_info(r, "%s", line);
+        for (int n = 0; n < 4; n++) {
+            size_t in = 0, out = 0;
+            for (int k = 0; k < 6; k++) {
+                int dot = nrm[n][0] * fam[k][0] + nrm[n][1] * fam[k][1] + nrm[n][2] * fam[k][2];
+                if (dot == 0)
+                    in += c.broken[k];
+                else
+                    out += c.broken[k];
+            }
+            vreport_info(r, "  plane (%+d%+d%+d): separated bonds crossing it %zu, lying in it "
+                         "%zu", nrm[n][0], nrm[n][1], nrm[n][2], out, in);
+        }
+    }
     snprintf(q, sizeof q, "n_phi = %d: compressive collapse strain", nphi);
     if ((rc = vreport_check(r, q, "%", 3.2, kp + 1 < c.n && drop < 0.5 ? 100.0 * fabs(c.strain[kp])
                                                                       : NAN,

@@ -17,6 +17,7 @@
 #include "validation/lattice_cases.h"
 #include "validation/validation.h"
 
+#include "core/neighbor.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "models/macroparticle/macro_calib.h"
@@ -56,6 +57,47 @@ double macro_fit_slope(const double *x, const double *y, size_t n, double lo, do
     }
     double den = c * sxx - sx * sx;
     return c >= 2.0 && den > 0.0 ? (c * sxy - sx * sy) / den : NAN;
+}
+
+/** Count reference nearest-neighbour pairs now beyond 1.2 r0, by family. */
+static int count_broken(struct macro_rod *rod, const struct sim *s, struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    struct neighbor_list *nl = NULL;
+    int rc = neighbor_list_build(&nl, 3, p->n_owned, p->x0, 1.1 * rod->r0, err);
+    if (rc)
+        return rc;
+    static const int fam[6][3] = {{1, 1, 0}, {1, -1, 0}, {1, 0, 1}, {1, 0, -1}, {0, 1, 1},
+                                  {0, 1, -1}};
+    memset(rod->broken, 0, sizeof rod->broken);
+    rod->bonds0 = 0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        for (size_t q = nl->offset[i]; q < nl->offset[i + 1]; q++) {
+            size_t j = (size_t)nl->idx[q];
+            if (j <= i)
+                continue;
+            rod->bonds0++;
+            double d0[3], r2 = 0.0;
+            for (int d = 0; d < 3; d++) {
+                d0[d] = p->x0[d][j] - p->x0[d][i];
+                double u = p->x[d][j] - p->x[d][i];
+                r2 += u * u;
+            }
+            if (r2 <= 1.44 * rod->r0 * rod->r0)
+                continue;
+            int best = 0;
+            double bd = 0.0;
+            for (int k = 0; k < 6; k++) {
+                double dot = fabs(d0[0] * fam[k][0] + d0[1] * fam[k][1] + d0[2] * fam[k][2]);
+                if (dot > bd) {
+                    bd = dot;
+                    best = k;
+                }
+            }
+            rod->broken[best]++;
+        }
+    neighbor_list_destroy(&nl);
+    return SPALL_OK;
 }
 
 int macro_rod_run(struct macro_rod *rod, struct spall_error *err)
@@ -142,6 +184,8 @@ int macro_rod_run(struct macro_rod *rod, struct spall_error *err)
             rod->n++;
         }
     }
+    if (!rc)
+        rc = count_broken(rod, s, err);
     sim_destroy(&s);
     return rc;
 }
