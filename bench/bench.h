@@ -45,6 +45,8 @@ extern const size_t bench_impact_n_cases;
 /* peridynamics bench table */
 
 /* macro-particle bench table */
+extern const struct bench_case bench_macro_cases[];
+extern const size_t bench_macro_n_cases;
 
 /* sph bench table */
 

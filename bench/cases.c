@@ -20,6 +20,7 @@ static const struct bench_table tables[] = {
     /* peridynamics table entry */
 
     /* macro-particle table entry */
+    {bench_macro_cases, &bench_macro_n_cases},
 
     /* sph table entry */
 

@@ -10,6 +10,7 @@
 /* peridynamics cases header */
 
 /* macro-particle cases header */
+#include "validation/macro_cases.h"
 
 /* sph cases header */
 
@@ -44,6 +45,16 @@ static const struct vcase cases[] = {
     /* peridynamics (issue 4) */
 
     /* macro-particle (issue 5) */
+    {"macro-calibration", "seed 001 Table 1: E from Eq. 15 for Al and Cu", false,
+     macro_case_calibration},
+    {"macro-rod-elastic", "seed 001 sec. 2.6 rod: E and nu vs n_phi and n_h/n_phi", true,
+     macro_case_rod_elastic},
+    {"macro-thermostat", "seed 001 Langevin forces: free block settles to T (absolute, pairwise)",
+     true, macro_case_thermostat},
+    {"macro-rod-large", "seed 001 sec. 2.6 rod: tension vs compression, compressive collapse",
+     false, macro_case_rod_large},
+    {"macro-rod-plastic", "seed 001 sec. 2.6 rod with Eq. 16 plasticity: yield, hardening, loop",
+     false, macro_case_rod_plastic},
 
     /* SPH (issue 6) */
 

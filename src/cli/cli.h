@@ -8,6 +8,8 @@ int cli_bench(int argc, char **argv);
 int cli_calibrate(int argc, char **argv);
 /** `spall penetrate`: analytical penetration models (src/cli/cmd_penetrate.c). */
 int cli_penetrate(int argc, char **argv);
+/** `spall calibrate macroparticle` (cmd_calibrate_macro.c). */
+int cli_calibrate_macroparticle(int argc, char **argv);
 
 /** Map a libspall status to the process exit status: bad input 2,
  *  unstable run 3, I/O 4, anything else 1. */

@@ -39,6 +39,8 @@ static int parse_num(const char *opt, const char *s, double *out)
 
 int cli_calibrate(int argc, char **argv)
 {
+    if (argc >= 2 && strcmp(argv[1], "macroparticle") == 0)
+        return cli_calibrate_macroparticle(argc, argv);
     if (argc < 2 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
         calibrate_usage(argc < 2 ? stderr : stdout);
         return argc < 2 ? 2 : 0;

@@ -11,6 +11,7 @@ extern const struct model_ops lattice_model_ops;
 /* peridynamics extern */
 
 /* macro-particle extern */
+extern const struct model_ops macroparticle_model_ops;
 
 /* sph extern */
 
@@ -19,6 +20,7 @@ static const struct model_ops *const model_table[] = {
     /* peridynamics entry */
 
     /* macro-particle entry */
+    &macroparticle_model_ops,
 
     /* sph entry */
 
@@ -40,6 +42,7 @@ static const char *const model_name_list[] = {
     /* peridynamics name */
 
     /* macro-particle name */
+    "macroparticle",
 
     /* sph name */
 

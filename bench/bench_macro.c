@@ -1,0 +1,87 @@
+/**
+ * @file bench_macro.c
+ * @brief Macro-particle throughput: the rod of seed 001 section 2.6 at
+ *        n_phi = 16, n_h/n_phi = 4 (51 413 particles, the paper's count),
+ *        tension, 500 steps, no output.
+ */
+#include "bench/bench.h"
+
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "io/deck_build.h"
+#include "models/model.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <string.h>
+
+static int bench_macro_rod(int threads, double scale, struct bench_result *out,
+                           struct spall_error *err)
+{
+    /* scale shrinks the rod length (n_h cells), not the resolution */
+    const double D = 14.0e-3, a = D / 16.0, r0 = a / sqrt(2.0);
+    double n_h = fmax(2.0, round(64.0 * scale));
+    const double L = n_h * a, e = 1e-7 * D;
+    long steps = scale < 1.0 ? 50 : 500;
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: macroparticle, damping: pairwise, mu: 1.0e-3}\n"
+             "materials:\n"
+             "  al: {density: 2700, atomic_mass_u: 26.98, cohesive_energy_ev: 3.39,\n"
+             "       exponents: [4, 9], debye_temperature: 428}\n"
+             "lattice: {type: fcc, spacing: %.17g}\n"
+             "geometry:\n"
+             "  rod: {cylinder: {base: [0, 0, %.17g], top: [0, 0, %.17g], radius: %.17g}}\n"
+             "body: {geometry: rod, material: al}\n"
+             "groups:\n"
+             "  bottom: {box: {min: [-1, -1, -1], max: [1, 1, %.17g]}}\n"
+             "  top: {box: {min: [-1, -1, %.17g], max: [1, 1, 1]}}\n"
+             "boundary_conditions:\n"
+             "  - {group: bottom, type: velocity, components: [z], value: -0.5}\n"
+             "  - {group: top, type: velocity, components: [z], value: 0.5}\n"
+             "run: {steps: %ld}\n",
+             r0, -e, L + e, 0.5 * D + e, 0.25 * r0, L - 0.25 * r0, steps);
+    omp_set_num_threads(threads);
+    double rss0 = bench_rss_bytes();
+    struct deck *d = NULL;
+    struct sim *s = NULL;
+    struct run_output ro;
+    int rc = deck_load_string(&d, "macro_rod", yaml, err);
+    if (!rc)
+        rc = deck_build_sim(d, &s, &ro, err);
+    if (rc) {
+        deck_destroy(&d);
+        return rc;
+    }
+    double rss1 = bench_rss_bytes();
+    double t0 = omp_get_wtime();
+    while (!sim_done(s) && !rc)
+        rc = sim_step(s, err);
+    double wall = omp_get_wtime() - t0;
+    memset(out, 0, sizeof *out);
+    snprintf(out->name, sizeof out->name, "macro_rod");
+    out->threads = threads;
+    out->particles = s->p->n_owned;
+    out->bonds = s->ops->interactions ? s->ops->interactions(s->model, s) : 0;
+    out->steps = s->step;
+    out->seconds = wall;
+    out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
+    out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
+    out->bytes_per_particle = (rss1 - rss0) / (double)out->particles;
+    snprintf(out->note, sizeof out->note,
+             "seed 001 sec. 2.6 rod n_phi 16, n_h %g (paper: 51 413 particles at n_h/n_phi 4); "
+             "list pairs r < 1.45 r0", n_h);
+    sim_destroy(&s);
+    deck_destroy(&d);
+    return rc;
+}
+
+/* Macro-particle cases, listed by bench/cases.c. */
+const struct bench_case bench_macro_cases[] = {
+    {"macro_rod", "macro-particle Al rod, n_phi 16, n_h/n_phi 4 (~51k particles), 500 steps",
+     bench_macro_rod},
+};
+const size_t bench_macro_n_cases = sizeof bench_macro_cases / sizeof bench_macro_cases[0];

@@ -1,0 +1,51 @@
+/**
+ * @file macro_calib.c
+ * @brief Macro-particle calibration (seed 001 Eqs. 10, 11, 13-15).
+ */
+#include "models/macroparticle/macro_calib.h"
+
+#include "spall/error.h"
+
+#include <math.h>
+
+#define MACRO_PI 3.14159265358979323846
+
+double macro_eq15_modulus(double rho, double atom_mass, double e0, double p, double q)
+{
+    return MACRO_PI * rho * p * q * e0 / (MACRO_PACKING * 72.0 * atom_mass);
+}
+
+double macro_debye_omega(double theta_d)
+{
+    return MACRO_KB * theta_d / MACRO_HBAR;
+}
+
+int macro_calibrate(struct macro_calib *c, struct spall_error *err)
+{
+    if (!(c->rho > 0.0) || !isfinite(c->rho))
+        return spall_error_set(err, SPALL_ERR_PHYSICS, "macro-particle: density %g; expected > 0",
+                               c->rho);
+    if (!(c->atom_mass > 0.0) || !isfinite(c->atom_mass))
+        return spall_error_set(err, SPALL_ERR_PHYSICS,
+                               "macro-particle: atomic mass %g kg; expected > 0", c->atom_mass);
+    if (!(c->e0 > 0.0) || !isfinite(c->e0))
+        return spall_error_set(err, SPALL_ERR_PHYSICS,
+                               "macro-particle: cohesive energy %g J; expected > 0", c->e0);
+    if (!(c->p > 0.0) || !(c->q > c->p) || !isfinite(c->q))
+        return spall_error_set(err, SPALL_ERR_PHYSICS,
+                               "macro-particle: exponents [%g, %g]; expected [p, q] with "
+                               "q > p > 0 (attractive p, repulsive q)", c->p, c->q);
+    if (!(c->r0 > 0.0) || !isfinite(c->r0))
+        return spall_error_set(err, SPALL_ERR_PHYSICS, "macro-particle: spacing %g m; expected > 0",
+                               c->r0);
+    const double r0 = c->r0;
+    c->n_atom = (c->rho * MACRO_PI * r0 * r0 * r0 / 6.0) / (c->atom_mass * MACRO_PACKING);
+    c->p_atom = c->n_atom * c->e0;
+    c->D = c->p_atom / 6.0;
+    c->k = c->D * c->p * c->q / (r0 * r0);
+    c->mass = c->rho * r0 * r0 * r0 / sqrt(2.0);
+    c->E = c->k / (2.0 * r0);
+    c->E_fcc100 = 2.0 * sqrt(2.0) / 3.0 * c->k / r0;
+    c->nu_fcc100 = 1.0 / 3.0;
+    return SPALL_OK;
+}

@@ -1,0 +1,234 @@
+/**
+ * @file macro_forces.c
+ * @brief Macro-particle forces: Mie pairs over a cut-off (seed 001 Eqs. 2-5,
+ *        13, written in the consistent form of spec/macroparticle.md), pair
+ *        plasticity (Eq. 16), Langevin dissipation and random forces
+ *        (Eqs. 6-9, 17-22), and the Verlet neighbour list with a skin.
+ *
+ * Neighbours: a full cell-list list (core/neighbor.h) of radius r_c + skin,
+ * rebuilt when some particle moved more than skin/2 since the last build
+ * (then no pair can have crossed r_c unseen).  Macro-particles may slip and
+ * meet new partners; a pair's plastic state lives in per-slot arrays and is
+ * carried to the new list by merging the old and new partner lists of each
+ * particle (both sorted by partner index; the engine never reorders
+ * particles, so the index pair identifies the gid pair for the whole run).
+ * A pair that leaves the list (r > r_c + skin) forgets its plastic offset.
+ *
+ * Each particle gathers over its full list (both ends of a pair evaluate it
+ * with the same numbers, so the two slots of a pair evolve identically) and
+ * writes only its own force, energy and state: no atomics, and the result is
+ * bitwise independent of the thread count.
+ *
+ * Plasticity (Eq. 16 leaves the route open; our choice): the elastic stretch
+ * of a pair is e = r - r0 - dr0.  While |e| <= e_y + h kappa the pair is
+ * elastic on the shifted branch phi_E(r - dr0) (= phi_U, the constant C_phi
+ * does not change forces).  Past it the excess is converted into slip:
+ * d = (|e| - e_y - h kappa)/(1 + h), dr0 += sign(e) d, kappa += d, so the
+ * plastic route has tangent stiffness t = h/(1+h) of the elastic one at the
+ * yield point (linear isotropic hardening of the pair) and unloading
+ * follows the elastic branch shifted by dr0.  The same yield stretch acts in
+ * compression.  Plastic work F d is booked as dissipated energy.
+ *
+ * Langevin forces: absolute F = -gamma v + sigma xi with sigma =
+ * eta_CG sqrt(2 gamma k_B T / dt) (Eq. 17-22) or pairwise F_ij = mu (v_j -
+ * v_i) + sigma_p xi_ij, xi_ij = -xi_ji (both ends draw the same numbers from
+ * the key (min gid, max gid) and apply them with opposite signs).  The
+ * forces use the velocities the integrator hands to the force call (the
+ * half-step ones with velocity Verlet).
+ */
+#include "models/macroparticle/macro_internal.h"
+
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/** Move the per-slot plastic state from list @p old to list @p nw. */
+static void carry_state(const struct neighbor_list *old, const double *odr, const double *oka,
+                        const uint8_t *oen, const struct neighbor_list *nw, double *ndr,
+                        double *nka, uint8_t *nen)
+{
+    const size_t n = nw->n;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        size_t a = old->offset[i], ae = old->offset[i + 1];
+        for (size_t s = nw->offset[i]; s < nw->offset[i + 1]; s++) {
+            int32_t j = nw->idx[s];
+            while (a < ae && old->idx[a] < j)
+                a++;
+            if (a < ae && old->idx[a] == j) {
+                ndr[s] = odr[a];
+                nka[s] = oka[a];
+                nen[s] = oen[a];
+            } else {
+                ndr[s] = 0.0;
+                nka[s] = 0.0;
+                nen[s] = 0;
+            }
+        }
+    }
+}
+
+int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err)
+{
+    struct particles *p = sim->p;
+    const size_t n = p->n;
+    const double skin = m->skin_ratio * m->pp.r0;
+    if (!force && m->nl && m->nl->n == n) {
+        double d2max = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            double d2 = 0.0;
+            for (int d = 0; d < sim->dim; d++) {
+                double u = p->x[d][i] - m->xb[d][i];
+                d2 += u * u;
+            }
+            d2max = d2 > d2max ? d2 : d2max;
+        }
+        if (4.0 * d2max < skin * skin)
+            return SPALL_OK;
+    }
+    struct neighbor_list *nl = NULL;
+    int rc = neighbor_list_build(&nl, sim->dim, n, p->x, m->pp.r_c + skin, err);
+    if (rc)
+        return rc;
+    size_t ns = nl->offset[n];
+    double *ndr = calloc(ns ? ns : 1, sizeof *ndr), *nka = calloc(ns ? ns : 1, sizeof *nka);
+    uint8_t *nen = calloc(ns ? ns : 1, 1);
+    if (!ndr || !nka || !nen) {
+        free(ndr);
+        free(nka);
+        free(nen);
+        neighbor_list_destroy(&nl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for macro-particle pairs");
+    }
+    if (m->nl && m->nl->n == n)
+        carry_state(m->nl, m->dr0, m->kappa, m->engaged, nl, ndr, nka, nen);
+    neighbor_list_destroy(&m->nl);
+    free(m->dr0);
+    free(m->kappa);
+    free(m->engaged);
+    m->engaged = nen;
+    m->nl = nl;
+    m->dr0 = ndr;
+    m->kappa = nka;
+    for (int d = 0; d < sim->dim; d++)
+        memcpy(m->xb[d], p->x[d], n * sizeof(double));
+    m->n_builds++;
+    return SPALL_OK;
+}
+
+int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    int rc = macro_neighbors_update(m, sim, false, err);
+    if (rc)
+        return rc;
+    struct particles *p = sim->p;
+    const struct neighbor_list *nl = m->nl;
+    const struct macro_pair w = m->pp;
+    const size_t n = p->n_owned;
+    const int dim = sim->dim;
+    const bool plastic = isfinite(w.e_y);
+    const double dt = sim->dt > 0.0 ? sim->dt : 1.0;
+    const double kT = MACRO_KB * m->temperature;
+    const double g = m->damping == MACRO_DAMP_ABSOLUTE ? m->gamma_used : 0.0;
+    const double mu = m->damping == MACRO_DAMP_PAIRWISE ? m->mu_used : 0.0;
+    const double sg = m->eta_cg * sqrt(2.0 * g * kT / dt);
+    const double sp = m->eta_cg * sqrt(2.0 * mu * kT / dt);
+    const uint64_t seed = sim->seed, step = (uint64_t)m->n_calls;
+    const double rlist2 = (w.r_c + m->skin_ratio * w.r0) * (w.r_c + m->skin_ratio * w.r0);
+    double *const *x = p->x, *const *v = p->v, *const *f = p->f;
+    const int64_t *gid = p->gid;
+    uint8_t *eng = m->engaged;
+    double *dr0 = m->dr0, *kap = m->kappa, *epot = m->epot, *sig = m->sig, *wd = m->wdiss;
+    m->n_calls++;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < n; i++) {
+        double xi[3] = {0, 0, 0}, vi[3] = {0, 0, 0}, fi[3] = {0, 0, 0}, fl[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) {
+            xi[d] = x[d][i];
+            vi[d] = v[d][i];
+        }
+        double e = 0.0, s6[6] = {0, 0, 0, 0, 0, 0}, wplast = 0.0;
+        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+            const size_t j = (size_t)nl->idx[s];
+            double dx[3] = {0, 0, 0}, r2 = 0.0;
+            for (int d = 0; d < dim; d++) {
+                dx[d] = x[d][j] - xi[d];
+                r2 += dx[d] * dx[d];
+            }
+            if (r2 >= rlist2 || r2 == 0.0)
+                continue;
+            const double r = sqrt(r2);
+            double re = r;
+            if (plastic) {
+                double el = r - w.r0 - dr0[s];
+                double lim = w.e_y + w.h * kap[s];
+                double a = fabs(el);
+                if (!eng[s]) {
+                    /* a pair met at a large stretch (a second neighbour
+                     * sliding in) stays elastic until it enters the yield
+                     * surface: it cannot be "welded" at a wrong spacing */
+                    if (a <= lim)
+                        eng[s] = 1;
+                } else if (r >= w.r_c) {
+                    /* separated: the pair forgets its plastic history */
+                    dr0[s] = 0.0;
+                    kap[s] = 0.0;
+                    eng[s] = 0;
+                } else if (a > lim) {
+                    double dd = (a - lim) / (1.0 + w.h);
+                    double sgn = el > 0.0 ? 1.0 : -1.0;
+                    dr0[s] += sgn * dd;
+                    kap[s] += dd;
+                    double ph, fr;
+                    macro_mie(&w, w.r0 + sgn * (lim + w.h * dd), &ph, &fr);
+                    wplast += 0.5 * fabs(fr) * dd; /* half per end of the pair */
+                }
+                re = r - dr0[s];
+            }
+            if (mu > 0.0 && r < w.r_c) {
+                double xr[3] = {0, 0, 0};
+                uint64_t ga = (uint64_t)gid[i], gb = (uint64_t)gid[j];
+                double sgn = ga < gb ? 1.0 : -1.0;
+                if (sp > 0.0)
+                    macro_gauss3(seed, step, ga < gb ? ga : gb, ga < gb ? gb : ga, xr);
+                for (int d = 0; d < dim; d++)
+                    fl[d] += mu * (v[d][j] - vi[d]) + sgn * sp * xr[d];
+            }
+            if (re >= w.r_c || re <= 0.0)
+                continue;
+            double phi, fr;
+            macro_mie(&w, re, &phi, &fr);
+            e += 0.5 * phi;
+            const double c = -fr / r; /* force on i along dx (attraction > 0) */
+            for (int d = 0; d < dim; d++)
+                fi[d] += c * dx[d];
+            s6[0] += 0.5 * c * dx[0] * dx[0];
+            s6[1] += 0.5 * c * dx[1] * dx[1];
+            s6[2] += 0.5 * c * dx[2] * dx[2];
+            s6[3] += 0.5 * c * dx[0] * dx[1];
+            s6[4] += 0.5 * c * dx[1] * dx[2];
+            s6[5] += 0.5 * c * dx[2] * dx[0];
+        }
+        if (g > 0.0) {
+            double xr[3] = {0, 0, 0};
+            if (sg > 0.0)
+                macro_gauss3(seed, step, (uint64_t)gid[i], UINT64_MAX, xr);
+            for (int d = 0; d < dim; d++)
+                fl[d] += -g * vi[d] + sg * xr[d];
+        }
+        double pw = 0.0;
+        for (int d = 0; d < dim; d++) {
+            f[d][i] += fi[d] + fl[d];
+            pw += fl[d] * vi[d];
+        }
+        epot[i] = e;
+        for (int k = 0; k < 6; k++)
+            sig[6 * i + k] = s6[k];
+        wd[i] += wplast - pw * dt;
+    }
+    return SPALL_OK;
+}

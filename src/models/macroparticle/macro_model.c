@@ -1,0 +1,512 @@
+/**
+ * @file macro_model.c
+ * @brief Macro-particle model (seed 001 "MPM", spec/macroparticle.md): FCC
+ *        macro-particles each standing for N_atom atoms, joined by a Mie pair
+ *        potential whose depth comes from the cohesive energy (Eqs. 10-15),
+ *        with optional Langevin forces (Eqs. 6-9, 17-22) and pair plasticity
+ *        (Eq. 16).  Forces and neighbours: macro_forces.c.
+ *
+ * Deck keys (copied to docs/decks.md):
+ *
+ *   model:
+ *     type: macroparticle
+ *     cutoff: r_c / r0 (default 1.35: the nearest FCC shell only; the second
+ *             shell sits at sqrt2 = 1.414)
+ *     taper: r_on / r0 (default 1.2): phi is multiplied by a cubic switch
+ *            from 1 at r_on to 0 at r_c, so force and energy are continuous
+ *     skin: Verlet skin / r0 (default 0.1)
+ *     damping: none | absolute | pairwise (default none)
+ *     temperature: bath temperature T [K] (default 0: no random force)
+ *     gamma: absolute coefficient [kg/s] (default zeta_cg m (pi/6) omega_D,
+ *            m the atomic mass, omega_D = k_B theta_D / hbar; Eq. 20)
+ *     mu: pairwise coefficient [kg/s] (same default)
+ *     zeta_cg: coarse-graining factor of the dissipation (default 1)
+ *     eta_cg: coarse-graining factor of the random force (default 1; the
+ *             bath then holds eta_cg^2 T)
+ *     axis: x | y | z: loading axis of the history's strain (default z)
+ *
+ *   materials:
+ *     <name>:
+ *       density: [kg/m^3]
+ *       atomic_mass_u: atomic mass [u] (> 0, required)
+ *       cohesive_energy_ev: cohesive energy per atom [eV] (> 0, required)
+ *       exponents: [p, q], q > p > 0 (required; seed 001 uses [4, 9] for Al)
+ *       debye_temperature: [K] (> 0; required only for Langevin defaults)
+ *       yield_strain: pair elastic stretch at yield / r0 (> 0; optional,
+ *                     turns plasticity on)
+ *       hardening: plastic / elastic pair tangent in [0, 1) (default 0.1)
+ *
+ * The lattice must be fcc (3D): r0 = lattice.spacing.  One material per
+ * run (the pair shape of material 0 is used; a second material is refused).
+ *
+ * Fields: stress [Pa] (virial, tension positive, xx yy zz xy yz xz),
+ * strain_energy [J] (half the pair energies of the particle), plastic_slip
+ * [m] (sum of the accumulated slip of its pairs, halved).
+ * History: strain (axial, from the mean positions of the end layers),
+ * lateral_strain (RMS transverse spread of the middle half), stress_axial,
+ * stress_xx, stress_yy, stress_zz (specimen virial average, Pa),
+ * kinetic_temperature [K], plastic_pairs, neighbor_builds.
+ */
+#include "models/macroparticle/macro_internal.h"
+
+#include "core/fields.h"
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "models/model.h"
+#include "spall/error.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MACRO_PI 3.14159265358979323846
+
+static void macro_destroy(struct model **pm)
+{
+    if (!pm || !*pm)
+        return;
+    struct model *m = *pm;
+    free(m->mat);
+    neighbor_list_destroy(&m->nl);
+    for (int d = 0; d < 3; d++)
+        free(m->xb[d]);
+    free(m->dr0);
+    free(m->kappa);
+    free(m->engaged);
+    free(m->epot);
+    free(m->sig);
+    free(m->wdiss);
+    free(m->lo_idx);
+    free(m->hi_idx);
+    free(m->mid_idx);
+    free(m);
+    *pm = NULL;
+}
+
+static int macro_create(struct model **out, struct sim *sim, const struct deck_node *params,
+                        struct spall_error *err)
+{
+    static const char *const keys[] = {"type", "cutoff", "taper", "skin", "damping",
+                                       "temperature", "gamma", "mu", "zeta_cg", "eta_cg", "axis",
+                                       NULL};
+    static const char *const damps[] = {"none", "absolute", "pairwise", NULL};
+    static const char *const axes[] = {"x", "y", "z", NULL};
+    (void)sim;
+    *out = NULL;
+    struct model *m = calloc(1, sizeof *m);
+    if (!m)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating the macro model");
+    m->sim = sim;
+    m->cutoff_ratio = 1.35;
+    m->taper_ratio = 1.2;
+    m->skin_ratio = 0.1;
+    m->zeta_cg = 1.0;
+    m->eta_cg = 1.0;
+    m->axis = 2;
+    int damp = 0, ax = 2, rc = 0;
+    if (params) {
+        if ((rc = deck_double(params, "cutoff", false, 1.05, 3.0, &m->cutoff_ratio, err)) ||
+            (rc = deck_double(params, "taper", false, 1.0, 3.0, &m->taper_ratio, err)) ||
+            (rc = deck_double(params, "skin", false, 0.0, 1.0, &m->skin_ratio, err)) ||
+            (rc = deck_enum(params, "damping", false, damps, &damp, err)) ||
+            (rc = deck_double(params, "temperature", false, 0.0, INFINITY, &m->temperature, err)) ||
+            (rc = deck_double(params, "gamma", false, 0.0, INFINITY, &m->gamma, err)) ||
+            (rc = deck_double(params, "mu", false, 0.0, INFINITY, &m->mu, err)) ||
+            (rc = deck_double_pos(params, "zeta_cg", false, &m->zeta_cg, err)) ||
+            (rc = deck_double_pos(params, "eta_cg", false, &m->eta_cg, err)) ||
+            (rc = deck_enum(params, "axis", false, axes, &ax, err)) ||
+            (rc = deck_check_unused(params, "model", keys, err))) {
+            macro_destroy(&m);
+            return rc;
+        }
+        if (!(m->taper_ratio < m->cutoff_ratio)) {
+            rc = deck_error_key(err, params, "taper", "taper %g must be below cutoff %g (both "
+                                "in units of r0)", m->taper_ratio, m->cutoff_ratio);
+            macro_destroy(&m);
+            return rc;
+        }
+        if (m->temperature > 0.0 && damp == 0) {
+            rc = deck_error_key(err, params, "temperature", "temperature %g K needs damping: "
+                                "absolute or pairwise (fluctuation-dissipation, seed 001 "
+                                "Eq. 9)", m->temperature);
+            macro_destroy(&m);
+            return rc;
+        }
+    }
+    m->damping = (enum macro_damping)damp;
+    m->axis = ax;
+    *out = m;
+    return SPALL_OK;
+}
+
+static int macro_parse_material(struct model *m, struct sim *sim, int index,
+                                const struct deck_node *node, struct spall_error *err)
+{
+    static const char *const keys[] = {"density", "atomic_mass_u", "cohesive_energy_ev",
+                                       "exponents", "debye_temperature", "yield_strain",
+                                       "hardening", NULL};
+    char what[SPALL_NAME_LEN + 16];
+    snprintf(what, sizeof what, "materials.%s", sim->materials[index].name);
+    if (index != 0)
+        return deck_error(err, node, "%s: the macro-particle model takes one material per run",
+                          what);
+    struct macro_material mt;
+    memset(&mt, 0, sizeof mt);
+    mt.hardening = 0.1;
+    double mu_u = 0.0, e_ev = 0.0, pq[2] = {0, 0};
+    int rc;
+    if ((rc = deck_double_pos(node, "atomic_mass_u", true, &mu_u, err)) ||
+        (rc = deck_double_pos(node, "cohesive_energy_ev", true, &e_ev, err)) ||
+        (rc = deck_vector(node, "exponents", true, 2, 2, pq, err)) ||
+        (rc = deck_double_pos(node, "debye_temperature", false, &mt.theta_d, err)) ||
+        (rc = deck_double_pos(node, "yield_strain", false, &mt.yield_strain, err)) ||
+        (rc = deck_double(node, "hardening", false, 0.0, 0.99, &mt.hardening, err)) ||
+        (rc = deck_check_unused(node, what, keys, err)))
+        return rc;
+    if (!(pq[0] > 0.0) || !(pq[1] > pq[0]))
+        return deck_error_key(err, node, "exponents", "exponents [%g, %g]; expected [p, q] with "
+                              "q > p > 0 (attractive p, repulsive q)", pq[0], pq[1]);
+    if (mt.yield_strain > 0.0 && !(mt.yield_strain < m->taper_ratio - 1.0)) {
+        rc = deck_error_key(err, node, "yield_strain", "yield_strain %g must be below the taper "
+                            "start %g (pair stretch / r0)", mt.yield_strain,
+                            m->taper_ratio - 1.0);
+        err->code = SPALL_ERR_PHYSICS;
+        return SPALL_ERR_PHYSICS;
+    }
+    mt.atom_mass = mu_u * MACRO_AMU;
+    mt.e0 = e_ev * MACRO_EV;
+    mt.p = pq[0];
+    mt.q = pq[1];
+    mt.parsed = true;
+    if (m->n_mat < 1) {
+        m->mat = calloc(1, sizeof *m->mat);
+        if (!m->mat)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for materials");
+        m->n_mat = 1;
+    }
+    m->mat[0] = mt;
+    return SPALL_OK;
+}
+
+/** End layers and middle band for the strain gauge (reference positions). */
+static int gauge_init(struct model *m, const struct sim *sim, struct spall_error *err)
+{
+    const struct particles *p = sim->p;
+    const size_t n = p->n_owned;
+    const int a = m->axis;
+    const double *z = p->x0[a];
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        lo = z[i] < lo ? z[i] : lo;
+        hi = z[i] > hi ? z[i] : hi;
+    }
+    m->lo_idx = malloc((n ? n : 1) * sizeof(size_t));
+    m->hi_idx = malloc((n ? n : 1) * sizeof(size_t));
+    m->mid_idx = malloc((n ? n : 1) * sizeof(size_t));
+    if (!m->lo_idx || !m->hi_idx || !m->mid_idx)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the strain gauge");
+    const double tol = 0.25 * m->pp.r0, mid = 0.5 * (lo + hi), quarter = 0.25 * (hi - lo);
+    m->n_lo = m->n_hi = m->n_mid = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (z[i] < lo + tol)
+            m->lo_idx[m->n_lo++] = i;
+        if (z[i] > hi - tol)
+            m->hi_idx[m->n_hi++] = i;
+        if (fabs(z[i] - mid) <= quarter)
+            m->mid_idx[m->n_mid++] = i;
+    }
+    return SPALL_OK;
+}
+
+static double layer_mean(const double *z, const size_t *idx, size_t n)
+{
+    double s = 0.0;
+    for (size_t k = 0; k < n; k++)
+        s += z[idx[k]];
+    return n ? s / (double)n : 0.0;
+}
+
+static double band_spread(const struct model *m, double *const x[3], int dim)
+{
+    double c[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++)
+        if (d != m->axis)
+            c[d] = layer_mean(x[d], m->mid_idx, m->n_mid);
+    double s = 0.0;
+    for (size_t k = 0; k < m->n_mid; k++)
+        for (int d = 0; d < dim; d++)
+            if (d != m->axis) {
+                double u = x[d][m->mid_idx[k]] - c[d];
+                s += u * u;
+            }
+    return m->n_mid ? sqrt(s / (double)m->n_mid) : 0.0;
+}
+
+static int macro_init(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct particles *p = sim->p;
+    if (sim->dim != 3 || sim->lattice.kind != LATTICE_FCC)
+        return spall_error_set(err, SPALL_ERR_INPUT, "macro-particle model: needs a 3D fcc "
+                               "lattice (seed 001 packs macro-particles FCC), got %s in %dD",
+                               lattice_kind_name(sim->lattice.kind), sim->dim);
+    if (sim->n_materials != 1 || m->n_mat < 1 || !m->mat[0].parsed)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "macro-particle model: exactly one material with parameters");
+    const struct macro_material *mt = &m->mat[0];
+    struct macro_calib *c = &m->cal;
+    memset(c, 0, sizeof *c);
+    c->rho = sim->materials[0].density;
+    c->atom_mass = mt->atom_mass;
+    c->e0 = mt->e0;
+    c->p = mt->p;
+    c->q = mt->q;
+    c->r0 = sim->lattice.spacing;
+    int rc = macro_calibrate(c, err);
+    if (rc)
+        return rc;
+    struct macro_pair *w = &m->pp;
+    w->D = c->D;
+    w->p = c->p;
+    w->q = c->q;
+    w->r0 = c->r0;
+    w->r_on = m->taper_ratio * c->r0;
+    w->r_c = m->cutoff_ratio * c->r0;
+    w->e_y = mt->yield_strain > 0.0 ? mt->yield_strain * c->r0 : INFINITY;
+    w->h = mt->hardening / (1.0 - mt->hardening);
+    if (c->p == floor(c->p) && c->q == floor(c->q) && c->q <= 32.0) {
+        w->ip = (int)c->p;
+        w->iq = (int)c->q;
+    }
+    if (m->damping != MACRO_DAMP_NONE) {
+        double def = 0.0;
+        if (mt->theta_d > 0.0)
+            def = m->zeta_cg * mt->atom_mass * (MACRO_PI / 6.0) * macro_debye_omega(mt->theta_d);
+        double given = m->damping == MACRO_DAMP_ABSOLUTE ? m->gamma : m->mu;
+        if (!(given > 0.0) && !(def > 0.0))
+            return spall_error_set(err, SPALL_ERR_INPUT, "macro-particle model: damping %s needs "
+                                   "%s [kg/s] or the material's debye_temperature",
+                                   m->damping == MACRO_DAMP_ABSOLUTE ? "absolute" : "pairwise",
+                                   m->damping == MACRO_DAMP_ABSOLUTE ? "gamma" : "mu");
+        m->gamma_used = m->gamma > 0.0 ? m->gamma : def;
+        m->mu_used = m->mu > 0.0 ? m->mu : def;
+    }
+    const size_t n = p->n;
+    for (int d = 0; d < 3; d++) {
+        m->xb[d] = calloc(n ? n : 1, sizeof(double));
+        if (!m->xb[d])
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro model)");
+    }
+    m->epot = calloc(n ? n : 1, sizeof *m->epot);
+    m->sig = calloc(6 * (n ? n : 1), sizeof *m->sig);
+    m->wdiss = calloc(n ? n : 1, sizeof *m->wdiss);
+    if (!m->epot || !m->sig || !m->wdiss)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro model)");
+    m->volume = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        m->volume += p->volume[i];
+    if ((rc = macro_neighbors_update(m, sim, true, err)) || (rc = gauge_init(m, sim, err)))
+        return rc;
+    m->gauge0 = layer_mean(p->x0[m->axis], m->hi_idx, m->n_hi) -
+                layer_mean(p->x0[m->axis], m->lo_idx, m->n_lo);
+    m->spread0 = band_spread(m, p->x0, sim->dim);
+    m->initialised = true;
+    return SPALL_OK;
+}
+
+/* ---- fields ---------------------------------------------------------------------- */
+
+static void field_stress(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    const double *vol = m->sim->p->volume;
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 6; k++)
+            out[6 * i + k] = m->sig[6 * i + k] / vol[i];
+}
+
+static void field_energy(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    memcpy(out, m->epot, n * sizeof(double));
+}
+
+static void field_slip(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    for (size_t i = 0; i < n; i++) {
+        double s = 0.0;
+        for (size_t q = m->nl->offset[i]; q < m->nl->offset[i + 1]; q++)
+            s += m->kappa[q];
+        out[i] = 0.5 * s;
+    }
+}
+
+static int add_computed(struct field_registry *reg, const char *name, const char *unit, int nc,
+                        unsigned flags, field_compute_fn fn, const struct model *m,
+                        struct spall_error *err)
+{
+    struct field_desc d;
+    memset(&d, 0, sizeof d);
+    snprintf(d.name, sizeof d.name, "%s", name);
+    snprintf(d.unit, sizeof d.unit, "%s", unit);
+    d.ncomp = nc;
+    d.type = FIELD_F64;
+    d.flags = flags;
+    d.compute = fn;
+    d.ctx = m;
+    return field_registry_add(reg, &d, err);
+}
+
+static int macro_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
+                                 struct spall_error *err)
+{
+    (void)sim;
+    int rc;
+    if ((rc = add_computed(reg, "stress", "Pa", 6, FIELD_OUTPUT | FIELD_DEFAULT, field_stress, m,
+                           err)) ||
+        (rc = add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_energy, m, err)) ||
+        (rc = add_computed(reg, "plastic_slip", "m", 1, FIELD_OUTPUT, field_slip, m, err)))
+        return rc;
+    return SPALL_OK;
+}
+
+/* ---- step hooks -------------------------------------------------------------------- */
+
+static int macro_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    return macro_compute_forces(m, sim, err);
+}
+
+/** sqrt(2 / max(sum k / M)) with the stiffest pair curvature met down to a
+ *  10 % compression (Mie stiffens steeply), 12 partners; and the damping
+ *  limit M / (gamma or 12 mu). */
+static double macro_stable_dt(const struct model *m, const struct sim *sim)
+{
+    const struct macro_pair *w = &m->pp;
+    double kmax = 0.0;
+    for (int k = 0; k <= 60; k++) {
+        double r = w->r0 * (0.9 + (m->cutoff_ratio - 0.9) * k / 60.0), h = 1e-5 * w->r0;
+        double e1, f1, e2, f2;
+        macro_mie(w, r - h, &e1, &f1);
+        macro_mie(w, r + h, &e2, &f2);
+        double kk = fabs(f1 - f2) / (2.0 * h);
+        kmax = kk > kmax ? kk : kmax;
+    }
+    double mmin = INFINITY;
+    for (size_t i = 0; i < sim->p->n_owned; i++)
+        mmin = sim->p->mass[i] < mmin ? sim->p->mass[i] : mmin;
+    if (!isfinite(mmin) || !(kmax > 0.0))
+        return INFINITY;
+    double dt = sqrt(2.0 / (12.0 * kmax / mmin));
+    double c = m->damping == MACRO_DAMP_ABSOLUTE ? m->gamma_used
+               : m->damping == MACRO_DAMP_PAIRWISE ? 12.0 * m->mu_used : 0.0;
+    if (c > 0.0 && mmin / c < dt)
+        dt = mmin / c;
+    return dt;
+}
+
+static int macro_end_step(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    (void)m;
+    (void)sim;
+    (void)err;
+    return SPALL_OK;
+}
+
+static void macro_energy_fn(const struct model *m, const struct sim *sim,
+                            struct model_energy *out)
+{
+    double e = 0.0, w = 0.0;
+    for (size_t i = 0; i < sim->p->n_owned; i++) {
+        e += m->epot[i];
+        w += m->wdiss[i];
+    }
+    /* strain energy relative to the perfect bulk lattice (-6 D per
+     * particle): a bulk particle at rest reads 0, a surface particle the
+     * depth of its missing bonds (a constant for the run) */
+    out->strain = e + 6.0 * m->pp.D * (double)sim->p->n_owned;
+    out->dissipated = w;
+}
+
+static size_t macro_history(const struct model *m, const struct sim *sim, const char **names,
+                            double *values)
+{
+    const struct particles *p = sim->p;
+    const int a = m->axis;
+    double s[6] = {0, 0, 0, 0, 0, 0};
+    for (size_t i = 0; i < p->n_owned; i++)
+        for (int k = 0; k < 6; k++)
+            s[k] += m->sig[6 * i + k];
+    double len = layer_mean(p->x[a], m->hi_idx, m->n_hi) - layer_mean(p->x[a], m->lo_idx, m->n_lo);
+    double ke = 0.0, pairs = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        ke += p->mass[i] * (p->v[0][i] * p->v[0][i] + p->v[1][i] * p->v[1][i] +
+                            p->v[2][i] * p->v[2][i]);
+    if (m->nl)
+        for (size_t q = 0; q < m->nl->offset[p->n_owned]; q++)
+            pairs += m->kappa[q] > 0.0;
+    size_t k = 0;
+    names[k] = "strain";
+    values[k++] = m->gauge0 > 0.0 ? len / m->gauge0 - 1.0 : 0.0;
+    names[k] = "lateral_strain";
+    values[k++] = m->spread0 > 0.0 ? band_spread(m, p->x, sim->dim) / m->spread0 - 1.0 : 0.0;
+    names[k] = "stress_axial";
+    values[k++] = s[a] / m->volume;
+    names[k] = "stress_xx";
+    values[k++] = s[0] / m->volume;
+    names[k] = "stress_yy";
+    values[k++] = s[1] / m->volume;
+    names[k] = "stress_zz";
+    values[k++] = s[2] / m->volume;
+    names[k] = "kinetic_temperature";
+    values[k++] = p->n_owned ? ke / (3.0 * (double)p->n_owned * MACRO_KB) : 0.0;
+    names[k] = "plastic_pairs";
+    values[k++] = 0.5 * pairs;
+    names[k] = "neighbor_builds";
+    values[k++] = (double)m->n_builds;
+    return k;
+}
+
+static void macro_describe(const struct model *m, const struct sim *sim, char *buf, size_t len)
+{
+    const struct macro_calib *c = &m->cal;
+    (void)sim;
+    snprintf(buf, len,
+             "macro-particle model (seed 001): fcc r0 = %g m, p = %g, q = %g; N_atom = %.6g "
+             "(Eq. 11), P_atom = %.6g J (Eq. 10), D = P_atom/6 = %.6g J, phi''(r0) = %.6g N/m, "
+             "particle mass %.6g kg, E (Eq. 15) = %.6g Pa, E_fcc[100] = %.6g Pa; cut-off %g r0 "
+             "(taper from %g r0), skin %g r0; damping %s (gamma %.4g kg/s, mu %.4g kg/s), T = %g "
+             "K, eta_cg %g; plasticity %s\n",
+             c->r0, c->p, c->q, c->n_atom, c->p_atom, c->D, c->k, c->mass, c->E, c->E_fcc100,
+             m->cutoff_ratio, m->taper_ratio, m->skin_ratio,
+             m->damping == MACRO_DAMP_NONE ? "none"
+             : m->damping == MACRO_DAMP_ABSOLUTE ? "absolute" : "pairwise",
+             m->gamma_used, m->mu_used, m->temperature, m->eta_cg,
+             isfinite(m->pp.e_y) ? "on" : "off");
+}
+
+static size_t macro_interactions(const struct model *m, const struct sim *sim)
+{
+    (void)sim;
+    return m->nl ? m->nl->offset[m->nl->n] / 2 : 0;
+}
+
+const struct model_ops macroparticle_model_ops = {
+    .name = "macroparticle",
+    .summary = "macro-particle model (seed 001): FCC particles, Mie pairs from cohesive energy, "
+               "Langevin forces, pair plasticity",
+    .create = macro_create,
+    .parse_material = macro_parse_material,
+    .init = macro_init,
+    .register_fields = macro_register_fields,
+    .compute_forces = macro_forces,
+    .stable_dt = macro_stable_dt,
+    .end_step = macro_end_step,
+    .energy = macro_energy_fn,
+    .history = macro_history,
+    .describe = macro_describe,
+    .destroy = macro_destroy,
+    .interactions = macro_interactions,
+};
