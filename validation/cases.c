@@ -7,6 +7,7 @@
 /* impact cases header */
 
 /* peridynamics cases header */
+#include "validation/pd_cases.h"
 
 /* macro-particle cases header */
 
@@ -30,6 +31,9 @@ static const struct vcase cases[] = {
     /* impact, fragments, thermal lattice (issue 3) */
 
     /* peridynamics (issue 4) */
+    {"pd-waves", "PMB wave speeds: 1D bar and 2D plate vs analytical", true, pd_case_waves},
+    {"pd-lamina-elastic", "0 deg T700 lamina in tension (ADR): centreline displacement", true,
+     pd_case_lamina_elastic},
 
     /* macro-particle (issue 5) */
 

@@ -9,6 +9,7 @@
 
 extern const struct model_ops lattice_model_ops;
 /* peridynamics extern */
+extern const struct model_ops peridynamics_model_ops;
 
 /* macro-particle extern */
 
@@ -17,6 +18,7 @@ extern const struct model_ops lattice_model_ops;
 static const struct model_ops *const model_table[] = {
     &lattice_model_ops,
     /* peridynamics entry */
+    &peridynamics_model_ops,
 
     /* macro-particle entry */
 
@@ -38,6 +40,7 @@ const struct model_ops *model_find(const char *name)
 static const char *const model_name_list[] = {
     "lattice",
     /* peridynamics name */
+    "peridynamics",
 
     /* macro-particle name */
 
