@@ -6,6 +6,8 @@ int cli_run(int argc, char **argv);
 int cli_validate(int argc, char **argv);
 int cli_bench(int argc, char **argv);
 int cli_calibrate(int argc, char **argv);
+/** `spall calibrate peridynamics ...` (src/cli/cmd_calibrate_pd.c). */
+int cli_calibrate_peridynamics(int argc, char **argv);
 
 /** Map a libspall status to the process exit status: bad input 2,
  *  unstable run 3, I/O 4, anything else 1. */
