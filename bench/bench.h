@@ -41,6 +41,8 @@ extern const size_t bench_lattice_n_cases;
 /* impact bench table */
 
 /* peridynamics bench table */
+extern const struct bench_case bench_pd_cases[];
+extern const size_t bench_pd_n_cases;
 
 /* macro-particle bench table */
 

@@ -17,6 +17,7 @@ static const struct bench_table tables[] = {
     /* impact table entry */
 
     /* peridynamics table entry */
+    {bench_pd_cases, &bench_pd_n_cases},
 
     /* macro-particle table entry */
 

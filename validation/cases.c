@@ -34,6 +34,9 @@ static const struct vcase cases[] = {
     {"pd-waves", "PMB wave speeds: 1D bar and 2D plate vs analytical", true, pd_case_waves},
     {"pd-lamina-elastic", "0 deg T700 lamina in tension (ADR): centreline displacement", true,
      pd_case_lamina_elastic},
+    {"pd-branching", "Ha & Bobaru 2010 glass plate: branching, tip speed < c_R", false,
+     pd_case_branching},
+    {"pd-kalthoff", "Kalthoff-Winkler plate: crack angle 65-72 deg", false, pd_case_kalthoff},
 
     /* macro-particle (issue 5) */
 

@@ -18,4 +18,9 @@ int pd_case_lamina_elastic(struct vreport *r, struct spall_error *err);
 /** "pd-calibrate": PMB / PDLM / lamina patch tests (achieved moduli). */
 int pd_case_patch(struct vreport *r, struct spall_error *err);
 
+/** "pd-branching": Ha & Bobaru 2010 glass plate, branching and tip speed. */
+int pd_case_branching(struct vreport *r, struct spall_error *err);
+/** "pd-kalthoff": Kalthoff-Winkler crack angle. */
+int pd_case_kalthoff(struct vreport *r, struct spall_error *err);
+
 #endif

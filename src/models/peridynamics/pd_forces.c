@@ -45,7 +45,8 @@
                 st[s] |= BOND_BROKEN;                                                           \
                 const double e0 = l - r;                                                        \
                 dd += 0.25 * coef[s] * e0 * e0;                                                 \
-                continue;                                                                       \
+                if (!late)                                                                      \
+                    continue;                                                                   \
             }                                                                                   \
             const double g = coef[s] * (l - r) / l;                                             \
             fx += g * ex;                                                                       \
@@ -78,6 +79,9 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     double *diss = m->diss;
     double *const *x = p->x;
     double *const *f = p->f;
+    /* break_order next_step: a bond past s0 still pulls in this step
+     * (PDLAMMPS pair peri/pmb order); immediate: it is dropped at once */
+    const bool late = m->opt.break_late;
     if (m->opt.quasi == PD_QS_ADR) {
         /* the engine zeroed f: keep the model's part of step n-1 for ADR */
         for (int d = 0; d < p->dim; d++)

@@ -42,6 +42,8 @@ struct pd_options {
     enum pd_plane plane;
     double horizon_factor;   /**< m: delta = m dx (PMB) */
     bool partial_volume;     /**< beta_ij for bonds cut by the horizon */
+    bool break_late;         /**< a bond past s0 acts once more (PDLAMMPS order) */
+    bool family_at_delta;    /**< family ends at delta, not delta + dx/2 (PDLAMMPS rule) */
     bool surface_correction; /**< energy method (Madenci & Oterkus 2014 sec. 4.2) */
     enum pd_quasi quasi;
     enum pd_fiber_model fiber_model;

@@ -16,6 +16,15 @@
  *     plane: plane_stress | plane_strain   2D only (default plane_stress)
  *     partial_volume: bool      pmb: beta_ij for sites cut by the horizon
  *                               (default true)
+ *     partial_volume_rule: linear | lammps   linear (default): family to
+ *                               delta + dx/2, beta = (delta + dx/2 - xi)/dx
+ *                               in the cut shell; lammps: same beta but the
+ *                               family ends at delta (Parks et al. PDLAMMPS,
+ *                               pair peri/pmb), for like-for-like races
+ *     break_order: immediate | next_step   immediate (default): a bond past
+ *                               s0 carries no force from that step on;
+ *                               next_step: it acts in the step it breaks
+ *                               (PDLAMMPS order)
  *     surface_correction: bool  pmb: energy method of Madenci & Oterkus 2014
  *                               sec. 4.2 (default false)
  *     quasi_static: off | adr   adr: adaptive dynamic relaxation damping
@@ -41,7 +50,8 @@
  *
  * Fields: damage (phi = 1 - intact/initial bonds, pre-cut count as
  * broken), damage_fiber, damage_matrix (orthotropic), strain_energy [J],
- * stress [Pa] (virial).  History: bonds_broken, damage_fraction, adr_damping.
+ * stress [Pa] (virial).  History: bonds_broken, damage_fraction, adr_damping,
+ * damage_sum.
  */
 #include "models/peridynamics/pd_internal.h"
 
@@ -82,8 +92,10 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     static const char *const planes[] = {"plane_stress", "plane_strain", NULL};
     static const char *const qs[] = {"off", "adr", NULL};
     static const char *const fm[] = {"lattice", "angular", NULL};
+    static const char *const pvr[] = {"linear", "lammps", NULL};
+    static const char *const bo[] = {"immediate", "next_step", NULL};
     static const char *const keys[] = {"type", "variant", "horizon_factor", "plane",
-                                       "partial_volume", "surface_correction", "quasi_static",
+                                       "partial_volume", "partial_volume_rule", "break_order", "surface_correction", "quasi_static",
                                        "fiber_model", "fiber_power", NULL};
     *out = NULL;
     struct model *m = calloc(1, sizeof *m);
@@ -94,12 +106,14 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     m->opt.partial_volume = true;
     m->opt.fiber_power = 32;
     if (params) {
-        int v = 0, pl = 0, q = 0, f = 0, rc;
+        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, rc;
         long pw = 32;
         if ((rc = deck_enum(params, "variant", false, variants, &v, err)) ||
             (rc = deck_double_pos(params, "horizon_factor", false, &m->opt.horizon_factor, err)) ||
             (rc = deck_enum(params, "plane", false, planes, &pl, err)) ||
             (rc = deck_bool(params, "partial_volume", false, &m->opt.partial_volume, err)) ||
+            (rc = deck_enum(params, "partial_volume_rule", false, pvr, &pr, err)) ||
+            (rc = deck_enum(params, "break_order", false, bo, &b, err)) ||
             (rc = deck_bool(params, "surface_correction", false, &m->opt.surface_correction,
                             err)) ||
             (rc = deck_enum(params, "quasi_static", false, qs, &q, err)) ||
@@ -114,6 +128,8 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
         m->opt.quasi = (enum pd_quasi)q;
         m->opt.fiber_model = (enum pd_fiber_model)f;
         m->opt.fiber_power = (int)pw;
+        m->opt.family_at_delta = pr == 1;
+        m->opt.break_late = b == 1;
         if (m->opt.variant == PD_PDLM && sim->dim != 2) {
             free(m);
             return deck_error_key(err, params, "variant",
@@ -263,7 +279,8 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
         radius = 1.05 * m->dx;
     } else {
         m->delta = m->opt.horizon_factor * m->dx;
-        radius = m->opt.partial_volume ? m->delta + 0.5 * m->dx : m->delta * (1.0 + 1e-12);
+        radius = m->opt.partial_volume && !m->opt.family_at_delta ? m->delta + 0.5 * m->dx
+                                                                   : m->delta * (1.0 + 1e-12);
     }
     int rc = bond_list_build(&m->bl, p, radius, err);
     if (rc)
@@ -460,7 +477,18 @@ static size_t pd_history(const struct model *m, const struct sim *sim, const cha
     values[1] = nh ? (double)all / (double)nh : 0.0;
     names[2] = "adr_damping";
     values[2] = m->opt.quasi == PD_QS_ADR ? sim->damping : 0.0;
-    return 3;
+    /* sum over particles of phi_i (fixed order): compared with LAMMPS's
+     * compute damage/atom in bench/pd_vs_lammps.sh */
+    double dsum = 0.0;
+    for (size_t i = 0; i < sim->p->n_owned; i++) {
+        size_t intact = 0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            intact += !(bl->state[s] & BOND_BROKEN);
+        dsum += m->n_init[i] ? 1.0 - (double)intact / (double)m->n_init[i] : 0.0;
+    }
+    names[3] = "damage_sum";
+    values[3] = dsum;
+    return 4;
 }
 
 static void pd_describe(const struct model *m, const struct sim *sim, char *buf, size_t len)
@@ -518,3 +546,10 @@ const struct model_ops peridynamics_model_ops = {
     .destroy = pd_destroy,
     .interactions = pd_interactions,
 };
+
+/** Damage field for validation code (same as the `damage` output field). */
+void pd_validation_damage(const struct model *m, size_t n, double *out);
+void pd_validation_damage(const struct model *m, size_t n, double *out)
+{
+    damage_of(m, n, out, 0);
+}
