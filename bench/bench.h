@@ -43,6 +43,8 @@ extern const struct bench_case bench_impact_cases[];
 extern const size_t bench_impact_n_cases;
 
 /* peridynamics bench table */
+extern const struct bench_case bench_pd_cases[];
+extern const size_t bench_pd_n_cases;
 
 /* macro-particle bench table */
 extern const struct bench_case bench_macro_cases[];

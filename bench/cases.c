@@ -18,6 +18,7 @@ static const struct bench_table tables[] = {
     {bench_impact_cases, &bench_impact_n_cases},
 
     /* peridynamics table entry */
+    {bench_pd_cases, &bench_pd_n_cases},
 
     /* macro-particle table entry */
     {bench_macro_cases, &bench_macro_n_cases},

@@ -8,6 +8,7 @@
 #include "validation/impact_cases.h"
 
 /* peridynamics cases header */
+#include "validation/pd_cases.h"
 
 /* macro-particle cases header */
 #include "validation/macro_cases.h"
@@ -43,6 +44,12 @@ static const struct vcase cases[] = {
      false, impact_case_punch},
 
     /* peridynamics (issue 4) */
+    {"pd-waves", "PMB wave speeds: 1D bar and 2D plate vs analytical", true, pd_case_waves},
+    {"pd-lamina-elastic", "0 deg T700 lamina in tension (ADR): centreline displacement", true,
+     pd_case_lamina_elastic},
+    {"pd-branching", "Ha & Bobaru 2010 glass plate: branching, tip speed < c_R", false,
+     pd_case_branching},
+    {"pd-kalthoff", "Kalthoff-Winkler plate: crack angle 65-72 deg", false, pd_case_kalthoff},
 
     /* macro-particle (issue 5) */
     {"macro-calibration", "seed 001 Table 1: E from Eq. 15 for Al and Cu", false,

@@ -10,6 +10,8 @@ int cli_calibrate(int argc, char **argv);
 int cli_penetrate(int argc, char **argv);
 /** `spall calibrate macroparticle` (cmd_calibrate_macro.c). */
 int cli_calibrate_macroparticle(int argc, char **argv);
+/** `spall calibrate peridynamics ...` (src/cli/cmd_calibrate_pd.c). */
+int cli_calibrate_peridynamics(int argc, char **argv);
 
 /** Map a libspall status to the process exit status: bad input 2,
  *  unstable run 3, I/O 4, anything else 1. */

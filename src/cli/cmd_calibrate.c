@@ -45,6 +45,8 @@ int cli_calibrate(int argc, char **argv)
         calibrate_usage(argc < 2 ? stderr : stdout);
         return argc < 2 ? 2 : 0;
     }
+    if (strcmp(argv[1], "peridynamics") == 0)
+        return cli_calibrate_peridynamics(argc, argv);
     if (strcmp(argv[1], "lattice") != 0) {
         fprintf(stderr, "spall calibrate: unknown model '%s'; expected: lattice\n", argv[1]);
         return 2;

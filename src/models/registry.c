@@ -9,6 +9,7 @@
 
 extern const struct model_ops lattice_model_ops;
 /* peridynamics extern */
+extern const struct model_ops peridynamics_model_ops;
 
 /* macro-particle extern */
 extern const struct model_ops macroparticle_model_ops;
@@ -18,6 +19,7 @@ extern const struct model_ops macroparticle_model_ops;
 static const struct model_ops *const model_table[] = {
     &lattice_model_ops,
     /* peridynamics entry */
+    &peridynamics_model_ops,
 
     /* macro-particle entry */
     &macroparticle_model_ops,
@@ -40,6 +42,7 @@ const struct model_ops *model_find(const char *name)
 static const char *const model_name_list[] = {
     "lattice",
     /* peridynamics name */
+    "peridynamics",
 
     /* macro-particle name */
     "macroparticle",

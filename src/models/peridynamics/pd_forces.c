@@ -1,0 +1,262 @@
+/**
+ * @file pd_forces.c
+ * @brief Hot loops of the peridynamics model: PMB bond forces with fused
+ *        irreversible breaking, the stable time step, the per-half-bond
+ *        coefficients (partial volume, surface correction) and the adaptive
+ *        dynamic relaxation damping.
+ *
+ * Force on particle i (seed 003 digest; Silling & Askari 2005 Eq. 2):
+ *   F_i = V_i sum_j c_ij s_ij mu_ij beta_ij G_ij V_j e_ij,  s = (l - xi)/xi,
+ * stored per half-bond as coef = c V_i V_j beta G / xi so that
+ * F = coef (l - xi) e.  Each half-bond is decided (s > s0 -> broken, forever)
+ * by its own particle's thread from |x_j - x_i|, which is bit-identical from
+ * both ends, so the result does not depend on the thread count.
+ */
+#include "models/peridynamics/pd_internal.h"
+
+#include "core/bond_list.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* One kernel per dimension: the loop over j is the hot path. */
+#define PD_KERNEL(DIM)                                                                          \
+    _Pragma("omp parallel for schedule(dynamic, 256)")                                          \
+    for (size_t i = 0; i < n; i++) {                                                            \
+        double fx = 0.0, fy = 0.0, fz = 0.0, dd = 0.0;                                          \
+        const double xi0 = x[0][i];                                                             \
+        const double yi0 = DIM > 1 ? x[1][i] : 0.0;                                             \
+        const double zi0 = DIM > 2 ? x[2][i] : 0.0;                                             \
+        for (size_t s = off[i]; s < off[i + 1]; s++) {                                          \
+            if (st[s] & BOND_BROKEN)                                                            \
+                continue;                                                                       \
+            const size_t j = (size_t)partner[s];                                                \
+            const double ex = x[0][j] - xi0;                                                    \
+            const double ey = DIM > 1 ? x[1][j] - yi0 : 0.0;                                    \
+            const double ez = DIM > 2 ? x[2][j] - zi0 : 0.0;                                    \
+            const double l = sqrt(ex * ex + ey * ey + ez * ez);                                 \
+            const double r = rest[s];                                                           \
+            const double stretch = (l - r) / r;                                                 \
+            if (stretch > s0tab[type[s]]) {                                                     \
+                st[s] |= BOND_BROKEN;                                                           \
+                const double e0 = l - r;                                                        \
+                dd += 0.25 * coef[s] * e0 * e0;                                                 \
+                if (!late)                                                                      \
+                    continue;                                                                   \
+            }                                                                                   \
+            const double g = coef[s] * (l - r) / l;                                             \
+            fx += g * ex;                                                                       \
+            if (DIM > 1)                                                                        \
+                fy += g * ey;                                                                   \
+            if (DIM > 2)                                                                        \
+                fz += g * ez;                                                                   \
+        }                                                                                       \
+        f[0][i] += fx;                                                                          \
+        if (DIM > 1)                                                                            \
+            f[1][i] += fy;                                                                      \
+        if (DIM > 2)                                                                            \
+            f[2][i] += fz;                                                                      \
+        diss[i] += dd;                                                                          \
+    }
+
+int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    (void)err;
+    struct particles *p = sim->p;
+    struct bond_list *bl = m->bl;
+    const size_t n = p->n_owned;
+    const size_t *off = bl->offset;
+    const int32_t *partner = bl->partner;
+    const double *rest = bl->rest;
+    const uint8_t *type = bl->type;
+    uint8_t *st = bl->state;
+    const double *coef = m->coef;
+    const double *s0tab = m->s0_tab;
+    double *diss = m->diss;
+    double *const *x = p->x;
+    double *const *f = p->f;
+    /* break_order next_step: a bond past s0 still pulls in this step
+     * (PDLAMMPS pair peri/pmb order); immediate: it is dropped at once */
+    const bool late = m->opt.break_late;
+    if (m->opt.quasi == PD_QS_ADR) {
+        /* the engine zeroed f: keep the model's part of step n-1 for ADR */
+        for (int d = 0; d < p->dim; d++)
+            memcpy(m->f_prev[d] + n, m->f_prev[d], n * sizeof(double));
+    }
+    switch (p->dim) {
+    case 1:
+        PD_KERNEL(1)
+        break;
+    case 2:
+        PD_KERNEL(2)
+        break;
+    default:
+        PD_KERNEL(3)
+        break;
+    }
+    if (m->opt.quasi == PD_QS_ADR)
+        pd_adr_update(m, sim);
+    return SPALL_OK;
+}
+
+/* Kilic & Madenci 2010 (Eqs. 17-19) with the physical masses as the
+ * (diagonal) density matrix: local stiffness
+ *   K_ii = -(F_i^n - F_i^{n-1}) / (m_i dt v_i^{n-1/2}),
+ * damping coefficient c_n = 2 sqrt(u^T K u / u^T u) (1/s), given to the
+ * engine's mass-proportional damping F = -c m v.  Model forces only (loads
+ * and grips are not part of the stiffness). */
+void pd_adr_update(struct model *m, struct sim *sim)
+{
+    struct particles *p = sim->p;
+    const size_t n = p->n_owned;
+    double num = 0.0, den = 0.0;
+    for (int d = 0; d < p->dim; d++) {
+        const double *fp = m->f_prev[d] + n; /* previous */
+        double *fc = m->f_prev[d];           /* current, stored next */
+        for (size_t i = 0; i < n; i++) {
+            double fi = p->f[d][i];
+            double u = p->x[d][i] - p->x0[d][i];
+            double v = p->v[d][i];
+            if (sim->step > 0 && sim->dt > 0.0 && fabs(v) * sim->dt > 1e-9 * fabs(u)) {
+                double k = -(fi - fp[i]) / (p->mass[i] * sim->dt * v);
+                num += u * k * u;
+            }
+            den += u * u;
+            fc[i] = fi;
+        }
+    }
+    /* Near convergence v and the force change are round-off and the estimate
+     * is noise: keep the previous coefficient when it is not positive, and
+     * never exceed 0.2 / dt (explicit damping stays far below its 2 / dt
+     * stability bound). */
+    if (!(den > 0.0 && num > 0.0))
+        return;
+    double c = 2.0 * sqrt(num / den);
+    if (sim->dt > 0.0 && c > 0.2 / sim->dt)
+        c = 0.2 / sim->dt;
+    sim->damping = c;
+}
+
+/* Silling & Askari 2005 Eq. 15 with the particle's row sum of bond
+ * stiffnesses: dt < sqrt(2 m_i / sum_j coef_ij). */
+double pd_stable_dt(const struct model *m, const struct sim *sim)
+{
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    double w2 = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        double k = 0.0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            if (!(bl->state[s] & BOND_BROKEN))
+                k += m->coef[s];
+        w2 = fmax(w2, k / p->mass[i]);
+    }
+    return w2 > 0.0 ? sqrt(2.0 / w2) : INFINITY;
+}
+
+/* Partial volume of a neighbour cut by the horizon (linear rule, Madenci &
+ * Oterkus 2014 sec. 2.4 / Hu et al.): 1 inside delta - dx/2, 0 beyond
+ * delta + dx/2, linear between. */
+static inline double pd_beta(double xi, double delta, double dx)
+{
+    if (xi <= delta - 0.5 * dx)
+        return 1.0;
+    if (xi >= delta + 0.5 * dx)
+        return 0.0;
+    return (delta + 0.5 * dx - xi) / dx;
+}
+
+/* Micromodulus of half-bond s of particle i (per unit V_i V_j, per xi). */
+static double bond_c(const struct model *m, const struct sim *sim, size_t i, size_t s)
+{
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    size_t j = (size_t)bl->partner[s];
+    const struct pd_material *a = &m->mat[p->material[i]], *b = &m->mat[p->material[j]];
+    if (!a->ortho && !b->ortho)
+        return 2.0 * a->c * b->c / (a->c + b->c); /* springs in series */
+    const struct pd_material *o = a->ortho ? a : b;
+    double ex = p->x0[0][j] - p->x0[0][i], ey = sim->dim > 1 ? p->x0[1][j] - p->x0[1][i] : 0.0;
+    double cphi = fabs(ex * cos(o->fiber_angle) + ey * sin(o->fiber_angle)) / bl->rest[s];
+    if (m->opt.fiber_model == PD_FIBER_ANGULAR)
+        return o->c_m + o->c_f * pow(cphi * cphi, (double)m->opt.fiber_power);
+    return cphi > 0.9999 ? o->c_f : o->c_m;
+}
+
+/* Strain energy density of a particle's family under the uniaxial
+ * displacement field u_d = eps x_d (only component d): sum over intact bonds
+ * of 1/4 c s^2 xi V_j beta (Madenci & Oterkus 2014 Eq. 4.23 form). */
+static double family_energy(const struct model *m, const struct sim *sim, size_t i, int d)
+{
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    double w = 0.0;
+    for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+        size_t j = (size_t)bl->partner[s];
+        double xi = bl->rest[s];
+        double cd = (p->x0[d][j] - p->x0[d][i]) / xi;
+        double st = cd * cd; /* stretch per unit eps */
+        w += 0.25 * st * st * xi * p->volume[j] * pd_beta(xi, m->delta, m->dx);
+    }
+    return w;
+}
+
+/* Same integral for a complete continuous family: int cos^4 xi dV. */
+static double family_energy_bulk(int dim, double delta, double thickness)
+{
+    switch (dim) {
+    case 1: return 0.25 * thickness * delta * delta;                 /* A delta^2 */
+    case 2: return 0.25 * thickness * PD_PI * delta * delta * delta / 4.0;
+    default: return 0.25 * PD_PI * pow(delta, 4) / 5.0;
+    }
+}
+
+int pd_build_coefficients(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct particles *p = sim->p;
+    struct bond_list *bl = m->bl;
+    const size_t n = p->n, nh = bl->offset[n];
+    const int dim = sim->dim;
+    free(m->coef);
+    m->coef = malloc((nh ? nh : 1) * sizeof *m->coef);
+    double *g = NULL;
+    if (!m->coef)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
+    const bool pdlm = m->opt.variant == PD_PDLM;
+    if (m->opt.surface_correction && !pdlm) {
+        g = malloc((n ? n : 1) * 3 * sizeof *g);
+        if (!g)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for surface factors");
+        const double wb = family_energy_bulk(dim, m->delta, sim->thickness);
+        for (size_t i = 0; i < n; i++)
+            for (int d = 0; d < 3; d++) {
+                double w = d < dim ? family_energy(m, sim, i, d) : 0.0;
+                g[3 * i + (size_t)d] = w > 0.0 ? wb / w : 1.0;
+            }
+    }
+    for (size_t i = 0; i < n; i++)
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            size_t j = (size_t)bl->partner[s];
+            double xi = bl->rest[s];
+            double beta = (m->opt.partial_volume && !pdlm) ? pd_beta(xi, m->delta, m->dx) : 1.0;
+            double corr = 1.0;
+            if (g) {
+                /* Madenci & Oterkus 2014 Eq. 4.31: ellipsoidal interpolation of the
+                 * directional factors, each the mean of both ends */
+                double q = 0.0;
+                for (int d = 0; d < dim; d++) {
+                    double nd = (p->x0[d][j] - p->x0[d][i]) / xi;
+                    double gd = 0.5 * (g[3 * i + (size_t)d] + g[3 * j + (size_t)d]);
+                    q += (nd / gd) * (nd / gd);
+                }
+                corr = q > 0.0 ? 1.0 / sqrt(q) : 1.0;
+            }
+            m->coef[s] = bond_c(m, sim, i, s) * (p->volume[i] * p->volume[j]) * beta * corr / xi;
+        }
+    free(g);
+    return SPALL_OK;
+}

@@ -1,0 +1,555 @@
+/**
+ * @file pd_model.c
+ * @brief Bond-based peridynamics (PMB, Silling & Askari 2005) and the
+ *        peridynamic lattice model PDLM of seed 003, with orthotropic
+ *        laminae (fiber and matrix bonds): life cycle, deck, fields.
+ *
+ * Deck keys (copied to docs/decks.md, peridynamics section):
+ *
+ *   model:
+ *     type: peridynamics
+ *     variant: pmb | pdlm       pmb (default): family = every site within the
+ *                               horizon delta = horizon_factor * spacing;
+ *                               pdlm: triangular lattice, the 6 nearest
+ *                               neighbours only (seed 003)
+ *     horizon_factor: m > 0     pmb only, default 3.015
+ *     plane: plane_stress | plane_strain   2D only (default plane_stress)
+ *     partial_volume: bool      pmb: beta_ij for sites cut by the horizon
+ *                               (default true)
+ *     partial_volume_rule: linear | lammps   linear (default): family to
+ *                               delta + dx/2, beta = (delta + dx/2 - xi)/dx
+ *                               in the cut shell; lammps: same beta but the
+ *                               family ends at delta (Parks et al. PDLAMMPS,
+ *                               pair peri/pmb), for like-for-like races
+ *     break_order: immediate | next_step   immediate (default): a bond past
+ *                               s0 carries no force from that step on;
+ *                               next_step: it acts in the step it breaks
+ *                               (PDLAMMPS order)
+ *     surface_correction: bool  pmb: energy method of Madenci & Oterkus 2014
+ *                               sec. 4.2 (default false)
+ *     quasi_static: off | adr   adr: adaptive dynamic relaxation damping
+ *                               (Kilic & Madenci 2010) on the real masses
+ *     fiber_model: lattice | angular   orthotropic laminae: fiber bonds are
+ *                               the bonds parallel to fiber_angle (lattice,
+ *                               rotate the lattice: seed 003), or every bond
+ *                               with c = c_m + c_f cos^2n(phi) (angular)
+ *     fiber_power: n >= 1       angular model exponent (default 32)
+ *
+ *   materials:
+ *     <name>:   isotropic
+ *       density, youngs_modulus (or bulk_modulus in 3D), poisson_ratio
+ *       (optional; must be the model's fixed value: 1/4 in 3D and plane
+ *       strain, 1/3 in plane stress and PDLM), fracture_energy G0 [J/m^2]
+ *       or critical_stretch (neither: unbreakable)
+ *     <name>:   orthotropic lamina (2D plane stress)
+ *       density, fiber_modulus E1, transverse_modulus E2, shear_modulus G12,
+ *       major_poisson_ratio nu12, fiber_angle [deg] (default: lattice
+ *       angle), matrix_fracture_energy G_Ic, fiber_fracture_energy G_f,
+ *       mode2_fracture_energy G_IIc (recorded, see docs: not used by the
+ *       stretch criterion)
+ *
+ * Fields: damage (phi = 1 - intact/initial bonds, pre-cut count as
+ * broken), damage_fiber, damage_matrix (orthotropic), strain_energy [J],
+ * stress [Pa] (virial).  History: bonds_broken, damage_fraction, adr_damping,
+ * damage_sum.
+ */
+#include "models/peridynamics/pd_internal.h"
+
+#include "core/bond_list.h"
+#include "core/fields.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "models/model.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void pd_destroy(struct model **pm)
+{
+    if (!pm || !*pm)
+        return;
+    struct model *m = *pm;
+    free(m->mat);
+    bond_list_destroy(&m->bl);
+    free(m->coef);
+    free(m->n_init);
+    free(m->n_init_f);
+    free(m->diss);
+    for (int d = 0; d < 3; d++)
+        free(m->f_prev[d]);
+    free(m);
+    *pm = NULL;
+}
+
+static int pd_create(struct model **out, struct sim *sim, const struct deck_node *params,
+                     struct spall_error *err)
+{
+    static const char *const variants[] = {"pmb", "pdlm", NULL};
+    static const char *const planes[] = {"plane_stress", "plane_strain", NULL};
+    static const char *const qs[] = {"off", "adr", NULL};
+    static const char *const fm[] = {"lattice", "angular", NULL};
+    static const char *const pvr[] = {"linear", "lammps", NULL};
+    static const char *const bo[] = {"immediate", "next_step", NULL};
+    static const char *const keys[] = {"type", "variant", "horizon_factor", "plane",
+                                       "partial_volume", "partial_volume_rule", "break_order", "surface_correction", "quasi_static",
+                                       "fiber_model", "fiber_power", NULL};
+    *out = NULL;
+    struct model *m = calloc(1, sizeof *m);
+    if (!m)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating the PD model");
+    m->sim = sim;
+    m->opt.horizon_factor = 3.015;
+    m->opt.partial_volume = true;
+    m->opt.fiber_power = 32;
+    if (params) {
+        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, rc;
+        long pw = 32;
+        if ((rc = deck_enum(params, "variant", false, variants, &v, err)) ||
+            (rc = deck_double_pos(params, "horizon_factor", false, &m->opt.horizon_factor, err)) ||
+            (rc = deck_enum(params, "plane", false, planes, &pl, err)) ||
+            (rc = deck_bool(params, "partial_volume", false, &m->opt.partial_volume, err)) ||
+            (rc = deck_enum(params, "partial_volume_rule", false, pvr, &pr, err)) ||
+            (rc = deck_enum(params, "break_order", false, bo, &b, err)) ||
+            (rc = deck_bool(params, "surface_correction", false, &m->opt.surface_correction,
+                            err)) ||
+            (rc = deck_enum(params, "quasi_static", false, qs, &q, err)) ||
+            (rc = deck_enum(params, "fiber_model", false, fm, &f, err)) ||
+            (rc = deck_long(params, "fiber_power", false, 1, 64, &pw, err)) ||
+            (rc = deck_check_unused(params, "model", keys, err))) {
+            free(m);
+            return rc;
+        }
+        m->opt.variant = (enum pd_variant)v;
+        m->opt.plane = (enum pd_plane)pl;
+        m->opt.quasi = (enum pd_quasi)q;
+        m->opt.fiber_model = (enum pd_fiber_model)f;
+        m->opt.fiber_power = (int)pw;
+        m->opt.family_at_delta = pr == 1;
+        m->opt.break_late = b == 1;
+        if (m->opt.variant == PD_PDLM && sim->dim != 2) {
+            free(m);
+            return deck_error_key(err, params, "variant",
+                                  "pdlm is the 2D triangular-lattice variant (this run is %dD)",
+                                  sim->dim);
+        }
+        if (pl == 1 && (sim->dim != 2 || m->opt.variant == PD_PDLM)) {
+            free(m);
+            return deck_error_key(err, params, "plane", "plane_strain needs a 2D pmb run");
+        }
+    }
+    *out = m;
+    return SPALL_OK;
+}
+
+/** The fixed Poisson ratio of bond-based PD in this setting. */
+static double pd_fixed_nu(const struct model *m, int dim)
+{
+    if (dim == 3 || (dim == 2 && m->opt.plane == PD_PLANE_STRAIN && m->opt.variant == PD_PMB))
+        return 0.25;
+    return 1.0 / 3.0;
+}
+
+static int pd_parse_material(struct model *m, struct sim *sim, int index,
+                             const struct deck_node *node, struct spall_error *err)
+{
+    static const char *const k_iso[] = {"density", "youngs_modulus", "bulk_modulus",
+                                        "poisson_ratio", "fracture_energy", "critical_stretch",
+                                        NULL};
+    static const char *const k_ort[] = {"density", "fiber_modulus", "transverse_modulus",
+                                        "shear_modulus", "major_poisson_ratio", "fiber_angle",
+                                        "matrix_fracture_energy", "fiber_fracture_energy",
+                                        "mode2_fracture_energy", NULL};
+    if (index < 0 || index >= PD_MAX_MAT)
+        return deck_error(err, node, "peridynamics: at most %d materials", PD_MAX_MAT);
+    if ((size_t)index >= m->n_mat) {
+        struct pd_material *q = realloc(m->mat, ((size_t)index + 1) * sizeof *q);
+        if (!q)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for materials");
+        memset(q + m->n_mat, 0, ((size_t)index + 1 - m->n_mat) * sizeof *q);
+        m->mat = q;
+        m->n_mat = (size_t)index + 1;
+    }
+    struct pd_material mt;
+    memset(&mt, 0, sizeof mt);
+    int rc;
+    const int dim = sim->dim;
+    if (deck_peek(node, "fiber_modulus")) {
+        double ang = NAN;
+        mt.ortho = true;
+        if ((rc = deck_double_pos(node, "fiber_modulus", true, &mt.E1, err)) ||
+            (rc = deck_double_pos(node, "transverse_modulus", true, &mt.E2, err)) ||
+            (rc = deck_double_pos(node, "shear_modulus", true, &mt.G12, err)) ||
+            (rc = deck_double(node, "major_poisson_ratio", true, 0.0, 0.5, &mt.nu12, err)) ||
+            (rc = deck_double(node, "fiber_angle", false, -360.0, 360.0, &ang, err)) ||
+            (rc = deck_double(node, "matrix_fracture_energy", false, 0.0, INFINITY, &mt.GIc,
+                              err)) ||
+            (rc = deck_double(node, "fiber_fracture_energy", false, 0.0, INFINITY, &mt.Gf,
+                              err)) ||
+            (rc = deck_double(node, "mode2_fracture_energy", false, 0.0, INFINITY, &mt.GIIc,
+                              err)) ||
+            (rc = deck_check_unused(node, "an orthotropic peridynamic material", k_ort, err)))
+            return rc;
+        if (dim != 2)
+            return deck_error(err, node, "orthotropic laminae are 2D (plane stress); this run "
+                              "is %dD", dim);
+        if (m->opt.plane == PD_PLANE_STRAIN)
+            return deck_error(err, node, "orthotropic laminae are plane stress");
+        mt.fiber_angle = isnan(ang) ? sim->lattice.angle : ang * PD_PI / 180.0;
+        mt.E = mt.E2;
+    } else {
+        double nu = NAN;
+        if ((rc = deck_double(node, "youngs_modulus", false, 0.0, INFINITY, &mt.E, err)) ||
+            (rc = deck_double(node, "bulk_modulus", false, 0.0, INFINITY, &mt.K, err)) ||
+            (rc = deck_double(node, "poisson_ratio", false, -1.0, 0.5, &nu, err)) ||
+            (rc = deck_double(node, "fracture_energy", false, 0.0, INFINITY, &mt.G0, err)) ||
+            (rc = deck_double(node, "critical_stretch", false, 0.0, INFINITY, &mt.s0_given,
+                              err)) ||
+            (rc = deck_check_unused(node, "a peridynamic material", k_iso, err)))
+            return rc;
+        double fixed = pd_fixed_nu(m, dim);
+        if (!isnan(nu) && dim > 1 && fabs(nu - fixed) > 1e-3) {
+            deck_error_key(err, node, "poisson_ratio",
+                           "bond-based peridynamics fixes nu = %.4g in %s (pair forces: Cauchy "
+                           "relation); got %g. Use the fixed value or a state-based model",
+                           fixed, dim == 3 ? "3D" : m->opt.plane == PD_PLANE_STRAIN
+                                                        ? "plane strain" : "plane stress",
+                           nu);
+            err->code = SPALL_ERR_PHYSICS;
+            return SPALL_ERR_PHYSICS;
+        }
+        mt.nu = dim == 1 ? 0.0 : fixed;
+        if ((mt.E > 0.0) == (mt.K > 0.0))
+            return deck_error(err, node, "give exactly one of youngs_modulus and bulk_modulus "
+                              "(> 0)");
+        if (mt.K > 0.0 && dim != 3)
+            return deck_error_key(err, node, "bulk_modulus", "bulk_modulus is for 3D runs; "
+                                  "give youngs_modulus");
+        if (dim == 3) {
+            if (mt.K > 0.0)
+                mt.E = 3.0 * mt.K * (1.0 - 2.0 * mt.nu);
+            else
+                mt.K = mt.E / (3.0 * (1.0 - 2.0 * mt.nu));
+        }
+        if (mt.G0 > 0.0 && mt.s0_given > 0.0)
+            return deck_error(err, node, "give fracture_energy or critical_stretch, not both");
+    }
+    mt.parsed = true;
+    m->mat[index] = mt;
+    return SPALL_OK;
+}
+
+/* ---- init -------------------------------------------------------------------------- */
+
+static int is_fiber(const struct model *m, const struct sim *sim, size_t i, size_t s)
+{
+    const struct particles *p = sim->p;
+    size_t j = (size_t)m->bl->partner[s];
+    const struct pd_material *a = &m->mat[p->material[i]], *b = &m->mat[p->material[j]];
+    if (!a->ortho && !b->ortho)
+        return 0;
+    const struct pd_material *o = a->ortho ? a : b;
+    double ex = p->x0[0][j] - p->x0[0][i], ey = p->x0[1][j] - p->x0[1][i];
+    double cphi = fabs(ex * cos(o->fiber_angle) + ey * sin(o->fiber_angle)) / m->bl->rest[s];
+    if (m->opt.fiber_model == PD_FIBER_ANGULAR)
+        return pow(cphi * cphi, (double)m->opt.fiber_power) > 0.5;
+    return cphi > 0.9999;
+}
+
+static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct particles *p = sim->p;
+    const size_t nm = sim->n_materials, n = p->n;
+    m->dim = sim->dim;
+    m->dx = sim->lattice.spacing;
+    if (nm == 0 || m->n_mat < nm)
+        return spall_error_set(err, SPALL_ERR_INPUT, "peridynamics: a material has no "
+                               "parameters");
+    m->n_mat = nm;
+    if (m->opt.variant == PD_PDLM && sim->lattice.kind != LATTICE_TRIANGULAR)
+        return spall_error_set(err, SPALL_ERR_INPUT, "peridynamics variant pdlm needs the "
+                               "triangular lattice (got %s)",
+                               lattice_kind_name(sim->lattice.kind));
+    double radius;
+    if (m->opt.variant == PD_PDLM) {
+        m->delta = m->dx;
+        radius = 1.05 * m->dx;
+    } else {
+        m->delta = m->opt.horizon_factor * m->dx;
+        radius = m->opt.partial_volume && !m->opt.family_at_delta ? m->delta + 0.5 * m->dx
+                                                                   : m->delta * (1.0 + 1e-12);
+    }
+    int rc = bond_list_build(&m->bl, p, radius, err);
+    if (rc)
+        return rc;
+    struct bond_list *bl = m->bl;
+    m->n_half = bl->offset[n];
+    m->n_init = calloc(n ? n : 1, sizeof *m->n_init);
+    m->n_init_f = calloc(n ? n : 1, sizeof *m->n_init_f);
+    m->diss = calloc(n ? n : 1, sizeof *m->diss);
+    if (!m->n_init || !m->n_init_f || !m->diss)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in the PD model");
+    if (m->opt.quasi == PD_QS_ADR)
+        for (int d = 0; d < sim->dim; d++)
+            if (!(m->f_prev[d] = calloc(2 * (n ? n : 1), sizeof(double))))
+                return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for ADR");
+    /* isotropic constants */
+    const double t = sim->thickness;
+    for (size_t k = 0; k < nm; k++) {
+        struct pd_material *mt = &m->mat[k];
+        if (!mt->parsed)
+            return spall_error_set(err, SPALL_ERR_INPUT, "peridynamics: material '%s' has no "
+                                   "parameters", sim->materials[k].name);
+        m->ortho |= mt->ortho;
+        if (mt->ortho) {
+            mt->c = 1.0; /* unused */
+            continue;
+        }
+        if (m->opt.variant == PD_PDLM) {
+            mt->c = pd_pdlm_micromodulus(mt->E, m->dx, t);
+            mt->s0 = pd_pdlm_critical_stretch(mt->E, mt->G0, m->dx);
+        } else {
+            mt->c = pd_micromodulus(sim->dim, m->opt.plane, mt->E, mt->K, m->delta, t);
+            mt->s0 = pd_critical_stretch(sim->dim, mt->c, mt->G0, m->delta, t);
+        }
+        if (mt->s0_given > 0.0)
+            mt->s0 = mt->s0_given;
+    }
+    /* bond types: (ma * nm + mb) * 2 + fiber */
+    for (size_t i = 0; i < n; i++)
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            size_t j = (size_t)bl->partner[s];
+            bl->type[s] = (uint8_t)(((size_t)p->material[i] * nm + (size_t)p->material[j]) * 2 +
+                                    (size_t)is_fiber(m, sim, i, s));
+        }
+    for (size_t k = 0; k < nm; k++)
+        if (m->mat[k].ortho) {
+            double ach[4];
+            if ((rc = pd_calibrate_ortho(m, sim, (int)k, ach, err))) {
+                spall_error_prefix(err, "material '%s': ", sim->materials[k].name);
+                return rc;
+            }
+        }
+    if ((rc = pd_build_coefficients(m, sim, err)))
+        return rc;
+    for (size_t a = 0; a < nm; a++)
+        for (size_t b = 0; b < nm; b++)
+            for (int f = 0; f < 2; f++) {
+                const struct pd_material *A = &m->mat[a], *B = &m->mat[b];
+                double sa = A->ortho ? (f ? A->s0_f : A->s0_m) : A->s0;
+                double sb = B->ortho ? (f ? B->s0_f : B->s0_m) : B->s0;
+                m->s0_tab[(a * nm + b) * 2 + (size_t)f] = fmin(sa, sb);
+            }
+    for (size_t i = 0; i < n; i++) {
+        m->n_init[i] = bl->offset[i + 1] - bl->offset[i];
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            m->n_init_f[i] += bl->type[s] & 1u;
+    }
+    m->initialised = true;
+    return SPALL_OK;
+}
+
+static int pd_precrack(struct model *m, struct sim *sim, const struct precrack *c, size_t *n_cut,
+                       struct spall_error *err)
+{
+    if (!m->bl)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "PD pre-crack before init");
+    *n_cut = bond_list_apply_precrack(m->bl, sim->p, c);
+    return SPALL_OK;
+}
+
+/* ---- fields ------------------------------------------------------------------------ */
+
+/* which: 0 total, 1 fiber, 2 matrix */
+static void damage_of(const struct model *m, size_t n, double *out, int which)
+{
+    const struct bond_list *bl = m->bl;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        size_t intact = 0, init;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            int fib = bl->type[s] & 1u;
+            if ((which == 1 && !fib) || (which == 2 && fib))
+                continue;
+            intact += !(bl->state[s] & BOND_BROKEN);
+        }
+        init = which == 0 ? m->n_init[i] : which == 1 ? m->n_init_f[i]
+                                                       : m->n_init[i] - m->n_init_f[i];
+        out[i] = init ? 1.0 - (double)intact / (double)init : 0.0;
+    }
+}
+
+static void field_damage(const void *ctx, size_t n, double *out) { damage_of(ctx, n, out, 0); }
+static void field_damage_f(const void *ctx, size_t n, double *out) { damage_of(ctx, n, out, 1); }
+static void field_damage_m(const void *ctx, size_t n, double *out) { damage_of(ctx, n, out, 2); }
+
+static void field_energy(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        pd_particle_eval(m, m->sim, i, &out[i], NULL);
+}
+
+static void field_stress(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    const size_t nc = m->dim == 1 ? 1 : m->dim == 2 ? 3 : 6;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        pd_particle_eval(m, m->sim, i, NULL, &out[i * nc]);
+}
+
+static int add_field(struct field_registry *reg, const char *name, const char *unit, int nc,
+                     unsigned flags, field_compute_fn fn, const struct model *m,
+                     struct spall_error *err)
+{
+    struct field_desc d;
+    memset(&d, 0, sizeof d);
+    snprintf(d.name, sizeof d.name, "%s", name);
+    snprintf(d.unit, sizeof d.unit, "%s", unit);
+    d.ncomp = nc;
+    d.type = FIELD_F64;
+    d.flags = flags;
+    d.compute = fn;
+    d.ctx = m;
+    return field_registry_add(reg, &d, err);
+}
+
+static int pd_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
+                              struct spall_error *err)
+{
+    int nc = sim->dim == 1 ? 1 : sim->dim == 2 ? 3 : 6;
+    int rc;
+    const unsigned od = FIELD_OUTPUT | FIELD_DEFAULT;
+    if ((rc = add_field(reg, "damage", "1", 1, od, field_damage, m, err)) ||
+        (m->ortho && (rc = add_field(reg, "damage_fiber", "1", 1, od, field_damage_f, m, err))) ||
+        (m->ortho && (rc = add_field(reg, "damage_matrix", "1", 1, od, field_damage_m, m, err))) ||
+        (rc = add_field(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_energy, m, err)) ||
+        (rc = add_field(reg, "stress", "Pa", nc, od, field_stress, m, err)))
+        return rc;
+    return SPALL_OK;
+}
+
+/* ---- step hooks -------------------------------------------------------------------- */
+
+static double pd_dt(const struct model *m, const struct sim *sim)
+{
+    return pd_stable_dt(m, sim);
+}
+
+static int pd_end_step(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    (void)m; /* breaking is fused into the force loop */
+    (void)sim;
+    (void)err;
+    return SPALL_OK;
+}
+
+static void pd_energy(const struct model *m, const struct sim *sim, struct model_energy *out)
+{
+    double strain = 0.0, diss = 0.0;
+    for (size_t i = 0; i < sim->p->n_owned; i++) {
+        double e;
+        pd_particle_eval(m, sim, i, &e, NULL);
+        strain += e;
+        diss += m->diss[i];
+    }
+    out->strain = strain;
+    out->dissipated = diss;
+}
+
+static size_t pd_history(const struct model *m, const struct sim *sim, const char **names,
+                         double *values)
+{
+    const struct bond_list *bl = m->bl;
+    size_t run = 0, all = 0, nh = bl->offset[sim->p->n_owned];
+    for (size_t s = 0; s < nh; s++) {
+        all += (bl->state[s] & BOND_BROKEN) != 0;
+        run += bl->state[s] == BOND_BROKEN;
+    }
+    names[0] = "bonds_broken";
+    values[0] = 0.5 * (double)run;
+    names[1] = "damage_fraction";
+    values[1] = nh ? (double)all / (double)nh : 0.0;
+    names[2] = "adr_damping";
+    values[2] = m->opt.quasi == PD_QS_ADR ? sim->damping : 0.0;
+    /* sum over particles of phi_i (fixed order): compared with LAMMPS's
+     * compute damage/atom in bench/pd_vs_lammps.sh */
+    double dsum = 0.0;
+    for (size_t i = 0; i < sim->p->n_owned; i++) {
+        size_t intact = 0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            intact += !(bl->state[s] & BOND_BROKEN);
+        dsum += m->n_init[i] ? 1.0 - (double)intact / (double)m->n_init[i] : 0.0;
+    }
+    names[3] = "damage_sum";
+    values[3] = dsum;
+    return 4;
+}
+
+static void pd_describe(const struct model *m, const struct sim *sim, char *buf, size_t len)
+{
+    size_t w = 0;
+#define PUT(...)                                                                                \
+    do {                                                                                        \
+        if (w < len)                                                                            \
+            w += (size_t)snprintf(buf + w, len - w, __VA_ARGS__);                               \
+    } while (0)
+    PUT("peridynamics (%s): %s lattice, dx = %g m, horizon %g m (m = %g), %s, partial volume "
+        "%s, surface correction %s, quasi-static %s, %zu bonds\n",
+        m->opt.variant == PD_PDLM ? "PDLM" : "PMB", lattice_kind_name(sim->lattice.kind), m->dx,
+        m->delta, m->delta / m->dx,
+        sim->dim == 2 ? (m->opt.plane == PD_PLANE_STRAIN ? "plane strain" : "plane stress")
+                      : sim->dim == 3 ? "3D" : "1D",
+        m->opt.partial_volume ? "on" : "off", m->opt.surface_correction ? "on" : "off",
+        m->opt.quasi == PD_QS_ADR ? "adr" : "off", m->bl ? bond_list_count(m->bl) : 0);
+    for (size_t k = 0; k < m->n_mat; k++) {
+        const struct pd_material *mt = &m->mat[k];
+        if (mt->ortho)
+            PUT("  material '%s': lamina E1 = %g, E2 = %g, G12 = %g Pa, nu12 = %g, fiber %g deg: "
+                "c_f = %g, c_m = %g, s0_f = %g, s0_m = %g\n", sim->materials[k].name, mt->E1,
+                mt->E2, mt->G12, mt->nu12, mt->fiber_angle * 180.0 / PD_PI, mt->c_f, mt->c_m,
+                mt->s0_f, mt->s0_m);
+        else
+            PUT("  material '%s': E = %g Pa, nu = %g (fixed), c = %g, s0 = %g\n",
+                sim->materials[k].name, mt->E, mt->nu, mt->c, mt->s0);
+    }
+    if (m->bl)
+        PUT("  stable dt = %g s (Silling & Askari 2005 Eq. 15)\n", pd_stable_dt(m, sim));
+#undef PUT
+}
+
+static size_t pd_interactions(const struct model *m, const struct sim *sim)
+{
+    (void)sim;
+    return m->bl ? bond_list_count(m->bl) : 0;
+}
+
+const struct model_ops peridynamics_model_ops = {
+    .name = "peridynamics",
+    .summary = "bond-based peridynamics (PMB, PDLM lattice, orthotropic laminae)",
+    .create = pd_create,
+    .parse_material = pd_parse_material,
+    .init = pd_init,
+    .precrack = pd_precrack,
+    .register_fields = pd_register_fields,
+    .compute_forces = pd_compute_forces,
+    .stable_dt = pd_dt,
+    .end_step = pd_end_step,
+    .energy = pd_energy,
+    .history = pd_history,
+    .describe = pd_describe,
+    .destroy = pd_destroy,
+    .interactions = pd_interactions,
+};
+
+/** Damage field for validation code (same as the `damage` output field). */
+void pd_validation_damage(const struct model *m, size_t n, double *out);
+void pd_validation_damage(const struct model *m, size_t n, double *out)
+{
+    damage_of(m, n, out, 0);
+}

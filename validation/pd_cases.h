@@ -1,0 +1,26 @@
+/**
+ * @file pd_cases.h
+ * @brief Validation cases of the peridynamics model (issue 4), run by
+ *        `spall validate` through validation/cases.c.  Numbers are
+ *        tabulated in docs/validation.md (peridynamics section).
+ */
+#ifndef SPALL_VALIDATION_PD_CASES_H
+#define SPALL_VALIDATION_PD_CASES_H
+
+struct spall_error;
+struct vreport;
+
+/** "pd-waves": 1D bar and 2D plate wave speeds vs sqrt(E/rho) and the
+ *  plane-stress P speed. */
+int pd_case_waves(struct vreport *r, struct spall_error *err);
+/** "pd-lamina-elastic": 0 deg lamina in tension, centreline displacement. */
+int pd_case_lamina_elastic(struct vreport *r, struct spall_error *err);
+/** "pd-calibrate": PMB / PDLM / lamina patch tests (achieved moduli). */
+int pd_case_patch(struct vreport *r, struct spall_error *err);
+
+/** "pd-branching": Ha & Bobaru 2010 glass plate, branching and tip speed. */
+int pd_case_branching(struct vreport *r, struct spall_error *err);
+/** "pd-kalthoff": Kalthoff-Winkler crack angle. */
+int pd_case_kalthoff(struct vreport *r, struct spall_error *err);
+
+#endif
