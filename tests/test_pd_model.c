@@ -22,6 +22,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static int build(const char *yaml, struct sim **s, struct spall_error *err)
@@ -196,6 +197,46 @@ static void test_ortho_calibration(void **state)
     }
 }
 
+/* 1 and 2 OpenMP threads: bitwise identical positions and broken bonds */
+static void test_threads(void **state)
+{
+    (void)state;
+    double *xs[2] = {NULL, NULL};
+    size_t nb[2] = {0, 0}, n = 0;
+    for (int t = 1; t <= 2; t++) {
+        char buf[1024];
+        snprintf(buf, sizeof buf,
+                 "model: {type: peridynamics}\n"
+                 "materials:\n  m: {density: 1000, youngs_modulus: 1.0e9, critical_stretch: 0.005}\n"
+                 "lattice: {type: square, spacing: 1.0e-3, thickness: 1.0e-3}\n"
+                 "geometry:\n  p: {box: {min: [0, 0], max: [0.0305, 0.0105]}}\n"
+                 "body: {geometry: p, material: m}\n"
+                 "groups:\n  l: {box: {min: [-1, -1], max: [0.0015, 1]}}\n"
+                 "  r: {box: {min: [0.0285, -1], max: [1, 1]}}\n"
+                 "boundary_conditions:\n"
+                 "  - {group: l, type: velocity, components: [x], value: -20}\n"
+                 "  - {group: r, type: velocity, components: [x], value: 20}\n"
+                 "run: {steps: 150, threads: %d}\n", t);
+        struct sim *s = build_ok(buf);
+        struct spall_error err = {0, ""};
+        while (!sim_done(s))
+            assert_int_equal(sim_step(s, &err), 0);
+        n = s->p->n;
+        xs[t - 1] = malloc(2 * n * sizeof(double));
+        assert_non_null(xs[t - 1]);
+        memcpy(xs[t - 1], s->p->x[0], n * sizeof(double));
+        memcpy(xs[t - 1] + n, s->p->x[1], n * sizeof(double));
+        nb[t - 1] = bond_list_count_broken(s->model->bl);
+        sim_destroy(&s);
+    }
+    printf("  threads: %zu bonds broken\n", nb[0]);
+    assert_true(nb[0] > 0);
+    assert_int_equal(nb[0], nb[1]);
+    assert_memory_equal(xs[0], xs[1], 2 * n * sizeof(double));
+    free(xs[0]);
+    free(xs[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -204,6 +245,7 @@ int main(void)
         cmocka_unit_test(test_breaking_and_damage),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_ortho_calibration),
+        cmocka_unit_test(test_threads),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
