@@ -13,6 +13,7 @@ extern const struct model_ops lattice_model_ops;
 /* macro-particle extern */
 
 /* sph extern */
+extern const struct model_ops sph_model_ops;
 
 static const struct model_ops *const model_table[] = {
     &lattice_model_ops,
@@ -21,6 +22,7 @@ static const struct model_ops *const model_table[] = {
     /* macro-particle entry */
 
     /* sph entry */
+    &sph_model_ops,
 
 };
 
@@ -42,6 +44,7 @@ static const char *const model_name_list[] = {
     /* macro-particle name */
 
     /* sph name */
+    "sph",
 
     NULL};
 
