@@ -45,6 +45,8 @@ extern const size_t bench_lattice_n_cases;
 /* macro-particle bench table */
 
 /* sph bench table */
+extern const struct bench_case bench_sph_cases[];
+extern const size_t bench_sph_n_cases;
 
 
 /** Resident set size of this process [bytes] (from /proc/self/statm). */

@@ -21,6 +21,7 @@ static const struct bench_table tables[] = {
     /* macro-particle table entry */
 
     /* sph table entry */
+    {bench_sph_cases, &bench_sph_n_cases},
 
 };
 

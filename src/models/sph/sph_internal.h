@@ -40,6 +40,8 @@ struct sph_options {
     bool variable_h;
     enum sph_plane plane;
     double skin;            /**< neighbour skin / h */
+    bool total_lagrangian;  /**< TLSPH (sph_tlsph.c) */
+    double hourglass;       /**< TLSPH hourglass coefficient kappa */
     bool wall;              /**< rigid half-space wall (penalty) */
     double wall_point[3], wall_normal[3]; /**< normal points into the body side */
     double wall_stiffness;  /**< penalty k = factor m (c/dx)^2 */
@@ -76,22 +78,27 @@ struct model {
     double *P;             /**< pressure (compression positive) */
     double *ep, *T;        /**< equivalent plastic strain, temperature */
     uint8_t *failed;
+    uint8_t *pinned;       /**< velocity prescribed by a BC: no XSPH drift */
     double *c;             /**< sound speed */
     double *drho, *de, *dh, *dS[6];       /**< rates of step n+1 */
     double *rho_n, *e_n, *h_n, *S_n[6];   /**< state at step n (PC) */
     double *drho_n, *de_n, *dh_n, *dS_n[6]; /**< rates at step n */
     double *L[9];          /**< velocity gradient dv^a/dx^b, [a*3+b] */
+    double *Bi[9];         /**< inverse CSPM matrix (identity on fallback) */
     double *sig[6];        /**< total stress (tension positive) + artificial stress */
     double *R[6];          /**< artificial stress tensor R_i */
     double *xv[3];         /**< XSPH velocity correction */
     double *x_build[3];    /**< positions at the last neighbour build */
     double *wp;            /**< plastic work per particle [J] */
+    double *Fdef[9], *Fdot[9], *Finv[9], *PK[9]; /**< TLSPH: F, dF/dt, F^-1, PK1 */
+    double *Jdet;          /**< TLSPH: det F */
     double wall_energy;    /**< penalty energy [J] */
     double wall_force[3];  /**< total wall force [N] */
 
     struct neighbor_list *nl;
     double nl_radius;
     size_t n_builds;
+    double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
 };
@@ -101,6 +108,12 @@ struct model {
 int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err);
 /** All rates of the current state: drho, de, dS, accelerations into sim->p->f. */
 int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err);
+
+/* sph_tlsph.c */
+/** Reference neighbour list and corrected reference gradients (B0^-1). */
+int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err);
+/** TLSPH rates: F, L, PK1 forces, energy, stress rates. */
+int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err);
 
 /* sph_material.c */
 /** Pressure from the EOS (compression positive). */

@@ -10,7 +10,9 @@
  *             double_cosine | hyperbolic      (Fig. 3.1 types 1-6; default wendland)
  *     h_factor: h / dx (default 1.5)
  *     density: continuity | summation         (Eq. 3.18 / Eq. 3.15; default continuity)
- *     cspm: true | false                      corrected velocity gradient (default true)
+ *     cspm: true | false                      corrected gradients (default false): velocity
+ *                                             gradient and, paired with it, the stress
+ *                                             terms of momentum and energy
  *     viscosity: [q_a, q_b]                   Monaghan AV (default [1, 1])
  *     artificial_stress: zeta                 Monaghan-Gray (default 0: off)
  *     artificial_stress_n: n                  (default 4)
@@ -19,6 +21,9 @@
  *     plane: stress | strain                  2D only (default strain)
  *     skin: fraction of the support added to the neighbour radius (default 0.2)
  *     adaptive_dt: true                       Eq. 3.38 every step (dt_factor = c_s, default 0.3)
+ *     formulation: updated | total            total: TLSPH (sph_tlsph.c), reference
+ *                                             kernel, no AS/XSPH (default updated)
+ *     hourglass: kappa                        TLSPH hourglass coefficient (default 0.1)
  *     wall: {point: [...], normal: [...], stiffness: 1}
  *           rigid frictionless half-space; normal points from the wall into
  *           the body.  Penalty k = stiffness m (c0/dx)^2 on particles closer
@@ -47,7 +52,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SPH_N_ARRAYS 80
+#define SPH_N_ARRAYS 140
 
 /* Every per-particle double array of the model, for allocation and freeing. */
 static size_t sph_arrays(struct model *m, double **a[SPH_N_ARRAYS])
@@ -80,8 +85,15 @@ static size_t sph_arrays(struct model *m, double **a[SPH_N_ARRAYS])
         a[k++] = &m->sig[c];
         a[k++] = &m->R[c];
     }
-    for (int c = 0; c < 9; c++)
+    for (int c = 0; c < 9; c++) {
         a[k++] = &m->L[c];
+        a[k++] = &m->Bi[c];
+        a[k++] = &m->Fdef[c];
+        a[k++] = &m->Fdot[c];
+        a[k++] = &m->Finv[c];
+        a[k++] = &m->PK[c];
+    }
+    a[k++] = &m->Jdet;
     for (int c = 0; c < 3; c++) {
         a[k++] = &m->xv[c];
         a[k++] = &m->x_build[c];
@@ -99,6 +111,7 @@ static void sph_destroy(struct model **pm)
     for (size_t k = 0; k < na; k++)
         free(*a[k]);
     free(m->failed);
+    free(m->pinned);
     free(m->mat);
     neighbor_list_destroy(&m->nl);
     free(m);
@@ -112,9 +125,11 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                           "wendland",      "double_cosine", "hyperbolic", NULL};
     static const char *const dens[] = {"continuity", "summation", NULL};
     static const char *const planes[] = {"stress", "strain", NULL};
+    static const char *const forms[] = {"updated", "total", NULL};
     static const char *const keys[] = {"type", "kernel", "h_factor", "density", "cspm",
                                        "viscosity", "artificial_stress", "artificial_stress_n",
                                        "xsph", "variable_h", "plane", "skin", "adaptive_dt",
+                                       "formulation", "hourglass",
                                        "wall", NULL};
     *out = NULL;
     if (sim->dim < 2)
@@ -124,15 +139,16 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     memset(&o, 0, sizeof o);
     o.kernel = SPH_KERNEL_WENDLAND;
     o.h_factor = 1.5;
-    o.cspm = true;
+    o.cspm = false;
     o.av_a = o.av_b = 1.0;
     o.as_n = 4.0;
     o.plane = SPH_PLANE_STRAIN;
     o.skin = 0.2;
     o.wall_stiffness = 1.0;
+    o.hourglass = 0.1;
     bool adaptive = true;
     if (params) {
-        int kern = 3, den = 0, pl = 1, rc;
+        int kern = 3, den = 0, pl = 1, form = 0, rc;
         double av[2] = {o.av_a, o.av_b};
         if ((rc = deck_enum(params, "kernel", false, kernels, &kern, err)) ||
             (rc = deck_double(params, "h_factor", false, 0.5, 4.0, &o.h_factor, err)) ||
@@ -145,8 +161,11 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_bool(params, "variable_h", false, &o.variable_h, err)) ||
             (rc = deck_enum(params, "plane", false, planes, &pl, err)) ||
             (rc = deck_double(params, "skin", false, 0.0, 2.0, &o.skin, err)) ||
-            (rc = deck_bool(params, "adaptive_dt", false, &adaptive, err)))
+            (rc = deck_bool(params, "adaptive_dt", false, &adaptive, err)) ||
+            (rc = deck_enum(params, "formulation", false, forms, &form, err)) ||
+            (rc = deck_double(params, "hourglass", false, 0.0, 10.0, &o.hourglass, err)))
             return rc;
+        o.total_lagrangian = form == 1;
         if (av[0] < 0.0 || av[1] < 0.0)
             return deck_error_key(err, params, "viscosity",
                                   "viscosity [%g, %g]; expected [q_a, q_b] both >= 0", av[0],
@@ -294,8 +313,17 @@ static int sph_init(struct model *m, struct sim *s, struct spall_error *err)
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph state)");
     }
     m->failed = calloc(cap ? cap : 1, 1);
-    if (!m->failed)
+    m->pinned = calloc(cap ? cap : 1, 1);
+    if (!m->failed || !m->pinned)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph state)");
+    for (size_t k = 0; k < s->n_bcs; k++) {
+        const struct bc *b = &s->bcs[k];
+        if (b->kind != BC_FIXED && b->kind != BC_VELOCITY)
+            continue;
+        const struct group *g = &s->groups[b->group];
+        for (size_t q = 0; q < g->n; q++)
+            m->pinned[g->idx[q]] = 1;
+    }
     const double t = s->dim == 2 ? s->thickness : 1.0;
     for (size_t i = 0; i < n; i++) {
         const struct sph_material *mt = &m->mat[p->material[i]];
@@ -306,9 +334,13 @@ static int sph_init(struct model *m, struct sim *s, struct spall_error *err)
         m->rho[i] = mt->rho0;
         m->T[i] = mt->Troom;
     }
-    int rc = sph_neighbors_update(m, s, true, err);
+    int rc = m->opt.total_lagrangian ? sph_tlsph_init(m, s, err)
+                                     : sph_neighbors_update(m, s, true, err);
     if (rc)
         return rc;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 9; c++)
+            m->Fdef[c][i] = (c % 4 == 0) ? 1.0 : 0.0;
     sph_update_pressure(m, s);
     return SPALL_OK;
 }
@@ -360,6 +392,18 @@ static double sph_stable_dt(const struct model *m, const struct sim *sim)
         for (int d = 0; d < sim->dim; d++)
             v2 += p->v[d][i] * p->v[d][i];
         double dt = m->h[i] / (m->c[i] + sqrt(v2));
+        /* corrected gradients (CSPM, TLSPH) scale the pair stiffness by up
+         * to |B_i^-1| (2-3 at surfaces and corners): the highest frequency
+         * grows by the same factor (measured: the TLSPH beam blows up at
+         * c_s = 0.3 without this, runs at 0.1) */
+        if (m->opt.cspm || m->opt.total_lagrangian) {
+            double nb = 0.0;
+            for (int a = 0; a < 3; a++)
+                nb = fmax(nb, fabs(m->Bi[a * 3][i]) + fabs(m->Bi[a * 3 + 1][i]) +
+                                  fabs(m->Bi[a * 3 + 2][i]));
+            if (nb > 1.0)
+                dt /= nb;
+        }
         if (dt < best)
             best = dt;
     }
@@ -404,8 +448,9 @@ static int sph_advance_state(struct model *m, struct sim *sim, double dt, int st
                 m->S[c][i] += dt * m->dS[c][i];
             }
             sph_plastic_return(m, i, dt, false);
-            for (int d = 0; d < sim->dim; d++)
-                p->x[d][i] += dt * m->xv[d][i]; /* XSPH: particles move with v + xv */
+            if (!m->pinned[i])
+                for (int d = 0; d < sim->dim; d++)
+                    p->x[d][i] += dt * m->xv[d][i]; /* XSPH: particles move with v + xv */
         }
         return SPALL_OK;
     }

@@ -13,12 +13,18 @@
  *
  * Sign convention: tension positive, sigma = -P I + S.
  *   dv_i/dt = sum_j m_j (sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + R_ij f_ij^n) grad_i W_ij
- *   de_i/dt = -1/2 sum_j m_j (v_i - v_j) . (same tensor) . grad_i W_ij
- * (the artificial stress enters the energy equation too, so that kinetic +
- * internal energy is conserved exactly by the semi-discrete equations).
- * The momentum equation is not CSPM-corrected (that would break momentum
- * conservation); CSPM corrects the velocity gradient, hence the density,
- * stress and strain rates.
+ *   de_i/dt = -sum_j m_j (v_i - v_j) . sigma_i/rho_i^2 . grad_i W_ij
+ *             -1/2 sum_j m_j (v_i - v_j) . (-Pi_ij I + R_ij f^n) . grad_i W_ij
+ * (the form of de/dt that pairs sigma_i with particle i's own velocity
+ * gradient; the artificial stress enters it too, so that kinetic + internal
+ * energy is conserved exactly by the semi-discrete equations).
+ * With CSPM the stress terms use each particle's corrected gradient
+ * (sigma_i/rho_i^2 B_i^-T grad W + sigma_j/rho_j^2 B_j^-T grad W) and the
+ * energy equation pairs sigma_i with the same corrected velocity gradient
+ * (de_i = -sum_j m_j v_ij . sigma_i/rho_i^2 B_i^-T grad W): momentum and
+ * kinetic + internal energy stay conserved.  Correcting only the velocity
+ * gradient (the thesis' reading) breaks that pairing and, as measured on
+ * the oscillating plate, pumps energy into the system exponentially.
  */
 #include "models/sph/sph_internal.h"
 
@@ -28,6 +34,7 @@
 #include "spall/error.h"
 
 #include <math.h>
+#include <omp.h>
 #include <string.h>
 
 int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err)
@@ -54,6 +61,7 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
         if (m->qmax * hmax + 2.0 * sqrt(d2max) <= m->nl_radius)
             return SPALL_OK;
     }
+    double t0 = omp_get_wtime();
     neighbor_list_destroy(&m->nl);
     m->nl_radius = m->qmax * hmax * (1.0 + m->opt.skin);
     int rc = neighbor_list_build(&m->nl, dim, n, p->x, m->nl_radius, err);
@@ -62,8 +70,15 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
     for (int d = 0; d < dim; d++)
         memcpy(m->x_build[d], p->x[d], n * sizeof(double));
     m->n_builds++;
+    m->t_neighbor += omp_get_wtime() - t0;
     return SPALL_OK;
 }
+
+/** Smallest |det B| accepted for the CSPM correction.  B ~ I in the bulk;
+ * a corner particle of a 3D block keeps det B ~ 0.03-0.1; an isolated or
+ * nearly isolated particle drives it to 0: below this the plain gradient
+ * is used and the fallback counted. */
+#define SPH_CSPM_MIN_DET 0.01
 
 /* Invert a dim x dim matrix (row-major 3x3 storage); 0 if (near) singular
  * relative to the identity it should approximate. */
@@ -71,7 +86,7 @@ static inline int inv_small(int dim, const double A[9], double out[9])
 {
     if (dim == 2) {
         double det = A[0] * A[4] - A[1] * A[3];
-        if (!(fabs(det) > 0.1))
+        if (!(fabs(det) > SPH_CSPM_MIN_DET))
             return 0;
         out[0] = A[4] / det;
         out[1] = -A[1] / det;
@@ -85,7 +100,7 @@ static inline int inv_small(int dim, const double A[9], double out[9])
     double c1 = A[5] * A[6] - A[3] * A[8];
     double c2 = A[3] * A[7] - A[4] * A[6];
     double det = A[0] * c0 + A[1] * c1 + A[2] * c2;
-    if (!(fabs(det) > 0.1))
+    if (!(fabs(det) > SPH_CSPM_MIN_DET))
         return 0;
     double id = 1.0 / det;
     out[0] = c0 * id;
@@ -165,8 +180,14 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
             }
         }
         double L[9] = {0};
-        double Bi[9];
+        double Bi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
         int ok = cspm ? inv_small(dim, B, Bi) : 0;
+        if (!ok) {
+            for (int c = 0; c < 9; c++)
+                Bi[c] = (c % 4 == 0) ? 1.0 : 0.0;
+        }
+        for (int c = 0; c < 9; c++)
+            m->Bi[c][i] = Bi[c];
         if (cspm && !ok)
             fallbacks++;
         if (ok) {
@@ -264,6 +285,7 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     const double alpha = m->alpha, qmax = m->qmax;
     const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
     const double xs = m->opt.xsph;
+    const bool cm = m->opt.cspm;
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
@@ -312,23 +334,50 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
                 fn = asn == 4.0 ? (f1 * f1) * (f1 * f1) : pow(f1, asn);
             }
             const double mj = m->m2[j];
-            /* A^{ab} grad_b W with grad_i W = F x_ij */
-            double Ag[3];
+            /* CSPM-corrected gradients, each particle with its own B:
+             * g_i = B_i^-T grad_i W_ij pairs with sigma_i, g_j = B_j^-T
+             * grad_i W_ij with sigma_j.  The pair force stays antisymmetric
+             * (momentum conserved) and the internal power equals
+             * sum_i V_i sigma_i : L_i with the same corrected L_i, so
+             * kinetic + internal energy is conserved (Bonet & Lok 1999
+             * pairing).  Without CSPM, g_i = g_j = grad_i W_ij. */
+            double gi[3], gj[3], g0[3];
+            for (int b = 0; b < dim; b++)
+                g0[b] = xij[b] * F;
+            if (cm) {
+                for (int b = 0; b < dim; b++) {
+                    double ti = 0.0, tj = 0.0;
+                    for (int c = 0; c < dim; c++) {
+                        ti += m->Bi[c * 3 + b][i] * g0[c];
+                        tj += m->Bi[c * 3 + b][j] * g0[c];
+                    }
+                    gi[b] = ti;
+                    gj[b] = tj;
+                }
+            } else {
+                for (int b = 0; b < dim; b++)
+                    gi[b] = gj[b] = g0[b];
+            }
+            double Ai[3], Aj[3], Aa[3];
             for (int a = 0; a < dim; a++) {
-                double t = 0.0;
+                double ti = 0.0, tj = 0.0, ta = 0.0;
                 for (int b = 0; b < dim; b++) {
                     int c = tix[a][b];
-                    double A = m->sig[c][i] * ri2 + m->sig[c][j] * rj2 +
-                               fn * (m->R[c][i] + m->R[c][j]);
+                    ti += m->sig[c][i] * gi[b];
+                    tj += m->sig[c][j] * gj[b];
+                    double A = fn * (m->R[c][i] + m->R[c][j]);
                     if (a == b)
                         A -= Pi;
-                    t += A * xij[b];
+                    ta += A * g0[b];
                 }
-                Ag[a] = t * F;
+                Ai[a] = ti * ri2;
+                Aj[a] = tj * rj2;
+                Aa[a] = ta;
             }
             for (int a = 0; a < dim; a++) {
-                acc[a] += mj * Ag[a];
-                de -= 0.5 * mj * vij[a] * Ag[a];
+                acc[a] += mj * (Ai[a] + Aj[a] + Aa[a]);
+                /* own stress power + half of the symmetric AV/AS terms */
+                de -= mj * vij[a] * (Ai[a] + 0.5 * Aa[a]);
             }
             if (xs > 0.0) {
                 double w = 2.0 * mj / (rhoi + rhoj) * W;
@@ -375,6 +424,12 @@ static void wall_forces(struct model *m, struct sim *s)
 int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
 {
     const size_t n = s->p->n_owned;
+    if (m->opt.total_lagrangian) {
+        int rc = sph_tlsph_rates(m, s, err);
+        if (!rc && m->opt.wall)
+            wall_forces(m, s);
+        return rc;
+    }
     int rc = sph_neighbors_update(m, s, false, err);
     if (rc)
         return rc;
