@@ -51,6 +51,8 @@ extern const struct bench_case bench_macro_cases[];
 extern const size_t bench_macro_n_cases;
 
 /* sph bench table */
+extern const struct bench_case bench_sph_cases[];
+extern const size_t bench_sph_n_cases;
 
 
 /** Resident set size of this process [bytes] (from /proc/self/statm). */

@@ -24,6 +24,7 @@ static const struct bench_table tables[] = {
     {bench_macro_cases, &bench_macro_n_cases},
 
     /* sph table entry */
+    {bench_sph_cases, &bench_sph_n_cases},
 
 };
 

@@ -14,6 +14,7 @@
 #include "validation/macro_cases.h"
 
 /* sph cases header */
+#include "validation/sph_cases.h"
 
 /* penetration cases header */
 #include "validation/pen_cases.h"
@@ -64,6 +65,14 @@ static const struct vcase cases[] = {
      false, macro_case_rod_plastic},
 
     /* SPH (issue 6) */
+    {"sph-gradient", "SPH: CSPM velocity gradient exact for linear fields (2D, 3D)", true,
+     sph_case_gradient},
+    {"sph-plate", "SPH: oscillating plate period vs thin-plate theory (Gray et al. 2001)", false,
+     sph_case_plate},
+    {"sph-beam", "SPH: cantilever beam 1.75 kN, six kernels vs 33.59 mm (seed 004 Table 3.4)",
+     false, sph_case_beam},
+    {"sph-taylor-3d", "SPH: 4340 steel Taylor bar 181 m/s, Johnson-Cook (seed 004 Table 3.6)",
+     false, sph_case_taylor3d},
 
     /* penetration (issue 7) */
     {"pen-check-value", "seed 004 Eq. 4.6/4.7: silica 7.38 um into gelatin at 1290 m/s", true,

@@ -15,6 +15,7 @@ extern const struct model_ops peridynamics_model_ops;
 extern const struct model_ops macroparticle_model_ops;
 
 /* sph extern */
+extern const struct model_ops sph_model_ops;
 
 static const struct model_ops *const model_table[] = {
     &lattice_model_ops,
@@ -25,6 +26,7 @@ static const struct model_ops *const model_table[] = {
     &macroparticle_model_ops,
 
     /* sph entry */
+    &sph_model_ops,
 
 };
 
@@ -48,6 +50,7 @@ static const char *const model_name_list[] = {
     "macroparticle",
 
     /* sph name */
+    "sph",
 
     NULL};
 

@@ -1,0 +1,85 @@
+/**
+ * @file bench_sph.c
+ * @brief SPH throughput (issue 6 item 8): a 3D Taylor bar, the copper bar
+ *        posed for the LAMMPS MACHDYN race (bench/sph_vs_lammps.sh):
+ *        L0 = 32.4 mm, R0 = 3.2 mm, 227 m/s on a rigid wall, E = 117 GPa,
+ *        nu = 0.35, rho = 8930 kg/m^3, sigma_y = 0.4 GPa + 0.1 GPa eps_p,
+ *        dx = 0.4 mm (scale 1; scale s: dx = 0.4 mm / s^(1/3)), h = 1.5 dx
+ *        (Wendland, support 3 dx: ~ 110 neighbours per particle).
+ *        The note reports the share of wall time spent building neighbour
+ *        lists.  Numbers are printed, never asserted.
+ */
+#include "bench/bench.h"
+
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "io/deck_build.h"
+#include "models/model.h"
+#include "models/sph/sph_internal.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <string.h>
+
+static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
+                            struct spall_error *err)
+{
+    omp_set_num_threads(threads);
+    const double dx = 0.4e-3 / cbrt(scale > 0.0 ? scale : 1.0);
+    const long steps = 200;
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: sph, kernel: wendland, h_factor: 1.5, viscosity: [1.0, 1.0],\n"
+             "        adaptive_dt: false, wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
+             "materials:\n"
+             "  copper: {density: 8930, youngs_modulus: 117.0e9, poisson_ratio: 0.35,\n"
+             "           yield: power, yield_a: 0.4e9, yield_b: 0.1e9, yield_n: 1.0}\n"
+             "lattice: {type: sc, spacing: %.17g, origin: [%.17g, %.17g, %.17g]}\n"
+             "body: {geometry: {cylinder: {base: [0, 0, 0], top: [0, 0, 0.0324], "
+             "radius: 0.0032}}, material: copper}\n"
+             "initial_velocity: [{group: all, value: [0, 0, -227.0]}]\n"
+             "run: {steps: %ld}\n",
+             dx, 0.5 * dx, 0.5 * dx, 0.5 * dx, steps);
+    struct deck *d = NULL;
+    struct sim *s = NULL;
+    struct run_output ro;
+    int rc = deck_load_string(&d, "sph_taylor_cu", yaml, err);
+    if (!rc)
+        rc = deck_build_sim(d, &s, &ro, err);
+    deck_destroy(&d);
+    if (rc)
+        return rc;
+    double rss = bench_rss_bytes();
+    const double tn0 = s->model->t_neighbor;
+    double t0 = omp_get_wtime();
+    while (!sim_done(s) && !rc)
+        rc = sim_step(s, err);
+    double wall = omp_get_wtime() - t0;
+    memset(out, 0, sizeof *out);
+    snprintf(out->name, sizeof out->name, "sph_taylor_cu");
+    out->threads = threads;
+    out->particles = s->p->n_owned;
+    out->bonds = s->ops->interactions(s->model, s);
+    out->steps = s->step;
+    out->seconds = wall;
+    out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
+    out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
+    out->bytes_per_particle = rss / (double)out->particles;
+    snprintf(out->note, sizeof out->note,
+             "3D Cu Taylor bar dx = %.3g mm, %.1f neighbours/particle, neighbour search "
+             "%.1f %% of wall time (%zu builds)",
+             dx * 1e3, 2.0 * (double)out->bonds / (double)out->particles,
+             100.0 * (s->model->t_neighbor - tn0) / wall, s->model->n_builds);
+    sim_destroy(&s);
+    return rc;
+}
+
+/* SPH cases, listed by bench/cases.c. */
+const struct bench_case bench_sph_cases[] = {
+    {"sph_taylor_cu", "3D copper Taylor bar (LAMMPS race), dx = 0.4 mm, 200 steps",
+     bench_sph_taylor},
+};
+const size_t bench_sph_n_cases = sizeof bench_sph_cases / sizeof bench_sph_cases[0];

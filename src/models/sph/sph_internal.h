@@ -1,0 +1,135 @@
+/**
+ * @file sph_internal.h
+ * @brief State of the SPH model (seed 004 chapter 3) shared by its files:
+ *        sph_model.c (life cycle, deck), sph_rates.c (pair loops),
+ *        sph_material.c (EOS, Jaumann rate, yield, failure),
+ *        sph_tlsph.c (total-Lagrangian variant).  Not a public interface.
+ */
+#ifndef SPALL_SPH_INTERNAL_H
+#define SPALL_SPH_INTERNAL_H
+
+#include "models/sph/sph_kernels.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+struct neighbor_list;
+struct sim;
+struct spall_error;
+
+/** 2D stress state (seed 004 sec. 3.3; the beam is plane stress). */
+enum sph_plane { SPH_PLANE_STRESS, SPH_PLANE_STRAIN };
+enum sph_density { SPH_DENSITY_CONTINUITY, SPH_DENSITY_SUMMATION };
+enum sph_eos { SPH_EOS_LINEAR, SPH_EOS_MIE_GRUNEISEN, SPH_EOS_MIE_GRUNEISEN_CK };
+enum sph_yield { SPH_YIELD_ELASTIC, SPH_YIELD_PERFECT, SPH_YIELD_POWER, SPH_YIELD_JOHNSON_COOK };
+enum sph_failure { SPH_FAIL_NONE, SPH_FAIL_STRESS, SPH_FAIL_PLASTIC_STRAIN };
+
+/** Stress / tensor component order (symmetric): xx yy zz xy yz xz. */
+enum { SXX, SYY, SZZ, SXY, SYZ, SXZ };
+
+struct sph_options {
+    enum sph_kernel kernel;
+    double h_factor;        /**< h = h_factor * dx */
+    enum sph_density density;
+    bool cspm;              /**< corrected velocity gradient (Eqs. 3.10-3.11) */
+    double av_a, av_b;      /**< Monaghan AV q_a, q_b */
+    double as_zeta;         /**< artificial stress zeta (0: off) */
+    double as_n;            /**< exponent n (4) */
+    double xsph;            /**< XSPH alpha_cs (0: off) */
+    bool variable_h;
+    enum sph_plane plane;
+    double skin;            /**< neighbour skin / h */
+    bool total_lagrangian;  /**< TLSPH (sph_tlsph.c) */
+    double hourglass;       /**< TLSPH hourglass coefficient kappa */
+    bool wall;              /**< rigid half-space wall (penalty) */
+    double wall_point[3], wall_normal[3]; /**< normal points into the body side */
+    double wall_stiffness;  /**< penalty k = factor m (c/dx)^2 */
+};
+
+struct sph_material {
+    bool parsed;
+    double rho0, E, nu, K, G;
+    enum sph_eos eos;
+    double mg_c, mg_s, mg_gamma, mg_p0; /**< Mie-Grueneisen C, S, Gamma, P0 */
+    enum sph_yield yield;
+    double sy;                          /**< perfect plasticity */
+    double A, B, n;                     /**< A + B ep^n (also JC a, b, n) */
+    double jc_c, jc_m, Tm, Troom, eps0; /**< Johnson-Cook */
+    double cp, beta_tq;                 /**< heat capacity, Taylor-Quinney */
+    enum sph_failure failure;
+    double fail_value;                  /**< stress [Pa] or plastic strain */
+};
+
+struct model {
+    struct sim *sim; /**< borrowed */
+    struct sph_options opt;
+    int dim;
+    double alpha;          /**< kernel alpha_d */
+    double qmax;           /**< kernel support / h */
+    size_t n_mat;
+    struct sph_material *mat;
+
+    /* per particle (SoA) */
+    double *h, *dx;        /**< smoothing length, initial spacing */
+    double *m2;            /**< mass per thickness (2D) or mass */
+    double *rho, *e;       /**< density, specific internal energy */
+    double *S[6];          /**< deviatoric stress */
+    double *P;             /**< pressure (compression positive) */
+    double *ep, *T;        /**< equivalent plastic strain, temperature */
+    uint8_t *failed;
+    uint8_t *pinned;       /**< velocity prescribed by a BC: no XSPH drift */
+    double *c;             /**< sound speed */
+    double *drho, *de, *dh, *dS[6];       /**< rates of step n+1 */
+    double *rho_n, *e_n, *h_n, *S_n[6];   /**< state at step n (PC) */
+    double *drho_n, *de_n, *dh_n, *dS_n[6]; /**< rates at step n */
+    double *L[9];          /**< velocity gradient dv^a/dx^b, [a*3+b] */
+    double *Bi[9];         /**< inverse CSPM matrix (identity on fallback) */
+    double *sig[6];        /**< total stress (tension positive) + artificial stress */
+    double *R[6];          /**< artificial stress tensor R_i */
+    double *xv[3];         /**< XSPH velocity correction */
+    double *x_build[3];    /**< positions at the last neighbour build */
+    double *wp;            /**< plastic work per particle [J] */
+    double *Fdef[9], *Fdot[9], *Finv[9], *PK[9]; /**< TLSPH: F, dF/dt, F^-1, PK1 */
+    double *Jdet;          /**< TLSPH: det F */
+    double wall_energy;    /**< penalty energy [J] */
+    double wall_force[3];  /**< total wall force [N] */
+
+    struct neighbor_list *nl;
+    double nl_radius;
+    size_t n_builds;
+    double t_neighbor;     /**< wall seconds spent building neighbour lists */
+    size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
+    size_t n_pairs;
+};
+
+/* sph_rates.c */
+/** (Re)build the neighbour list if particles moved more than half the skin. */
+int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err);
+/** All rates of the current state: drho, de, dS, accelerations into sim->p->f. */
+int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err);
+
+/* sph_tlsph.c */
+/** Reference neighbour list and corrected reference gradients (B0^-1). */
+int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err);
+/** TLSPH rates: F, L, PK1 forces, energy, stress rates. */
+int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err);
+
+/* sph_material.c */
+/** Pressure from the EOS (compression positive). */
+double sph_eos_pressure(const struct sph_material *mt, double rho, double e);
+/** Longitudinal sound speed at the given state. */
+double sph_sound_speed(const struct sph_material *mt, double rho, double e);
+/** Current yield stress (INFINITY: elastic). */
+double sph_yield_stress(const struct sph_material *mt, double ep, double epdot, double T);
+/** Pressure of every particle; failed particles carry no tension. */
+void sph_update_pressure(struct model *m, struct sim *s);
+/** Jaumann stress rate of particle i from L (Eq. 3.28-3.30), and the plane-stress
+ *  out-of-plane strain rate; also returns tr(D) (3D trace). */
+void sph_stress_rate(const struct model *m, size_t i, double *trD);
+/** Radial return (von Mises) and failure of particle i after S was advanced;
+ *  @p commit: accumulate plastic strain, work and heat (corrector only). */
+void sph_plastic_return(struct model *m, size_t i, double dt, bool commit);
+
+
+#endif

@@ -1,0 +1,559 @@
+/**
+ * @file sph_model.c
+ * @brief SPH for elastic-plastic solids (seed 004 chapter 3): deck, life
+ *        cycle, predictor-corrector state update, diagnostics.
+ *
+ * Deck keys (copied to docs/decks.md):
+ *   model:
+ *     type: sph
+ *     kernel: cubic_spline | gaussian | quintic_spline | wendland |
+ *             double_cosine | hyperbolic      (Fig. 3.1 types 1-6; default wendland)
+ *     h_factor: h / dx (default 1.5)
+ *     density: continuity | summation         (Eq. 3.18 / Eq. 3.15; default continuity)
+ *     cspm: true | false                      corrected gradients (default false): velocity
+ *                                             gradient and, paired with it, the stress
+ *                                             terms of momentum and energy
+ *     viscosity: [q_a, q_b]                   Monaghan AV (default [1, 1])
+ *     artificial_stress: zeta                 Monaghan-Gray (default 0: off)
+ *     artificial_stress_n: n                  (default 4)
+ *     xsph: alpha_cs                          (default 0)
+ *     variable_h: false                       dh/dt = -(h/(d rho)) drho/dt
+ *     plane: stress | strain                  2D only (default strain)
+ *     skin: fraction of the support added to the neighbour radius (default 0.2)
+ *     adaptive_dt: true                       Eq. 3.38 every step (dt_factor = c_s, default 0.3)
+ *     formulation: updated | total            total: TLSPH (sph_tlsph.c), reference
+ *                                             kernel, no AS/XSPH (default updated)
+ *     hourglass: kappa                        TLSPH hourglass coefficient (default 0.1)
+ *     wall: {point: [...], normal: [...], stiffness: 1}
+ *           rigid frictionless half-space; normal points from the wall into
+ *           the body.  Penalty k = stiffness m (c0/dx)^2 on particles closer
+ *           than dx/2.
+ *   materials.<name>: density, youngs_modulus + poisson_ratio (or
+ *     bulk_modulus + shear_modulus), eos: linear | mie_gruneisen |
+ *     mie_gruneisen_ck with sound_speed, hugoniot_slope, gruneisen,
+ *     reference_pressure; yield: elastic | perfect | power | johnson_cook with
+ *     yield_stress (perfect), yield_a, yield_b, yield_n (power, JC), jc_c,
+ *     jc_m, melt_temperature, room_temperature (293), reference_strain_rate
+ *     (1), specific_heat, taylor_quinney (0.9); failure: none | stress |
+ *     plastic_strain with failure_value.
+ */
+#include "models/sph/sph_internal.h"
+
+#include "core/fields.h"
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "models/model.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SPH_N_ARRAYS 140
+
+/* Every per-particle double array of the model, for allocation and freeing. */
+static size_t sph_arrays(struct model *m, double **a[SPH_N_ARRAYS])
+{
+    size_t k = 0;
+    a[k++] = &m->h;
+    a[k++] = &m->dx;
+    a[k++] = &m->m2;
+    a[k++] = &m->rho;
+    a[k++] = &m->e;
+    a[k++] = &m->P;
+    a[k++] = &m->ep;
+    a[k++] = &m->T;
+    a[k++] = &m->c;
+    a[k++] = &m->drho;
+    a[k++] = &m->de;
+    a[k++] = &m->dh;
+    a[k++] = &m->rho_n;
+    a[k++] = &m->e_n;
+    a[k++] = &m->h_n;
+    a[k++] = &m->drho_n;
+    a[k++] = &m->de_n;
+    a[k++] = &m->dh_n;
+    a[k++] = &m->wp;
+    for (int c = 0; c < 6; c++) {
+        a[k++] = &m->S[c];
+        a[k++] = &m->dS[c];
+        a[k++] = &m->S_n[c];
+        a[k++] = &m->dS_n[c];
+        a[k++] = &m->sig[c];
+        a[k++] = &m->R[c];
+    }
+    for (int c = 0; c < 9; c++) {
+        a[k++] = &m->L[c];
+        a[k++] = &m->Bi[c];
+        a[k++] = &m->Fdef[c];
+        a[k++] = &m->Fdot[c];
+        a[k++] = &m->Finv[c];
+        a[k++] = &m->PK[c];
+    }
+    a[k++] = &m->Jdet;
+    for (int c = 0; c < 3; c++) {
+        a[k++] = &m->xv[c];
+        a[k++] = &m->x_build[c];
+    }
+    return k;
+}
+
+static void sph_destroy(struct model **pm)
+{
+    if (!pm || !*pm)
+        return;
+    struct model *m = *pm;
+    double **a[SPH_N_ARRAYS];
+    size_t na = sph_arrays(m, a);
+    for (size_t k = 0; k < na; k++)
+        free(*a[k]);
+    free(m->failed);
+    free(m->pinned);
+    free(m->mat);
+    neighbor_list_destroy(&m->nl);
+    free(m);
+    *pm = NULL;
+}
+
+static int sph_create(struct model **out, struct sim *sim, const struct deck_node *params,
+                      struct spall_error *err)
+{
+    static const char *const kernels[] = {"cubic_spline",  "gaussian",   "quintic_spline",
+                                          "wendland",      "double_cosine", "hyperbolic", NULL};
+    static const char *const dens[] = {"continuity", "summation", NULL};
+    static const char *const planes[] = {"stress", "strain", NULL};
+    static const char *const forms[] = {"updated", "total", NULL};
+    static const char *const keys[] = {"type", "kernel", "h_factor", "density", "cspm",
+                                       "viscosity", "artificial_stress", "artificial_stress_n",
+                                       "xsph", "variable_h", "plane", "skin", "adaptive_dt",
+                                       "formulation", "hourglass",
+                                       "wall", NULL};
+    *out = NULL;
+    if (sim->dim < 2)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "the sph model runs in 2D and 3D; use a 2D or 3D lattice");
+    struct sph_options o;
+    memset(&o, 0, sizeof o);
+    o.kernel = SPH_KERNEL_WENDLAND;
+    o.h_factor = 1.5;
+    o.cspm = false;
+    o.av_a = o.av_b = 1.0;
+    o.as_n = 4.0;
+    o.plane = SPH_PLANE_STRAIN;
+    o.skin = 0.2;
+    o.wall_stiffness = 1.0;
+    o.hourglass = 0.1;
+    bool adaptive = true;
+    if (params) {
+        int kern = 3, den = 0, pl = 1, form = 0, rc;
+        double av[2] = {o.av_a, o.av_b};
+        if ((rc = deck_enum(params, "kernel", false, kernels, &kern, err)) ||
+            (rc = deck_double(params, "h_factor", false, 0.5, 4.0, &o.h_factor, err)) ||
+            (rc = deck_enum(params, "density", false, dens, &den, err)) ||
+            (rc = deck_bool(params, "cspm", false, &o.cspm, err)) ||
+            (rc = deck_vector(params, "viscosity", false, 2, 2, av, err)) ||
+            (rc = deck_double(params, "artificial_stress", false, 0.0, 10.0, &o.as_zeta, err)) ||
+            (rc = deck_double(params, "artificial_stress_n", false, 1.0, 20.0, &o.as_n, err)) ||
+            (rc = deck_double(params, "xsph", false, 0.0, 1.0, &o.xsph, err)) ||
+            (rc = deck_bool(params, "variable_h", false, &o.variable_h, err)) ||
+            (rc = deck_enum(params, "plane", false, planes, &pl, err)) ||
+            (rc = deck_double(params, "skin", false, 0.0, 2.0, &o.skin, err)) ||
+            (rc = deck_bool(params, "adaptive_dt", false, &adaptive, err)) ||
+            (rc = deck_enum(params, "formulation", false, forms, &form, err)) ||
+            (rc = deck_double(params, "hourglass", false, 0.0, 10.0, &o.hourglass, err)))
+            return rc;
+        o.total_lagrangian = form == 1;
+        if (av[0] < 0.0 || av[1] < 0.0)
+            return deck_error_key(err, params, "viscosity",
+                                  "viscosity [%g, %g]; expected [q_a, q_b] both >= 0", av[0],
+                                  av[1]);
+        o.av_a = av[0];
+        o.av_b = av[1];
+        o.kernel = (enum sph_kernel)(kern + 1);
+        o.density = (enum sph_density)den;
+        o.plane = (enum sph_plane)pl;
+        const struct deck_node *w = deck_get(params, "wall");
+        if (w) {
+            static const char *const wk[] = {"point", "normal", "stiffness", NULL};
+            if ((rc = deck_expect_map(w, "a mapping with point and normal", err)) ||
+                (rc = deck_vector(w, "point", true, (size_t)sim->dim, (size_t)sim->dim,
+                                  o.wall_point, err)) ||
+                (rc = deck_vector(w, "normal", true, (size_t)sim->dim, (size_t)sim->dim,
+                                  o.wall_normal, err)) ||
+                (rc = deck_double(w, "stiffness", false, 1e-3, 4.0, &o.wall_stiffness, err)) ||
+                (rc = deck_check_unused(w, "model.wall", wk, err)))
+                return rc;
+            double nn = 0.0;
+            for (int d = 0; d < 3; d++)
+                nn += o.wall_normal[d] * o.wall_normal[d];
+            if (!(nn > 0.0))
+                return deck_error_key(err, w, "normal", "wall normal is zero");
+            for (int d = 0; d < 3; d++)
+                o.wall_normal[d] /= sqrt(nn);
+            o.wall = true;
+        }
+        if ((rc = deck_check_unused(params, "model", keys, err)))
+            return rc;
+    }
+    struct model *m = calloc(1, sizeof *m);
+    if (!m)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating the sph model");
+    m->sim = sim;
+    m->opt = o;
+    m->dim = sim->dim;
+    m->alpha = sph_kernel_alpha(o.kernel, sim->dim);
+    m->qmax = sph_kernel_support(o.kernel);
+    /* seed 004 Eqs. 3.35-3.38: predictor-corrector and adaptive dt with
+     * c_s = 0.3 (run.dt_factor, parsed after the model, still wins) */
+    sim->integrator = INTEGRATOR_PREDICTOR_CORRECTOR;
+    sim->adaptive_dt = adaptive;
+    sim->dt_factor = 0.3;
+    *out = m;
+    return SPALL_OK;
+}
+
+static int sph_parse_material(struct model *m, struct sim *sim, int index,
+                              const struct deck_node *node, struct spall_error *err)
+{
+    static const char *const keys[] = {
+        "density", "youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus", "eos",
+        "sound_speed", "hugoniot_slope", "gruneisen", "reference_pressure", "yield",
+        "yield_stress", "yield_a", "yield_b", "yield_n", "jc_c", "jc_m", "melt_temperature",
+        "room_temperature", "reference_strain_rate", "specific_heat", "taylor_quinney", "failure",
+        "failure_value", NULL};
+    static const char *const eoss[] = {"linear", "mie_gruneisen", "mie_gruneisen_ck", NULL};
+    static const char *const ylds[] = {"elastic", "perfect", "power", "johnson_cook", NULL};
+    static const char *const fails[] = {"none", "stress", "plastic_strain", NULL};
+    if ((size_t)index >= m->n_mat) {
+        struct sph_material *q = realloc(m->mat, ((size_t)index + 1) * sizeof *q);
+        if (!q)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for materials");
+        memset(q + m->n_mat, 0, ((size_t)index + 1 - m->n_mat) * sizeof *q);
+        m->mat = q;
+        m->n_mat = (size_t)index + 1;
+    }
+    struct sph_material mt;
+    memset(&mt, 0, sizeof mt);
+    mt.rho0 = sim->materials[index].density;
+    mt.Troom = 293.0;
+    mt.eps0 = 1.0;
+    mt.beta_tq = 0.9;
+    mt.Tm = INFINITY;
+    int eos = 0, yld = 0, fl = 0, rc;
+    bool has_e = deck_peek(node, "youngs_modulus") != NULL;
+    if (has_e) {
+        if ((rc = deck_double_pos(node, "youngs_modulus", true, &mt.E, err)) ||
+            (rc = deck_double(node, "poisson_ratio", true, -0.999, 0.4999, &mt.nu, err)))
+            return rc;
+        mt.K = mt.E / (3.0 * (1.0 - 2.0 * mt.nu));
+        mt.G = mt.E / (2.0 * (1.0 + mt.nu));
+    } else {
+        if ((rc = deck_double_pos(node, "bulk_modulus", true, &mt.K, err)) ||
+            (rc = deck_double(node, "shear_modulus", true, 0.0, INFINITY, &mt.G, err)))
+            return rc;
+        mt.E = 9.0 * mt.K * mt.G / (3.0 * mt.K + mt.G);
+        mt.nu = (3.0 * mt.K - 2.0 * mt.G) / (2.0 * (3.0 * mt.K + mt.G));
+    }
+    if ((rc = deck_enum(node, "eos", false, eoss, &eos, err)) ||
+        (rc = deck_enum(node, "yield", false, ylds, &yld, err)) ||
+        (rc = deck_enum(node, "failure", false, fails, &fl, err)))
+        return rc;
+    mt.eos = (enum sph_eos)eos;
+    mt.yield = (enum sph_yield)yld;
+    mt.failure = (enum sph_failure)fl;
+    if (mt.eos != SPH_EOS_LINEAR &&
+        ((rc = deck_double_pos(node, "sound_speed", true, &mt.mg_c, err)) ||
+         (rc = deck_double_pos(node, "hugoniot_slope", true, &mt.mg_s, err)) ||
+         (rc = deck_double(node, "gruneisen", true, 0.0, 10.0, &mt.mg_gamma, err)) ||
+         (rc = deck_double(node, "reference_pressure", false, -INFINITY, INFINITY, &mt.mg_p0,
+                           err))))
+        return rc;
+    bool need_a = mt.yield == SPH_YIELD_POWER || mt.yield == SPH_YIELD_JOHNSON_COOK;
+    bool jc = mt.yield == SPH_YIELD_JOHNSON_COOK;
+    if ((rc = deck_double_pos(node, "yield_stress", mt.yield == SPH_YIELD_PERFECT, &mt.sy, err)) ||
+        (rc = deck_double_pos(node, "yield_a", need_a, &mt.A, err)) ||
+        (rc = deck_double(node, "yield_b", false, 0.0, INFINITY, &mt.B, err)) ||
+        (rc = deck_double(node, "yield_n", false, 0.0, 10.0, &mt.n, err)) ||
+        (rc = deck_double(node, "jc_c", false, 0.0, 10.0, &mt.jc_c, err)) ||
+        (rc = deck_double(node, "jc_m", false, 0.0, 10.0, &mt.jc_m, err)) ||
+        (rc = deck_double_pos(node, "melt_temperature", false, &mt.Tm, err)) ||
+        (rc = deck_double_pos(node, "room_temperature", false, &mt.Troom, err)) ||
+        (rc = deck_double_pos(node, "reference_strain_rate", false, &mt.eps0, err)) ||
+        (rc = deck_double_pos(node, "specific_heat", jc, &mt.cp, err)) ||
+        (rc = deck_double(node, "taylor_quinney", false, 0.0, 1.0, &mt.beta_tq, err)) ||
+        (rc = deck_double_pos(node, "failure_value", mt.failure != SPH_FAIL_NONE, &mt.fail_value,
+                              err)) ||
+        (rc = deck_check_unused(node, "material", keys, err)))
+        return rc;
+    if (jc && !(mt.Tm > mt.Troom))
+        return deck_error_key(err, node, "melt_temperature",
+                              "melt_temperature %g K must exceed room_temperature %g K", mt.Tm,
+                              mt.Troom);
+    mt.parsed = true;
+    m->mat[index] = mt;
+    return SPALL_OK;
+}
+
+static int sph_init(struct model *m, struct sim *s, struct spall_error *err)
+{
+    struct particles *p = s->p;
+    const size_t n = p->n_owned, cap = p->cap > n ? p->cap : n;
+    for (size_t k = 0; k < s->n_materials; k++)
+        if (k >= m->n_mat || !m->mat[k].parsed)
+            return spall_error_set(err, SPALL_ERR_INPUT, "material '%s' has no sph parameters",
+                                   s->materials[k].name);
+    double **a[SPH_N_ARRAYS];
+    size_t na = sph_arrays(m, a);
+    for (size_t k = 0; k < na; k++) {
+        *a[k] = calloc(cap ? cap : 1, sizeof(double));
+        if (!*a[k])
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph state)");
+    }
+    m->failed = calloc(cap ? cap : 1, 1);
+    m->pinned = calloc(cap ? cap : 1, 1);
+    if (!m->failed || !m->pinned)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph state)");
+    for (size_t k = 0; k < s->n_bcs; k++) {
+        const struct bc *b = &s->bcs[k];
+        if (b->kind != BC_FIXED && b->kind != BC_VELOCITY)
+            continue;
+        const struct group *g = &s->groups[b->group];
+        for (size_t q = 0; q < g->n; q++)
+            m->pinned[g->idx[q]] = 1;
+    }
+    const double t = s->dim == 2 ? s->thickness : 1.0;
+    for (size_t i = 0; i < n; i++) {
+        const struct sph_material *mt = &m->mat[p->material[i]];
+        double area_or_vol = p->volume[i] / t;
+        m->dx[i] = s->dim == 2 ? sqrt(area_or_vol) : cbrt(area_or_vol);
+        m->h[i] = m->opt.h_factor * m->dx[i];
+        m->m2[i] = p->mass[i] / t;
+        m->rho[i] = mt->rho0;
+        m->T[i] = mt->Troom;
+    }
+    int rc = m->opt.total_lagrangian ? sph_tlsph_init(m, s, err)
+                                     : sph_neighbors_update(m, s, true, err);
+    if (rc)
+        return rc;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 9; c++)
+            m->Fdef[c][i] = (c % 4 == 0) ? 1.0 : 0.0;
+    sph_update_pressure(m, s);
+    return SPALL_OK;
+}
+
+static int sph_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
+                               struct spall_error *err)
+{
+    (void)sim;
+    int rc;
+    double **sc[6];
+    for (int c = 0; c < 6; c++)
+        sc[c] = &m->S[c];
+    double **r1[1] = {&m->rho}, **p1[1] = {&m->P}, **e1[1] = {&m->e}, **ep1[1] = {&m->ep},
+           **t1[1] = {&m->T};
+    if ((rc = field_registry_add_f64(reg, "density", "kg/m^3", 1, r1, FIELD_OUTPUT | FIELD_DEFAULT,
+                                     err)) ||
+        (rc = field_registry_add_f64(reg, "pressure", "Pa", 1, p1, FIELD_OUTPUT | FIELD_DEFAULT,
+                                     err)) ||
+        (rc = field_registry_add_f64(reg, "internal_energy", "J/kg", 1, e1, FIELD_OUTPUT, err)) ||
+        (rc = field_registry_add_f64(reg, "plastic_strain", "1", 1, ep1,
+                                     FIELD_OUTPUT | FIELD_DEFAULT, err)) ||
+        (rc = field_registry_add_f64(reg, "temperature", "K", 1, t1, FIELD_OUTPUT, err)) ||
+        (rc = field_registry_add_f64(reg, "deviatoric_stress", "Pa", 6, sc, FIELD_OUTPUT, err)))
+        return rc;
+    struct field_desc d;
+    memset(&d, 0, sizeof d);
+    strcpy(d.name, "failed");
+    strcpy(d.unit, "1");
+    d.ncomp = 1;
+    d.type = FIELD_U8;
+    d.flags = FIELD_OUTPUT;
+    d.comp[0] = (void **)&m->failed;
+    return field_registry_add(reg, &d, err);
+}
+
+static int sph_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    return sph_compute_rates(m, sim, err);
+}
+
+/* Eq. 3.38 without c_s (the engine multiplies by run.dt_factor):
+ * min_i h_i / (c_i + |v_i|), c_i the longitudinal sound speed. */
+static double sph_stable_dt(const struct model *m, const struct sim *sim)
+{
+    const struct particles *p = sim->p;
+    double best = INFINITY;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        double v2 = 0.0;
+        for (int d = 0; d < sim->dim; d++)
+            v2 += p->v[d][i] * p->v[d][i];
+        double dt = m->h[i] / (m->c[i] + sqrt(v2));
+        /* corrected gradients (CSPM, TLSPH) scale the pair stiffness by up
+         * to |B_i^-1| (2-3 at surfaces and corners): the highest frequency
+         * grows by the same factor (measured: the TLSPH beam blows up at
+         * c_s = 0.3 without this, runs at 0.1) */
+        if (m->opt.cspm || m->opt.total_lagrangian) {
+            double nb = 0.0;
+            for (int a = 0; a < 3; a++)
+                nb = fmax(nb, fabs(m->Bi[a * 3][i]) + fabs(m->Bi[a * 3 + 1][i]) +
+                                  fabs(m->Bi[a * 3 + 2][i]));
+            if (nb > 1.0)
+                dt /= nb;
+        }
+        if (dt < best)
+            best = dt;
+    }
+    return best;
+}
+
+static int sph_end_step(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    (void)m;
+    (void)sim;
+    (void)err;
+    return SPALL_OK;
+}
+
+/* Predictor-corrector for rho, e, S, h (Eqs. 3.35-3.37 applied to the
+ * state): stage 0 saves state_n and rate_n and predicts state_n + dt rate_n
+ * (and moves particles by the XSPH correction); stage 1 corrects to
+ * state_n + dt/2 (rate_n + rate_n+1), then the radial return. */
+static int sph_advance_state(struct model *m, struct sim *sim, double dt, int stage,
+                             struct spall_error *err)
+{
+    (void)err;
+    struct particles *p = sim->p;
+    const size_t n = p->n_owned;
+    const bool integ_rho = m->opt.density == SPH_DENSITY_CONTINUITY;
+    if (stage == 0) {
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            m->rho_n[i] = m->rho[i];
+            m->e_n[i] = m->e[i];
+            m->h_n[i] = m->h[i];
+            m->drho_n[i] = m->drho[i];
+            m->de_n[i] = m->de[i];
+            m->dh_n[i] = m->dh[i];
+            if (integ_rho)
+                m->rho[i] += dt * m->drho[i];
+            m->e[i] += dt * m->de[i];
+            m->h[i] += dt * m->dh[i];
+            for (int c = 0; c < 6; c++) {
+                m->S_n[c][i] = m->S[c][i];
+                m->dS_n[c][i] = m->dS[c][i];
+                m->S[c][i] += dt * m->dS[c][i];
+            }
+            sph_plastic_return(m, i, dt, false);
+            if (!m->pinned[i])
+                for (int d = 0; d < sim->dim; d++)
+                    p->x[d][i] += dt * m->xv[d][i]; /* XSPH: particles move with v + xv */
+        }
+        return SPALL_OK;
+    }
+    const double hdt = 0.5 * dt;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        if (integ_rho)
+            m->rho[i] = m->rho_n[i] + hdt * (m->drho_n[i] + m->drho[i]);
+        m->e[i] = m->e_n[i] + hdt * (m->de_n[i] + m->de[i]);
+        m->h[i] = m->h_n[i] + hdt * (m->dh_n[i] + m->dh[i]);
+        for (int c = 0; c < 6; c++)
+            m->S[c][i] = m->S_n[c][i] + hdt * (m->dS_n[c][i] + m->dS[c][i]);
+        sph_plastic_return(m, i, dt, true);
+    }
+    return SPALL_OK;
+}
+
+static void sph_energy(const struct model *m, const struct sim *sim, struct model_energy *out)
+{
+    const struct particles *p = sim->p;
+    double ie = 0.0, wp = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        ie += p->mass[i] * m->e[i];
+        wp += m->wp[i];
+    }
+    /* internal energy (elastic + plastic + AV heat) is the model's store;
+     * the plastic work inside it is reported in history (plastic_work) */
+    out->strain = ie + m->wall_energy;
+    out->dissipated = 0.0;
+    (void)wp;
+}
+
+static size_t sph_history(const struct model *m, const struct sim *sim, const char **names,
+                          double *values)
+{
+    const struct particles *p = sim->p;
+    double wp = 0.0, nf = 0.0, epmax = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        wp += m->wp[i];
+        nf += m->failed[i];
+        if (m->ep[i] > epmax)
+            epmax = m->ep[i];
+    }
+    size_t k = 0;
+    names[k] = "plastic_work";
+    values[k++] = wp;
+    names[k] = "failed_particles";
+    values[k++] = nf;
+    names[k] = "max_plastic_strain";
+    values[k++] = epmax;
+    names[k] = "cspm_fallbacks";
+    values[k++] = (double)m->cspm_fallbacks;
+    names[k] = "neighbor_builds";
+    values[k++] = (double)m->n_builds;
+    names[k] = "wall_force";
+    values[k++] = m->opt.wall ? m->wall_force[0] * m->opt.wall_normal[0] +
+                                    m->wall_force[1] * m->opt.wall_normal[1] +
+                                    m->wall_force[2] * m->opt.wall_normal[2]
+                              : 0.0;
+    return k;
+}
+
+static void sph_describe(const struct model *m, const struct sim *sim, char *buf, size_t len)
+{
+    static const char *const kn[] = {"", "cubic_spline", "gaussian", "quintic_spline",
+                                     "wendland", "double_cosine", "hyperbolic"};
+    size_t off = 0;
+    off += (size_t)snprintf(buf + off, len - off,
+                            "sph: kernel %s (alpha_%d = %.10g / h^%d), h = %.3g dx, "
+                            "neighbour radius %.4g m\n",
+                            kn[m->opt.kernel], sim->dim, m->alpha, sim->dim, m->opt.h_factor,
+                            m->nl_radius);
+    for (size_t k = 0; k < m->n_mat && off < len; k++) {
+        const struct sph_material *mt = &m->mat[k];
+        off += (size_t)snprintf(buf + off, len - off,
+                                "  material %zu: E = %.4g Pa, nu = %.4g, K = %.4g Pa, G = %.4g Pa, "
+                                "c0 = %.5g m/s\n",
+                                k, mt->E, mt->nu, mt->K, mt->G,
+                                sph_sound_speed(mt, mt->rho0, 0.0));
+    }
+}
+
+static size_t sph_interactions(const struct model *m, const struct sim *sim)
+{
+    (void)sim;
+    return m->nl ? m->nl->offset[m->nl->n] / 2 : 0;
+}
+
+const struct model_ops sph_model_ops = {
+    .name = "sph",
+    .summary = "SPH for elastic-plastic solids: six kernels, CSPM, AV/AS/XSPH, JC, Mie-Grueneisen",
+    .create = sph_create,
+    .parse_material = sph_parse_material,
+    .init = sph_init,
+    .precrack = NULL,
+    .register_fields = sph_register_fields,
+    .compute_forces = sph_forces,
+    .stable_dt = sph_stable_dt,
+    .end_step = sph_end_step,
+    .energy = sph_energy,
+    .history = sph_history,
+    .describe = sph_describe,
+    .destroy = sph_destroy,
+    .advance_state = sph_advance_state,
+    .interactions = sph_interactions,
+};

@@ -1,0 +1,460 @@
+/**
+ * @file sph_rates.c
+ * @brief The SPH pair loops (seed 004 Eqs. 3.10-3.21, 2.21-2.27): neighbour
+ *        list with a skin, CSPM matrix, summation density, velocity gradient,
+ *        continuity, momentum and energy with Monaghan artificial viscosity,
+ *        Monaghan-Gray artificial stress and XSPH, and the rigid wall.
+ *
+ * Every loop gathers over the full neighbour list of particle i (both i-j
+ * and j-i are listed), so no two threads write the same entry and results
+ * are bitwise independent of the thread count.  Sums run in the list's
+ * ascending order.  Dimension is a literal argument of the inline pass
+ * functions so each is compiled for 2 and 3 with fixed loop bounds.
+ *
+ * Sign convention: tension positive, sigma = -P I + S.
+ *   dv_i/dt = sum_j m_j (sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + R_ij f_ij^n) grad_i W_ij
+ *   de_i/dt = -sum_j m_j (v_i - v_j) . sigma_i/rho_i^2 . grad_i W_ij
+ *             -1/2 sum_j m_j (v_i - v_j) . (-Pi_ij I + R_ij f^n) . grad_i W_ij
+ * (the form of de/dt that pairs sigma_i with particle i's own velocity
+ * gradient; the artificial stress enters it too, so that kinetic + internal
+ * energy is conserved exactly by the semi-discrete equations).
+ * With CSPM the stress terms use each particle's corrected gradient
+ * (sigma_i/rho_i^2 B_i^-T grad W + sigma_j/rho_j^2 B_j^-T grad W) and the
+ * energy equation pairs sigma_i with the same corrected velocity gradient
+ * (de_i = -sum_j m_j v_ij . sigma_i/rho_i^2 B_i^-T grad W): momentum and
+ * kinetic + internal energy stay conserved.  Correcting only the velocity
+ * gradient (the thesis' reading) breaks that pairing and, as measured on
+ * the oscillating plate, pumps energy into the system exponentially.
+ */
+#include "models/sph/sph_internal.h"
+
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+
+int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const int dim = m->dim;
+    double hmax = 0.0;
+    for (size_t i = 0; i < n; i++)
+        if (m->h[i] > hmax)
+            hmax = m->h[i];
+    if (!force && m->nl) {
+        double d2max = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            double d2 = 0.0;
+            for (int d = 0; d < dim; d++) {
+                double dd = p->x[d][i] - m->x_build[d][i];
+                d2 += dd * dd;
+            }
+            if (d2 > d2max)
+                d2max = d2;
+        }
+        /* a pair can close in by at most twice the largest displacement */
+        if (m->qmax * hmax + 2.0 * sqrt(d2max) <= m->nl_radius)
+            return SPALL_OK;
+    }
+    double t0 = omp_get_wtime();
+    neighbor_list_destroy(&m->nl);
+    m->nl_radius = m->qmax * hmax * (1.0 + m->opt.skin);
+    int rc = neighbor_list_build(&m->nl, dim, n, p->x, m->nl_radius, err);
+    if (rc)
+        return rc;
+    for (int d = 0; d < dim; d++)
+        memcpy(m->x_build[d], p->x[d], n * sizeof(double));
+    m->n_builds++;
+    m->t_neighbor += omp_get_wtime() - t0;
+    return SPALL_OK;
+}
+
+/** Smallest |det B| accepted for the CSPM correction.  B ~ I in the bulk;
+ * a corner particle of a 3D block keeps det B ~ 0.03-0.1; an isolated or
+ * nearly isolated particle drives it to 0: below this the plain gradient
+ * is used and the fallback counted. */
+#define SPH_CSPM_MIN_DET 0.01
+
+/* Invert a dim x dim matrix (row-major 3x3 storage); 0 if (near) singular
+ * relative to the identity it should approximate. */
+static inline int inv_small(int dim, const double A[9], double out[9])
+{
+    if (dim == 2) {
+        double det = A[0] * A[4] - A[1] * A[3];
+        if (!(fabs(det) > SPH_CSPM_MIN_DET))
+            return 0;
+        out[0] = A[4] / det;
+        out[1] = -A[1] / det;
+        out[3] = -A[3] / det;
+        out[4] = A[0] / det;
+        out[2] = out[5] = out[6] = out[7] = 0.0;
+        out[8] = 1.0;
+        return 1;
+    }
+    double c0 = A[4] * A[8] - A[5] * A[7];
+    double c1 = A[5] * A[6] - A[3] * A[8];
+    double c2 = A[3] * A[7] - A[4] * A[6];
+    double det = A[0] * c0 + A[1] * c1 + A[2] * c2;
+    if (!(fabs(det) > SPH_CSPM_MIN_DET))
+        return 0;
+    double id = 1.0 / det;
+    out[0] = c0 * id;
+    out[1] = (A[2] * A[7] - A[1] * A[8]) * id;
+    out[2] = (A[1] * A[5] - A[2] * A[4]) * id;
+    out[3] = c1 * id;
+    out[4] = (A[0] * A[8] - A[2] * A[6]) * id;
+    out[5] = (A[2] * A[3] - A[0] * A[5]) * id;
+    out[6] = c2 * id;
+    out[7] = (A[1] * A[6] - A[0] * A[7]) * id;
+    out[8] = (A[0] * A[4] - A[1] * A[3]) * id;
+    return 1;
+}
+
+/* Pass B: summation density (optional), CSPM matrix, velocity gradient. */
+static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim)
+{
+    const struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const size_t *off = m->nl->offset;
+    const int32_t *nb = m->nl->idx;
+    const enum sph_kernel kern = m->opt.kernel;
+    const double alpha = m->alpha, qmax = m->qmax;
+    const bool cspm = m->opt.cspm, summ = m->opt.density == SPH_DENSITY_SUMMATION;
+    size_t fallbacks = 0;
+    if (summ) {
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            double hi = m->h[i];
+            double W0, F0;
+            sph_kernel_eval(kern, alpha, 0.0, hi, pow(hi, dim), &W0, &F0);
+            double rho = m->m2[i] * W0;
+            for (size_t k = off[i]; k < off[i + 1]; k++) {
+                size_t j = (size_t)nb[k];
+                double hb = 0.5 * (hi + m->h[j]);
+                double r2 = 0.0;
+                for (int d = 0; d < dim; d++) {
+                    double dd = p->x[d][i] - p->x[d][j];
+                    r2 += dd * dd;
+                }
+                if (r2 >= qmax * qmax * hb * hb)
+                    continue;
+                double W, F;
+                sph_kernel_eval(kern, alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W,
+                                &F);
+                rho += m->m2[j] * W;
+            }
+            m->rho[i] = rho;
+        }
+    }
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
+    for (size_t i = 0; i < n; i++) {
+        double G[9] = {0}, B[9] = {0};
+        const double hi = m->h[i];
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            size_t j = (size_t)nb[k];
+            double hb = 0.5 * (hi + m->h[j]);
+            double xij[3] = {0, 0, 0};
+            double r2 = 0.0;
+            for (int d = 0; d < dim; d++) {
+                xij[d] = p->x[d][i] - p->x[d][j];
+                r2 += xij[d] * xij[d];
+            }
+            if (r2 >= qmax * qmax * hb * hb)
+                continue;
+            double W, F;
+            sph_kernel_eval(kern, alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W, &F);
+            double Vj = m->m2[j] / m->rho[j];
+            double VF = Vj * F; /* grad_i W = F x_ij */
+            for (int a = 0; a < dim; a++) {
+                double dv = p->v[a][j] - p->v[a][i];
+                double dxa = -xij[a];
+                for (int b = 0; b < dim; b++) {
+                    G[a * 3 + b] += dv * VF * xij[b];
+                    B[a * 3 + b] += dxa * VF * xij[b];
+                }
+            }
+        }
+        double L[9] = {0};
+        double Bi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        int ok = cspm ? inv_small(dim, B, Bi) : 0;
+        if (!ok) {
+            for (int c = 0; c < 9; c++)
+                Bi[c] = (c % 4 == 0) ? 1.0 : 0.0;
+        }
+        for (int c = 0; c < 9; c++)
+            m->Bi[c][i] = Bi[c];
+        if (cspm && !ok)
+            fallbacks++;
+        if (ok) {
+            /* Eq. 3.11: grad v = G B^-1 */
+            for (int a = 0; a < dim; a++)
+                for (int b = 0; b < dim; b++) {
+                    double acc = 0.0;
+                    for (int c = 0; c < dim; c++)
+                        acc += G[a * 3 + c] * Bi[c * 3 + b];
+                    L[a * 3 + b] = acc;
+                }
+        } else {
+            memcpy(L, G, sizeof L); /* plain SPH gradient, Eq. 3.31 */
+        }
+        for (int c = 0; c < 9; c++)
+            m->L[c][i] = L[c];
+    }
+    return fallbacks;
+}
+
+/* Principal-axes artificial stress R_i (Monaghan-Gray, Eqs. 2.25-2.27). */
+static void artificial_stress(struct model *m, size_t i)
+{
+    const double zeta = m->opt.as_zeta;
+    const double r2 = m->rho[i] * m->rho[i];
+    for (int c = 0; c < 6; c++)
+        m->R[c][i] = 0.0;
+    if (m->dim == 2) {
+        double sxx = m->sig[SXX][i], syy = m->sig[SYY][i], sxy = m->sig[SXY][i];
+        double mean = 0.5 * (sxx + syy), rad = sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
+        double s1 = mean + rad, s2 = mean - rad;
+        double th = 0.5 * atan2(2.0 * sxy, sxx - syy);
+        double c = cos(th), sn = sin(th);
+        double R1 = s1 > 0.0 ? -zeta * s1 / r2 : 0.0;
+        double R2 = s2 > 0.0 ? -zeta * s2 / r2 : 0.0;
+        m->R[SXX][i] = R1 * c * c + R2 * sn * sn;
+        m->R[SYY][i] = R1 * sn * sn + R2 * c * c;
+        m->R[SXY][i] = (R1 - R2) * c * sn;
+        return;
+    }
+    /* 3D: cyclic Jacobi rotations on the symmetric stress */
+    double A[3][3] = {{m->sig[SXX][i], m->sig[SXY][i], m->sig[SXZ][i]},
+                      {m->sig[SXY][i], m->sig[SYY][i], m->sig[SYZ][i]},
+                      {m->sig[SXZ][i], m->sig[SYZ][i], m->sig[SZZ][i]}};
+    double V[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int sweep = 0; sweep < 8; sweep++) {
+        double off = fabs(A[0][1]) + fabs(A[0][2]) + fabs(A[1][2]);
+        double scale = fabs(A[0][0]) + fabs(A[1][1]) + fabs(A[2][2]);
+        if (off <= 1e-14 * scale || off == 0.0)
+            break;
+        for (int pp = 0; pp < 2; pp++)
+            for (int q = pp + 1; q < 3; q++) {
+                if (A[pp][q] == 0.0)
+                    continue;
+                double th = 0.5 * (A[q][q] - A[pp][pp]) / A[pp][q];
+                double t = (th >= 0 ? 1.0 : -1.0) / (fabs(th) + sqrt(th * th + 1.0));
+                double c = 1.0 / sqrt(t * t + 1.0), sn = t * c;
+                for (int k = 0; k < 3; k++) {
+                    double akp = A[k][pp], akq = A[k][q];
+                    A[k][pp] = c * akp - sn * akq;
+                    A[k][q] = sn * akp + c * akq;
+                }
+                for (int k = 0; k < 3; k++) {
+                    double apk = A[pp][k], aqk = A[q][k];
+                    A[pp][k] = c * apk - sn * aqk;
+                    A[q][k] = sn * apk + c * aqk;
+                }
+                for (int k = 0; k < 3; k++) {
+                    double vkp = V[k][pp], vkq = V[k][q];
+                    V[k][pp] = c * vkp - sn * vkq;
+                    V[k][q] = sn * vkp + c * vkq;
+                }
+            }
+    }
+    double Rp[3];
+    for (int a = 0; a < 3; a++)
+        Rp[a] = A[a][a] > 0.0 ? -zeta * A[a][a] / r2 : 0.0;
+    static const int ia[6] = {0, 1, 2, 0, 1, 0}, ib[6] = {0, 1, 2, 1, 2, 2};
+    for (int c = 0; c < 6; c++) {
+        double acc = 0.0;
+        for (int a = 0; a < 3; a++)
+            acc += Rp[a] * V[ia[c]][a] * V[ib[c]][a];
+        m->R[c][i] = acc;
+    }
+}
+
+/* Pass C: momentum, energy, XSPH. */
+static inline void pass_forces(struct model *m, struct sim *s, const int dim)
+{
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const size_t *off = m->nl->offset;
+    const int32_t *nb = m->nl->idx;
+    const enum sph_kernel kern = m->opt.kernel;
+    const double alpha = m->alpha, qmax = m->qmax;
+    const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
+    const double xs = m->opt.xsph;
+    const bool cm = m->opt.cspm;
+    static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        const double hi = m->h[i], rhoi = m->rho[i];
+        const double ri2 = 1.0 / (rhoi * rhoi);
+        double acc[3] = {0, 0, 0}, xv[3] = {0, 0, 0}, de = 0.0;
+        double Wdi = 0.0; /* W(dx_i, h_i): the AS reference value (Eq. 2.26) */
+        if (zeta > 0.0) {
+            double Fd;
+            sph_kernel_eval(kern, alpha, m->dx[i], hi, dim == 2 ? hi * hi : hi * hi * hi, &Wdi,
+                            &Fd);
+        }
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            size_t j = (size_t)nb[k];
+            double hb = 0.5 * (hi + m->h[j]);
+            double xij[3] = {0, 0, 0}, vij[3] = {0, 0, 0};
+            double r2 = 0.0, vx = 0.0;
+            for (int d = 0; d < dim; d++) {
+                xij[d] = p->x[d][i] - p->x[d][j];
+                vij[d] = p->v[d][i] - p->v[d][j];
+                r2 += xij[d] * xij[d];
+                vx += vij[d] * xij[d];
+            }
+            if (r2 >= qmax * qmax * hb * hb)
+                continue;
+            const double hd = dim == 2 ? hb * hb : hb * hb * hb;
+            double W, F;
+            sph_kernel_eval(kern, alpha, sqrt(r2), hb, hd, &W, &F);
+            const double rhoj = m->rho[j];
+            const double rj2 = 1.0 / (rhoj * rhoj);
+            double Pi = 0.0;
+            if (vx < 0.0 && (qa > 0.0 || qb > 0.0)) {
+                /* Monaghan AV, Eq. 2.21: mu = h v.x / (r^2 + 0.01 h^2) */
+                double mu = hb * vx / (r2 + 0.01 * hb * hb);
+                double cb = 0.5 * (m->c[i] + m->c[j]);
+                Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + rhoj));
+            }
+            double fn = 0.0;
+            if (zeta > 0.0) {
+                double Wd = Wdi;
+                if (m->h[j] != hi || m->dx[j] != m->dx[i]) {
+                    double Fd;
+                    sph_kernel_eval(kern, alpha, 0.5 * (m->dx[i] + m->dx[j]), hb, hd, &Wd, &Fd);
+                }
+                double f1 = Wd > 0.0 ? W / Wd : 0.0;
+                fn = asn == 4.0 ? (f1 * f1) * (f1 * f1) : pow(f1, asn);
+            }
+            const double mj = m->m2[j];
+            /* CSPM-corrected gradients, each particle with its own B:
+             * g_i = B_i^-T grad_i W_ij pairs with sigma_i, g_j = B_j^-T
+             * grad_i W_ij with sigma_j.  The pair force stays antisymmetric
+             * (momentum conserved) and the internal power equals
+             * sum_i V_i sigma_i : L_i with the same corrected L_i, so
+             * kinetic + internal energy is conserved (Bonet & Lok 1999
+             * pairing).  Without CSPM, g_i = g_j = grad_i W_ij. */
+            double gi[3], gj[3], g0[3];
+            for (int b = 0; b < dim; b++)
+                g0[b] = xij[b] * F;
+            if (cm) {
+                for (int b = 0; b < dim; b++) {
+                    double ti = 0.0, tj = 0.0;
+                    for (int c = 0; c < dim; c++) {
+                        ti += m->Bi[c * 3 + b][i] * g0[c];
+                        tj += m->Bi[c * 3 + b][j] * g0[c];
+                    }
+                    gi[b] = ti;
+                    gj[b] = tj;
+                }
+            } else {
+                for (int b = 0; b < dim; b++)
+                    gi[b] = gj[b] = g0[b];
+            }
+            double Ai[3], Aj[3], Aa[3];
+            for (int a = 0; a < dim; a++) {
+                double ti = 0.0, tj = 0.0, ta = 0.0;
+                for (int b = 0; b < dim; b++) {
+                    int c = tix[a][b];
+                    ti += m->sig[c][i] * gi[b];
+                    tj += m->sig[c][j] * gj[b];
+                    double A = fn * (m->R[c][i] + m->R[c][j]);
+                    if (a == b)
+                        A -= Pi;
+                    ta += A * g0[b];
+                }
+                Ai[a] = ti * ri2;
+                Aj[a] = tj * rj2;
+                Aa[a] = ta;
+            }
+            for (int a = 0; a < dim; a++) {
+                acc[a] += mj * (Ai[a] + Aj[a] + Aa[a]);
+                /* own stress power + half of the symmetric AV/AS terms */
+                de -= mj * vij[a] * (Ai[a] + 0.5 * Aa[a]);
+            }
+            if (xs > 0.0) {
+                double w = 2.0 * mj / (rhoi + rhoj) * W;
+                for (int a = 0; a < dim; a++)
+                    xv[a] -= w * vij[a];
+            }
+        }
+        for (int a = 0; a < dim; a++) {
+            p->f[a][i] += p->mass[i] * acc[a];
+            m->xv[a][i] = xs * xv[a];
+        }
+        m->de[i] = de;
+    }
+}
+
+/* Rigid half-space wall by a penalty: a particle closer than dx/2 to the
+ * plane is pushed out with k = factor m (c0/dx)^2, i.e. the stiffness of
+ * its own column of material (stable for factor <= ~4 at c_s <= 0.3). */
+static void wall_forces(struct model *m, struct sim *s)
+{
+    struct particles *p = s->p;
+    const double *n = m->opt.wall_normal, *x0 = m->opt.wall_point;
+    double energy = 0.0, ft[3] = {0, 0, 0};
+    for (size_t i = 0; i < p->n_owned; i++) {
+        double d = 0.0;
+        for (int a = 0; a < m->dim; a++)
+            d += (p->x[a][i] - x0[a]) * n[a];
+        double g = d - 0.5 * m->dx[i];
+        if (g >= 0.0)
+            continue;
+        const struct sph_material *mt = &m->mat[p->material[i]];
+        double c0 = sph_sound_speed(mt, mt->rho0, 0.0);
+        double k = m->opt.wall_stiffness * p->mass[i] * c0 * c0 / (m->dx[i] * m->dx[i]);
+        for (int a = 0; a < m->dim; a++) {
+            p->f[a][i] += -k * g * n[a];
+            ft[a] += -k * g * n[a];
+        }
+        energy += 0.5 * k * g * g;
+    }
+    m->wall_energy = energy;
+    memcpy(m->wall_force, ft, sizeof ft);
+}
+
+int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
+{
+    const size_t n = s->p->n_owned;
+    if (m->opt.total_lagrangian) {
+        int rc = sph_tlsph_rates(m, s, err);
+        if (!rc && m->opt.wall)
+            wall_forces(m, s);
+        return rc;
+    }
+    int rc = sph_neighbors_update(m, s, false, err);
+    if (rc)
+        return rc;
+    m->n_pairs = m->nl->offset[n];
+    size_t fb = m->dim == 2 ? pass_gradient(m, s, 2) : pass_gradient(m, s, 3);
+    m->cspm_fallbacks += fb;
+    sph_update_pressure(m, s);
+    const bool summ = m->opt.density == SPH_DENSITY_SUMMATION;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        double trD;
+        sph_stress_rate(m, i, &trD);
+        m->drho[i] = summ ? 0.0 : -m->rho[i] * trD; /* Eq. 3.18 */
+        double trp = m->L[0][i] + m->L[4][i] + (m->dim == 3 ? m->L[8][i] : 0.0);
+        m->dh[i] = m->opt.variable_h ? m->h[i] * trp / m->dim : 0.0;
+        for (int c = 0; c < 6; c++)
+            m->sig[c][i] = m->S[c][i] - (c < 3 ? m->P[i] : 0.0);
+        if (m->opt.as_zeta > 0.0)
+            artificial_stress(m, i);
+    }
+    if (m->dim == 2)
+        pass_forces(m, s, 2);
+    else
+        pass_forces(m, s, 3);
+    if (m->opt.wall)
+        wall_forces(m, s);
+    return SPALL_OK;
+}

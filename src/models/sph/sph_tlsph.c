@@ -1,0 +1,276 @@
+/**
+ * @file sph_tlsph.c
+ * @brief Total-Lagrangian SPH (the remedy named in seed 004's conclusions
+ *        for the tensile instability): kernel and neighbours on the
+ *        reference configuration, corrected reference gradients, the
+ *        deformation gradient, first Piola-Kirchhoff stress forces and a
+ *        pairwise hourglass control.
+ *
+ *   g_i(ij) = B0_i^-T grad_X W(X_i - X_j),  B0_i = sum_j V0_j (X_j - X_i) (x) grad_X W
+ *   F_i     = sum_j V0_j (x_j - x_i) (x) g_i(ij)      (= I at the start, exactly)
+ *   dF_i/dt = sum_j V0_j (v_j - v_i) (x) g_i(ij),  L_i = dF_i/dt F_i^-1
+ *   m_i a_i = sum_j V0_i V0_j (P_i g_i(ij) + P_j g_j(ij)),  P = J sigma F^-T
+ *   de_i/dt = (1/rho0) P_i : dF_i/dt  (the pairing that conserves energy)
+ * The stress S and the pressure use the same Jaumann-rate / EOS / radial
+ * return machinery as the updated form (L_i from above).  Hourglass
+ * (zero-energy) modes are resisted by a pair force along the mismatch
+ * between the current separation and the one predicted by the mean F:
+ *   f_i += kappa E V0_i V0_j W0_ij / |X_ij|^2 (x_ij - Fbar X_ij)   (x_ij = x_j - x_i)
+ * which vanishes for any affine motion (it never resists a homogeneous
+ * deformation) and is antisymmetric (momentum conserving); kappa =
+ * model.hourglass (default 0.1).  Its work is booked as internal energy.
+ * Monaghan AV acts on the current pair geometry with reference gradients.
+ */
+#include "models/sph/sph_internal.h"
+
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
+{
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const int dim = m->dim;
+    double hmax = 0.0;
+    for (size_t i = 0; i < n; i++)
+        hmax = fmax(hmax, m->h[i]);
+    neighbor_list_destroy(&m->nl);
+    m->nl_radius = m->qmax * hmax;
+    int rc = neighbor_list_build(&m->nl, dim, n, p->x0, m->nl_radius, err);
+    if (rc)
+        return rc;
+    m->n_builds = 1;
+    const size_t *off = m->nl->offset;
+    const int32_t *nb = m->nl->idx;
+    for (size_t i = 0; i < n; i++) {
+        double B[9] = {0};
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            size_t j = (size_t)nb[k];
+            double hb = 0.5 * (m->h[i] + m->h[j]), X[3] = {0, 0, 0}, r2 = 0.0;
+            for (int d = 0; d < dim; d++) {
+                X[d] = p->x0[d][i] - p->x0[d][j];
+                r2 += X[d] * X[d];
+            }
+            double W, F;
+            sph_kernel_eval(m->opt.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
+            double V = m->m2[j] / m->mat[p->material[j]].rho0;
+            for (int a = 0; a < dim; a++)
+                for (int b = 0; b < dim; b++)
+                    B[a * 3 + b] += -X[a] * V * F * X[b];
+        }
+        double Bi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        if (dim == 2) {
+            double det = B[0] * B[4] - B[1] * B[3];
+            if (fabs(det) > 1e-3) {
+                Bi[0] = B[4] / det;
+                Bi[1] = -B[1] / det;
+                Bi[3] = -B[3] / det;
+                Bi[4] = B[0] / det;
+            } else {
+                m->cspm_fallbacks++;
+            }
+        } else {
+            double c0 = B[4] * B[8] - B[5] * B[7], c1 = B[5] * B[6] - B[3] * B[8],
+                   c2 = B[3] * B[7] - B[4] * B[6];
+            double det = B[0] * c0 + B[1] * c1 + B[2] * c2;
+            if (fabs(det) > 1e-3) {
+                double id = 1.0 / det;
+                Bi[0] = c0 * id;
+                Bi[1] = (B[2] * B[7] - B[1] * B[8]) * id;
+                Bi[2] = (B[1] * B[5] - B[2] * B[4]) * id;
+                Bi[3] = c1 * id;
+                Bi[4] = (B[0] * B[8] - B[2] * B[6]) * id;
+                Bi[5] = (B[2] * B[3] - B[0] * B[5]) * id;
+                Bi[6] = c2 * id;
+                Bi[7] = (B[1] * B[6] - B[0] * B[7]) * id;
+                Bi[8] = (B[0] * B[4] - B[1] * B[3]) * id;
+            } else {
+                m->cspm_fallbacks++;
+            }
+        }
+        for (int c = 0; c < 9; c++)
+            m->Bi[c][i] = Bi[c];
+    }
+    return SPALL_OK;
+}
+
+/* 3x3 inverse (2D: the 2x2 block, [8] = 1); returns det of the dim block. */
+static double inv3(int dim, const double A[9], double out[9])
+{
+    if (dim == 2) {
+        double det = A[0] * A[4] - A[1] * A[3];
+        out[0] = A[4] / det;
+        out[1] = -A[1] / det;
+        out[3] = -A[3] / det;
+        out[4] = A[0] / det;
+        out[2] = out[5] = out[6] = out[7] = 0.0;
+        out[8] = 1.0;
+        return det;
+    }
+    double c0 = A[4] * A[8] - A[5] * A[7], c1 = A[5] * A[6] - A[3] * A[8],
+           c2 = A[3] * A[7] - A[4] * A[6];
+    double det = A[0] * c0 + A[1] * c1 + A[2] * c2, id = 1.0 / det;
+    out[0] = c0 * id;
+    out[1] = (A[2] * A[7] - A[1] * A[8]) * id;
+    out[2] = (A[1] * A[5] - A[2] * A[4]) * id;
+    out[3] = c1 * id;
+    out[4] = (A[0] * A[8] - A[2] * A[6]) * id;
+    out[5] = (A[2] * A[3] - A[0] * A[5]) * id;
+    out[6] = c2 * id;
+    out[7] = (A[1] * A[6] - A[0] * A[7]) * id;
+    out[8] = (A[0] * A[4] - A[1] * A[3]) * id;
+    return det;
+}
+
+int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
+{
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const int dim = m->dim;
+    const size_t *off = m->nl->offset;
+    const int32_t *nb = m->nl->idx;
+    const enum sph_kernel kern = m->opt.kernel;
+    m->n_pairs = off[n];
+    int bad = 0;
+    /* pass 1: F, dF/dt, L = dF F^-1, PK1 stress of the current state */
+#pragma omp parallel for schedule(static) reduction(| : bad)
+    for (size_t i = 0; i < n; i++) {
+        double Fd[9] = {0}, Fdot[9] = {0};
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            size_t j = (size_t)nb[k];
+            double hb = 0.5 * (m->h[i] + m->h[j]), X[3] = {0, 0, 0}, r2 = 0.0;
+            for (int d = 0; d < dim; d++) {
+                X[d] = p->x0[d][i] - p->x0[d][j];
+                r2 += X[d] * X[d];
+            }
+            double W, F;
+            sph_kernel_eval(kern, m->alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W,
+                            &F);
+            double V = m->m2[j] / m->mat[p->material[j]].rho0;
+            double g[3] = {0, 0, 0};
+            for (int b = 0; b < dim; b++)
+                for (int c = 0; c < dim; c++)
+                    g[b] += m->Bi[c * 3 + b][i] * F * X[c];
+            for (int a = 0; a < dim; a++) {
+                double dx = p->x[a][j] - p->x[a][i], dv = p->v[a][j] - p->v[a][i];
+                for (int b = 0; b < dim; b++) {
+                    Fd[a * 3 + b] += V * dx * g[b];
+                    Fdot[a * 3 + b] += V * dv * g[b];
+                }
+            }
+        }
+        if (dim == 2)
+            Fd[8] = 1.0;
+        double Fi[9];
+        double J = inv3(dim, Fd, Fi);
+        if (!(J > 0.0) || !isfinite(J)) {
+            bad = 1;
+            J = 1.0;
+            for (int c = 0; c < 9; c++)
+                Fi[c] = (c % 4 == 0) ? 1.0 : 0.0;
+        }
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) {
+                double acc = 0.0;
+                for (int c = 0; c < dim; c++)
+                    acc += Fdot[a * 3 + c] * Fi[c * 3 + b];
+                m->L[a * 3 + b][i] = (a < dim && b < dim) ? acc : 0.0;
+            }
+        for (int c = 0; c < 9; c++) {
+            m->Fdef[c][i] = Fd[c];
+            m->Fdot[c][i] = Fdot[c];
+            m->Finv[c][i] = Fi[c];
+        }
+        m->Jdet[i] = J;
+    }
+    if (bad)
+        return spall_error_set(err, SPALL_ERR_UNSTABLE,
+                               "TLSPH: a deformation gradient became singular or inverted at "
+                               "t = %.6g s (det F <= 0)", s->t);
+    sph_update_pressure(m, s);
+    static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        double trD;
+        sph_stress_rate(m, i, &trD);
+        m->drho[i] = -m->rho[i] * trD;
+        m->dh[i] = 0.0;
+        /* PK1 = J sigma F^-T */
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) {
+                double acc = 0.0;
+                for (int c = 0; c < dim; c++) {
+                    double sg = m->S[tix[a][c]][i] - (a == c ? m->P[i] : 0.0);
+                    acc += sg * m->Finv[b * 3 + c][i];
+                }
+                m->PK[a * 3 + b][i] = m->Jdet[i] * acc;
+            }
+    }
+    /* pass 2: forces, energy */
+    const double kappa = m->opt.hourglass, qa = m->opt.av_a, qb = m->opt.av_b;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        const struct sph_material *mi = &m->mat[p->material[i]];
+        const double Vi = m->m2[i] / mi->rho0;
+        double acc[3] = {0, 0, 0}, de = 0.0;
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            size_t j = (size_t)nb[k];
+            const struct sph_material *mj = &m->mat[p->material[j]];
+            double hb = 0.5 * (m->h[i] + m->h[j]), X[3] = {0, 0, 0}, r2 = 0.0;
+            double xij[3] = {0, 0, 0}, vij[3] = {0, 0, 0}, cr2 = 0.0, vx = 0.0;
+            for (int d = 0; d < dim; d++) {
+                X[d] = p->x0[d][i] - p->x0[d][j];
+                r2 += X[d] * X[d];
+                xij[d] = p->x[d][i] - p->x[d][j];
+                vij[d] = p->v[d][i] - p->v[d][j];
+                cr2 += xij[d] * xij[d];
+                vx += xij[d] * vij[d];
+            }
+            double W, F;
+            sph_kernel_eval(kern, m->alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W,
+                            &F);
+            const double Vj = m->m2[j] / mj->rho0;
+            double gi[3] = {0, 0, 0}, gj[3] = {0, 0, 0}, g0[3] = {0, 0, 0};
+            for (int b = 0; b < dim; b++) {
+                g0[b] = F * X[b];
+                for (int c = 0; c < dim; c++) {
+                    gi[b] += m->Bi[c * 3 + b][i] * F * X[c];
+                    gj[b] += m->Bi[c * 3 + b][j] * F * X[c];
+                }
+            }
+            double Pi = 0.0;
+            if (vx < 0.0 && (qa > 0.0 || qb > 0.0)) {
+                double mu = hb * vx / (cr2 + 0.01 * hb * hb);
+                double cb = 0.5 * (m->c[i] + m->c[j]);
+                Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (m->rho[i] + m->rho[j]));
+            }
+            /* hourglass: mismatch of x_j - x_i against Fbar (X_j - X_i) */
+            double hg = kappa * 0.5 * (mi->E + mj->E) * Vi * Vj * W / r2;
+            for (int a = 0; a < dim; a++) {
+                double ti = 0.0, tj = 0.0, pred = 0.0;
+                for (int b = 0; b < dim; b++) {
+                    ti += m->PK[a * 3 + b][i] * gi[b];
+                    tj += m->PK[a * 3 + b][j] * gj[b];
+                    pred += 0.5 * (m->Fdef[a * 3 + b][i] + m->Fdef[a * 3 + b][j]) * (-X[b]);
+                }
+                double fs = Vi * Vj * (ti + tj);
+                double fav = -m->m2[i] * m->m2[j] * Pi * g0[a];
+                double fhg = hg * (-xij[a] - pred);
+                acc[a] += fs + fav + fhg;
+                de -= Vi * Vj * vij[a] * ti + 0.5 * (fav + fhg) * vij[a];
+            }
+        }
+        for (int a = 0; a < dim; a++)
+            p->f[a][i] += p->mass[i] / m->m2[i] * acc[a];
+        m->de[i] = de / m->m2[i];
+        for (int a = 0; a < dim; a++)
+            m->xv[a][i] = 0.0;
+    }
+    return SPALL_OK;
+}

@@ -1,0 +1,324 @@
+/**
+ * @file sph_beam_plate.c
+ * @brief SPH validation cases "sph-gradient", "sph-beam" and "sph-plate".
+ *
+ * sph-gradient: a linear velocity field v = A x + b on a free 2D block and
+ *   a free 3D block; CSPM (seed 004 Eqs. 3.10-3.11) must return A at every
+ *   particle, surfaces and corners included (the plain SPH gradient of
+ *   Eq. 3.31 loses up to half of it there: reported, not checked).
+ * sph-beam: seed 004 sec. 3.4.1 / Table 3.4, the cantilever under an end
+ *   load ramped quadratically to 1.75 kN over 1.5 ms and held to 3 ms; the
+ *   time mean of the tip deflection over 1.5-3.0 ms against the static
+ *   FL^3/3EI + 6FL/5GA = 33.59 mm, for each of the six kernels; tolerance =
+ *   the thesis' own error for that kernel (each kernel must do at least as
+ *   well as the thesis).
+ * sph-plate: Gray, Monaghan & Swift (2001) oscillating plate: L = 0.2 m
+ *   beyond a clamp of L/4, H = 0.02 m, E = 2 MPa, nu = 0.3975, rho = 1000,
+ *   plane strain, started with the first cantilever mode shape; the period
+ *   against thin-plate theory omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)),
+ *   kL = 1.875104 -> omega = 24.73 rad/s (derived in docs/validation.md).
+ */
+#include "validation/lattice_cases.h"
+#include "validation/sph_cases.h"
+#include "validation/validation.h"
+
+#include "core/particles.h"
+#include "core/sim.h"
+#include "models/model.h"
+#include "models/sph/sph_internal.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- sph-gradient ------------------------------------------------------ */
+
+static int gradient_block(struct vreport *r, int dim, struct spall_error *err)
+{
+    char deck[2048];
+    if (dim == 2)
+        snprintf(deck, sizeof deck,
+                 "model: {type: sph, kernel: wendland, h_factor: 1.5, adaptive_dt: false}\n"
+                 "materials: {m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3}}\n"
+                 "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
+                 "body: {geometry: {box: {min: [0, 0], max: [0.012, 0.007]}}, material: m}\n"
+                 "run: {steps: 1}\n");
+    else
+        snprintf(deck, sizeof deck,
+                 "model: {type: sph, kernel: wendland, h_factor: 1.5, adaptive_dt: false}\n"
+                 "materials: {m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3}}\n"
+                 "lattice: {type: sc, spacing: 1.0e-3, origin: [0.0005, 0.0005, 0.0005]}\n"
+                 "body: {geometry: {box: {min: [0, 0, 0], max: [0.008, 0.006, 0.005]}}, "
+                 "material: m}\n"
+                 "run: {steps: 1}\n");
+    struct sim *s = NULL;
+    int rc = vlat_build(dim == 2 ? "sph_gradient_2d" : "sph_gradient_3d", deck, &s, err);
+    if (rc)
+        return rc;
+    const double A[3][3] = {{3.0, -1.0, 0.5}, {2.0, 0.7, -0.4}, {-1.2, 0.9, 1.1}};
+    struct particles *p = s->p;
+    double errmax[2] = {0, 0};
+    for (int pass = 0; pass < 2 && !rc; pass++) {
+        s->model->opt.cspm = pass == 0;
+        for (size_t i = 0; i < p->n; i++)
+            for (int a = 0; a < dim; a++) {
+                double v = 0.1 * a;
+                for (int b = 0; b < dim; b++)
+                    v += A[a][b] * p->x[b][i];
+                p->v[a][i] = v;
+            }
+        if ((rc = sim_initial_forces(s, err)))
+            break;
+        for (size_t i = 0; i < p->n; i++)
+            for (int a = 0; a < dim; a++)
+                for (int b = 0; b < dim; b++)
+                    errmax[pass] = fmax(errmax[pass],
+                                        fabs(s->model->L[a * 3 + b][i] - A[a][b]) / 3.0);
+    }
+    if (!rc) {
+        char q[96];
+        snprintf(q, sizeof q, "%dD CSPM velocity gradient, max error / |A|", dim);
+        rc = vreport_check(r, q, "1", 0.0, errmax[0], 1e-10, false,
+                           "exact for linear fields by construction (seed 004 Eq. 3.11)",
+                           "round-off only; includes the free surfaces and corners", err);
+        vreport_info(r, "%dD: plain SPH gradient (Eq. 3.31) max error / |A| = %.3f (surface "
+                     "deficiency CSPM removes); CSPM fallbacks = %zu",
+                     dim, errmax[1], s->model->cspm_fallbacks);
+    }
+    sim_destroy(&s);
+    return rc;
+}
+
+int sph_case_gradient(struct vreport *r, struct spall_error *err)
+{
+    int rc = gradient_block(r, 2, err);
+    if (!rc)
+        rc = gradient_block(r, 3, err);
+    return rc;
+}
+
+/* ---- sph-beam ---------------------------------------------------------- */
+
+static const char *const BEAM_KERNELS[6] = {"cubic_spline",  "gaussian",   "quintic_spline",
+                                            "wendland",      "double_cosine", "hyperbolic"};
+/* seed 004 Table 3.4: mean error over 1.5-3.0 ms [%] */
+static const double BEAM_THESIS_ERR[6] = {2.55, 8.11, 7.96, 9.58, 17.62, 8.86};
+
+/* Mean tip deflection [m] (downwards positive) over [1.5, 3.0] ms. */
+static int beam_run(const char *kernel, double force, double hfac, const char *extra,
+                    double *mean_defl, double *final_defl, struct spall_error *err)
+{
+    char deck[3072];
+    snprintf(deck, sizeof deck,
+             "model: {type: sph, kernel: %s, h_factor: %g, plane: stress, %s}\n"
+             "materials: {steel: {density: 7800, youngs_modulus: 210.0e9, poisson_ratio: 0.3}}\n"
+             "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005], "
+             "thickness: 1.0e-3}\n"
+             "body: {geometry: {box: {min: [-0.003, -0.005], max: [0.1, 0.005]}}, "
+             "material: steel}\n"
+             "groups:\n"
+             "  clamp: {box: {min: [-0.004, -1], max: [0.0, 1]}}\n"
+             "  tip: {box: {min: [0.099, -1], max: [0.101, 1]}}\n"
+             "boundary_conditions:\n"
+             "  - {group: clamp, type: fixed}\n"
+             "  - {group: tip, type: force, components: [y], value: %.17g,\n"
+             "     function: {type: quadratic_ramp, duration: 1.5e-3}}\n"
+             "run: {end_time: 3.0e-3, dt_factor: 0.5}\n",
+             kernel, hfac, extra, -force);
+    struct sim *s = NULL;
+    int rc = vlat_build("sph_beam", deck, &s, err);
+    if (rc)
+        return rc;
+    int g = sim_find_group(s, "tip");
+    const struct group *tip = &s->groups[g];
+    double acc = 0.0, tacc = 0.0, uy = 0.0;
+    while (!sim_done(s)) {
+        double dt = s->dt;
+        if ((rc = sim_step(s, err)))
+            break;
+        uy = 0.0;
+        for (size_t q = 0; q < tip->n; q++) {
+            size_t i = tip->idx[q];
+            uy += s->p->x[1][i] - s->p->x0[1][i];
+        }
+        uy /= (double)tip->n;
+        if (s->t >= 1.5e-3) {
+            acc += -uy * dt;
+            tacc += dt;
+        }
+    }
+    *mean_defl = tacc > 0 ? acc / tacc : NAN;
+    *final_defl = -uy;
+    sim_destroy(&s);
+    return rc;
+}
+
+int sph_case_beam(struct vreport *r, struct spall_error *err)
+{
+    const double ref = 33.59e-3;
+    for (int k = 0; k < 6; k++) {
+        double mean = NAN, fin = NAN;
+        int rc = beam_run(BEAM_KERNELS[k], 1750.0, 1.2,
+                          "viscosity: [0.1, 0.1], artificial_stress: 0.5, xsph: 0.5", &mean, &fin,
+                          err);
+        if (rc == SPALL_ERR_UNSTABLE) {
+            vreport_info(r, "kernel %s: %s", BEAM_KERNELS[k], err->msg);
+            err->code = 0;
+            err->msg[0] = 0;
+            mean = NAN;
+        } else if (rc) {
+            return rc;
+        }
+        char q[96], note[320];
+        snprintf(q, sizeof q, "type %d %s: mean tip deflection 1.5-3 ms", k + 1, BEAM_KERNELS[k]);
+        snprintf(note, sizeof note,
+                 "tolerance = the thesis' own mean error for this kernel (%.2f %%); deflection at "
+                 "3 ms %.2f mm",
+                 BEAM_THESIS_ERR[k], fin * 1e3);
+        if ((rc = vreport_check(r, q, "m", ref, isfinite(mean) ? mean : 1e9,
+                                BEAM_THESIS_ERR[k] / 100.0, true,
+                                "seed 004 Table 3.4 (static FL^3/3EI + 6FL/5GA)", note, err)))
+            return rc;
+        if (!r->checks[r->n - 1].pass) {
+            char gap[320];
+            snprintf(gap, sizeof gap,
+                     "GAP: measured %.2f mm (%.1f %%) vs thesis %.2f %%: dx = 1 mm gives 10 "
+                     "particles over the depth; the outer fibres lack kernel support (free "
+                     "surface) and artificial stress zeta = 0.5 softens tensile pairs; see "
+                     "docs/validation.md",
+                     mean * 1e3, fabs(mean - ref) / ref * 100.0, BEAM_THESIS_ERR[k]);
+            vreport_mark_gap(r, gap);
+        }
+    }
+    /* total-Lagrangian SPH, small and large load (Wendland); the large load
+     * (17.5 kN, h = 1.4 dx, AV (0.5, 0.8)) against the nonlinear 81.1 mm,
+     * also with the updated form (AS 0.9) for the tensile-instability
+     * comparison */
+    struct {
+        const char *what, *extra;
+        double force, hfac, ref, tol;
+    } tl[3] = {
+        {"TLSPH wendland 1.75 kN: mean tip deflection 1.5-3 ms",
+         "viscosity: [0.1, 0.1], formulation: total, hourglass: 1.0", 1750.0, 1.2, 33.59e-3,
+         0.0958},
+        {"TLSPH wendland 17.5 kN: mean tip deflection 1.5-3 ms",
+         "viscosity: [0.5, 0.8], formulation: total, hourglass: 1.0", 17500.0, 1.4, 81.1e-3,
+         0.0489},
+        {"updated SPH wendland 17.5 kN (AS 0.9): mean tip deflection",
+         "viscosity: [0.5, 0.8], artificial_stress: 0.9, xsph: 0.5", 17500.0, 1.4, 81.1e-3,
+         0.0489},
+    };
+    for (int k = 0; k < 3; k++) {
+        double mean = NAN, fin = NAN;
+        int rc = beam_run("wendland", tl[k].force, tl[k].hfac, tl[k].extra, &mean, &fin, err);
+        if (rc == SPALL_ERR_UNSTABLE) {
+            vreport_info(r, "%s: %s", tl[k].what, err->msg);
+            err->code = 0;
+            err->msg[0] = 0;
+            mean = NAN;
+        } else if (rc) {
+            return rc;
+        }
+        char note[320];
+        snprintf(note, sizeof note,
+                 "tolerance = the thesis' Wendland error (Table 3.4 / large-load 4.89 %%); "
+                 "deflection at 3 ms %.2f mm",
+                 fin * 1e3);
+        if ((rc = vreport_check(r, tl[k].what, "m", tl[k].ref, isfinite(mean) ? mean : 1e9,
+                                tl[k].tol, true,
+                                k == 0 ? "seed 004 Table 3.4" : "seed 004 sec. 3.4.1 (81.1 mm)",
+                                note, err)))
+            return rc;
+        if (!r->checks[r->n - 1].pass)
+            vreport_mark_gap(r, "GAP: see docs/sph.md (sph-beam)");
+    }
+    return SPALL_OK;
+}
+
+/* ---- sph-plate --------------------------------------------------------- */
+
+static int plate_run(int rows, double *period, double *omega, size_t *np,
+                     struct spall_error *err)
+{
+    const double L = 0.2, H = 0.02, dx = H / rows;
+    char deck[3072];
+    snprintf(deck, sizeof deck,
+             "model: {type: sph, kernel: cubic_spline, h_factor: 1.5, plane: strain,\n"
+             "        viscosity: [0.1, 0.1], artificial_stress: 0.3, xsph: 0.5}\n"
+             "materials: {rubber: {density: 1000, youngs_modulus: 2.0e6, poisson_ratio: 0.3975}}\n"
+             "lattice: {type: square, spacing: %.17g, origin: [%.17g, %.17g], thickness: 1.0}\n"
+             "body: {geometry: {box: {min: [%.17g, %.17g], max: [%.17g, %.17g]}}, "
+             "material: rubber}\n"
+             "groups: {clamp: {box: {min: [-1, -1], max: [0, 1]}}}\n"
+             "boundary_conditions: [{group: clamp, type: fixed}]\n"
+             "run: {end_time: 0.32}\n",
+             dx, 0.5 * dx, 0.5 * dx, -0.25 * L, -0.5 * H, L, 0.5 * H);
+    struct sim *s = NULL;
+    int rc = vlat_build("sph_plate", deck, &s, err);
+    if (rc)
+        return rc;
+    struct particles *p = s->p;
+    /* first cantilever mode, kL = 1.875104 */
+    const double kL = 1.875104068711961, k = kL / L;
+    const double Q = (cos(kL) + cosh(kL)) / (sin(kL) + sinh(kL));
+    const double fL = (cos(kL) - cosh(kL)) - Q * (sin(kL) - sinh(kL));
+    const double V = 0.1; /* tip speed [m/s]: amplitude V/omega = 4 mm = 2 % of L */
+    size_t tip = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        double x = p->x0[0][i];
+        double f = x > 0 ? (cos(k * x) - cosh(k * x)) - Q * (sin(k * x) - sinh(k * x)) : 0.0;
+        p->v[1][i] = V * f / fL;
+        if (p->x0[0][i] > p->x0[0][tip] ||
+            (p->x0[0][i] == p->x0[0][tip] && fabs(p->x0[1][i]) < fabs(p->x0[1][tip])))
+            tip = i;
+    }
+    if ((rc = sim_initial_forces(s, err))) {
+        sim_destroy(&s);
+        return rc;
+    }
+    /* zero crossings of the tip displacement: down-crossing ~T/2, up ~T */
+    double prev = 0.0, t_prev = 0.0, t_down = NAN, t_up = NAN;
+    while (!sim_done(s) && !isfinite(t_up)) {
+        if ((rc = sim_step(s, err)))
+            break;
+        double u = p->x[1][tip] - p->x0[1][tip];
+        if (s->step > 5) {
+            if (prev > 0.0 && u <= 0.0 && !isfinite(t_down))
+                t_down = t_prev + (s->t - t_prev) * prev / (prev - u);
+            else if (prev < 0.0 && u >= 0.0 && isfinite(t_down))
+                t_up = t_prev + (s->t - t_prev) * (-prev) / (u - prev);
+        }
+        prev = u;
+        t_prev = s->t;
+    }
+    *period = t_up;
+    *omega = 2.0 * SPH_PI / t_up;
+    *np = p->n;
+    sim_destroy(&s);
+    return rc;
+}
+
+int sph_case_plate(struct vreport *r, struct spall_error *err)
+{
+    const double E = 2.0e6, nu = 0.3975, rho = 1000.0, H = 0.02, L = 0.2;
+    const double kL = 1.875104068711961, k = kL / L;
+    const double w_ref = sqrt(E * H * H * k * k * k * k / (12.0 * rho * (1.0 - nu * nu)));
+    const double T_ref = 2.0 * SPH_PI / w_ref;
+    const int rows = r->quick ? 6 : 10;
+    double T = NAN, w = NAN;
+    size_t np = 0;
+    int rc = plate_run(rows, &T, &w, &np, err);
+    if (rc)
+        return rc;
+    vreport_info(r, "plate: %d rows (%zu particles), omega = %.4f rad/s (theory %.4f)", rows, np,
+                 w, w_ref);
+    return vreport_check(r, "oscillating plate: period of the first mode", "s", T_ref, T, 0.03,
+                         true,
+                         "thin-plate theory, plane strain: omega^2 = E H^2 k^4/(12 rho (1-nu^2)), "
+                         "kL = 1.8751 (Gray, Monaghan & Swift 2001)",
+                         "3 %: the issue's tolerance; thick-plate shear and the finite clamp "
+                         "make SPH slightly softer than thin-plate theory",
+                         err);
+}

@@ -1,0 +1,104 @@
+/**
+ * @file sph_taylor.c
+ * @brief SPH validation case "sph-taylor-3d": the 4340 steel Taylor bar of
+ *        seed 004 sec. 3.4.3 (Table 3.6): L0 = 37.97 mm, D0 = 7.595 mm,
+ *        181 m/s onto a rigid frictionless wall, Johnson-Cook yield with
+ *        plastic-work heating; final length against 34.5 mm (LS-DYNA, the
+ *        issue's 2 % target), with the thesis SPH (34.3 mm) and MSPH
+ *        (34.7 mm) values and the mushroom radius reported.
+ *
+ * The rod is a simple-cubic lattice with dx = D0 / n (n particles across)
+ * and exactly 5 n particles along (L0 / D0 = 5.0); a convergence series
+ * n = 8, 12, 16 is run in the full suite (the printed dx = 3.88 mm of the
+ * thesis cannot resolve the rod).  Melting temperature: 1793 K (4340 steel,
+ * Johnson & Cook 1985) instead of the printed 1293 K.  Linear EOS with
+ * K = 169.1 GPa (pressures stay below 2 GPa at 181 m/s).
+ */
+#include "validation/lattice_cases.h"
+#include "validation/sph_cases.h"
+#include "validation/validation.h"
+
+#include "core/particles.h"
+#include "core/sim.h"
+#include "models/model.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+
+/** Run the bar with @p n particles across; final length and radius [m]. */
+static int taylor_run(int n, double *len, double *rad, size_t *np, double *secs,
+                      struct spall_error *err)
+{
+    const double D0 = 7.595e-3, dx = D0 / n, L0 = 5.0 * D0;
+    char deck[3072];
+    snprintf(deck, sizeof deck,
+             "model: {type: sph, kernel: wendland, h_factor: 1.5, viscosity: [1.5, 1.5],\n"
+             "        xsph: 0.1, wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
+             "materials:\n"
+             "  steel4340: {density: 7830, bulk_modulus: 169.1e9, shear_modulus: 89.2e9,\n"
+             "              yield: johnson_cook, yield_a: 792.0e6, yield_b: 510.0e6,\n"
+             "              yield_n: 0.26, jc_c: 0.014, jc_m: 1.03, melt_temperature: 1793,\n"
+             "              room_temperature: 293, reference_strain_rate: 1.0,\n"
+             "              specific_heat: 477, taylor_quinney: 0.9}\n"
+             "lattice: {type: sc, spacing: %.17g, origin: [%.17g, %.17g, %.17g]}\n"
+             "body: {geometry: {cylinder: {base: [0, 0, 0], top: [0, 0, %.17g], radius: %.17g}},\n"
+             "       material: steel4340}\n"
+             "initial_velocity: [{group: all, value: [0, 0, -181.0]}]\n"
+             "run: {end_time: 9.0e-5, dt_factor: 0.3}\n",
+             dx, 0.5 * dx, 0.5 * dx, 0.5 * dx, L0, 0.5 * D0);
+    struct sim *s = NULL;
+    int rc = vlat_build("sph_taylor3d", deck, &s, err);
+    if (rc)
+        return rc;
+    double t0 = omp_get_wtime();
+    while (!sim_done(s))
+        if ((rc = sim_step(s, err)))
+            break;
+    *secs = omp_get_wtime() - t0;
+    const struct particles *p = s->p;
+    double zmax = -INFINITY, rmax = 0.0;
+    for (size_t i = 0; i < p->n; i++)
+        zmax = fmax(zmax, p->x[2][i]);
+    for (size_t i = 0; i < p->n; i++)
+        if (p->x0[2][i] < 1.5 * dx) /* the impact face's particles */
+            rmax = fmax(rmax, hypot(p->x[0][i], p->x[1][i]));
+    *len = zmax + 0.5 * dx;
+    *rad = rmax + 0.5 * dx;
+    *np = p->n;
+    sim_destroy(&s);
+    return rc;
+}
+
+int sph_case_taylor3d(struct vreport *r, struct spall_error *err)
+{
+    static const int series[3] = {8, 12, 16};
+    const int first = r->quick ? 0 : 0, last = r->quick ? 0 : 2;
+    double len[3] = {NAN, NAN, NAN}, rad[3] = {NAN, NAN, NAN};
+    for (int k = first; k <= last; k++) {
+        size_t np = 0;
+        double secs = 0.0;
+        int rc = taylor_run(series[k], &len[k], &rad[k], &np, &secs, err);
+        if (rc)
+            return rc;
+        vreport_info(r, "Taylor bar, %d across (%zu particles, dx = %.4g mm): final length "
+                     "%.3f mm, mushroom radius %.3f mm (%.0f s)",
+                     series[k], np, 7.595 / series[k], len[k] * 1e3, rad[k] * 1e3, secs);
+    }
+    const double L = len[last], R = rad[last];
+    int rc = vreport_check(r, "final length (finest dx)", "m", 34.5e-3, L, 0.02, true,
+                           "LS-DYNA 34.5 mm (seed 004 Table 3.6); thesis SPH 34.3, MSPH 34.7",
+                           "2 %: the issue's target", err);
+    if (rc)
+        return rc;
+    if (!r->checks[r->n - 1].pass)
+        vreport_mark_gap(r, "GAP: see docs/validation.md (frictionless penalty wall, linear EOS)");
+    if (last > first)
+        vreport_info(r, "convergence: length change between the two finest dx = %.2f %%",
+                     fabs(len[last] - len[last - 1]) / len[last] * 100.0);
+    vreport_info(r, "mushroom radius %.3f mm (thesis: its Wendland value is 4.4 %% from the "
+                 "experiment of House et al.; LS-DYNA/MSPH radii in Table 3.6)",
+                 R * 1e3);
+    return SPALL_OK;
+}
