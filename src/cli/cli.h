@@ -6,6 +6,7 @@ int cli_run(int argc, char **argv);
 int cli_validate(int argc, char **argv);
 int cli_bench(int argc, char **argv);
 int cli_calibrate(int argc, char **argv);
+int cli_render(int argc, char **argv);
 
 /** Map a libspall status to the process exit status: bad input 2,
  *  unstable run 3, I/O 4, anything else 1. */

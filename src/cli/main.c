@@ -22,6 +22,7 @@ static void usage(FILE *out)
             "  validate [CASE ...]      run the built-in validation cases (--list, --quick, --json)\n"
             "  bench [CASE ...]         throughput benchmarks (--list, --json, --threads)\n"
             "  calibrate MODEL ...      model constants from continuum data, with a patch test\n"
+            "  render RUN_DIR [...]     PNG pictures of a particle field (--field, --all)\n"
             "\n"
             "options:\n"
             "  -h, --help               this help (spall COMMAND --help for a command)\n"
@@ -65,6 +66,8 @@ int main(int argc, char **argv)
         return cli_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "calibrate") == 0)
         return cli_calibrate(argc - 1, argv + 1);
+    if (strcmp(cmd, "render") == 0)
+        return cli_render(argc - 1, argv + 1);
     fprintf(stderr, "spall: unknown command '%s'; expected run, validate, bench or calibrate "
                     "(see spall --help)\n",
             cmd);
