@@ -7,6 +7,7 @@
 #include "core/sim.h"
 
 #include "core/fields.h"
+#include "core/fragments.h"
 #include "core/geometry.h"
 #include "core/particles.h"
 #include "models/model.h"
@@ -312,6 +313,8 @@ int sim_prepare(struct sim *s, struct spall_error *err)
     rc = register_core_fields(s, err);
     if (!rc)
         rc = s->ops->register_fields(s->model, s, s->fields, err);
+    if (!rc)
+        rc = fragments_register_field(s, err); /* needs the model's bonds */
     if (rc)
         return rc;
 
