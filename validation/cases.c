@@ -5,6 +5,7 @@
  */
 #include "validation/lattice_cases.h"
 /* impact cases header */
+#include "validation/thermal_cases.h"
 
 /* peridynamics cases header */
 
@@ -28,6 +29,10 @@ static const struct vcase cases[] = {
     {"lattice-threads", "1 and 2 OpenMP threads: bitwise identical fracture run", true,
      lattice_case_threads},
     /* impact, fragments, thermal lattice (issue 3) */
+    {"thermal-conduction", "thermal lattice: 1D conduction from a fixed-temperature end vs erfc",
+     true, thermal_case_conduction},
+    {"thermal-expansion", "thermal lattice: free expansion strain alpha dT of a heated plate", true,
+     thermal_case_expansion},
 
     /* peridynamics (issue 4) */
 

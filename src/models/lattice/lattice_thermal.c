@@ -230,7 +230,7 @@ static void th_substep(struct lattice_thermal *th, const struct bond_list *bl, s
 {
     const double *T = th->T;
     double *Tn = th->T_new;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n_owned > 4096)
     for (size_t i = 0; i < n_owned; i++) {
         double q = th->heat[i];
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
@@ -270,7 +270,7 @@ int lattice_thermal_step(struct model *m, struct sim *sim, double dt, struct spa
     /* expansion of rest lengths (Eq. 21) and melting; symmetric in i, j so
      * both halves of a bond get the same value and the same decision */
     size_t melted = 0;
-#pragma omp parallel for schedule(static) reduction(+ : melted)
+#pragma omp parallel for schedule(static) reduction(+ : melted) if (p->n_owned > 4096)
     for (size_t i = 0; i < p->n_owned; i++) {
         const struct th_material *a = &th->mat[p->material[i]];
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
