@@ -10,3 +10,7 @@ echo
 echo "demo: history (energies, grip forces):  $out/history.csv"
 echo "demo: fields for ParaView:               $out/fields.xdmf"
 echo "demo: run log:                           $out/run.log"
+# picture of the cracked plate (last frame, fracture density; see spall render --help)
+png="$out/fracture_density.png"
+"$build/spall" render "$out" --field fracture_density -o "$png" >/dev/null
+echo "demo: picture of the cracked plate:      $png"

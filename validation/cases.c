@@ -6,6 +6,7 @@
 #include "validation/lattice_cases.h"
 /* impact cases header */
 #include "validation/impact_cases.h"
+#include "validation/thermal_cases.h"
 
 /* peridynamics cases header */
 #include "validation/pd_cases.h"
@@ -43,6 +44,10 @@ static const struct vcase cases[] = {
      false, impact_case_epoxy},
     {"impact-punch", "seed 000 sec. 3.2.3 3D vinyl ester punch-shear, no-slip and friction",
      false, impact_case_punch},
+    {"thermal-conduction", "thermal lattice: 1D conduction from a fixed-temperature end vs erfc",
+     true, thermal_case_conduction},
+    {"thermal-expansion", "thermal lattice: free expansion strain alpha dT of a heated plate", true,
+     thermal_case_expansion},
 
     /* peridynamics (issue 4) */
     {"pd-waves", "PMB wave speeds: 1D bar and 2D plate vs analytical", true, pd_case_waves},

@@ -147,12 +147,54 @@ static double first_crossing(const double *t, const double *v, long n, double le
     return NAN;
 }
 
-static int wave_one(struct wave_run *w, struct spall_error *err)
+/* probe displacement histories with the exact-speed arrival times x / c and
+ * the measured half-level arrivals, for `spall validate --report` */
+static int wave_attach(struct vreport *r, const struct wave_run *w, const char *label,
+                       const double *tt, const double *uq, const double *uh, long n,
+                       struct spall_error *err)
+{
+    if (!r->keep_series)
+        return SPALL_OK;
+    char plot[160];
+    snprintf(plot, sizeof plot, "%.58s: probe displacement", label);
+    double *tus = malloc((size_t)(n ? n : 1) * sizeof *tus);
+    if (!tus)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in lattice-waves");
+    for (long k = 0; k < n; k++)
+        tus[k] = 1e6 * tt[k];
+    double *um = malloc((size_t)(n ? n : 1) * sizeof *um);
+    if (!um) {
+        free(tus);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in lattice-waves");
+    }
+    int rc;
+    for (long k = 0; k < n; k++)
+        um[k] = 1e6 * uq[k];
+    rc = vreport_series(r, plot, "time [us]", "x displacement [um]", "probe at L/4", VSERIES_LINE,
+                        tus, um, (size_t)n, err);
+    for (long k = 0; k < n; k++)
+        um[k] = 1e6 * uh[k];
+    if (!rc)
+        rc = vreport_series(r, plot, NULL, NULL, "probe at L/2", VSERIES_LINE, tus, um, (size_t)n,
+                            err);
+    if (!rc)
+        rc = vreport_marker(r, plot, "x/c at L/4 (exact)", VSERIES_XMARK, 1e6 * w->x_q / w->c_ref,
+                            err);
+    if (!rc)
+        rc = vreport_marker(r, plot, "x/c at L/2 (exact)", VSERIES_XMARK, 1e6 * w->x_h / w->c_ref,
+                            err);
+    free(tus);
+    free(um);
+    return rc;
+}
+
+static int wave_one(struct wave_run *w, struct vreport *r, const char *label,
+                    struct spall_error *err)
 {
     char deck[2048];
     wave_deck(deck, sizeof deck, w->dim, w->rows, w->traction);
     struct sim *s = NULL;
-    double *tt = NULL, *vq = NULL, *vh = NULL;
+    double *tt = NULL, *vq = NULL, *vh = NULL, *uq = NULL, *uh = NULL;
     int rc = vlat_build(w->dim == 1 ? "wave_1d" : "wave_2d", deck, &s, err);
     if (rc)
         return rc;
@@ -194,7 +236,9 @@ static int wave_one(struct wave_run *w, struct spall_error *err)
     tt = malloc((size_t)n * sizeof *tt);
     vq = malloc((size_t)n * sizeof *vq);
     vh = malloc((size_t)n * sizeof *vh);
-    if (!tt || !vq || !vh) {
+    uq = malloc((size_t)n * sizeof *uq);
+    uh = malloc((size_t)n * sizeof *uh);
+    if (!tt || !vq || !vh || !uq || !uh) {
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in lattice-waves");
         goto done;
     }
@@ -202,14 +246,20 @@ static int wave_one(struct wave_run *w, struct spall_error *err)
     tt[k] = s->t;
     vq[k] = p->v[0][iq];
     vh[k] = p->v[0][ih];
+    uq[k] = p->x[0][iq] - p->x0[0][iq];
+    uh[k] = p->x[0][ih] - p->x0[0][ih];
     for (k = 1; k < n && s->t < w->t_end; k++) {
         if ((rc = sim_step(s, err)))
             goto done;
         tt[k] = s->t;
         vq[k] = p->v[0][iq];
         vh[k] = p->v[0][ih];
+        uq[k] = p->x[0][iq] - p->x0[0][iq];
+        uh[k] = p->x[0][ih] - p->x0[0][ih];
     }
     w->steps = k - 1;
+    if ((rc = wave_attach(r, w, label, tt, uq, uh, k, err)))
+        goto done;
     /* mean arrival time: once the step has passed, u(t) = v_behind (t - t_a)
      * on average, t_a = t - u(t) / v_behind = int_0^t (1 - v / v_behind) dt,
      * the centroid of the velocity rise; the oscillations behind the front
@@ -243,6 +293,8 @@ done:
     free(tt);
     free(vq);
     free(vh);
+    free(uq);
+    free(uh);
     sim_destroy(&s);
     return rc;
 }
@@ -278,19 +330,19 @@ int lattice_case_waves(struct vreport *r, struct spall_error *err)
     int rc;
     for (int k = 0; k < n_runs; k++) {
         struct wave_run *w = &runs[k];
-        if ((rc = wave_one(w, err)))
-            return rc;
         const int wide = w->rows > 15;
-        /* long-wave P speed of the triangular lattice in plane stress:
-         * C11 = 3 sqrt3 k / 4 per thickness-area -> c_P^2 = 9 k r0^2 / (8 m) */
-        const double c_p = w->dim == 1 ? w->c_ref : w->c_ref * sqrt(9.0 / 8.0);
-        const double ref = wide ? c_p : w->c_ref;
         char label[64], q[96];
         if (w->dim == 1)
             snprintf(label, sizeof label, "1D chain, %s", w->traction ? "traction" : "velocity");
         else
             snprintf(label, sizeof label, "2D %s (%d rows), %s", wide ? "plate" : "strip",
                      w->rows, w->traction ? "traction" : "velocity");
+        if ((rc = wave_one(w, r, label, err)))
+            return rc;
+        /* long-wave P speed of the triangular lattice in plane stress:
+         * C11 = 3 sqrt3 k / 4 per thickness-area -> c_P^2 = 9 k r0^2 / (8 m) */
+        const double c_p = w->dim == 1 ? w->c_ref : w->c_ref * sqrt(9.0 / 8.0);
+        const double ref = wide ? c_p : w->c_ref;
         snprintf(q, sizeof q, "%s: wave speed", label);
         if ((rc = vreport_check(r, q, "m/s", ref, w->c_meas, WAVE_TOL, true,
                                 w->dim == 1 ? src_1d : wide ? src_wide : src_2d,

@@ -65,8 +65,62 @@ void vreport_info(struct vreport *r, const char *fmt, ...)
     va_end(ap);
 }
 
+int vreport_series(struct vreport *r, const char *plot, const char *xlabel, const char *ylabel,
+                   const char *label, enum vseries_kind kind, const double *x, const double *y,
+                   size_t n, struct spall_error *err)
+{
+    if (!r->keep_series)
+        return SPALL_OK;
+    if (r->n_series == r->cap_series) {
+        size_t cap = r->cap_series * 2 + 8;
+        struct vseries *t = realloc(r->series, cap * sizeof *t);
+        if (!t)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in validation report");
+        r->series = t;
+        r->cap_series = cap;
+    }
+    const size_t max_pts = 2000;
+    size_t stride = n > max_pts ? (n + max_pts - 1) / max_pts : 1;
+    size_t m = n ? (n - 1) / stride + 1 : 0;
+    double *cx = malloc((m ? m : 1) * sizeof *cx), *cy = malloc((m ? m : 1) * sizeof *cy);
+    if (!cx || !cy) {
+        free(cx);
+        free(cy);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in validation report");
+    }
+    for (size_t k = 0; k < m; k++) {
+        cx[k] = x[k * stride];
+        cy[k] = y[k * stride];
+    }
+    struct vseries *sr = &r->series[r->n_series++];
+    memset(sr, 0, sizeof *sr);
+    snprintf(sr->case_name, sizeof sr->case_name, "%s", r->current_case ? r->current_case : "");
+    snprintf(sr->plot, sizeof sr->plot, "%s", plot ? plot : "");
+    snprintf(sr->xlabel, sizeof sr->xlabel, "%s", xlabel ? xlabel : "");
+    snprintf(sr->ylabel, sizeof sr->ylabel, "%s", ylabel ? ylabel : "");
+    snprintf(sr->label, sizeof sr->label, "%s", label ? label : "");
+    sr->kind = kind;
+    sr->x = cx;
+    sr->y = cy;
+    sr->n = m;
+    return SPALL_OK;
+}
+
+int vreport_marker(struct vreport *r, const char *plot, const char *label, enum vseries_kind kind,
+                   double value, struct spall_error *err)
+{
+    return vreport_series(r, plot, NULL, NULL, label, kind, &value, &value, 1, err);
+}
+
 void vreport_free(struct vreport *r)
 {
+    for (size_t k = 0; k < r->n_series; k++) {
+        free(r->series[k].x);
+        free(r->series[k].y);
+    }
+    free(r->series);
+    r->series = NULL;
+    r->n_series = r->cap_series = 0;
     free(r->checks);
     r->checks = NULL;
     r->n = r->cap = 0;

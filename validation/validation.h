@@ -31,9 +31,33 @@ struct vcheck {
     bool pass;
 };
 
+/** How a recorded series is drawn in the report's plots. */
+enum vseries_kind {
+    VSERIES_LINE = 0,   /**< measured curve */
+    VSERIES_REF = 1,    /**< reference curve (dashed) */
+    VSERIES_POINTS = 2, /**< points (e.g. experimental values) */
+    VSERIES_XMARK = 3,  /**< vertical marker at x[0] (e.g. a reference arrival time) */
+    VSERIES_YMARK = 4   /**< horizontal marker at y[0] (e.g. a reference level) */
+};
+
+/** One series attached to a case for `spall validate --report`; series with
+ *  the same (case, plot) share one PNG. */
+struct vseries {
+    char case_name[48];
+    char plot[80];      /**< plot title, unique within the case */
+    char xlabel[48], ylabel[48];
+    char label[80];     /**< legend / marker label */
+    enum vseries_kind kind;
+    double *x, *y;      /**< owned copies */
+    size_t n;
+};
+
 struct vreport {
     struct vcheck *checks;
     size_t n, cap;
+    struct vseries *series; /**< only filled when keep_series is set */
+    size_t n_series, cap_series;
+    int keep_series;        /**< set by `--report`: cases record their time histories */
     FILE *log;         /**< extra lines printed by cases (may be NULL) */
     int quick;         /**< reduced sizes for the test suite */
     const char *current_case;
@@ -55,6 +79,18 @@ void vreport_info(struct vreport *r, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+/** Attach a series (copied; at most 2000 points kept, evenly strided) to the
+ *  current case's plot @p plot.  A no-op unless r->keep_series is set, so
+ *  cases may call it unconditionally. */
+int vreport_series(struct vreport *r, const char *plot, const char *xlabel, const char *ylabel,
+                   const char *label, enum vseries_kind kind, const double *x, const double *y,
+                   size_t n, struct spall_error *err);
+/** Attach a marker line (VSERIES_XMARK at x = value, VSERIES_YMARK at y = value). */
+int vreport_marker(struct vreport *r, const char *plot, const char *label, enum vseries_kind kind,
+                   double value, struct spall_error *err);
+/** Write DIR/report.md: the table of checks and, per case, one PNG per plot
+ *  (DIR/<case>_<k>.png).  DIR is created if missing. */
+int vreport_write_report(const struct vreport *r, const char *dir, struct spall_error *err);
 void vreport_free(struct vreport *r);
 
 struct vcase {

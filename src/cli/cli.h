@@ -12,6 +12,7 @@ int cli_penetrate(int argc, char **argv);
 int cli_calibrate_macroparticle(int argc, char **argv);
 /** `spall calibrate peridynamics ...` (src/cli/cmd_calibrate_pd.c). */
 int cli_calibrate_peridynamics(int argc, char **argv);
+int cli_render(int argc, char **argv);
 
 /** Map a libspall status to the process exit status: bad input 2,
  *  unstable run 3, I/O 4, anything else 1. */

@@ -10,14 +10,16 @@
 
 static void validate_usage(FILE *out)
 {
-    fprintf(out, "usage: spall validate [CASE ...] [--list] [--quick] [--json FILE]\n"
+    fprintf(out, "usage: spall validate [CASE ...] [--list] [--quick] [--json FILE] [--report DIR]\n"
                  "\n"
                  "Runs the built-in validation cases and prints, per case and quantity:\n"
                  "reference, measured, error, tolerance and PASS/FAIL (GAP marks a documented,\n"
                  "known gap, which also counts as a failure).  Exit status 1 on any failure.\n"
                  "  --list        list the cases\n"
                  "  --quick       the reduced subset used by the test suite\n"
-                 "  --json FILE   also write the results as JSON\n");
+                 "  --json FILE   also write the results as JSON\n"
+                 "  --report DIR  also write DIR/report.md with the table and PNG plots of\n"
+                 "                each case's time histories against the references\n");
 }
 
 static void json_string(FILE *f, const char *s)
@@ -110,7 +112,7 @@ int cli_validate(int argc, char **argv)
     size_t n_cases = 0;
     const struct vcase *cases = validation_cases(&n_cases);
     int list = 0, quick = 0;
-    const char *json = NULL;
+    const char *json = NULL, *report = NULL;
     const char *wanted[64];
     size_t n_wanted = 0;
     for (int k = 1; k < argc; k++) {
@@ -128,6 +130,12 @@ int cli_validate(int argc, char **argv)
                 return 2;
             }
             json = argv[k];
+        } else if (strcmp(a, "--report") == 0) {
+            if (++k >= argc) {
+                fprintf(stderr, "spall validate: --report needs a directory\n");
+                return 2;
+            }
+            report = argv[k];
         } else if (a[0] == '-') {
             fprintf(stderr, "spall validate: unknown option '%s' (see --help)\n", a);
             return 2;
@@ -153,6 +161,7 @@ int cli_validate(int argc, char **argv)
     struct vreport rep = {0};
     rep.log = stdout;
     rep.quick = quick;
+    rep.keep_series = report != NULL;
     int failed_to_run = 0;
     for (size_t c = 0; c < n_cases; c++) {
         int selected = n_wanted == 0 ? (!quick || cases[c].in_quick) : 0;
@@ -183,6 +192,16 @@ int cli_validate(int argc, char **argv)
         fprintf(stderr, "spall validate: cannot write '%s'\n", json);
         vreport_free(&rep);
         return 4;
+    }
+    if (report) {
+        struct spall_error err = {0, ""};
+        int rc = vreport_write_report(&rep, report, &err);
+        if (rc) {
+            fprintf(stderr, "spall: error: %s\n", err.msg);
+            vreport_free(&rep);
+            return cli_exit_status(rc);
+        }
+        printf("report: %s/report.md\n", report);
     }
     vreport_free(&rep);
     return fail ? 1 : 0;

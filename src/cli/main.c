@@ -23,6 +23,7 @@ static void usage(FILE *out)
             "  bench [CASE ...]         throughput benchmarks (--list, --json, --threads)\n"
             "  calibrate MODEL ...      model constants from continuum data, with a patch test\n"
             "  penetrate MODE ...       analytical sphere-penetration models, fits, sweeps\n"
+            "  render RUN_DIR [...]     PNG pictures of a particle field (--field, --all)\n"
             "\n"
             "options:\n"
             "  -h, --help               this help (spall COMMAND --help for a command)\n"
@@ -68,7 +69,10 @@ int main(int argc, char **argv)
         return cli_calibrate(argc - 1, argv + 1);
     if (strcmp(cmd, "penetrate") == 0)
         return cli_penetrate(argc - 1, argv + 1);
-    fprintf(stderr, "spall: unknown command '%s'; expected run, validate, bench or calibrate "
+    if (strcmp(cmd, "render") == 0)
+        return cli_render(argc - 1, argv + 1);
+    fprintf(stderr, "spall: unknown command '%s'; expected run, validate, bench, calibrate, "
+                    "penetrate or render "
                     "(see spall --help)\n",
             cmd);
     return 2;

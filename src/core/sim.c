@@ -8,6 +8,7 @@
 #include "core/rigid.h"
 
 #include "core/fields.h"
+#include "core/fragments.h"
 #include "core/geometry.h"
 #include "core/particles.h"
 #include "models/model.h"
@@ -317,6 +318,8 @@ int sim_prepare(struct sim *s, struct spall_error *err)
     rc = register_core_fields(s, err);
     if (!rc)
         rc = s->ops->register_fields(s->model, s, s->fields, err);
+    if (!rc)
+        rc = fragments_register_field(s, err); /* needs the model's bonds */
     if (rc)
         return rc;
 

@@ -13,6 +13,7 @@
 #include "spall/spall.h"
 
 #include "core/bond_list.h"
+#include "core/fragments.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -48,6 +49,7 @@ struct history_layout {
     char storage[HIST_MAX][192];
     size_t n;
     size_t n_model; /* model columns start at n - n_model */
+    struct fragments *frag; /* bonded models: fragment columns at the end */
 };
 
 static void hist_add(struct history_layout *h, const char *fmt, const char *a, const char *b)
@@ -103,6 +105,14 @@ static void history_columns(const struct sim *s, struct history_layout *h)
             hist_add(h, "%s%s", names[k], "");
         h->n_model = m;
     }
+    if (h->frag) { /* core/fragments.h: computed at history times only */
+        hist_add(h, "fragments [1]%s%s", "", "");
+        hist_add(h, "fragments_10plus [1]%s%s", "", "");
+        hist_add(h, "fragment_singles [1]%s%s", "", "");
+        hist_add(h, "largest_fragment_mass [kg]%s%s", "", "");
+        hist_add(h, "second_fragment_mass [kg]%s%s", "", "");
+        hist_add(h, "fragment_cm_kinetic [J]%s%s", "", "");
+    }
 }
 
 static void history_values(const struct sim *s, const struct history_layout *h, double *v)
@@ -136,6 +146,16 @@ static void history_values(const struct sim *s, const struct history_layout *h, 
         size_t m = s->ops->history(s->model, s, names, vals);
         for (size_t k = 0; k < m && c < h->n; k++)
             v[c++] = vals[k];
+    }
+    struct fragment_summary fs;
+    if (h->frag && c + 6 <= h->n && fragments_of_sim(h->frag, s, NULL) == SPALL_OK) {
+        fragments_summarise(h->frag, &fs);
+        v[c++] = (double)fs.count;
+        v[c++] = (double)fs.ge10;
+        v[c++] = (double)fs.singles;
+        v[c++] = fs.largest_mass;
+        v[c++] = fs.second_mass;
+        v[c++] = fs.kinetic_cm;
     }
     while (c < h->n)
         v[c++] = 0.0;
@@ -220,6 +240,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     struct run_output ro;
     struct field_writer *fw = NULL;
     struct history_writer *hw = NULL;
+    struct fragments *frag = NULL;
     FILE *log = NULL;
     int rc = deck_load_file(&d, opt->deck_path, err);
     if (rc)
@@ -251,6 +272,10 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     write_log_header(log, opt, d, s, &ro);
 
     struct history_layout hl;
+    if (s->ops->bonds && s->ops->bonds(s->model) &&
+        (rc = fragments_create(&frag, s->p->n_owned, err)))
+        goto done;
+    hl.frag = frag;
     history_columns(s, &hl);
     snprintf(path, sizeof path, "%s/history.csv", dir);
     if ((rc = history_writer_create(&hw, path, hl.names, hl.n, err)))
@@ -327,11 +352,17 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             res->frames);
     fprintf(log, "energy_balance_final: %.6g J (input %.6g J)\n", s->energy.balance,
             fabs(s->energy.initial_total) + fabs(s->energy.external));
+    if (!rc && hl.frag) { /* the fragment table of the final state */
+        snprintf(path, sizeof path, "%s/fragments.csv", dir);
+        if (!(rc = fragments_of_sim(hl.frag, s, err)))
+            rc = fragments_write_csv(hl.frag, path, s->t, err);
+    }
     if (rc)
         fprintf(log, "status: FAILED: %s\n", err->msg);
     else
         fprintf(log, "status: completed\n");
 done:
+    fragments_destroy(&frag);
     if (log)
         fclose(log);
     field_writer_destroy(&fw);

@@ -22,6 +22,7 @@
 
 #include <stddef.h>
 
+struct bond_list;
 struct deck_node;
 struct field_registry;
 struct precrack;
@@ -83,6 +84,10 @@ struct model_ops {
     /** Number of pair interactions (bonds counted once) for throughput
      *  reports; optional (NULL: 0). */
     size_t (*interactions)(const struct model *m, const struct sim *sim);
+    /** Optional: the model's bond list (CSR, BOND_BROKEN marks broken bonds),
+     *  used for fragments (core/fragments.h); NULL hook or NULL result for
+     *  unbonded models. */
+    const struct bond_list *(*bonds)(const struct model *m);
 };
 
 /** Find a model by name; NULL if unknown. */

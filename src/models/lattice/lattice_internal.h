@@ -14,6 +14,7 @@
 #include <stdint.h>
 
 struct bond_list;
+struct lattice_thermal;
 struct sim;
 struct spall_error;
 
@@ -68,6 +69,7 @@ struct model {
     double *ang_buf;      /**< 2 per slot: force on the slot's partner from angles at the row's particle */
 
     double *diss;         /**< per particle: energy released by its broken bonds/angles [J] */
+    struct lattice_thermal *th; /**< thermal lattice (lattice_thermal.c); NULL: none */
     size_t n_half;
     bool initialised;
 };

@@ -64,6 +64,7 @@
 #include "models/lattice/lattice_internal.h"
 
 #include "core/bond_list.h"
+#include "models/lattice/lattice_thermal.h"
 #include "core/fields.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -138,6 +139,7 @@ static void lattice_destroy(struct model **pm)
     free(m->ang_state);
     free(m->ang_buf);
     free(m->diss);
+    lattice_thermal_destroy(&m->th);
     free(m);
     *pm = NULL;
 }
@@ -150,7 +152,7 @@ static int lattice_create(struct model **out, struct sim *sim, const struct deck
     static const char *const laws[] = {"linear", "lennard_jones", "piecewise_linear", NULL};
     static const char *const angs[] = {"auto", "on", "off", NULL};
     static const char *const keys[] = {"type", "law", "layers", "second_layer_ratio", "angular",
-                                       NULL};
+                                       "thermal", NULL};
     struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
     *out = NULL;
     if (params) {
@@ -190,7 +192,11 @@ static int lattice_create(struct model **out, struct sim *sim, const struct deck
             return SPALL_ERR_PHYSICS;
         }
     }
-    return lattice_model_new(out, sim, &opt, err);
+    int rc = lattice_model_new(out, sim, &opt, err);
+    const struct deck_node *th = params ? deck_get(params, "thermal") : NULL;
+    if (!rc && th && (rc = lattice_thermal_parse_options(*out, th, err)))
+        lattice_destroy(out);
+    return rc;
 }
 
 /** Read `curve` into a normalised lattice_curve; *E0 = first slope. */
@@ -249,12 +255,15 @@ static int lattice_parse_material(struct model *m, struct sim *sim, int index,
 {
     static const char *const k_lin[] = {"density", "youngs_modulus", "poisson_ratio",
                                         "tensile_strength", "failure_strain",
-                                        "compressive_failure_strain", "angular_failure", NULL};
+                                        "compressive_failure_strain", "angular_failure",
+                                        LATTICE_THERMAL_KEYS, NULL};
     static const char *const k_lj[] = {"density", "youngs_modulus", "poisson_ratio",
                                        "failure_strain", "compressive_failure_strain",
-                                       "angular_failure", "exponents", NULL};
+                                       "angular_failure", "exponents", LATTICE_THERMAL_KEYS,
+                                       NULL};
     static const char *const k_pwl[] = {"density", "youngs_modulus", "poisson_ratio", "curve",
-                                        "compressive_failure_strain", "angular_failure", NULL};
+                                        "compressive_failure_strain", "angular_failure",
+                                        LATTICE_THERMAL_KEYS, NULL};
     const char *name = sim->materials[index].name;
     char what[SPALL_NAME_LEN + 16];
     snprintf(what, sizeof what, "materials.%s", name);
@@ -330,6 +339,8 @@ static int lattice_parse_material(struct model *m, struct sim *sim, int index,
         mt.dphi_c = lim[0];
         mt.dphi_t = lim[1];
     }
+    if ((rc = lattice_thermal_parse_material(m, sim, index, node, err)))
+        goto fail;
     const char *const *allowed = law == LATTICE_LAW_LINEAR ? k_lin : law == LATTICE_LAW_LJ ? k_lj
                                                                                           : k_pwl;
     if ((rc = deck_check_unused(node, what, allowed, err)))
@@ -555,6 +566,8 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
     m->n_half = m->bl->offset[m->bl->n];
     if (m->angular && (rc = build_angles(m, p, err)))
         return rc;
+    if ((rc = lattice_thermal_init(m, sim, err)))
+        return rc;
     m->initialised = true;
     return SPALL_OK;
 }
@@ -628,7 +641,7 @@ static int lattice_register_fields(struct model *m, struct sim *sim, struct fiel
         (rc = add_computed(reg, "stress", "Pa", nc, FIELD_OUTPUT | FIELD_DEFAULT, field_stress,
                            m, err)))
         return rc;
-    return SPALL_OK;
+    return lattice_thermal_register_fields(m, reg, err);
 }
 
 /* ---- step hooks ------------------------------------------------------------------ */
@@ -676,11 +689,8 @@ static double lattice_stable_dt(const struct model *m, const struct sim *sim)
 static int lattice_end_step(struct model *m, struct sim *sim, struct spall_error *err)
 {
     /* Breaking is fused into the force loop (each half-bond decided by its
-     * own particle's thread): nothing left to do here. */
-    (void)m;
-    (void)sim;
-    (void)err;
-    return SPALL_OK;
+     * own particle's thread); the thermal lattice advances here. */
+    return lattice_thermal_step(m, sim, sim->dt, err);
 }
 
 static void lattice_energy_fn(const struct model *m, const struct sim *sim,
@@ -711,7 +721,7 @@ static size_t lattice_history(const struct model *m, const struct sim *sim, cons
     values[0] = 0.5 * (double)broken_run;
     names[1] = "fracture_fraction";
     values[1] = nh ? (double)broken_all / (double)nh : 0.0;
-    return 2;
+    return 2 + lattice_thermal_history(m, sim, names + 2, values + 2);
 }
 
 static void lattice_describe(const struct model *m, const struct sim *sim, char *buf,
@@ -764,6 +774,12 @@ static size_t lattice_interactions(const struct model *m, const struct sim *sim)
     return m->bl ? bond_list_count(m->bl) : 0;
 }
 
+/* for fragments (core/fragments.h) */
+static const struct bond_list *lattice_bonds(const struct model *m)
+{
+    return m->bl;
+}
+
 const struct model_ops lattice_model_ops = {
     .name = "lattice",
     .summary = "hybrid lattice particle model (HLPM): breakable axial/angular springs",
@@ -780,4 +796,5 @@ const struct model_ops lattice_model_ops = {
     .describe = lattice_describe,
     .destroy = lattice_destroy,
     .interactions = lattice_interactions,
+    .bonds = lattice_bonds,
 };

@@ -1,0 +1,337 @@
+/**
+ * @file lattice_thermal.c
+ * @brief Thermal lattice: conduction, heating, expansion, melting (see
+ *        lattice_thermal.h for the equations and the bond conductance).
+ */
+#include "models/lattice/lattice_thermal.h"
+
+#include "core/bond_list.h"
+#include "core/fields.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "models/lattice/lattice_internal.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TH_MAX_BC 16
+#define TH_DEFAULT_T 293.15 /* K */
+
+struct th_material {
+    bool given;
+    double C;      /**< specific heat J/(kg K) */
+    double k;      /**< conductivity W/(m K) */
+    double alpha;  /**< 1/K */
+    double P;      /**< power density W/m^3 */
+    double T_melt; /**< K (INFINITY: none) */
+    double T_init, T_ref;
+};
+
+struct th_bc {
+    char group[SPALL_NAME_LEN];
+    double T;
+    int g; /**< resolved at init */
+};
+
+struct lattice_thermal {
+    size_t n_mat;
+    struct th_material *mat;
+    struct th_bc bc[TH_MAX_BC];
+    size_t n_bc;
+    bool any;         /**< some material has thermal keys */
+    /* state (after init) */
+    size_t n;
+    double *T, *T_new;
+    double *rest0;    /**< reference rest lengths (half-bond) */
+    double *kappa;    /**< conductance per half-bond W/K */
+    double *heat;     /**< P_d V per particle, W */
+    double *inv_mC;   /**< 1 / (m C) */
+    double dt_limit;  /**< explicit stability limit of conduction */
+    size_t melted;    /**< bonds removed by melting (counted once) */
+};
+
+bool lattice_thermal_enabled(const struct model *m)
+{
+    return m->th && m->th->any;
+}
+
+static int th_get(struct model *m, size_t n_mat, struct spall_error *err)
+{
+    if (!m->th) {
+        m->th = calloc(1, sizeof *m->th);
+        if (!m->th)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (thermal lattice)");
+    }
+    struct lattice_thermal *th = m->th;
+    if (th->n_mat < n_mat) {
+        struct th_material *t = realloc(th->mat, n_mat * sizeof *t);
+        if (!t)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (thermal lattice)");
+        memset(t + th->n_mat, 0, (n_mat - th->n_mat) * sizeof *t);
+        th->mat = t;
+        th->n_mat = n_mat;
+    }
+    return SPALL_OK;
+}
+
+int lattice_thermal_parse_material(struct model *m, struct sim *sim, int index,
+                                   const struct deck_node *node, struct spall_error *err)
+{
+    (void)sim;
+    int rc = th_get(m, (size_t)index + 1, err);
+    if (rc)
+        return rc;
+    struct th_material *t = &m->th->mat[index];
+    memset(t, 0, sizeof *t);
+    t->T_melt = INFINITY;
+    t->T_init = t->T_ref = TH_DEFAULT_T;
+    if (!deck_peek(node, "specific_heat")) {
+        static const char *const others[] = {LATTICE_THERMAL_KEYS, NULL};
+        for (size_t k = 1; others[k]; k++)
+            if (deck_peek(node, others[k]))
+                return deck_error_key(err, node, others[k],
+                                      "thermal key '%s' needs specific_heat [J/(kg K)] too",
+                                      others[k]);
+        return SPALL_OK;
+    }
+    if ((rc = deck_double_pos(node, "specific_heat", true, &t->C, err)) ||
+        (rc = deck_double(node, "conductivity", false, 0.0, INFINITY, &t->k, err)) ||
+        (rc = deck_double(node, "thermal_expansion", false, -1e-2, 1e-2, &t->alpha, err)) ||
+        (rc = deck_double(node, "power_density", false, -INFINITY, INFINITY, &t->P, err)) ||
+        (rc = deck_double_pos(node, "melting_temperature", false, &t->T_melt, err)) ||
+        (rc = deck_double(node, "reference_temperature", false, 0.0, INFINITY, &t->T_ref, err)))
+        return rc;
+    t->T_init = t->T_ref;
+    if ((rc = deck_double(node, "initial_temperature", false, 0.0, INFINITY, &t->T_init, err)))
+        return rc;
+    t->given = true;
+    m->th->any = true;
+    return SPALL_OK;
+}
+
+int lattice_thermal_parse_options(struct model *m, const struct deck_node *node,
+                                  struct spall_error *err)
+{
+    static const char *const keys[] = {"boundary", NULL};
+    static const char *const bkeys[] = {"group", "temperature", NULL};
+    int rc = deck_expect_map(node, "model.thermal", err);
+    if (rc || (rc = th_get(m, 0, err)))
+        return rc;
+    const struct deck_node *b = deck_get(node, "boundary");
+    if (b) {
+        if ((rc = deck_expect_seq(b, "a list of {group, temperature}", err)))
+            return rc;
+        if (b->n > TH_MAX_BC)
+            return deck_error(err, b, "%zu thermal boundary conditions; at most %d", b->n,
+                              TH_MAX_BC);
+        for (size_t k = 0; k < b->n; k++) {
+            const struct deck_node *e = b->items[k];
+            const char *g = NULL;
+            struct th_bc *bc = &m->th->bc[k];
+            if ((rc = deck_expect_map(e, "{group, temperature}", err)) ||
+                (rc = deck_string(e, "group", true, &g, err)) ||
+                (rc = deck_double_pos(e, "temperature", true, &bc->T, err)) ||
+                (rc = deck_check_unused(e, "model.thermal.boundary", bkeys, err)))
+                return rc;
+            snprintf(bc->group, sizeof bc->group, "%s", g);
+        }
+        m->th->n_bc = b->n;
+    }
+    return deck_check_unused(node, "model.thermal", keys, err);
+}
+
+int lattice_thermal_init(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct lattice_thermal *th = m->th;
+    if (!th)
+        return SPALL_OK;
+    if (!th->any) {
+        if (th->n_bc)
+            return spall_error_set(err, SPALL_ERR_INPUT, "model.thermal: boundary temperatures "
+                                   "given but no material has specific_heat");
+        return SPALL_OK;
+    }
+    for (size_t k = 0; k < sim->n_materials; k++)
+        if (k >= th->n_mat || !th->mat[k].given)
+            return spall_error_set(err, SPALL_ERR_INPUT,
+                                   "thermal lattice: material '%s' has no specific_heat (every "
+                                   "material needs the thermal keys once one has them)",
+                                   sim->materials[k].name);
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    const size_t n = p->n, nh = bl->offset[bl->n];
+    th->n = n;
+    free(th->T); /* init may run again (rebuilt bonds) */
+    free(th->T_new);
+    free(th->heat);
+    free(th->inv_mC);
+    free(th->rest0);
+    free(th->kappa);
+    th->T = malloc((n ? n : 1) * sizeof *th->T);
+    th->T_new = malloc((n ? n : 1) * sizeof *th->T_new);
+    th->heat = malloc((n ? n : 1) * sizeof *th->heat);
+    th->inv_mC = malloc((n ? n : 1) * sizeof *th->inv_mC);
+    th->rest0 = malloc((nh ? nh : 1) * sizeof *th->rest0);
+    th->kappa = malloc((nh ? nh : 1) * sizeof *th->kappa);
+    if (!th->T || !th->T_new || !th->heat || !th->inv_mC || !th->rest0 || !th->kappa)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (thermal lattice)");
+    /* bulk second moment S and volume V: the particle with the largest S */
+    double S = 0.0, V = 0.0;
+    for (size_t i = 0; i < bl->n; i++) {
+        double si = 0.0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            si += bl->rest[s] * bl->rest[s];
+        if (si > S) {
+            S = si;
+            V = p->volume[i];
+        }
+    }
+    const double geo = S > 0.0 ? 2.0 * (double)sim->dim * V / S : 0.0;
+    for (size_t i = 0; i < n; i++) {
+        const struct th_material *t = &th->mat[p->material[i]];
+        th->T[i] = t->T_init;
+        th->heat[i] = t->P * p->volume[i];
+        th->inv_mC[i] = 1.0 / (p->mass[i] * t->C);
+    }
+    th->dt_limit = INFINITY;
+    for (size_t i = 0; i < bl->n; i++) {
+        const double ki = th->mat[p->material[i]].k;
+        double sum = 0.0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            const double kj = th->mat[p->material[bl->partner[s]]].k;
+            const double kk = ki + kj > 0.0 ? 2.0 * ki * kj / (ki + kj) : 0.0;
+            th->kappa[s] = geo * kk;
+            th->rest0[s] = bl->rest[s];
+            sum += th->kappa[s];
+        }
+        if (sum > 0.0)
+            th->dt_limit = fmin(th->dt_limit, 1.0 / (sum * th->inv_mC[i]));
+    }
+    for (size_t k = 0; k < th->n_bc; k++) {
+        th->bc[k].g = sim_find_group(sim, th->bc[k].group);
+        if (th->bc[k].g < 0)
+            return spall_error_set(err, SPALL_ERR_INPUT,
+                                   "model.thermal.boundary: no group named '%s'", th->bc[k].group);
+        const struct group *g = &sim->groups[th->bc[k].g];
+        for (size_t q = 0; q < g->n; q++)
+            th->T[g->idx[q]] = th->bc[k].T;
+    }
+    /* rest lengths at the initial temperatures */
+    return lattice_thermal_step(m, sim, 0.0, err);
+}
+
+/* one explicit conduction + heating sub-step (gather: thread independent) */
+static void th_substep(struct lattice_thermal *th, const struct bond_list *bl, size_t n_owned,
+                       double h)
+{
+    const double *T = th->T;
+    double *Tn = th->T_new;
+#pragma omp parallel for schedule(static) if (n_owned > 4096)
+    for (size_t i = 0; i < n_owned; i++) {
+        double q = th->heat[i];
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            if (!(bl->state[s] & BOND_BROKEN))
+                q += th->kappa[s] * (T[bl->partner[s]] - T[i]);
+        Tn[i] = T[i] + h * q * th->inv_mC[i];
+    }
+    for (size_t i = n_owned; i < th->n; i++)
+        Tn[i] = T[i];
+    double *t = th->T;
+    th->T = th->T_new;
+    th->T_new = t;
+}
+
+int lattice_thermal_step(struct model *m, struct sim *sim, double dt, struct spall_error *err)
+{
+    (void)err;
+    struct lattice_thermal *th = m->th;
+    if (!th || !th->any)
+        return SPALL_OK;
+    const struct particles *p = sim->p;
+    struct bond_list *bl = m->bl;
+    if (dt > 0.0) {
+        /* sub-cycle below 0.9 of the explicit limit */
+        long nsub = isfinite(th->dt_limit) ? (long)ceil(dt / (0.9 * th->dt_limit)) : 1;
+        if (nsub < 1)
+            nsub = 1;
+        for (long k = 0; k < nsub; k++) {
+            th_substep(th, bl, p->n_owned, dt / (double)nsub);
+            for (size_t b = 0; b < th->n_bc; b++) { /* fixed temperatures */
+                const struct group *g = &sim->groups[th->bc[b].g];
+                for (size_t q = 0; q < g->n; q++)
+                    th->T[g->idx[q]] = th->bc[b].T;
+            }
+        }
+    }
+    /* expansion of rest lengths (Eq. 21) and melting; symmetric in i, j so
+     * both halves of a bond get the same value and the same decision */
+    size_t melted = 0;
+#pragma omp parallel for schedule(static) reduction(+ : melted) if (p->n_owned > 4096)
+    for (size_t i = 0; i < p->n_owned; i++) {
+        const struct th_material *a = &th->mat[p->material[i]];
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            const size_t j = (size_t)bl->partner[s];
+            const struct th_material *b = &th->mat[p->material[j]];
+            const double alpha = 0.5 * (a->alpha + b->alpha);
+            const double dT = 0.5 * (th->T[i] + th->T[j]) - 0.5 * (a->T_ref + b->T_ref);
+            bl->rest[s] = th->rest0[s] * (1.0 + alpha * dT);
+            if (!(bl->state[s] & BOND_BROKEN) && (th->T[i] > a->T_melt || th->T[j] > b->T_melt)) {
+                bl->state[s] |= BOND_BROKEN;
+                melted += j > i;
+            }
+        }
+    }
+    th->melted += melted;
+    return SPALL_OK;
+}
+
+int lattice_thermal_register_fields(struct model *m, struct field_registry *reg,
+                                    struct spall_error *err)
+{
+    if (!lattice_thermal_enabled(m))
+        return SPALL_OK;
+    double **T[1] = {&m->th->T};
+    return field_registry_add_f64(reg, "temperature", "K", 1, T, FIELD_OUTPUT | FIELD_DEFAULT,
+                                  err);
+}
+
+size_t lattice_thermal_history(const struct model *m, const struct sim *sim, const char **names,
+                               double *values)
+{
+    if (!lattice_thermal_enabled(m))
+        return 0;
+    const struct lattice_thermal *th = m->th;
+    double sum = 0.0, mass = 0.0, tmax = -INFINITY;
+    for (size_t i = 0; i < sim->p->n_owned; i++) {
+        sum += sim->p->mass[i] * th->T[i];
+        mass += sim->p->mass[i];
+        tmax = fmax(tmax, th->T[i]);
+    }
+    names[0] = "temperature_mean [K]";
+    values[0] = mass > 0.0 ? sum / mass : 0.0;
+    names[1] = "temperature_max [K]";
+    values[1] = tmax;
+    names[2] = "bonds_melted";
+    values[2] = (double)th->melted;
+    return 3;
+}
+
+void lattice_thermal_destroy(struct lattice_thermal **pth)
+{
+    if (!pth || !*pth)
+        return;
+    struct lattice_thermal *th = *pth;
+    free(th->mat);
+    free(th->T);
+    free(th->T_new);
+    free(th->rest0);
+    free(th->kappa);
+    free(th->heat);
+    free(th->inv_mC);
+    free(th);
+    *pth = NULL;
+}
