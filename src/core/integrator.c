@@ -74,7 +74,7 @@ static void apply_body_forces(struct sim *s)
         double *restrict f = p->f[d];
         const double *restrict v = p->v[d];
         const double *restrict m = p->mass;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPALL_OMP_MIN_PARTICLES)
         for (size_t i = 0; i < n; i++)
             f[i] += m[i] * (g - c * v[i]);
     }
@@ -161,7 +161,7 @@ static void kick(struct sim *s, double half_dt)
         double *restrict v = p->v[d];
         const double *restrict f = p->f[d];
         const double *restrict m = p->mass;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPALL_OMP_MIN_PARTICLES)
         for (size_t i = 0; i < n; i++)
             v[i] += half_dt * f[i] / m[i];
     }
@@ -174,7 +174,7 @@ static void drift(struct sim *s, double dt)
     for (int d = 0; d < s->dim; d++) {
         double *restrict x = p->x[d];
         const double *restrict v = p->v[d];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPALL_OMP_MIN_PARTICLES)
         for (size_t i = 0; i < n; i++)
             x[i] += dt * v[i];
     }

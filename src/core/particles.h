@@ -18,6 +18,12 @@
 
 struct spall_error;
 
+/** Below this many particles, per-particle loops run on one thread: the
+ *  fork/join and barrier cost of OpenMP exceeds the work (and a busy machine
+ *  makes spinning partner threads very expensive).  Results do not depend
+ *  on it: every particle's arithmetic is the same either way. */
+#define SPALL_OMP_MIN_PARTICLES 4096
+
 struct particles {
     int dim;          /**< 1, 2 or 3 */
     size_t n;         /**< owned + ghost particles */
