@@ -86,7 +86,7 @@ int macro_case_rod_elastic(struct vreport *r, struct spall_error *err)
     const int nphi_full[] = {2, 4, 8, 16}, nphi_quick[] = {2, 4, 8};
     const int *nphi = r->quick ? nphi_quick : nphi_full;
     const int nn = r->quick ? 3 : 4;
-    const double ld = r->quick ? 1.0 : 2.0; /* n_h / n_phi of the convergence runs */
+    const double ld = 1.0; /* n_h / n_phi of the convergence runs */
     double E[4] = {0}, nu[4] = {0}, Eeq = 0.0, Efcc = 0.0;
     size_t np[4] = {0};
     int rc;
