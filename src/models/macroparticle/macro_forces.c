@@ -46,13 +46,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Below this many particles a parallel region costs more than the loop
+ * (thousands of steps of a few hundred particles in the tests); results
+ * do not depend on it (each particle's sums run in a fixed order). */
+#define MACRO_OMP_MIN 2048
+
 /** Move the per-slot plastic state from list @p old to list @p nw. */
 static void carry_state(const struct neighbor_list *old, const double *odr, const double *oka,
                         const uint8_t *oen, const struct neighbor_list *nw, double *ndr,
                         double *nka, uint8_t *nen)
 {
     const size_t n = nw->n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
     for (size_t i = 0; i < n; i++) {
         size_t a = old->offset[i], ae = old->offset[i + 1];
         for (size_t s = nw->offset[i]; s < nw->offset[i + 1]; s++) {
@@ -144,7 +149,7 @@ int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *e
     uint8_t *eng = m->engaged;
     double *dr0 = m->dr0, *kap = m->kappa, *epot = m->epot, *sig = m->sig, *wd = m->wdiss;
     m->n_calls++;
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (n >= MACRO_OMP_MIN)
     for (size_t i = 0; i < n; i++) {
         double xi[3] = {0, 0, 0}, vi[3] = {0, 0, 0}, fi[3] = {0, 0, 0}, fl[3] = {0, 0, 0};
         for (int d = 0; d < dim; d++) {
