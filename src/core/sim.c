@@ -15,9 +15,6 @@
 #include "spall/error.h"
 
 #include <math.h>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -352,11 +349,5 @@ int sim_prepare(struct sim *s, struct spall_error *err)
         }
     s->t = 0.0;
     s->step = 0;
-#if defined(__GLIBC__)
-    /* the set-up (neighbour searches, bond construction) freed large
-     * temporaries that glibc keeps in its heap; hand them back to the OS so
-     * the resident memory of a long run is what the run really uses */
-    malloc_trim(0);
-#endif
     return sim_initial_forces(s, err);
 }
