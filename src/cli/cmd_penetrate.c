@@ -5,6 +5,7 @@
  *        (approaches a and b) and velocity sweeps, writing CSV tables.
  */
 #include "cli/cli.h"
+#include "io/plot.h"
 
 #include "spall/error.h"
 #include "spall/penetration.h"
@@ -24,7 +25,7 @@ static void pen_usage(FILE *out)
             "                       [--csv TRAJ.csv] [--n N]\n"
             "       spall penetrate fit --model poncelet|liu|mcg (--trajectory P.csv --d M --v0 M_S\n"
             "                       | --points PTS.csv [--nose]) [densities] [initial coefficients]\n"
-            "                       [--csv FIT.csv] [--curve CURVE.csv]\n"
+            "                       [--csv FIT.csv (also FIT.png: data vs model)] [--curve CURVE.csv]\n"
             "       spall penetrate sweep --model poncelet|liu|mcg --v0 FROM:TO:STEP --d D1[,D2,...]\n"
             "                       [densities] [coefficients] --csv TABLE.csv\n"
             "\n"
@@ -230,6 +231,58 @@ static int cmp_dbl(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+/* FILE.csv -> FILE.png (or FILE.csv.png when there is no .csv suffix). */
+static void png_path(const char *csv, char *out, size_t len)
+{
+    snprintf(out, len, "%s", csv);
+    size_t n = strlen(out);
+    if (n > 4 && strcmp(out + n - 4, ".csv") == 0)
+        out[n - 4] = '\0';
+    strncat(out, ".png", len - strlen(out) - 1);
+}
+
+/* Fitted model against the data, beside the CSV: approach (a) P(t) data
+ * points and model curve; approach (b) P_max/d against v0, data and model. */
+static int plot_fit(const struct pen_opts *o, const struct pen_fit_input *in, const double *a0,
+                    const double *a1, const double *a2, const double *res)
+{
+    size_t n = in->n;
+    double *buf = malloc(4 * (n ? n : 1) * sizeof *buf);
+    if (!buf)
+        return bad("out of memory plotting the fit%s%s", "", "");
+    double *x = buf, *yd = buf + n, *ym = buf + 2 * n;
+    for (size_t i = 0; i < n; i++) {
+        if (o->traj) {
+            x[i] = a0[i] * 1e9;            /* ns */
+            yd[i] = a1[i] * 1e6;           /* um */
+            ym[i] = (a1[i] + res[i]) * 1e6;
+        } else {
+            x[i] = a1[i];                  /* v0 [m/s] */
+            yd[i] = a2[i] / a0[i];         /* P_max / d */
+            ym[i] = a2[i] / a0[i] + res[i];
+        }
+    }
+    struct plot_series ser[2] = {
+        {"data", x, yd, n, PLOT_POINTS},
+        {"fitted model", x, ym, n, o->traj ? PLOT_LINE : PLOT_POINTS},
+    };
+    char title[96];
+    snprintf(title, sizeof title, "%s fit, approach %s", pen_model_name(in->base.model),
+             o->traj ? "(a)" : "(b)");
+    struct plot_spec spec = {title, o->traj ? "time [ns]" : "impact velocity v0 [m/s]",
+                             o->traj ? "penetration depth P [um]" : "P_max / d [1]", 0, 0,
+                             ser, 2, NULL, 0};
+    char path[1024];
+    png_path(o->csv, path, sizeof path);
+    struct spall_error e = {0, ""};
+    int rc = plot_png(path, &spec, &e);
+    free(buf);
+    if (rc)
+        return fail(&e);
+    printf("wrote %s\n", path);
+    return 0;
+}
+
 /* Dense curves of the fitted model, for plotting against the data:
  * (a) t, P, V over [0, T_f]; (b) per distinct diameter, P_max vs v0 over
  * (0, 1.1 max v0], with the nose if the fit used it. */
@@ -358,7 +411,6 @@ static int cmd_fit(struct pen_opts *o)
         FILE *f = NULL;
         if ((rc = write_open(o->csv, &f)))
             goto done;
-        /* TODO(plot): once src/io/plot.c exists, draw these columns as a figure */
         if (o->traj) {
             fprintf(f, "t,P_data,P_model,residual\n");
             for (size_t i = 0; i < in.n; i++)
@@ -371,6 +423,8 @@ static int cmd_fit(struct pen_opts *o)
         }
         if (fclose(f))
             rc = bad("error writing '%s'%s", o->csv, "");
+        if (!rc)
+            rc = plot_fit(o, &in, a0, a1, a2, res);
     }
     if (!rc && o->curve) {
         /* reuse the residual buffer for the sorted diameters */
