@@ -55,6 +55,13 @@ extern const struct bench_case bench_sph_cases[];
 extern const size_t bench_sph_n_cases;
 
 
+/** Build the simulation of YAML text @p yaml, run it on @p threads threads
+ *  for its whole length or @p max_steps steps (when > 0) and fill @p out
+ *  (time loop only; memory = resident growth while building).  The caller
+ *  fills out->note. */
+int bench_run_deck(const char *name, const char *yaml, int threads, long max_steps,
+                   struct bench_result *out, struct spall_error *err);
+
 /** Resident set size of this process [bytes] (from /proc/self/statm). */
 double bench_rss_bytes(void);
 

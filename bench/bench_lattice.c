@@ -30,8 +30,8 @@ double bench_rss_bytes(void)
     return (double)rss * (double)sysconf(_SC_PAGESIZE);
 }
 
-static int run_deck_bench(const char *name, const char *yaml, int threads, struct bench_result *out,
-                          struct spall_error *err)
+int bench_run_deck(const char *name, const char *yaml, int threads, long max_steps,
+                   struct bench_result *out, struct spall_error *err)
 {
     omp_set_num_threads(threads);
     double rss0 = bench_rss_bytes();
@@ -47,7 +47,7 @@ static int run_deck_bench(const char *name, const char *yaml, int threads, struc
     }
     double rss1 = bench_rss_bytes();
     double t0 = omp_get_wtime();
-    while (!sim_done(s) && !rc)
+    while (!sim_done(s) && !rc && (max_steps <= 0 || s->step < max_steps))
         rc = sim_step(s, err);
     double wall = omp_get_wtime() - t0;
     memset(out, 0, sizeof *out);
@@ -57,8 +57,8 @@ static int run_deck_bench(const char *name, const char *yaml, int threads, struc
     out->bonds = s->ops->interactions ? s->ops->interactions(s->model, s) : 0;
     out->steps = s->step;
     out->seconds = wall;
-    out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
-    out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
+    out->particle_steps_per_s = wall > 0 ? (double)out->particles * (double)out->steps / wall : 0;
+    out->bond_steps_per_s = wall > 0 ? (double)out->bonds * (double)out->steps / wall : 0;
     out->bytes_per_particle = (rss1 - rss0) / (double)out->particles;
     sim_destroy(&s);
     deck_destroy(&d);
@@ -92,7 +92,7 @@ static int bench_lattice2d(int threads, double scale, struct bench_result *out,
              "  - {group: left, type: velocity, components: [x], value: -1.0}\n"
              "run: {steps: %ld}\n",
              r0, -0.25 * r0, -0.25 * r0, w, h, 0.5 * r0, steps);
-    int rc = run_deck_bench("lattice2d", yaml, threads, out, err);
+    int rc = bench_run_deck("lattice2d", yaml, threads, 0, out, err);
     if (!rc)
         snprintf(out->note, sizeof out->note,
                  "2D triangular alpha model, linear law, velocity-loaded edge");

@@ -44,38 +44,12 @@ static int bench_macro_rod(int threads, double scale, struct bench_result *out,
              "  - {group: top, type: velocity, components: [z], value: 0.5}\n"
              "run: {steps: %ld}\n",
              r0, -e, L + e, 0.5 * D + e, 0.25 * r0, L - 0.25 * r0, steps);
-    omp_set_num_threads(threads);
-    double rss0 = bench_rss_bytes();
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    int rc = deck_load_string(&d, "macro_rod", yaml, err);
-    if (!rc)
-        rc = deck_build_sim(d, &s, &ro, err);
-    if (rc) {
-        deck_destroy(&d);
+    int rc = bench_run_deck("macro_rod", yaml, threads, 0, out, err);
+    if (rc)
         return rc;
-    }
-    double rss1 = bench_rss_bytes();
-    double t0 = omp_get_wtime();
-    while (!sim_done(s) && !rc)
-        rc = sim_step(s, err);
-    double wall = omp_get_wtime() - t0;
-    memset(out, 0, sizeof *out);
-    snprintf(out->name, sizeof out->name, "macro_rod");
-    out->threads = threads;
-    out->particles = s->p->n_owned;
-    out->bonds = s->ops->interactions ? s->ops->interactions(s->model, s) : 0;
-    out->steps = s->step;
-    out->seconds = wall;
-    out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
-    out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
-    out->bytes_per_particle = (rss1 - rss0) / (double)out->particles;
     snprintf(out->note, sizeof out->note,
              "seed 001 sec. 2.6 rod n_phi 16, n_h %g (paper: 51 413 particles at n_h/n_phi 4); "
              "list pairs r < 1.45 r0", n_h);
-    sim_destroy(&s);
-    deck_destroy(&d);
     return rc;
 }
 

@@ -44,34 +44,10 @@ static int bench_pd3d(int threads, double scale, struct bench_result *out,
              "  - {group: right, type: velocity, components: [x], value: 5.0}\n"
              "run: {dt: 5.0e-8, dt_override: true, steps: %ld}\n",
              dx, (nx - 0.5) * dx, (ny - 0.5) * dx, (ny - 0.5) * dx, (nx - 2.5) * dx, steps);
-    omp_set_num_threads(threads);
-    double rss0 = bench_rss_bytes();
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    int rc = deck_load_string(&d, "pd3d", yaml, err);
-    if (!rc)
-        rc = deck_build_sim(d, &s, &ro, err);
-    deck_destroy(&d);
+    int rc = bench_run_deck("pd3d", yaml, threads, 0, out, err);
     if (rc)
         return rc;
-    double rss1 = bench_rss_bytes();
-    double t0 = omp_get_wtime();
-    while (!sim_done(s) && !rc)
-        rc = sim_step(s, err);
-    double wall = omp_get_wtime() - t0;
-    memset(out, 0, sizeof *out);
-    snprintf(out->name, sizeof out->name, "pd3d");
-    out->threads = threads;
-    out->particles = s->p->n_owned;
-    out->bonds = s->ops->interactions ? s->ops->interactions(s->model, s) : 0;
-    out->steps = s->step;
-    out->seconds = wall;
-    out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
-    out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
-    out->bytes_per_particle = (rss1 - rss0) / (double)out->particles;
     snprintf(out->note, sizeof out->note, "3D PMB, SC, delta 3.015 dx, pulled block (breaking)");
-    sim_destroy(&s);
     return rc;
 }
 
