@@ -2,6 +2,7 @@
 
 #include "spall/error.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -54,6 +55,22 @@ int field_registry_add_f64(struct field_registry *reg, const char *name, const c
     d.flags = flags;
     for (int c = 0; c < ncomp && c < 9; c++)
         d.comp[c] = (void **)comp[c];
+    return field_registry_add(reg, &d, err);
+}
+
+int field_registry_add_computed(struct field_registry *reg, const char *name, const char *unit,
+                                int ncomp, unsigned flags, field_compute_fn fn, const void *ctx,
+                                struct spall_error *err)
+{
+    struct field_desc d;
+    memset(&d, 0, sizeof d);
+    snprintf(d.name, sizeof d.name, "%s", name);
+    snprintf(d.unit, sizeof d.unit, "%s", unit);
+    d.ncomp = ncomp;
+    d.type = FIELD_F64;
+    d.flags = flags;
+    d.compute = fn;
+    d.ctx = ctx;
     return field_registry_add(reg, &d, err);
 }
 

@@ -63,6 +63,12 @@ int field_registry_add(struct field_registry *reg, const struct field_desc *desc
 int field_registry_add_f64(struct field_registry *reg, const char *name, const char *unit,
                            int ncomp, double **comp[], unsigned flags, struct spall_error *err);
 
+/** Convenience: register a computed double field (values filled by @p fn
+ *  with @p ctx when the field is written). */
+int field_registry_add_computed(struct field_registry *reg, const char *name, const char *unit,
+                                int ncomp, unsigned flags, field_compute_fn fn, const void *ctx,
+                                struct spall_error *err);
+
 /** Look a field up by name; NULL if absent. */
 const struct field_desc *field_registry_find(const struct field_registry *reg, const char *name);
 

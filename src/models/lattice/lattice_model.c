@@ -613,32 +613,16 @@ static void field_stress(const void *ctx, size_t n, double *out)
         lattice_particle_eval(m, m->sim, i, NULL, &out[i * nc]);
 }
 
-static int add_computed(struct field_registry *reg, const char *name, const char *unit, int nc,
-                        unsigned flags, field_compute_fn fn, const struct model *m,
-                        struct spall_error *err)
-{
-    struct field_desc d;
-    memset(&d, 0, sizeof d);
-    snprintf(d.name, sizeof d.name, "%s", name);
-    snprintf(d.unit, sizeof d.unit, "%s", unit);
-    d.ncomp = nc;
-    d.type = FIELD_F64;
-    d.flags = flags;
-    d.compute = fn;
-    d.ctx = m;
-    return field_registry_add(reg, &d, err);
-}
-
 static int lattice_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
                                    struct spall_error *err)
 {
     int nc = sim->dim == 1 ? 1 : sim->dim == 2 ? 3 : 6;
     int rc;
-    if ((rc = add_computed(reg, "fracture_density", "1", 1, FIELD_OUTPUT | FIELD_DEFAULT,
+    if ((rc = field_registry_add_computed(reg, "fracture_density", "1", 1, FIELD_OUTPUT | FIELD_DEFAULT,
                            field_fracture_density, m, err)) ||
-        (rc = add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_strain_energy, m,
+        (rc = field_registry_add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_strain_energy, m,
                            err)) ||
-        (rc = add_computed(reg, "stress", "Pa", nc, FIELD_OUTPUT | FIELD_DEFAULT, field_stress,
+        (rc = field_registry_add_computed(reg, "stress", "Pa", nc, FIELD_OUTPUT | FIELD_DEFAULT, field_stress,
                            m, err)))
         return rc;
     return lattice_thermal_register_fields(m, reg, err);

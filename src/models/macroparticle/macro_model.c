@@ -343,31 +343,15 @@ static void field_slip(const void *ctx, size_t n, double *out)
     }
 }
 
-static int add_computed(struct field_registry *reg, const char *name, const char *unit, int nc,
-                        unsigned flags, field_compute_fn fn, const struct model *m,
-                        struct spall_error *err)
-{
-    struct field_desc d;
-    memset(&d, 0, sizeof d);
-    snprintf(d.name, sizeof d.name, "%s", name);
-    snprintf(d.unit, sizeof d.unit, "%s", unit);
-    d.ncomp = nc;
-    d.type = FIELD_F64;
-    d.flags = flags;
-    d.compute = fn;
-    d.ctx = m;
-    return field_registry_add(reg, &d, err);
-}
-
 static int macro_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
                                  struct spall_error *err)
 {
     (void)sim;
     int rc;
-    if ((rc = add_computed(reg, "stress", "Pa", 6, FIELD_OUTPUT | FIELD_DEFAULT, field_stress, m,
+    if ((rc = field_registry_add_computed(reg, "stress", "Pa", 6, FIELD_OUTPUT | FIELD_DEFAULT, field_stress, m,
                            err)) ||
-        (rc = add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_energy, m, err)) ||
-        (rc = add_computed(reg, "plastic_slip", "m", 1, FIELD_OUTPUT, field_slip, m, err)))
+        (rc = field_registry_add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_energy, m, err)) ||
+        (rc = field_registry_add_computed(reg, "plastic_slip", "m", 1, FIELD_OUTPUT, field_slip, m, err)))
         return rc;
     return SPALL_OK;
 }

@@ -403,33 +403,17 @@ static void field_stress(const void *ctx, size_t n, double *out)
         pd_particle_eval(m, m->sim, i, NULL, &out[i * nc]);
 }
 
-static int add_field(struct field_registry *reg, const char *name, const char *unit, int nc,
-                     unsigned flags, field_compute_fn fn, const struct model *m,
-                     struct spall_error *err)
-{
-    struct field_desc d;
-    memset(&d, 0, sizeof d);
-    snprintf(d.name, sizeof d.name, "%s", name);
-    snprintf(d.unit, sizeof d.unit, "%s", unit);
-    d.ncomp = nc;
-    d.type = FIELD_F64;
-    d.flags = flags;
-    d.compute = fn;
-    d.ctx = m;
-    return field_registry_add(reg, &d, err);
-}
-
 static int pd_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
                               struct spall_error *err)
 {
     int nc = sim->dim == 1 ? 1 : sim->dim == 2 ? 3 : 6;
     int rc;
     const unsigned od = FIELD_OUTPUT | FIELD_DEFAULT;
-    if ((rc = add_field(reg, "damage", "1", 1, od, field_damage, m, err)) ||
-        (m->ortho && (rc = add_field(reg, "damage_fiber", "1", 1, od, field_damage_f, m, err))) ||
-        (m->ortho && (rc = add_field(reg, "damage_matrix", "1", 1, od, field_damage_m, m, err))) ||
-        (rc = add_field(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_energy, m, err)) ||
-        (rc = add_field(reg, "stress", "Pa", nc, od, field_stress, m, err)))
+    if ((rc = field_registry_add_computed(reg, "damage", "1", 1, od, field_damage, m, err)) ||
+        (m->ortho && (rc = field_registry_add_computed(reg, "damage_fiber", "1", 1, od, field_damage_f, m, err))) ||
+        (m->ortho && (rc = field_registry_add_computed(reg, "damage_matrix", "1", 1, od, field_damage_m, m, err))) ||
+        (rc = field_registry_add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_energy, m, err)) ||
+        (rc = field_registry_add_computed(reg, "stress", "Pa", nc, od, field_stress, m, err)))
         return rc;
     return SPALL_OK;
 }
