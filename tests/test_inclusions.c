@@ -10,6 +10,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
+#include "models/model.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -163,12 +164,92 @@ static void test_refusals(void **state)
     assert_non_null(strstr(err.msg, "no particle"));
 }
 
+
+/* ---- youngs_modulus_table (thermal lattice, lattice_thermal.c) ---------- */
+
+static int build_pair(const char *extra, double T0, struct sim **s, struct spall_error *err)
+{
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: lattice, law: linear}\n"
+             "materials:\n"
+             "  m: {density: 1000, youngs_modulus: 1.0e9, failure_strain: 0.5,\n"
+             "      specific_heat: 800, initial_temperature: %g%s}\n"
+             "lattice: {type: chain, spacing: 1.0e-3}\n"
+             "body: {geometry: {box: {min: [-0.0005], max: [0.0015]}}, material: m}\n"
+             "run: {end_time: 1.0e-6}\n",
+             T0, extra);
+    struct deck *d = NULL;
+    int rc = deck_load_string(&d, "test_etab", yaml, err);
+    if (rc)
+        return rc;
+    struct run_output ro;
+    rc = deck_build_sim(d, s, &ro, err);
+    deck_destroy(&d);
+    return rc;
+}
+
+/* force on particle 0 of a two-particle chain stretched by 1 um */
+static double pair_force(const char *extra, double T0)
+{
+    struct sim *s = NULL;
+    struct spall_error err = {0, ""};
+    int rc = build_pair(extra, T0, &s, &err);
+    if (rc)
+        fprintf(stderr, "%s\n", err.msg);
+    assert_int_equal(rc, SPALL_OK);
+    assert_int_equal(s->p->n, 2);
+    s->p->x[0][1] += 1.0e-6;
+    s->p->f[0][0] = s->p->f[0][1] = 0.0;
+    assert_int_equal(s->ops->compute_forces(s->model, s, &err), SPALL_OK);
+    const double f = s->p->f[0][0];
+    assert_true(f > 0.0 && fabs(f + s->p->f[0][1]) <= 1e-12 * f);
+    sim_destroy(&s);
+    return f;
+}
+
+static void test_etable_stiffness(void **state)
+{
+    (void)state;
+    const char *tab = ", youngs_modulus_table: [[300, 1.0e9], [900, 0.5e9]]";
+    const double f_ref = pair_force("", 600.0);
+    /* both particles at 600 K: E(600) = 0.75 E_ref, piecewise linear */
+    assert_true(fabs(pair_force(tab, 600.0) / f_ref - 0.75) < 1e-12);
+    /* held outside the table */
+    assert_true(fabs(pair_force(tab, 1200.0) / f_ref - 0.5) < 1e-12);
+    assert_true(fabs(pair_force(tab, 100.0) / f_ref - 1.0) < 1e-12);
+}
+
+static void test_etable_refusals(void **state)
+{
+    (void)state;
+    struct sim *s = NULL;
+    struct spall_error err = {0, ""};
+    static const char *const bad[][2] = {
+        {", youngs_modulus_table: [[300, 1.0e9], [300, 0.5e9]]", "strictly increasing"},
+        {", youngs_modulus_table: [[300, 1.0e9], [900, 0]]", "expected > 0"},
+        {", youngs_modulus_table: [[300, 2.0e9]]", "above youngs_modulus"},
+        {", youngs_modulus_table: [[300, 1.0e9, 5]]", "expected [T, E]"},
+        {", youngs_modulus_table: 5", "[temperature K, youngs_modulus Pa]"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        assert_int_equal(build_pair(bad[k][0], 300.0, &s, &err), SPALL_ERR_INPUT);
+        if (!strstr(err.msg, bad[k][1]) || !strstr(err.msg, "test_etab:"))
+            fprintf(stderr, "case %zu: %s\n", k, err.msg);
+        assert_non_null(strstr(err.msg, bad[k][1]));
+        assert_non_null(strstr(err.msg, "test_etab:"));
+        assert_null(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_seed_determinism),
         cmocka_unit_test(test_count_nonoverlap),
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_etable_stiffness),
+        cmocka_unit_test(test_etable_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
