@@ -14,6 +14,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_impactors.h"
+#include "io/deck_inclusions.h"
 #include "models/model.h"
 #include "spall/error.h"
 
@@ -32,6 +33,7 @@ static const char *const top_keys[] = {"title", "description", "model", "materia
                                        "impactors",
 
                                        /* other section keys */
+                                       "inclusions",
                                        NULL};
 
 struct build_ctx {
@@ -725,7 +727,8 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
     if ((rc = parse_lattice(&c, root, err)))
         goto fail;
     if ((rc = parse_model(&c, root, err)) || (rc = parse_materials(&c, root, err)) ||
-        (rc = parse_body(&c, root, err)) || (rc = parse_regions(&c, root, err)))
+        (rc = parse_body(&c, root, err)) || (rc = parse_regions(&c, root, err)) ||
+        (rc = deck_parse_inclusions(c.sim, root, c.geometry, c.dim, err)))
         goto fail;
     assign_masses(c.sim);
     double gravity[3] = {0, 0, 0};

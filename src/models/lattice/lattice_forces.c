@@ -63,6 +63,7 @@ struct lattice_view {
     const uint8_t *restrict type;
     const size_t *restrict reverse;
     const double *restrict ang_buf;
+    const double *restrict kscale; /* NULL unless an E(T) table is given */
     const int32_t *restrict mat;
     const double *restrict x0, *restrict x1, *restrict x2;
     double *restrict f0, *restrict f1, *restrict f2;
@@ -80,6 +81,7 @@ static struct lattice_view make_view(const struct model *m, struct sim *sim)
     v.type = bl->type;
     v.reverse = bl->reverse;
     v.ang_buf = m->ang_buf;
+    v.kscale = m->kscale;
     v.mat = p->material;
     v.x0 = p->x[0];
     v.x1 = p->dim > 1 ? p->x[1] : NULL;
@@ -173,13 +175,19 @@ LATTICE_INLINE void row_general(struct model *m, const struct lattice_view *v, s
         const struct lattice_bond_law *bw =
             &prow[(size_t)v->mat[j] * LATTICE_MAX_TYPES + v->type[s]];
         const double st = r / r_rest;
+        /* temperature-dependent stiffness (youngs_modulus_table): the
+         * thermal pass writes the factor per half-bond */
+        const double k = v->kscale ? bw->k * v->kscale[s] : bw->k;
         double c;
-        if (LATTICE_UNLIKELY(v->state[s]))
-            c = lattice_coef(&lp, bw->curve, bw->k, st, 1);
-        else if (LATTICE_UNLIKELY(r > r_rest * bw->t_lim || r < r_rest * bw->c_lim))
-            c = break_half(m, i, s, bw, r_rest, st);
-        else
-            c = lattice_coef(&lp, bw->curve, bw->k, st, 0);
+        if (LATTICE_UNLIKELY(v->state[s])) {
+            c = lattice_coef(&lp, bw->curve, k, st, 1);
+        } else if (LATTICE_UNLIKELY(r > r_rest * bw->t_lim || r < r_rest * bw->c_lim)) {
+            struct lattice_bond_law bk = *bw;
+            bk.k = k;
+            c = break_half(m, i, s, &bk, r_rest, st);
+        } else {
+            c = lattice_coef(&lp, bw->curve, k, st, 0);
+        }
         for (int d = 0; d < dim; d++)
             fi[d] += c * dx[d];
         if (gather) {
@@ -388,7 +396,7 @@ int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error 
     const int gather = m->angular && dim == 2;
     if (gather)
         drive_angles(m, sim);
-    const int fast = m->lp.law == LATTICE_LAW_LINEAR && m->n_mat == 1;
+    const int fast = m->lp.law == LATTICE_LAW_LINEAR && m->n_mat == 1 && !m->kscale;
     drive_axial(m, sim, fast, dim, m->layers > 1, gather);
     return 0;
 }
@@ -442,8 +450,9 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
         const struct lattice_bond_law *bw =
             &m->pair[((size_t)mat[i] * nm + (size_t)mat[j]) * LATTICE_MAX_TYPES + bl->type[s]];
         const int broken = bl->state[s] != 0;
-        const double c = lattice_coef(&m->lp, bw->curve, bw->k, st, broken);
-        e += 0.5 * lattice_energy(&m->lp, bw->curve, bw->k, bl->rest[s], st, broken);
+        const double k = m->kscale ? bw->k * m->kscale[s] : bw->k;
+        const double c = lattice_coef(&m->lp, bw->curve, k, st, broken);
+        e += 0.5 * lattice_energy(&m->lp, bw->curve, k, bl->rest[s], st, broken);
         add_outer(dim, sig, dx, dx, 0.5 * c);
     }
     if (m->angular && dim == 2) {

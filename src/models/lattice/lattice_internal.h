@@ -70,6 +70,8 @@ struct model {
 
     double *diss;         /**< per particle: energy released by its broken bonds/angles [J] */
     struct lattice_thermal *th; /**< thermal lattice (lattice_thermal.c); NULL: none */
+    const double *kscale; /**< per half-bond stiffness factor E(T)/E_ref, owned by th;
+                               NULL: none (youngs_modulus_table absent) */
     size_t n_half;
     bool initialised;
 };

@@ -20,6 +20,7 @@
 
 #define TH_MAX_BC 16
 #define TH_DEFAULT_T 293.15 /* K */
+#define TH_MAX_ETAB 64
 
 struct th_material {
     bool given;
@@ -29,6 +30,8 @@ struct th_material {
     double P;      /**< power density W/m^3 */
     double T_melt; /**< K (INFINITY: none) */
     double T_init, T_ref;
+    size_t n_e;                 /**< youngs_modulus_table points (0: none) */
+    double eT[TH_MAX_ETAB], eE[TH_MAX_ETAB];
 };
 
 struct th_bc {
@@ -52,6 +55,8 @@ struct lattice_thermal {
     double *inv_mC;   /**< 1 / (m C) */
     double dt_limit;  /**< explicit stability limit of conduction */
     size_t melted;    /**< bonds removed by melting (counted once) */
+    bool any_table;   /**< some material has youngs_modulus_table */
+    double *kscale;   /**< per half-bond E(T)/E_ref (only with a table) */
 };
 
 bool lattice_thermal_enabled(const struct model *m)
@@ -76,6 +81,68 @@ static int th_get(struct model *m, size_t n_mat, struct spall_error *err)
         th->n_mat = n_mat;
     }
     return SPALL_OK;
+}
+
+/* `youngs_modulus_table: [[T, E], ...]`: strictly increasing T > 0, E > 0
+ * and E <= youngs_modulus (the stable time step is sized with youngs_modulus,
+ * so a stiffer bond at temperature would make the run unstable). */
+static int th_parse_table(struct th_material *t, const struct deck_node *node,
+                          struct spall_error *err)
+{
+    const struct deck_node *tab = deck_get(node, "youngs_modulus_table");
+    if (!tab)
+        return SPALL_OK;
+    int rc = deck_expect_seq(tab, "a list of [temperature K, youngs_modulus Pa] pairs", err);
+    if (rc)
+        return rc;
+    if (tab->n < 1 || tab->n > TH_MAX_ETAB)
+        return deck_error(err, tab, "youngs_modulus_table has %zu points; expected 1 to %d",
+                          tab->n, TH_MAX_ETAB);
+    double E_ref = INFINITY;
+    const struct deck_node *en = deck_peek(node, "youngs_modulus");
+    if (en && (rc = deck_node_double(en, &E_ref, err)))
+        return rc;
+    for (size_t k = 0; k < tab->n; k++) {
+        const struct deck_node *row = tab->items[k];
+        if (row->kind != DECK_SEQUENCE || row->n != 2)
+            return deck_error(err, row, "youngs_modulus_table[%zu]: expected [T, E]", k);
+        if ((rc = deck_node_double(row->items[0], &t->eT[k], err)) ||
+            (rc = deck_node_double(row->items[1], &t->eE[k], err)))
+            return rc;
+        if (!(t->eT[k] >= 0.0) || !isfinite(t->eT[k]))
+            return deck_error(err, row->items[0], "youngs_modulus_table[%zu]: temperature %g K; "
+                              "expected >= 0", k, t->eT[k]);
+        if (k > 0 && !(t->eT[k] > t->eT[k - 1]))
+            return deck_error(err, row->items[0], "youngs_modulus_table[%zu]: temperature %g K "
+                              "not above the previous %g K (strictly increasing T)", k, t->eT[k],
+                              t->eT[k - 1]);
+        if (!(t->eE[k] > 0.0) || !isfinite(t->eE[k]))
+            return deck_error(err, row->items[1], "youngs_modulus_table[%zu]: E %g Pa; expected "
+                              "> 0", k, t->eE[k]);
+        if (t->eE[k] > E_ref * (1.0 + 1e-12))
+            return deck_error(err, row->items[1], "youngs_modulus_table[%zu]: E %g Pa above "
+                              "youngs_modulus %g Pa (the time step is sized with youngs_modulus)",
+                              k, t->eE[k], E_ref);
+    }
+    t->n_e = tab->n;
+    return SPALL_OK;
+}
+
+/* E(T) / E_ref, piecewise linear in T, held constant outside the table */
+static double th_efactor(const struct th_material *t, double E_ref, double T)
+{
+    if (!t->n_e)
+        return 1.0;
+    const size_t n = t->n_e;
+    if (T <= t->eT[0])
+        return t->eE[0] / E_ref;
+    if (T >= t->eT[n - 1])
+        return t->eE[n - 1] / E_ref;
+    size_t k = 1;
+    while (t->eT[k] < T)
+        k++;
+    const double w = (T - t->eT[k - 1]) / (t->eT[k] - t->eT[k - 1]);
+    return ((1.0 - w) * t->eE[k - 1] + w * t->eE[k]) / E_ref;
 }
 
 int lattice_thermal_parse_material(struct model *m, struct sim *sim, int index,
@@ -106,8 +173,11 @@ int lattice_thermal_parse_material(struct model *m, struct sim *sim, int index,
         (rc = deck_double(node, "reference_temperature", false, 0.0, INFINITY, &t->T_ref, err)))
         return rc;
     t->T_init = t->T_ref;
-    if ((rc = deck_double(node, "initial_temperature", false, 0.0, INFINITY, &t->T_init, err)))
+    if ((rc = deck_double(node, "initial_temperature", false, 0.0, INFINITY, &t->T_init, err)) ||
+        (rc = th_parse_table(t, node, err)))
         return rc;
+    if (t->n_e)
+        m->th->any_table = true;
     t->given = true;
     m->th->any = true;
     return SPALL_OK;
@@ -177,6 +247,26 @@ int lattice_thermal_init(struct model *m, struct sim *sim, struct spall_error *e
     th->inv_mC = malloc((n ? n : 1) * sizeof *th->inv_mC);
     th->rest0 = malloc((nh ? nh : 1) * sizeof *th->rest0);
     th->kappa = malloc((nh ? nh : 1) * sizeof *th->kappa);
+    free(th->kscale);
+    th->kscale = NULL;
+    m->kscale = NULL;
+    if (th->any_table) {
+        for (size_t k = 0; k < sim->n_materials; k++)
+            if (th->mat[k].n_e && th->mat[k].eE[0] > 0.0)
+                for (size_t q = 0; q < th->mat[k].n_e; q++)
+                    if (th->mat[k].eE[q] > m->mat[k].E * (1.0 + 1e-12))
+                        return spall_error_set(err, SPALL_ERR_INPUT,
+                                               "material '%s': youngs_modulus_table E %g Pa "
+                                               "above youngs_modulus %g Pa",
+                                               sim->materials[k].name, th->mat[k].eE[q],
+                                               m->mat[k].E);
+        th->kscale = malloc((nh ? nh : 1) * sizeof *th->kscale);
+        if (!th->kscale)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (thermal lattice)");
+        for (size_t s = 0; s < nh; s++)
+            th->kscale[s] = 1.0;
+        m->kscale = th->kscale;
+    }
     if (!th->T || !th->T_new || !th->heat || !th->inv_mC || !th->rest0 || !th->kappa)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (thermal lattice)");
     /* bulk second moment S and volume V: the particle with the largest S */
@@ -279,6 +369,21 @@ int lattice_thermal_step(struct model *m, struct sim *sim, double dt, struct spa
             const double alpha = 0.5 * (a->alpha + b->alpha);
             const double dT = 0.5 * (th->T[i] + th->T[j]) - 0.5 * (a->T_ref + b->T_ref);
             bl->rest[s] = th->rest0[s] * (1.0 + alpha * dT);
+            if (th->kscale) {
+                /* series pair stiffness 2 ka kb / (ka + kb) with each side
+                 * scaled by its E(Tbar)/E_ref: ratio fa fb (ka+kb)/(fa ka + fb kb) */
+                const double Tb = 0.5 * (th->T[i] + th->T[j]);
+                const int32_t ma = p->material[i], mb = p->material[j];
+                const double fa = th_efactor(a, m->mat[ma].E, Tb);
+                double f = fa;
+                if (mb != ma) {
+                    const double fb = th_efactor(b, m->mat[mb].E, Tb);
+                    const double ka = m->mat[ma].k[bl->type[s]], kb = m->mat[mb].k[bl->type[s]];
+                    const double den = fa * ka + fb * kb;
+                    f = den > 0.0 ? fa * fb * (ka + kb) / den : fa;
+                }
+                th->kscale[s] = f;
+            }
             if (!(bl->state[s] & BOND_BROKEN) && (th->T[i] > a->T_melt || th->T[j] > b->T_melt)) {
                 bl->state[s] |= BOND_BROKEN;
                 melted += j > i;
@@ -332,6 +437,7 @@ void lattice_thermal_destroy(struct lattice_thermal **pth)
     free(th->kappa);
     free(th->heat);
     free(th->inv_mC);
+    free(th->kscale);
     free(th);
     *pth = NULL;
 }

@@ -41,7 +41,8 @@ struct spall_error;
  *  allowed key lists). */
 #define LATTICE_THERMAL_KEYS                                                                      \
     "specific_heat", "conductivity", "thermal_expansion", "power_density",                       \
-        "melting_temperature", "initial_temperature", "reference_temperature"
+        "melting_temperature", "initial_temperature", "reference_temperature",           \
+        "youngs_modulus_table"
 
 struct lattice_thermal;
 
