@@ -18,7 +18,9 @@
  * buffers of the centre's row; pass 2 (the axial loop) lets each particle
  * gather the buffers of the slots that point at it through the reverse index.
  * Angles see the bond states of the previous step (breaking is decided in
- * pass 2), a one-step lag that only delays the de-activation of an angle.
+ * pass 2), a one-step lag that only delays the de-activation of an angle;
+ * at de-activation the angle (and its alpha-beta-gamma area share, one third
+ * of a lattice triangle's area energy) books the energy it held into diss.
  *
  * The hot loop (linear law, one material) is specialised by dimension and
  * whether the list has more than one bond type; the general loop covers
@@ -265,16 +267,30 @@ static void angles_row(struct model *m, const int32_t *mat, double *const *x, si
         if (lb == LATTICE_NO_ANGLE)
             continue;
         const size_t sb = s0 + lb;
-        if (m->ang_state[s] || bl->state[s] || bl->state[sb])
+        if (m->ang_state[s])
             continue;
         const size_t ja = (size_t)bl->partner[s], jb = (size_t)bl->partner[sb];
         const double a[2] = {x[0][ja] - x[0][i], x[1][ja] - x[1][i]};
         const double b[2] = {x[0][jb] - x[0][i], x[1][jb] - x[1][i]};
         double Fa[2], Fb[2];
         const double dphi = angle_forces(k_phi, m->ang_phi0[s], a, b, Fa, Fb);
+        if (LATTICE_UNLIKELY(bl->state[s] || bl->state[sb])) {
+            /* an arm broke (last step's axial pass): the angle and its area
+             * share switch off for good; book the energy they held so the
+             * energy balance stays closed */
+            m->ang_state[s] = 1;
+            m->diss[i] += 0.5 * k_phi * dphi * dphi;
+            if (k_s != 0.0)
+                m->diss[i] += area_forces(k_s, area_rest(bl, s, sb, m->ang_phi0[s]), a, b, Fa,
+                                          Fb);
+            continue;
+        }
         if (LATTICE_UNLIKELY(dphi < -lim_c || dphi > lim_t)) {
             m->ang_state[s] = 1;
             m->diss[i] += 0.5 * k_phi * dphi * dphi;
+            if (k_s != 0.0)
+                m->diss[i] += area_forces(k_s, area_rest(bl, s, sb, m->ang_phi0[s]), a, b, Fa,
+                                          Fb);
             continue;
         }
         if (k_s != 0.0)
