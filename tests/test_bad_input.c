@@ -56,7 +56,7 @@ static const struct bad_case cases[] = {
     {"negative density", BASE_MODEL "materials:\n  m: {density: -5, youngs_modulus: 1.0e9, poisson_ratio: 0.3333333333333333,\n"
                                     "      failure_strain: 0.05}\n" BASE_LAT BASE_GEO BASE_BODY BASE_RUN,
      SPALL_ERR_INPUT, "3:", "> 0"},
-    {"poisson ratio out of range", BASE_MODEL "materials:\n  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.7,\n"
+    {"poisson ratio out of range", BASE_MODEL "materials:\n  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 1.2,\n"
                                               "      failure_strain: 0.05}\n" BASE_LAT BASE_GEO BASE_BODY BASE_RUN,
      0, "3:", "poisson_ratio"},
     {"unknown model type", "model: {type: fem}\n" BASE_MAT BASE_LAT BASE_GEO BASE_BODY BASE_RUN,

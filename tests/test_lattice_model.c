@@ -330,6 +330,90 @@ static void test_angular_gradient(void **state)
     sim_destroy(&s);
 }
 
+/* alpha-beta-gamma (nu > 1/3): patch test and exact gradient of the area springs */
+static void test_alpha_beta_gamma(void **state)
+{
+    (void)state;
+    check_patch(LATTICE_TRIANGULAR, 1, 0.4, 1e-3);
+    check_patch(LATTICE_TRIANGULAR, 1, 0.443, 1e-3);
+    check_patch(LATTICE_TRIANGULAR, 1, 0.9, 1e-3);
+    struct lattice_calib c = calib(LATTICE_TRIANGULAR, 1, 0.4);
+    struct spall_error err = {0, ""};
+    assert_int_equal(lattice_calibrate(&c, &err), 0);
+    assert_true(c.area_used && c.k_area > 0.0 && c.k_phi == 0.0);
+    c = calib(LATTICE_TRIANGULAR, 1, 0.4);
+    c.angular = 0;
+    assert_int_not_equal(lattice_calibrate(&c, &err), 0);
+    c = calib(LATTICE_TRIANGULAR, 1, 1.0);
+    assert_int_not_equal(lattice_calibrate(&c, &err), 0);
+    /* forces = -grad E with the area springs alone (k1 = 0) */
+    struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
+    double hi[3] = {4.0, 4.0, 0};
+    struct sim *s = make_sim(LATTICE_TRIANGULAR, hi, 0.45, &opt, INFINITY);
+    assert_true(s->model->angular && s->model->mat_k_area[0] > 0.0);
+    lattice_model_override(s->model, 0.0, 0.0);
+    perturb(s, 0.1, 11u);
+    forces(s);
+    size_t n = s->p->n;
+    double *f = malloc(2 * n * sizeof *f);
+    double fscale = 0.0, worst = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        f[2 * i] = s->p->f[0][i];
+        f[2 * i + 1] = s->p->f[1][i];
+        fscale = fmax(fscale, fmax(fabs(f[2 * i]), fabs(f[2 * i + 1])));
+    }
+    assert_true(fscale > 0.0);
+    const double h = 1e-6;
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 2; d++) {
+            double x = s->p->x[d][i];
+            s->p->x[d][i] = x + h;
+            double ep = total_energy(s);
+            s->p->x[d][i] = x - h;
+            double em = total_energy(s);
+            s->p->x[d][i] = x;
+            worst = fmax(worst, fabs(-(ep - em) / (2.0 * h) - f[2 * i + (size_t)d]) / fscale);
+        }
+    printf("  area springs: max |F + dE/dx| / max|F| = %.2e over %zu particles\n", worst, n);
+    assert_true(worst < 1e-6);
+    free(f);
+    sim_destroy(&s);
+    /* stable dt: omega_max (power iteration on M^-1 H, H v = -dF/dx v) times dt <= 2 */
+    s = make_sim(LATTICE_TRIANGULAR, hi, 0.45, &opt, INFINITY);
+    n = s->p->n;
+    double *x0 = malloc(2 * n * sizeof *x0), *v = malloc(2 * n * sizeof *v);
+    for (size_t i = 0; i < n; i++) {
+        x0[2 * i] = s->p->x[0][i];
+        x0[2 * i + 1] = s->p->x[1][i];
+        v[2 * i] = 1.0 + 0.1 * (double)(i % 7);
+        v[2 * i + 1] = 1.0 - 0.1 * (double)(i % 5);
+    }
+    double lam = 0.0;
+    const double eps = 1e-7;
+    for (int it = 0; it < 400; it++) {
+        double nv = 0.0;
+        for (size_t q = 0; q < 2 * n; q++)
+            nv = fmax(nv, fabs(v[q]));
+        for (size_t i = 0; i < n; i++)
+            for (int d = 0; d < 2; d++)
+                s->p->x[d][i] = x0[2 * i + (size_t)d] + eps * v[2 * i + (size_t)d] / nv;
+        forces(s);
+        double nw = 0.0;
+        for (size_t i = 0; i < n; i++)
+            for (int d = 0; d < 2; d++) {
+                v[2 * i + (size_t)d] = -s->p->f[d][i] / (eps * s->p->mass[i]);
+                nw = fmax(nw, fabs(v[2 * i + (size_t)d]));
+            }
+        lam = nw;
+    }
+    double dt = lattice_model_ops.stable_dt(s->model, s);
+    printf("  area springs: omega_max dt = %.4f (stable below 2)\n", sqrt(lam) * dt);
+    assert_true(sqrt(lam) * dt < 2.0);
+    free(x0);
+    free(v);
+    sim_destroy(&s);
+}
+
 /* ---- non-linear laws ----------------------------------------------------------- */
 
 static void test_lennard_jones(void **state)
@@ -461,6 +545,11 @@ static void test_deck_refusals(void **state)
     assert_int_equal(try_deck(LATTICE_TRIANGULAR,
                               "model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
                               "poisson_ratio: 0.4, failure_strain: 0.01}\n", &err),
+                     0); /* angular: auto selects alpha-beta-gamma */
+    assert_int_equal(try_deck(LATTICE_TRIANGULAR,
+                              "model: {type: lattice, angular: off}\nmat: {density: 1, "
+                              "youngs_modulus: 1e9, poisson_ratio: 0.4, failure_strain: 0.01}\n",
+                              &err),
                      SPALL_ERR_PHYSICS);
     assert_non_null(strstr(err.msg, "alpha-beta-gamma"));
     assert_int_equal(try_deck(LATTICE_FCC,
@@ -488,13 +577,13 @@ static void test_deck_refusals(void **state)
 
 /* ---- thread independence --------------------------------------------------------- */
 
-static void test_thread_independence(void **state)
+/* nu = 0.15: alpha-beta angles; nu = 0.45: alpha-beta-gamma area springs */
+static void thread_check(double nu)
 {
-    (void)state;
 #ifdef _OPENMP
     struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
     double hi[3] = {30.0, 30.0, 0};
-    struct sim *s = make_sim(LATTICE_TRIANGULAR, hi, 0.15, &opt, 0.03);
+    struct sim *s = make_sim(LATTICE_TRIANGULAR, hi, nu, &opt, 0.03);
     assert_true(s->model->angular);
     struct bond_list *bl = s->model->bl;
     /* a line of pre-cut bonds and random displacements that break more */
@@ -555,7 +644,16 @@ static void test_thread_independence(void **state)
     free(st0);
     free(f1);
     sim_destroy(&s);
+#else
+    (void)nu;
 #endif
+}
+
+static void test_thread_independence(void **state)
+{
+    (void)state;
+    thread_check(0.15);
+    thread_check(0.45);
 }
 
 static void test_stable_dt_chain(void **state)
@@ -590,6 +688,7 @@ int main(void)
         cmocka_unit_test(test_chain_breaks_at_eps_max),
         cmocka_unit_test(test_post_fracture_repulsion),
         cmocka_unit_test(test_angular_gradient),
+        cmocka_unit_test(test_alpha_beta_gamma),
         cmocka_unit_test(test_lennard_jones),
         cmocka_unit_test(test_piecewise_linear_and_deck),
         cmocka_unit_test(test_deck_refusals),

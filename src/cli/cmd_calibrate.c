@@ -142,17 +142,20 @@ int cli_calibrate(int argc, char **argv)
     printf("  input: E = %g Pa, nu = %g, rho = %g kg/m^3, sigma_TS = %g Pa\n", c.E, c.nu, c.rho,
            c.sigma_ts);
     printf("  axial layers: %d, angular springs: %s\n", c.layers_used,
-           c.angular_used ? "yes (alpha-beta)" : "no (alpha)");
+           c.area_used ? "area springs (alpha-beta-gamma)"
+                       : c.angular_used ? "yes (alpha-beta)" : "no (alpha)");
     printf("  S0 = k1 (nearest neighbours)      %.6g N/m\n", c.k1);
     if (c.layers_used > 1)
         printf("  k2 (second neighbours)            %.6g N/m\n", c.k2);
-    if (c.angular_used)
+    if (c.area_used)
+        printf("  k_area (triangle area springs)    %.6g J\n", c.k_area);
+    else if (c.angular_used)
         printf("  S_phi = k_phi (angular)           %.6g N m/rad^2\n", c.k_phi);
     printf("  eps_max = sigma_TS / E (Eq. 26)   %.6g\n", c.eps_max);
     printf("  volume per particle               %.6g m^3\n", c.site_volume);
     printf("  particle mass                     %.6g kg\n", c.mass);
     printf("  stable time step (Eq. 25)         %.6g s\n", c.dt);
-    if (c.kind == LATTICE_TRIANGULAR) {
+    if (c.kind == LATTICE_TRIANGULAR && !c.area_used) {
         printf("  seed 000 Eq. 16 S0                %.6g N/m (for t = 2 r0/sqrt3)\n", c.paper_S0);
         printf("  seed 000 Eq. 18 S_phi             %.6g N (x r0 = %.6g N m/rad^2)\n",
                c.paper_S_phi, c.paper_S_phi * c.r0);
@@ -167,7 +170,7 @@ int cli_calibrate(int argc, char **argv)
     printf("  E  measured %.6g Pa (input %.6g, error %.3g %%)\n", Em, c.E,
            100.0 * fabs(Em - c.E) / c.E);
     printf("  nu measured %.6g (input %.6g, error %.3g)\n", num, c.nu, fabs(num - c.nu));
-    if (c.kind == LATTICE_TRIANGULAR && c.angular_used) {
+    if (c.kind == LATTICE_TRIANGULAR && c.angular_used && !c.area_used) {
         double Ep = 0, nup = 0;
         if (lattice_patch_test(&c, 1e-6, 1, &Ep, &nup, &err) == 0)
             printf("  with the paper's Eq. 16/18 constants: E %.6g Pa, nu %.6g\n", Ep, nup);

@@ -28,6 +28,23 @@
  *   Two layers: the second shell (6 bonds at sqrt3 r0) stores 3 times as much
  *   per unit k, so k1 + 3 k2 = sqrt3 E t / 2 and nu stays 1/3.  Default
  *   k2/k1 = 1/sqrt3: the same bar modulus k l for both shells.
+ *   Alpha-beta-gamma for nu > 1/3 (our construction, standing in for
+ *   Ostoja-Starzewski's triple-honeycomb geometry, Appl. Mech. Rev. 55 (2002)):
+ *   every lattice triangle (3 first-shell bonds, rest area A0 = sqrt3 r0^2/4)
+ *   stores k_area (A/A0 - 1)^2 / 2.  Under uniform strain A/A0 - 1 = tr eps
+ *   to first order, so it adds bulk only: 2 triangles per site of area
+ *   sqrt3 r0^2 / 2 give d lambda2 = 4 k_area / (sqrt3 r0^2), mu unchanged:
+ *     K2 = sqrt3 k / 2 + 4 k_area / (sqrt3 r0^2),  mu2 = sqrt3 k / 4.
+ *   Matching mu2 = E t / (2 (1 + nu)) and K2 = E t / (2 (1 - nu)):
+ *     k      = 2 E t / (sqrt3 (1 + nu))
+ *     k_area = sqrt3 r0^2 E t (3 nu - 1) / (8 (1 - nu^2))  (>= 0 for nu >= 1/3)
+ *   The triangle energy is split in three equal shares, one on each of its
+ *   vertex angles (the angle structure below), so each share sees only its
+ *   two arms: a share is off once either arm bond is broken.  Stable step:
+ *   a share (k_s = k_area/3) has |grad A| = |opposite edge|/2, bounded by
+ *   (r_a + r_b)/2 at the centre and r_b/2, r_a/2 at the arms; booking half
+ *   of the Gershgorin row as for the angles gives a bulk site
+ *   12 k_s r0^2 / A0^2 = 64 k_area / (3 r0^2).
  * Square lattice with diagonals (spacing a, site area a^2): axis springs k1,
  *   diagonals k2:  C11 = (k1 + k2)/t, C12 = C66 = k2/t.  Isotropy
  *   (C66 = (C11 - C12)/2) needs k1 = 2 k2; then nu = 1/3, E t = 8 k2 / 3:
@@ -108,8 +125,8 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
     const double E = c->E, r0 = c->r0, t = c->thickness;
     double nu = c->nu;
     int layers = c->layers;
-    c->k1 = c->k2 = c->k_phi = 0.0;
-    c->angular_used = 0;
+    c->k1 = c->k2 = c->k_phi = c->k_area = 0.0;
+    c->angular_used = c->area_used = 0;
     if (c->angular == 1 && c->kind != LATTICE_TRIANGULAR)
         return refuse(err, "angular springs are implemented for the triangular lattice only "
                            "(lattice '%s')", kn);
@@ -128,10 +145,27 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
         if (!(nu > -1.0))
             return spall_error_set(err, SPALL_ERR_PHYSICS,
                                    "Poisson's ratio %g is below -1 (not a stable solid)", nu);
-        if (nu > 1.0 / 3.0 + LATTICE_NU_TOL)
-            return spall_error_set(err, SPALL_ERR_PHYSICS,
-                                   "Poisson's ratio %g > 1/3 on the triangular lattice needs the "
-                                   "alpha-beta-gamma model (not implemented)", nu);
+        if (nu > 1.0 / 3.0 + LATTICE_NU_TOL) {
+            /* alpha-beta-gamma: central springs fix mu2 = sqrt3 k / 4, area
+             * springs add bulk only (derivation at the top of this file) */
+            if (!(nu < 1.0))
+                return spall_error_set(err, SPALL_ERR_PHYSICS,
+                                       "Poisson's ratio %g >= 1 is not a stable 2D solid", nu);
+            if (layers == 2)
+                return spall_error_set(err, SPALL_ERR_PHYSICS,
+                                       "Poisson's ratio %g > 1/3 needs the alpha-beta-gamma "
+                                       "model, calibrated for layers: 1 only", nu);
+            if (c->angular == 0)
+                return spall_error_set(err, SPALL_ERR_PHYSICS,
+                                       "Poisson's ratio %g > 1/3 on the triangular lattice needs "
+                                       "the alpha-beta-gamma model (angular: auto or on)", nu);
+            layers = 1;
+            c->k1 = 2.0 * E * t / (SQRT3 * (1.0 + nu));
+            c->k_area = SQRT3 * r0 * r0 * E * t * (3.0 * nu - 1.0) / (8.0 * (1.0 - nu * nu));
+            c->angular_used = 1;
+            c->area_used = 1;
+            break;
+        }
         if (layers == 0)
             layers = 1;
         int cauchy = fabs(nu - 1.0 / 3.0) <= LATTICE_NU_TOL;
@@ -209,6 +243,7 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
     if (layers == 2)
         stiff += lattice_shell_count(c->kind, 2) * c->k2;
     stiff += 48.0 * c->k_phi / (r0 * r0);
+    stiff += 64.0 * c->k_area / (3.0 * r0 * r0);
     c->dt = c->mass > 0.0 ? SQRT2 / sqrt(stiff / c->mass) : 0.0;
     c->paper_S0 = 2.0 * E * r0 / (3.0 * (1.0 - c->nu));
     c->paper_S_phi = SQRT3 * (1.0 - 3.0 * c->nu) * E * r0 * r0 / (18.0 * (1.0 - c->nu * c->nu));

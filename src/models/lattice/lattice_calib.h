@@ -11,6 +11,8 @@
  *   triangular  k = E t / (sqrt3 (1 - nu)),
  *               k_phi = r0^2 E t (1 - 3 nu) / (6 sqrt3 (1 - nu^2))   (alpha-beta)
  *               two layers: k1 + 3 k2 = sqrt3 E t / 2, nu = 1/3
+ *               nu > 1/3 (alpha-beta-gamma, area springs): k = 2 E t / (sqrt3 (1 + nu)),
+ *               k_area = sqrt3 r0^2 E t (3 nu - 1) / (8 (1 - nu^2))
  *   square      k1 = 3 E t / 4 (axes), k2 = 3 E t / 8 (diagonals), nu = 1/3
  *   sc          k1 = k2 = 2 E r0 / 5, nu = 1/4
  *   fcc         k = E r0 / sqrt2 (Voigt average), nu = 1/4
@@ -45,6 +47,9 @@ struct lattice_calib {
     double k1;                 /**< first-shell axial stiffness [N/m] */
     double k2;                 /**< second-shell axial stiffness [N/m] (0 with one layer) */
     double k_phi;              /**< angular stiffness [N m / rad^2]: energy k_phi dphi^2 / 2 */
+    int area_used;             /**< 1: alpha-beta-gamma (area) model, nu > 1/3 */
+    double k_area;             /**< triangle-area stiffness [J]: energy k_area (A/A0 - 1)^2 / 2
+                                    per lattice triangle (0 unless area_used) */
     double site_volume;        /**< volume per particle [m^3] */
     double mass;               /**< rho * site_volume [kg] */
     double dt;                 /**< stable time step of a bulk site [s] (seed 000 Eq. 25) */

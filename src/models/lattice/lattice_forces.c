@@ -18,7 +18,9 @@
  * buffers of the centre's row; pass 2 (the axial loop) lets each particle
  * gather the buffers of the slots that point at it through the reverse index.
  * Angles see the bond states of the previous step (breaking is decided in
- * pass 2), a one-step lag that only delays the de-activation of an angle.
+ * pass 2), a one-step lag that only delays the de-activation of an angle;
+ * at de-activation the angle (and its alpha-beta-gamma area share, one third
+ * of a lattice triangle's area energy) books the energy it held into diss.
  *
  * The hot loop (linear law, one material) is specialised by dimension and
  * whether the list has more than one bond type; the general loop covers
@@ -230,6 +232,27 @@ static inline double angle_forces(double k_phi, double phi0, const double a[2],
     return dphi;
 }
 
+/** Rest area of the triangle spanned by the arms of angle s (arm b in slot sb). */
+static inline double area_rest(const struct bond_list *bl, size_t s, size_t sb, double phi0)
+{
+    return 0.5 * bl->rest[s] * bl->rest[sb] * sin(phi0);
+}
+
+/** Alpha-beta-gamma area share (lattice_calib.c): energy k_s (A/A0 - 1)^2 / 2
+ *  with A = (a x b) / 2, so dA/da = (b_y, -b_x)/2 and dA/db = (-a_y, a_x)/2;
+ *  ADDS F = -k_s (A/A0 - 1)/A0 grad A to Fa, Fb.  Returns the share's energy. */
+static inline double area_forces(double k_s, double A0, const double a[2], const double b[2],
+                                 double Fa[2], double Fb[2])
+{
+    const double dA = 0.5 * (a[0] * b[1] - a[1] * b[0]) / A0 - 1.0;
+    const double P = 0.5 * k_s * dA / A0;
+    Fa[0] -= P * b[1];
+    Fa[1] += P * b[0];
+    Fb[0] += P * a[1];
+    Fb[1] -= P * a[0];
+    return 0.5 * k_s * dA * dA;
+}
+
 /** Pass 1 for particle i: angles centred at i (writes only row i's buffers,
  *  row i's angle states, diss[i] and the centre's force). */
 static void angles_row(struct model *m, const int32_t *mat, double *const *x, size_t i,
@@ -243,7 +266,8 @@ static void angles_row(struct model *m, const int32_t *mat, double *const *x, si
         buf[2 * s + 1] = 0.0;
     }
     const double k_phi = m->mat_k_phi[mat[i]];
-    if (k_phi == 0.0)
+    const double k_s = m->mat_k_area[mat[i]] / 3.0; /* one vertex share of a triangle */
+    if (k_phi == 0.0 && k_s == 0.0)
         return;
     const double lim_c = m->mat_dphi_c[mat[i]], lim_t = m->mat_dphi_t[mat[i]];
     for (size_t s = s0; s < s1; s++) {
@@ -251,18 +275,34 @@ static void angles_row(struct model *m, const int32_t *mat, double *const *x, si
         if (lb == LATTICE_NO_ANGLE)
             continue;
         const size_t sb = s0 + lb;
-        if (m->ang_state[s] || bl->state[s] || bl->state[sb])
+        if (m->ang_state[s])
             continue;
         const size_t ja = (size_t)bl->partner[s], jb = (size_t)bl->partner[sb];
         const double a[2] = {x[0][ja] - x[0][i], x[1][ja] - x[1][i]};
         const double b[2] = {x[0][jb] - x[0][i], x[1][jb] - x[1][i]};
         double Fa[2], Fb[2];
         const double dphi = angle_forces(k_phi, m->ang_phi0[s], a, b, Fa, Fb);
+        if (LATTICE_UNLIKELY(bl->state[s] || bl->state[sb])) {
+            /* an arm broke (last step's axial pass): the angle and its area
+             * share switch off for good; book the energy they held so the
+             * energy balance stays closed */
+            m->ang_state[s] = 1;
+            m->diss[i] += 0.5 * k_phi * dphi * dphi;
+            if (k_s != 0.0)
+                m->diss[i] += area_forces(k_s, area_rest(bl, s, sb, m->ang_phi0[s]), a, b, Fa,
+                                          Fb);
+            continue;
+        }
         if (LATTICE_UNLIKELY(dphi < -lim_c || dphi > lim_t)) {
             m->ang_state[s] = 1;
             m->diss[i] += 0.5 * k_phi * dphi * dphi;
+            if (k_s != 0.0)
+                m->diss[i] += area_forces(k_s, area_rest(bl, s, sb, m->ang_phi0[s]), a, b, Fa,
+                                          Fb);
             continue;
         }
+        if (k_s != 0.0)
+            area_forces(k_s, area_rest(bl, s, sb, m->ang_phi0[s]), a, b, Fa, Fb);
         buf[2 * s] += Fa[0];
         buf[2 * s + 1] += Fa[1];
         buf[2 * sb] += Fb[0];
@@ -457,8 +497,9 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
     }
     if (m->angular && dim == 2) {
         const double k_phi = m->mat_k_phi[mat[i]];
+        const double k_s = m->mat_k_area[mat[i]] / 3.0;
         const size_t s0 = bl->offset[i];
-        for (size_t s = s0; s < bl->offset[i + 1] && k_phi != 0.0; s++) {
+        for (size_t s = s0; s < bl->offset[i + 1] && (k_phi != 0.0 || k_s != 0.0); s++) {
             if (m->ang_b[s] == LATTICE_NO_ANGLE)
                 continue;
             const size_t sb = s0 + m->ang_b[s];
@@ -470,6 +511,8 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
             double Fa[2], Fb[2];
             const double dphi = angle_forces(k_phi, m->ang_phi0[s], a, b, Fa, Fb);
             e += 0.5 * k_phi * dphi * dphi;
+            if (k_s != 0.0)
+                e += area_forces(k_s, area_rest(bl, s, sb, m->ang_phi0[s]), a, b, Fa, Fb);
             add_outer(dim, sig, a, Fa, -1.0);
             add_outer(dim, sig, b, Fb, -1.0);
         }

@@ -44,6 +44,7 @@ struct lattice_material {
     /* derived in init */
     double k[LATTICE_MAX_TYPES];
     double k_phi;
+    double k_area;         /**< triangle-area stiffness [J] (alpha-beta-gamma, nu > 1/3) */
 };
 
 struct model {
@@ -58,6 +59,7 @@ struct model {
     struct lattice_law_params lp;
     struct lattice_bond_law *pair;   /**< [(ma * n_mat + mb) * LATTICE_MAX_TYPES + type] */
     double *mat_k_phi;               /**< per material */
+    double *mat_k_area;              /**< per material: triangle-area stiffness [J] */
     double *mat_dphi_c, *mat_dphi_t; /**< per material, INFINITY: never breaks */
 
     struct bond_list *bl;

@@ -18,7 +18,9 @@
  *           (default 1/sqrt3: equal bar modulus k*l; k1 + 3 k2 still gives E)
  *     angular: auto | on | off
  *           angular springs (triangular, layers 1 only).  auto: on iff the
- *           material's nu differs from 1/3 (by more than 1e-3).
+ *           material's nu differs from 1/3 (by more than 1e-3).  nu < 1/3:
+ *           alpha-beta angular springs; nu in (1/3, 1): alpha-beta-gamma
+ *           triangle-area springs (lattice_calib.c); off refuses nu != 1/3.
  *
  *   materials:
  *     <name>:
@@ -28,6 +30,7 @@
  *                                        given it must agree within 1%)
  *       poisson_ratio:                   required except on the chain.
  *                                        triangular alpha-beta: (-1, 1/3];
+ *                                        alpha-beta-gamma (area): (1/3, 1);
  *                                        central-force lattices: their Cauchy
  *                                        value within 1e-3 (1/3 for triangular
  *                                        with layers 2 or angular off and
@@ -131,6 +134,7 @@ static void lattice_destroy(struct model **pm)
     free(m->curves);
     free(m->pair);
     free(m->mat_k_phi);
+    free(m->mat_k_area);
     free(m->mat_dphi_c);
     free(m->mat_dphi_t);
     bond_list_destroy(&m->bl);
@@ -278,7 +282,7 @@ static int lattice_parse_material(struct model *m, struct sim *sim, int index,
         goto fail;
     mt.nu_given = deck_peek(node, "poisson_ratio") != NULL;
     mt.nu = (kind == LATTICE_SC || kind == LATTICE_FCC) ? 0.25 : 1.0 / 3.0;
-    if ((rc = deck_double(node, "poisson_ratio", kind != LATTICE_CHAIN, -1.0, 0.5, &mt.nu, err)))
+    if ((rc = deck_double(node, "poisson_ratio", kind != LATTICE_CHAIN, -1.0, 1.0, &mt.nu, err)))
         goto fail;
     double sts = 0.0, eps = 0.0, epc = 0.0;
     if (law != LATTICE_LAW_PWL &&
@@ -511,10 +515,11 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
     m->curves = calloc(nm, sizeof *m->curves);
     m->pair = calloc(nm * nm * LATTICE_MAX_TYPES, sizeof *m->pair);
     m->mat_k_phi = calloc(nm, sizeof *m->mat_k_phi);
+    m->mat_k_area = calloc(nm, sizeof *m->mat_k_area);
     m->mat_dphi_c = calloc(nm, sizeof *m->mat_dphi_c);
     m->mat_dphi_t = calloc(nm, sizeof *m->mat_dphi_t);
     m->diss = calloc(p->n ? p->n : 1, sizeof *m->diss);
-    if (!m->curves || !m->pair || !m->mat_k_phi || !m->mat_dphi_c || !m->mat_dphi_t || !m->diss)
+    if (!m->curves || !m->pair || !m->mat_k_phi || !m->mat_k_area || !m->mat_dphi_c || !m->mat_dphi_t || !m->diss)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in the lattice model");
     /* spring constants per material */
     int layers = 0, angular = 0;
@@ -543,6 +548,8 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
         angular |= c.angular_used;
         m->curves[k] = mt->curve;
         m->mat_k_phi[k] = c.k_phi;
+        mt->k_area = c.k_area;
+        m->mat_k_area[k] = c.k_area;
         m->mat_dphi_c[k] = mt->dphi_c;
         m->mat_dphi_t[k] = mt->dphi_t;
     }
@@ -661,6 +668,13 @@ static double lattice_stable_dt(const struct model *m, const struct sim *sim)
                 om[i] += kp * g * g;
                 om[bl->partner[s]] += kp * ia * g;
                 om[bl->partner[sb]] += kp * ib * g;
+                /* area share (lattice_calib.c): half the Gershgorin row */
+                double ra = bl->rest[s], rb = bl->rest[sb];
+                double A0 = 0.5 * ra * rb * sin(m->ang_phi0[s]);
+                double ks = m->mat_k_area[p->material[i]] / 3.0, h = 0.5 * ks / (A0 * A0);
+                om[i] += h * 0.5 * (ra + rb) * (ra + rb);
+                om[bl->partner[s]] += h * 0.5 * rb * (ra + rb);
+                om[bl->partner[sb]] += h * 0.5 * ra * (ra + rb);
             }
         }
     double w2 = 0.0;
@@ -728,7 +742,9 @@ static void lattice_describe(const struct model *m, const struct sim *sim, char 
             mt->nu, mt->k[0]);
         if (m->layers > 1)
             PUT(", k2 = %g N/m", mt->k[1]);
-        if (m->angular)
+        if (m->angular && mt->k_area > 0.0)
+            PUT(", k_area = %g J (alpha-beta-gamma area springs)", mt->k_area);
+        else if (m->angular)
             PUT(", k_phi = %g N m/rad^2 (seed Eq. 18 would give %g)", mt->k_phi,
                 sim->lattice.kind == LATTICE_TRIANGULAR
                     ? lattice_paper_k_phi(mt->E, mt->nu, r0, sim->thickness) : 0.0);
