@@ -366,8 +366,6 @@ static int cmd_fit(struct pen_opts *o)
             (rc = col(&c, "P_max", path, &k2)))
             goto done;
         in.kind = PEN_FIT_POINTS;
-        if (!o->have_d)
-            in.base.d = 1e-5; /* placeholder, each point has its own d */
     }
     in.n = c.n_rows;
     buf = malloc(4 * in.n * sizeof *buf);
@@ -385,6 +383,10 @@ static int cmd_fit(struct pen_opts *o)
         in.t = a0, in.P = a1;
     else
         in.d = a0, in.v0s = a1, in.pmax = a2;
+    /* approach (b): every point carries its own d; the parameter set needs a
+     * valid one, so it takes the first point's unless --d was given */
+    if (o->points && !o->have_d && in.n > 0)
+        in.base.d = a0[0];
     struct pen_fit_result fr;
     if (pen_fit(&in, &fr, res, &e)) {
         rc = fail(&e);
@@ -467,11 +469,16 @@ static int cmd_sweep(struct pen_opts *o)
     }
     FILE *f = NULL;
     int rc = 0;
+    const long nv = (long)floor((v_to - v_from) / v_step * (1.0 + 1e-12)) + 1;
+    /* P_max/d for the figure: one row of nv values per diameter, then v0 */
+    double *fig = malloc((size_t)(nd + 1) * (size_t)nv * sizeof *fig);
+    if (!fig)
+        return bad("out of memory%s%s", "", "");
+    double *fig_v = fig + (size_t)nd * (size_t)nv;
     for (int k = 0; k < nd && !rc; k++) {
         struct pen_params p = o->p;
         p.d = ds[k];
         double re_worst = 0.0;
-        const long nv = (long)floor((v_to - v_from) / v_step * (1.0 + 1e-12)) + 1;
         for (long iv = 0; iv < nv && !rc; iv++) {
             const double v = v_from + (double)iv * v_step;
             struct pen_result r;
@@ -488,6 +495,8 @@ static int cmd_sweep(struct pen_opts *o)
             }
             fprintf(f, "%.10e,%.10e,%.10e,%.10e,%.10e,%.10e", p.d, v, r.t_f, r.p_max,
                     r.p_max + 0.5 * p.d, r.p_max / p.d);
+            fig[(size_t)k * (size_t)nv + (size_t)iv] = r.p_max / p.d;
+            fig_v[iv] = v;
             if (p.model == PEN_MCG)
                 fprintf(f, ",%.10e", r.re_max);
             fprintf(f, "\n");
@@ -501,7 +510,26 @@ static int cmd_sweep(struct pen_opts *o)
         rc = bad("error writing '%s'%s", o->csv, "");
     if (!rc)
         printf("wrote %s (%d diameter(s))\n", o->csv, nd);
-    /* TODO(plot): P_max/d vs v0 figure through src/io/plot.c when merged */
+    if (!rc) {
+        struct plot_series ser[PEN_MAX_D];
+        char labels[PEN_MAX_D][32];
+        for (int k = 0; k < nd; k++) {
+            snprintf(labels[k], sizeof labels[k], "d = %.3g um", ds[k] * 1e6);
+            ser[k] = (struct plot_series){labels[k], fig_v, fig + (size_t)k * (size_t)nv,
+                                          (size_t)nv, PLOT_LINE};
+        }
+        char title[64], path[1024];
+        snprintf(title, sizeof title, "%s: P_max / d vs impact velocity",
+                 pen_model_name(o->p.model));
+        struct plot_spec spec = {title, "impact velocity v0 [m/s]", "P_max / d [1]", 0, 0,
+                                 ser, (size_t)nd, NULL, 0};
+        png_path(o->csv, path, sizeof path);
+        if (plot_png(path, &spec, &e))
+            rc = fail(&e);
+        else
+            printf("wrote %s\n", path);
+    }
+    free(fig);
     return rc;
 }
 
