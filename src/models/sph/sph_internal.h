@@ -132,4 +132,35 @@ void sph_stress_rate(const struct model *m, size_t i, double *trD);
 void sph_plastic_return(struct model *m, size_t i, double dt, bool commit);
 
 
+
+/* Inverse of a dim x dim matrix held in row-major 3x3 storage (2D: the
+ * 2x2 block, out[8] = 1); returns the determinant of the dim block.  Callers
+ * decide what "singular" means for them before using out. */
+static inline double sph_inverse(int dim, const double A[9], double out[9])
+{
+    if (dim == 2) {
+        double det = A[0] * A[4] - A[1] * A[3];
+        out[0] = A[4] / det;
+        out[1] = -A[1] / det;
+        out[3] = -A[3] / det;
+        out[4] = A[0] / det;
+        out[2] = out[5] = out[6] = out[7] = 0.0;
+        out[8] = 1.0;
+        return det;
+    }
+    double c0 = A[4] * A[8] - A[5] * A[7], c1 = A[5] * A[6] - A[3] * A[8],
+           c2 = A[3] * A[7] - A[4] * A[6];
+    double det = A[0] * c0 + A[1] * c1 + A[2] * c2, id = 1.0 / det;
+    out[0] = c0 * id;
+    out[1] = (A[2] * A[7] - A[1] * A[8]) * id;
+    out[2] = (A[1] * A[5] - A[2] * A[4]) * id;
+    out[3] = c1 * id;
+    out[4] = (A[0] * A[8] - A[2] * A[6]) * id;
+    out[5] = (A[2] * A[3] - A[0] * A[5]) * id;
+    out[6] = c2 * id;
+    out[7] = (A[1] * A[6] - A[0] * A[7]) * id;
+    out[8] = (A[0] * A[4] - A[1] * A[3]) * id;
+    return det;
+}
+
 #endif

@@ -84,34 +84,10 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
  * relative to the identity it should approximate. */
 static inline int inv_small(int dim, const double A[9], double out[9])
 {
-    if (dim == 2) {
-        double det = A[0] * A[4] - A[1] * A[3];
-        if (!(fabs(det) > SPH_CSPM_MIN_DET))
-            return 0;
-        out[0] = A[4] / det;
-        out[1] = -A[1] / det;
-        out[3] = -A[3] / det;
-        out[4] = A[0] / det;
-        out[2] = out[5] = out[6] = out[7] = 0.0;
-        out[8] = 1.0;
-        return 1;
-    }
-    double c0 = A[4] * A[8] - A[5] * A[7];
-    double c1 = A[5] * A[6] - A[3] * A[8];
-    double c2 = A[3] * A[7] - A[4] * A[6];
-    double det = A[0] * c0 + A[1] * c1 + A[2] * c2;
-    if (!(fabs(det) > SPH_CSPM_MIN_DET))
+    double inv[9];
+    if (!(fabs(sph_inverse(dim, A, inv)) > SPH_CSPM_MIN_DET))
         return 0;
-    double id = 1.0 / det;
-    out[0] = c0 * id;
-    out[1] = (A[2] * A[7] - A[1] * A[8]) * id;
-    out[2] = (A[1] * A[5] - A[2] * A[4]) * id;
-    out[3] = c1 * id;
-    out[4] = (A[0] * A[8] - A[2] * A[6]) * id;
-    out[5] = (A[2] * A[3] - A[0] * A[5]) * id;
-    out[6] = c2 * id;
-    out[7] = (A[1] * A[6] - A[0] * A[7]) * id;
-    out[8] = (A[0] * A[4] - A[1] * A[3]) * id;
+    memcpy(out, inv, sizeof inv);
     return 1;
 }
 

@@ -64,68 +64,15 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
                 for (int b = 0; b < dim; b++)
                     B[a * 3 + b] += -X[a] * V * F * X[b];
         }
-        double Bi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-        if (dim == 2) {
-            double det = B[0] * B[4] - B[1] * B[3];
-            if (fabs(det) > 1e-3) {
-                Bi[0] = B[4] / det;
-                Bi[1] = -B[1] / det;
-                Bi[3] = -B[3] / det;
-                Bi[4] = B[0] / det;
-            } else {
-                m->cspm_fallbacks++;
-            }
-        } else {
-            double c0 = B[4] * B[8] - B[5] * B[7], c1 = B[5] * B[6] - B[3] * B[8],
-                   c2 = B[3] * B[7] - B[4] * B[6];
-            double det = B[0] * c0 + B[1] * c1 + B[2] * c2;
-            if (fabs(det) > 1e-3) {
-                double id = 1.0 / det;
-                Bi[0] = c0 * id;
-                Bi[1] = (B[2] * B[7] - B[1] * B[8]) * id;
-                Bi[2] = (B[1] * B[5] - B[2] * B[4]) * id;
-                Bi[3] = c1 * id;
-                Bi[4] = (B[0] * B[8] - B[2] * B[6]) * id;
-                Bi[5] = (B[2] * B[3] - B[0] * B[5]) * id;
-                Bi[6] = c2 * id;
-                Bi[7] = (B[1] * B[6] - B[0] * B[7]) * id;
-                Bi[8] = (B[0] * B[4] - B[1] * B[3]) * id;
-            } else {
-                m->cspm_fallbacks++;
-            }
-        }
+        double Bi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, inv[9];
+        if (fabs(sph_inverse(dim, B, inv)) > 1e-3)
+            memcpy(Bi, inv, sizeof Bi);
+        else
+            m->cspm_fallbacks++;
         for (int c = 0; c < 9; c++)
             m->Bi[c][i] = Bi[c];
     }
     return SPALL_OK;
-}
-
-/* 3x3 inverse (2D: the 2x2 block, [8] = 1); returns det of the dim block. */
-static double inv3(int dim, const double A[9], double out[9])
-{
-    if (dim == 2) {
-        double det = A[0] * A[4] - A[1] * A[3];
-        out[0] = A[4] / det;
-        out[1] = -A[1] / det;
-        out[3] = -A[3] / det;
-        out[4] = A[0] / det;
-        out[2] = out[5] = out[6] = out[7] = 0.0;
-        out[8] = 1.0;
-        return det;
-    }
-    double c0 = A[4] * A[8] - A[5] * A[7], c1 = A[5] * A[6] - A[3] * A[8],
-           c2 = A[3] * A[7] - A[4] * A[6];
-    double det = A[0] * c0 + A[1] * c1 + A[2] * c2, id = 1.0 / det;
-    out[0] = c0 * id;
-    out[1] = (A[2] * A[7] - A[1] * A[8]) * id;
-    out[2] = (A[1] * A[5] - A[2] * A[4]) * id;
-    out[3] = c1 * id;
-    out[4] = (A[0] * A[8] - A[2] * A[6]) * id;
-    out[5] = (A[2] * A[3] - A[0] * A[5]) * id;
-    out[6] = c2 * id;
-    out[7] = (A[1] * A[6] - A[0] * A[7]) * id;
-    out[8] = (A[0] * A[4] - A[1] * A[3]) * id;
-    return det;
 }
 
 int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
@@ -168,7 +115,7 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
         if (dim == 2)
             Fd[8] = 1.0;
         double Fi[9];
-        double J = inv3(dim, Fd, Fi);
+        double J = sph_inverse(dim, Fd, Fi);
         if (!(J > 0.0) || !isfinite(J)) {
             bad = 1;
             J = 1.0;
