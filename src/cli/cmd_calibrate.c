@@ -106,7 +106,7 @@ int cli_calibrate(int argc, char **argv)
             int kind = lattice_kind_from_name(v);
             if (kind < 0) {
                 fprintf(stderr, "spall calibrate: unknown lattice '%s'; expected chain, "
-                                "triangular, square, sc or fcc\n",
+                                "triangular, square, sc, fcc or triple_honeycomb\n",
                         v);
                 rc = 2;
             }
@@ -123,7 +123,7 @@ int cli_calibrate(int argc, char **argv)
         return 2;
     }
     if (!(c.thickness > 0)) {
-        if (c.kind == LATTICE_TRIANGULAR)
+        if (c.kind == LATTICE_TRIANGULAR || c.kind == LATTICE_TRIPLE_HONEYCOMB)
             c.thickness = 2.0 * c.r0 / sqrt(3.0);
         else if (c.kind == LATTICE_CHAIN)
             c.thickness = c.r0 * c.r0;
@@ -142,9 +142,13 @@ int cli_calibrate(int argc, char **argv)
     printf("  input: E = %g Pa, nu = %g, rho = %g kg/m^3, sigma_TS = %g Pa\n", c.E, c.nu, c.rho,
            c.sigma_ts);
     printf("  axial layers: %d, angular springs: %s\n", c.layers_used,
-           c.area_used ? "area springs (alpha-beta-gamma)"
+           c.area_used ? "area springs (nu > 1/3)"
                        : c.angular_used ? "yes (alpha-beta)" : "no (alpha)");
-    printf("  S0 = k1 (nearest neighbours)      %.6g N/m\n", c.k1);
+    if (c.honeycomb_used)
+        printf("  honeycomb families (alpha-beta-gamma): alpha = %.6g N/m, beta = gamma = "
+               "%.6g N/m\n", c.k_family[0], c.k_family[1]);
+    else
+        printf("  S0 = k1 (nearest neighbours)      %.6g N/m\n", c.k1);
     if (c.layers_used > 1)
         printf("  k2 (second neighbours)            %.6g N/m\n", c.k2);
     if (c.area_used)

@@ -26,7 +26,14 @@
 /** Refuse to enumerate more candidate sites than this (a typo in a spacing). */
 #define LATTICE_MAX_CANDIDATES 4.0e10
 
-static const char *const lattice_names[] = {"chain", "triangular", "square", "sc", "fcc"};
+static const char *const lattice_names[] = {"chain", "triangular", "square", "sc", "fcc",
+                                            "triple_honeycomb"};
+
+/** The triple honeycomb has the triangular lattice's sites and shells. */
+static enum lattice_kind geometry_kind(enum lattice_kind kind)
+{
+    return kind == LATTICE_TRIPLE_HONEYCOMB ? LATTICE_TRIANGULAR : kind;
+}
 
 int lattice_kind_from_name(const char *name)
 {
@@ -52,6 +59,7 @@ int lattice_kind_dim(enum lattice_kind kind)
         return 1;
     case LATTICE_TRIANGULAR:
     case LATTICE_SQUARE:
+    case LATTICE_TRIPLE_HONEYCOMB:
         return 2;
     case LATTICE_SC:
     case LATTICE_FCC:
@@ -65,7 +73,7 @@ static void lattice_steps(const struct lattice_spec *s, double step[3])
 {
     double r0 = s->spacing;
     step[0] = step[1] = step[2] = r0;
-    if (s->kind == LATTICE_TRIANGULAR)
+    if (geometry_kind(s->kind) == LATTICE_TRIANGULAR)
         step[1] = r0 * sqrt(3.0) / 2.0;
     if (s->kind == LATTICE_FCC)
         step[0] = step[1] = step[2] = r0 * sqrt(2.0) / 2.0; /* a/2 */
@@ -79,7 +87,7 @@ static bool lattice_local(const struct lattice_spec *s, const double step[3], lo
     loc[0] = (double)i * step[0];
     loc[1] = (double)j * step[1];
     loc[2] = (double)k * step[2];
-    switch (s->kind) {
+    switch (geometry_kind(s->kind)) {
     case LATTICE_TRIANGULAR:
         if (j % 2 != 0) /* odd rows (also negative ones) shifted by r0/2 */
             loc[0] = ((double)i + 0.5) * step[0];
@@ -213,7 +221,7 @@ static double shell_factor(enum lattice_kind kind, int shell)
         return (double)shell;
     if (shell > LATTICE_MAX_SHELL)
         return 0.0;
-    switch (kind) {
+    switch (geometry_kind(kind)) {
     case LATTICE_TRIANGULAR:
         return tri[shell - 1];
     case LATTICE_SQUARE:
@@ -244,7 +252,7 @@ int lattice_shell_count(enum lattice_kind kind, int shell)
         return 2;
     if (shell > LATTICE_MAX_SHELL)
         return 0;
-    switch (kind) {
+    switch (geometry_kind(kind)) {
     case LATTICE_TRIANGULAR:
         return tri[shell - 1];
     case LATTICE_SQUARE:
@@ -261,7 +269,7 @@ int lattice_shell_count(enum lattice_kind kind, int shell)
 double lattice_site_volume(const struct lattice_spec *spec, double thickness_or_area)
 {
     double r0 = spec->spacing;
-    switch (spec->kind) {
+    switch (geometry_kind(spec->kind)) {
     case LATTICE_CHAIN:
         return r0 * thickness_or_area;
     case LATTICE_TRIANGULAR:
@@ -276,6 +284,25 @@ double lattice_site_volume(const struct lattice_spec *spec, double thickness_or_
         double a = sqrt(2.0) * r0; /* 4 sites per cubic cell */
         return a * a * a / 4.0;
     }
+    default:
+        break;
     }
     return 0.0;
+}
+
+int lattice_sublattice(const struct lattice_spec *spec, const double pos[2])
+{
+    if (geometry_kind(spec->kind) != LATTICE_TRIANGULAR || !(spec->spacing > 0.0))
+        return -1;
+    /* back to the lattice frame, then oblique coordinates on a1 = (r0, 0),
+     * a2 = (r0/2, sqrt3 r0/2): site = a a1 + b a2.  A step along a1 is
+     * +1 in colour, along a2 (60 deg) -1, along a2 - a1 (120 deg) +1 again,
+     * so colour = (a - b) mod 3 gives nearest neighbours different colours. */
+    double X = pos[0] - spec->origin[0], Y = pos[1] - spec->origin[1];
+    double ca = cos(spec->angle), sa = sin(spec->angle);
+    double u = ca * X + sa * Y, v = -sa * X + ca * Y;
+    double b = floor(v / (spec->spacing * sqrt(3.0) / 2.0) + 0.5);
+    double a = floor(u / spec->spacing - 0.5 * b + 0.5);
+    long c = (long)fmod(a - b, 3.0);
+    return (int)((c + 3) % 3);
 }

@@ -19,7 +19,17 @@ struct geom;
 struct particles;
 struct spall_error;
 
-enum lattice_kind { LATTICE_CHAIN, LATTICE_TRIANGULAR, LATTICE_SQUARE, LATTICE_SC, LATTICE_FCC };
+/** LATTICE_TRIPLE_HONEYCOMB has the sites of the triangular lattice; its
+ *  bonds fall into three honeycomb families by the sublattices they join
+ *  (Ostoja-Starzewski's alpha-beta-gamma model, see lattice_sublattice). */
+enum lattice_kind {
+    LATTICE_CHAIN,
+    LATTICE_TRIANGULAR,
+    LATTICE_SQUARE,
+    LATTICE_SC,
+    LATTICE_FCC,
+    LATTICE_TRIPLE_HONEYCOMB
+};
 
 struct lattice_spec {
     enum lattice_kind kind;
@@ -28,7 +38,8 @@ struct lattice_spec {
     double angle;      /**< 2D: rotation of the lattice about z [rad] */
 };
 
-/** Parse "chain", "triangular", "square", "sc", "fcc"; returns -1 if unknown. */
+/** Parse "chain", "triangular", "square", "sc", "fcc", "triple_honeycomb";
+ *  returns -1 if unknown. */
 int lattice_kind_from_name(const char *name);
 const char *lattice_kind_name(enum lattice_kind kind);
 /** Spatial dimension of a lattice kind (1, 2 or 3). */
@@ -44,6 +55,15 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
 double lattice_shell_distance(const struct lattice_spec *spec, int shell);
 /** Number of neighbours in shell k of a bulk site. */
 int lattice_shell_count(enum lattice_kind kind, int shell);
+
+/** Sublattice (0, 1 or 2) of the site nearest to @p pos on a triangular or
+ *  triple-honeycomb lattice: the three interpenetrating triangular
+ *  sublattices of spacing sqrt3 r0, numbered so that the step +r0 along the
+ *  lattice's x axis goes from sublattice c to c+1 (mod 3).  Nearest
+ *  neighbours are always on different sublattices; the bonds joining
+ *  sublattices a and b form one honeycomb lattice, and the three of them
+ *  (family 3 - a - b) make the "triple honeycomb".  -1 for other kinds. */
+int lattice_sublattice(const struct lattice_spec *spec, const double pos[2]);
 
 /** Volume per site [m^3].  2D kinds need the plate thickness t (> 0);
  *  1D needs the cross-section area passed as thickness_or_area. */

@@ -83,7 +83,8 @@ static int select_particles(const struct sim *s, const struct geom *g, size_t **
 static int parse_lattice(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
 {
     static const char *const keys[] = {"type", "spacing", "origin", "angle", "thickness", NULL};
-    static const char *const kinds[] = {"chain", "triangular", "square", "sc", "fcc", NULL};
+    static const char *const kinds[] = {"chain", "triangular", "square", "sc", "fcc",
+                                        "triple_honeycomb", NULL};
     const struct deck_node *lat = deck_get(root, "lattice");
     if (!lat)
         return deck_error(err, root, "missing required key 'lattice' (the particle lattice)");
@@ -112,7 +113,7 @@ static int parse_lattice(struct build_ctx *c, const struct deck_node *root, stru
     s->thickness_given = thickness > 0.0;
     if (s->thickness_given) {
         s->thickness = thickness;
-    } else if (lk == LATTICE_TRIANGULAR) {
+    } else if (lk == LATTICE_TRIANGULAR || lk == LATTICE_TRIPLE_HONEYCOMB) {
         /* seed 000: the constants of Eqs. 16/18 correspond to a volume r0^3 per
          * particle, i.e. a plate 2 r0 / sqrt(3) thick */
         s->thickness = 2.0 * spacing / sqrt(3.0);

@@ -28,8 +28,10 @@
  *   Two layers: the second shell (6 bonds at sqrt3 r0) stores 3 times as much
  *   per unit k, so k1 + 3 k2 = sqrt3 E t / 2 and nu stays 1/3.  Default
  *   k2/k1 = 1/sqrt3: the same bar modulus k l for both shells.
- *   Alpha-beta-gamma for nu > 1/3 (our construction, standing in for
- *   Ostoja-Starzewski's triple-honeycomb geometry, Appl. Mech. Rev. 55 (2002)):
+ *   Area springs for nu > 1/3 (spall's own construction on the triangular
+ *   lattice, kept as a Bravais alternative to the paper's alpha-beta-gamma
+ *   triple honeycomb, which is the lattice kind triple_honeycomb,
+ *   lattice_honeycomb.c):
  *   every lattice triangle (3 first-shell bonds, rest area A0 = sqrt3 r0^2/4)
  *   stores k_area (A/A0 - 1)^2 / 2.  Under uniform strain A/A0 - 1 = tr eps
  *   to first order, so it adds bulk only: 2 triangles per site of area
@@ -77,6 +79,7 @@
 #include "core/lattice_gen.h"
 #include "core/particles.h"
 #include "core/sim.h"
+#include "models/lattice/lattice_honeycomb.h"
 #include "models/lattice/lattice_internal.h"
 #include "models/model.h"
 #include "spall/error.h"
@@ -126,7 +129,8 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
     double nu = c->nu;
     int layers = c->layers;
     c->k1 = c->k2 = c->k_phi = c->k_area = 0.0;
-    c->angular_used = c->area_used = 0;
+    c->k_family[0] = c->k_family[1] = c->k_family[2] = 0.0;
+    c->angular_used = c->area_used = c->honeycomb_used = 0;
     if (c->angular == 1 && c->kind != LATTICE_TRIANGULAR)
         return refuse(err, "angular springs are implemented for the triangular lattice only "
                            "(lattice '%s')", kn);
@@ -153,12 +157,14 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
                                        "Poisson's ratio %g >= 1 is not a stable 2D solid", nu);
             if (layers == 2)
                 return spall_error_set(err, SPALL_ERR_PHYSICS,
-                                       "Poisson's ratio %g > 1/3 needs the alpha-beta-gamma "
-                                       "model, calibrated for layers: 1 only", nu);
+                                       "Poisson's ratio %g > 1/3 needs area springs (or the "
+                                       "triple_honeycomb lattice), calibrated for layers: 1 "
+                                       "only", nu);
             if (c->angular == 0)
                 return spall_error_set(err, SPALL_ERR_PHYSICS,
                                        "Poisson's ratio %g > 1/3 on the triangular lattice needs "
-                                       "the alpha-beta-gamma model (angular: auto or on)", nu);
+                                       "area springs (angular: auto or on), or use the lattice "
+                                       "triple_honeycomb (alpha-beta-gamma)", nu);
             layers = 1;
             c->k1 = 2.0 * E * t / (SQRT3 * (1.0 + nu));
             c->k_area = SQRT3 * r0 * r0 * E * t * (3.0 * nu - 1.0) / (8.0 * (1.0 - nu * nu));
@@ -194,6 +200,20 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
         c->k_phi = ang ? r0 * r0 * E * t * (1.0 - 3.0 * nu) / (6.0 * SQRT3 * (1.0 - nu * nu))
                        : 0.0;
         c->angular_used = ang;
+        break;
+    }
+    case LATTICE_TRIPLE_HONEYCOMB: {
+        /* alpha-beta-gamma (seed 000 Fig. 3d): central springs in three
+         * honeycomb families, nu in [1/3, 1) (lattice_honeycomb.c) */
+        if (layers == 2)
+            return refuse(err, "the %s lattice has nearest-neighbour springs only (its three "
+                               "honeycomb families); use layers: 1", kn);
+        layers = 1;
+        int rc = lattice_honeycomb_constants(E, nu, t, c->k_family, err);
+        if (rc)
+            return rc;
+        c->k1 = c->k_family[1]; /* the stiffest: 6 of them at a site set dt */
+        c->honeycomb_used = 1;
         break;
     }
     case LATTICE_SQUARE:
@@ -255,7 +275,7 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
 /** Average stress of the interior particles for the affine map
  *  x = x0 + eps x0 (eps given by its components). */
 static int patch_state(struct model *m, struct sim *s, double eps[3][3], const bool *inner,
-                       double *avg, double *f_max, struct spall_error *err)
+                       int relax, double *avg, double *f_max, struct spall_error *err)
 {
     struct particles *p = s->p;
     int dim = p->dim;
@@ -266,27 +286,48 @@ static int patch_state(struct model *m, struct sim *s, double eps[3][3], const b
                 v += eps[d][e] * p->x0[e][i];
             p->x[d][i] = v;
         }
+    int rc;
+    if (relax && m->honeycomb && (rc = lattice_honeycomb_relax(m, s, inner, 1e-6 * s->lattice.spacing,
+                                                      err)))
+        return rc;
     particles_zero_forces(p);
-    int rc = lattice_compute_forces(m, s, err);
-    if (rc)
+    if ((rc = lattice_compute_forces(m, s, err)))
         return rc;
     int nc = dim == 1 ? 1 : dim == 2 ? 3 : 6;
-    double sum[6] = {0, 0, 0, 0, 0, 0};
-    size_t cnt = 0;
+    /* mean per sublattice, then over the sublattices (the triple honeycomb's
+     * sites differ by colour and the block holds unequal numbers of each) */
+    double sum[3][6];
+    size_t cnt[3] = {0, 0, 0};
+    memset(sum, 0, sizeof sum);
     *f_max = 0.0;
     for (size_t i = 0; i < p->n; i++) {
         if (!inner[i])
             continue;
         double sig[6];
         lattice_particle_eval(m, s, i, NULL, sig);
+        int g = 0;
+        if (m->honeycomb) {
+            const double xi[2] = {p->x0[0][i], p->x0[1][i]};
+            g = lattice_sublattice(&s->lattice, xi);
+        }
         for (int c = 0; c < nc; c++)
-            sum[c] += sig[c];
+            sum[g][c] += sig[c];
         for (int d = 0; d < dim; d++)
             *f_max = fmax(*f_max, fabs(p->f[d][i]));
-        cnt++;
+        cnt[g]++;
+    }
+    int ng = 0;
+    for (int c = 0; c < nc; c++)
+        avg[c] = 0.0;
+    for (int g = 0; g < 3; g++) {
+        if (!cnt[g])
+            continue;
+        ng++;
+        for (int c = 0; c < nc; c++)
+            avg[c] += sum[g][c] / (double)cnt[g];
     }
     for (int c = 0; c < nc; c++)
-        avg[c] = sum[c] / (double)cnt;
+        avg[c] /= (double)ng;
     return SPALL_OK;
 }
 
@@ -387,7 +428,7 @@ int lattice_patch_test_full(const struct lattice_calib *cin, double strain,
         e2[0][1] = strain; /* tensor shear eps_xy = strain */
         e2[1][0] = strain;
     }
-    if ((rc = patch_state(m, &s, e1, inner, s1, &f1, err)))
+    if ((rc = patch_state(m, &s, e1, inner, 1, s1, &f1, err)))
         goto done;
     res->C11 = s1[0] / strain;
     if (dim == 1) {
@@ -395,7 +436,7 @@ int lattice_patch_test_full(const struct lattice_calib *cin, double strain,
         res->f_interior_max = f1 / (c.k1 * c.r0 * strain);
         goto done;
     }
-    if ((rc = patch_state(m, &s, e2, inner, s2, &f2, err)))
+    if ((rc = patch_state(m, &s, e2, inner, 1, s2, &f2, err)))
         goto done;
     res->C12 = s1[1] / strain;
     res->C66 = s2[dim == 2 ? 2 : 3] / (2.0 * strain);
@@ -405,6 +446,16 @@ int lattice_patch_test_full(const struct lattice_calib *cin, double strain,
         res->nu = res->C12 / res->C11;
         res->E_100 = res->E;
         res->nu_100 = res->nu;
+        res->E_affine = res->E;
+        res->nu_affine = res->nu;
+        if (m->honeycomb) { /* the same block without the sublattice shifts */
+            double a1[6], fa;
+            if ((rc = patch_state(m, &s, e1, inner, 0, a1, &fa, err)))
+                goto done;
+            double C11 = a1[0] / strain, C12 = a1[1] / strain;
+            res->E_affine = (C11 * C11 - C12 * C12) / C11;
+            res->nu_affine = C12 / C11;
+        }
     } else {
         double C11 = res->C11, C12 = res->C12, C44 = res->C66;
         res->E_100 = (C11 - C12) * (C11 + 2.0 * C12) / (C11 + C12);

@@ -11,8 +11,12 @@
  *   triangular  k = E t / (sqrt3 (1 - nu)),
  *               k_phi = r0^2 E t (1 - 3 nu) / (6 sqrt3 (1 - nu^2))   (alpha-beta)
  *               two layers: k1 + 3 k2 = sqrt3 E t / 2, nu = 1/3
- *               nu > 1/3 (alpha-beta-gamma, area springs): k = 2 E t / (sqrt3 (1 + nu)),
+ *               nu > 1/3, area springs (spall's own construction, not the
+ *               paper's alpha-beta-gamma): k = 2 E t / (sqrt3 (1 + nu)),
  *               k_area = sqrt3 r0^2 E t (3 nu - 1) / (8 (1 - nu^2))
+ *   triple honeycomb (alpha-beta-gamma, seed 000 Fig. 3d), nu in [1/3, 1):
+ *               families alpha <= beta = gamma with kappa t = (a+b+g)/(2 sqrt3),
+ *               mu t = 3 sqrt3 / (4 (1/a + 1/b + 1/g))  (lattice_honeycomb.c)
  *   square      k1 = 3 E t / 4 (axes), k2 = 3 E t / 8 (diagonals), nu = 1/3
  *   sc          k1 = k2 = 2 E r0 / 5, nu = 1/4
  *   fcc         k = E r0 / sqrt2 (Voigt average), nu = 1/4
@@ -47,9 +51,12 @@ struct lattice_calib {
     double k1;                 /**< first-shell axial stiffness [N/m] */
     double k2;                 /**< second-shell axial stiffness [N/m] (0 with one layer) */
     double k_phi;              /**< angular stiffness [N m / rad^2]: energy k_phi dphi^2 / 2 */
-    int area_used;             /**< 1: alpha-beta-gamma (area) model, nu > 1/3 */
+    int area_used;             /**< 1: area springs (triangular lattice, nu > 1/3) */
     double k_area;             /**< triangle-area stiffness [J]: energy k_area (A/A0 - 1)^2 / 2
                                     per lattice triangle (0 unless area_used) */
+    int honeycomb_used;        /**< 1: triple honeycomb; k1 = beta = gamma */
+    double k_family[3];        /**< triple honeycomb: alpha, beta, gamma [N/m] (bond
+                                    family f joins the two sublattices other than f) */
     double site_volume;        /**< volume per particle [m^3] */
     double mass;               /**< rho * site_volume [kg] */
     double dt;                 /**< stable time step of a bulk site [s] (seed 000 Eq. 25) */
@@ -63,6 +70,8 @@ struct lattice_patch_result {
     double E, nu;           /**< 1D: E; 2D: plane stress; 3D: Voigt average */
     double E_100, nu_100;   /**< 3D: [100] direction (2D: same as E, nu) */
     double f_interior_max;  /**< largest interior force / (k1 r0 strain): equilibrium check */
+    double E_affine, nu_affine; /**< triple honeycomb: without the sublattice shifts (the
+                                     unrelaxed, affine lattice); elsewhere = E, nu */
     size_t n_particles, n_interior;
 };
 

@@ -437,7 +437,7 @@ int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error 
     if (gather)
         drive_angles(m, sim);
     const int fast = m->lp.law == LATTICE_LAW_LINEAR && m->n_mat == 1 && !m->kscale;
-    drive_axial(m, sim, fast, dim, m->layers > 1, gather);
+    drive_axial(m, sim, fast, dim, m->layers > 1 || m->honeycomb, gather);
     return 0;
 }
 

@@ -18,7 +18,7 @@ struct lattice_thermal;
 struct sim;
 struct spall_error;
 
-#define LATTICE_MAX_TYPES 2
+#define LATTICE_MAX_TYPES 3 /* two shells, or three honeycomb families */
 #define LATTICE_NO_ANGLE 0xFFu
 
 /** Model options (deck `model:` section). */
@@ -42,9 +42,9 @@ struct lattice_material {
     double lj_p, lj_q;     /**< LJ exponents */
     struct lattice_curve curve; /**< PWL curve (owned) */
     /* derived in init */
-    double k[LATTICE_MAX_TYPES];
+    double k[LATTICE_MAX_TYPES]; /**< per bond type: shell, or honeycomb family */
     double k_phi;
-    double k_area;         /**< triangle-area stiffness [J] (alpha-beta-gamma, nu > 1/3) */
+    double k_area;         /**< triangle-area stiffness [J] (area springs, nu > 1/3) */
 };
 
 struct model {
@@ -53,6 +53,7 @@ struct model {
     int dim;
     int layers;       /**< resolved */
     bool angular;     /**< angular springs present */
+    bool honeycomb;   /**< triple honeycomb: bond type = family (lattice_honeycomb.c) */
     size_t n_mat;
     struct lattice_material *mat;
     struct lattice_curve *curves;    /**< view: curves[i] = mat[i].curve (for the law params) */

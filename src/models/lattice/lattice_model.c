@@ -19,8 +19,9 @@
  *     angular: auto | on | off
  *           angular springs (triangular, layers 1 only).  auto: on iff the
  *           material's nu differs from 1/3 (by more than 1e-3).  nu < 1/3:
- *           alpha-beta angular springs; nu in (1/3, 1): alpha-beta-gamma
- *           triangle-area springs (lattice_calib.c); off refuses nu != 1/3.
+ *           alpha-beta angular springs; nu in (1/3, 1): triangle-area springs
+ *           (lattice_calib.c); off refuses nu != 1/3.  The paper's
+ *           alpha-beta-gamma model is `lattice: type: triple_honeycomb`.
  *
  *   materials:
  *     <name>:
@@ -30,7 +31,8 @@
  *                                        given it must agree within 1%)
  *       poisson_ratio:                   required except on the chain.
  *                                        triangular alpha-beta: (-1, 1/3];
- *                                        alpha-beta-gamma (area): (1/3, 1);
+ *                                        area springs: (1/3, 1); triple
+ *                                        honeycomb (alpha-beta-gamma): [1/3, 1);
  *                                        central-force lattices: their Cauchy
  *                                        value within 1e-3 (1/3 for triangular
  *                                        with layers 2 or angular off and
@@ -64,6 +66,7 @@
  * fracture_fraction (all broken bonds / all bonds).
  */
 #include "models/lattice/lattice_calib.h"
+#include "models/lattice/lattice_honeycomb.h"
 #include "models/lattice/lattice_internal.h"
 
 #include "core/bond_list.h"
@@ -541,8 +544,9 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
             spall_error_prefix(err, "material '%s': ", sim->materials[k].name);
             return rc;
         }
-        mt->k[0] = c.k1;
-        mt->k[1] = c.k2;
+        mt->k[0] = c.honeycomb_used ? c.k_family[0] : c.k1;
+        mt->k[1] = c.honeycomb_used ? c.k_family[1] : c.k2;
+        mt->k[2] = c.k_family[2];
         mt->k_phi = c.k_phi;
         layers = c.layers_used;
         angular |= c.angular_used;
@@ -571,6 +575,9 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
     if (rc)
         return rc;
     m->n_half = m->bl->offset[m->bl->n];
+    m->honeycomb = spec->kind == LATTICE_TRIPLE_HONEYCOMB;
+    if (m->honeycomb) /* bond type = honeycomb family (alpha, beta, gamma) */
+        lattice_honeycomb_retype(m->bl, p, spec);
     if (m->angular && (rc = build_angles(m, p, err)))
         return rc;
     if ((rc = lattice_thermal_init(m, sim, err)))
@@ -740,10 +747,11 @@ static void lattice_describe(const struct model *m, const struct sim *sim, char 
         const struct lattice_material *mt = &m->mat[k];
         PUT("  material '%s': E = %g Pa, nu = %g, k1 = %g N/m", sim->materials[k].name, mt->E,
             mt->nu, mt->k[0]);
-        if (m->layers > 1)
-            PUT(", k2 = %g N/m", mt->k[1]);
+        if (m->layers > 1 || m->honeycomb)
+            PUT(m->honeycomb ? " (alpha), beta = gamma = %g N/m (triple honeycomb)"
+                             : ", k2 = %g N/m", mt->k[1]);
         if (m->angular && mt->k_area > 0.0)
-            PUT(", k_area = %g J (alpha-beta-gamma area springs)", mt->k_area);
+            PUT(", k_area = %g J (area springs)", mt->k_area);
         else if (m->angular)
             PUT(", k_phi = %g N m/rad^2 (seed Eq. 18 would give %g)", mt->k_phi,
                 sim->lattice.kind == LATTICE_TRIANGULAR
