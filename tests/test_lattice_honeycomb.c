@@ -15,6 +15,8 @@
 #include "core/lattice_gen.h"
 #include "core/particles.h"
 #include "core/sim.h"
+#include "io/deck.h"
+#include "io/deck_build.h"
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice_honeycomb.h"
 #include "models/lattice/lattice_internal.h"
@@ -24,6 +26,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void near(double a, double b, double tol)
@@ -191,6 +194,28 @@ static void test_plate_families_and_fracture(void **state)
     assert_null(s);
 }
 
+/* examples/abg_plate builds as shipped (not run: that is `spall run`) */
+static void test_example_builds(void **state)
+{
+    (void)state;
+    const char *src = getenv("SPALL_SOURCE_DIR");
+    char path[1024];
+    snprintf(path, sizeof path, "%s/examples/abg_plate/abg_plate.yaml", src ? src : "..");
+    struct spall_error err = {0, ""};
+    struct deck *d = NULL;
+    assert_int_equal(deck_load_file(&d, path, &err), 0);
+    struct sim *s = NULL;
+    struct run_output ro;
+    int rc = deck_build_sim(d, &s, &ro, &err);
+    if (rc)
+        fprintf(stderr, "%s\n", err.msg);
+    assert_int_equal(rc, 0);
+    assert_int_equal(s->lattice.kind, LATTICE_TRIPLE_HONEYCOMB);
+    assert_true(s->p->n > 10000 && s->model->honeycomb);
+    sim_destroy(&s);
+    deck_destroy(&d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -198,6 +223,7 @@ int main(void)
         cmocka_unit_test(test_constants_and_moduli),
         cmocka_unit_test(test_patch_relaxed),
         cmocka_unit_test(test_plate_families_and_fracture),
+        cmocka_unit_test(test_example_builds),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -330,7 +330,7 @@ static void test_angular_gradient(void **state)
     sim_destroy(&s);
 }
 
-/* alpha-beta-gamma (nu > 1/3): patch test and exact gradient of the area springs */
+/* area springs (nu > 1/3, triangular): patch test and exact gradient of the area forces */
 static void test_alpha_beta_gamma(void **state)
 {
     (void)state;
@@ -545,7 +545,7 @@ static void test_deck_refusals(void **state)
     assert_int_equal(try_deck(LATTICE_TRIANGULAR,
                               "model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
                               "poisson_ratio: 0.4, failure_strain: 0.01}\n", &err),
-                     0); /* angular: auto selects alpha-beta-gamma */
+                     0); /* angular: auto selects area springs */
     assert_int_equal(try_deck(LATTICE_TRIANGULAR,
                               "model: {type: lattice, angular: off}\nmat: {density: 1, "
                               "youngs_modulus: 1e9, poisson_ratio: 0.4, failure_strain: 0.01}\n",
@@ -577,7 +577,7 @@ static void test_deck_refusals(void **state)
 
 /* ---- thread independence --------------------------------------------------------- */
 
-/* nu = 0.15: alpha-beta angles; nu = 0.45: alpha-beta-gamma area springs */
+/* nu = 0.15: alpha-beta angles; nu = 0.45: area springs */
 static void thread_check(double nu)
 {
 #ifdef _OPENMP

@@ -33,6 +33,8 @@ static const struct vcase cases[] = {
      lattice_case_chain_break},
     {"lattice-threads", "1 and 2 OpenMP threads: bitwise identical fracture run", true,
      lattice_case_threads},
+    {"abg-patch", "triple honeycomb (alpha-beta-gamma), nu > 1/3: patch, clamped block, P wave",
+     true, lattice_case_abg},
     /* impact, fragments, thermal lattice (issue 3) */
     {"impact-nylon", "seed 000 sec. 3.2.1 nylon-6,6 drop-weight indentation, no-slip tup", false,
      impact_case_nylon},

@@ -27,6 +27,9 @@ int lattice_case_energy(struct vreport *r, struct spall_error *err);
 int lattice_case_chain_break(struct vreport *r, struct spall_error *err);
 /** "lattice-threads": 1 and 2 OpenMP threads give bitwise identical runs. */
 int lattice_case_threads(struct vreport *r, struct spall_error *err);
+/** "abg-patch": triple honeycomb (alpha-beta-gamma) lattice for nu > 1/3:
+ *  relaxed patch test, clamped finite block, P-wave speed (lattice_abg.c). */
+int lattice_case_abg(struct vreport *r, struct spall_error *err);
 
 /** Build a ready-to-step simulation from YAML text held in memory
  *  (deck_load_string + deck_build_sim); @p name appears in messages. */

@@ -150,7 +150,7 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
             return spall_error_set(err, SPALL_ERR_PHYSICS,
                                    "Poisson's ratio %g is below -1 (not a stable solid)", nu);
         if (nu > 1.0 / 3.0 + LATTICE_NU_TOL) {
-            /* alpha-beta-gamma: central springs fix mu2 = sqrt3 k / 4, area
+            /* area springs: central springs fix mu2 = sqrt3 k / 4, area
              * springs add bulk only (derivation at the top of this file) */
             if (!(nu < 1.0))
                 return spall_error_set(err, SPALL_ERR_PHYSICS,

@@ -19,7 +19,7 @@
  * gather the buffers of the slots that point at it through the reverse index.
  * Angles see the bond states of the previous step (breaking is decided in
  * pass 2), a one-step lag that only delays the de-activation of an angle;
- * at de-activation the angle (and its alpha-beta-gamma area share, one third
+ * at de-activation the angle (and its area-spring share, one third
  * of a lattice triangle's area energy) books the energy it held into diss.
  *
  * The hot loop (linear law, one material) is specialised by dimension and
