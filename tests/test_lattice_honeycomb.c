@@ -2,7 +2,8 @@
  * Tests of the triple honeycomb (alpha-beta-gamma) lattice: sublattice
  * colouring, bond families, the calibration formulas, the relaxed patch test
  * for nu = 0.4, 0.443 and 0.7 (E and nu within 1e-3), refusal of nu outside
- * [1/3, 1), and a small plate that fractures under tension.
+ * [1/3, 1), a small plate that fractures under tension, the stable step
+ * (omega_max dt < 2, bounded energy) and the example deck.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -194,6 +195,82 @@ static void test_plate_families_and_fracture(void **state)
     assert_null(s);
 }
 
+static double hc_energy(struct sim *s)
+{
+    struct model_energy e;
+    s->ops->energy(s->model, s, &e);
+    double kin = 0.0;
+    for (size_t i = 0; i < s->p->n; i++)
+        kin += 0.5 * s->p->mass[i] * (s->p->v[0][i] * s->p->v[0][i] +
+                                      s->p->v[1][i] * s->p->v[1][i]);
+    return kin + e.strain;
+}
+
+/* elastic free plate with random velocities at the full Gershgorin step
+ * (stable_dt, not the default half of it): the optical modes of the
+ * sublattices stay stable and the energy bounded, at nu = 0.7 (stiffness
+ * contrast beta/alpha = 10) */
+static void test_stable_step(void **state)
+{
+    (void)state;
+    struct spall_error err = {0, ""};
+    char deck[2048];
+    snprintf(deck, sizeof deck, PLATE, 0.7, 0.0, 0.0);
+    struct sim *s = NULL;
+    assert_int_equal(vlat_build("hc_plate", deck, &s, &err), 0);
+    s->n_bcs = 0; /* free plate */
+    /* omega_max: power iteration on M^-1 H (H v = -dF/dx v, finite differences) */
+    const size_t n = s->p->n;
+    double *v = malloc(2 * n * sizeof *v);
+    assert_non_null(v);
+    for (size_t q = 0; q < 2 * n; q++)
+        v[q] = 1.0 + 0.1 * (double)(q % 7) - 0.05 * (double)(q % 3);
+    double lam = 0.0;
+    for (int it = 0; it < 400; it++) {
+        double nv = 0.0;
+        for (size_t q = 0; q < 2 * n; q++)
+            nv = fmax(nv, fabs(v[q]));
+        for (size_t i = 0; i < n; i++)
+            for (int d = 0; d < 2; d++)
+                s->p->x[d][i] = s->p->x0[d][i] + 1e-9 * v[2 * i + (size_t)d] / nv;
+        particles_zero_forces(s->p);
+        assert_int_equal(s->ops->compute_forces(s->model, s, &err), 0);
+        lam = 0.0;
+        for (size_t i = 0; i < n; i++)
+            for (int d = 0; d < 2; d++) {
+                v[2 * i + (size_t)d] = -s->p->f[d][i] / (1e-9 * s->p->mass[i]);
+                lam = fmax(lam, fabs(v[2 * i + (size_t)d]));
+            }
+    }
+    free(v);
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 2; d++)
+            s->p->x[d][i] = s->p->x0[d][i];
+    const double wdt = sqrt(lam) * s->ops->stable_dt(s->model, s);
+    printf("  triple honeycomb nu = 0.7: omega_max stable_dt = %.4f (stable below 2)\n", wdt);
+    assert_true(wdt < 2.0);
+    unsigned seed = 12345u;
+    for (size_t i = 0; i < s->p->n; i++)
+        for (int d = 0; d < 2; d++) {
+            seed = seed * 1103515245u + 12345u;
+            s->p->v[d][i] = 0.1 * ((double)(seed >> 8) / 16777216.0 - 0.5);
+        }
+    s->dt = s->ops->stable_dt(s->model, s);
+    assert_int_equal(sim_initial_forces(s, &err), 0);
+    const double e0 = hc_energy(s);
+    double emax = e0;
+    for (int k = 0; k < 3000; k++) {
+        assert_int_equal(sim_step(s, &err), 0);
+        if (k % 100 == 99)
+            emax = fmax(emax, hc_energy(s));
+    }
+    printf("  triple honeycomb nu = 0.7 at dt = stable_dt = %.3g s: energy max/initial = %.4f\n",
+           s->dt, emax / e0);
+    assert_true(emax < 1.5 * e0);
+    assert_true(vlat_history(s, "bonds_broken") == 0.0);
+    sim_destroy(&s);
+}
+
 /* examples/abg_plate builds as shipped (not run: that is `spall run`) */
 static void test_example_builds(void **state)
 {
@@ -223,6 +300,7 @@ int main(void)
         cmocka_unit_test(test_constants_and_moduli),
         cmocka_unit_test(test_patch_relaxed),
         cmocka_unit_test(test_plate_families_and_fracture),
+        cmocka_unit_test(test_stable_step),
         cmocka_unit_test(test_example_builds),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
