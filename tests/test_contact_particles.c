@@ -2,7 +2,8 @@
  * Tests of the particle-particle contact (core/contact_particles.c, issue 3):
  * bonds never cross bodies; two lattice blocks colliding through the contact
  * conserve momentum and energy and bounce apart without interpenetrating;
- * the result is bitwise the same on 1 and 2 threads; deck refusals.
+ * the result is bitwise the same on 1 and 2 threads; unbonded particles of
+ * one body touch too; deck refusals.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -190,6 +191,50 @@ static void test_threads_bitwise(void **state)
     free(x2);
 }
 
+/* One body made of two blocks two rows apart (1.73 r0: never bonded): the
+ * same-body unbonded pair rule must stop them like two bodies. */
+static void test_same_body_unbonded(void **state)
+{
+    (void)state;
+    double row = 0.5 * sqrt(3.0) * 1e-3;
+    char deck[2048];
+    snprintf(deck, sizeof deck,
+             "model: {type: lattice, law: linear}\n"
+             "materials:\n"
+             "  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3333333333333333,\n"
+             "      failure_strain: 10}\n"
+             "lattice: {type: triangular, spacing: 1.0e-3}\n"
+             "geometry:\n"
+             "  a: {box: {min: [-1e-5, -1e-5], max: [0.01, %.17g]}}\n"
+             "  b: {box: {min: [-1e-5, %.17g], max: [0.01, %.17g]}}\n"
+             "body: {geometry: {union: [a, b]}, material: m}\n"
+             "contact: {distance: 1.0e-3, stiffness: 1.0e6}\n"
+             "groups: {b: b}\n"
+             "initial_velocity: [{group: b, value: [0, -50]}]\n"
+             "run: {end_time: 6.0e-5, dt_factor: 0.25}\n",
+             9.5 * row, 10.5 * row, 20.5 * row);
+    struct sim *s = build(deck);
+    struct spall_error err = {0, ""};
+    const struct particles *p = s->p;
+    double gmin = INFINITY;
+    size_t touched = 0;
+    while (!sim_done(s)) {
+        assert_int_equal(sim_step(s, &err), SPALL_OK);
+        touched += particle_contact_pairs(s) > 0;
+        double ya = -INFINITY, yb = INFINITY;
+        for (size_t i = 0; i < p->n; i++) {
+            if (p->x0[1][i] < 10.0 * row)
+                ya = fmax(ya, p->x[1][i]);
+            else
+                yb = fmin(yb, p->x[1][i]);
+        }
+        gmin = fmin(gmin, yb - ya);
+    }
+    assert_true(touched > 0);
+    assert_true(gmin > 0.5e-3);
+    sim_destroy(&s);
+}
+
 static void test_deck_refusals(void **state)
 {
     (void)state;
@@ -212,6 +257,7 @@ int main(void)
         cmocka_unit_test(test_no_bonds_across_bodies),
         cmocka_unit_test(test_blocks_bounce),
         cmocka_unit_test(test_threads_bitwise),
+        cmocka_unit_test(test_same_body_unbonded),
         cmocka_unit_test(test_deck_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -19,8 +19,11 @@
  * particles) get only the body-body part: their same-body pairs are the
  * model's business.
  *
- * Search: a cell list of edge d rebuilt every step from the current
- * positions (counting sort, O(N)).  Forces are gathered per particle over a
+ * Search: Verlet candidate lists — every eligible pair within d + skin
+ * (skin = 0.3 d), found with a cell list (counting sort, O(N)) and rebuilt
+ * only when some particle has moved more than skin/2 since the last build;
+ * between builds a step costs one O(N) displacement check plus the
+ * (few) candidate pairs.  Lists and forces are gathered per particle in a
  * fixed cell/particle order (no atomics): bitwise the same for any thread
  * count.
  */
