@@ -144,9 +144,9 @@ static inline int bonded(const struct bond_list *bl, size_t i, size_t j)
 }
 
 /* Candidate lists (CSR over owned particles): every eligible partner j
- * within d + skin of i at build time, in cell order.  Eligible = other body,
- * or same body and not in the model's bond list (fixed for the run, so the
- * eligibility of a pair never changes).  Built with a cell list of edge
+ * within d + skin of i at build time, in cell order.  Eligible = not in the
+ * model's bond list (fixed for the run, so the eligibility of a pair never
+ * changes) and, for models without one, of another body.  Built with a cell list of edge
  * >= d + skin over the current bounding box (cells <= 4 n + 64), two passes
  * (count, fill) gathered per particle: the same lists for any thread count. */
 static int build_candidates(struct particle_contact *c, const struct sim *s,
@@ -245,8 +245,12 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
                             }
                             if (!(r2 < r2max))
                                 continue;
+                            /* bonded pairs (any body, e.g. a peridynamic
+                             * family reaching into another body) are the
+                             * model's; unbonded ones of one body only in
+                             * bonded models */
                             const int32_t bj = body ? body[j] : 0;
-                            if (bi == bj && (!bl || bonded(bl, i, j)))
+                            if ((bi == bj && !bl) || bonded(bl, i, j))
                                 continue;
                             if (pass)
                                 c->nbr[w++] = (int32_t)j;

@@ -15,9 +15,10 @@
  * bodies pass through each other; and fragments of a bonded body that meet
  * with particles that were never bonded need the same push (bonded pairs,
  * broken or not, are left to the model, whose broken bonds keep their
- * post-fracture repulsion).  Models without a bond list (SPH, macro-
- * particles) get only the body-body part: their same-body pairs are the
- * model's business.
+ * post-fracture repulsion).  Any pair in the model's bond list is left to
+ * the model (a peridynamic family may reach into another body).  Models
+ * without a bond list (SPH, macro-particles) get only the body-body part:
+ * their same-body pairs are the model's business.
  *
  * Search: Verlet candidate lists — every eligible pair within d + skin
  * (skin = 0.3 d), found with a cell list (counting sort, O(N)) and rebuilt
