@@ -21,7 +21,7 @@
  * their same-body pairs are the model's business.
  *
  * Search: Verlet candidate lists — every eligible pair within d + skin
- * (skin = 0.3 d), found with a cell list (counting sort, O(N)) and rebuilt
+ * (skin = 0.5 d), found with a cell list (counting sort, O(N)) and rebuilt
  * only when some particle has moved more than skin/2 since the last build;
  * between builds a step costs one O(N) displacement check plus the
  * (few) candidate pairs.  Lists and forces are gathered per particle in a
