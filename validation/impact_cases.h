@@ -23,7 +23,8 @@ int impact_indent_deck(char *buf, size_t len, double rho, double E, double sigma
 /** "impact-spall": seed 000 sec. 4.2 flyer-plate spall, both flyer widths. */
 int impact_case_spall(struct vreport *r, struct spall_error *err);
 /** Deck text of the spall case (flyer + target, interface pre-cut). */
-int impact_spall_deck(char *buf, size_t len, double flyer_width, double r0, double end_time);
+int impact_spall_deck(char *buf, size_t len, double flyer_width, double r0, double end_time,
+                      double eps_max);
 
 /** "impact-epoxy": seed 000 sec. 3.1 epoxy plate with holes, cracks link holes. */
 int impact_case_epoxy(struct vreport *r, struct spall_error *err);

@@ -123,6 +123,11 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
     }
     sim_update_energy(s);
     double absorbed = rigid_absorbed(tup);
+    /* the load cell's energy, int F d(delta) (trapezoid over the raw load):
+     * by the tup's work-energy theorem it equals the KE lost + gravity work */
+    double w_fd = 0.0;
+    for (size_t k = 1; k < n; k++)
+        w_fd += 0.5 * (f[k] + f[k - 1]) * (u[k] - u[k - 1]);
     double broken = vlat_history(s, "bonds_broken");
     char src[160];
     snprintf(src, sizeof src, "seed 000 sec. 3.2 (experiment; paper's HLPM %.2f ms)",
@@ -151,6 +156,9 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
         vreport_mark_gap(r, "an elastic-brittle beam absorbs about its strain energy at "
                             "fracture, 1/2 k delta^2; the experiment's extra energy (local "
                             "crushing under the tup, plasticity, friction) is not in the model");
+    vreport_info(r, "%s: absorbed energy as the load cell sees it, int F d(delta) = %.4g J "
+                    "(tup KE lost + gravity work: %.4g J)",
+                 m->name, w_fd, absorbed);
     vreport_info(r, "%s: %zu particles, dt = %.3g s, %ld steps; smoothed peak load %.1f N at "
                     "%.4g ms, deflection %.4g mm; absorbed %.4g J; bonds broken %g; energy "
                     "balance %.3g J",

@@ -12,7 +12,8 @@
  * run); sigma_TS = 43.5 MPa as in impact-vinylester; flat-ended plunger of
  * radius 6.35 mm with a 1 mm edge rounding; clamps = fixed top and bottom
  * layers outside the opening.  Run twice: the seed's no-slip contact and
- * penalty contact with Coulomb friction mu = 0.3.
+ * penalty contact with Coulomb friction mu = 0.3; and once without bond
+ * breaking to 0.6 ms, to separate the plate's stiffness from its damage.
  */
 #include "validation/impact_cases.h"
 #include "validation/lattice_cases.h"
@@ -26,6 +27,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define PUNCH_SMOOTH 50e-6
 
@@ -64,12 +66,22 @@ int impact_punch_deck(char *buf, size_t len, double r0, const char *contact, dou
     return n > 0 && (size_t)n < len ? SPALL_OK : SPALL_ERR_INTERNAL;
 }
 
-static int run_punch(struct vreport *r, const char *contact, const char *label, double *peak_out,
-                     double *defl_out, struct spall_error *err)
+/* @p elastic: bonds never break (failure strain 10) and the run stops at
+ * 0.6 ms: the plate's elastic stiffness, to tell stiffness from damage */
+static int run_punch(struct vreport *r, const char *contact, const char *label, int elastic,
+                     double *peak_out, double *defl_out, struct spall_error *err)
 {
     char deck[3072];
-    if (impact_punch_deck(deck, sizeof deck, 2.5e-3, contact, 1.5e-3))
+    if (impact_punch_deck(deck, sizeof deck, 2.5e-3, contact, elastic ? 0.6e-3 : 1.5e-3))
         return spall_error_set(err, SPALL_ERR_INTERNAL, "impact-punch: deck buffer too small");
+    if (elastic) {
+        static const char from[] = "tensile_strength: 43.5e6", to[] = "failure_strain: 10.00000";
+        _Static_assert(sizeof from == sizeof to, "same length: the deck stays in place");
+        char *at = strstr(deck, from);
+        if (!at)
+            return spall_error_set(err, SPALL_ERR_INTERNAL, "impact-punch: no strength in deck");
+        memcpy(at, to, sizeof to - 1); /* same length: the deck stays in place */
+    }
     struct sim *s = NULL;
     int rc = vlat_build("impact-punch", deck, &s, err);
     if (rc)
@@ -81,15 +93,18 @@ static int run_punch(struct vreport *r, const char *contact, const char *label, 
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "impact-punch: out of memory");
         goto done;
     }
+    long first_break = -1; /* step of the first broken bond (sampled every 10 steps) */
     while (!sim_done(s) && n < cap) {
         if ((rc = sim_step(s, err)))
             goto done;
         f[n] = pl->f_noslip[2] + pl->f_pen[2];
         u[n] = -(pl->x[2] - pl->x0[2]);
+        if (first_break < 0 && s->step % 10 == 0 && vlat_history(s, "bonds_broken") > 0)
+            first_break = (long)n;
         n++;
     }
     long w = (long)ceil(0.5 * PUNCH_SMOOTH / s->dt);
-    double best = -1.0, d_peak = 0.0, acc = 0.0;
+    double best = -1.0, d_peak = 0.0, acc = 0.0, f_break = 0.0, d_10k = NAN;
     long lo = 0, hi = -1;
     for (long k = 0; k < (long)n; k++) {
         while (hi < k + w && hi + 1 < (long)n)
@@ -101,13 +116,19 @@ static int run_punch(struct vreport *r, const char *contact, const char *label, 
             best = mean;
             d_peak = u[k];
         }
+        if (k == first_break)
+            f_break = mean;
+        if (isnan(d_10k) && mean >= 1.0e4)
+            d_10k = u[k];
     }
     *peak_out = best;
     *defl_out = d_peak;
     vreport_info(r, "%s: %zu particles, dt = %.3g s, %ld steps: smoothed peak load %.0f N at "
-                    "plunger displacement %.3f mm; bonds broken %g; absorbed %.3g J",
+                    "plunger displacement %.3f mm; bonds broken %g; absorbed %.3g J; first bond "
+                    "broken at %.0f N, %.3f mm; load 10 kN first reached at %.3f mm",
                  label, s->p->n, s->dt, s->step, best, d_peak * 1e3,
-                 vlat_history(s, "bonds_broken"), rigid_absorbed(pl));
+                 vlat_history(s, "bonds_broken"), rigid_absorbed(pl), f_break,
+                 first_break >= 0 ? u[first_break] * 1e3 : NAN, d_10k * 1e3);
 done:
     free(f);
     free(u);
@@ -118,9 +139,12 @@ done:
 int impact_case_punch(struct vreport *r, struct spall_error *err)
 {
     double F = 0, d = 0, Ff = 0, df = 0;
-    int rc = run_punch(r, "no_slip", "no-slip", &F, &d, err);
+    int rc = run_punch(r, "no_slip", "no-slip", 0, &F, &d, err);
     if (!rc)
-        rc = run_punch(r, "penalty, friction: 0.3", "penalty mu = 0.3", &Ff, &df, err);
+        rc = run_punch(r, "penalty, friction: 0.3", "penalty mu = 0.3", 0, &Ff, &df, err);
+    double Fe = 0, de = 0;
+    if (!rc)
+        rc = run_punch(r, "no_slip", "elastic (no breaking, to 0.6 ms)", 1, &Fe, &de, err);
     if (rc)
         return rc;
     const char *src = "seed 000 sec. 3.2.3 (experiment; paper's HLPM 12 800 N at 1.6 mm)";
@@ -128,8 +152,9 @@ int impact_case_punch(struct vreport *r, struct spall_error *err)
                             "10 %: as the indentation cases", err)))
         return rc;
     if (fabs(F - 1e4) > 1e3)
-        vreport_mark_gap(r, "coarse 3D FCC lattice (6 layers), nu = 1/4 forced by central "
-                            "springs; see docs/validation.md");
+        vreport_mark_gap(r, "not stiffness: the unbroken plate reaches 10 kN at 1.76 mm; bending "
+                            "cracks on the tension face from 4.8 kN (0.92 mm) soften it and the "
+                            "peak comes late; see docs/validation.md");
     if ((rc = vreport_check(r, "deflection at peak load (no-slip)", "m", 2.1e-3, d, 0.10, true,
                             src, "10 %", err)))
         return rc;

@@ -140,7 +140,8 @@ int bond_list_build_shells(struct bond_list **out, const struct particles *p, in
     for (size_t i = 0; i < n; i++) {
         size_t m = 0;
         for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++)
-            m += shell_of(ref_length(p, i, (size_t)nl->idx[k]), n_shells, r_lo, r_hi) >= 0;
+            m += p->body[i] == p->body[nl->idx[k]] &&
+                 shell_of(ref_length(p, i, (size_t)nl->idx[k]), n_shells, r_lo, r_hi) >= 0;
         cnt[i + 1] = m;
     }
     for (size_t i = 0; i < n; i++)
@@ -160,7 +161,7 @@ int bond_list_build_shells(struct bond_list **out, const struct particles *p, in
         for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++) {
             double r = ref_length(p, i, (size_t)nl->idx[k]);
             int s = shell_of(r, n_shells, r_lo, r_hi);
-            if (s < 0)
+            if (s < 0 || p->body[i] != p->body[nl->idx[k]]) /* bonds never cross bodies */
                 continue;
             bl->partner[w] = nl->idx[k];
             bl->rest[w] = r;

@@ -13,6 +13,7 @@
  *   5. model end_step (bond breaking), NaN check.
  * The integrator knows nothing of the model; it sees only f.
  */
+#include "core/contact_particles.h"
 #include "core/fields.h"
 #include "core/particles.h"
 #include "core/rigid.h"
@@ -211,6 +212,8 @@ static int compute_all_forces(struct sim *s, struct spall_error *err)
     if (rc)
         return rc;
     rigid_contact_forces(s); /* impactor contact (issue 3) */
+    if ((rc = particle_contact_forces(s, err))) /* body-body contact (issue 3) */
+        return rc;
     apply_loads(s, s->t);
     apply_body_forces(s);
     return SPALL_OK;
@@ -233,7 +236,7 @@ void sim_update_energy(struct sim *s)
     double rke, rstrain, rdiss, rext; /* rigid impactors (issue 3) */
     rigid_energy(s, &rke, &rstrain, &rdiss, &rext);
     ke += rke;
-    me.strain += rstrain;
+    me.strain += rstrain + particle_contact_energy(s);
     me.dissipated += rdiss;
     s->energy.kinetic = ke;
     s->energy.strain = me.strain;
@@ -321,7 +324,7 @@ int sim_step(struct sim *s, struct spall_error *err)
     if (s->adaptive_dt) {
         /* e.g. SPH, Eq. 3.38: the limit moves with the sound speed and
          * particle velocities; never step past end_time */
-        double lim = s->ops->stable_dt(s->model, s);
+        double lim = fmin(s->ops->stable_dt(s->model, s), particle_contact_stable_dt(s));
         double dt_new = s->dt_factor * lim;
         if (s->end_time > s->t && dt_new > s->end_time - s->t)
             dt_new = s->end_time - s->t;

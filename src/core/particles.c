@@ -47,6 +47,7 @@ void particles_destroy(struct particles **pp)
     free(p->volume);
     free(p->gid);
     free(p->material);
+    free(p->body);
     free(p);
     *pp = NULL;
 }
@@ -66,6 +67,7 @@ int particles_reserve(struct particles *p, size_t cap, struct spall_error *err)
     bad |= grow_array((void **)&p->volume, sizeof(double), cap);
     bad |= grow_array((void **)&p->gid, sizeof(int64_t), cap);
     bad |= grow_array((void **)&p->material, sizeof(int32_t), cap);
+    bad |= grow_array((void **)&p->body, sizeof(int32_t), cap);
     if (bad)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory growing particles to %zu", cap);
     p->cap = cap;
@@ -91,6 +93,7 @@ int particles_append(struct particles *p, const double pos[3], int32_t material,
     p->volume[i] = 0.0;
     p->gid[i] = (int64_t)i;
     p->material[i] = material;
+    p->body[i] = 0;
     p->n++;
     p->n_owned++;
     if (index)

@@ -37,6 +37,8 @@ struct particles {
     double *volume;   /**< m^3, volume the particle stands for */
     int64_t *gid;     /**< global id, unique over all ranks */
     int32_t *material;/**< index into the material table */
+    int32_t *body;    /**< body (deck `bodies:` order, 0 for `body:`): bonds never
+                           cross bodies; core/contact_particles.h acts between them */
 };
 
 /** Create an empty particle set of dimension @p dim with room for @p cap. */

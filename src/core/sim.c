@@ -6,6 +6,7 @@
  */
 #include "core/sim.h"
 #include "core/rigid.h"
+#include "core/contact_particles.h"
 
 #include "core/fields.h"
 #include "core/fragments.h"
@@ -61,6 +62,7 @@ void sim_destroy(struct sim **sp)
         free(s->v_half[d]);
     free(s->materials);
     rigid_set_destroy(&s->rigid);
+    particle_contact_destroy(&s->pcontact);
     free(s);
     *sp = NULL;
 }
@@ -320,7 +322,7 @@ int sim_prepare(struct sim *s, struct spall_error *err)
     if (rc)
         return rc;
 
-    s->dt_limit = s->ops->stable_dt(s->model, s);
+    s->dt_limit = fmin(s->ops->stable_dt(s->model, s), particle_contact_stable_dt(s));
     if (!(s->dt_limit > 0.0) || !isfinite(s->dt_limit))
         return spall_error_set(err, SPALL_ERR_PHYSICS,
                                "model '%s' reports no finite stable time step (got %g s)",

@@ -21,6 +21,7 @@ struct deck_node;
 struct field_registry;
 struct model;
 struct model_ops;
+struct particle_contact;
 struct particles;
 struct precrack;
 struct rigid_set;
@@ -126,6 +127,7 @@ struct sim {
     int threads;          /**< OpenMP threads (0 = library default) */
     uint64_t seed;        /**< random seed for stochastic features */
     struct rigid_set *rigid; /**< rigid impactors / supports (core/rigid.h), may be NULL */
+    struct particle_contact *pcontact; /**< particle-particle contact (core/contact_particles.h), may be NULL */
 };
 
 /** Empty context for a @p dim-dimensional run. */

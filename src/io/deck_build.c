@@ -13,6 +13,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
+#include "io/deck_contact.h"
 #include "io/deck_impactors.h"
 #include "io/deck_inclusions.h"
 #include "models/model.h"
@@ -30,7 +31,7 @@ static const char *const top_keys[] = {"title", "description", "model", "materia
                                        "boundary_conditions", "initial_velocity", "gravity",
                                        "damping", "probes", "run", "output",
                                        /* impact (issue 3) keys */
-                                       "impactors",
+                                       "impactors", "contact",
 
                                        /* other section keys */
                                        "inclusions",
@@ -184,7 +185,8 @@ static int material_at_key(struct build_ctx *c, const struct deck_node *map, con
 /* Fill one body: every site of @p spec inside its shape becomes a particle
  * with the body's material and the site volume of @p spec. */
 static int fill_body(struct build_ctx *c, const struct deck_node *body,
-                     const struct lattice_spec *spec, const char *what, struct spall_error *err)
+                     const struct lattice_spec *spec, const char *what, int32_t body_id,
+                     struct spall_error *err)
 {
     static const char *const keys[] = {"geometry", "material", "lattice", NULL};
     int rc = deck_expect_map(body, "a mapping with geometry and material", err);
@@ -214,6 +216,7 @@ static int fill_body(struct build_ctx *c, const struct deck_node *body,
     for (size_t i = first; i < first + added; i++) {
         c->sim->p->volume[i] = vol;
         c->sim->p->mass[i] = c->sim->materials[mat].density * vol;
+        c->sim->p->body[i] = body_id;
     }
     return SPALL_OK;
 }
@@ -229,7 +232,7 @@ static int parse_body(struct build_ctx *c, const struct deck_node *root, struct 
     if (body && bodies)
         return deck_error_key(err, root, "bodies", "give either 'body' or 'bodies', not both");
     if (body)
-        return fill_body(c, body, &c->sim->lattice, "body", err);
+        return fill_body(c, body, &c->sim->lattice, "body", 0, err);
     if (!bodies)
         return deck_error(err, root, "missing required key 'body' (geometry and material to fill)");
     int rc = deck_expect_seq(bodies, "a list of bodies {geometry, material, lattice}", err);
@@ -255,7 +258,7 @@ static int parse_body(struct build_ctx *c, const struct deck_node *root, struct 
         }
         char what[32];
         snprintf(what, sizeof what, "bodies[%zu]", k);
-        if ((rc = fill_body(c, b, &spec, what, err)))
+        if ((rc = fill_body(c, b, &spec, what, (int32_t)k, err)))
             return rc;
     }
     return SPALL_OK;
@@ -736,6 +739,7 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
     if ((rc = parse_groups(&c, root, err)) || (rc = parse_precracks(&c, root, err)) ||
         (rc = parse_bcs(&c, root, err)) || (rc = parse_initial_velocity(&c, root, err)) ||
         (rc = parse_probes(&c, root, err)) || (rc = deck_parse_impactors(c.sim, root, err)) ||
+        (rc = deck_parse_contact(c.sim, root, err)) ||
         (rc = deck_vector(root, "gravity", false, (size_t)c.dim, 3, gravity, err)) ||
         (rc = deck_double(root, "damping", false, 0.0, INFINITY, &c.sim->damping, err)) ||
         (rc = parse_run(&c, root, ro, err)) || (rc = parse_output(&c, root, ro, err)) ||
