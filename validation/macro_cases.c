@@ -59,13 +59,17 @@ int macro_case_calibration(struct vreport *r, struct spall_error *err)
 static int rod_elastic_one(struct vreport *r, int n_phi, double n_h, enum macro_calibration cal,
                            double *E, double *nu, size_t *np, struct spall_error *err)
 {
+    /* n_phi = 32 (105 k particles): 6 wave transits instead of 12 halve its
+     * cost; measured at n_phi = 8 and 16 the shorter loading changes E by
+     * +0.1 % (58.66 vs 58.60, 64.19 vs 64.13 GPa, lattice) */
+    const double transits = n_phi >= 32 ? 6.0 : 12.0;
     struct macro_rod rod;
     memset(&rod, 0, sizeof rod);
     rod.n_phi = n_phi;
     rod.n_h = n_h;
     rod.sign = 1;
     rod.eps_end = 2e-3;
-    rod.transits = 12.0;
+    rod.transits = transits;
     rod.calibration = cal;
     int rc = macro_rod_run(&rod, err);
     if (rc) {
@@ -75,9 +79,10 @@ static int rod_elastic_one(struct vreport *r, int n_phi, double n_h, enum macro_
     *E = macro_fit_slope(rod.strain, rod.stress, rod.n, 0.5e-3, 2.1e-3);
     *nu = -macro_fit_slope(rod.strain, rod.lateral, rod.n, 0.5e-3, 2.1e-3);
     *np = rod.particles;
-    vreport_info(r, "rod %-7s n_phi = %2d, n_h/n_phi = %-6g: %6zu particles, r0 = %.4g mm, E = "
-                 "%.4g GPa = %.4f E_[100] of the lattice (%.4g GPa), %.4f Eq. 15 (%.4g); nu = "
-                 "%.4f", cal == MACRO_CAL_LATTICE ? "lattice" : "eq15", n_phi, n_h / n_phi,
+    vreport_info(r, "rod %-7s n_phi = %2d, n_h/n_phi = %-6g (%g transits): %6zu particles, r0 = "
+                 "%.4g mm, E = %.4g GPa = %.4f E_[100] of the lattice (%.4g GPa), %.4f Eq. 15 "
+                 "(%.4g); nu = %.4f", cal == MACRO_CAL_LATTICE ? "lattice" : "eq15", n_phi,
+                 n_h / n_phi, transits,
                  rod.particles, rod.r0 * 1e3, *E / 1e9, *E / rod.E_fcc100, rod.E_fcc100 / 1e9,
                  *E / rod.E_eq15, rod.E_eq15 / 1e9, *nu);
     macro_rod_free(&rod);
