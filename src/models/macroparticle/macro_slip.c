@@ -100,7 +100,7 @@ void macro_slip_vectors(size_t n, double *const x[3], double *const x0[3],
          * = 0.82 of a bond, along the normal.  Fewer than 3 partners (a
          * dislocation core, a surface step) or a mean below 0.35 of a bond
          * (partners on both sides) carry no plane: normal 0 (unclear) */
-        const bool plane = ns >= 3 && nl > 0.35 * blen / (ns ? ns : 1);
+        const bool plane = ns >= 3 && nl > 0.35 * blen; /* |sum|/ns > 0.35 blen/ns */
         for (int d = 0; d < 3; d++) {
             if (slip)
                 slip[3 * i + d] = ns ? sv[d] / ns : 0.0;
