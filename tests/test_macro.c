@@ -193,9 +193,18 @@ static void test_deck_errors(void **state)
         "model: {type: macroparticle, temperature: 300}\nmaterials:\n  al: {density: 2700, "
         "atomic_mass_u: 27, cohesive_energy_ev: 3.39, exponents: [4, 9]}\nlattice: {type: fcc, "
         "spacing: 1e-3}\ngeometry:\n  b: {box: {min: [0,0,0], max: [3e-3,3e-3,3e-3]}}\nbody: "
-        "{geometry: b, material: al}\nrun: {steps: 1}\n"};
-    const char *want[] = {"atomic_mass_u", "exponents", "damping"};
-    for (int k = 0; k < 3; k++) {
+        "{geometry: b, material: al}\nrun: {steps: 1}\n",
+        "model: {type: macroparticle}\nmaterials:\n  al: {density: 2700, "
+        "atomic_mass_u: 27, cohesive_energy_ev: 3.39, exponents: [4, 9], youngs_modulus: 7e10}\n"
+        "lattice: {type: fcc, spacing: 1e-3}\ngeometry:\n  b: {box: {min: [0,0,0], max: "
+        "[3e-3,3e-3,3e-3]}}\nbody: {geometry: b, material: al}\nrun: {steps: 1}\n",
+        "model: {type: macroparticle, calibration: chain}\nmaterials:\n  al: {density: 2700, "
+        "atomic_mass_u: 27, cohesive_energy_ev: 3.39, exponents: [4, 9]}\n"
+        "lattice: {type: fcc, spacing: 1e-3}\ngeometry:\n  b: {box: {min: [0,0,0], max: "
+        "[3e-3,3e-3,3e-3]}}\nbody: {geometry: b, material: al}\nrun: {steps: 1}\n"};
+    const char *want[] = {"atomic_mass_u", "exponents", "damping", "youngs_modulus",
+                          "calibration"};
+    for (int k = 0; k < 5; k++) {
         struct spall_error err = {0, ""};
         struct deck *d = NULL;
         struct sim *s = NULL;

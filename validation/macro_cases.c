@@ -56,16 +56,21 @@ int macro_case_calibration(struct vreport *r, struct spall_error *err)
 
 /* ---- rod, elastic ------------------------------------------------------------------ */
 
-static int rod_elastic_one(struct vreport *r, int n_phi, double n_h, double *E, double *nu,
-                           size_t *np, struct spall_error *err)
+static int rod_elastic_one(struct vreport *r, int n_phi, double n_h, enum macro_calibration cal,
+                           double *E, double *nu, size_t *np, struct spall_error *err)
 {
+    /* n_phi = 32 (105 k particles): 6 wave transits instead of 12 halve its
+     * cost; measured at n_phi = 8 and 16 the shorter loading changes E by
+     * +0.1 % (58.66 vs 58.60, 64.19 vs 64.13 GPa, lattice) */
+    const double transits = n_phi >= 32 ? 6.0 : 12.0;
     struct macro_rod rod;
     memset(&rod, 0, sizeof rod);
     rod.n_phi = n_phi;
     rod.n_h = n_h;
     rod.sign = 1;
     rod.eps_end = 2e-3;
-    rod.transits = 12.0;
+    rod.transits = transits;
+    rod.calibration = cal;
     int rc = macro_rod_run(&rod, err);
     if (rc) {
         macro_rod_free(&rod);
@@ -74,77 +79,109 @@ static int rod_elastic_one(struct vreport *r, int n_phi, double n_h, double *E, 
     *E = macro_fit_slope(rod.strain, rod.stress, rod.n, 0.5e-3, 2.1e-3);
     *nu = -macro_fit_slope(rod.strain, rod.lateral, rod.n, 0.5e-3, 2.1e-3);
     *np = rod.particles;
-    vreport_info(r, "rod n_phi = %2d, n_h/n_phi = %-6g: %6zu particles, r0 = %.4g mm, E = %.4g GPa "
-                 "(Eq. 15: %.4g, fcc[100]: %.4g), nu = %.4f", n_phi, n_h / n_phi, rod.particles,
-                 rod.r0 * 1e3, *E / 1e9, rod.E_eq15 / 1e9, rod.E_fcc100 / 1e9, *nu);
+    vreport_info(r, "rod %-7s n_phi = %2d, n_h/n_phi = %-6g (%g transits): %6zu particles, r0 = "
+                 "%.4g mm, E = %.4g GPa = %.4f E_[100] of the lattice (%.4g GPa), %.4f Eq. 15 "
+                 "(%.4g); nu = %.4f", cal == MACRO_CAL_LATTICE ? "lattice" : "eq15", n_phi,
+                 n_h / n_phi, transits,
+                 rod.particles, rod.r0 * 1e3, *E / 1e9, *E / rod.E_fcc100, rod.E_fcc100 / 1e9,
+                 *E / rod.E_eq15, rod.E_eq15 / 1e9, *nu);
     macro_rod_free(&rod);
     return SPALL_OK;
 }
 
-int macro_case_rod_elastic(struct vreport *r, struct spall_error *err)
+/** E and nu over n_phi at n_h/n_phi = 1; returns the count run. */
+static int convergence(struct vreport *r, enum macro_calibration cal, const int *nphi, int nn,
+                       double *E, double *nu, struct spall_error *err)
 {
-    const int nphi_full[] = {2, 4, 8, 16}, nphi_quick[] = {2, 4, 8};
-    const int *nphi = r->quick ? nphi_quick : nphi_full;
-    const int nn = r->quick ? 3 : 4;
-    const double ld = 1.0; /* n_h / n_phi of the convergence runs */
-    double E[4] = {0}, nu[4] = {0}, Eeq = 0.0, Efcc = 0.0;
-    size_t np[4] = {0};
-    int rc;
-    {
-        struct macro_calib c;
-        memset(&c, 0, sizeof c);
-        c.rho = 2700.0;
-        c.atom_mass = 26.98 * MACRO_AMU;
-        c.e0 = 3.39 * MACRO_EV;
-        c.p = 4;
-        c.q = 9;
-        c.r0 = 1e-3;
-        if ((rc = macro_calibrate(&c, err)))
+    for (int k = 0; k < nn; k++) {
+        size_t np;
+        int rc = rod_elastic_one(r, nphi[k], nphi[k], cal, &E[k], &nu[k], &np, err);
+        if (rc)
             return rc;
-        Eeq = c.E;
-        Efcc = c.E_fcc100;
     }
-    vreport_info(r, "convergence with n_phi at n_h/n_phi = %g (E from a least-squares fit of "
-                 "the virial stress over 0.05-0.2 %% strain):", ld);
-    for (int k = 0; k < nn; k++)
-        if ((rc = rod_elastic_one(r, nphi[k], ld * nphi[k], &E[k], &nu[k], &np[k], err)))
-            return rc;
-    const int f = nn - 1;
-    char q[96];
+    return SPALL_OK;
+}
+
+static bool monotone(const double *E, int nn, double target)
+{
     bool mono = true;
     for (int k = 1; k < nn; k++)
-        mono = mono && E[k] > E[k - 1] && fabs(Efcc - E[k]) < fabs(Efcc - E[k - 1]);
-    if ((rc = vreport_check_true(r, "rod E converges monotonically with n_phi", mono, SRC_26,
-                                 "surface particles miss bonds: the modulus rises towards the "
-                                 "bulk value as the surface fraction falls", err)))
+        mono = mono && E[k] > E[k - 1] && fabs(target - E[k]) < fabs(target - E[k - 1]);
+    return mono;
+}
+
+int macro_case_rod_elastic(struct vreport *r, struct spall_error *err)
+{
+    /* seed's calibration to n_phi = 16; the lattice calibration to 32 (E/E_[100]
+     * is the same for both: every force scales with D, and the loading is
+     * set in wave transits) */
+    const int nphi[5] = {2, 4, 8, 16, 32};
+    const int n_eq = r->quick ? 3 : 4, n_lat = r->quick ? 3 : 5;
+    double E[5] = {0}, nu[5] = {0}, El[5] = {0}, nul[5] = {0};
+    int rc;
+    struct macro_calib c;
+    memset(&c, 0, sizeof c);
+    c.rho = 2700.0;
+    c.atom_mass = 26.98 * MACRO_AMU;
+    c.e0 = 3.39 * MACRO_EV;
+    c.p = 4;
+    c.q = 9;
+    c.r0 = 1e-3;
+    if ((rc = macro_calibrate(&c, err)))
         return rc;
-    /* the modulus checks are known gaps (see docs/validation.md): the quick
-     * suite, which must pass, runs the convergence and nu checks only */
+    const double Eeq = c.E, Efcc = c.E_fcc100;
+    vreport_info(r, "convergence with n_phi at n_h/n_phi = 1 (E: least-squares slope of the "
+                 "nominal stress over 0.05-0.2 %% strain); seed calibration (eq15, D = "
+                 "P_atom/6): lattice E_[100] = %.4g GPa = %.4f x Eq. 15 (%.4g GPa):", Efcc / 1e9,
+                 Efcc / Eeq, Eeq / 1e9);
+    if ((rc = convergence(r, MACRO_CAL_EQ15, nphi, n_eq, E, nu, err)))
+        return rc;
+    vreport_info(r, "lattice calibration (D scaled by %.4f so that the lattice E_[100] = Eq. "
+                 "15):", Eeq / Efcc);
+    if ((rc = convergence(r, MACRO_CAL_LATTICE, nphi, n_lat, El, nul, err)))
+        return rc;
+    if ((rc = vreport_check_true(r, "rod E converges monotonically with n_phi (eq15)",
+                                 monotone(E, n_eq, Efcc), SRC_26,
+                                 "surface particles miss bonds: the modulus rises towards the "
+                                 "bulk value as the surface fraction falls", err)) ||
+        (rc = vreport_check_true(r, "rod E converges monotonically with n_phi (lattice)",
+                                 monotone(El, n_lat, Eeq), SRC_26,
+                                 "as above, towards the calibrated E", err)))
+        return rc;
+    char q[112];
+    const int f = n_eq - 1, fl = n_lat - 1;
     if (!r->quick) {
-        snprintf(q, sizeof q, "finest rod (n_phi = %d): E vs the calibrated Eq. 15", nphi[f]);
+        /* the check on the seed's own calibration: a known gap */
+        snprintf(q, sizeof q, "eq15 finest rod (n_phi = %d): E vs the calibrated Eq. 15",
+                 nphi[f]);
         if ((rc = vreport_check(r, q, "GPa", Eeq / 1e9, E[f] / 1e9, 0.05, true, SRC_26,
-                                "the brief's 5 %", err)))
+                                "the issue's 5 %", err)))
             return rc;
         {
-            char note[320];
-            snprintf(note, sizeof note, "Eq. 15 (phi''/2r0) is a chain estimate: a nearest-neighbour "
-                     "FCC crystal of these pairs has E_[100] = (2 sqrt2/3) phi''/r0 = %.3g GPa, "
-                     "1.886 x Eq. 15; the rod converges to that, not to Eq. 15", Efcc / 1e9);
+            char note[360];
+            snprintf(note, sizeof note, "Eq. 15 (phi''/2r0) is a chain estimate: the FCC "
+                     "crystal of the seed's pairs has E_[100] = (2 sqrt2/3) phi''/r0 = %.4g GPa "
+                     "= %.3f x Eq. 15 and the rod converges to that; calibration: lattice "
+                     "closes this (checks below)", Efcc / 1e9, Efcc / Eeq);
             vreport_mark_gap(r, note);
         }
-    }
-    snprintf(q, sizeof q, "finest rod (n_phi = %d): E vs the FCC [100] modulus", nphi[f]);
-    if (!r->quick) {
+        snprintf(q, sizeof q, "eq15 finest rod (n_phi = %d): E vs its lattice E_[100]", nphi[f]);
         if ((rc = vreport_check(r, q, "GPa", Efcc / 1e9, E[f] / 1e9, 0.05, true,
                                 "Cauchy-Born of the Mie pair on FCC, C11 = 2 C12 = 2 C44",
-                                "the brief's 5 %, applied to the modulus the lattice can have",
-                                err)))
+                                "the issue's 5 %", err)))
             return rc;
         if (!r->checks[r->n - 1].pass)
-            vreport_mark_gap(r, "surface particles miss bonds; at n_phi = 16 the surface "
-                             "fraction still softens the rod (see the convergence table)");
+            vreport_mark_gap(r, "surface particles miss bonds; at n_phi = 16 they still "
+                             "soften the rod; n_phi = 32 reaches 5 % (lattice calibration "
+                             "below, same ratio E / E_[100])");
+        snprintf(q, sizeof q, "lattice finest rod (n_phi = %d): E vs the calibrated Eq. 15",
+                 nphi[fl]);
+        if ((rc = vreport_check(r, q, "GPa", Eeq / 1e9, El[fl] / 1e9, 0.05, true, SRC_26,
+                                "the issue's 5 %: 'the finest model is within 5 % of the "
+                                "calibrated value'", err)))
+            return rc;
     }
-    for (int k = r->quick ? nn - 1 : 0; k < nn; k++) {
+    for (int k = r->quick ? n_eq - 1 : 0; k < n_eq; k++) {
         snprintf(q, sizeof q, "rod n_phi = %d: Poisson's ratio (0.28-0.35)", nphi[k]);
         if ((rc = vreport_check(r, q, "1", 0.315, nu[k], 0.035, false, SRC_26,
                                 "the paper's band 0.30-0.33 widened to the brief's 0.28-0.35 "
@@ -155,23 +192,41 @@ int macro_case_rod_elastic(struct vreport *r, struct spall_error *err)
                              "whose missing bonds let the section contract more; the bulk "
                              "[100] value of these pairs is 1/3 and the finer rods approach it");
     }
-    /* aspect ratio sweep at n_phi = 4 */
-    const double ratios_full[] = {0.25, 0.5, 1, 2, 4, 8};
-    const double *ra = ratios_full;
-    const int nr = r->quick ? 0 : 6; /* information only: full run */
-    vreport_info(r, "aspect ratio sweep at n_phi = 4 (n_h/n_phi = 1/8 would leave only the two "
-                 "driven layers):");
-    double emin = INFINITY, emax = 0.0;
-    for (int k = 0; k < nr; k++) {
-        double e1, n1;
-        size_t p1;
-        if ((rc = rod_elastic_one(r, 4, 4.0 * ra[k], &e1, &n1, &p1, err)))
-            return rc;
-        emin = fmin(emin, e1);
-        emax = fmax(emax, e1);
+    if (r->quick)
+        return SPALL_OK;
+    /* aspect ratio sweeps, lattice calibration: n_phi = 4 (1/4..8; 1/8 leaves
+     * only the two driven layers), n_phi = 8 (1/8..8), n_phi = 16 (1/8 and
+     * 4: the paper's 51 413-particle model) */
+    static const double ra[7] = {0.125, 0.25, 0.5, 1, 2, 4, 8};
+    static const struct { int nphi, k0, k1; } sweep[3] = {{4, 1, 6}, {8, 0, 6}, {16, 0, 0}};
+    for (int g = 0; g < 3; g++) {
+        vreport_info(r, "aspect ratio sweep at n_phi = %d (lattice calibration):", sweep[g].nphi);
+        double emin = INFINITY, emax = 0.0;
+        for (int k = sweep[g].k0; k <= sweep[g].k1; k++) {
+            double e1, n1;
+            size_t p1;
+            if ((rc = rod_elastic_one(r, sweep[g].nphi, sweep[g].nphi * ra[k], MACRO_CAL_LATTICE,
+                                      &e1, &n1, &p1, err)))
+                return rc;
+            emin = fmin(emin, e1);
+            emax = fmax(emax, e1);
+        }
+        if (g == 2) {
+            double e1, n1;
+            size_t p1;
+            if ((rc = rod_elastic_one(r, 16, 64, MACRO_CAL_LATTICE, &e1, &n1, &p1, err)))
+                return rc;
+            snprintf(q, sizeof q, "n_phi = 16, n_h/n_phi = 4 (%zu particles): E vs Eq. 15", p1);
+            if ((rc = vreport_check(r, q, "GPa", Eeq / 1e9, e1 / 1e9, 0.05, true, SRC_26,
+                                    "the issue's 5 %, on the paper's model", err)))
+                return rc;
+            if (!r->checks[r->n - 1].pass)
+                vreport_mark_gap(r, "n_phi = 16 is still surface-softened (see the "
+                                 "convergence); n_phi = 32 reaches the 5 %");
+        } else {
+            vreport_info(r, "n_phi = %d: E over the aspect ratios %.4g-%.4g GPa", sweep[g].nphi,
+                         emin / 1e9, emax / 1e9);
+        }
     }
-    if (nr > 0)
-        vreport_info(r, "n_phi = 4: E spread over the aspect ratios %.4g-%.4g GPa", emin / 1e9,
-                     emax / 1e9);
     return SPALL_OK;
 }

@@ -5,6 +5,10 @@
 #ifndef SPALL_VALIDATION_MACRO_CASES_H
 #define SPALL_VALIDATION_MACRO_CASES_H
 
+#include "models/macroparticle/macro_calib.h"
+#include "models/macroparticle/macro_slip.h"
+
+#include <stdbool.h>
 #include <stddef.h>
 
 struct spall_error;
@@ -31,16 +35,20 @@ struct macro_rod {
     double yield_strain;/**< pair yield stretch / r0 (0: elastic) */
     const double (*table)[2]; /**< optional velocity table [t/T, f] (NULL: ramp) */
     int n_table;
+    enum macro_calibration calibration; /**< eq15 (default) or lattice */
+    double cutoff, taper; /**< r_c / r0, r_on / r0 (0: the model's 1.35, 1.2) */
+    bool clamp;         /**< end layers also held in x, y (default: free laterally) */
     /* results */
     size_t n;           /**< samples */
-    double *strain, *stress, *lateral; /**< owned, n samples */
+    double *strain, *stress, *lateral; /**< owned, n samples; stress: nominal (engineering) */
     size_t particles;
-    double r0, E_eq15, E_fcc100;
+    double r0, E_eq15, E_fcc100; /**< E_fcc100: lattice E_[100] of the pairs used */
     double end_time;
     /** original nearest-neighbour pairs stretched beyond 1.2 r0 at the end,
      *  by <110> family: (110) (1-10) (101) (10-1) (011) (01-1) */
     size_t broken[6];
     size_t bonds0;
+    struct macro_slip_stats slip; /**< slip analysis at the end (threshold 0.25 r0, 10 deg) */
 };
 
 int macro_rod_run(struct macro_rod *rod, struct spall_error *err);

@@ -146,8 +146,11 @@ int cli_calibrate_macroparticle(int argc, char **argv)
     printf("  particle mass rho r0^3/sqrt2 = %.6g kg (N_atom m = %.6g kg)\n", c.mass,
            c.n_atom * c.atom_mass);
     printf("  E (Eq. 15)               = %.6g GPa\n", c.E / 1e9);
-    printf("  E of an FCC [100] crystal with these pairs (2 sqrt2/3 phi''/r0) = %.6g GPa, "
-           "nu = 1/3\n", c.E_fcc100 / 1e9);
+    printf("  FCC crystal of these pairs (lattice sum, cut-off 1.35 r0): C11 = %.6g, C12 = %.6g, "
+           "C44 = %.6g GPa; E_[100] = %.6g GPa = %.4f x Eq. 15, nu_[100] = %.4g\n", c.c11 / 1e9,
+           c.c12 / 1e9, c.c44 / 1e9, c.E_fcc100 / 1e9, c.E_fcc100 / c.E, c.nu_fcc100);
+    printf("  model.calibration: lattice scales D by %.6g (D = %.6g J) so that E_[100] = Eq. 15\n",
+           c.E / c.E_fcc100, c.D * c.E / c.E_fcc100);
     printf("  omega_D = k_B theta_D / hbar = %.6g 1/s; default gamma = mu = m (pi/6) omega_D "
            "= %.6g kg/s (times zeta_CG)\n", wd, c.atom_mass * 3.14159265358979 / 6.0 * wd);
     return 0;

@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 struct neighbor_list;
+struct spall_error;
 struct sim;
 
 enum macro_damping { MACRO_DAMP_NONE, MACRO_DAMP_ABSOLUTE, MACRO_DAMP_PAIRWISE };
@@ -26,6 +27,7 @@ struct macro_material {
     double theta_d;     /**< Debye temperature [K] */
     double yield_strain;/**< pair elastic stretch / r0 at yield (0 = elastic) */
     double hardening;   /**< plastic tangent / elastic pair stiffness, in [0, 1) */
+    double e_target;    /**< calibration lattice: target E_[100] [Pa] (0: Eq. 15) */
 };
 
 /** Pair constants of one material (one material per run: mixed pairs use
@@ -50,6 +52,7 @@ struct model {
     double mu;             /**< pairwise coefficient [kg/s] (0: from Debye) */
     double zeta_cg, eta_cg;
     int axis;              /**< loading axis for the history's strain */
+    enum macro_calibration calibration; /**< how D is set (macro_calib.h) */
     /* materials */
     struct macro_material *mat;
     size_t n_mat;
@@ -58,6 +61,7 @@ struct model {
     double gamma_used, mu_used;
     /* neighbours */
     struct neighbor_list *nl;
+    struct neighbor_list *nl0; /**< reference nearest neighbours (x0, 1.1 r0): slip fields */
     double *xb[3];         /**< positions at the last build */
     double *dr0;           /**< per full-list slot: plastic offset [m] */
     double *kappa;         /**< per slot: accumulated plastic slip [m] */
@@ -144,6 +148,18 @@ static inline void macro_gauss3(uint64_t seed, uint64_t step, uint64_t a, uint64
     out[1] = r1 * sin(tp * u[1]);
     out[2] = r2 * cos(tp * u[3]);
 }
+
+/** Cubic elastic constants of the perfect FCC lattice of pair @p w. */
+struct macro_fcc_constants {
+    double c11, c12, c44; /**< Born term [Pa] */
+    double pressure;      /**< residual pressure at r0 [Pa] (0 with the first shell only) */
+    double e100, nu100;   /**< Young's modulus and Poisson's ratio along [100] */
+    int neighbours;       /**< sites inside the cut-off */
+};
+
+/** Lattice sum over every FCC site inside w->r_c (macro_lattice.c). */
+int macro_fcc_elastic(const struct macro_pair *w, struct macro_fcc_constants *out,
+                      struct spall_error *err);
 
 int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);
 int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err);

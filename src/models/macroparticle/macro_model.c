@@ -24,6 +24,12 @@
  *     eta_cg: coarse-graining factor of the random force (default 1; the
  *             bath then holds eta_cg^2 T)
  *     axis: x | y | z: loading axis of the history's strain (default z)
+ *     calibration: eq15 | lattice (default eq15).  eq15: the seed's well
+ *             depth D = P_atom/6 (Eq. 13); the FCC crystal of these pairs is
+ *             1.886 x stiffer along [100] than Eq. 15 says.  lattice: D scaled
+ *             so that E_[100] of the FCC lattice (Cauchy-Born sum over every
+ *             shell inside the cut-off) equals the material's youngs_modulus,
+ *             default Eq. 15's E (macro_lattice.c)
  *
  *   materials:
  *     <name>:
@@ -35,19 +41,25 @@
  *       yield_strain: pair elastic stretch at yield / r0 (> 0; optional,
  *                     turns plasticity on)
  *       hardening: plastic / elastic pair tangent in [0, 1) (default 0.1)
+ *       youngs_modulus: target E_[100] [Pa] of calibration: lattice (> 0;
+ *                       default Eq. 15's E; refused with calibration: eq15)
  *
  * The lattice must be fcc (3D): r0 = lattice.spacing.  One material per
  * run (the pair shape of material 0 is used; a second material is refused).
  *
  * Fields: stress [Pa] (virial, tension positive, xx yy zz xy yz xz),
  * strain_energy [J] (half the pair energies of the particle), plastic_slip
- * [m] (sum of the accumulated slip of its pairs, halved).
+ * [m] (sum of the accumulated slip of its pairs, halved), centro_symmetry
+ * [1] and slip_vector [m], slip_normal [1] (macro_slip.c).
  * History: strain (axial, from the mean positions of the end layers),
  * lateral_strain (RMS transverse spread of the middle half), stress_axial,
+ * stress_nominal (axial virial / (V0 (1 + strain)) = axial force over the
+ * reference section: the engineering stress of a tensile test),
  * stress_xx, stress_yy, stress_zz (specimen virial average, Pa),
  * kinetic_temperature [K], plastic_pairs, neighbor_builds.
  */
 #include "models/macroparticle/macro_internal.h"
+#include "models/macroparticle/macro_slip.h"
 
 #include "core/fields.h"
 #include "core/neighbor.h"
@@ -70,6 +82,7 @@ static void macro_destroy(struct model **pm)
     struct model *m = *pm;
     free(m->mat);
     neighbor_list_destroy(&m->nl);
+    neighbor_list_destroy(&m->nl0);
     for (int d = 0; d < 3; d++)
         free(m->xb[d]);
     free(m->dr0);
@@ -90,7 +103,8 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
 {
     static const char *const keys[] = {"type", "cutoff", "taper", "skin", "damping",
                                        "temperature", "gamma", "mu", "zeta_cg", "eta_cg", "axis",
-                                       NULL};
+                                       "calibration", NULL};
+    static const char *const cals[] = {"eq15", "lattice", NULL};
     static const char *const damps[] = {"none", "absolute", "pairwise", NULL};
     static const char *const axes[] = {"x", "y", "z", NULL};
     (void)sim;
@@ -105,7 +119,7 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
     m->zeta_cg = 1.0;
     m->eta_cg = 1.0;
     m->axis = 2;
-    int damp = 0, ax = 2, rc = 0;
+    int damp = 0, ax = 2, cal = 0, rc = 0;
     if (params) {
         if ((rc = deck_double(params, "cutoff", false, 1.05, 3.0, &m->cutoff_ratio, err)) ||
             (rc = deck_double(params, "taper", false, 1.0, 3.0, &m->taper_ratio, err)) ||
@@ -117,6 +131,7 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
             (rc = deck_double_pos(params, "zeta_cg", false, &m->zeta_cg, err)) ||
             (rc = deck_double_pos(params, "eta_cg", false, &m->eta_cg, err)) ||
             (rc = deck_enum(params, "axis", false, axes, &ax, err)) ||
+            (rc = deck_enum(params, "calibration", false, cals, &cal, err)) ||
             (rc = deck_check_unused(params, "model", keys, err))) {
             macro_destroy(&m);
             return rc;
@@ -137,6 +152,7 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
     }
     m->damping = (enum macro_damping)damp;
     m->axis = ax;
+    m->calibration = cal ? MACRO_CAL_LATTICE : MACRO_CAL_EQ15;
     *out = m;
     return SPALL_OK;
 }
@@ -146,7 +162,7 @@ static int macro_parse_material(struct model *m, struct sim *sim, int index,
 {
     static const char *const keys[] = {"density", "atomic_mass_u", "cohesive_energy_ev",
                                        "exponents", "debye_temperature", "yield_strain",
-                                       "hardening", NULL};
+                                       "hardening", "youngs_modulus", NULL};
     char what[SPALL_NAME_LEN + 16];
     snprintf(what, sizeof what, "materials.%s", sim->materials[index].name);
     if (index != 0)
@@ -163,8 +179,12 @@ static int macro_parse_material(struct model *m, struct sim *sim, int index,
         (rc = deck_double_pos(node, "debye_temperature", false, &mt.theta_d, err)) ||
         (rc = deck_double_pos(node, "yield_strain", false, &mt.yield_strain, err)) ||
         (rc = deck_double(node, "hardening", false, 0.0, 0.99, &mt.hardening, err)) ||
+        (rc = deck_double_pos(node, "youngs_modulus", false, &mt.e_target, err)) ||
         (rc = deck_check_unused(node, what, keys, err)))
         return rc;
+    if (mt.e_target > 0.0 && m->calibration != MACRO_CAL_LATTICE)
+        return deck_error_key(err, node, "youngs_modulus", "youngs_modulus is the target of "
+                              "model.calibration: lattice (eq15 takes E from Eq. 15)");
     if (!(pq[0] > 0.0) || !(pq[1] > pq[0]))
         return deck_error_key(err, node, "exponents", "exponents [%g, %g]; expected [p, q] with "
                               "q > p > 0 (attractive p, repulsive q)", pq[0], pq[1]);
@@ -263,6 +283,10 @@ static int macro_init(struct model *m, struct sim *sim, struct spall_error *err)
     c->p = mt->p;
     c->q = mt->q;
     c->r0 = sim->lattice.spacing;
+    c->mode = m->calibration;
+    c->e_target = mt->e_target;
+    c->taper = m->taper_ratio;
+    c->cutoff = m->cutoff_ratio;
     int rc = macro_calibrate(c, err);
     if (rc)
         return rc;
@@ -306,7 +330,8 @@ static int macro_init(struct model *m, struct sim *sim, struct spall_error *err)
     m->volume = 0.0;
     for (size_t i = 0; i < p->n_owned; i++)
         m->volume += p->volume[i];
-    if ((rc = macro_neighbors_update(m, sim, true, err)) || (rc = gauge_init(m, sim, err)))
+    if ((rc = macro_neighbors_update(m, sim, true, err)) || (rc = gauge_init(m, sim, err)) ||
+        (rc = neighbor_list_build(&m->nl0, 3, p->n_owned, p->x0, 1.1 * c->r0, err)))
         return rc;
     m->gauge0 = layer_mean(p->x0[m->axis], m->hi_idx, m->n_hi) -
                 layer_mean(p->x0[m->axis], m->lo_idx, m->n_lo);
@@ -343,6 +368,26 @@ static void field_slip(const void *ctx, size_t n, double *out)
     }
 }
 
+static void field_csp(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    macro_centro_symmetry(n, m->sim->p->x, m->nl, m->pp.r0, out);
+}
+
+/* slip threshold 0.25 r0: above elastic relative displacements (a few % of
+ * r0), below a partial Burgers vector r0/sqrt3 */
+static void field_slip_vector(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    macro_slip_vectors(n, m->sim->p->x, m->sim->p->x0, m->nl0, 0.25 * m->pp.r0, out, NULL, NULL);
+}
+
+static void field_slip_normal(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    macro_slip_vectors(n, m->sim->p->x, m->sim->p->x0, m->nl0, 0.25 * m->pp.r0, NULL, out, NULL);
+}
+
 static int macro_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
                                  struct spall_error *err)
 {
@@ -351,7 +396,13 @@ static int macro_register_fields(struct model *m, struct sim *sim, struct field_
     if ((rc = field_registry_add_computed(reg, "stress", "Pa", 6, FIELD_OUTPUT | FIELD_DEFAULT, field_stress, m,
                            err)) ||
         (rc = field_registry_add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_energy, m, err)) ||
-        (rc = field_registry_add_computed(reg, "plastic_slip", "m", 1, FIELD_OUTPUT, field_slip, m, err)))
+        (rc = field_registry_add_computed(reg, "plastic_slip", "m", 1, FIELD_OUTPUT, field_slip, m, err)) ||
+        (rc = field_registry_add_computed(reg, "centro_symmetry", "1", 1, FIELD_OUTPUT, field_csp, m,
+                                          err)) ||
+        (rc = field_registry_add_computed(reg, "slip_vector", "m", 3, FIELD_OUTPUT,
+                                          field_slip_vector, m, err)) ||
+        (rc = field_registry_add_computed(reg, "slip_normal", "1", 3, FIELD_OUTPUT,
+                                          field_slip_normal, m, err)))
         return rc;
     return SPALL_OK;
 }
@@ -438,6 +489,8 @@ static size_t macro_history(const struct model *m, const struct sim *sim, const 
     values[k++] = m->spread0 > 0.0 ? band_spread(m, p->x, sim->dim) / m->spread0 - 1.0 : 0.0;
     names[k] = "stress_axial";
     values[k++] = s[a] / m->volume;
+    names[k] = "stress_nominal";
+    values[k++] = s[a] / (m->volume * (len / m->gauge0));
     names[k] = "stress_xx";
     values[k++] = s[0] / m->volume;
     names[k] = "stress_yy";
@@ -459,11 +512,14 @@ static void macro_describe(const struct model *m, const struct sim *sim, char *b
     (void)sim;
     snprintf(buf, len,
              "macro-particle model (seed 001): fcc r0 = %g m, p = %g, q = %g; N_atom = %.6g "
-             "(Eq. 11), P_atom = %.6g J (Eq. 10), D = P_atom/6 = %.6g J, phi''(r0) = %.6g N/m, "
-             "particle mass %.6g kg, E (Eq. 15) = %.6g Pa, E_fcc[100] = %.6g Pa; cut-off %g r0 "
+             "(Eq. 11), P_atom = %.6g J (Eq. 10), D = %.6g J, phi''(r0) = %.6g N/m, "
+             "particle mass %.6g kg, E (Eq. 15) = %.6g Pa; calibration %s: D = %.6g x P_atom/6, "
+             "lattice E_[100] = %.6g Pa, nu_[100] = %.4g, residual pressure %.3g Pa; cut-off %g r0 "
              "(taper from %g r0), skin %g r0; damping %s (gamma %.4g kg/s, mu %.4g kg/s), T = %g "
              "K, eta_cg %g; plasticity %s\n",
-             c->r0, c->p, c->q, c->n_atom, c->p_atom, c->D, c->k, c->mass, c->E, c->E_fcc100,
+             c->r0, c->p, c->q, c->n_atom, c->p_atom, c->D, c->k, c->mass, c->E,
+             c->mode == MACRO_CAL_LATTICE ? "lattice" : "eq15", c->d_scale, c->E_fcc100,
+             c->nu_fcc100, c->pressure,
              m->cutoff_ratio, m->taper_ratio, m->skin_ratio,
              m->damping == MACRO_DAMP_NONE ? "none"
              : m->damping == MACRO_DAMP_ABSOLUTE ? "absolute" : "pairwise",
