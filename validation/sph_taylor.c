@@ -13,6 +13,11 @@
  * thesis cannot resolve the rod).  Melting temperature: 1793 K (4340 steel,
  * Johnson & Cook 1985) instead of the printed 1293 K.  Linear EOS with
  * K = 169.1 GPa (pressures stay below 2 GPa at 181 m/s).
+ * The bar is a quarter model (x, y >= 0, mirror planes x = 0 and y = 0,
+ * sph_symmetry.c): same result as the full bar to round-off, 1/4 the cost.
+ * Final length = the bar's axial extent at 90 us: it rebounds from the
+ * wall at ~19 m/s after ~35 us, so the position of its top alone (used
+ * before) overstated the length by up to 3.5 %.
  */
 #include "validation/lattice_cases.h"
 #include "validation/sph_cases.h"
@@ -88,7 +93,7 @@ int sph_taylor3d_run(int n, bool quarter, double *len, double *rad, size_t *np, 
 int sph_case_taylor3d(struct vreport *r, struct spall_error *err)
 {
     static const int series[3] = {8, 12, 16};
-    const int first = r->quick ? 0 : 0, last = r->quick ? 0 : 2;
+    const int first = 0, last = r->quick ? 0 : 2;
     double len[3] = {NAN, NAN, NAN}, rad[3] = {NAN, NAN, NAN};
     for (int k = first; k <= last; k++) {
         size_t np = 0;
@@ -108,11 +113,13 @@ int sph_case_taylor3d(struct vreport *r, struct spall_error *err)
         return rc;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: see docs/validation.md (frictionless penalty wall, linear EOS)");
-    if (last > first)
-        vreport_info(r, "convergence: length change between the two finest dx = %.2f %%",
-                     fabs(len[last] - len[last - 1]) / len[last] * 100.0);
-    vreport_info(r, "mushroom radius %.3f mm (thesis: its Wendland value is 4.4 %% from the "
-                 "experiment of House et al.; LS-DYNA/MSPH radii in Table 3.6)",
+    if (last > first &&
+        (rc = vreport_check(r, "final length change, two finest dx", "1", 0.0,
+                            fabs(len[last] - len[last - 1]) / len[last], 0.005, false,
+                            "convergence in dx", "0.5 %: a quarter of the 2 % target", err)))
+        return rc;
+    vreport_info(r, "mushroom radius %.3f mm (R0 = 3.80 mm; no tabulated reference radius: the "
+                 "thesis, MSPH and LS-DYNA radii are only plotted, Fig. 3.16)",
                  R * 1e3);
     return SPALL_OK;
 }

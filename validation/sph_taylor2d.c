@@ -93,8 +93,9 @@ int sph_taylor2d_run(int n, double t1, double t2, struct sph_taylor2d_result *ou
                 if (p->x0[1][i] < 1.5 * dx)
                     rmax = fmax(rmax, p->x[0][i]);
                 /* the undeformed part: particles of the axis column that
-                 * never yielded; X runs from the lowest one to the end */
-                if (p->x0[0][i] < dx && m->ep[i] < 1e-3)
+                 * stayed below 0.2 % plastic strain (the engineering offset
+                 * yield); X runs from the lowest one to the end */
+                if (p->x0[0][i] < dx && m->ep[i] < 2e-3)
                     ylow = fmin(ylow, p->x[1][i]);
             }
             out->len[stage] = ymax - ymin + dx;
@@ -149,6 +150,9 @@ int sph_case_taylor2d(struct vreport *r, struct spall_error *err)
                                 false, "convergence (no published length for this set-up)",
                                 "1 %: the 3D case's target accuracy", err)))
             return rc;
+        if (!r->checks[r->n - 1].pass)
+            vreport_mark_gap(r, "GAP: the length still falls ~1.6 % per refinement (n = 32 -> "
+                                "48); see docs/validation.md");
     }
     double sT = taylor_stress(f->len[1], f->undeformed[1]);
     if ((rc = vreport_check(r, "Taylor (1948) flow stress from L and X", "Pa",
