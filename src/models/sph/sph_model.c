@@ -551,8 +551,12 @@ static void sph_describe(const struct model *m, const struct sim *sim, char *buf
 
 static size_t sph_interactions(const struct model *m, const struct sim *sim)
 {
-    (void)sim;
-    return m->nl ? m->nl->offset[m->nl->n] / 2 : 0;
+    /* rows of real particles only (with symmetry planes the list also
+     * holds the ghosts' rows, which are never used) */
+    if (!m->nl)
+        return 0;
+    size_t n = sim->p->n_owned < m->nl->n ? sim->p->n_owned : m->nl->n;
+    return m->nl->offset[n] / 2;
 }
 
 const struct model_ops sph_model_ops = {
