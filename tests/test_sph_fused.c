@@ -5,7 +5,8 @@
  *        agree to 1e-12 of the size after 40 steps), in 2D with artificial
  *        stress and the generic kernel path and in 3D with the Wendland fast
  *        path; and symmetry planes: a quarter Taylor bar with mirror planes
- *        x = 0, y = 0 reproduces the full bar's quarter (1e-9 of the size).
+ *        x = 0, y = 0 reproduces the full bar's quarter (1e-9 of the size),
+ *        bitwise the same on 1 and 2 threads.
  */
 #include "core/particles.h"
 #include "core/sim.h"
@@ -19,6 +20,7 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -161,12 +163,33 @@ static void test_quarter_symmetry(void **state)
     sim_destroy(&q);
 }
 
+/* Ghost filling and the fused loop run in parallel: the quarter bar must
+ * give bitwise the same positions on 1 and 2 threads. */
+static void test_symmetry_threads(void **state)
+{
+    (void)state;
+    char y[2048];
+    snprintf(y, sizeof y, BAR3D, "fused", "xy", QUARTER);
+    omp_set_num_threads(1);
+    struct sim *a = build(y);
+    assert_non_null(a);
+    run(a);
+    omp_set_num_threads(2);
+    struct sim *b = build(y);
+    assert_non_null(b);
+    run(b);
+    assert_true(max_diff(a, b) == 0.0);
+    sim_destroy(&a);
+    sim_destroy(&b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fused_vs_split_2d),
         cmocka_unit_test(test_fused_vs_split_3d),
         cmocka_unit_test(test_quarter_symmetry),
+        cmocka_unit_test(test_symmetry_threads),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
