@@ -77,9 +77,70 @@ static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
     return rc;
 }
 
+/* 2D plane strain: the two rubber rings of validation/sph_rings.c (Gray
+ * et al. 2001), cubic spline h = 1.5 dx, AV, artificial stress 0.3 (the
+ * 2D path with AS, i.e. the most expensive pair loop), dx = 0.5 mm. */
+static int bench_sph_rings(int threads, double scale, struct bench_result *out,
+                           struct spall_error *err)
+{
+    omp_set_num_threads(threads);
+    const double dx = 0.5e-3 / sqrt(scale > 0.0 ? scale : 1.0);
+    const long steps = 200;
+    char yaml[3072];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: sph, kernel: cubic_spline, h_factor: 1.5, viscosity: [1.0, 1.0],\n"
+             "        artificial_stress: 0.3, plane: strain, adaptive_dt: false}\n"
+             "materials: {rubber: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3975}}\n"
+             "lattice: {type: square, spacing: %.17g, origin: [%.17g, %.17g]}\n"
+             "body: {geometry: {union: [\n"
+             "  {difference: [{circle: {center: [-0.041, 0], radius: 0.04}},\n"
+             "                {circle: {center: [-0.041, 0], radius: 0.03}}]},\n"
+             "  {difference: [{circle: {center: [0.041, 0], radius: 0.04}},\n"
+             "                {circle: {center: [0.041, 0], radius: 0.03}}]}]},\n"
+             "       material: rubber}\n"
+             "groups: {left: {box: {min: [-1, -1], max: [0, 1]}}}\n"
+             "initial_velocity: [{group: left, value: [7.5, 0]}]\n"
+             "run: {steps: %ld}\n",
+             dx, 0.5 * dx, 0.5 * dx, steps);
+    struct deck *d = NULL;
+    struct sim *s = NULL;
+    struct run_output ro;
+    int rc = deck_load_string(&d, "sph_rings_2d", yaml, err);
+    if (!rc)
+        rc = deck_build_sim(d, &s, &ro, err);
+    deck_destroy(&d);
+    if (rc)
+        return rc;
+    double rss = bench_rss_bytes();
+    const double tn0 = s->model->t_neighbor;
+    double t0 = omp_get_wtime();
+    while (!sim_done(s) && !rc)
+        rc = sim_step(s, err);
+    double wall = omp_get_wtime() - t0;
+    memset(out, 0, sizeof *out);
+    snprintf(out->name, sizeof out->name, "sph_rings_2d");
+    out->threads = threads;
+    out->particles = s->p->n_owned;
+    out->bonds = s->ops->interactions(s->model, s);
+    out->steps = s->step;
+    out->seconds = wall;
+    out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
+    out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
+    out->bytes_per_particle = rss / (double)out->particles;
+    snprintf(out->note, sizeof out->note,
+             "2D rings dx = %.3g mm, %.1f neighbours/particle (listed, with skin), neighbour "
+             "search %.1f %% of wall time",
+             dx * 1e3, 2.0 * (double)out->bonds / (double)out->particles,
+             100.0 * (s->model->t_neighbor - tn0) / wall);
+    sim_destroy(&s);
+    return rc;
+}
+
 /* SPH cases, listed by bench/cases.c. */
 const struct bench_case bench_sph_cases[] = {
     {"sph_taylor_cu", "3D copper Taylor bar (LAMMPS race), dx = 0.4 mm, 200 steps",
      bench_sph_taylor},
+    {"sph_rings_2d", "2D rubber rings (Gray et al. 2001), artificial stress, dx = 0.5 mm, 200 steps",
+     bench_sph_rings},
 };
 const size_t bench_sph_n_cases = sizeof bench_sph_cases / sizeof bench_sph_cases[0];

@@ -7,6 +7,9 @@
 #ifndef SPALL_VALIDATION_SPH_CASES_H
 #define SPALL_VALIDATION_SPH_CASES_H
 
+#include <stdbool.h>
+#include <stddef.h>
+
 struct vreport;
 struct spall_error;
 
@@ -19,5 +22,41 @@ int sph_case_beam(struct vreport *r, struct spall_error *err);
 int sph_case_plate(struct vreport *r, struct spall_error *err);
 /** "sph-taylor-3d": 4340 steel Taylor bar, 181 m/s, Johnson-Cook (Table 3.6). */
 int sph_case_taylor3d(struct vreport *r, struct spall_error *err);
+
+/** One 3D Taylor-bar run (n particles across; quarter model with mirror
+ *  planes when @p quarter): final length, mushroom radius [m], particle
+ *  count, wall seconds. */
+int sph_taylor3d_run(int n, bool quarter, double *len, double *rad, size_t *np, double *secs,
+                     struct spall_error *err);
+
+/** Outcome of one 2D Taylor-rod run (sph_taylor2d.c): [0] at t1, [1] at t2. */
+struct sph_taylor2d_result {
+    double len[2], rad[2], undeformed[2]; /**< final length, foot radius, undeformed length [m] */
+    double v_end;                         /**< mean axial velocity at t2 [m/s] */
+    size_t particles;
+    double seconds;
+};
+/** "sph-taylor-2d": iron rod of seed 004 Table 3.5 (Libersky & Petschek). */
+int sph_case_taylor2d(struct vreport *r, struct spall_error *err);
+/** One 2D rod run with @p n particles across the diameter, sampled at t1 and t2. */
+int sph_taylor2d_run(int n, double t1, double t2, struct sph_taylor2d_result *out,
+                     struct spall_error *err);
+
+/** Time the rings case runs: contact, rebound and separation. */
+#define SPH_RINGS_END_TIME 1.0e-2
+
+/** Outcome of one rubber-ring collision (sph_rings.c). */
+struct sph_rings_result {
+    size_t particles, components, singles;
+    double v0, v_left, v_right;     /**< initial speed, final ring v_cm [m/s] */
+    double balance_max, balance_end; /**< |E_kin + E_int - E_0| / E_0 */
+    double kinetic_end;             /**< E_kin / E_0 at the end */
+    double seconds;
+};
+/** "sph-rings": two rubber rings collide and rebound (Gray et al. 2001). */
+int sph_case_rings(struct vreport *r, struct spall_error *err);
+/** One collision with spacing @p dx until @p end_time. */
+int sph_rings_run(double dx, double end_time, struct sph_rings_result *out,
+                  struct spall_error *err);
 
 #endif

@@ -13,6 +13,11 @@
  * thesis cannot resolve the rod).  Melting temperature: 1793 K (4340 steel,
  * Johnson & Cook 1985) instead of the printed 1293 K.  Linear EOS with
  * K = 169.1 GPa (pressures stay below 2 GPa at 181 m/s).
+ * The bar is a quarter model (x, y >= 0, mirror planes x = 0 and y = 0,
+ * sph_symmetry.c): same result as the full bar to round-off, 1/4 the cost.
+ * Final length = the bar's axial extent at 90 us: it rebounds from the
+ * wall at ~19 m/s after ~35 us, so the position of its top alone (used
+ * before) overstated the length by up to 3.5 %.
  */
 #include "validation/lattice_cases.h"
 #include "validation/sph_cases.h"
@@ -25,17 +30,28 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdbool.h>
 #include <stdio.h>
 
-/** Run the bar with @p n particles across; final length and radius [m]. */
-static int taylor_run(int n, double *len, double *rad, size_t *np, double *secs,
-                      struct spall_error *err)
+/** Run the bar with @p n particles across (a quarter with mirror planes
+ *  x = 0 and y = 0 when @p quarter); final length and radius [m]. */
+int sph_taylor3d_run(int n, bool quarter, double *len, double *rad, size_t *np, double *secs,
+                     struct spall_error *err)
 {
     const double D0 = 7.595e-3, dx = D0 / n, L0 = 5.0 * D0;
-    char deck[3072];
+    char deck[3072], geom[512];
+    if (quarter)
+        snprintf(geom, sizeof geom,
+                 "{intersection: [{cylinder: {base: [0, 0, 0], top: [0, 0, %.17g], radius: "
+                 "%.17g}}, {box: {min: [0, 0, -1], max: [1, 1, 1]}}]}",
+                 L0, 0.5 * D0);
+    else
+        snprintf(geom, sizeof geom,
+                 "{cylinder: {base: [0, 0, 0], top: [0, 0, %.17g], radius: %.17g}}", L0,
+                 0.5 * D0);
     snprintf(deck, sizeof deck,
              "model: {type: sph, kernel: wendland, h_factor: 1.5, viscosity: [1.5, 1.5],\n"
-             "        xsph: 0.1, wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
+             "        xsph: 0.1, wall: {point: [0, 0, 0], normal: [0, 0, 1]}, symmetry: %s}\n"
              "materials:\n"
              "  steel4340: {density: 7830, bulk_modulus: 169.1e9, shear_modulus: 89.2e9,\n"
              "              yield: johnson_cook, yield_a: 792.0e6, yield_b: 510.0e6,\n"
@@ -43,11 +59,10 @@ static int taylor_run(int n, double *len, double *rad, size_t *np, double *secs,
              "              room_temperature: 293, reference_strain_rate: 1.0,\n"
              "              specific_heat: 477, taylor_quinney: 0.9}\n"
              "lattice: {type: sc, spacing: %.17g, origin: [%.17g, %.17g, %.17g]}\n"
-             "body: {geometry: {cylinder: {base: [0, 0, 0], top: [0, 0, %.17g], radius: %.17g}},\n"
-             "       material: steel4340}\n"
+             "body: {geometry: %s, material: steel4340}\n"
              "initial_velocity: [{group: all, value: [0, 0, -181.0]}]\n"
              "run: {end_time: 9.0e-5, dt_factor: 0.3}\n",
-             dx, 0.5 * dx, 0.5 * dx, 0.5 * dx, L0, 0.5 * D0);
+             quarter ? "xy" : "none", dx, 0.5 * dx, 0.5 * dx, 0.5 * dx, geom);
     struct sim *s = NULL;
     int rc = vlat_build("sph_taylor3d", deck, &s, err);
     if (rc)
@@ -58,13 +73,17 @@ static int taylor_run(int n, double *len, double *rad, size_t *np, double *secs,
             break;
     *secs = omp_get_wtime() - t0;
     const struct particles *p = s->p;
-    double zmax = -INFINITY, rmax = 0.0;
-    for (size_t i = 0; i < p->n; i++)
+    /* length = extent along the axis: the bar rebounds from the wall
+     * (~20 m/s) and flies off, so its top alone keeps rising */
+    double zmax = -INFINITY, zmin = INFINITY, rmax = 0.0;
+    for (size_t i = 0; i < p->n; i++) {
         zmax = fmax(zmax, p->x[2][i]);
+        zmin = fmin(zmin, p->x[2][i]);
+    }
     for (size_t i = 0; i < p->n; i++)
         if (p->x0[2][i] < 1.5 * dx) /* the impact face's particles */
             rmax = fmax(rmax, hypot(p->x[0][i], p->x[1][i]));
-    *len = zmax + 0.5 * dx;
+    *len = zmax - zmin + dx;
     *rad = rmax + 0.5 * dx;
     *np = p->n;
     sim_destroy(&s);
@@ -74,12 +93,12 @@ static int taylor_run(int n, double *len, double *rad, size_t *np, double *secs,
 int sph_case_taylor3d(struct vreport *r, struct spall_error *err)
 {
     static const int series[3] = {8, 12, 16};
-    const int first = r->quick ? 0 : 0, last = r->quick ? 0 : 2;
+    const int first = 0, last = r->quick ? 0 : 2;
     double len[3] = {NAN, NAN, NAN}, rad[3] = {NAN, NAN, NAN};
     for (int k = first; k <= last; k++) {
         size_t np = 0;
         double secs = 0.0;
-        int rc = taylor_run(series[k], &len[k], &rad[k], &np, &secs, err);
+        int rc = sph_taylor3d_run(series[k], true, &len[k], &rad[k], &np, &secs, err);
         if (rc)
             return rc;
         vreport_info(r, "Taylor bar, %d across (%zu particles, dx = %.4g mm): final length "
@@ -94,11 +113,13 @@ int sph_case_taylor3d(struct vreport *r, struct spall_error *err)
         return rc;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: see docs/validation.md (frictionless penalty wall, linear EOS)");
-    if (last > first)
-        vreport_info(r, "convergence: length change between the two finest dx = %.2f %%",
-                     fabs(len[last] - len[last - 1]) / len[last] * 100.0);
-    vreport_info(r, "mushroom radius %.3f mm (thesis: its Wendland value is 4.4 %% from the "
-                 "experiment of House et al.; LS-DYNA/MSPH radii in Table 3.6)",
+    if (last > first &&
+        (rc = vreport_check(r, "final length change, two finest dx", "1", 0.0,
+                            fabs(len[last] - len[last - 1]) / len[last], 0.005, false,
+                            "convergence in dx", "0.5 %: a quarter of the 2 % target", err)))
+        return rc;
+    vreport_info(r, "mushroom radius %.3f mm (R0 = 3.80 mm; no tabulated reference radius: the "
+                 "thesis, MSPH and LS-DYNA radii are only plotted, Fig. 3.16)",
                  R * 1e3);
     return SPALL_OK;
 }

@@ -23,7 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/** Rows longer than this are sorted with qsort instead of insertion sort. */
+/** Rows up to this length are sorted by plain insertion sort. */
 #define NEIGHBOR_INSERTION_MAX 48
 
 /** Squared distance, written once so the cell list and the brute force
@@ -43,26 +43,25 @@ static inline double pair_r2(int dim, const double *xi, double *const xs[3], siz
     return r2;
 }
 
-static int cmp_i32(const void *a, const void *b)
-{
-    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-    return (x > y) - (x < y);
-}
-
+/* Shell sort (Ciura's gaps) for long rows: glibc's qsort is a merge sort
+ * through a comparison function pointer and memcpy per element, which
+ * cost 6-10 % of an SPH run whose rows hold 150-300 partners (perf). */
 static void sort_row(int32_t *v, size_t m)
 {
-    if (m > NEIGHBOR_INSERTION_MAX) {
-        qsort(v, m, sizeof *v, cmp_i32);
-        return;
-    }
-    for (size_t a = 1; a < m; a++) {
-        int32_t key = v[a];
-        size_t b = a;
-        while (b > 0 && v[b - 1] > key) {
-            v[b] = v[b - 1];
-            b--;
+    static const size_t gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
+    for (size_t g = 0; g < sizeof gaps / sizeof gaps[0]; g++) {
+        const size_t gap = gaps[g];
+        if (gap >= m || (gap > 1 && m <= NEIGHBOR_INSERTION_MAX))
+            continue;
+        for (size_t a = gap; a < m; a++) {
+            int32_t key = v[a];
+            size_t b = a;
+            while (b >= gap && v[b - gap] > key) {
+                v[b] = v[b - gap];
+                b -= gap;
+            }
+            v[b] = key;
         }
-        v[b] = key;
     }
 }
 

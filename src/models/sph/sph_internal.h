@@ -45,7 +45,17 @@ struct sph_options {
     bool wall;              /**< rigid half-space wall (penalty) */
     double wall_point[3], wall_normal[3]; /**< normal points into the body side */
     double wall_stiffness;  /**< penalty k = factor m (c/dx)^2 */
+    bool split_pairs;       /**< force the two-pass loops of sph_rates.c (verification) */
+    bool symmetry[3];       /**< mirror plane x_d = 0 (ghost particles, sph_symmetry.c) */
 };
+
+/** Read-only per-particle data the fused pair loop gathers over j: the
+ *  model's own arrays, or real + mirrored ghost particles (symmetry). */
+struct sph_pair_src {
+    size_t n_all;
+    const double *x[3], *v[3], *h, *rho, *c, *m2, *dx, *sr[6], *R[6];
+};
+struct sph_sym;
 
 struct sph_material {
     bool parsed;
@@ -87,6 +97,7 @@ struct model {
     double *Bi[9];         /**< inverse CSPM matrix (identity on fallback) */
     double *sig[6];        /**< total stress (tension positive) + artificial stress */
     double *R[6];          /**< artificial stress tensor R_i */
+    double *sr[6];         /**< sigma / rho^2 (fused pair loop, sph_fused.c) */
     double *xv[3];         /**< XSPH velocity correction */
     double *x_build[3];    /**< positions at the last neighbour build */
     double *wp;            /**< plastic work per particle [J] */
@@ -95,6 +106,7 @@ struct model {
     double wall_energy;    /**< penalty energy [J] */
     double wall_force[3];  /**< total wall force [N] */
 
+    struct sph_sym *sym;   /**< symmetry-plane ghosts (NULL: none) */
     struct neighbor_list *nl;
     double nl_radius;
     size_t n_builds;
@@ -108,6 +120,22 @@ struct model {
 int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err);
 /** All rates of the current state: drho, de, dS, accelerations into sim->p->f. */
 int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err);
+
+/** Principal-axes artificial stress R_i of particle i from m->sig (Eqs. 2.25-2.27). */
+void sph_artificial_stress(struct model *m, size_t i);
+
+/* sph_fused.c */
+/** One-pass rates (no CSPM, continuity density): same equations as the
+ *  split passes of sph_compute_rates, one gather per pair. */
+int sph_rates_fused(struct model *m, struct sim *s, struct spall_error *err);
+
+/* sph_symmetry.c */
+/** Refresh the mirrored ghosts (and the neighbour list over real + ghost
+ *  particles when particles moved more than half the skin); fill @p src. */
+int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src,
+                        struct spall_error *err);
+/** Free the ghost state; sets *sym to NULL. */
+void sph_symmetry_destroy(struct sph_sym **sym);
 
 /* sph_tlsph.c */
 /** Reference neighbour list and corrected reference gradients (B0^-1). */

@@ -84,6 +84,7 @@ static size_t sph_arrays(struct model *m, double **a[SPH_N_ARRAYS])
         a[k++] = &m->dS_n[c];
         a[k++] = &m->sig[c];
         a[k++] = &m->R[c];
+        a[k++] = &m->sr[c];
     }
     for (int c = 0; c < 9; c++) {
         a[k++] = &m->L[c];
@@ -113,6 +114,7 @@ static void sph_destroy(struct model **pm)
     free(m->failed);
     free(m->pinned);
     free(m->mat);
+    sph_symmetry_destroy(&m->sym);
     neighbor_list_destroy(&m->nl);
     free(m);
     *pm = NULL;
@@ -126,11 +128,13 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     static const char *const dens[] = {"continuity", "summation", NULL};
     static const char *const planes[] = {"stress", "strain", NULL};
     static const char *const forms[] = {"updated", "total", NULL};
+    static const char *const loops[] = {"fused", "split", NULL};
+    static const char *const syms[] = {"none", "x", "y", "xy", NULL};
     static const char *const keys[] = {"type", "kernel", "h_factor", "density", "cspm",
                                        "viscosity", "artificial_stress", "artificial_stress_n",
                                        "xsph", "variable_h", "plane", "skin", "adaptive_dt",
                                        "formulation", "hourglass",
-                                       "wall", NULL};
+                                       "wall", "pair_loop", "symmetry", NULL};
     *out = NULL;
     if (sim->dim < 2)
         return spall_error_set(err, SPALL_ERR_INPUT,
@@ -148,7 +152,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     o.hourglass = 0.1;
     bool adaptive = true;
     if (params) {
-        int kern = 3, den = 0, pl = 1, form = 0, rc;
+        int kern = 3, den = 0, pl = 1, form = 0, loop = 0, sym = 0, rc;
         double av[2] = {o.av_a, o.av_b};
         if ((rc = deck_enum(params, "kernel", false, kernels, &kern, err)) ||
             (rc = deck_double(params, "h_factor", false, 0.5, 4.0, &o.h_factor, err)) ||
@@ -163,8 +167,20 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_double(params, "skin", false, 0.0, 2.0, &o.skin, err)) ||
             (rc = deck_bool(params, "adaptive_dt", false, &adaptive, err)) ||
             (rc = deck_enum(params, "formulation", false, forms, &form, err)) ||
-            (rc = deck_double(params, "hourglass", false, 0.0, 10.0, &o.hourglass, err)))
+            (rc = deck_double(params, "hourglass", false, 0.0, 10.0, &o.hourglass, err)) ||
+            (rc = deck_enum(params, "pair_loop", false, loops, &loop, err)) ||
+            (rc = deck_enum(params, "symmetry", false, syms, &sym, err)))
             return rc;
+        o.split_pairs = loop == 1;
+        o.symmetry[0] = sym == 1 || sym == 3;
+        o.symmetry[1] = sym == 2 || sym == 3;
+        if (sym == 3 && sim->dim < 3)
+            return deck_error_key(err, params, "symmetry",
+                                  "symmetry xy needs 3D (in 2D use x or y)");
+        if (sym && (form == 1 || o.cspm || den == 1))
+            return deck_error_key(err, params, "symmetry",
+                                  "symmetry planes work with the fused loop only: updated "
+                                  "formulation, continuity density, no cspm");
         o.total_lagrangian = form == 1;
         if (av[0] < 0.0 || av[1] < 0.0)
             return deck_error_key(err, params, "viscosity",
@@ -535,8 +551,12 @@ static void sph_describe(const struct model *m, const struct sim *sim, char *buf
 
 static size_t sph_interactions(const struct model *m, const struct sim *sim)
 {
-    (void)sim;
-    return m->nl ? m->nl->offset[m->nl->n] / 2 : 0;
+    /* rows of real particles only (with symmetry planes the list also
+     * holds the ghosts' rows, which are never used) */
+    if (!m->nl)
+        return 0;
+    size_t n = sim->p->n_owned < m->nl->n ? sim->p->n_owned : m->nl->n;
+    return m->nl->offset[n] / 2;
 }
 
 const struct model_ops sph_model_ops = {

@@ -185,7 +185,7 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
 }
 
 /* Principal-axes artificial stress R_i (Monaghan-Gray, Eqs. 2.25-2.27). */
-static void artificial_stress(struct model *m, size_t i)
+void sph_artificial_stress(struct model *m, size_t i)
 {
     const double zeta = m->opt.as_zeta;
     const double r2 = m->rho[i] * m->rho[i];
@@ -406,6 +406,14 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
             wall_forces(m, s);
         return rc;
     }
+    /* no CSPM, continuity density: one fused pair loop (sph_fused.c) */
+    if (m->opt.symmetry[0] || m->opt.symmetry[1] || (!m->opt.cspm && m->opt.density == SPH_DENSITY_CONTINUITY &&
+                   !m->opt.split_pairs)) {
+        int rc = sph_rates_fused(m, s, err);
+        if (!rc && m->opt.wall)
+            wall_forces(m, s);
+        return rc;
+    }
     int rc = sph_neighbors_update(m, s, false, err);
     if (rc)
         return rc;
@@ -424,7 +432,7 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
         for (int c = 0; c < 6; c++)
             m->sig[c][i] = m->S[c][i] - (c < 3 ? m->P[i] : 0.0);
         if (m->opt.as_zeta > 0.0)
-            artificial_stress(m, i);
+            sph_artificial_stress(m, i);
     }
     if (m->dim == 2)
         pass_forces(m, s, 2);

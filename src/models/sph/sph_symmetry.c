@@ -1,0 +1,225 @@
+/**
+ * @file sph_symmetry.c
+ * @brief Mirror (symmetry) planes x = 0 and / or y = 0 for SPH by ghost
+ *        particles: a quarter of a Taylor bar with two planes costs a
+ *        quarter of the full bar.
+ *
+ * Every real particle closer to a plane than the neighbour radius gets a
+ * ghost at its mirror image (and, near both planes of a quarter model, a
+ * third ghost mirrored in both).  A ghost carries its source's scalars (h,
+ * rho, c, m, dx) and its velocity and tensors reflected: for the plane
+ * x = 0, v_x -> -v_x and the shear components with one x index (xy, xz)
+ * change sign.  Ghosts only act as neighbours; their rates are never
+ * computed.  The pair force between a particle and the ghost of itself or
+ * of a neighbour is then exactly the force the missing half of the body
+ * would exert on it (the mirrored half moves as the mirror image), which
+ * is what a symmetry plane means: zero normal velocity and zero shear
+ * traction on it.
+ *
+ * Ghost identities (source, mirror mask) are fixed at each neighbour build
+ * and positions refreshed every step; the list is rebuilt when a real
+ * particle moved more than half the skin, the same criterion as
+ * sph_neighbors_update (ghost displacements equal their sources').
+ * A particle must be a ghost whenever it can come within the kernel
+ * support of a real particle: its image lies 2 d from it (d its distance
+ * to the plane) and at least d from any particle on the real side, so
+ * d < neighbour radius suffices.
+ */
+#include "models/sph/sph_internal.h"
+
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SYM_NARR 23 /* x3 v3 h rho c m2 dx sr6 R6 */
+
+struct sph_sym {
+    size_t cap;      /**< capacity of every buffer */
+    size_t n_ghost;
+    int32_t *gsrc;   /**< source real particle of ghost k */
+    uint8_t *gmask;  /**< bit d: mirrored in plane x_d = 0 */
+    double *buf[SYM_NARR];
+    bool built;      /**< m->nl is the real + ghost list */
+};
+
+void sph_symmetry_destroy(struct sph_sym **psym)
+{
+    if (!psym || !*psym)
+        return;
+    struct sph_sym *g = *psym;
+    for (int k = 0; k < SYM_NARR; k++)
+        free(g->buf[k]);
+    free(g->gsrc);
+    free(g->gmask);
+    free(g);
+    *psym = NULL;
+}
+
+static int sym_reserve(struct sph_sym *g, size_t need, struct spall_error *err)
+{
+    if (need <= g->cap)
+        return SPALL_OK;
+    size_t cap = need + need / 4 + 16;
+    for (int k = 0; k < SYM_NARR; k++) {
+        double *q = realloc(g->buf[k], cap * sizeof(double));
+        if (!q)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu sph ghosts", cap);
+        g->buf[k] = q;
+    }
+    int32_t *s = realloc(g->gsrc, cap * sizeof *s);
+    if (s)
+        g->gsrc = s;
+    uint8_t *mk = realloc(g->gmask, cap);
+    if (mk)
+        g->gmask = mk;
+    if (!s || !mk)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu sph ghosts", cap);
+    g->cap = cap;
+    return SPALL_OK;
+}
+
+/* Ghost list: every (particle, mirror mask) whose image may enter a real
+ * particle's support before the next build. */
+static int sym_find_ghosts(struct model *m, struct sim *s, double radius, struct spall_error *err)
+{
+    struct sph_sym *g = m->sym;
+    const struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const bool sx = m->opt.symmetry[0], sy = m->opt.symmetry[1];
+    size_t ng = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        ng = 0;
+        for (size_t j = 0; j < n; j++) {
+            bool nx = sx && fabs(p->x[0][j]) < radius, ny = sy && fabs(p->x[1][j]) < radius;
+            for (uint8_t mask = 1; mask <= 3; mask++) {
+                if (((mask & 1) && !nx) || ((mask & 2) && !ny))
+                    continue;
+                if (pass == 1) {
+                    g->gsrc[ng] = (int32_t)j;
+                    g->gmask[ng] = mask;
+                }
+                ng++;
+            }
+        }
+        if (pass == 0) {
+            int rc = sym_reserve(g, n + ng, err);
+            if (rc)
+                return rc;
+        }
+    }
+    g->n_ghost = ng;
+    return SPALL_OK;
+}
+
+/* Copy the real particles' data and write the ghosts' mirrored data. */
+static void sym_fill(struct model *m, struct sim *s)
+{
+    struct sph_sym *g = m->sym;
+    const struct particles *p = s->p;
+    const size_t n = p->n_owned, ng = g->n_ghost;
+    const int dim = m->dim;
+    double **b = g->buf;
+    const double *srcs[SYM_NARR] = {p->x[0], p->x[1], dim == 3 ? p->x[2] : NULL,
+                                     p->v[0], p->v[1], dim == 3 ? p->v[2] : NULL,
+                                     m->h,    m->rho,  m->c,
+                                     m->m2,   m->dx};
+    for (int c = 0; c < 6; c++) {
+        srcs[11 + c] = m->sr[c];
+        srcs[17 + c] = m->R[c];
+    }
+    for (int k = 0; k < SYM_NARR; k++)
+        if (srcs[k])
+            memcpy(b[k], srcs[k], n * sizeof(double));
+    /* reflection signs of (xx yy zz xy yz xz) for masks 1 (x), 2 (y), 3 (both) */
+    static const double tsign[4][6] = {{1, 1, 1, 1, 1, 1},
+                                       {1, 1, 1, -1, 1, -1},
+                                       {1, 1, 1, -1, -1, 1},
+                                       {1, 1, 1, 1, -1, -1}};
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < ng; k++) {
+        const size_t j = (size_t)g->gsrc[k], o = n + k;
+        const int mk = g->gmask[k];
+        for (int d = 0; d < dim; d++) {
+            double sg = (d < 2 && (mk >> d) & 1) ? -1.0 : 1.0;
+            b[d][o] = sg * srcs[d][j];
+            b[3 + d][o] = sg * srcs[3 + d][j];
+        }
+        for (int q = 6; q < 11; q++)
+            b[q][o] = srcs[q][j];
+        for (int c = 0; c < 6; c++) {
+            b[11 + c][o] = tsign[mk][c] * srcs[11 + c][j];
+            b[17 + c][o] = tsign[mk][c] * srcs[17 + c][j];
+        }
+    }
+}
+
+int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src,
+                        struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const int dim = m->dim;
+    if (!m->sym) {
+        m->sym = calloc(1, sizeof *m->sym);
+        if (!m->sym)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for sph symmetry");
+    }
+    struct sph_sym *g = m->sym;
+    double hmax = 0.0;
+    for (size_t i = 0; i < n; i++)
+        hmax = fmax(hmax, m->h[i]);
+    bool rebuild = !g->built || !m->nl;
+    if (!rebuild) {
+        double d2max = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            double d2 = 0.0;
+            for (int d = 0; d < dim; d++) {
+                double dd = p->x[d][i] - m->x_build[d][i];
+                d2 += dd * dd;
+            }
+            d2max = fmax(d2max, d2);
+        }
+        rebuild = m->qmax * hmax + 2.0 * sqrt(d2max) > m->nl_radius;
+    }
+    int rc;
+    if (rebuild) {
+        m->nl_radius = m->qmax * hmax * (1.0 + m->opt.skin);
+        if ((rc = sym_find_ghosts(m, s, m->nl_radius, err)))
+            return rc;
+    }
+    sym_fill(m, s);
+    if (rebuild) {
+        double t0 = omp_get_wtime();
+        neighbor_list_destroy(&m->nl);
+        double *xb[3] = {g->buf[0], g->buf[1], dim == 3 ? g->buf[2] : NULL};
+        if ((rc = neighbor_list_build(&m->nl, dim, n + g->n_ghost, xb, m->nl_radius, err)))
+            return rc;
+        for (int d = 0; d < dim; d++)
+            memcpy(m->x_build[d], p->x[d], n * sizeof(double));
+        g->built = true;
+        m->n_builds++;
+        m->t_neighbor += omp_get_wtime() - t0;
+    }
+    memset(src, 0, sizeof *src);
+    src->n_all = n + g->n_ghost;
+    for (int d = 0; d < dim; d++) {
+        src->x[d] = g->buf[d];
+        src->v[d] = g->buf[3 + d];
+    }
+    src->h = g->buf[6];
+    src->rho = g->buf[7];
+    src->c = g->buf[8];
+    src->m2 = g->buf[9];
+    src->dx = g->buf[10];
+    for (int c = 0; c < 6; c++) {
+        src->sr[c] = g->buf[11 + c];
+        src->R[c] = g->buf[17 + c];
+    }
+    return SPALL_OK;
+}
