@@ -1,0 +1,152 @@
+/*
+ * Tests of the lamina failure rules of the peridynamics model: the
+ * mixed-mode (Benzeggagh-Kenane) factor of matrix bonds (pd_mixed.c) under
+ * pure transverse tension, pure in-plane shear and a rigid rotation, and the
+ * fiber-parallel matrix-crack twins (pd_plane.c).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "core/bond_list.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "io/deck_build.h"
+#include "models/model.h"
+#include "models/peridynamics/pd_internal.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static struct sim *build_ok(const char *opts, double theta)
+{
+    char yaml[1024];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: peridynamics, variant: pdlm%s}\n"
+             "materials:\n  t700: {density: 1550, fiber_modulus: 130e9, transverse_modulus: "
+             "8.5e9, shear_modulus: 4.5e9, major_poisson_ratio: 0.3, fiber_angle: %g, "
+             "matrix_fracture_energy: 300, mode2_fracture_energy: 800, fiber_fracture_energy: "
+             "6.0e4}\n"
+             "lattice: {type: triangular, spacing: 1.0e-3, thickness: 1.0e-4, angle: %g}\n"
+             "geometry:\n  p: {box: {min: [-0.0061, -0.0061], max: [0.0061, 0.0061]}}\n"
+             "body: {geometry: p, material: t700}\nrun: {steps: 1}\n",
+             opts, theta, theta);
+    struct deck *d = NULL;
+    struct spall_error err = {0, ""};
+    struct sim *s = NULL;
+    int rc = deck_load_string(&d, "test", yaml, &err);
+    if (!rc) {
+        struct run_output ro;
+        rc = deck_build_sim(d, &s, &ro, &err);
+    }
+    deck_destroy(&d);
+    if (rc)
+        fprintf(stderr, "%s\n", err.msg);
+    assert_int_equal(rc, 0);
+    return s;
+}
+
+/* x = R (I + H) x0: H in material axes (1 = fiber at theta), then a rigid
+ * rotation by rot */
+static void deform(struct sim *s, double theta, double e22, double g12, double rot)
+{
+    struct particles *p = s->p;
+    double c = cos(theta), sn = sin(theta), cr = cos(rot), sr = sin(rot);
+    for (size_t i = 0; i < p->n; i++) {
+        double X = p->x0[0][i], Y = p->x0[1][i];
+        double a = c * X + sn * Y, b = -sn * X + c * Y; /* material coordinates */
+        double a1 = a + g12 * b, b1 = b + e22 * b;      /* simple shear + transverse stretch */
+        double x = c * a1 - sn * b1, y = sn * a1 + c * b1;
+        p->x[0][i] = cr * x - sr * y;
+        p->x[1][i] = sr * x + cr * y;
+    }
+}
+
+static void test_mixed_mode_factor(void **state)
+{
+    (void)state;
+    const double th = 45.0 * 3.14159265358979323846 / 180.0;
+    struct sim *s = build_ok("", 45.0);
+    struct model *m = s->model;
+    assert_true(m->mixed);
+    size_t i = pd_patch_particle(m, s, 0);
+    const double gmax = sqrt(800.0 / 300.0);
+    /* transverse tension: pure mode I */
+    deform(s, th, 1e-3, 0.0, 0.0);
+    pd_mixed_update(m, s);
+    assert_true(m->mm_beta[i] < 1e-9);
+    assert_true(fabs(m->mm_g[i] - 1.0) < 1e-9);
+    /* in-plane shear: pure mode II, s0 x sqrt(G_IIc / G_Ic) (simple shear has
+     * E22 = g^2/2: beta = 1 - O(1e-6)) */
+    deform(s, th, 0.0, 2e-3, 0.0);
+    pd_mixed_update(m, s);
+    assert_true(m->mm_beta[i] > 1.0 - 1e-4);
+    assert_true(fabs(m->mm_g[i] - gmax) < 1e-4);
+    /* transverse compression + shear: compression does not open, mode II */
+    deform(s, th, -1e-3, 1e-3, 0.0);
+    pd_mixed_update(m, s);
+    assert_true(m->mm_beta[i] > 1.0 - 1e-4);
+    /* equal energies: beta = 1/2, G_c = G_Ic + (G_IIc - G_Ic)/4 (eta = 2) */
+    double e22 = 1e-3, q22 = 8.5e9 / (1.0 - 0.09 * 8.5 / 130.0);
+    double g = e22 * sqrt(q22 / 4.5e9); /* w_II = G12 g^2 / 2 = Q22 e22^2 / 2 */
+    deform(s, th, e22, g, 0.0);
+    pd_mixed_update(m, s);
+    printf("  mixed mode: beta %.4f (small-strain 0.5), g %.4f\n", m->mm_beta[i], m->mm_g[i]);
+    assert_true(fabs(m->mm_beta[i] - 0.5) < 0.01);
+    /* a rigid rotation of 30 deg changes nothing (Green strain) */
+    double b0 = m->mm_beta[i];
+    deform(s, th, e22, g, 0.5236);
+    pd_mixed_update(m, s);
+    assert_true(fabs(m->mm_beta[i] - b0) < 1e-9);
+    sim_destroy(&s);
+    /* off: no factors */
+    s = build_ok(", mixed_mode: off", 45.0);
+    assert_false(s->model->mixed);
+    assert_null(s->model->mm_g);
+    sim_destroy(&s);
+}
+
+/* one particle pushed off its fiber row: its 2 matrix bonds to the next row
+ * break by stretch; fiber_plane also breaks their 2 zigzag neighbours */
+static void test_fiber_plane(void **state)
+{
+    (void)state;
+    size_t broken[2];
+    for (int fp = 0; fp < 2; fp++) {
+        struct sim *s = build_ok(fp ? ", matrix_crack: fiber_plane, mixed_mode: off"
+                                    : ", mixed_mode: off", 0.0);
+        struct model *m = s->model;
+        struct particles *p = s->p;
+        struct spall_error err = {0, ""};
+        size_t i = pd_patch_particle(m, s, 0);
+        for (size_t q = 0; q < p->n; q++)
+            for (int d = 0; d < 2; d++) {
+                p->x[d][q] = p->x0[d][q];
+                p->f[d][q] = 0.0;
+            }
+        p->x[1][i] -= 0.1e-3; /* 10 % of the spacing: far past s0_m, fiber bonds intact */
+        assert_int_equal(pd_compute_forces(m, s, &err), 0);
+        assert_int_equal(s->ops->end_step(m, s, &err), 0);
+        broken[fp] = bond_list_count_broken(m->bl);
+        sim_destroy(&s);
+    }
+    printf("  fiber plane: %zu bonds broken without, %zu with\n", broken[0], broken[1]);
+    assert_int_equal(broken[0], 2);
+    assert_int_equal(broken[1], 4);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mixed_mode_factor),
+        cmocka_unit_test(test_fiber_plane),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
