@@ -209,12 +209,65 @@ static void test_angle_models(void **state)
     }
 }
 
+/* mixed-mode factors and fiber-plane twins: 1 and 2 threads bitwise equal */
+static void test_lamina_threads(void **state)
+{
+    (void)state;
+    double *xs[2] = {NULL, NULL};
+    size_t nb[2] = {0, 0}, n = 0;
+    for (int t = 1; t <= 2; t++) {
+        char yaml[1536];
+        snprintf(yaml, sizeof yaml,
+                 "model: {type: peridynamics, variant: pdlm, matrix_crack: fiber_plane}\n"
+                 "materials:\n  t700: {density: 1550, fiber_modulus: 130e9, transverse_modulus: "
+                 "8.5e9, shear_modulus: 4.5e9, major_poisson_ratio: 0.3, fiber_angle: 30, "
+                 "matrix_fracture_energy: 300, mode2_fracture_energy: 800}\n"
+                 "lattice: {type: triangular, spacing: 0.5e-3, thickness: 1.0e-4, angle: 30}\n"
+                 "geometry:\n  p: {box: {min: [0, 0], max: [0.01, 0.006]}}\n"
+                 "body: {geometry: p, material: t700}\n"
+                 "groups:\n  b: {box: {min: [-1, -1], max: [1, 0.001]}}\n"
+                 "  t: {box: {min: [-1, 0.005], max: [1, 1]}}\n"
+                 "boundary_conditions:\n"
+                 "  - {group: b, type: velocity, value: [0, -40]}\n"
+                 "  - {group: t, type: velocity, value: [0, 40]}\n"
+                 "run: {steps: 120, threads: %d}\n", t);
+        struct deck *d = NULL;
+        struct spall_error err = {0, ""};
+        struct sim *s = NULL;
+        int rc = deck_load_string(&d, "test", yaml, &err);
+        if (!rc) {
+            struct run_output ro;
+            rc = deck_build_sim(d, &s, &ro, &err);
+        }
+        deck_destroy(&d);
+        if (rc)
+            fprintf(stderr, "%s\n", err.msg);
+        assert_int_equal(rc, 0);
+        while (!sim_done(s))
+            assert_int_equal(sim_step(s, &err), 0);
+        n = s->p->n;
+        xs[t - 1] = malloc(2 * n * sizeof(double));
+        assert_non_null(xs[t - 1]);
+        memcpy(xs[t - 1], s->p->x[0], n * sizeof(double));
+        memcpy(xs[t - 1] + n, s->p->x[1], n * sizeof(double));
+        nb[t - 1] = bond_list_count_broken(s->model->bl);
+        sim_destroy(&s);
+    }
+    printf("  lamina threads: %zu bonds broken\n", nb[0]);
+    assert_true(nb[0] > 0);
+    assert_int_equal(nb[0], nb[1]);
+    assert_memory_equal(xs[0], xs[1], 2 * n * sizeof(double));
+    free(xs[0]);
+    free(xs[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mixed_mode_factor),
         cmocka_unit_test(test_fiber_plane),
         cmocka_unit_test(test_angle_models),
+        cmocka_unit_test(test_lamina_threads),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

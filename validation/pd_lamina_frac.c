@@ -381,6 +381,8 @@ int pd_case_lamina_b(struct vreport *r, struct spall_error *err)
         {"B-0-30", 0.0, 30.0, 5.0, 3.0e-4, NAN, "bk", "bond"},
         {"B-0-45", 0.0, 45.0, 5.0, 3.0e-4, NAN, "bk", "bond"},
         {"B-0-60", 0.0, 60.0, 5.0, 3.0e-4, NAN, "bk", "bond"},
+        /* with fiber-parallel matrix cracks (the A-45 hinge-band cure) */
+        {"B-45-90 (fiber_plane)", 45.0, 90.0, 2.0, 4.0e-4, NAN, "bk", "fiber_plane"},
     };
     return lam_cases(r, c, sizeof c / sizeof c[0], err);
 }
