@@ -137,6 +137,26 @@ static void test_fiber_plane(void **state)
         broken[fp] = bond_list_count_broken(m->bl);
         sim_destroy(&s);
     }
+    /* refused outside the PDLM lattice, with the deck position */
+    {
+        struct deck *d = NULL;
+        struct spall_error err = {0, ""};
+        struct sim *s = NULL;
+        const char *yaml = "model: {type: peridynamics, matrix_crack: fiber_plane}\n"
+                           "materials:\n  m: {density: 1000, youngs_modulus: 1e9}\n"
+                           "lattice: {type: square, spacing: 1.0e-3}\n"
+                           "geometry:\n  p: {box: {min: [0, 0], max: [0.005, 0.005]}}\n"
+                           "body: {geometry: p, material: m}\nrun: {steps: 1}\n";
+        int rc = deck_load_string(&d, "test", yaml, &err);
+        if (!rc) {
+            struct run_output ro;
+            rc = deck_build_sim(d, &s, &ro, &err);
+        }
+        deck_destroy(&d);
+        sim_destroy(&s);
+        assert_int_not_equal(rc, 0);
+        assert_non_null(strstr(err.msg, "fiber_plane needs variant pdlm"));
+    }
     printf("  fiber plane: %zu bonds broken without, %zu with\n", broken[0], broken[1]);
     assert_int_equal(broken[0], 2);
     assert_int_equal(broken[1], 4);

@@ -158,6 +158,13 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
                                   "pdlm is the 2D triangular-lattice variant (this run is %dD)",
                                   sim->dim);
         }
+        if (m->opt.fiber_plane &&
+            (m->opt.variant != PD_PDLM || m->opt.fiber_model != PD_FIBER_LATTICE)) {
+            free(m);
+            return deck_error_key(err, params, "matrix_crack", "fiber_plane needs variant pdlm "
+                                  "with fiber_model lattice (zigzag matrix bonds between "
+                                  "fiber rows)");
+        }
         if (pl == 1 && (sim->dim != 2 || m->opt.variant == PD_PDLM)) {
             free(m);
             return deck_error_key(err, params, "plane", "plane_strain needs a 2D pmb run");
