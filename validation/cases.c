@@ -58,6 +58,10 @@ static const struct vcase cases[] = {
     {"pd-branching", "Ha & Bobaru 2010 glass plate: branching, tip speed < c_R", false,
      pd_case_branching},
     {"pd-kalthoff", "Kalthoff-Winkler plate: crack angle 65-72 deg", false, pd_case_kalthoff},
+    {"pd-lamina-a", "T700 open-hole laminae A-0/45/90: crack along fibers, start", false,
+     pd_case_lamina_a},
+    {"pd-lamina-b", "T700 line-crack laminae B-theta-alpha (mixed mode): crack along fibers",
+     false, pd_case_lamina_b},
 
     /* macro-particle (issue 5) */
     {"macro-calibration", "seed 001 Table 1: E from Eq. 15 for Al and Cu", false,

@@ -24,7 +24,7 @@
 #include <string.h>
 
 /* One kernel per dimension: the loop over j is the hot path. */
-#define PD_KERNEL(DIM)                                                                          \
+#define PD_KERNEL(DIM, MIXED)                                                                   \
     _Pragma("omp parallel for schedule(dynamic, 256)")                                          \
     for (size_t i = 0; i < n; i++) {                                                            \
         double fx = 0.0, fy = 0.0, fz = 0.0, dd = 0.0;                                          \
@@ -41,8 +41,13 @@
             const double l = sqrt(ex * ex + ey * ey + ez * ez);                                 \
             const double r = rest[s];                                                           \
             const double stretch = (l - r) / r;                                                 \
-            if (stretch > s0tab[type[s]]) {                                                     \
+            double thr = s0tab[type[s]];                                                        \
+            if (MIXED && mmt[type[s]])                                                          \
+                thr *= 0.5 * (mmg[i] + mmg[j]);                                                 \
+            if (stretch > thr) {                                                                \
                 st[s] |= BOND_BROKEN;                                                           \
+                if (fresh && !(type[s] & 1u))                                                   \
+                    fresh[s] = 1;                                                               \
                 const double e0 = l - r;                                                        \
                 dd += 0.25 * coef[s] * e0 * e0;                                                 \
                 if (!late)                                                                      \
@@ -82,6 +87,11 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     /* break_order next_step: a bond past s0 still pulls in this step
      * (PDLAMMPS pair peri/pmb order); immediate: it is dropped at once */
     const bool late = m->opt.break_late;
+    /* mixed-mode matrix bonds (pd_mixed.c): threshold s0_m (g_i + g_j) / 2 */
+    const uint8_t *mmt = m->mm_type;
+    const double *mmg = m->mm_g;
+    /* fiber-parallel matrix cracks (pd_plane.c): flag stretch-broken matrix bonds */
+    uint8_t *fresh = m->fresh;
     if (m->opt.quasi == PD_QS_ADR) {
         /* the engine zeroed f: keep the model's part of step n-1 for ADR */
         for (int d = 0; d < p->dim; d++)
@@ -89,13 +99,18 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     }
     switch (p->dim) {
     case 1:
-        PD_KERNEL(1)
+        PD_KERNEL(1, 0)
         break;
     case 2:
-        PD_KERNEL(2)
+        if (m->mixed) {
+            pd_mixed_update(m, sim);
+            PD_KERNEL(2, 1)
+        } else {
+            PD_KERNEL(2, 0)
+        }
         break;
     default:
-        PD_KERNEL(3)
+        PD_KERNEL(3, 0)
         break;
     }
     if (m->opt.quasi == PD_QS_ADR)

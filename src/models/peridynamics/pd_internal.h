@@ -48,6 +48,9 @@ struct pd_options {
     enum pd_quasi quasi;
     enum pd_fiber_model fiber_model;
     int fiber_power;         /**< n of cos^2n (angular fiber model) */
+    bool mixed_mode;         /**< laminae: matrix bonds by the BK mixed-mode G_c (pd_mixed.c) */
+    double bk_exponent;      /**< Benzeggagh-Kenane exponent eta */
+    bool fiber_plane;        /**< matrix_crack: fiber_plane (pd_plane.c) */
 };
 
 /** Per-material input and derived constants. */
@@ -64,6 +67,8 @@ struct pd_material {
     /* derived */
     double c, s0;           /**< isotropic micromodulus, critical stretch */
     double c_f, c_m, s0_f, s0_m;
+    double fa_cos, fa_sin;  /**< cos, sin of fiber_angle (pd_mixed.c) */
+    double Q22;             /**< plane-stress reduced stiffness (mode-I energy weight) */
 };
 
 struct model {
@@ -84,6 +89,14 @@ struct model {
     /* adaptive dynamic relaxation (Kilic & Madenci 2010) */
     double *f_prev[3];
     size_t n_half;
+    /* mixed-mode matrix failure (pd_mixed.c): per particle factor on s0_m */
+    double *mm_g;            /**< sqrt(G_c(beta_i) / G_Ic); 1 for isotropic particles */
+    double *mm_beta;         /**< mode-II energy share beta_i of the last step */
+    uint8_t mm_type[256];    /**< 1: matrix bond of a lamina with G_IIc != G_Ic */
+    /* fiber-parallel matrix cracks (pd_plane.c) */
+    size_t *twin;            /**< per half-bond: zigzag neighbour on the same interface */
+    uint8_t *fresh;          /**< per half-bond: broken by stretch this step */
+    bool mixed;              /**< some bond type uses the mixed-mode threshold */
     bool ortho;              /**< some material is orthotropic */
     bool initialised;
 };
@@ -116,6 +129,19 @@ size_t pd_patch_particle(const struct model *m, const struct sim *sim, int k);
 void pd_patch_stiffness(struct model *m, struct sim *sim, size_t i, double th, double C[3][3]);
 /** 3x3 inverse; -1 if singular. */
 int pd_invert3(double A[3][3], double B[3][3]);
+
+/* pd_mixed.c */
+/** Sets m->mm_type / m->mixed and allocates the per-particle arrays. */
+int pd_mixed_init(struct model *m, struct sim *sim, struct spall_error *err);
+/** Per-particle mode mixity beta_i and threshold factor g_i from the current
+ *  positions (Benzeggagh & Kenane 1996 G_c(beta)). */
+void pd_mixed_update(struct model *m, const struct sim *sim);
+
+/* pd_plane.c */
+/** Twin table of the fiber-parallel matrix-crack rule (no-op when off). */
+int pd_plane_init(struct model *m, struct sim *sim, struct spall_error *err);
+/** Break the twins of this step's stretch-broken matrix bonds (serial). */
+void pd_plane_end_step(struct model *m, const struct sim *sim);
 
 /* pd_forces.c */
 int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);

@@ -34,6 +34,14 @@
  *                               rotate the lattice: seed 003), or every bond
  *                               with c = c_m + c_f cos^2n(phi) (angular)
  *     fiber_power: n >= 1       angular model exponent (default 32)
+ *     mixed_mode: bk | off      laminae: matrix bonds break at s0_m sqrt(G_c /
+ *                               G_Ic), G_c from the local mode mix by the
+ *                               Benzeggagh-Kenane law (pd_mixed.c; default bk)
+ *     bk_exponent: eta          BK exponent (default 2)
+ *     matrix_crack: bond | fiber_plane   fiber_plane (PDLM laminae): a
+ *                               stretch-broken matrix bond also breaks its two
+ *                               zigzag neighbours on the same fiber-parallel
+ *                               interface (pd_plane.c; default bond)
  *
  *   materials:
  *     <name>:   isotropic
@@ -45,8 +53,7 @@
  *       density, fiber_modulus E1, transverse_modulus E2, shear_modulus G12,
  *       major_poisson_ratio nu12, fiber_angle [deg] (default: lattice
  *       angle), matrix_fracture_energy G_Ic, fiber_fracture_energy G_f,
- *       mode2_fracture_energy G_IIc (recorded, see docs: not used by the
- *       stretch criterion)
+ *       mode2_fracture_energy G_IIc (mixed-mode matrix failure, pd_mixed.c)
  *
  * Fields: damage (phi = 1 - intact/initial bonds, pre-cut count as
  * broken), damage_fiber, damage_matrix (orthotropic), strain_energy [J],
@@ -79,6 +86,10 @@ static void pd_destroy(struct model **pm)
     free(m->n_init);
     free(m->n_init_f);
     free(m->diss);
+    free(m->mm_g);
+    free(m->mm_beta);
+    free(m->twin);
+    free(m->fresh);
     for (int d = 0; d < 3; d++)
         free(m->f_prev[d]);
     free(m);
@@ -94,9 +105,12 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     static const char *const fm[] = {"lattice", "angular", NULL};
     static const char *const pvr[] = {"linear", "lammps", NULL};
     static const char *const bo[] = {"immediate", "next_step", NULL};
+    static const char *const mmo[] = {"bk", "off", NULL};
+    static const char *const mco[] = {"bond", "fiber_plane", NULL};
     static const char *const keys[] = {"type", "variant", "horizon_factor", "plane",
                                        "partial_volume", "partial_volume_rule", "break_order", "surface_correction", "quasi_static",
-                                       "fiber_model", "fiber_power", NULL};
+                                       "fiber_model", "fiber_power", "mixed_mode", "bk_exponent", "matrix_crack",
+                                       NULL};
     *out = NULL;
     struct model *m = calloc(1, sizeof *m);
     if (!m)
@@ -105,8 +119,10 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     m->opt.horizon_factor = 3.015;
     m->opt.partial_volume = true;
     m->opt.fiber_power = 32;
+    m->opt.mixed_mode = true;
+    m->opt.bk_exponent = 2.0;
     if (params) {
-        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, rc;
+        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, mmode = 0, mc = 0, rc;
         long pw = 32;
         if ((rc = deck_enum(params, "variant", false, variants, &v, err)) ||
             (rc = deck_double_pos(params, "horizon_factor", false, &m->opt.horizon_factor, err)) ||
@@ -119,6 +135,10 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             (rc = deck_enum(params, "quasi_static", false, qs, &q, err)) ||
             (rc = deck_enum(params, "fiber_model", false, fm, &f, err)) ||
             (rc = deck_long(params, "fiber_power", false, 1, 64, &pw, err)) ||
+            (rc = deck_enum(params, "mixed_mode", false, mmo, &mmode, err)) ||
+            (rc = deck_enum(params, "matrix_crack", false, mco, &mc, err)) ||
+            (rc = deck_double(params, "bk_exponent", false, 0.1, 20.0, &m->opt.bk_exponent,
+                              err)) ||
             (rc = deck_check_unused(params, "model", keys, err))) {
             free(m);
             return rc;
@@ -128,6 +148,8 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
         m->opt.quasi = (enum pd_quasi)q;
         m->opt.fiber_model = (enum pd_fiber_model)f;
         m->opt.fiber_power = (int)pw;
+        m->opt.mixed_mode = mmode == 0;
+        m->opt.fiber_plane = mc == 1;
         m->opt.family_at_delta = pr == 1;
         m->opt.break_late = b == 1;
         if (m->opt.variant == PD_PDLM && sim->dim != 2) {
@@ -135,6 +157,13 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             return deck_error_key(err, params, "variant",
                                   "pdlm is the 2D triangular-lattice variant (this run is %dD)",
                                   sim->dim);
+        }
+        if (m->opt.fiber_plane &&
+            (m->opt.variant != PD_PDLM || m->opt.fiber_model != PD_FIBER_LATTICE)) {
+            free(m);
+            return deck_error_key(err, params, "matrix_crack", "fiber_plane needs variant pdlm "
+                                  "with fiber_model lattice (zigzag matrix bonds between "
+                                  "fiber rows)");
         }
         if (pl == 1 && (sim->dim != 2 || m->opt.variant == PD_PDLM)) {
             free(m);
@@ -200,6 +229,7 @@ static int pd_parse_material(struct model *m, struct sim *sim, int index,
             return deck_error(err, node, "orthotropic laminae are plane stress");
         mt.fiber_angle = isnan(ang) ? sim->lattice.angle : ang * PD_PI / 180.0;
         mt.E = mt.E2;
+        mt.Q22 = mt.E2 / (1.0 - mt.nu12 * mt.nu12 * mt.E2 / mt.E1);
     } else {
         double nu = NAN;
         if ((rc = deck_double(node, "youngs_modulus", false, 0.0, INFINITY, &mt.E, err)) ||
@@ -333,7 +363,8 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
                 return rc;
             }
         }
-    if ((rc = pd_build_coefficients(m, sim, err)))
+    if ((rc = pd_build_coefficients(m, sim, err)) || (rc = pd_mixed_init(m, sim, err)) ||
+        (rc = pd_plane_init(m, sim, err)))
         return rc;
     for (size_t a = 0; a < nm; a++)
         for (size_t b = 0; b < nm; b++)
@@ -386,6 +417,13 @@ static void field_damage(const void *ctx, size_t n, double *out) { damage_of(ctx
 static void field_damage_f(const void *ctx, size_t n, double *out) { damage_of(ctx, n, out, 1); }
 static void field_damage_m(const void *ctx, size_t n, double *out) { damage_of(ctx, n, out, 2); }
 
+static void field_mixity(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+    for (size_t i = 0; i < n; i++)
+        out[i] = m->mm_beta ? m->mm_beta[i] : 0.0;
+}
+
 static void field_energy(const void *ctx, size_t n, double *out)
 {
     const struct model *m = ctx;
@@ -412,6 +450,7 @@ static int pd_register_fields(struct model *m, struct sim *sim, struct field_reg
     if ((rc = field_registry_add_computed(reg, "damage", "1", 1, od, field_damage, m, err)) ||
         (m->ortho && (rc = field_registry_add_computed(reg, "damage_fiber", "1", 1, od, field_damage_f, m, err))) ||
         (m->ortho && (rc = field_registry_add_computed(reg, "damage_matrix", "1", 1, od, field_damage_m, m, err))) ||
+        (m->ortho && (rc = field_registry_add_computed(reg, "mode2_share", "1", 1, FIELD_OUTPUT, field_mixity, m, err))) ||
         (rc = field_registry_add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_energy, m, err)) ||
         (rc = field_registry_add_computed(reg, "stress", "Pa", nc, od, field_stress, m, err)))
         return rc;
@@ -427,9 +466,9 @@ static double pd_dt(const struct model *m, const struct sim *sim)
 
 static int pd_end_step(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    (void)m; /* breaking is fused into the force loop */
-    (void)sim;
-    (void)err;
+    (void)err; /* breaking is fused into the force loop; fiber-plane twins here */
+    if (m->fresh)
+        pd_plane_end_step(m, sim);
     return SPALL_OK;
 }
 
@@ -502,6 +541,9 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
             PUT("  material '%s': E = %g Pa, nu = %g (fixed), c = %g, s0 = %g\n",
                 sim->materials[k].name, mt->E, mt->nu, mt->c, mt->s0);
     }
+    if (m->mixed)
+        PUT("  mixed-mode matrix failure: s0_m x sqrt(G_c(beta) / G_Ic), Benzeggagh-Kenane "
+            "eta = %g\n", m->opt.bk_exponent);
     if (m->bl)
         PUT("  stable dt = %g s (Silling & Askari 2005 Eq. 15)\n", pd_stable_dt(m, sim));
 #undef PUT
@@ -536,4 +578,12 @@ void pd_validation_damage(const struct model *m, size_t n, double *out);
 void pd_validation_damage(const struct model *m, size_t n, double *out)
 {
     damage_of(m, n, out, 0);
+}
+
+/** Fiber (which = 1) or matrix (which = 2) damage for validation code (same as
+ *  the `damage_fiber` / `damage_matrix` output fields). */
+void pd_validation_damage_kind(const struct model *m, size_t n, double *out, int which);
+void pd_validation_damage_kind(const struct model *m, size_t n, double *out, int which)
+{
+    damage_of(m, n, out, which);
 }

@@ -1,0 +1,116 @@
+/**
+ * @file pd_plane.c
+ * @brief Fiber-parallel matrix cracks on the PDLM lattice (deck
+ *        `model.matrix_crack: fiber_plane`).
+ *
+ * Why: on the rotated triangular lattice every particle has two matrix bonds
+ * to each neighbouring fiber row.  A stretch criterion breaks bonds one at a
+ * time; when only one of the two matrix families breaks along a line, the
+ * fiber bonds crossing that line are left as parallel links that rotate
+ * freely (pair forces have no angular stiffness): a zero-energy "hinge band"
+ * runs along a matrix-bond row, not along the fibers (seen on the 45 deg
+ * open-hole lamina, docs/validation.md).  In a UD lamina a matrix crack is a
+ * surface between fibers, so a broken matrix bond stands for a crack
+ * segment on the fiber-parallel interface it crosses.
+ *
+ * Rule: when a matrix bond i-j breaks by stretch, its two zigzag neighbours
+ * on the same interface (the other matrix bond of i towards j's fiber row,
+ * and the other matrix bond of j towards i's row) break with it, at the end
+ * of the step.  Bonds broken this way do not propagate further (no chain
+ * reaction): the interface opens one segment per stretch-broken bond, and
+ * the crack still grows only where bonds are stretched past s0.  Their
+ * stored energy is booked as dissipated.
+ *
+ * Determinism: the force kernel only flags stretch-broken half-bonds (each
+ * by its own particle); this serial pass in index order marks the twins, so
+ * the result is independent of the thread count.
+ */
+#include "models/peridynamics/pd_internal.h"
+
+#include "core/bond_list.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+int pd_plane_init(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct bond_list *bl = m->bl;
+    const struct particles *p = sim->p;
+    const size_t n = p->n, nh = bl->offset[n];
+    if (!m->opt.fiber_plane)
+        return SPALL_OK;
+    if (m->opt.variant != PD_PDLM || m->opt.fiber_model != PD_FIBER_LATTICE || !m->ortho)
+        return spall_error_set(err, SPALL_ERR_INPUT, "matrix_crack: fiber_plane needs variant "
+                               "pdlm, fiber_model lattice and an orthotropic lamina");
+    int rc = bl->reverse ? SPALL_OK : bond_list_build_reverse(bl, err);
+    if (rc)
+        return rc;
+    m->twin = malloc((nh ? nh : 1) * sizeof *m->twin);
+    m->fresh = calloc(nh ? nh : 1, 1);
+    if (!m->twin || !m->fresh)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for fiber-plane twins");
+    for (size_t i = 0; i < n; i++)
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            m->twin[s] = SIZE_MAX;
+            if (bl->type[s] & 1u)
+                continue;
+            size_t j = (size_t)bl->partner[s];
+            const struct pd_material *a = &m->mat[p->material[i]], *b = &m->mat[p->material[j]];
+            const struct pd_material *o = a->ortho ? a : b->ortho ? b : NULL;
+            if (!o)
+                continue;
+            /* side of the fiber row: sign of xi . n, n = fiber normal */
+            double nx = -sin(o->fiber_angle), ny = cos(o->fiber_angle);
+            double side = (p->x0[0][j] - p->x0[0][i]) * nx + (p->x0[1][j] - p->x0[1][i]) * ny;
+            size_t found = SIZE_MAX;
+            int count = 0;
+            for (size_t t = bl->offset[i]; t < bl->offset[i + 1]; t++) {
+                if (t == s || (bl->type[t] & 1u))
+                    continue;
+                size_t k = (size_t)bl->partner[t];
+                double sk = (p->x0[0][k] - p->x0[0][i]) * nx + (p->x0[1][k] - p->x0[1][i]) * ny;
+                if (sk * side > 0.0) {
+                    found = t;
+                    count++;
+                }
+            }
+            if (count == 1)
+                m->twin[s] = found;
+        }
+    return SPALL_OK;
+}
+
+/* break half-bond t and its reverse, booking the stored energy */
+static void break_pair(struct model *m, const struct sim *sim, size_t i, size_t t)
+{
+    struct bond_list *bl = m->bl;
+    const struct particles *p = sim->p;
+    if (bl->state[t] & BOND_BROKEN)
+        return;
+    size_t k = (size_t)bl->partner[t], r = bl->reverse[t];
+    double ex = p->x[0][k] - p->x[0][i], ey = p->x[1][k] - p->x[1][i];
+    double e0 = sqrt(ex * ex + ey * ey) - bl->rest[t];
+    bl->state[t] |= BOND_BROKEN;
+    bl->state[r] |= BOND_BROKEN;
+    m->diss[i] += 0.25 * m->coef[t] * e0 * e0;
+    m->diss[k] += 0.25 * m->coef[r] * e0 * e0;
+}
+
+void pd_plane_end_step(struct model *m, const struct sim *sim)
+{
+    struct bond_list *bl = m->bl;
+    const size_t n = sim->p->n;
+    for (size_t i = 0; i < n; i++)
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            if (!m->fresh[s])
+                continue;
+            m->fresh[s] = 0;
+            if (m->twin[s] != SIZE_MAX)
+                break_pair(m, sim, i, m->twin[s]);
+        }
+}
