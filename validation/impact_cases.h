@@ -20,6 +20,11 @@ int impact_case_vinylester(struct vreport *r, struct spall_error *err);
 int impact_indent_deck(char *buf, size_t len, double rho, double E, double sigma, double v0,
                        double r0, double end_time);
 
+/** Same rig with axial law @p law and extra material keys @p extra
+ *  (", key: value" text, "" for none), e.g. the softening law's. */
+int impact_indent_deck_law(char *buf, size_t len, const char *law, const char *extra, double rho,
+                           double E, double sigma, double v0, double r0, double end_time);
+
 /** "impact-spall": seed 000 sec. 4.2 flyer-plate spall, both flyer widths. */
 int impact_case_spall(struct vreport *r, struct spall_error *err);
 /** Deck text of the spall case (flyer + target, interface pre-cut). */

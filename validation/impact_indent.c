@@ -44,6 +44,9 @@
 
 struct indent_material {
     const char *name;
+    const char *law;   /* deck model.law */
+    const char *extra; /* extra material keys of that law ("" for none) */
+    const char *tag;   /* prefix of the check names ("" for the seed's brittle law) */
     double rho, E, sigma, v0;
     double t_ref, d_ref, e_ref;       /* experiment */
     double t_hlpm, d_hlpm, e_hlpm;    /* the paper's HLPM */
@@ -52,6 +55,12 @@ struct indent_material {
 int impact_indent_deck(char *buf, size_t len, double rho, double E, double sigma, double v0,
                        double r0, double end_time)
 {
+    return impact_indent_deck_law(buf, len, "linear", "", rho, E, sigma, v0, r0, end_time);
+}
+
+int impact_indent_deck_law(char *buf, size_t len, const char *law, const char *extra, double rho,
+                           double E, double sigma, double v0, double r0, double end_time)
+{
     /* rows 0..13 at (sqrt 3/2) r0: top row y_top */
     double row = 0.5 * sqrt(3.0) * r0;
     int kmax = (int)floor(0.0127 / row - 1e-9);
@@ -59,10 +68,10 @@ int impact_indent_deck(char *buf, size_t len, double rho, double E, double sigma
     double xl = 0.5 * (0.127 - INDENT_SPAN), xr = xl + INDENT_SPAN;
     int n = snprintf(buf, len,
                      "title: drop-weight indentation (seed 000 sec. 3.2)\n"
-                     "model: {type: lattice, law: linear, layers: 2}\n"
+                     "model: {type: lattice, law: %s, layers: 2}\n"
                      "materials:\n"
                      "  beam: {density: %.17g, youngs_modulus: %.17g,\n"
-                     "         poisson_ratio: 0.3333333333333333, tensile_strength: %.17g}\n"
+                     "         poisson_ratio: 0.3333333333333333, tensile_strength: %.17g%s}\n"
                      "lattice: {type: triangular, spacing: %.17g, thickness: 0.00993}\n"
                      "body: {geometry: {box: {min: [0, 0], max: [0.127, %.17g]}}, material: beam}\n"
                      "gravity: [0, -9.80]\n"
@@ -75,7 +84,7 @@ int impact_indent_deck(char *buf, size_t len, double rho, double E, double sigma
                      "  - {name: right_roller, shape: sphere, position: [%.17g, -0.005001],\n"
                      "     radius: 0.005, motion: prescribed, contact: penalty}\n"
                      "run: {end_time: %.17g}\n",
-                     rho, E, sigma, r0, y_top + 0.25 * row, y_top + 1e-6, 3.318, -v0, xl, xr,
+                     law, rho, E, sigma, extra, r0, y_top + 0.25 * row, y_top + 1e-6, 3.318, -v0, xl, xr,
                      end_time);
     return n > 0 && (size_t)n < len ? SPALL_OK : SPALL_ERR_INTERNAL;
 }
@@ -84,7 +93,8 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
 {
     char deck[3072];
     const double end_time = 3.0e-3;
-    if (impact_indent_deck(deck, sizeof deck, m->rho, m->E, m->sigma, m->v0, INDENT_R0, end_time))
+    if (impact_indent_deck_law(deck, sizeof deck, m->law, m->extra, m->rho, m->E, m->sigma, m->v0,
+                               INDENT_R0, end_time))
         return spall_error_set(err, SPALL_ERR_INTERNAL, "impact: deck buffer too small");
     struct sim *s = NULL;
     int rc = vlat_build(m->name, deck, &s, err);
@@ -129,10 +139,12 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
     for (size_t k = 1; k < n; k++)
         w_fd += 0.5 * (f[k] + f[k - 1]) * (u[k] - u[k - 1]);
     double broken = vlat_history(s, "bonds_broken");
-    char src[160];
+    char src[160], q[160];
+    const int soft = m->tag[0] != '\0';
     snprintf(src, sizeof src, "seed 000 sec. 3.2 (experiment; paper's HLPM %.2f ms)",
              m->t_hlpm * 1e3);
-    if ((rc = vreport_check(r, "time of peak load", "s", m->t_ref, t_peak, 0.10, true, src,
+    snprintf(q, sizeof q, "%stime of peak load", m->tag);
+    if ((rc = vreport_check(r, q, "s", m->t_ref, t_peak, 0.10, true, src,
                             "10 %: the seed's HLPM matched the experiment to 2-3 %; support span "
                             "and tup radius are our choices",
                             err)))
@@ -142,17 +154,23 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
                             "crack, whose deflection is set by eps_max and the chosen span");
     snprintf(src, sizeof src, "seed 000 sec. 3.2 (experiment; paper's HLPM %.2f mm)",
              m->d_hlpm * 1e3);
-    if ((rc = vreport_check(r, "deflection at peak load", "m", m->d_ref, d_peak, 0.10, true, src,
+    snprintf(q, sizeof q, "%sdeflection at peak load", m->tag);
+    if ((rc = vreport_check(r, q, "m", m->d_ref, d_peak, 0.10, true, src,
                             "10 %: as above", err)))
         goto done;
     if (fabs(d_peak - m->d_ref) > 0.10 * m->d_ref)
         vreport_mark_gap(r, "see docs/validation.md: beam theory puts the first bending crack "
                             "at eps_max S^2 / (6 h); the elastic-brittle lattice follows it");
     snprintf(src, sizeof src, "seed 000 sec. 3.2 (experiment; paper's HLPM %.2f J)", m->e_hlpm);
-    if ((rc = vreport_check(r, "absorbed energy", "J", m->e_ref, absorbed, 0.10, true, src,
+    snprintf(q, sizeof q, "%sabsorbed energy", m->tag);
+    if ((rc = vreport_check(r, q, "J", m->e_ref, absorbed, 0.10, true, src,
                             "10 %: as above", err)))
         goto done;
-    if (fabs(absorbed - m->e_ref) > 0.10 * m->e_ref)
+    if (fabs(absorbed - m->e_ref) > 0.10 * m->e_ref && soft)
+        vreport_mark_gap(r, "cohesive softening with G_f = 3 kJ/m^2 still lets the beam snap "
+                            "through the depth and lose contact; see docs/validation.md for the "
+                            "G_f scan (energy vs peak time trade-off)");
+    else if (fabs(absorbed - m->e_ref) > 0.10 * m->e_ref)
         vreport_mark_gap(r, "an elastic-brittle beam absorbs about its strain energy at "
                             "fracture, 1/2 k delta^2; the experiment's extra energy (local "
                             "crushing under the tup, plasticity, friction) is not in the model");
@@ -174,9 +192,20 @@ done:
 
 int impact_case_nylon(struct vreport *r, struct spall_error *err)
 {
-    const struct indent_material m = {"impact-nylon", 1140.0, 3.0e9, 60.0e6, 1.87,
-                                      1.70e-3, 3.03e-3, 1.2, 1.66e-3, 3.0e-3, 1.2};
-    return run_indent(r, &m, err);
+    const struct indent_material m = {"impact-nylon", "linear", "", "", 1140.0, 3.0e9, 60.0e6,
+                                      1.87, 1.70e-3, 3.03e-3, 1.2, 1.66e-3, 3.0e-3, 1.2};
+    int rc = run_indent(r, &m, err);
+    if (rc)
+        return rc;
+    /* variant: cohesive softening law (lattice_softening.h), onset at
+     * sigma_TS / E as above, fracture energy G_f = K_IC^2 / E with K_IC ~
+     * 3 MPa m^0.5 for dry nylon-6,6 (a handbook-range value, our choice, not
+     * fitted to this test; docs/validation.md) */
+    const struct indent_material ms = {"impact-nylon (softening)", "softening",
+                                       ", fracture_energy: 3.0e3", "softening G_f 3 kJ/m^2: ",
+                                       1140.0, 3.0e9, 60.0e6, 1.87, 1.70e-3, 3.03e-3, 1.2,
+                                       1.66e-3, 3.0e-3, 1.2};
+    return run_indent(r, &ms, err);
 }
 
 int impact_case_vinylester(struct vreport *r, struct spall_error *err)
@@ -187,7 +216,7 @@ int impact_case_vinylester(struct vreport *r, struct spall_error *err)
      * those two runs) so that the first crack falls near the measured
      * deflection: the deflection check is therefore a calibration, the time
      * of the peak and the absorbed energy stay independent checks. */
-    const struct indent_material m = {"impact-vinylester", 1050.0, 2.56e9, 43.5e6, 1.91,
+    const struct indent_material m = {"impact-vinylester", "linear", "", "", 1050.0, 2.56e9, 43.5e6, 1.91,
                                       1.38e-3, 2.60e-3, 0.7, 1.42e-3, 2.66e-3, 0.76};
     return run_indent(r, &m, err);
 }

@@ -28,6 +28,7 @@
  * compile-time constant inside each specialisation.
  */
 #include "models/lattice/lattice_internal.h"
+#include "models/lattice/lattice_softening.h"
 
 #include "core/bond_list.h"
 #include "core/particles.h"
@@ -183,6 +184,10 @@ LATTICE_INLINE void row_general(struct model *m, const struct lattice_view *v, s
         double c;
         if (LATTICE_UNLIKELY(v->state[s])) {
             c = lattice_coef(&lp, bw->curve, k, st, 1);
+        } else if (law == LATTICE_LAW_SOFT && !(r < r_rest * bw->c_lim)) {
+            /* cohesive softening: history per half-bond (lattice_softening.h) */
+            c = lattice_soft_coef(bw->e0, bw->t_lim - 1.0, k, r_rest, st, &m->kappa[s],
+                                  &m->bl->state[s], &m->diss[i], BOND_BROKEN);
         } else if (LATTICE_UNLIKELY(r > r_rest * bw->t_lim || r < r_rest * bw->c_lim)) {
             struct lattice_bond_law bk = *bw;
             bk.k = k;
@@ -373,6 +378,7 @@ static void range_general(struct model *m, const struct lattice_view *v, size_t 
     switch (m->lp.law) {
     case LATTICE_LAW_LJ: range_general_law(m, v, lo, hi, dim, LATTICE_LAW_LJ, gather); break;
     case LATTICE_LAW_PWL: range_general_law(m, v, lo, hi, dim, LATTICE_LAW_PWL, gather); break;
+    case LATTICE_LAW_SOFT: range_general_law(m, v, lo, hi, dim, LATTICE_LAW_SOFT, gather); break;
     case LATTICE_LAW_LINEAR:
     default: range_general_law(m, v, lo, hi, dim, LATTICE_LAW_LINEAR, gather); break;
     }
@@ -491,8 +497,16 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
             &m->pair[((size_t)mat[i] * nm + (size_t)mat[j]) * LATTICE_MAX_TYPES + bl->type[s]];
         const int broken = bl->state[s] != 0;
         const double k = m->kscale ? bw->k * m->kscale[s] : bw->k;
-        const double c = lattice_coef(&m->lp, bw->curve, k, st, broken);
-        e += 0.5 * lattice_energy(&m->lp, bw->curve, k, bl->rest[s], st, broken);
+        double c = lattice_coef(&m->lp, bw->curve, k, st, broken);
+        if (m->lp.law == LATTICE_LAW_SOFT && !broken) {
+            /* damaged bond in tension: secant stiffness (lattice_softening.h) */
+            const double ef = bw->t_lim - 1.0, kap = m->kappa[s];
+            if (st > 1.0)
+                c *= lattice_soft_secant(bw->e0, ef, kap);
+            e += 0.5 * lattice_soft_energy(bw->e0, ef, k, bl->rest[s], st, kap);
+        } else {
+            e += 0.5 * lattice_energy(&m->lp, bw->curve, k, bl->rest[s], st, broken);
+        }
         add_outer(dim, sig, dx, dx, 0.5 * c);
     }
     if (m->angular && dim == 2) {

@@ -37,6 +37,8 @@ struct lattice_material {
     double eps_t;          /**< tensile failure strain; INFINITY: never (LJ: the peak) */
     bool eps_t_given;
     double eps_c;          /**< compressive failure strain; INFINITY: never */
+    double eps_0;          /**< softening law: onset strain sigma_TS / E */
+    double gf;             /**< softening law: fracture energy [J/m^2]; 0: eps_t given */
     bool ang_fail;         /**< angular_failure given */
     double dphi_c, dphi_t; /**< angular failure limits [rad] */
     double lj_p, lj_q;     /**< LJ exponents */
@@ -71,6 +73,7 @@ struct model {
     uint8_t *ang_state;   /**< 1: broken */
     double *ang_buf;      /**< 2 per slot: force on the slot's partner from angles at the row's particle */
 
+    double *kappa;        /**< softening law: per half-bond history (largest strain beyond e0) */
     double *diss;         /**< per particle: energy released by its broken bonds/angles [J] */
     struct lattice_thermal *th; /**< thermal lattice (lattice_thermal.c); NULL: none */
     const double *kscale; /**< per half-bond stiffness factor E(T)/E_ref, owned by th;
@@ -97,5 +100,13 @@ int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error 
  *  of particle i from the current positions; changes nothing. */
 void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t i,
                            double *energy, double *stress);
+
+/* lattice_softening.c */
+struct lattice_calib;
+/** Full-separation strain *ef of the softening law from the fracture energy
+ *  @p gf [J/m^2] and onset strain @p e0, for the calibrated lattice @p c
+ *  (bonds cut per unit area of a crack between rows; see the file). */
+int lattice_soft_final_strain(const struct lattice_calib *c, double e0, double gf, double *ef,
+                              struct spall_error *err);
 
 #endif

@@ -40,7 +40,12 @@
 #define LATTICE_PI 3.14159265358979323846
 
 /** Axial law of the whole model (deck `model.law`). */
-enum lattice_law { LATTICE_LAW_LINEAR = 0, LATTICE_LAW_LJ = 1, LATTICE_LAW_PWL = 2 };
+enum lattice_law {
+    LATTICE_LAW_LINEAR = 0,
+    LATTICE_LAW_LJ = 1,
+    LATTICE_LAW_PWL = 2,
+    LATTICE_LAW_SOFT = 3 /**< bilinear cohesive softening (lattice_softening.h); intact = linear */
+};
 
 /** Piecewise-linear curve normalised by the initial modulus: g = sigma/E0. */
 struct lattice_curve {
@@ -58,6 +63,7 @@ struct lattice_bond_law {
     double c_lim;    /**< bond breaks when r < c_lim * r_rest (-INFINITY: never) */
     double dfdr_max; /**< max |dF/dr| over the intact range [N/m] (stable dt) */
     int curve;       /**< piecewise-linear: index of the material whose curve is used */
+    double e0;       /**< softening law: strain where softening starts (t_lim - 1 = full separation) */
 };
 
 /** Law parameters shared by every bond. */

@@ -68,6 +68,7 @@
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice_honeycomb.h"
 #include "models/lattice/lattice_internal.h"
+#include "models/lattice/lattice_softening.h"
 
 #include "core/bond_list.h"
 #include "models/lattice/lattice_thermal.h"
@@ -146,6 +147,7 @@ static void lattice_destroy(struct model **pm)
     free(m->ang_state);
     free(m->ang_buf);
     free(m->diss);
+    free(m->kappa);
     lattice_thermal_destroy(&m->th);
     free(m);
     *pm = NULL;
@@ -156,7 +158,8 @@ static void lattice_destroy(struct model **pm)
 static int lattice_create(struct model **out, struct sim *sim, const struct deck_node *params,
                           struct spall_error *err)
 {
-    static const char *const laws[] = {"linear", "lennard_jones", "piecewise_linear", NULL};
+    static const char *const laws[] = {"linear", "lennard_jones", "piecewise_linear",
+                                       "softening", NULL};
     static const char *const angs[] = {"auto", "on", "off", NULL};
     static const char *const keys[] = {"type", "law", "layers", "second_layer_ratio", "angular",
                                        "thermal", NULL};
@@ -268,6 +271,10 @@ static int lattice_parse_material(struct model *m, struct sim *sim, int index,
                                        "failure_strain", "compressive_failure_strain",
                                        "angular_failure", "exponents", LATTICE_THERMAL_KEYS,
                                        NULL};
+    static const char *const k_soft[] = {"density", "youngs_modulus", "poisson_ratio",
+                                         "tensile_strength", "onset_strain", "fracture_energy",
+                                         "failure_strain", "compressive_failure_strain",
+                                         "angular_failure", LATTICE_THERMAL_KEYS, NULL};
     static const char *const k_pwl[] = {"density", "youngs_modulus", "poisson_ratio", "curve",
                                         "compressive_failure_strain", "angular_failure",
                                         LATTICE_THERMAL_KEYS, NULL};
@@ -291,7 +298,35 @@ static int lattice_parse_material(struct model *m, struct sim *sim, int index,
     if (law != LATTICE_LAW_PWL &&
         (rc = deck_double_pos(node, "failure_strain", false, &eps, err)))
         goto fail;
-    if (law == LATTICE_LAW_LINEAR) {
+    if (law == LATTICE_LAW_SOFT) {
+        /* onset e0 = sigma_TS / E (Eq. 26) or given; full separation ef
+         * given or from the fracture energy (converted in init, where the
+         * spring constants are known) */
+        double e0 = 0.0, gf = 0.0;
+        if ((rc = deck_double_pos(node, "tensile_strength", false, &sts, err)) ||
+            (rc = deck_double_pos(node, "onset_strain", false, &e0, err)) ||
+            (rc = deck_double_pos(node, "fracture_energy", false, &gf, err)))
+            goto fail;
+        if ((sts > 0.0) == (e0 > 0.0)) {
+            rc = deck_error(err, node, "%s: law softening: give exactly one of tensile_strength "
+                            "[Pa] and onset_strain (seed 000 Eq. 26)", what);
+            goto fail;
+        }
+        if ((gf > 0.0) == (eps > 0.0)) {
+            rc = deck_error(err, node, "%s: law softening: give exactly one of fracture_energy "
+                            "[J/m^2] and failure_strain (strain of full separation)", what);
+            goto fail;
+        }
+        mt.eps_0 = e0 > 0.0 ? e0 : sts / mt.E;
+        if (eps > 0.0 && !(eps > mt.eps_0)) {
+            rc = deck_error_key(err, node, "failure_strain", "%s: failure_strain %g must exceed "
+                                "the softening onset strain %g", what, eps, mt.eps_0);
+            goto fail;
+        }
+        mt.gf = gf;
+        mt.eps_t = eps > 0.0 ? eps : INFINITY; /* gf: set in init */
+        mt.eps_t_given = true;
+    } else if (law == LATTICE_LAW_LINEAR) {
         if ((rc = deck_double_pos(node, "tensile_strength", false, &sts, err)))
             goto fail;
         if ((sts > 0.0) == (eps > 0.0)) {
@@ -348,8 +383,10 @@ static int lattice_parse_material(struct model *m, struct sim *sim, int index,
     }
     if ((rc = lattice_thermal_parse_material(m, sim, index, node, err)))
         goto fail;
-    const char *const *allowed = law == LATTICE_LAW_LINEAR ? k_lin : law == LATTICE_LAW_LJ ? k_lj
-                                                                                          : k_pwl;
+    const char *const *allowed = law == LATTICE_LAW_LINEAR ? k_lin
+                                 : law == LATTICE_LAW_LJ   ? k_lj
+                                 : law == LATTICE_LAW_SOFT ? k_soft
+                                                           : k_pwl;
     if ((rc = deck_check_unused(node, what, allowed, err)))
         goto fail;
     /* the lattice decides which nu are possible: refuse here, with a position */
@@ -411,6 +448,10 @@ static void build_pair_table(struct model *m)
                     for (size_t k = 0; k + 1 < cv->n; k++)
                         smax = fmax(smax, fabs(cv->slope[k]));
                     w.dfdr_max = w.k * smax;
+                } else if (m->lp.law == LATTICE_LAW_SOFT) {
+                    /* the softening branch's slope may be steeper than k */
+                    w.e0 = fmin(A->eps_0, B->eps_0);
+                    w.dfdr_max = w.k * fmax(1.0, w.e0 / (et - w.e0));
                 } else {
                     w.dfdr_max = w.k;
                 }
@@ -556,6 +597,11 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
         m->mat_k_area[k] = c.k_area;
         m->mat_dphi_c[k] = mt->dphi_c;
         m->mat_dphi_t[k] = mt->dphi_t;
+        if (m->opt.law == LATTICE_LAW_SOFT && mt->gf > 0.0 &&
+            (rc = lattice_soft_final_strain(&c, mt->eps_0, mt->gf, &mt->eps_t, err))) {
+            spall_error_prefix(err, "material '%s': ", sim->materials[k].name);
+            return rc;
+        }
     }
     m->layers = layers;
     m->angular = angular && sim->dim == 2;
@@ -575,6 +621,12 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
     if (rc)
         return rc;
     m->n_half = m->bl->offset[m->bl->n];
+    if (m->opt.law == LATTICE_LAW_SOFT) {
+        free(m->kappa);
+        m->kappa = calloc(m->n_half ? m->n_half : 1, sizeof *m->kappa);
+        if (!m->kappa)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for bond damage");
+    }
     m->honeycomb = spec->kind == LATTICE_TRIPLE_HONEYCOMB;
     if (m->honeycomb) /* bond type = honeycomb family (alpha, beta, gamma) */
         lattice_honeycomb_retype(m->bl, p, spec);
@@ -732,7 +784,8 @@ static size_t lattice_history(const struct model *m, const struct sim *sim, cons
 static void lattice_describe(const struct model *m, const struct sim *sim, char *buf,
                              size_t len)
 {
-    static const char *const lawn[] = {"linear", "lennard_jones", "piecewise_linear"};
+    static const char *const lawn[] = {"linear", "lennard_jones", "piecewise_linear",
+                                       "softening"};
     size_t w = 0;
 #define PUT(...)                                                                                \
     do {                                                                                        \
@@ -759,6 +812,11 @@ static void lattice_describe(const struct model *m, const struct sim *sim, char 
         const struct lattice_bond_law *w0 = &m->pair[(k * m->n_mat + k) * LATTICE_MAX_TYPES];
         PUT(", eps_max = %g, compressive limit %g\n", w0->t_lim - 1.0,
             isfinite(w0->c_lim) ? 1.0 - w0->c_lim : INFINITY);
+        if (m->opt.law == LATTICE_LAW_SOFT)
+            PUT("    softening: onset strain e0 = %g, full separation ef = %g (%s), energy per "
+                "first-shell bond k1 r0^2 e0 ef / 2 = %g J\n", w0->e0, w0->t_lim - 1.0,
+                mt->gf > 0.0 ? "from fracture_energy" : "failure_strain", 0.5 * mt->k[0] * r0 *
+                r0 * w0->e0 * (w0->t_lim - 1.0));
         if (m->opt.law == LATTICE_LAW_LJ) {
             double p = m->lp.p, q = m->lp.q, k1 = mt->k[0];
             double H = k1 * pow(r0, q + 1.0) / (q - p), G = H * pow(r0, p - q);

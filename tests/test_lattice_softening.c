@@ -1,0 +1,179 @@
+/*
+ * Tests of the lattice model's cohesive softening law (`law: softening`,
+ * src/models/lattice/lattice_softening.h): one bond through loading,
+ * softening, unloading along the secant, reloading, compression and full
+ * separation, with the work done on it = stored + dissipated at every point
+ * and the dissipated total = k r0^2 e0 ef / 2; the fracture energy of a
+ * crack between two rows of a two-layer triangular lattice = G_f given.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "core/bond_list.h"
+#include "core/geometry.h"
+#include "core/lattice_gen.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "models/lattice/lattice_internal.h"
+#include "models/model.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+extern const struct model_ops lattice_model_ops;
+
+/** A hand-built sim: a block of the lattice, softening law, E = 1. */
+static struct sim *make_soft(enum lattice_kind kind, const double hi[3], int layers, double e0,
+                             double ef, double gf)
+{
+    struct spall_error err = {0, ""};
+    int dim = lattice_kind_dim(kind);
+    struct sim *s = NULL;
+    assert_int_equal(sim_create(&s, dim, &err), 0);
+    assert_int_equal(sim_add_material(s, "m", 1000.0, NULL, &err), 0);
+    s->lattice.kind = kind;
+    s->lattice.spacing = 1.0;
+    s->thickness = 1.0;
+    s->thickness_given = true;
+    double lo[3] = {0, 0, 0};
+    struct geom *g = geom_box(lo, hi);
+    size_t added = 0;
+    assert_int_equal(lattice_fill(s->p, &s->lattice, g, 0, &added, &err), 0);
+    geom_destroy(&g);
+    double vol = lattice_site_volume(&s->lattice, s->thickness);
+    for (size_t i = 0; i < s->p->n; i++) {
+        s->p->volume[i] = vol;
+        s->p->mass[i] = 1000.0 * vol;
+    }
+    struct lattice_options opt = {LATTICE_LAW_SOFT, layers, -1, 0.0};
+    struct model *m = NULL;
+    assert_int_equal(lattice_model_new(&m, s, &opt, &err), 0);
+    s->ops = &lattice_model_ops;
+    s->model = m;
+    struct lattice_material mt;
+    memset(&mt, 0, sizeof mt);
+    mt.E = 1.0;
+    mt.nu = 1.0 / 3.0;
+    mt.nu_given = true;
+    mt.eps_0 = e0;
+    mt.eps_t = ef;
+    mt.gf = gf;
+    mt.eps_t_given = true;
+    mt.eps_c = INFINITY;
+    mt.dphi_c = mt.dphi_t = INFINITY;
+    assert_int_equal(lattice_model_set_material(m, 0, &mt, &err), 0);
+    int rc = lattice_model_ops.init(m, s, &err);
+    if (rc)
+        fprintf(stderr, "%s\n", err.msg);
+    assert_int_equal(rc, 0);
+    return s;
+}
+
+static void forces(struct sim *s)
+{
+    struct spall_error err = {0, ""};
+    particles_zero_forces(s->p);
+    assert_int_equal(lattice_model_ops.compute_forces(s->model, s, &err), 0);
+}
+
+static void test_single_bond_path(void **state)
+{
+    (void)state;
+    const double e0 = 0.01, ef = 0.03;
+    double hi[3] = {1.0 + 1e-9, 0, 0};
+    struct sim *s = make_soft(LATTICE_CHAIN, hi, 0, e0, ef, 0.0);
+    assert_int_equal(s->p->n, 2);
+    const double k = s->model->mat[0].k[0];
+    /* path of strains: load into softening, unload, compress, reload past
+     * the old maximum, separate, come back in compression */
+    const double path[] = {0.0, 0.02, 0.01, -0.01, 0.02, 0.025, 0.0, 0.035, 0.01, -0.005};
+    const size_t np = sizeof path / sizeof path[0];
+    const int sub = 4000;
+    double e_prev = 0.0, f_prev = 0.0, work = 0.0;
+    struct model_energy en;
+    for (size_t q = 1; q < np; q++) {
+        for (int j = 1; j <= sub; j++) {
+            double e = path[q - 1] + (path[q] - path[q - 1]) * (double)j / sub;
+            s->p->x[0][1] = 1.0 + e;
+            forces(s);
+            double F = s->p->f[0][1]; /* force on the moving end: -dU/dx */
+            work -= 0.5 * (F + f_prev) * (e - e_prev); /* work done on the bond */
+            e_prev = e;
+            f_prev = F;
+        }
+        lattice_model_ops.energy(s->model, s, &en);
+        printf("  e = %+.4f: F/k = %+.6f, stored %.4e, dissipated %.4e, work %.4e\n", path[q],
+               f_prev / k, en.strain, en.dissipated, work);
+        /* the energy account closes (trapezoid error ~ (de)^2) */
+        assert_true(fabs(work - en.strain - en.dissipated) < 1e-6 * 0.5 * k * e0 * ef);
+        const double e = path[q];
+        double expect;
+        if (q == 1 || q == 4) /* on the envelope at e = 0.02 */
+            expect = -k * e0 * (ef - 0.02) / (ef - e0);
+        else if (q == 2) /* secant of kappa = 0.02: (1 - d) = 0.25 */
+            expect = -k * 0.25 * e;
+        else if (q == 5) /* envelope at 0.025 */
+            expect = -k * e0 * (ef - 0.025) / (ef - e0);
+        else if (q == 8) /* broken: no attraction */
+            expect = 0.0;
+        else if (e <= 0.0) /* compression: intact stiffness */
+            expect = -k * e;
+        else
+            expect = NAN;
+        if (!isnan(expect))
+            assert_true(fabs(f_prev - expect) < 1e-9 * k);
+        if (q == 2) /* unloading dissipates nothing new: W(0.02) - F(0.02) 0.02 / 2 =
+                     * (5e-5 + 7.5e-5) - 5e-5 (k r0^2 units, hand-computed) */
+            assert_true(fabs(en.dissipated - 7.5e-5 * k) < 1e-12 * k);
+    }
+    /* full separation: the bond's whole share of G_f, k r0^2 e0 ef / 2 */
+    lattice_model_ops.energy(s->model, s, &en);
+    assert_true(fabs(en.dissipated / (0.5 * k * e0 * ef) - 1.0) < 1e-12);
+    assert_int_equal(bond_list_count_broken(s->model->bl), 1);
+    sim_destroy(&s);
+}
+
+static void test_triangular_fracture_energy(void **state)
+{
+    (void)state;
+    /* two-layer triangular strip, E = 1, t = r0 = 1; split along the row
+     * nearest the middle by moving the upper half rigidly apart */
+    const double e0 = 0.01, gf = 4.2e-4; /* ef ~ 3 e0 */
+    double hi[3] = {60.0, 12.0, 0};
+    struct sim *s = make_soft(LATTICE_TRIANGULAR, hi, 2, e0, 0.0, gf);
+    struct model *m = s->model;
+    double ef = m->pair[0].t_lim - 1.0;
+    double k1 = m->mat[0].k[0], k2 = m->mat[0].k[1];
+    assert_true(fabs(ef - 2.0 * gf / (e0 * (2.0 * k1 + 12.0 * k2))) < 1e-15);
+    const double row = 0.5 * sqrt(3.0), ycut = 7.0 * row - 0.5 * row;
+    for (size_t i = 0; i < s->p->n; i++)
+        if (s->p->x0[1][i] > ycut)
+            s->p->x[1][i] = s->p->x0[1][i] + 1.0;
+    forces(s);
+    struct model_energy en;
+    lattice_model_ops.energy(s->model, s, &en);
+    /* per unit length of crack: the strip's interior has width 60, the
+     * bonds leaning out of the strip at its two ends are missing */
+    double width = 60.0;
+    double g = en.dissipated / width;
+    printf("  G measured %.5g vs G_f %.5g (ef = %.4g, %zu bonds broken)\n", g, gf, ef,
+           bond_list_count_broken(m->bl));
+    assert_true(fabs(g / gf - 1.0) < 0.03);
+    sim_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_single_bond_path),
+        cmocka_unit_test(test_triangular_fracture_energy),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
