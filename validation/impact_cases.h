@@ -31,6 +31,10 @@ int impact_case_spall(struct vreport *r, struct spall_error *err);
 int impact_spall_deck(char *buf, size_t len, double flyer_width, double r0, double end_time,
                       double eps_max);
 
+/** Same with axial law @p law and its failure keys @p fail_keys (deck text). */
+int impact_spall_deck_law(char *buf, size_t len, double flyer_width, double r0, double end_time,
+                          const char *law, const char *fail_keys);
+
 /** "impact-epoxy": seed 000 sec. 3.1 epoxy plate with holes, cracks link holes. */
 int impact_case_epoxy(struct vreport *r, struct spall_error *err);
 

@@ -8,7 +8,10 @@
  *
  *   model:
  *     type: lattice
- *     law: linear | lennard_jones | piecewise_linear
+ *     law: linear | lennard_jones | piecewise_linear | softening
+ *           (softening: bilinear cohesive law with per-bond damage,
+ *           lattice_softening.h; material keys tensile_strength | onset_strain
+ *           and fracture_energy | failure_strain)
  *           axial law (default linear; seed 000 Eq. 15, Eq. 1, "polynomial")
  *     layers: 1 | 2
  *           axial neighbour shells (seed Fig. 3a/3b).  Default: 1 for chain,
