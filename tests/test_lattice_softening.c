@@ -18,6 +18,8 @@
 #include "core/lattice_gen.h"
 #include "core/particles.h"
 #include "core/sim.h"
+#include "io/deck.h"
+#include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice_internal.h"
 #include "models/model.h"
 #include "spall/error.h"
@@ -169,11 +171,86 @@ static void test_triangular_fracture_energy(void **state)
     sim_destroy(&s);
 }
 
+static int try_deck(const char *yaml, struct spall_error *err)
+{
+    struct deck *dk = NULL;
+    assert_int_equal(deck_load_string(&dk, "t.yaml", yaml, err), 0);
+    struct sim *s = NULL;
+    assert_int_equal(sim_create(&s, 2, err), 0);
+    s->lattice.kind = LATTICE_TRIANGULAR;
+    s->lattice.spacing = 1e-3;
+    s->thickness = 1e-3;
+    assert_int_equal(sim_add_material(s, "mat", 1000.0, NULL, err), 0);
+    const struct deck_node *mn = deck_get(dk->root, "model");
+    (void)deck_get(mn, "type");
+    struct model *m = NULL;
+    int rc = lattice_model_ops.create(&m, s, mn, err);
+    if (!rc) {
+        s->ops = &lattice_model_ops;
+        s->model = m;
+        const struct deck_node *mat = deck_get(dk->root, "mat");
+        (void)deck_get(mat, "density");
+        rc = lattice_model_ops.parse_material(m, s, 0, mat, err);
+    }
+    sim_destroy(&s);
+    deck_destroy(&dk);
+    return rc;
+}
+
+static void test_deck_and_refusals(void **state)
+{
+    (void)state;
+    struct spall_error err = {0, ""};
+    const char *head = "model: {type: lattice, law: softening}\nmat: {density: 1, "
+                       "youngs_modulus: 1e9, poisson_ratio: 0.3333333333333333, ";
+    char y[512];
+    snprintf(y, sizeof y, "%stensile_strength: 1e7, fracture_energy: 100}\n", head);
+    assert_int_equal(try_deck(y, &err), 0);
+    snprintf(y, sizeof y, "%sonset_strain: 0.01, failure_strain: 0.03}\n", head);
+    assert_int_equal(try_deck(y, &err), 0);
+    snprintf(y, sizeof y, "%stensile_strength: 1e7, onset_strain: 0.01, failure_strain: 0.03}\n",
+             head);
+    assert_int_equal(try_deck(y, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "exactly one of tensile_strength"));
+    snprintf(y, sizeof y, "%sonset_strain: 0.01, failure_strain: 0.03, fracture_energy: 1}\n",
+             head);
+    assert_int_equal(try_deck(y, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "exactly one of fracture_energy"));
+    snprintf(y, sizeof y, "%sonset_strain: 0.01, failure_strain: 0.01}\n", head);
+    assert_int_equal(try_deck(y, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "must exceed"));
+    /* the linear law does not take the softening keys */
+    assert_int_equal(try_deck("model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
+                              "poisson_ratio: 0.3333333333333333, tensile_strength: 1e7, "
+                              "fracture_energy: 100}\n", &err), SPALL_ERR_INPUT);
+    /* G_f below the lattice's brittle value; a lattice without the count */
+    struct lattice_calib c;
+    memset(&c, 0, sizeof c);
+    c.kind = LATTICE_TRIANGULAR;
+    c.layers = 2;
+    c.angular = -1;
+    c.E = 1e9;
+    c.nu = 1.0 / 3.0;
+    c.r0 = 1e-3;
+    c.thickness = 1e-3;
+    assert_int_equal(lattice_calibrate(&c, &err), 0);
+    double ef = 0.0;
+    assert_int_equal(lattice_soft_final_strain(&c, 0.01, 1e-3, &ef, &err), SPALL_ERR_PHYSICS);
+    assert_non_null(strstr(err.msg, "brittle limit"));
+    assert_int_equal(lattice_soft_final_strain(&c, 0.01, 1e3, &ef, &err), 0);
+    c.kind = LATTICE_FCC;
+    c.layers = 0;
+    c.nu = 0.25;
+    assert_int_equal(lattice_calibrate(&c, &err), 0);
+    assert_int_equal(lattice_soft_final_strain(&c, 0.01, 1e3, &ef, &err), SPALL_ERR_INPUT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_single_bond_path),
         cmocka_unit_test(test_triangular_fracture_energy),
+        cmocka_unit_test(test_deck_and_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -103,6 +103,11 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
 
 /* lattice_softening.c */
 struct lattice_calib;
+struct deck_node;
+/** Softening-law material keys (tensile_strength | onset_strain,
+ *  fracture_energy | failure_strain = @p eps, already read) into @p mt. */
+int lattice_soft_parse(const struct deck_node *node, const char *what, double eps,
+                       struct lattice_material *mt, struct spall_error *err);
 /** Full-separation strain *ef of the softening law from the fracture energy
  *  @p gf [J/m^2] and onset strain @p e0, for the calibrated lattice @p c
  *  (bonds cut per unit area of a crack between rows; see the file). */

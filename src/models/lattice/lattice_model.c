@@ -302,33 +302,8 @@ static int lattice_parse_material(struct model *m, struct sim *sim, int index,
         (rc = deck_double_pos(node, "failure_strain", false, &eps, err)))
         goto fail;
     if (law == LATTICE_LAW_SOFT) {
-        /* onset e0 = sigma_TS / E (Eq. 26) or given; full separation ef
-         * given or from the fracture energy (converted in init, where the
-         * spring constants are known) */
-        double e0 = 0.0, gf = 0.0;
-        if ((rc = deck_double_pos(node, "tensile_strength", false, &sts, err)) ||
-            (rc = deck_double_pos(node, "onset_strain", false, &e0, err)) ||
-            (rc = deck_double_pos(node, "fracture_energy", false, &gf, err)))
+        if ((rc = lattice_soft_parse(node, what, eps, &mt, err)))
             goto fail;
-        if ((sts > 0.0) == (e0 > 0.0)) {
-            rc = deck_error(err, node, "%s: law softening: give exactly one of tensile_strength "
-                            "[Pa] and onset_strain (seed 000 Eq. 26)", what);
-            goto fail;
-        }
-        if ((gf > 0.0) == (eps > 0.0)) {
-            rc = deck_error(err, node, "%s: law softening: give exactly one of fracture_energy "
-                            "[J/m^2] and failure_strain (strain of full separation)", what);
-            goto fail;
-        }
-        mt.eps_0 = e0 > 0.0 ? e0 : sts / mt.E;
-        if (eps > 0.0 && !(eps > mt.eps_0)) {
-            rc = deck_error_key(err, node, "failure_strain", "%s: failure_strain %g must exceed "
-                                "the softening onset strain %g", what, eps, mt.eps_0);
-            goto fail;
-        }
-        mt.gf = gf;
-        mt.eps_t = eps > 0.0 ? eps : INFINITY; /* gf: set in init */
-        mt.eps_t_given = true;
     } else if (law == LATTICE_LAW_LINEAR) {
         if ((rc = deck_double_pos(node, "tensile_strength", false, &sts, err)))
             goto fail;

@@ -1,7 +1,7 @@
 /**
  * @file lattice_softening.c
- * @brief Fracture energy -> full-separation strain of the cohesive softening
- *        law (lattice_softening.h).
+ * @brief Deck keys and fracture energy -> full-separation strain of the
+ *        cohesive softening law (lattice_softening.h).
  *
  * A straight crack between two lattice rows (along a lattice direction) cuts
  * n_s bonds of shell s per unit crack area.  Each cut bond, taken through
@@ -22,6 +22,7 @@
  */
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice_internal.h"
+#include "io/deck.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -52,5 +53,33 @@ int lattice_soft_final_strain(const struct lattice_calib *c, double e0, double g
                                "lattice's brittle limit %g J/m^2 (sum n k r^2 e0^2 / 2 with "
                                "e0 = %g): the law would need a snap-back", gf,
                                0.5 * sum * e0 * e0, e0);
+    return SPALL_OK;
+}
+
+int lattice_soft_parse(const struct deck_node *node, const char *what, double eps,
+                       struct lattice_material *mt, struct spall_error *err)
+{
+    /* onset e0 = sigma_TS / E (seed 000 Eq. 26) or given; full separation
+     * ef given (eps, already read as failure_strain) or from the fracture
+     * energy (converted in init, where the spring constants are known) */
+    double sts = 0.0, e0 = 0.0, gf = 0.0;
+    int rc;
+    if ((rc = deck_double_pos(node, "tensile_strength", false, &sts, err)) ||
+        (rc = deck_double_pos(node, "onset_strain", false, &e0, err)) ||
+        (rc = deck_double_pos(node, "fracture_energy", false, &gf, err)))
+        return rc;
+    if ((sts > 0.0) == (e0 > 0.0))
+        return deck_error(err, node, "%s: law softening: give exactly one of tensile_strength "
+                          "[Pa] and onset_strain (seed 000 Eq. 26)", what);
+    if ((gf > 0.0) == (eps > 0.0))
+        return deck_error(err, node, "%s: law softening: give exactly one of fracture_energy "
+                          "[J/m^2] and failure_strain (strain of full separation)", what);
+    mt->eps_0 = e0 > 0.0 ? e0 : sts / mt->E;
+    if (eps > 0.0 && !(eps > mt->eps_0))
+        return deck_error_key(err, node, "failure_strain", "%s: failure_strain %g must exceed "
+                              "the softening onset strain %g", what, eps, mt->eps_0);
+    mt->gf = gf;
+    mt->eps_t = eps > 0.0 ? eps : INFINITY; /* gf: set in init */
+    mt->eps_t_given = true;
     return SPALL_OK;
 }
