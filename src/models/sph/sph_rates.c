@@ -406,6 +406,8 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
             wall_forces(m, s);
         return rc;
     }
+    if (m->opt.plane == SPH_PLANE_AXISYMMETRIC)
+        return sph_axisym_rates(m, s, err);
     int rc = sph_neighbors_update(m, s, false, err);
     if (rc)
         return rc;
