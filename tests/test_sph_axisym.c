@@ -55,9 +55,10 @@ static struct sim *cylinder(double r0, double r1, double zl)
 }
 
 /* interior: at least the kernel support (2 h = 2.6 dx) from every free surface */
+static double gap = 2.7e-3;
 static int interior(const struct sim *s, size_t i, double r0, double r1, double zl)
 {
-    double r = s->p->x[0][i], z = s->p->x[1][i], gap = 2.7e-3;
+    double r = s->p->x[0][i], z = s->p->x[1][i];
     return (r0 == 0.0 || r - r0 > gap) && r1 - r > gap && z > gap && zl - z > gap;
 }
 
@@ -110,7 +111,12 @@ static void test_mass_and_expansion_gradient(void **state)
 static void test_lame_hoop_balance(void **state)
 {
     (void)state;
-    const double r0 = 0.004, r1 = 0.024, zl = 0.010;
+    const double r0 = 0.004, r1 = 0.024, zl = 0.016;
+    /* the corrected-gradient pair terms use each neighbour's own B_j, which
+     * near a free surface is not the bulk one: the balance is checked two
+     * supports (5.2 dx) inside (measured there 0.8 %; 1.0 % at 4 dx, 44 %
+     * at 2.7 dx, i.e. within the surface layer, as for planar CSPM) */
+    gap = 5.3e-3;
     struct sim *s = cylinder(r0, r1, zl);
     assert_non_null(s);
     struct model *m = s->model;
@@ -147,6 +153,7 @@ static void test_lame_hoop_balance(void **state)
     assert_true(nin >= 20);
     print_message("Lame cylinder: residual acceleration <= %.3g of the hoop term\n", worst);
     assert_true(worst < 0.05);
+    gap = 2.7e-3;
     sim_destroy(&s);
 }
 
@@ -209,7 +216,7 @@ static void test_refused(void **state)
     struct sim *s = NULL;
     struct run_output ro;
     struct spall_error err = {0};
-    const char *yaml = "model: {type: sph, plane: axisymmetric, cspm: true}\n"
+    const char *yaml = "model: {type: sph, plane: axisymmetric, artificial_stress: 0.3}\n"
                        "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
                        "lattice: {type: square, spacing: 1.0e-3}\n"
                        "body: {geometry: {box: {min: [0, 0], max: [0.01, 0.01]}}, material: m}\n"

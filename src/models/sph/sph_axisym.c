@@ -19,10 +19,36 @@
  *    hoop strain rate D_tt = v_r / r; continuity drho/dt = -rho tr D with
  *    the hoop rate included; the Jaumann rate acts on S_rr, S_zz, S_tt, S_rz
  *    (components xx, yy, zz, xy);
- *  - momentum: rho a_r = d sig_rr/dr + d sig_rz/dz + (sig_rr - sig_tt)/r,
- *    rho a_z = d sig_rz/dr + d sig_zz/dz + sig_rz/r: the planar symmetric
- *    SPH divergence (Eq. 3.20 with mu_j) plus the two hoop source terms;
- *  - energy: the planar form of sph_rates.c plus sig_tt v_r / (rho r);
+ *  - momentum: rho a_r = (1/r) div(r sig)_r - sig_tt / r,
+ *    rho a_z = (1/r) div(r sig)_z (the cylindrical equations written for
+ *    tau = r sig), the divergence by the planar symmetric SPH form (Eq. 3.20
+ *    with mu_j) applied to tau: the pair force on ring i from ring j is
+ *    2 pi mu_i mu_j (r_i sig_i / rho_i^2 + r_j sig_j / rho_j^2) grad W,
+ *    antisymmetric, so axial momentum is conserved exactly; the artificial
+ *    viscosity is weighted by (r_i + r_j) / 2 for the same reason.  (The
+ *    simpler "planar divergence + source terms (sig_rr - sig_tt)/r,
+ *    sig_rz / r" form was tried first: it passes the same static checks but
+ *    its pair forces differ by r_i / r_j, O(1) near the axis, and it created
+ *    4x the input energy in an elastic block within a few wave transits);
+ *  - energy: de_i = -sum_j mu_j v_ij . sig_i / rho_i^2 . grad W + the AV
+ *    half share + sig_tt v_r / (rho r), which is exactly the power of the
+ *    forces above between real particles (Bonet-Lok pairing as in
+ *    sph_rates.c): measured 0.4 % energy error on a hollow cylinder (no
+ *    axis) over ~15 wave transits;
+ *  - gradients are always corrected (CSPM, Eqs. 3.10-3.11, images
+ *    included; the image of j uses Q B_j^-1 Q, Q = diag(-1, 1)), in L and,
+ *    paired as in sph_rates.c, in the stress terms of momentum and energy:
+ *    with the plain gradient the kernel sum's deficit (2.6 % at h = 1.3 dx)
+ *    multiplies tau / r = sig / r, i.e. a uniform stress pushes every ring;
+ *  - the axis images carry tau = r sig with its odd continuation (needed
+ *    for consistency: uniform stress exerts no force on the first rings);
+ *    their pair terms are then not the exact adjoint of the imaged velocity
+ *    gradient, and a solid elastic cylinder gains ~11 % of the input energy
+ *    over ~15 wave transits (a hollow one, no images: 0.01 %); the even
+ *    continuation would be conservative but pushes the first rings under
+ *    uniform stress.  Without the correction the first rings' 1/r terms
+ *    went unstable at c_s = 0.3; with it (and the |B^-1| scaling of the
+ *    stable step, sph_model.c) c_s = 0.3 runs.
  *  - near the axis: every particle j within reach of r = 0 has a mirror
  *    image at (-r_j, z_j) with v_r, sig_rz odd and v_z, sig_rr, sig_zz,
  *    sig_tt even (the fields' smooth continuation across the axis), which
@@ -87,8 +113,9 @@ static void axis_reflect(struct model *m, struct sim *s)
     }
 }
 
-/* Planar velocity gradient with mirror images, hoop rate into L[8]. */
-static void pass_gradient_axi(struct model *m, struct sim *s)
+/* Planar corrected (CSPM, Eqs. 3.10-3.11) velocity gradient with the axis
+ * images, hoop rate into L[8]; returns the number of CSPM fallbacks. */
+static size_t pass_gradient_axi(struct model *m, struct sim *s)
 {
     const struct particles *p = s->p;
     const size_t n = p->n_owned;
@@ -97,10 +124,12 @@ static void pass_gradient_axi(struct model *m, struct sim *s)
     const enum sph_kernel kern = m->opt.kernel;
     const double alpha = m->alpha, qmax = m->qmax;
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
-#pragma omp parallel for schedule(static)
+    size_t fallbacks = 0;
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i];
         double G[4] = {0, 0, 0, 0}; /* rr rz zr zz */
+        double B[9] = {0, 0, 0, 0, 0, 0, 0, 0, 1};
         /* own image first (j = i), then the listed neighbours and theirs */
         for (size_t k = off[i]; k <= off[i + 1]; k++) {
             const bool self = k == off[i + 1];
@@ -121,18 +150,33 @@ static void pass_gradient_axi(struct model *m, struct sim *s)
                 G[1] += dvr * VF * dz;
                 G[2] += dvz * VF * dr;
                 G[3] += dvz * VF * dz;
+                B[0] -= dr * VF * dr;
+                B[1] -= dr * VF * dz;
+                B[3] -= dz * VF * dr;
+                B[4] -= dz * VF * dz;
             }
         }
-        for (int c = 0; c < 9; c++)
+        /* the corrected gradient makes linear fields exact, images
+         * included: without it the kernel sum's deficit (measured 2.6 % at
+         * h = 1.3 dx) multiplies tau / r = sig / r, a spurious force on
+         * every ring under uniform stress */
+        double Bi[9];
+        if (!(fabs(sph_inverse(2, B, Bi)) > 0.01)) {
+            for (int c = 0; c < 9; c++)
+                Bi[c] = (c % 4 == 0) ? 1.0 : 0.0;
+            fallbacks++;
+        }
+        for (int c = 0; c < 9; c++) {
             m->L[c][i] = 0.0;
-        m->L[0][i] = G[0];
-        m->L[1][i] = G[1];
-        m->L[3][i] = G[2];
-        m->L[4][i] = G[3];
+            m->Bi[c][i] = Bi[c];
+        }
+        m->L[0][i] = G[0] * Bi[0] + G[1] * Bi[3];
+        m->L[1][i] = G[0] * Bi[1] + G[1] * Bi[4];
+        m->L[3][i] = G[2] * Bi[0] + G[3] * Bi[3];
+        m->L[4][i] = G[2] * Bi[1] + G[3] * Bi[4];
         m->L[8][i] = VR[i] / hoop_radius(m, X, i); /* D_tt = v_r / r */
-        for (int c = 0; c < 9; c++)
-            m->Bi[c][i] = (c % 4 == 0) ? 1.0 : 0.0;
     }
+    return fallbacks;
 }
 
 /* Momentum (planar divergence + hoop sources), energy, XSPH. */
@@ -151,6 +195,7 @@ static void pass_forces_axi(struct model *m, struct sim *s)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i], rhoi = m->rho[i];
         const double ri2 = 1.0 / (rhoi * rhoi);
+        const double Ri = hoop_radius(m, X, i), iRi = 1.0 / Ri;
         double ar = 0.0, az = 0.0, de = 0.0, xr = 0.0, xz = 0.0;
         for (size_t k = off[i]; k <= off[i + 1]; k++) {
             const bool self = k == off[i + 1];
@@ -158,8 +203,10 @@ static void pass_forces_axi(struct model *m, struct sim *s)
             const double hb = 0.5 * (hi + m->h[j]), R2 = qmax * qmax * hb * hb;
             const double rhoj = m->rho[j], rj2 = 1.0 / (rhoj * rhoj), mj = m->m2[j];
             const double dz = Z[i] - Z[j], vz = VZ[i] - VZ[j];
+            const double Rj = hoop_radius(m, X, j);
             for (int img = self ? 1 : 0; img < 2; img++) {
-                /* image of j: r -> -r, v_r -> -v_r, sig_rz -> -sig_rz */
+                /* image of j: r -> -r, v_r -> -v_r, sig_rz -> -sig_rz, and
+                 * tau = r sig changes sign with r */
                 const double sgn = img ? -1.0 : 1.0;
                 const double dr = X[i] - sgn * X[j], vr = VR[i] - sgn * VR[j];
                 const double r2 = dr * dr + dz * dz;
@@ -175,13 +222,21 @@ static void pass_forces_axi(struct model *m, struct sim *s)
                     Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + rhoj));
                 }
                 const double gr = dr * F, gz = dz * F;
-                const double Air = (Srr[i] * gr + Srz[i] * gz) * ri2;
-                const double Aiz = (Srz[i] * gr + Szz[i] * gz) * ri2;
-                const double Ajr = (Srr[j] * gr + sgn * Srz[j] * gz) * rj2;
-                const double Ajz = (sgn * Srz[j] * gr + Szz[j] * gz) * rj2;
-                ar += mj * (Air + Ajr - Pi * gr);
-                az += mj * (Aiz + Ajz - Pi * gz);
-                de -= mj * (vr * (Air - 0.5 * Pi * gr) + vz * (Aiz - 0.5 * Pi * gz));
+                /* corrected gradients B^-T grad W, each particle its own B
+                 * (the image of j: Q B_j^-1 Q, Q = diag(-1, 1)) */
+                const double gir = m->Bi[0][i] * gr + m->Bi[3][i] * gz;
+                const double giz = m->Bi[1][i] * gr + m->Bi[4][i] * gz;
+                const double gjr = m->Bi[0][j] * gr + sgn * m->Bi[3][j] * gz;
+                const double gjz = sgn * m->Bi[1][j] * gr + m->Bi[4][j] * gz;
+                const double Air = (Srr[i] * gir + Srz[i] * giz) * ri2;
+                const double Aiz = (Srz[i] * gir + Szz[i] * giz) * ri2;
+                const double wj = sgn * Rj * iRi, wa = 0.5 * (Ri + Rj) * iRi;
+                const double Ajr = wj * (Srr[j] * gjr + sgn * Srz[j] * gjz) * rj2;
+                const double Ajz = wj * (sgn * Srz[j] * gjr + Szz[j] * gjz) * rj2;
+                const double Pw = Pi * wa;
+                ar += mj * (Air + Ajr - Pw * gr);
+                az += mj * (Aiz + Ajz - Pw * gz);
+                de -= mj * (vr * (Air - 0.5 * Pw * gr) + vz * (Aiz - 0.5 * Pw * gz));
                 if (xs > 0.0) {
                     double w = 2.0 * mj / (rhoi + rhoj) * W;
                     xr -= w * vr;
@@ -189,11 +244,10 @@ static void pass_forces_axi(struct model *m, struct sim *s)
                 }
             }
         }
-        /* hoop sources (cylindrical momentum and energy equations) */
-        const double r = hoop_radius(m, X, i);
-        ar += (Srr[i] - Stt[i]) / (rhoi * r);
-        az += Srz[i] / (rhoi * r);
-        de += Stt[i] * VR[i] / (rhoi * r);
+        /* hoop stress (the r-weighted divergence holds sig_rr / r and
+         * sig_rz / r) and its power sig_tt D_tt / rho */
+        ar -= Stt[i] * iRi / rhoi;
+        de += Stt[i] * VR[i] * iRi / rhoi;
         p->f[0][i] += p->mass[i] * ar;
         p->f[1][i] += p->mass[i] * az;
         m->xv[0][i] = xs * xr;
@@ -210,13 +264,19 @@ int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err)
     if (rc)
         return rc;
     m->n_pairs = m->nl->offset[n];
-    pass_gradient_axi(m, s);
+    m->cspm_fallbacks += pass_gradient_axi(m, s);
     sph_update_pressure(m, s);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         double trD;
         sph_stress_rate(m, i, &trD); /* uses L[8] = v_r / r as D_tt */
         m->drho[i] = -m->rho[i] * trD;
+        /* a failed particle does not dilate below rho0: separating broken
+         * material opens a void instead (ejecta would otherwise swell to a
+         * few % of rho0 and swamp its neighbours' sums at fixed h) */
+        if (m->failed[i] && m->drho[i] < 0.0 &&
+            m->rho[i] <= m->mat[s->p->material[i]].rho0)
+            m->drho[i] = 0.0;
         m->dh[i] = m->opt.variable_h ? m->h[i] * (m->L[0][i] + m->L[4][i]) / 2.0 : 0.0;
         for (int c = 0; c < 6; c++)
             m->sig[c][i] = m->S[c][i] - (c < 3 ? m->P[i] : 0.0);

@@ -201,12 +201,14 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             return rc;
         /* sph_axisym.c has its own pair loops without these options */
         if (o.plane == SPH_PLANE_AXISYMMETRIC &&
-            (sim->dim != 2 || o.cspm || o.as_zeta > 0.0 || o.total_lagrangian || o.wall ||
+            (sim->dim != 2 || o.as_zeta > 0.0 || o.total_lagrangian || o.wall ||
              o.density == SPH_DENSITY_SUMMATION))
             return deck_error_key(err, params, "plane",
-                                  "plane: axisymmetric is 2D (x = r, y = z) and takes no cspm, "
+                                  "plane: axisymmetric is 2D (x = r, y = z) and takes no "
                                   "artificial_stress, summation density, total formulation "
                                   "or wall");
+        if (o.plane == SPH_PLANE_AXISYMMETRIC)
+            o.cspm = true; /* always corrected there (sph_axisym.c) */
         if (o.cavity_depth > 0.0 && o.plane != SPH_PLANE_AXISYMMETRIC)
             return deck_error_key(err, params, "cavity_depth",
                                   "cavity_depth needs plane: axisymmetric");
