@@ -161,7 +161,14 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
          * h = 1.3 dx) multiplies tau / r = sig / r, a spurious force on
          * every ring under uniform stress */
         double Bi[9];
-        if (!(fabs(sph_inverse(2, B, Bi)) > 0.01)) {
+        double det = sph_inverse(2, B, Bi);
+        double nrm = fmax(fabs(Bi[0]) + fabs(Bi[1]), fabs(Bi[3]) + fabs(Bi[4]));
+        /* plain gradient for failed particles (pressure only, often
+         * isolated ejecta) and for sparse supports: B ~ 0.97 I in the bulk,
+         * det ~ 0.5 and |B^-1| ~ 2 at a flat free surface; a sparser
+         * support would amplify the pair forces and (sph_stable_dt scales
+         * the step by |B^-1|) collapse the time step */
+        if (m->failed[i] || !(det > 0.25) || !(nrm < 2.5)) {
             for (int c = 0; c < 9; c++)
                 Bi[c] = (c % 4 == 0) ? 1.0 : 0.0;
             fallbacks++;
