@@ -4,11 +4,12 @@
  *        item 2, issue 7 item 3): the lattice's x is the radius r >= 0, y the
  *        axis z; each particle is a ring.
  *
- * Formulation (the "Cartesian SPH in the meridian plane + hoop source terms"
- * form used for axisymmetric impact codes, e.g. Johnson, Stryk & Beissel,
- * CMAME 139 (1996) 347, and compared against the r-weighted forms of
- * Petschek & Libersky, J. Comput. Phys. 109 (1993) 76, Brookshaw, ANZIAM J.
- * 44 (2003) C114 and Garcia-Senz et al., MNRAS 392 (2009) 346):
+ * Formulation: the cylindrical equations written for tau = r sig, in the
+ * family of the r-weighted forms of Petschek & Libersky, J. Comput. Phys.
+ * 109 (1993) 76 and Brookshaw, ANZIAM J. 44 (2003) C114, with reflective
+ * axis images as in Garcia-Senz et al., MNRAS 392 (2009) 346 (cited from
+ * memory, papers not re-checked; the discretisation is derived here and
+ * tested in tests/test_sph_axisym.c; docs/sph.md has the measurements):
  *
  *  - particle i carries its ring mass M_i = 2 pi r_i A_i rho_0 (p->mass; the
  *    integrator, the rigid contact and the energies use it), and in the
@@ -29,11 +30,11 @@
  *    simpler "planar divergence + source terms (sig_rr - sig_tt)/r,
  *    sig_rz / r" form was tried first: it passes the same static checks but
  *    its pair forces differ by r_i / r_j, O(1) near the axis, and it created
- *    4x the input energy in an elastic block within a few wave transits);
+ *    3.5x the input energy in an elastic cylinder over ~15 wave transits);
  *  - energy: de_i = -sum_j mu_j v_ij . sig_i / rho_i^2 . grad W + the AV
  *    half share + sig_tt v_r / (rho r), which is exactly the power of the
  *    forces above between real particles (Bonet-Lok pairing as in
- *    sph_rates.c): measured 0.4 % energy error on a hollow cylinder (no
+ *    sph_rates.c): measured 0.01 % energy error on a hollow cylinder (no
  *    axis) over ~15 wave transits;
  *  - gradients are always corrected (CSPM, Eqs. 3.10-3.11, images
  *    included; the image of j uses Q B_j^-1 Q, Q = diag(-1, 1)), in L and,
