@@ -14,7 +14,8 @@
  * edges are multiples of the next level's spacing.  The sphere starts
  * 0.25 um above the surface; P(t) is the depth of its tip below the
  * initial surface (the experimental convention, P_Exp = P_Poncelet + d/2,
- * seed 004 Eq. 4.7) and time is counted from first contact.
+ * seed 004 Eq. 4.7) and time is counted from first contact.  A run stops
+ * when the sphere has stopped (V <= 0: P_max reached) or at its end time.
  *
  * Cases: "pen-sph-gelatin" (1290 m/s at d/10: P_max, its time, cavity;
  * d/10 because a d/15 run, ~8200 particles and ~9000 steps, did not fit in
@@ -175,6 +176,8 @@ static int pen_sph_run(double v0, double E, double dx1, double width, double t_e
         }
         o->p_end = P;
         o->v_end = -im->v[1];
+        if (t > 0.0 && !(im->v[1] < 0.0))
+            break; /* the sphere stopped: P_max reached (the cavity may still grow) */
     }
     o->secs = omp_get_wtime() - t0;
     sim_update_energy(s);
@@ -209,7 +212,7 @@ static void run_info(struct vreport *r, const char *what, const struct pen_sph_r
 int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err)
 {
     struct pen_sph_run o = {0};
-    int rc = pen_sph_run(1290.0, 20.0e6, 0.75e-6, 1.0, 260.0e-9, &o, err);
+    int rc = pen_sph_run(1290.0, 20.0e6, 0.75e-6, 1.0, 450.0e-9, &o, err);
     if (rc)
         return rc;
     run_info(r, "1290 m/s, E = 20 MPa, dx1 = 0.75 um (d/10)", &o);
@@ -247,7 +250,7 @@ out:
 int pen_case_sph_sweep(struct vreport *r, struct spall_error *err)
 {
     static const double v0s[4] = {200.0, 700.0, 1050.0, 1420.0};
-    static const double tend[4] = {130e-9, 230e-9, 260e-9, 280e-9};
+    static const double tend[4] = {200e-9, 400e-9, 450e-9, 450e-9};
     for (int k = 0; k < 4; k++) {
         struct pen_sph_run o = {0};
         int rc = pen_sph_run(v0s[k], 20.0e6, 0.75e-6, 1.0, tend[k], &o, err);
@@ -277,7 +280,7 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
     double pm[4];
     for (int k = 0; k < 4; k++) {
         struct pen_sph_run o = {0};
-        int rc = pen_sph_run(1290.0, Es[k], 0.75e-6, 1.0, 260.0e-9, &o, err);
+        int rc = pen_sph_run(1290.0, Es[k], 0.75e-6, 1.0, 450.0e-9, &o, err);
         if (rc)
             return rc;
         char what[96];
