@@ -100,6 +100,14 @@ static const struct vcase cases[] = {
      pen_case_thesis_refs},
     {"pen-gelatin-time", "Poncelet T_f vs the 200-250 ns of the gelatin experiment (known gap)",
      false, pen_case_gelatin_time},
+    {"pen-sph-gelatin", "axisymmetric SPH: silica 7.38 um into gelatin at 1290 m/s (P_max, time)",
+     false, pen_case_sph_gelatin},
+    {"pen-sph-gelatin-sweep", "axisymmetric SPH: P_max/d at 200-1420 m/s vs Poncelet + d/2",
+     false, pen_case_sph_sweep},
+    {"pen-sph-gelatin-modulus", "axisymmetric SPH: E = 1-40 MPa at 1290 m/s (trend of P_max)",
+     false, pen_case_sph_modulus},
+    {"pen-sph-gelatin-convergence", "axisymmetric SPH: resolution and width study, 1290 m/s",
+     false, pen_case_sph_convergence},
 
 };
 

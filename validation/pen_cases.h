@@ -25,5 +25,14 @@ int pen_case_thesis_refs(struct vreport *r, struct spall_error *err);
 /** "pen-gelatin-time": Poncelet stopping time against the experiment's
  *  200-250 ns (known gap, explained). */
 int pen_case_gelatin_time(struct vreport *r, struct spall_error *err);
+/** "pen-sph-gelatin": axisymmetric SPH, silica 7.38 um into gelatin at
+ *  1290 m/s (validation/pen_sph.c): P_max, its time, cavity diameters. */
+int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err);
+/** "pen-sph-gelatin-sweep": P_max/d at 200-1420 m/s vs Poncelet + d/2. */
+int pen_case_sph_sweep(struct vreport *r, struct spall_error *err);
+/** "pen-sph-gelatin-modulus": E = 1, 10, 20, 40 MPa at 1290 m/s (trend). */
+int pen_case_sph_modulus(struct vreport *r, struct spall_error *err);
+/** "pen-sph-gelatin-convergence": resolution and target width at 1290 m/s. */
+int pen_case_sph_convergence(struct vreport *r, struct spall_error *err);
 
 #endif

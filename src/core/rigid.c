@@ -289,6 +289,10 @@ void rigid_contact_forces(struct sim *s)
             im->pen_energy += 0.5 * kc * phi * phi;
             nc++;
         }
+        /* axisymmetric run: the rings' radial forces cancel around the
+         * circumference; an impactor on the axis feels only the axial one */
+        if (s->axisymmetric)
+            im->f_pen[0] = 0.0;
         im->friction_loss += floss;
         im->n_contact = nc;
     }
@@ -336,6 +340,8 @@ void rigid_no_slip(struct sim *s, double dt)
         im->push_work += push;
         if (nc == 0)
             continue;
+        if (s->axisymmetric)
+            J[0] = 0.0; /* radial ring momenta cancel (see rigid_contact_forces) */
         if (im->motion == RIGID_FREE) {
             double ke0 = 0.0, ke1 = 0.0;
             for (int d = 0; d < dim; d++) {

@@ -106,6 +106,7 @@ struct sim {
     struct lattice_spec lattice; /**< lattice used to fill the body */
     double thickness;            /**< 2D: plate thickness [m]; 1D: cross-section area [m^2] */
     bool thickness_given;        /**< false: the model's default thickness was used */
+    bool axisymmetric;           /**< 2D (x = r, y = z) rings: set by the model (sph) */
 
     double gravity[3];    /**< m/s^2 */
     double damping;       /**< mass-proportional damping coefficient [1/s] */

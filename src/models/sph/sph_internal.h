@@ -19,7 +19,7 @@ struct sim;
 struct spall_error;
 
 /** 2D stress state (seed 004 sec. 3.3; the beam is plane stress). */
-enum sph_plane { SPH_PLANE_STRESS, SPH_PLANE_STRAIN };
+enum sph_plane { SPH_PLANE_STRESS, SPH_PLANE_STRAIN, SPH_PLANE_AXISYMMETRIC /* sph_axisym.c */ };
 enum sph_density { SPH_DENSITY_CONTINUITY, SPH_DENSITY_SUMMATION };
 enum sph_eos { SPH_EOS_LINEAR, SPH_EOS_MIE_GRUNEISEN, SPH_EOS_MIE_GRUNEISEN_CK };
 enum sph_yield { SPH_YIELD_ELASTIC, SPH_YIELD_PERFECT, SPH_YIELD_POWER, SPH_YIELD_JOHNSON_COOK };
@@ -47,6 +47,7 @@ struct sph_options {
     double wall_stiffness;  /**< penalty k = factor m (c/dx)^2 */
     bool split_pairs;       /**< force the two-pass loops of sph_rates.c (verification) */
     bool symmetry[3];       /**< mirror plane x_d = 0 (ghost particles, sph_symmetry.c) */
+    double cavity_depth;    /**< axisymmetric: depth of the cavity-diameter history (0: off) */
 };
 
 /** Read-only per-particle data the fused pair loop gathers over j: the
@@ -105,6 +106,7 @@ struct model {
     double *Jdet;          /**< TLSPH: det F */
     double wall_energy;    /**< penalty energy [J] */
     double wall_force[3];  /**< total wall force [N] */
+    double surface_z;      /**< axisymmetric: initial top surface (cavity depth origin) */
 
     struct sph_sym *sym;   /**< symmetry-plane ghosts (NULL: none) */
     struct neighbor_list *nl;
@@ -142,6 +144,15 @@ void sph_symmetry_destroy(struct sph_sym **sym);
 int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err);
 /** TLSPH rates: F, L, PK1 forces, energy, stress rates. */
 int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err);
+
+/* sph_axisym.c */
+/** Ring masses M = 2 pi r A rho0, planar masses, the surface; flags the sim. */
+void sph_axisym_init(struct model *m, struct sim *s);
+/** Axisymmetric (r, z) rates: planar sums with axis images + hoop terms. */
+int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err);
+/** Cavity diameters D1, D2 at opt.cavity_depth (0 columns when off). */
+size_t sph_axisym_history(const struct model *m, const struct sim *sim, const char **names,
+                          double *values);
 
 /* sph_material.c */
 /** Pressure from the EOS (compression positive). */

@@ -126,7 +126,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     static const char *const kernels[] = {"cubic_spline",  "gaussian",   "quintic_spline",
                                           "wendland",      "double_cosine", "hyperbolic", NULL};
     static const char *const dens[] = {"continuity", "summation", NULL};
-    static const char *const planes[] = {"stress", "strain", NULL};
+    static const char *const planes[] = {"stress", "strain", "axisymmetric", NULL};
     static const char *const forms[] = {"updated", "total", NULL};
     static const char *const loops[] = {"fused", "split", NULL};
     static const char *const syms[] = {"none", "x", "y", "xy", NULL};
@@ -134,7 +134,8 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                        "viscosity", "artificial_stress", "artificial_stress_n",
                                        "xsph", "variable_h", "plane", "skin", "adaptive_dt",
                                        "formulation", "hourglass",
-                                       "wall", "pair_loop", "symmetry", NULL};
+                                       "wall", "pair_loop", "symmetry",
+                                       "cavity_depth", NULL};
     *out = NULL;
     if (sim->dim < 2)
         return spall_error_set(err, SPALL_ERR_INPUT,
@@ -169,7 +170,9 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_enum(params, "formulation", false, forms, &form, err)) ||
             (rc = deck_double(params, "hourglass", false, 0.0, 10.0, &o.hourglass, err)) ||
             (rc = deck_enum(params, "pair_loop", false, loops, &loop, err)) ||
-            (rc = deck_enum(params, "symmetry", false, syms, &sym, err)))
+            (rc = deck_enum(params, "symmetry", false, syms, &sym, err)) ||
+            (rc = deck_double(params, "cavity_depth", false, 0.0, INFINITY, &o.cavity_depth,
+                              err)))
             return rc;
         o.split_pairs = loop == 1;
         o.symmetry[0] = sym == 1 || sym == 3;
@@ -177,6 +180,10 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
         if (sym == 3 && sim->dim < 3)
             return deck_error_key(err, params, "symmetry",
                                   "symmetry xy needs 3D (in 2D use x or y)");
+        if (sym && pl == 2)
+            return deck_error_key(err, params, "symmetry",
+                                  "symmetry planes do not apply to plane: axisymmetric (the "
+                                  "axis is already a symmetry line)");
         if (sym && (form == 1 || o.cspm || den == 1))
             return deck_error_key(err, params, "symmetry",
                                   "symmetry planes work with the fused loop only: updated "
@@ -213,6 +220,19 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
         }
         if ((rc = deck_check_unused(params, "model", keys, err)))
             return rc;
+        /* sph_axisym.c has its own pair loops without these options */
+        if (o.plane == SPH_PLANE_AXISYMMETRIC &&
+            (sim->dim != 2 || o.as_zeta > 0.0 || o.total_lagrangian || o.wall ||
+             o.density == SPH_DENSITY_SUMMATION))
+            return deck_error_key(err, params, "plane",
+                                  "plane: axisymmetric is 2D (x = r, y = z) and takes no "
+                                  "artificial_stress, summation density, total formulation "
+                                  "or wall");
+        if (o.plane == SPH_PLANE_AXISYMMETRIC)
+            o.cspm = true; /* always corrected there (sph_axisym.c) */
+        if (o.cavity_depth > 0.0 && o.plane != SPH_PLANE_AXISYMMETRIC)
+            return deck_error_key(err, params, "cavity_depth",
+                                  "cavity_depth needs plane: axisymmetric");
     }
     struct model *m = calloc(1, sizeof *m);
     if (!m)
@@ -350,6 +370,8 @@ static int sph_init(struct model *m, struct sim *s, struct spall_error *err)
         m->rho[i] = mt->rho0;
         m->T[i] = mt->Troom;
     }
+    if (m->opt.plane == SPH_PLANE_AXISYMMETRIC)
+        sph_axisym_init(m, s); /* ring masses */
     int rc = m->opt.total_lagrangian ? sph_tlsph_init(m, s, err)
                                      : sph_neighbors_update(m, s, true, err);
     if (rc)
@@ -526,6 +548,8 @@ static size_t sph_history(const struct model *m, const struct sim *sim, const ch
                                     m->wall_force[1] * m->opt.wall_normal[1] +
                                     m->wall_force[2] * m->opt.wall_normal[2]
                               : 0.0;
+    if (m->opt.plane == SPH_PLANE_AXISYMMETRIC)
+        k += sph_axisym_history(m, sim, names + k, values + k);
     return k;
 }
 
