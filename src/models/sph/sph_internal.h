@@ -45,6 +45,7 @@ struct sph_options {
     bool wall;              /**< rigid half-space wall (penalty) */
     double wall_point[3], wall_normal[3]; /**< normal points into the body side */
     double wall_stiffness;  /**< penalty k = factor m (c/dx)^2 */
+    bool leapfrog;          /**< staggered leapfrog state update (sph_leapfrog.c) */
 };
 
 struct sph_material {
@@ -101,6 +102,7 @@ struct model {
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
+    double lf_dt;          /**< leapfrog: step whose state update is pending (0: none) */
 };
 
 /* sph_rates.c */
@@ -114,6 +116,12 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err);
 int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err);
 /** TLSPH rates: F, L, PK1 forces, energy, stress rates. */
 int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err);
+
+/* sph_leapfrog.c */
+/** Leapfrog: advance rho, h, S (with the radial return) and the stress
+ *  power part of e over @p dt with the velocity gradient L just computed
+ *  from the half-step velocities; P from the new density. */
+void sph_leapfrog_advance(struct model *m, struct sim *s, double dt);
 
 /* sph_material.c */
 /** Pressure from the EOS (compression positive). */

@@ -21,6 +21,8 @@
  *     plane: stress | strain                  2D only (default strain)
  *     skin: fraction of the support added to the neighbour radius (default 0.2)
  *     adaptive_dt: true                       Eq. 3.38 every step (dt_factor = c_s, default 0.3)
+ *     time_integration: predictor_corrector | leapfrog   (sph_leapfrog.c; default
+ *                                             predictor_corrector, Eqs. 3.35-3.37)
  *     formulation: updated | total            total: TLSPH (sph_tlsph.c), reference
  *                                             kernel, no AS/XSPH (default updated)
  *     hourglass: kappa                        TLSPH hourglass coefficient (default 0.1)
@@ -126,11 +128,12 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     static const char *const dens[] = {"continuity", "summation", NULL};
     static const char *const planes[] = {"stress", "strain", NULL};
     static const char *const forms[] = {"updated", "total", NULL};
+    static const char *const tints[] = {"predictor_corrector", "leapfrog", NULL};
     static const char *const keys[] = {"type", "kernel", "h_factor", "density", "cspm",
                                        "viscosity", "artificial_stress", "artificial_stress_n",
                                        "xsph", "variable_h", "plane", "skin", "adaptive_dt",
                                        "formulation", "hourglass",
-                                       "wall", NULL};
+                                       "wall", "time_integration", NULL};
     *out = NULL;
     if (sim->dim < 2)
         return spall_error_set(err, SPALL_ERR_INPUT,
@@ -148,7 +151,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     o.hourglass = 0.1;
     bool adaptive = true;
     if (params) {
-        int kern = 3, den = 0, pl = 1, form = 0, rc;
+        int kern = 3, den = 0, pl = 1, form = 0, tint = 0, rc;
         double av[2] = {o.av_a, o.av_b};
         if ((rc = deck_enum(params, "kernel", false, kernels, &kern, err)) ||
             (rc = deck_double(params, "h_factor", false, 0.5, 4.0, &o.h_factor, err)) ||
@@ -163,8 +166,10 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_double(params, "skin", false, 0.0, 2.0, &o.skin, err)) ||
             (rc = deck_bool(params, "adaptive_dt", false, &adaptive, err)) ||
             (rc = deck_enum(params, "formulation", false, forms, &form, err)) ||
-            (rc = deck_double(params, "hourglass", false, 0.0, 10.0, &o.hourglass, err)))
+            (rc = deck_double(params, "hourglass", false, 0.0, 10.0, &o.hourglass, err)) ||
+            (rc = deck_enum(params, "time_integration", false, tints, &tint, err)))
             return rc;
+        o.leapfrog = tint == 1;
         o.total_lagrangian = form == 1;
         if (av[0] < 0.0 || av[1] < 0.0)
             return deck_error_key(err, params, "viscosity",
@@ -208,7 +213,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     m->qmax = sph_kernel_support(o.kernel);
     /* seed 004 Eqs. 3.35-3.38: predictor-corrector and adaptive dt with
      * c_s = 0.3 (run.dt_factor, parsed after the model, still wins) */
-    sim->integrator = INTEGRATOR_PREDICTOR_CORRECTOR;
+    sim->integrator = o.leapfrog ? INTEGRATOR_VERLET : INTEGRATOR_PREDICTOR_CORRECTOR;
     sim->adaptive_dt = adaptive;
     sim->dt_factor = 0.3;
     *out = m;
@@ -395,8 +400,11 @@ static double sph_stable_dt(const struct model *m, const struct sim *sim)
         /* corrected gradients (CSPM, TLSPH) scale the pair stiffness by up
          * to |B_i^-1| (2-3 at surfaces and corners): the highest frequency
          * grows by the same factor (measured: the TLSPH beam blows up at
-         * c_s = 0.3 without this, runs at 0.1) */
-        if (m->opt.cspm || m->opt.total_lagrangian) {
+         * c_s = 0.3 without this, runs at 0.1).  That was the weak
+         * instability of the predictor-corrector (sph_leapfrog.c); the
+         * leapfrog runs the TLSPH beam and the CSPM plate stably at the
+         * plain limit (c_s = 0.5 and 0.3 measured), so it skips this. */
+        if ((m->opt.cspm || m->opt.total_lagrangian) && !m->opt.leapfrog) {
             double nb = 0.0;
             for (int a = 0; a < 3; a++)
                 nb = fmax(nb, fabs(m->Bi[a * 3][i]) + fabs(m->Bi[a * 3 + 1][i]) +
@@ -429,6 +437,17 @@ static int sph_advance_state(struct model *m, struct sim *sim, double dt, int st
     struct particles *p = sim->p;
     const size_t n = p->n_owned;
     const bool integ_rho = m->opt.density == SPH_DENSITY_CONTINUITY;
+    if (m->opt.leapfrog) {
+        /* sph_leapfrog.c: the force call advances the state with this dt */
+        if (stage == 0) {
+            m->lf_dt = dt;
+            for (size_t i = 0; i < n; i++)
+                if (!m->pinned[i])
+                    for (int d = 0; d < sim->dim; d++)
+                        p->x[d][i] += dt * m->xv[d][i]; /* XSPH */
+        }
+        return SPALL_OK;
+    }
     if (stage == 0) {
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; i++) {

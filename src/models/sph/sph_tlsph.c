@@ -140,6 +140,9 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
         return spall_error_set(err, SPALL_ERR_UNSTABLE,
                                "TLSPH: a deformation gradient became singular or inverted at "
                                "t = %.6g s (det F <= 0)", s->t);
+    const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L */
+    if (lfdt > 0.0)
+        sph_leapfrog_advance(m, s, lfdt);
     sph_update_pressure(m, s);
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
 #pragma omp parallel for schedule(static)
@@ -161,6 +164,7 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     }
     /* pass 2: forces, energy */
     const double kappa = m->opt.hourglass, qa = m->opt.av_a, qb = m->opt.av_b;
+    const double wstress = lfdt > 0.0 ? 0.0 : 1.0; /* leapfrog books it itself */
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         const struct sph_material *mi = &m->mat[p->material[i]];
@@ -210,7 +214,7 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
                 double fav = -m->m2[i] * m->m2[j] * Pi * g0[a];
                 double fhg = hg * (-xij[a] - pred);
                 acc[a] += fs + fav + fhg;
-                de -= Vi * Vj * vij[a] * ti + 0.5 * (fav + fhg) * vij[a];
+                de -= wstress * Vi * Vj * vij[a] * ti + 0.5 * (fav + fhg) * vij[a];
             }
         }
         for (int a = 0; a < dim; a++)
@@ -218,6 +222,11 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
         m->de[i] = de / m->m2[i];
         for (int a = 0; a < dim; a++)
             m->xv[a][i] = 0.0;
+    }
+    if (lfdt > 0.0) {
+        for (size_t i = 0; i < n; i++)
+            m->e[i] += lfdt * m->de[i]; /* AV / hourglass heating */
+        m->lf_dt = 0.0;
     }
     return SPALL_OK;
 }
