@@ -19,7 +19,8 @@
  * which vanishes for any affine motion (it never resists a homogeneous
  * deformation) and is antisymmetric (momentum conserving); kappa =
  * model.hourglass (default 0.1).  Its work is booked as internal energy.
- * Monaghan AV acts on the current pair geometry with reference gradients.
+ * Monaghan AV acts on the current pair geometry: mu from x_ij, v_ij and the
+ * force along x_ij with the reference kernel's dW/dr / r.
  */
 #include "models/sph/sph_internal.h"
 
@@ -187,9 +188,8 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
             sph_kernel_eval(kern, m->alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W,
                             &F);
             const double Vj = m->m2[j] / mj->rho0;
-            double gi[3] = {0, 0, 0}, gj[3] = {0, 0, 0}, g0[3] = {0, 0, 0};
+            double gi[3] = {0, 0, 0}, gj[3] = {0, 0, 0};
             for (int b = 0; b < dim; b++) {
-                g0[b] = F * X[b];
                 for (int c = 0; c < dim; c++) {
                     gi[b] += m->Bi[c * 3 + b][i] * F * X[c];
                     gj[b] += m->Bi[c * 3 + b][j] * F * X[c];
@@ -211,7 +211,11 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
                     pred += 0.5 * (m->Fdef[a * 3 + b][i] + m->Fdef[a * 3 + b][j]) * (-X[b]);
                 }
                 double fs = Vi * Vj * (ti + tj);
-                double fav = -m->m2[i] * m->m2[j] * Pi * g0[a];
+                /* AV along the CURRENT pair line (reference kernel
+                 * magnitude): -Pi F x_ij does negative work for any
+                 * rotation; along the reference direction g0 it pumps
+                 * energy once the body has turned (17.5 kN beam) */
+                double fav = -m->m2[i] * m->m2[j] * Pi * F * xij[a];
                 double fhg = hg * (-xij[a] - pred);
                 acc[a] += fs + fav + fhg;
                 de -= wstress * Vi * Vj * vij[a] * ti + 0.5 * (fav + fhg) * vij[a];
