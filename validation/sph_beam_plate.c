@@ -11,10 +11,12 @@
  *   time mean of the tip deflection over 1.5-3.0 ms against the static
  *   FL^3/3EI + 6FL/5GA = 33.59 mm, for each of the six kernels; tolerance =
  *   the thesis' own error for that kernel (each kernel must do at least as
- *   well as the thesis).
+ *   well as the thesis); CSPM and the leapfrog (sph_leapfrog.c), plus a
+ *   total-Lagrangian row (Wendland tolerance).
  * sph-plate: Gray, Monaghan & Swift (2001) oscillating plate: L = 0.2 m
  *   beyond a clamp of L/4, H = 0.02 m, E = 2 MPa, nu = 0.3975, rho = 1000,
- *   plane strain, started with the first cantilever mode shape; the period
+ *   plane strain, CSPM, AV (0.1, 0.1), leapfrog, 10 rows, started with
+ *   the first cantilever mode shape; the period
  *   against thin-plate theory omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)),
  *   kL = 1.875104 -> omega = 24.73 rad/s (derived in docs/validation.md).
  */
@@ -321,11 +323,16 @@ int sph_case_plate(struct vreport *r, struct spall_error *err)
         return rc;
     vreport_info(r, "plate: %d rows (%zu particles), omega = %.4f rad/s (theory %.4f)", rows, np,
                  w, w_ref);
-    return vreport_check(r, "oscillating plate: period of the first mode", "s", T_ref, T, 0.03,
-                         true,
-                         "thin-plate theory, plane strain: omega^2 = E H^2 k^4/(12 rho (1-nu^2)), "
-                         "kL = 1.8751 (Gray, Monaghan & Swift 2001)",
-                         "3 %: the issue's tolerance; thick-plate shear and the finite clamp "
-                         "make SPH slightly softer than thin-plate theory",
-                         err);
+    rc = vreport_check(r, "oscillating plate: period of the first mode", "s", T_ref, T, 0.03,
+                       true,
+                       "thin-plate theory, plane strain: omega^2 = E H^2 k^4/(12 rho (1-nu^2)), "
+                       "kL = 1.8751 (Gray, Monaghan & Swift 2001)",
+                       "3 %: the issue's tolerance; thick-plate shear (~0.7 %) and the finite "
+                       "clamp make SPH slightly softer than thin-plate theory",
+                       err);
+    if (!rc && !r->checks[r->n - 1].pass)
+        vreport_mark_gap(r, "GAP: SPH bending is soft at 6-16 rows (spurious particle modes; "
+                            "the clamped plate converges slowly, +18 % -> +10 % with CSPM); "
+                            "axial modes are right to 0.3 %; see docs/validation.md");
+    return rc;
 }
