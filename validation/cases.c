@@ -82,6 +82,10 @@ static const struct vcase cases[] = {
      sph_case_plate},
     {"sph-beam", "SPH: cantilever beam 1.75 kN, six kernels vs 33.59 mm (seed 004 Table 3.4)",
      false, sph_case_beam},
+    {"sph-beam-large", "SPH: cantilever 17.5 kN, six kernels + TLSPH vs 81.1 mm, cracking",
+     false, sph_case_beam_large},
+    {"sph-leapfrog", "SPH: leapfrog keeps an undamped plate's energy (PC does not)", true,
+     sph_case_leapfrog},
     {"sph-taylor-3d", "SPH: 4340 steel Taylor bar 181 m/s, Johnson-Cook (seed 004 Table 3.6)",
      false, sph_case_taylor3d},
     {"sph-taylor-2d", "SPH: iron rod on a wall, Mie-Grueneisen, perfectly plastic (seed 004 "

@@ -11,14 +11,17 @@
  *   time mean of the tip deflection over 1.5-3.0 ms against the static
  *   FL^3/3EI + 6FL/5GA = 33.59 mm, for each of the six kernels; tolerance =
  *   the thesis' own error for that kernel (each kernel must do at least as
- *   well as the thesis).
+ *   well as the thesis); CSPM and the leapfrog (sph_leapfrog.c), plus a
+ *   total-Lagrangian row (Wendland tolerance).
  * sph-plate: Gray, Monaghan & Swift (2001) oscillating plate: L = 0.2 m
  *   beyond a clamp of L/4, H = 0.02 m, E = 2 MPa, nu = 0.3975, rho = 1000,
- *   plane strain, started with the first cantilever mode shape; the period
+ *   plane strain, CSPM, AV (0.1, 0.1), leapfrog, 10 rows, started with
+ *   the first cantilever mode shape; the period
  *   against thin-plate theory omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)),
  *   kL = 1.875104 -> omega = 24.73 rad/s (derived in docs/validation.md).
  */
 #include "validation/lattice_cases.h"
+#include "validation/sph_beam.h"
 #include "validation/sph_cases.h"
 #include "validation/validation.h"
 
@@ -101,18 +104,38 @@ int sph_case_gradient(struct vreport *r, struct spall_error *err)
 
 /* ---- sph-beam ---------------------------------------------------------- */
 
-static const char *const BEAM_KERNELS[6] = {"cubic_spline",  "gaussian",   "quintic_spline",
-                                            "wendland",      "double_cosine", "hyperbolic"};
+const char *const SPH_BEAM_KERNELS[6] = {"cubic_spline",  "gaussian",      "quintic_spline",
+                                         "wendland",      "double_cosine", "hyperbolic"};
 /* seed 004 Table 3.4: mean error over 1.5-3.0 ms [%] */
 static const double BEAM_THESIS_ERR[6] = {2.55, 8.11, 7.96, 9.58, 17.62, 8.86};
 
-/* Mean tip deflection [m] (downwards positive) over [1.5, 3.0] ms. */
-static int beam_run(const char *kernel, double force, double hfac, const char *extra,
-                    double *mean_defl, double *final_defl, struct spall_error *err)
+/* Largest stretch |x_i - x_j| / |X_i - X_j| over initially adjacent pairs
+ * (distance dx): elastic bending at 81 mm keeps it near 1.01; a crack
+ * opens it to several. */
+static double max_pair_stretch(const struct particles *p, double dx)
+{
+    double best = 1.0;
+    for (size_t i = 0; i < p->n; i++)
+        for (size_t j = i + 1; j < p->n; j++) {
+            double X0 = p->x0[0][j] - p->x0[0][i], X1 = p->x0[1][j] - p->x0[1][i];
+            double R2 = X0 * X0 + X1 * X1;
+            if (R2 > 1.0201 * dx * dx)
+                continue;
+            double x0 = p->x[0][j] - p->x[0][i], x1 = p->x[1][j] - p->x[1][i];
+            best = fmax(best, sqrt((x0 * x0 + x1 * x1) / R2));
+        }
+    return best;
+}
+
+int sph_beam_run(const char *kernel, double force, double hfac, const char *extra,
+                 struct sph_beam_result *out, struct spall_error *err)
 {
     char deck[3072];
+    /* leapfrog: the predictor-corrector is unstable for these undamped
+     * elastic beams at dt_factor 0.5 (sph_leapfrog.c) */
     snprintf(deck, sizeof deck,
-             "model: {type: sph, kernel: %s, h_factor: %g, plane: stress, %s}\n"
+             "model: {type: sph, kernel: %s, h_factor: %g, plane: stress,\n"
+             "        time_integration: leapfrog, %s}\n"
              "materials: {steel: {density: 7800, youngs_modulus: 210.0e9, poisson_ratio: 0.3}}\n"
              "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005], "
              "thickness: 1.0e-3}\n"
@@ -127,13 +150,14 @@ static int beam_run(const char *kernel, double force, double hfac, const char *e
              "     function: {type: quadratic_ramp, duration: 1.5e-3}}\n"
              "run: {end_time: 3.0e-3, dt_factor: 0.5}\n",
              kernel, hfac, extra, -force);
+    out->mean = out->final = out->max = out->stretch = NAN;
     struct sim *s = NULL;
     int rc = vlat_build("sph_beam", deck, &s, err);
     if (rc)
         return rc;
     int g = sim_find_group(s, "tip");
     const struct group *tip = &s->groups[g];
-    double acc = 0.0, tacc = 0.0, uy = 0.0;
+    double acc = 0.0, tacc = 0.0, uy = 0.0, umax = 0.0;
     while (!sim_done(s)) {
         double dt = s->dt;
         if ((rc = sim_step(s, err)))
@@ -144,95 +168,86 @@ static int beam_run(const char *kernel, double force, double hfac, const char *e
             uy += s->p->x[1][i] - s->p->x0[1][i];
         }
         uy /= (double)tip->n;
+        umax = fmax(umax, -uy);
         if (s->t >= 1.5e-3) {
             acc += -uy * dt;
             tacc += dt;
         }
     }
-    *mean_defl = tacc > 0 ? acc / tacc : NAN;
-    *final_defl = -uy;
+    sim_update_energy(s);
+    out->mean = tacc > 0 ? acc / tacc : NAN;
+    out->final = -uy;
+    out->max = umax;
+    out->stretch = max_pair_stretch(s->p, 1.0e-3);
+    out->balance = s->energy.balance;
+    out->external = s->energy.external;
     sim_destroy(&s);
+    return rc;
+}
+
+/* One beam run, an unstable run recorded as NaN with its message. */
+int sph_beam_run_or_note(struct vreport *r, const char *what, const char *kernel, double force,
+                         double hfac, const char *extra, struct sph_beam_result *res,
+                         struct spall_error *err)
+{
+    int rc = sph_beam_run(kernel, force, hfac, extra, res, err);
+    if (rc == SPALL_ERR_UNSTABLE) {
+        vreport_info(r, "%s: %s", what, err->msg);
+        err->code = 0;
+        err->msg[0] = 0;
+        res->mean = NAN;
+        return SPALL_OK;
+    }
+    if (!rc)
+        vreport_info(r, "%s: mean %.2f mm, max %.2f mm, at 3 ms %.2f mm, max pair stretch %.3f, "
+                     "energy balance %.3g J of %.3g J input",
+                     what, res->mean * 1e3, res->max * 1e3, res->final * 1e3, res->stretch,
+                     res->balance, res->external);
     return rc;
 }
 
 int sph_case_beam(struct vreport *r, struct spall_error *err)
 {
     const double ref = 33.59e-3;
-    for (int k = 0; k < 6; k++) {
-        double mean = NAN, fin = NAN;
-        int rc = beam_run(BEAM_KERNELS[k], 1750.0, 1.2,
-                          "viscosity: [0.1, 0.1], artificial_stress: 0.5, xsph: 0.5", &mean, &fin,
-                          err);
-        if (rc == SPALL_ERR_UNSTABLE) {
-            vreport_info(r, "kernel %s: %s", BEAM_KERNELS[k], err->msg);
-            err->code = 0;
-            err->msg[0] = 0;
-            mean = NAN;
-        } else if (rc) {
-            return rc;
-        }
+    for (int k = 0; k < 7; k++) {
+        /* k = 6: total-Lagrangian SPH, Wendland, no AS / XSPH (not in the thesis) */
+        const char *kern = SPH_BEAM_KERNELS[k < 6 ? k : 3];
+        const char *extra = k < 6 ? "cspm: true, viscosity: [0.1, 0.1], artificial_stress: 0.5, "
+                                    "xsph: 0.5"
+                                  : "viscosity: [0.1, 0.1], formulation: total, hourglass: 1.0";
+        const double tol = k < 6 ? BEAM_THESIS_ERR[k] : BEAM_THESIS_ERR[3];
         char q[96], note[320];
-        snprintf(q, sizeof q, "type %d %s: mean tip deflection 1.5-3 ms", k + 1, BEAM_KERNELS[k]);
+        if (k < 6)
+            snprintf(q, sizeof q, "type %d %s: mean tip deflection 1.5-3 ms", k + 1, kern);
+        else
+            snprintf(q, sizeof q, "TLSPH wendland: mean tip deflection 1.5-3 ms");
+        struct sph_beam_result res;
+        int rc = sph_beam_run_or_note(r, q, kern, 1750.0, 1.2, extra, &res, err);
+        if (rc)
+            return rc;
         snprintf(note, sizeof note,
-                 "tolerance = the thesis' own mean error for this kernel (%.2f %%); deflection at "
-                 "3 ms %.2f mm",
-                 BEAM_THESIS_ERR[k], fin * 1e3);
-        if ((rc = vreport_check(r, q, "m", ref, isfinite(mean) ? mean : 1e9,
-                                BEAM_THESIS_ERR[k] / 100.0, true,
-                                "seed 004 Table 3.4 (static FL^3/3EI + 6FL/5GA)", note, err)))
+                 "tolerance = the thesis' own mean error for %s (%.2f %%); deflection at 3 ms "
+                 "%.2f mm",
+                 k < 6 ? "this kernel" : "Wendland", tol, res.final * 1e3);
+        if ((rc = vreport_check(r, q, "m", ref, isfinite(res.mean) ? res.mean : 1e9, tol / 100.0,
+                                true, "seed 004 Table 3.4 (static FL^3/3EI + 6FL/5GA)", note,
+                                err)))
             return rc;
         if (!r->checks[r->n - 1].pass) {
             char gap[320];
-            snprintf(gap, sizeof gap,
-                     "GAP: measured %.2f mm (%.1f %%) vs thesis %.2f %%: dx = 1 mm gives 10 "
-                     "particles over the depth; the outer fibres lack kernel support (free "
-                     "surface) and artificial stress zeta = 0.5 softens tensile pairs; see "
-                     "docs/validation.md",
-                     mean * 1e3, fabs(mean - ref) / ref * 100.0, BEAM_THESIS_ERR[k]);
+            if (!isfinite(res.mean))
+                snprintf(gap, sizeof gap,
+                         "GAP: the run went unstable (measured: the quintic spline, support "
+                         "3h, blows up at ~1.1 ms with CSPM and AS 0.5 even with the leapfrog: "
+                         "tensile instability); see docs/validation.md");
+            else
+                snprintf(gap, sizeof gap,
+                         "GAP: measured %.2f mm (%+.1f %%): with 10 particles over the depth "
+                         "SPH bending is soft (spurious particle modes, clamp; the plate shows "
+                         "the same); see docs/validation.md",
+                         res.mean * 1e3, (res.mean - ref) / ref * 100.0);
             vreport_mark_gap(r, gap);
         }
-    }
-    /* total-Lagrangian SPH, small and large load (Wendland); the large load
-     * (17.5 kN, h = 1.4 dx, AV (0.5, 0.8)) against the nonlinear 81.1 mm,
-     * also with the updated form (AS 0.9) for the tensile-instability
-     * comparison */
-    struct {
-        const char *what, *extra;
-        double force, hfac, ref, tol;
-    } tl[3] = {
-        {"TLSPH wendland 1.75 kN: mean tip deflection 1.5-3 ms",
-         "viscosity: [0.1, 0.1], formulation: total, hourglass: 1.0", 1750.0, 1.2, 33.59e-3,
-         0.0958},
-        {"TLSPH wendland 17.5 kN: mean tip deflection 1.5-3 ms",
-         "viscosity: [0.5, 0.8], formulation: total, hourglass: 1.0", 17500.0, 1.4, 81.1e-3,
-         0.0489},
-        {"updated SPH wendland 17.5 kN (AS 0.9): mean tip deflection",
-         "viscosity: [0.5, 0.8], artificial_stress: 0.9, xsph: 0.5", 17500.0, 1.4, 81.1e-3,
-         0.0489},
-    };
-    for (int k = 0; k < 3; k++) {
-        double mean = NAN, fin = NAN;
-        int rc = beam_run("wendland", tl[k].force, tl[k].hfac, tl[k].extra, &mean, &fin, err);
-        if (rc == SPALL_ERR_UNSTABLE) {
-            vreport_info(r, "%s: %s", tl[k].what, err->msg);
-            err->code = 0;
-            err->msg[0] = 0;
-            mean = NAN;
-        } else if (rc) {
-            return rc;
-        }
-        char note[320];
-        snprintf(note, sizeof note,
-                 "tolerance = the thesis' Wendland error (Table 3.4 / large-load 4.89 %%); "
-                 "deflection at 3 ms %.2f mm",
-                 fin * 1e3);
-        if ((rc = vreport_check(r, tl[k].what, "m", tl[k].ref, isfinite(mean) ? mean : 1e9,
-                                tl[k].tol, true,
-                                k == 0 ? "seed 004 Table 3.4" : "seed 004 sec. 3.4.1 (81.1 mm)",
-                                note, err)))
-            return rc;
-        if (!r->checks[r->n - 1].pass)
-            vreport_mark_gap(r, "GAP: see docs/sph.md (sph-beam)");
     }
     return SPALL_OK;
 }
@@ -246,7 +261,7 @@ static int plate_run(int rows, double *period, double *omega, size_t *np,
     char deck[3072];
     snprintf(deck, sizeof deck,
              "model: {type: sph, kernel: cubic_spline, h_factor: 1.5, plane: strain,\n"
-             "        viscosity: [0.1, 0.1], artificial_stress: 0.3, xsph: 0.5}\n"
+             "        time_integration: leapfrog, cspm: true, viscosity: [0.1, 0.1]}\n"
              "materials: {rubber: {density: 1000, youngs_modulus: 2.0e6, poisson_ratio: 0.3975}}\n"
              "lattice: {type: square, spacing: %.17g, origin: [%.17g, %.17g], thickness: 1.0}\n"
              "body: {geometry: {box: {min: [%.17g, %.17g], max: [%.17g, %.17g]}}, "
@@ -314,11 +329,16 @@ int sph_case_plate(struct vreport *r, struct spall_error *err)
         return rc;
     vreport_info(r, "plate: %d rows (%zu particles), omega = %.4f rad/s (theory %.4f)", rows, np,
                  w, w_ref);
-    return vreport_check(r, "oscillating plate: period of the first mode", "s", T_ref, T, 0.03,
-                         true,
-                         "thin-plate theory, plane strain: omega^2 = E H^2 k^4/(12 rho (1-nu^2)), "
-                         "kL = 1.8751 (Gray, Monaghan & Swift 2001)",
-                         "3 %: the issue's tolerance; thick-plate shear and the finite clamp "
-                         "make SPH slightly softer than thin-plate theory",
-                         err);
+    rc = vreport_check(r, "oscillating plate: period of the first mode", "s", T_ref, T, 0.03,
+                       true,
+                       "thin-plate theory, plane strain: omega^2 = E H^2 k^4/(12 rho (1-nu^2)), "
+                       "kL = 1.8751 (Gray, Monaghan & Swift 2001)",
+                       "3 %: the issue's tolerance; thick-plate shear (~0.7 %) and the finite "
+                       "clamp make SPH slightly softer than thin-plate theory",
+                       err);
+    if (!rc && !r->checks[r->n - 1].pass)
+        vreport_mark_gap(r, "GAP: SPH bending is soft at 6-16 rows (spurious particle modes; "
+                            "the clamped plate converges slowly, +18 % -> +10 % with CSPM); "
+                            "axial modes are right to 0.3 %; see docs/validation.md");
+    return rc;
 }

@@ -18,6 +18,11 @@ struct spall_error;
 int sph_case_gradient(struct vreport *r, struct spall_error *err);
 /** "sph-beam": cantilever, 1.75 kN, six kernels vs 33.59 mm (Table 3.4). */
 int sph_case_beam(struct vreport *r, struct spall_error *err);
+/** "sph-beam-large": cantilever, 17.5 kN, six kernels and TLSPH vs 81.1 mm,
+ *  which kernels crack (seed 004 sec. 3.4.1). */
+int sph_case_beam_large(struct vreport *r, struct spall_error *err);
+/** "sph-leapfrog": the leapfrog keeps an undamped plate's energy (quick). */
+int sph_case_leapfrog(struct vreport *r, struct spall_error *err);
 /** "sph-plate": oscillating plate period vs thin-plate theory (Gray et al. 2001). */
 int sph_case_plate(struct vreport *r, struct spall_error *err);
 /** "sph-taylor-3d": 4340 steel Taylor bar, 181 m/s, Johnson-Cook (Table 3.6). */

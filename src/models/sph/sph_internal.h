@@ -48,6 +48,7 @@ struct sph_options {
     bool split_pairs;       /**< force the two-pass loops of sph_rates.c (verification) */
     bool symmetry[3];       /**< mirror plane x_d = 0 (ghost particles, sph_symmetry.c) */
     double cavity_depth;    /**< axisymmetric: depth of the cavity-diameter history (0: off) */
+    bool leapfrog;          /**< staggered leapfrog state update (sph_leapfrog.c) */
 };
 
 /** Read-only per-particle data the fused pair loop gathers over j: the
@@ -115,6 +116,7 @@ struct model {
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
+    double lf_dt;          /**< leapfrog: step whose state update is pending (0: none) */
 };
 
 /* sph_rates.c */
@@ -153,6 +155,11 @@ int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err);
 /** Cavity diameters D1, D2 at opt.cavity_depth (0 columns when off). */
 size_t sph_axisym_history(const struct model *m, const struct sim *sim, const char **names,
                           double *values);
+/* sph_leapfrog.c */
+/** Leapfrog: advance rho, h, S (with the radial return) and the stress
+ *  power part of e over @p dt with the velocity gradient L just computed
+ *  from the half-step velocities; P from the new density. */
+void sph_leapfrog_advance(struct model *m, struct sim *s, double dt);
 
 /* sph_material.c */
 /** Pressure from the EOS (compression positive). */

@@ -262,6 +262,8 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
     const double xs = m->opt.xsph;
     const bool cm = m->opt.cspm;
+    /* leapfrog step: the stress power is booked by sph_leapfrog_advance */
+    const double wstress = m->lf_dt > 0.0 ? 0.0 : 1.0;
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
@@ -353,7 +355,7 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
             for (int a = 0; a < dim; a++) {
                 acc[a] += mj * (Ai[a] + Aj[a] + Aa[a]);
                 /* own stress power + half of the symmetric AV/AS terms */
-                de -= mj * vij[a] * (Ai[a] + 0.5 * Aa[a]);
+                de -= mj * vij[a] * (wstress * Ai[a] + 0.5 * Aa[a]);
             }
             if (xs > 0.0) {
                 double w = 2.0 * mj / (rhoi + rhoj) * W;
@@ -422,6 +424,9 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
     m->n_pairs = m->nl->offset[n];
     size_t fb = m->dim == 2 ? pass_gradient(m, s, 2) : pass_gradient(m, s, 3);
     m->cspm_fallbacks += fb;
+    const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L */
+    if (lfdt > 0.0)
+        sph_leapfrog_advance(m, s, lfdt);
     sph_update_pressure(m, s);
     const bool summ = m->opt.density == SPH_DENSITY_SUMMATION;
 #pragma omp parallel for schedule(static)
@@ -440,6 +445,12 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
         pass_forces(m, s, 2);
     else
         pass_forces(m, s, 3);
+    if (lfdt > 0.0) {
+        /* leapfrog: AV / AS heating of this step (the stress power is in) */
+        for (size_t i = 0; i < n; i++)
+            m->e[i] += lfdt * m->de[i];
+        m->lf_dt = 0.0;
+    }
     if (m->opt.wall)
         wall_forces(m, s);
     return SPALL_OK;

@@ -19,7 +19,8 @@
  * which vanishes for any affine motion (it never resists a homogeneous
  * deformation) and is antisymmetric (momentum conserving); kappa =
  * model.hourglass (default 0.1).  Its work is booked as internal energy.
- * Monaghan AV acts on the current pair geometry with reference gradients.
+ * Monaghan AV acts on the current pair geometry: mu from x_ij, v_ij and the
+ * force along x_ij with the reference kernel's dW/dr / r.
  */
 #include "models/sph/sph_internal.h"
 
@@ -140,6 +141,9 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
         return spall_error_set(err, SPALL_ERR_UNSTABLE,
                                "TLSPH: a deformation gradient became singular or inverted at "
                                "t = %.6g s (det F <= 0)", s->t);
+    const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L */
+    if (lfdt > 0.0)
+        sph_leapfrog_advance(m, s, lfdt);
     sph_update_pressure(m, s);
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
 #pragma omp parallel for schedule(static)
@@ -161,6 +165,7 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     }
     /* pass 2: forces, energy */
     const double kappa = m->opt.hourglass, qa = m->opt.av_a, qb = m->opt.av_b;
+    const double wstress = lfdt > 0.0 ? 0.0 : 1.0; /* leapfrog books it itself */
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         const struct sph_material *mi = &m->mat[p->material[i]];
@@ -183,9 +188,8 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
             sph_kernel_eval(kern, m->alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W,
                             &F);
             const double Vj = m->m2[j] / mj->rho0;
-            double gi[3] = {0, 0, 0}, gj[3] = {0, 0, 0}, g0[3] = {0, 0, 0};
+            double gi[3] = {0, 0, 0}, gj[3] = {0, 0, 0};
             for (int b = 0; b < dim; b++) {
-                g0[b] = F * X[b];
                 for (int c = 0; c < dim; c++) {
                     gi[b] += m->Bi[c * 3 + b][i] * F * X[c];
                     gj[b] += m->Bi[c * 3 + b][j] * F * X[c];
@@ -207,10 +211,14 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
                     pred += 0.5 * (m->Fdef[a * 3 + b][i] + m->Fdef[a * 3 + b][j]) * (-X[b]);
                 }
                 double fs = Vi * Vj * (ti + tj);
-                double fav = -m->m2[i] * m->m2[j] * Pi * g0[a];
+                /* AV along the CURRENT pair line (reference kernel
+                 * magnitude): -Pi F x_ij does negative work for any
+                 * rotation; along the reference direction g0 it pumps
+                 * energy once the body has turned (17.5 kN beam) */
+                double fav = -m->m2[i] * m->m2[j] * Pi * F * xij[a];
                 double fhg = hg * (-xij[a] - pred);
                 acc[a] += fs + fav + fhg;
-                de -= Vi * Vj * vij[a] * ti + 0.5 * (fav + fhg) * vij[a];
+                de -= wstress * Vi * Vj * vij[a] * ti + 0.5 * (fav + fhg) * vij[a];
             }
         }
         for (int a = 0; a < dim; a++)
@@ -218,6 +226,11 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
         m->de[i] = de / m->m2[i];
         for (int a = 0; a < dim; a++)
             m->xv[a][i] = 0.0;
+    }
+    if (lfdt > 0.0) {
+        for (size_t i = 0; i < n; i++)
+            m->e[i] += lfdt * m->de[i]; /* AV / hourglass heating */
+        m->lf_dt = 0.0;
     }
     return SPALL_OK;
 }

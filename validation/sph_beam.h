@@ -1,0 +1,36 @@
+/**
+ * @file sph_beam.h
+ * @brief Shared driver of the SPH cantilever cases (validation/sph_beam_plate.c,
+ *        validation/sph_beam_large.c): seed 004 sec. 3.4.1 beam, dx = 1 mm,
+ *        plane stress, clamp = 3 fixed columns, quadratic 1.5 ms load ramp.
+ */
+#ifndef SPALL_VALIDATION_SPH_BEAM_H
+#define SPALL_VALIDATION_SPH_BEAM_H
+
+struct vreport;
+struct spall_error;
+
+/** Kernel names of seed 004 Fig. 3.1, types 1-6. */
+extern const char *const SPH_BEAM_KERNELS[6];
+
+/** Outcome of one beam run (deflections downwards positive) [m]. */
+struct sph_beam_result {
+    double mean;     /**< time mean of the tip deflection over 1.5-3.0 ms */
+    double final;    /**< at 3 ms */
+    double max;      /**< largest */
+    double stretch;  /**< largest stretch of an initially adjacent pair (crack: >> 1) */
+    double balance;  /**< energy balance at the end [J] */
+    double external; /**< work of the load [J] */
+};
+
+/** Run the beam with @p kernel, end load @p force [N], h = @p hfac dx and
+ *  extra model keys @p extra (flow-mapping text). */
+int sph_beam_run(const char *kernel, double force, double hfac, const char *extra,
+                 struct sph_beam_result *out, struct spall_error *err);
+/** sph_beam_run, an unstable run noted in @p r and returned as mean = NaN;
+ *  the outcome is printed as an info line. */
+int sph_beam_run_or_note(struct vreport *r, const char *what, const char *kernel, double force,
+                         double hfac, const char *extra, struct sph_beam_result *res,
+                         struct spall_error *err);
+
+#endif
