@@ -7,10 +7,9 @@
 #                R = 25 MPa (fit (b), Fig. 4.5), d = 11-22 um, v0 = 50-900 m/s
 #   sebs_poncelet.csv  the same grid with Poncelet fit (b), C_d = 0.8, R = 33.7 MPa
 # Columns: d, v0, T_f, P_max, P_max_nose, P_max_over_d (, Re).
-# The SPH side of the sweep (needs the sph model and rigid impactors, issues
-# 6 and 3): scripts/pen_decks.sh sweep DIR writes the matching decks.
-# Plot: TODO once src/io/plot.c (cairo line plots) is merged -- P_max_over_d
-# against v0, one line per d.
+# The SPH side (axisymmetric SPH): scripts/pen_decks.sh DIR writes the
+# gelatin velocity and modulus decks.  Plot: each --csv also gets a PNG of
+# P_max/d against v0 (one line per d) beside it.
 # Usage: examples/pen_sweep/pen_sweep.sh [spall] [outdir]
 set -euo pipefail
 spall="${1:-build/spall}"
