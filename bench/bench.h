@@ -53,6 +53,9 @@ extern const size_t bench_macro_n_cases;
 /* sph bench table */
 extern const struct bench_case bench_sph_cases[];
 extern const size_t bench_sph_n_cases;
+/* penetration (bench_pen.c) */
+extern const struct bench_case bench_pen_cases[];
+extern const size_t bench_pen_n_cases;
 
 
 /** Build the simulation of YAML text @p yaml, run it on @p threads threads

@@ -25,6 +25,7 @@ static const struct bench_table tables[] = {
 
     /* sph table entry */
     {bench_sph_cases, &bench_sph_n_cases},
+    {bench_pen_cases, &bench_pen_n_cases},
 
 };
 

@@ -8,6 +8,8 @@
 #ifndef SPALL_VALIDATION_PEN_CASES_H
 #define SPALL_VALIDATION_PEN_CASES_H
 
+#include <stddef.h>
+
 struct spall_error;
 struct vreport;
 
@@ -25,6 +27,12 @@ int pen_case_thesis_refs(struct vreport *r, struct spall_error *err);
 /** "pen-gelatin-time": Poncelet stopping time against the experiment's
  *  200-250 ns (known gap, explained). */
 int pen_case_gelatin_time(struct vreport *r, struct spall_error *err);
+/** The gelatin deck of validation/pen_sph.c (= examples/pen_sph_gelatin at
+ *  dx1 = d/10, width 1): silica 7.38 um at @p v0 [m/s] into gelatin of
+ *  modulus @p E [Pa], finest spacing @p dx1 [m], outer levels scaled by
+ *  @p width, run to @p t_end [s]; YAML into @p buf (also used by the bench). */
+void pen_sph_deck(char *buf, size_t len, double v0, double E, double dx1, double width,
+                  double t_end);
 /** "pen-sph-gelatin": axisymmetric SPH, silica 7.38 um into gelatin at
  *  1290 m/s (validation/pen_sph.c): P_max, its time, cavity diameters. */
 int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err);

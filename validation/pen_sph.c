@@ -60,8 +60,8 @@ static double round_up(double x, double q)
 }
 
 /* The deck of the file comment; width scales the two outer levels. */
-static void pen_sph_deck(char *buf, size_t len, double v0, double E, double dx1, double width,
-                         double t_end)
+void pen_sph_deck(char *buf, size_t len, double v0, double E, double dx1, double width,
+                  double t_end)
 {
     double r[4] = {8e-6, 20e-6, 48e-6 * width, 144e-6 * width};
     double z[4] = {100e-6, 130e-6, 170e-6, 250e-6};
