@@ -114,4 +114,12 @@ int lattice_soft_parse(const struct deck_node *node, const char *what, double ep
 int lattice_soft_final_strain(const struct lattice_calib *c, double e0, double gf, double *ef,
                               struct spall_error *err);
 
+/* lattice_material.c */
+/** Free the arrays of a piecewise-linear curve and zero it. */
+void lattice_curve_free(struct lattice_curve *c);
+/** model_ops.parse_material of the lattice model: the material keys of the
+ *  run's axial law, thermal keys, calibration into material @p index. */
+int lattice_parse_material(struct model *m, struct sim *sim, int index,
+                           const struct deck_node *node, struct spall_error *err);
+
 #endif
