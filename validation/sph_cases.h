@@ -64,4 +64,19 @@ int sph_case_rings(struct vreport *r, struct spall_error *err);
 int sph_rings_run(double dx, double end_time, struct sph_rings_result *out,
                   struct spall_error *err);
 
+/** Outcome of one debris-cloud run (sph_debris.c), measured at 20 us. */
+struct sph_debris_result {
+    double length_max, width_max; /**< cloud extent behind the plate, 2 x max radius [m] */
+    double length_q, width_q;     /**< the same as 99 % mass quantiles [m] */
+    double debris_mass_fraction;  /**< cloud mass / total mass */
+    double momentum_error;        /**< |P_z(end) - P_z(0)| / |P_z(0)| */
+    size_t particles, debris_particles;
+    double seconds;
+};
+/** "sph-debris-cloud": Al sphere 10 mm on a 2 mm Al plate at 6.18 km/s
+ *  (seed 004 chapter 2, Hiermaier et al. 1997), axisymmetric. */
+int sph_case_debris(struct vreport *r, struct spall_error *err);
+/** One debris-cloud run with @p n particles across the sphere's diameter. */
+int sph_debris_run(int n, struct sph_debris_result *out, struct spall_error *err);
+
 #endif

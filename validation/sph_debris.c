@@ -1,0 +1,201 @@
+/**
+ * @file sph_debris.c
+ * @brief SPH validation case "sph-debris-cloud": hypervelocity impact of an
+ *        aluminium sphere (d = 10 mm) on a 2 mm aluminium plate at
+ *        6.18 km/s, axisymmetric -- the debris-cloud problem of seed 004
+ *        chapter 2 (Hiermaier et al., IJIE 20 (1997) 363, ref. [73]).
+ *
+ * Deck: examples/sph_debris_cloud/sph_debris_cloud.yaml (Al 1100,
+ * Mie-Grueneisen with Steinberg's constants, elastic-perfectly plastic
+ * 0.1 GPa, failure at plastic strain 0.5; Wendland, h = 1.3 dx, AV (1, 1),
+ * XSPH 0.1), built here at dx = d/20, d/40, d/60 (quick: d/20 only).
+ *
+ * Measured at 20 us after contact: the debris cloud = all particles behind
+ * the plate's rear face (z < -2 mm), plate and projectile material alike.
+ * Length = axial extent from the rear face to the cloud's front; width =
+ * 2 x the largest radius in the cloud.  Both also as mass quantiles (the
+ * front / radius below which 99 % of the cloud's mass lies), because single
+ * spalled particles set the extremes.
+ *
+ * The published length and width (Hiermaier et al. 1997 and the SPH papers
+ * that reproduce that shot) could not be found with the search tools here,
+ * so there is no reference to compare with: the checks are (1) axial
+ * momentum conserved to 0.1 % (the pair forces are antisymmetric but the
+ * axis-image terms are not an exact adjoint, docs/sph.md: measured 2.8e-4,
+ * 4.8e-5, 1.9e-5 at d/20, 40, 60), (2) the cloud length and width converged in dx
+ * (two finest spacings within 5 %).  The missing reference is recorded as a
+ * gap.
+ */
+#include "validation/lattice_cases.h"
+#include "validation/sph_cases.h"
+#include "validation/validation.h"
+
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#define DEB_D 10.0e-3     /* sphere diameter [m] */
+#define DEB_T 2.0e-3      /* plate thickness [m] */
+#define DEB_RP 30.0e-3    /* plate radius [m] */
+#define DEB_V0 6180.0     /* impact speed [m/s] */
+#define DEB_TIME 20.0e-6  /* measurement time after contact [s] */
+
+struct deb_pair {
+    double value, mass;
+};
+
+static int deb_cmp(const void *a, const void *b)
+{
+    double x = ((const struct deb_pair *)a)->value, y = ((const struct deb_pair *)b)->value;
+    return (x > y) - (x < y);
+}
+
+/* The value below which a fraction q of the mass lies (pairs sorted here). */
+static double deb_quantile(struct deb_pair *pr, size_t n, double q)
+{
+    if (n == 0)
+        return 0.0;
+    qsort(pr, n, sizeof *pr, deb_cmp);
+    double total = 0.0, acc = 0.0;
+    for (size_t i = 0; i < n; i++)
+        total += pr[i].mass;
+    for (size_t i = 0; i < n; i++) {
+        acc += pr[i].mass;
+        if (acc >= q * total)
+            return pr[i].value;
+    }
+    return pr[n - 1].value;
+}
+
+int sph_debris_run(int n, struct sph_debris_result *out, struct spall_error *err)
+{
+    const double dx = DEB_D / n;
+    char deck[3072];
+    /* the sphere's centre at z = d/2: its lowest particle row lies dx/2
+     * above the plate's top row (at -dx/2), the surfaces touch at t = 0 */
+    snprintf(deck, sizeof deck,
+             "model: {type: sph, plane: axisymmetric, kernel: wendland, h_factor: 1.3,\n"
+             "        viscosity: [1.0, 1.0], xsph: 0.1}\n"
+             "materials:\n"
+             "  al: {density: 2707, youngs_modulus: 69.0e9, poisson_ratio: 0.33,\n"
+             "       eos: mie_gruneisen, sound_speed: 5386, hugoniot_slope: 1.339,\n"
+             "       gruneisen: 1.97, yield: perfect, yield_stress: 0.1e9,\n"
+             "       failure: plastic_strain, failure_value: 0.5}\n"
+             "lattice: {type: square, spacing: %.17g, origin: [%.17g, %.17g]}\n"
+             "geometry:\n"
+             "  plate: {box: {min: [0, %.17g], max: [%.17g, 0]}}\n"
+             "  ball: {intersection: [{circle: {center: [0, %.17g], radius: %.17g}},\n"
+             "                        {box: {min: [0, 0], max: [%.17g, %.17g]}}]}\n"
+             "bodies:\n"
+             "  - {geometry: plate, material: al}\n"
+             "  - {geometry: ball, material: al}\n"
+             "groups:\n"
+             "  projectile: ball\n"
+             "initial_velocity: [{group: projectile, value: [0, %.17g]}]\n"
+             "run: {end_time: %.17g, dt_factor: 0.3}\n",
+             dx, 0.5 * dx, 0.5 * dx, -DEB_T, DEB_RP, 0.5 * DEB_D, 0.5 * DEB_D, 0.6 * DEB_D,
+             1.1 * DEB_D, -DEB_V0, DEB_TIME);
+    struct sim *s = NULL;
+    int rc = vlat_build("sph_debris", deck, &s, err);
+    if (rc)
+        return rc;
+    const struct particles *p = s->p;
+    double pz0 = 0.0;
+    for (size_t i = 0; i < p->n; i++)
+        pz0 += p->mass[i] * p->v[1][i];
+    double t0 = omp_get_wtime();
+    while (!rc && !sim_done(s))
+        rc = sim_step(s, err);
+    out->seconds = omp_get_wtime() - t0;
+    if (rc) {
+        sim_destroy(&s);
+        return rc;
+    }
+    struct deb_pair *zr = malloc((2 * p->n + 1) * sizeof *zr);
+    if (!zr) {
+        sim_destroy(&s);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "sph_debris: out of memory");
+    }
+    struct deb_pair *rr = zr + p->n;
+    size_t nd = 0;
+    double pz = 0.0, dmax = 0.0, rmax = 0.0, mdeb = 0.0, mtot = 0.0;
+    for (size_t i = 0; i < p->n; i++) {
+        pz += p->mass[i] * p->v[1][i];
+        mtot += p->mass[i];
+        if (p->x[1][i] >= -DEB_T)
+            continue;
+        double depth = -DEB_T - p->x[1][i];
+        zr[nd] = (struct deb_pair){depth, p->mass[i]};
+        rr[nd] = (struct deb_pair){p->x[0][i], p->mass[i]};
+        dmax = fmax(dmax, depth);
+        rmax = fmax(rmax, p->x[0][i]);
+        mdeb += p->mass[i];
+        nd++;
+    }
+    out->length_max = dmax;
+    out->width_max = 2.0 * rmax;
+    out->length_q = deb_quantile(zr, nd, 0.99);
+    out->width_q = 2.0 * deb_quantile(rr, nd, 0.99);
+    out->debris_mass_fraction = mdeb / mtot;
+    out->momentum_error = fabs(pz - pz0) / fabs(pz0);
+    out->particles = p->n;
+    out->debris_particles = nd;
+    free(zr);
+    sim_destroy(&s);
+    return SPALL_OK;
+}
+
+int sph_case_debris(struct vreport *r, struct spall_error *err)
+{
+    static const int series[3] = {20, 40, 60};
+    const int last = r->quick ? 0 : 2;
+    struct sph_debris_result res[3];
+    for (int k = 0; k <= last; k++) {
+        int rc = sph_debris_run(series[k], &res[k], err);
+        if (rc)
+            return rc;
+        vreport_info(r, "debris cloud, d/%d (%zu particles, %zu in the cloud, %.1f %% of the "
+                     "mass): at 20 us length %.2f mm (99 %% of the mass: %.2f), width %.2f mm "
+                     "(99 %%: %.2f), axial momentum error %.2g (%.0f s)",
+                     series[k], res[k].particles, res[k].debris_particles,
+                     100.0 * res[k].debris_mass_fraction, res[k].length_max * 1e3,
+                     res[k].length_q * 1e3, res[k].width_max * 1e3, res[k].width_q * 1e3,
+                     res[k].momentum_error, res[k].seconds);
+    }
+    const struct sph_debris_result *f = &res[last];
+    int rc;
+    if ((rc = vreport_check(r, "axial momentum, |P_z(20 us) - P_z(0)| / |P_z(0)|", "1", 0.0,
+                            f->momentum_error, 1e-3, false,
+                            "conservation: pair forces antisymmetric except the axis images",
+                            "0.1 %: negligible against the 1 % cloud measures", err)))
+        return rc;
+    if (last > 0) {
+        const struct sph_debris_result *g = &res[last - 1];
+        double dl = fabs(f->length_q - g->length_q) / f->length_q;
+        double dw = fabs(f->width_q - g->width_q) / f->width_q;
+        if ((rc = vreport_check(r, "cloud length (99 % mass) change, d/40 -> d/60", "1", 0.0, dl,
+                                0.05, false, "convergence (no published length found)",
+                                "5 %: a cloud edge resolved to ~1 dx of d/40", err)))
+            return rc;
+        if (!r->checks[r->n - 1].pass)
+            vreport_mark_gap(r, "GAP: cloud length not converged in dx; see docs/validation.md");
+        if ((rc = vreport_check(r, "cloud width (99 % mass) change, d/40 -> d/60", "1", 0.0, dw,
+                                0.05, false, "convergence (no published width found)",
+                                "5 %: a cloud edge resolved to ~1 dx of d/40", err)))
+            return rc;
+        if (!r->checks[r->n - 1].pass)
+            vreport_mark_gap(r, "GAP: cloud width not converged in dx; see docs/validation.md");
+    }
+    if ((rc = vreport_check_true(r, "published debris-cloud length / width at 20 us found", false,
+                                 "Hiermaier et al., IJIE 20 (1997) 363 (seed 004 ref. [73])",
+                                 "not retrievable here: measured values reported only", err)))
+        return rc;
+    vreport_mark_gap(r, "GAP: no published length / width to compare with (reference not "
+                        "found); see docs/validation.md");
+    return SPALL_OK;
+}
