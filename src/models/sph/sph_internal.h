@@ -23,6 +23,8 @@ enum sph_plane { SPH_PLANE_STRESS, SPH_PLANE_STRAIN, SPH_PLANE_AXISYMMETRIC /* s
 enum sph_density { SPH_DENSITY_CONTINUITY, SPH_DENSITY_SUMMATION };
 enum sph_eos { SPH_EOS_LINEAR, SPH_EOS_MIE_GRUNEISEN, SPH_EOS_MIE_GRUNEISEN_CK };
 enum sph_yield { SPH_YIELD_ELASTIC, SPH_YIELD_PERFECT, SPH_YIELD_POWER, SPH_YIELD_JOHNSON_COOK };
+/** Strain-rate scaling of the yield stress (not with Johnson-Cook, which has its own). */
+enum sph_rate { SPH_RATE_NONE, SPH_RATE_COWPER_SYMONDS };
 enum sph_failure { SPH_FAIL_NONE, SPH_FAIL_STRESS, SPH_FAIL_PLASTIC_STRAIN };
 
 /** Stress / tensor component order (symmetric): xx yy zz xy yz xz. */
@@ -68,6 +70,8 @@ struct sph_material {
     double sy;                          /**< perfect plasticity */
     double A, B, n;                     /**< A + B ep^n (also JC a, b, n) */
     double jc_c, jc_m, Tm, Troom, eps0; /**< Johnson-Cook */
+    enum sph_rate rate;                 /**< rate_model */
+    double cs_d, cs_q;                  /**< Cowper-Symonds D [1/s], q */
     double cp, beta_tq;                 /**< heat capacity, Taylor-Quinney */
     enum sph_failure failure;
     double fail_value;                  /**< stress [Pa] or plastic strain */
@@ -168,6 +172,9 @@ double sph_eos_pressure(const struct sph_material *mt, double rho, double e);
 double sph_sound_speed(const struct sph_material *mt, double rho, double e);
 /** Current yield stress (INFINITY: elastic). */
 double sph_yield_stress(const struct sph_material *mt, double ep, double epdot, double T);
+/** Rate factor of the yield (and stress-failure) stress: 1 + (epdot / D)^(1/q)
+ *  with Cowper-Symonds, else 1. */
+double sph_rate_factor(const struct sph_material *mt, double epdot);
 /** Pressure of every particle; failed particles carry no tension. */
 void sph_update_pressure(struct model *m, struct sim *s);
 /** Jaumann stress rate of particle i from L (Eq. 3.28-3.30), and the plane-stress

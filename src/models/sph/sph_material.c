@@ -57,15 +57,24 @@ double sph_sound_speed(const struct sph_material *mt, double rho, double e)
     return sqrt(dpdrho + 4.0 * mt->G / (3.0 * rho));
 }
 
+double sph_rate_factor(const struct sph_material *mt, double epdot)
+{
+    /* Cowper-Symonds: sigma_y (1 + (epdot / D)^(1/q)); epdot is the
+     * equivalent total deviatoric strain rate, as for the JC rate term */
+    if (mt->rate != SPH_RATE_COWPER_SYMONDS || !(epdot > 0.0))
+        return 1.0;
+    return 1.0 + pow(epdot / mt->cs_d, 1.0 / mt->cs_q);
+}
+
 double sph_yield_stress(const struct sph_material *mt, double ep, double epdot, double T)
 {
     switch (mt->yield) {
     case SPH_YIELD_ELASTIC:
         return INFINITY;
     case SPH_YIELD_PERFECT:
-        return mt->sy;
-    case SPH_YIELD_POWER:
-        return mt->A + mt->B * (ep > 0.0 ? pow(ep, mt->n) : 0.0); /* Eq. 4.12 */
+        return mt->sy * sph_rate_factor(mt, epdot);
+    case SPH_YIELD_POWER: /* Eq. 4.12 */
+        return (mt->A + mt->B * (ep > 0.0 ? pow(ep, mt->n) : 0.0)) * sph_rate_factor(mt, epdot);
     case SPH_YIELD_JOHNSON_COOK: {
         double base = mt->A + mt->B * (ep > 0.0 ? pow(ep, mt->n) : 0.0);
         double r = epdot / mt->eps0;
@@ -155,17 +164,9 @@ void sph_plastic_return(struct model *m, size_t i, double dt, bool commit)
     for (int c = 0; c < 6; c++)
         ss += (c < 3 ? 1.0 : 2.0) * m->S[c][i] * m->S[c][i];
     double seq = sqrt(1.5 * ss); /* sqrt(3 J2), J2 = S:S/2 */
-    if (commit && mt->failure == SPH_FAIL_STRESS && seq >= mt->fail_value) {
-        m->failed[i] = 1;
-        for (int c = 0; c < 6; c++)
-            m->S[c][i] = 0.0;
-        return;
-    }
-    if (mt->yield == SPH_YIELD_ELASTIC)
-        return;
     /* equivalent total deviatoric strain rate for the JC rate term */
     double epdot = 0.0;
-    if (mt->yield == SPH_YIELD_JOHNSON_COOK) {
+    if (mt->yield == SPH_YIELD_JOHNSON_COOK || mt->rate != SPH_RATE_NONE) {
         double d[6];
         d[0] = m->L[0][i];
         d[1] = m->dim >= 2 ? m->L[4][i] : 0.0;
@@ -181,6 +182,17 @@ void sph_plastic_return(struct model *m, size_t i, double dt, bool commit)
         }
         epdot = sqrt(2.0 / 3.0 * dd);
     }
+    /* with a rate law the failure stress scales like the yield stress (the
+     * gels "break at maximum stress ~ yield", seed 004 sec. 4.3.2) */
+    if (commit && mt->failure == SPH_FAIL_STRESS &&
+        seq >= mt->fail_value * sph_rate_factor(mt, epdot)) {
+        m->failed[i] = 1;
+        for (int c = 0; c < 6; c++)
+            m->S[c][i] = 0.0;
+        return;
+    }
+    if (mt->yield == SPH_YIELD_ELASTIC)
+        return;
     double sy = sph_yield_stress(mt, m->ep[i], epdot, m->T[i]);
     if (seq <= sy)
         return;

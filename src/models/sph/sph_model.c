@@ -37,7 +37,9 @@
  *     yield_stress (perfect), yield_a, yield_b, yield_n (power, JC), jc_c,
  *     jc_m, melt_temperature, room_temperature (293), reference_strain_rate
  *     (1), specific_heat, taylor_quinney (0.9); failure: none | stress |
- *     plastic_strain with failure_value.
+ *     plastic_strain with failure_value; rate_model: none | cowper_symonds
+ *     with cs_d [1/s], cs_q (perfect / power yield and stress failure scaled
+ *     by 1 + (epdot/D)^(1/q)).
  */
 #include "models/sph/sph_internal.h"
 
@@ -270,7 +272,8 @@ static int sph_parse_material(struct model *m, struct sim *sim, int index,
         "sound_speed", "hugoniot_slope", "gruneisen", "reference_pressure", "yield",
         "yield_stress", "yield_a", "yield_b", "yield_n", "jc_c", "jc_m", "melt_temperature",
         "room_temperature", "reference_strain_rate", "specific_heat", "taylor_quinney", "failure",
-        "failure_value", NULL};
+        "failure_value", "rate_model", "cs_d", "cs_q", NULL};
+    static const char *const rates[] = {"none", "cowper_symonds", NULL};
     static const char *const eoss[] = {"linear", "mie_gruneisen", "mie_gruneisen_ck", NULL};
     static const char *const ylds[] = {"elastic", "perfect", "power", "johnson_cook", NULL};
     static const char *const fails[] = {"none", "stress", "plastic_strain", NULL};
@@ -289,7 +292,7 @@ static int sph_parse_material(struct model *m, struct sim *sim, int index,
     mt.eps0 = 1.0;
     mt.beta_tq = 0.9;
     mt.Tm = INFINITY;
-    int eos = 0, yld = 0, fl = 0, rc;
+    int eos = 0, yld = 0, fl = 0, rt = 0, rc;
     bool has_e = deck_peek(node, "youngs_modulus") != NULL;
     if (has_e) {
         if ((rc = deck_double_pos(node, "youngs_modulus", true, &mt.E, err)) ||
@@ -306,7 +309,14 @@ static int sph_parse_material(struct model *m, struct sim *sim, int index,
     }
     if ((rc = deck_enum(node, "eos", false, eoss, &eos, err)) ||
         (rc = deck_enum(node, "yield", false, ylds, &yld, err)) ||
-        (rc = deck_enum(node, "failure", false, fails, &fl, err)))
+        (rc = deck_enum(node, "failure", false, fails, &fl, err)) ||
+        (rc = deck_enum(node, "rate_model", false, rates, &rt, err)))
+        return rc;
+    mt.rate = (enum sph_rate)rt;
+    /* Cowper-Symonds D, q: required and > 0 with rate_model cowper_symonds */
+    bool cs = mt.rate == SPH_RATE_COWPER_SYMONDS;
+    if ((rc = deck_double_pos(node, "cs_d", cs, &mt.cs_d, err)) ||
+        (rc = deck_double_pos(node, "cs_q", cs, &mt.cs_q, err)))
         return rc;
     mt.eos = (enum sph_eos)eos;
     mt.yield = (enum sph_yield)yld;
@@ -335,6 +345,10 @@ static int sph_parse_material(struct model *m, struct sim *sim, int index,
                               err)) ||
         (rc = deck_check_unused(node, "material", keys, err)))
         return rc;
+    if (cs && jc)
+        return deck_error_key(err, node, "rate_model",
+                              "rate_model cowper_symonds with yield johnson_cook: JC has its own "
+                              "rate term");
     if (jc && !(mt.Tm > mt.Troom))
         return deck_error_key(err, node, "melt_temperature",
                               "melt_temperature %g K must exceed room_temperature %g K", mt.Tm,
