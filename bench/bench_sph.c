@@ -24,10 +24,48 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Build @p yaml, time its steps, fill @p out like bench_run_deck (memory:
+ * resident set after the build / particles) and report the share of the
+ * loop's wall time spent building neighbour lists and how many builds. */
+static int sph_bench_run(const char *name, const char *yaml, int threads,
+                         struct bench_result *out, double *nb_share, size_t *builds,
+                         struct spall_error *err)
+{
+    omp_set_num_threads(threads);
+    struct deck *d = NULL;
+    struct sim *s = NULL;
+    struct run_output ro;
+    int rc = deck_load_string(&d, name, yaml, err);
+    if (!rc)
+        rc = deck_build_sim(d, &s, &ro, err);
+    deck_destroy(&d);
+    if (rc)
+        return rc;
+    double rss = bench_rss_bytes();
+    const double tn0 = s->model->t_neighbor;
+    double t0 = omp_get_wtime();
+    while (!sim_done(s) && !rc)
+        rc = sim_step(s, err);
+    double wall = omp_get_wtime() - t0;
+    memset(out, 0, sizeof *out);
+    snprintf(out->name, sizeof out->name, "%s", name);
+    out->threads = threads;
+    out->particles = s->p->n_owned;
+    out->bonds = s->ops->interactions(s->model, s);
+    out->steps = s->step;
+    out->seconds = wall;
+    out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
+    out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
+    out->bytes_per_particle = rss / (double)out->particles;
+    *nb_share = (s->model->t_neighbor - tn0) / wall;
+    *builds = s->model->n_builds;
+    sim_destroy(&s);
+    return rc;
+}
+
 static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
                             struct spall_error *err)
 {
-    omp_set_num_threads(threads);
     const double dx = 0.4e-3 / cbrt(scale > 0.0 ? scale : 1.0);
     const long steps = 200;
     char yaml[2048];
@@ -43,37 +81,16 @@ static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
              "initial_velocity: [{group: all, value: [0, 0, -227.0]}]\n"
              "run: {steps: %ld}\n",
              dx, 0.5 * dx, 0.5 * dx, 0.5 * dx, steps);
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    int rc = deck_load_string(&d, "sph_taylor_cu", yaml, err);
-    if (!rc)
-        rc = deck_build_sim(d, &s, &ro, err);
-    deck_destroy(&d);
+    double nb_share = 0.0;
+    size_t builds = 0;
+    int rc = sph_bench_run("sph_taylor_cu", yaml, threads, out, &nb_share, &builds, err);
     if (rc)
         return rc;
-    double rss = bench_rss_bytes();
-    const double tn0 = s->model->t_neighbor;
-    double t0 = omp_get_wtime();
-    while (!sim_done(s) && !rc)
-        rc = sim_step(s, err);
-    double wall = omp_get_wtime() - t0;
-    memset(out, 0, sizeof *out);
-    snprintf(out->name, sizeof out->name, "sph_taylor_cu");
-    out->threads = threads;
-    out->particles = s->p->n_owned;
-    out->bonds = s->ops->interactions(s->model, s);
-    out->steps = s->step;
-    out->seconds = wall;
-    out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
-    out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
-    out->bytes_per_particle = rss / (double)out->particles;
     snprintf(out->note, sizeof out->note,
              "3D Cu Taylor bar dx = %.3g mm, %.1f neighbours/particle, neighbour search "
              "%.1f %% of wall time (%zu builds)",
-             dx * 1e3, 2.0 * (double)out->bonds / (double)out->particles,
-             100.0 * (s->model->t_neighbor - tn0) / wall, s->model->n_builds);
-    sim_destroy(&s);
+             dx * 1e3, 2.0 * (double)out->bonds / (double)out->particles, 100.0 * nb_share,
+             builds);
     return rc;
 }
 
@@ -83,7 +100,6 @@ static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
 static int bench_sph_rings(int threads, double scale, struct bench_result *out,
                            struct spall_error *err)
 {
-    omp_set_num_threads(threads);
     const double dx = 0.5e-3 / sqrt(scale > 0.0 ? scale : 1.0);
     const long steps = 200;
     char yaml[3072];
@@ -102,37 +118,15 @@ static int bench_sph_rings(int threads, double scale, struct bench_result *out,
              "initial_velocity: [{group: left, value: [7.5, 0]}]\n"
              "run: {steps: %ld}\n",
              dx, 0.5 * dx, 0.5 * dx, steps);
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    int rc = deck_load_string(&d, "sph_rings_2d", yaml, err);
-    if (!rc)
-        rc = deck_build_sim(d, &s, &ro, err);
-    deck_destroy(&d);
+    double nb_share = 0.0;
+    size_t builds = 0;
+    int rc = sph_bench_run("sph_rings_2d", yaml, threads, out, &nb_share, &builds, err);
     if (rc)
         return rc;
-    double rss = bench_rss_bytes();
-    const double tn0 = s->model->t_neighbor;
-    double t0 = omp_get_wtime();
-    while (!sim_done(s) && !rc)
-        rc = sim_step(s, err);
-    double wall = omp_get_wtime() - t0;
-    memset(out, 0, sizeof *out);
-    snprintf(out->name, sizeof out->name, "sph_rings_2d");
-    out->threads = threads;
-    out->particles = s->p->n_owned;
-    out->bonds = s->ops->interactions(s->model, s);
-    out->steps = s->step;
-    out->seconds = wall;
-    out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
-    out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
-    out->bytes_per_particle = rss / (double)out->particles;
     snprintf(out->note, sizeof out->note,
              "2D rings dx = %.3g mm, %.1f neighbours/particle (listed, with skin), neighbour "
              "search %.1f %% of wall time",
-             dx * 1e3, 2.0 * (double)out->bonds / (double)out->particles,
-             100.0 * (s->model->t_neighbor - tn0) / wall);
-    sim_destroy(&s);
+             dx * 1e3, 2.0 * (double)out->bonds / (double)out->particles, 100.0 * nb_share);
     return rc;
 }
 
