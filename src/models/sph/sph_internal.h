@@ -26,6 +26,9 @@ enum sph_yield { SPH_YIELD_ELASTIC, SPH_YIELD_PERFECT, SPH_YIELD_POWER, SPH_YIEL
 /** Strain-rate scaling of the yield stress (not with Johnson-Cook, which has its own). */
 enum sph_rate { SPH_RATE_NONE, SPH_RATE_COWPER_SYMONDS };
 enum sph_failure { SPH_FAIL_NONE, SPH_FAIL_STRESS, SPH_FAIL_PLASTIC_STRAIN };
+/** Coupling of bodies (sph_interface.c): kernel sums across them (none), or
+ *  sums inside each body / material and a penalty between them. */
+enum sph_iface { SPH_IFACE_NONE, SPH_IFACE_BODIES, SPH_IFACE_MATERIALS };
 
 /** Stress / tensor component order (symmetric): xx yy zz xy yz xz. */
 enum { SXX, SYY, SZZ, SXY, SYZ, SXZ };
@@ -51,6 +54,8 @@ struct sph_options {
     bool symmetry[3];       /**< mirror plane x_d = 0 (ghost particles, sph_symmetry.c) */
     double cavity_depth;    /**< axisymmetric: depth of the cavity-diameter history (0: off) */
     bool leapfrog;          /**< staggered leapfrog state update (sph_leapfrog.c) */
+    enum sph_iface iface;   /**< interface between bodies (sph_interface.c) */
+    double iface_stiffness; /**< penalty factor eta (default 1) */
 };
 
 /** Read-only per-particle data the fused pair loop gathers over j: the
@@ -121,6 +126,16 @@ struct model {
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
     double lf_dt;          /**< leapfrog: step whose state update is pending (0: none) */
+    /* interface between bodies (sph_interface.c; NULL when off) */
+    size_t *if_off;        /**< n + 1: interface partners of i are if_idx[if_off[i] ..) */
+    int32_t *if_idx;
+    size_t if_cap;
+    double *if_c0;         /**< per material: rest sound speed */
+    double *if_e, *if_w;   /**< per particle: half its pairs' energy, sum k (1/mu_i + 1/mu_j) */
+    uint32_t *if_np;       /**< per particle: pairs in contact */
+    double iface_energy;   /**< penalty energy [J] */
+    size_t iface_pairs;    /**< pairs in contact at the last force evaluation */
+    double iface_omega2;   /**< largest contact omega^2 (stable step) */
 };
 
 /* sph_rates.c */
@@ -159,6 +174,16 @@ int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err);
 /** Cavity diameters D1, D2 at opt.cavity_depth (0 columns when off). */
 size_t sph_axisym_history(const struct model *m, const struct sim *sim, const char **names,
                           double *values);
+/* sph_interface.c */
+/** Move the pairs of different groups (bodies or materials) out of the
+ *  kernel neighbour list into the interface list (kept within d_ij +
+ *  @p skin_abs); called at each neighbour-list build. */
+int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct spall_error *err);
+/** Penalty forces between the groups into s->p->f; energy and pair count. */
+void sph_interface_forces(struct model *m, struct sim *s);
+/** Stable step of the contact springs of the last evaluation (INFINITY: none). */
+double sph_interface_stable_dt(const struct model *m);
+
 /* sph_leapfrog.c */
 /** Leapfrog: advance rho, h, S (with the radial return) and the stress
  *  power part of e over @p dt with the velocity gradient L just computed

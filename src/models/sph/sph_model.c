@@ -30,6 +30,12 @@
  *           rigid frictionless half-space; normal points from the wall into
  *           the body.  Penalty k = stiffness m (c0/dx)^2 on particles closer
  *           than dx/2.
+ *     interface: none | bodies | materials    (sph_interface.c; default none) kernel sums
+ *                                             inside each body (material) only, bodies
+ *                                             (materials) touch through a frictionless
+ *                                             penalty at d = (dx_i + dx_j)/2
+ *     interface_stiffness: eta                penalty k = eta min(rho0 dx^dim) (c0max/d)^2
+ *                                             (default 1)
  *   materials.<name>: density, youngs_modulus + poisson_ratio (or
  *     bulk_modulus + shear_modulus), eos: linear | mie_gruneisen |
  *     mie_gruneisen_ck with sound_speed, hugoniot_slope, gruneisen,
@@ -117,6 +123,12 @@ static void sph_destroy(struct model **pm)
         free(*a[k]);
     free(m->failed);
     free(m->pinned);
+    free(m->if_off);
+    free(m->if_idx);
+    free(m->if_c0);
+    free(m->if_e);
+    free(m->if_w);
+    free(m->if_np);
     free(m->mat);
     sph_symmetry_destroy(&m->sym);
     neighbor_list_destroy(&m->nl);
@@ -140,7 +152,9 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                        "xsph", "variable_h", "plane", "skin", "adaptive_dt",
                                        "formulation", "hourglass",
                                        "wall", "pair_loop", "symmetry",
-                                       "cavity_depth", "time_integration", NULL};
+                                       "cavity_depth", "time_integration", "interface",
+                                       "interface_stiffness", NULL};
+    static const char *const ifaces[] = {"none", "bodies", "materials", NULL};
     *out = NULL;
     if (sim->dim < 2)
         return spall_error_set(err, SPALL_ERR_INPUT,
@@ -156,9 +170,10 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     o.skin = 0.2;
     o.wall_stiffness = 1.0;
     o.hourglass = 0.1;
+    o.iface_stiffness = 1.0;
     bool adaptive = true;
     if (params) {
-        int kern = 3, den = 0, pl = 1, form = 0, loop = 0, sym = 0, tint = 0, rc;
+        int kern = 3, den = 0, pl = 1, form = 0, loop = 0, sym = 0, tint = 0, ifc = 0, rc;
         double av[2] = {o.av_a, o.av_b};
         if ((rc = deck_enum(params, "kernel", false, kernels, &kern, err)) ||
             (rc = deck_double(params, "h_factor", false, 0.5, 4.0, &o.h_factor, err)) ||
@@ -178,8 +193,18 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_enum(params, "symmetry", false, syms, &sym, err)) ||
             (rc = deck_double(params, "cavity_depth", false, 0.0, INFINITY, &o.cavity_depth,
                               err)) ||
-            (rc = deck_enum(params, "time_integration", false, tints, &tint, err)))
+            (rc = deck_enum(params, "time_integration", false, tints, &tint, err)) ||
+            (rc = deck_enum(params, "interface", false, ifaces, &ifc, err)) ||
+            (rc = deck_double(params, "interface_stiffness", false, 1e-3, 10.0,
+                              &o.iface_stiffness, err)))
             return rc;
+        o.iface = (enum sph_iface)ifc;
+        /* the ghosts of symmetry planes and the TLSPH reference list have
+         * their own neighbour lists, which the interface split does not see */
+        if (ifc && (sym || form == 1))
+            return deck_error_key(err, params, "interface",
+                                  "interface works with the updated formulation without "
+                                  "symmetry planes");
         o.leapfrog = tint == 1;
         /* the leapfrog advances the state between the gradient and the force
          * pass (sph_leapfrog.c): it needs the two-pass loops */
@@ -441,7 +466,10 @@ static int sph_register_fields(struct model *m, struct sim *sim, struct field_re
 
 static int sph_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    return sph_compute_rates(m, sim, err);
+    int rc = sph_compute_rates(m, sim, err);
+    if (!rc && m->opt.iface != SPH_IFACE_NONE)
+        sph_interface_forces(m, sim);
+    return rc;
 }
 
 /* Eq. 3.38 without c_s (the engine multiplies by run.dt_factor):
@@ -473,6 +501,8 @@ static double sph_stable_dt(const struct model *m, const struct sim *sim)
         if (dt < best)
             best = dt;
     }
+    if (m->opt.iface != SPH_IFACE_NONE)
+        best = fmin(best, sph_interface_stable_dt(m));
     return best;
 }
 
@@ -555,7 +585,7 @@ static void sph_energy(const struct model *m, const struct sim *sim, struct mode
     }
     /* internal energy (elastic + plastic + AV heat) is the model's store;
      * the plastic work inside it is reported in history (plastic_work) */
-    out->strain = ie + m->wall_energy;
+    out->strain = ie + m->wall_energy + m->iface_energy;
     out->dissipated = 0.0;
     (void)wp;
 }
@@ -587,6 +617,12 @@ static size_t sph_history(const struct model *m, const struct sim *sim, const ch
                                     m->wall_force[1] * m->opt.wall_normal[1] +
                                     m->wall_force[2] * m->opt.wall_normal[2]
                               : 0.0;
+    if (m->opt.iface != SPH_IFACE_NONE) {
+        names[k] = "interface_pairs";
+        values[k++] = (double)m->iface_pairs;
+        names[k] = "interface_energy [J]";
+        values[k++] = m->iface_energy;
+    }
     if (m->opt.plane == SPH_PLANE_AXISYMMETRIC)
         k += sph_axisym_history(m, sim, names + k, values + k);
     return k;

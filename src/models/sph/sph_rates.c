@@ -101,6 +101,10 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
         return rc;
     if (!m->opt.variable_h)
         sph_neighbors_trim(m, p, m->nl_radius - m->qmax * hmax);
+    /* interface between bodies: their pairs leave the kernel list */
+    if (m->opt.iface != SPH_IFACE_NONE &&
+        (rc = sph_interface_split(m, s, m->nl_radius - m->qmax * hmax, err)))
+        return rc;
     for (int d = 0; d < dim; d++)
         memcpy(m->x_build[d], p->x[d], n * sizeof(double));
     m->n_builds++;
