@@ -261,7 +261,14 @@ void rigid_contact_forces(struct sim *s)
             if (!(phi < 0.0))
                 continue;
             double m = p->mass[i];
-            double kc = im->stiffness > 0 ? im->stiffness : im->stiffness_factor * m / (dt * dt);
+            /* stiffness_dt first_contact: k = eta m / dt^2 with the dt of
+             * the first contact step, constant after: a k that follows
+             * the adaptive dt (SPH: dt drops 6x as the first particle is
+             * hit) stiffens compressed springs and creates energy */
+            if (im->stiffness_frozen && !(im->k_dt > 0.0))
+                im->k_dt = dt;
+            const double dk = im->stiffness_frozen ? im->k_dt : dt;
+            double kc = im->stiffness > 0 ? im->stiffness : im->stiffness_factor * m / (dk * dk);
             double fn = -kc * phi;
             double f[3] = {fn * nrm[0], fn * nrm[1], fn * nrm[2]};
             if (im->friction > 0.0) {

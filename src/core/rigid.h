@@ -57,6 +57,8 @@ struct impactor {
     struct time_function tf;
     double stiffness_factor; /**< eta in k = eta m / dt^2 */
     double stiffness;        /**< k [N/m] per particle; 0: from eta */
+    bool stiffness_frozen;   /**< eta: dt of the first contact step, not of each step */
+    double k_dt;             /**< frozen: that dt (0 before the first contact) */
     double friction;         /**< Coulomb mu */
     /* state / diagnostics */
     double f_pen[3];     /**< penalty force of the body on the impactor [N] */

@@ -39,7 +39,9 @@ static int parse_one(struct sim *s, const struct deck_node *n, struct spall_erro
     static const char *const keys[] = {"name", "shape", "position", "radius", "length",
                                        "edge_radius", "nose_radius", "axis", "normal", "mass",
                                        "velocity", "motion", "function", "gravity", "contact",
-                                       "stiffness_factor", "stiffness", "friction", NULL};
+                                       "stiffness_factor", "stiffness", "friction",
+                                       "stiffness_dt", NULL};
+    static const char *const kdts[] = {"step", "first_contact", NULL};
     static const char *const shapes[] = {"sphere", "cylinder", "round_nose", "wall", "flat_punch",
                                          NULL};
     static const char *const motions[] = {"free", "prescribed", NULL};
@@ -48,7 +50,7 @@ static int parse_one(struct sim *s, const struct deck_node *n, struct spall_erro
     struct impactor im;
     memset(&im, 0, sizeof im);
     const char *name = NULL;
-    int shape = 0, motion = 0, contact = 1;
+    int shape = 0, motion = 0, contact = 1, kdt = 0;
     int rc;
     if ((rc = deck_expect_map(n, "an impactor mapping (name, shape, position, ...)", err)) ||
         (rc = deck_string(n, "name", true, &name, err)) ||
@@ -71,8 +73,10 @@ static int parse_one(struct sim *s, const struct deck_node *n, struct spall_erro
         (rc = deck_bool(n, "gravity", false, &im.gravity, err)) ||
         (rc = deck_double(n, "stiffness_factor", false, 1e-6, 1.0, &im.stiffness_factor, err)) ||
         (rc = deck_double_pos(n, "stiffness", false, &im.stiffness, err)) ||
-        (rc = deck_double(n, "friction", false, 0.0, INFINITY, &im.friction, err)))
+        (rc = deck_double(n, "friction", false, 0.0, INFINITY, &im.friction, err)) ||
+        (rc = deck_enum(n, "stiffness_dt", false, kdts, &kdt, err)))
         return rc;
+    im.stiffness_frozen = kdt == 1;
     im.motion = (enum rigid_motion)motion;
     im.contact = (enum rigid_contact)contact;
     if (im.contact == RIGID_NO_SLIP && deck_peek(n, "friction"))
