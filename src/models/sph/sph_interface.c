@@ -20,8 +20,10 @@
  *
  * Pairs: particles i, j of different groups (body index, or material index
  * with `interface: materials`, for a target made of several graded
- * lattices) closer than the contact distance d_ij = (dx_i + dx_j) / 2 (the
- * spacing at which two lattices touch face to face) repel with
+ * lattices) closer than the contact distance d_ij = f (dx_i + dx_j) / 2
+ * (f = `interface_distance`, default 1: the spacing at which two lattices
+ * touch face to face, each particle standing for a cell of its spacing)
+ * repel with
  *
  *     F = k_ij w_ij delta,   delta = d_ij - r > 0,   U = k_ij w_ij delta^2 / 2,
  *
@@ -53,6 +55,12 @@
  * The image of ring j lies at (-r_j, z_j): it comes within d_ij of ring i
  * only if r_i + r_j < d_ij, i.e. both within a spacing of the axis, where
  * particles start at r >= dx/2.
+ *
+ * The core rigid impactor acts on particle centres: a target particle
+ * touches when its centre reaches the impactor's surface, so target
+ * material overlaps a rigid sphere by half a spacing, its effective radius
+ * is R - dx_t/2.  f = dx_p / (dx_p + dx_t) gives the same convention here
+ * (target centres on the projectile particles' outer faces).
  */
 #include "models/sph/sph_internal.h"
 
@@ -103,6 +111,7 @@ int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct 
         for (size_t k = 0; k < m->n_mat; k++)
             m->if_c0[k] = sph_sound_speed(&m->mat[k], m->mat[k].rho0, 0.0);
     }
+    const double fd = 0.5 * m->opt.iface_distance;
     size_t w = 0, wi = 0, start = 0;
     m->if_off[0] = 0;
     for (size_t i = 0; i < n; i++) {
@@ -119,7 +128,7 @@ int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct 
                 double dd = p->x[d][i] - p->x[d][j];
                 r2 += dd * dd;
             }
-            const double reach = 0.5 * (m->dx[i] + m->dx[j]) + skin_abs;
+            const double reach = fd * (m->dx[i] + m->dx[j]) + skin_abs;
             if (r2 > reach * reach)
                 continue;
             if (wi == m->if_cap) {
@@ -147,7 +156,7 @@ void sph_interface_forces(struct model *m, struct sim *s)
     const int dim = m->dim;
     const bool axi = m->opt.plane == SPH_PLANE_AXISYMMETRIC;
     const double t = dim == 2 ? s->thickness : 1.0;
-    const double eta = m->opt.iface_stiffness;
+    const double eta = m->opt.iface_stiffness, fd = 0.5 * m->opt.iface_distance;
     double *ei = m->if_e, *wi = m->if_w;
     if (!m->if_off) {
         m->iface_energy = 0.0;
@@ -169,7 +178,7 @@ void sph_interface_forces(struct model *m, struct sim *s)
                 dxv[d] = p->x[d][i] - p->x[d][j];
                 r2 += dxv[d] * dxv[d];
             }
-            const double dc = 0.5 * (m->dx[i] + m->dx[j]);
+            const double dc = fd * (m->dx[i] + m->dx[j]);
             if (!(r2 < dc * dc) || r2 == 0.0)
                 continue;
             const double r = sqrt(r2), delta = dc - r;

@@ -56,6 +56,7 @@ struct sph_options {
     bool leapfrog;          /**< staggered leapfrog state update (sph_leapfrog.c) */
     enum sph_iface iface;   /**< interface between bodies (sph_interface.c) */
     double iface_stiffness; /**< penalty factor eta (default 1) */
+    double iface_distance;  /**< contact distance factor f: d = f (dx_i + dx_j)/2 */
 };
 
 /** Read-only per-particle data the fused pair loop gathers over j: the

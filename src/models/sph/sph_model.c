@@ -36,6 +36,7 @@
  *                                             penalty at d = (dx_i + dx_j)/2
  *     interface_stiffness: eta                penalty k = eta min(rho0 dx^dim) (c0max/d)^2
  *                                             (default 1)
+ *     interface_distance: f                   d = f (dx_i + dx_j)/2 (default 1)
  *   materials.<name>: density, youngs_modulus + poisson_ratio (or
  *     bulk_modulus + shear_modulus), eos: linear | mie_gruneisen |
  *     mie_gruneisen_ck with sound_speed, hugoniot_slope, gruneisen,
@@ -153,7 +154,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                        "formulation", "hourglass",
                                        "wall", "pair_loop", "symmetry",
                                        "cavity_depth", "time_integration", "interface",
-                                       "interface_stiffness", NULL};
+                                       "interface_stiffness", "interface_distance", NULL};
     static const char *const ifaces[] = {"none", "bodies", "materials", NULL};
     *out = NULL;
     if (sim->dim < 2)
@@ -171,6 +172,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     o.wall_stiffness = 1.0;
     o.hourglass = 0.1;
     o.iface_stiffness = 1.0;
+    o.iface_distance = 1.0;
     bool adaptive = true;
     if (params) {
         int kern = 3, den = 0, pl = 1, form = 0, loop = 0, sym = 0, tint = 0, ifc = 0, rc;
@@ -196,7 +198,9 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_enum(params, "time_integration", false, tints, &tint, err)) ||
             (rc = deck_enum(params, "interface", false, ifaces, &ifc, err)) ||
             (rc = deck_double(params, "interface_stiffness", false, 1e-3, 10.0,
-                              &o.iface_stiffness, err)))
+                              &o.iface_stiffness, err)) ||
+            (rc = deck_double(params, "interface_distance", false, 0.1, 2.0, &o.iface_distance,
+                              err)))
             return rc;
         o.iface = (enum sph_iface)ifc;
         /* the ghosts of symmetry planes and the TLSPH reference list have
