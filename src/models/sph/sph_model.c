@@ -199,7 +199,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_enum(params, "interface", false, ifaces, &ifc, err)) ||
             (rc = deck_double(params, "interface_stiffness", false, 1e-3, 10.0,
                               &o.iface_stiffness, err)) ||
-            (rc = deck_double(params, "interface_distance", false, 0.1, 2.0, &o.iface_distance,
+            (rc = deck_double(params, "interface_distance", false, 0.5, 2.0, &o.iface_distance,
                               err)))
             return rc;
         o.iface = (enum sph_iface)ifc;
