@@ -21,6 +21,7 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -229,6 +230,27 @@ static void test_head_on_axisymmetric(void **state)
     assert_true(dmin > 0.8e-3);
 }
 
+/* Same positions bitwise on 1 and 2 threads (per-particle gathers, serial
+ * split). */
+static void test_threads_bitwise(void **state)
+{
+    (void)state;
+    double xs[2][64];
+    for (int t = 0; t < 2; t++) {
+        omp_set_num_threads(t + 1);
+        struct sim *s = two_bodies(0, "bodies", 10.0);
+        assert_non_null(s);
+        struct spall_error err = {0};
+        while (!sim_done(s))
+            assert_int_equal(sim_step(s, &err), 0);
+        for (size_t i = 0; i < 64; i++)
+            xs[t][i] = s->p->x[i % 2][s->p->n - 1 - i];
+        sim_destroy(&s);
+    }
+    omp_set_num_threads(1);
+    assert_memory_equal(xs[0], xs[1], sizeof xs[0]);
+}
+
 static void test_refused(void **state)
 {
     (void)state;
@@ -256,6 +278,7 @@ int main(void)
         cmocka_unit_test(test_head_on_plane_strain),
         cmocka_unit_test(test_axisymmetric_pair_forces),
         cmocka_unit_test(test_head_on_axisymmetric),
+        cmocka_unit_test(test_threads_bitwise),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

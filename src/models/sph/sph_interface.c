@@ -44,6 +44,15 @@
  * rest mass measure and rest sound speed, constant in the run, so U is a
  * potential (no energy jump when anything else changes).
  *
+ * Why not the core particle contact (`contact:`, core/contact_particles.c):
+ * its k [N/m] is one constant for every pair, while an axisymmetric pair
+ * of rings must push in proportion to their circumference (rings near the
+ * axis have masses ~ r: a constant k would fling them), its stable step
+ * uses the smallest ring mass, and its distance is one number where the
+ * graded lattices need (dx_i + dx_j)/2; it also keeps its own cell list,
+ * where the SPH list already holds every candidate.  In plane 2D / 3D it
+ * would work for bodies, but the kernel sums would still couple them.
+ *
  * Candidates: at each neighbour-list build (sph_rates.c) the pairs of
  * different groups are moved out of the kernel list into the interface
  * list, kept when closer than d_ij + the list's skin (the rebuild test
