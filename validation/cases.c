@@ -89,11 +89,11 @@ static const struct vcase cases[] = {
     {"sph-taylor-3d", "SPH: 4340 steel Taylor bar 181 m/s, Johnson-Cook (seed 004 Table 3.6)",
      false, sph_case_taylor3d},
     {"sph-taylor-2d", "SPH: iron rod on a wall, Mie-Grueneisen, perfectly plastic (seed 004 "
-     "Table 3.5)", false, sph_case_taylor2d},
+     "Table 3.5), axisymmetric", false, sph_case_taylor2d},
     {"sph-rings", "SPH: two rubber rings collide and rebound, energy balance (Gray et al. 2001)",
      false, sph_case_rings},
-    {"sph-debris-cloud", "SPH: Al sphere 10 mm on a 2 mm Al plate at 6.18 km/s, debris-cloud "
-     "length / width (axisymmetric)", false, sph_case_debris},
+    {"sph-debris-cloud", "SPH: Al sphere 10 mm on a 4 mm Al plate at 6.18 km/s, debris-cloud "
+     "length / width, hole (axisymmetric)", false, sph_case_debris},
 
     /* penetration (issue 7) */
     {"pen-check-value", "seed 004 Eq. 4.6/4.7: silica 7.38 um into gelatin at 1290 m/s", true,

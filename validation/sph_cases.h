@@ -37,15 +37,17 @@ int sph_taylor3d_run(int n, bool quarter, double *len, double *rad, size_t *np, 
 /** Outcome of one 2D Taylor-rod run (sph_taylor2d.c): [0] at t1, [1] at t2. */
 struct sph_taylor2d_result {
     double len[2], rad[2], undeformed[2]; /**< final length, foot radius, undeformed length [m] */
+    double balance[2];                    /**< energy balance / initial kinetic energy */
     double v_end;                         /**< mean axial velocity at t2 [m/s] */
     size_t particles;
     double seconds;
 };
 /** "sph-taylor-2d": iron rod of seed 004 Table 3.5 (Libersky & Petschek). */
 int sph_case_taylor2d(struct vreport *r, struct spall_error *err);
-/** One 2D rod run with @p n particles across the diameter, sampled at t1 and t2. */
-int sph_taylor2d_run(int n, double t1, double t2, struct sph_taylor2d_result *out,
-                     struct spall_error *err);
+/** One 2D rod run with @p n particles across the diameter, sampled at t1 and
+ *  t2; @p axisymmetric: 1 = axisymmetric rod (r, z), 0 = plane strain. */
+int sph_taylor2d_run(int n, int axisymmetric, double t1, double t2,
+                     struct sph_taylor2d_result *out, struct spall_error *err);
 
 /** Time the rings case runs: contact, rebound and separation. */
 #define SPH_RINGS_END_TIME 1.0e-2
@@ -64,19 +66,22 @@ int sph_case_rings(struct vreport *r, struct spall_error *err);
 int sph_rings_run(double dx, double end_time, struct sph_rings_result *out,
                   struct spall_error *err);
 
-/** Outcome of one debris-cloud run (sph_debris.c), measured at 20 us. */
+/** Outcome of one debris-cloud run (sph_debris.c), measured at the end time. */
 struct sph_debris_result {
     double length_max, width_max; /**< cloud extent behind the plate, 2 x max radius [m] */
     double length_q, width_q;     /**< the same as 99 % mass quantiles [m] */
+    double hole_diameter;         /**< 2 x the smallest radius of plate material left in the plate [m] */
     double debris_mass_fraction;  /**< cloud mass / total mass */
     double momentum_error;        /**< |P_z(end) - P_z(0)| / |P_z(0)| */
     size_t particles, debris_particles;
     double seconds;
 };
-/** "sph-debris-cloud": Al sphere 10 mm on a 2 mm Al plate at 6.18 km/s
+/** "sph-debris-cloud": Al sphere 10 mm on a 4 mm Al plate at 6.18 km/s
  *  (seed 004 chapter 2, Hiermaier et al. 1997), axisymmetric. */
 int sph_case_debris(struct vreport *r, struct spall_error *err);
-/** One debris-cloud run with @p n particles across the sphere's diameter. */
-int sph_debris_run(int n, struct sph_debris_result *out, struct spall_error *err);
+/** One debris-cloud run with @p n particles across the sphere's diameter, a
+ *  plate of thickness @p plate [m], measured at @p time after contact [s]. */
+int sph_debris_run(int n, double plate, double time, struct sph_debris_result *out,
+                   struct spall_error *err);
 
 #endif

@@ -264,12 +264,16 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             return rc;
         /* sph_axisym.c has its own pair loops without these options */
         if (o.plane == SPH_PLANE_AXISYMMETRIC &&
-            (sim->dim != 2 || o.as_zeta > 0.0 || o.total_lagrangian || o.wall ||
+            (sim->dim != 2 || o.as_zeta > 0.0 || o.total_lagrangian ||
              o.density == SPH_DENSITY_SUMMATION))
             return deck_error_key(err, params, "plane",
                                   "plane: axisymmetric is 2D (x = r, y = z) and takes no "
-                                  "artificial_stress, summation density, total formulation "
-                                  "or wall");
+                                  "artificial_stress, summation density or total formulation");
+        /* a ring can only meet a plane normal to the axis all round */
+        if (o.plane == SPH_PLANE_AXISYMMETRIC && o.wall && fabs(o.wall_normal[0]) > 1e-12)
+            return deck_error_key(err, deck_get(params, "wall"), "normal",
+                                  "plane: axisymmetric takes only a wall normal to the axis "
+                                  "(normal [0, +-1])");
         if (o.plane == SPH_PLANE_AXISYMMETRIC)
             o.cspm = true; /* always corrected there (sph_axisym.c) */
         if (o.cavity_depth > 0.0 && o.plane != SPH_PLANE_AXISYMMETRIC)

@@ -446,8 +446,13 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
             wall_forces(m, s);
         return rc;
     }
-    if (m->opt.plane == SPH_PLANE_AXISYMMETRIC)
-        return sph_axisym_rates(m, s, err);
+    if (m->opt.plane == SPH_PLANE_AXISYMMETRIC) {
+        /* the wall's k is per ring mass and its force axial: as in 2D */
+        int rc = sph_axisym_rates(m, s, err);
+        if (!rc && m->opt.wall)
+            wall_forces(m, s);
+        return rc;
+    }
     /* no CSPM, continuity density: one fused pair loop (sph_fused.c) */
     if (m->opt.symmetry[0] || m->opt.symmetry[1] || (!m->opt.cspm && m->opt.density == SPH_DENSITY_CONTINUITY &&
                    !m->opt.split_pairs)) {
