@@ -16,8 +16,9 @@
  * load (R is homogeneous of degree one in the stress) and of the time step.
  * Measured on the seed 004 cantilever (docs/validation.md, sph-beam): with
  * AS 0.5 and no AV every kernel grows from t = 0 (identical growth at 17.5 N
- * and 1.75 kN, and at dt_factor 0.5 and 0.2), none does without AS, none
- * does with R smoothed here; with AV and XSPH the quintic still blows up
+ * and 1.75 kN, and at dt_factor 0.5 and 0.2), none does without AS, and
+ * neither the quintic nor the Wendland does with R smoothed here (the
+ * others not measured without AV); with AV and XSPH the quintic blows up
  * at 1.75 kN, at 17.5 kN (AS 0.9) every kernel.  The kernel average keeps
  * R of the macroscopic stress, which is what the pre-stress analysis
  * assumes, and removes its response to particle-scale noise.
