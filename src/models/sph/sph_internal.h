@@ -41,6 +41,7 @@ struct sph_options {
     double av_a, av_b;      /**< Monaghan AV q_a, q_b */
     double as_zeta;         /**< artificial stress zeta (0: off) */
     double as_n;            /**< exponent n (4) */
+    bool as_smooth;         /**< R_i kernel-averaged over i's neighbours (sph_as_smooth.c) */
     double xsph;            /**< XSPH alpha_cs (0: off) */
     bool variable_h;
     enum sph_plane plane;
@@ -109,6 +110,7 @@ struct model {
     double *Bi[9];         /**< inverse CSPM matrix (identity on fallback) */
     double *sig[6];        /**< total stress (tension positive) + artificial stress */
     double *R[6];          /**< artificial stress tensor R_i */
+    double *Rs[6];         /**< scratch of the R smoothing (sph_as_smooth.c) */
     double *sr[6];         /**< sigma / rho^2 (fused pair loop, sph_fused.c) */
     double *xv[3];         /**< XSPH velocity correction */
     double *x_build[3];    /**< positions at the last neighbour build */
@@ -147,6 +149,11 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err);
 
 /** Principal-axes artificial stress R_i of particle i from m->sig (Eqs. 2.25-2.27). */
 void sph_artificial_stress(struct model *m, size_t i);
+
+/* sph_as_smooth.c */
+/** Replace R_i by its kernel (Shepard) average over i and its neighbours
+ *  (model.artificial_stress_smoothing; split pair loops only). */
+void sph_artificial_stress_smooth(struct model *m, const struct sim *s);
 
 /* sph_fused.c */
 /** One-pass rates (no CSPM, continuity density): same equations as the

@@ -16,6 +16,8 @@
  *     viscosity: [q_a, q_b]                   Monaghan AV (default [1, 1])
  *     artificial_stress: zeta                 Monaghan-Gray (default 0: off)
  *     artificial_stress_n: n                  (default 4)
+ *     artificial_stress_smoothing: false      R_i averaged over the kernel
+ *                                             (sph_as_smooth.c; default false)
  *     xsph: alpha_cs                          (default 0)
  *     variable_h: false                       dh/dt = -(h/(d rho)) drho/dt
  *     plane: stress | strain                  2D only (default strain)
@@ -95,6 +97,7 @@ static size_t sph_arrays(struct model *m, double **a[SPH_N_ARRAYS])
         a[k++] = &m->dS_n[c];
         a[k++] = &m->sig[c];
         a[k++] = &m->R[c];
+        a[k++] = &m->Rs[c];
         a[k++] = &m->sr[c];
     }
     for (int c = 0; c < 9; c++) {
@@ -150,6 +153,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     static const char *const tints[] = {"predictor_corrector", "leapfrog", NULL};
     static const char *const keys[] = {"type", "kernel", "h_factor", "density", "cspm",
                                        "viscosity", "artificial_stress", "artificial_stress_n",
+                                       "artificial_stress_smoothing",
                                        "xsph", "variable_h", "plane", "skin", "adaptive_dt",
                                        "formulation", "hourglass",
                                        "wall", "pair_loop", "symmetry",
@@ -184,6 +188,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_vector(params, "viscosity", false, 2, 2, av, err)) ||
             (rc = deck_double(params, "artificial_stress", false, 0.0, 10.0, &o.as_zeta, err)) ||
             (rc = deck_double(params, "artificial_stress_n", false, 1.0, 20.0, &o.as_n, err)) ||
+            (rc = deck_bool(params, "artificial_stress_smoothing", false, &o.as_smooth, err)) ||
             (rc = deck_double(params, "xsph", false, 0.0, 1.0, &o.xsph, err)) ||
             (rc = deck_bool(params, "variable_h", false, &o.variable_h, err)) ||
             (rc = deck_enum(params, "plane", false, planes, &pl, err)) ||
@@ -213,6 +218,12 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
         /* the leapfrog advances the state between the gradient and the force
          * pass (sph_leapfrog.c): it needs the two-pass loops */
         o.split_pairs = loop == 1 || o.leapfrog;
+        /* the smoothing of R sits between the passes of sph_rates.c */
+        if (o.as_smooth && (sym || pl == 2))
+            return deck_error_key(err, params, "artificial_stress_smoothing",
+                                  "artificial_stress_smoothing works with the two-pass loops "
+                                  "only: not with symmetry planes or plane: axisymmetric");
+        o.split_pairs = o.split_pairs || o.as_smooth;
         o.symmetry[0] = sym == 1 || sym == 3;
         o.symmetry[1] = sym == 2 || sym == 3;
         if (sym == 3 && sim->dim < 3)
