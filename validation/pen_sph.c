@@ -6,9 +6,19 @@
  *        core penalty impactor (src/core/rigid.c), seed 004 sec. 4.3-4.4.
  *
  * Deck (pen_sph_deck, identical to examples/pen_sph_gelatin at dx1 =
- * 0.5 um): gelatin E (20 MPa), nu = 0.499, A + B ep^n (21 MPa, 0.01 MPa,
- * 0.1), Mie-Grueneisen C_k form (1520 m/s, S = 1.8, no Gamma), failure at
- * a von Mises stress of A; AV (0.5, 0.2), XSPH 0.015, Wendland, h = 1.3 dx.
+ * 0.75 um): gelatin E (20 MPa), nu = 0.499, A + B ep^n (21 MPa, 0.01 MPa,
+ * 0.1), Mie-Grueneisen C_k form (1520 m/s, S = 1.8, no Gamma), no failure
+ * (failure: none); AV (0.5, 0.2), XSPH 0.015, Wendland, h = 1.3 dx.
+ * Why no failure: seed 004 sec. 4.3.2 calls the law "elastic-plastic
+ * hydrodynamic" (RADIOSS, the polynomial EOS of Eq. 4.13) and lists only
+ * E, nu, A, B, n, c0, S (Tab. 4.3); in that family of laws (/MAT/LAW3) the
+ * "maximum stress" caps the flow stress and the only failure is a plastic
+ * strain, off unless given.  Sec. 4.6.1 says a stiffer target "stops the
+ * projectile more quickly" because the end of the penetration is
+ * "predominantly elastic-plastic": failure at sigma_vm = A (the former
+ * default, kept as a deck option) removes every intact particle around the
+ * sphere, makes E irrelevant and P_max 10 % deep and 70 ns late
+ * (docs/validation.md, pen-sph-gelatin).
  * Graded spacing: dx1 for r <= 8 um (L_sph ~ 2 d) and z >= -100 um, then
  * 2, 4, 8 dx1 out to r = 144 um (x width) and z = -250 um; every level's
  * edges are multiples of the next level's spacing.  The sphere starts
@@ -18,8 +28,8 @@
  * when the sphere has stopped (V <= 0: P_max reached) or at its end time.
  *
  * Cases: "pen-sph-gelatin" (1290 m/s at d/10: P_max, its time, cavity;
- * d/10 because a d/15 run, ~8200 particles and ~9000 steps, did not fit in
- * the time this was written in on a shared 2-core machine),
+ * d/10 to keep the full suite affordable: the d/15 run, 8166 particles,
+ * costs ~6x and is ~14 % deeper, docs/validation.md),
  * "pen-sph-gelatin-sweep" (200-1420 m/s at d/10 vs Poncelet + d/2),
  * "pen-sph-gelatin-modulus" (E = 1, 10, 20, 40 MPa at d/10: trend),
  * "pen-sph-gelatin-convergence" (d/10, d/15 and half width at 1290 m/s).
@@ -79,7 +89,7 @@ void pen_sph_deck(char *buf, size_t len, double v0, double E, double dx1, double
         "  gelatin: {density: 1030, youngs_modulus: %.9g, poisson_ratio: 0.499,\n"
         "            eos: mie_gruneisen_ck, sound_speed: 1520, hugoniot_slope: 1.8,\n"
         "            gruneisen: 0, yield: power, yield_a: 21.0e6, yield_b: 1.0e4, yield_n: 0.1,\n"
-        "            failure: stress, failure_value: 21.0e6}\n"
+        "            failure: none}\n"
         "lattice: {type: square, spacing: %.9g}\n"
         "geometry:\n",
         E, dx1);
@@ -291,21 +301,52 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
     }
     bool mono = pm[0] > pm[1] && pm[1] > pm[2] && pm[2] > pm[3];
     int rc = vreport_check_true(r, "P_max decreases as E grows (1, 10, 20, 40 MPa)", mono,
-                                "seed 004 Fig. 4.13 / Table 4.5",
-                                "the thesis' trend; E = 20 MPa closest to the experiment", err);
+                                "seed 004 Fig. 4.13 / Table 4.5; sec. 4.6.1 (a stiffer target "
+                                "stops the projectile more quickly)",
+                                "the thesis' trend", err);
     if (!rc && !mono)
         vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-modulus)");
+    if (rc)
+        return rc;
+    /* Fig. 4.13 (b): case 2 (E = 20 MPa) has the smallest error vs ~67 um */
+    bool closest = true;
+    for (int k = 0; k < 4; k++)
+        if (k != 2 && fabs(pm[k] - 67.0e-6) < fabs(pm[2] - 67.0e-6))
+            closest = false;
+    rc = vreport_check_true(r, "E = 20 MPa closest to the experiment's 67 um", closest,
+                            "seed 004 Fig. 4.13 (b)", "the thesis' choice of E", err);
+    if (!rc && !closest)
+        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-modulus)");
     return rc;
+}
+
+/* Largest |P_a(t) - P_b(t)| over the common time span (b interpolated
+ * linearly at a's samples), relative to b's P_max. */
+static double history_gap(const struct pen_sph_run *a, const struct pen_sph_run *b)
+{
+    double worst = 0.0;
+    size_t j = 0;
+    for (size_t k = 0; k < a->nh; k++) {
+        double t = a->t[k];
+        while (j + 1 < b->nh && b->t[j + 1] < t)
+            j++;
+        if (j + 1 >= b->nh || t < b->t[0])
+            continue;
+        double w = (t - b->t[j]) / (b->t[j + 1] - b->t[j]);
+        double pb = b->P[j] + w * (b->P[j + 1] - b->P[j]);
+        worst = fmax(worst, fabs(a->P[k] - pb));
+    }
+    return worst / b->pmax;
 }
 
 int pen_case_sph_convergence(struct vreport *r, struct spall_error *err)
 {
     struct pen_sph_run a = {0}, b = {0}, c = {0};
-    int rc = pen_sph_run(1290.0, 20.0e6, 0.75e-6, 1.0, 260.0e-9, &a, err);
+    int rc = pen_sph_run(1290.0, 20.0e6, 0.75e-6, 1.0, 300.0e-9, &a, err);
     if (!rc)
-        rc = pen_sph_run(1290.0, 20.0e6, 0.5e-6, 1.0, 260.0e-9, &b, err);
+        rc = pen_sph_run(1290.0, 20.0e6, 0.5e-6, 1.0, 300.0e-9, &b, err);
     if (!rc)
-        rc = pen_sph_run(1290.0, 20.0e6, 0.75e-6, 0.5, 260.0e-9, &c, err);
+        rc = pen_sph_run(1290.0, 20.0e6, 0.75e-6, 0.5, 300.0e-9, &c, err);
     if (rc)
         goto out;
     run_info(r, "d/10, full width", &a);
@@ -319,6 +360,18 @@ int pen_case_sph_convergence(struct vreport *r, struct spall_error *err)
     if ((rc = vreport_check(r, "P_max half vs full width (d/10)", "m", a.pmax, c.pmax, 0.02, true,
                             "this model, full width", "2 %: the far field must not matter",
                             err)))
+        goto out;
+    if (!r->checks[r->n - 1].pass)
+        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
+    if ((rc = vreport_check(r, "max |P(t) d/10 - P(t) d/15| / P_max(d/15)", "1", 0.0,
+                            history_gap(&a, &b), 0.05, false, "this model at d/15",
+                            "5 %: the whole P(t), not only its maximum", err)))
+        goto out;
+    if (!r->checks[r->n - 1].pass)
+        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
+    if ((rc = vreport_check(r, "max |P(t) half - P(t) full width| / P_max", "1", 0.0,
+                            history_gap(&c, &a), 0.02, false, "this model, full width",
+                            "2 %: the far field must not matter", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");

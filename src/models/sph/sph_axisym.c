@@ -287,7 +287,7 @@ int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err)
         /* a failed particle does not dilate below rho0: separating broken
          * material opens a void instead (ejecta would otherwise swell to a
          * few % of rho0 and swamp its neighbours' sums at fixed h) */
-        if (m->failed[i] && m->drho[i] < 0.0 &&
+        if (m->failed[i] && m->drho[i] < 0.0 && !m->mat[s->p->material[i]].failed_tension &&
             m->rho[i] <= m->mat[s->p->material[i]].rho0)
             m->drho[i] = 0.0;
         m->dh[i] = m->opt.variable_h ? m->h[i] * (m->L[0][i] + m->L[4][i]) / 2.0 : 0.0;

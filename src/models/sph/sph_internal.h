@@ -82,6 +82,7 @@ struct sph_material {
     double cp, beta_tq;                 /**< heat capacity, Taylor-Quinney */
     enum sph_failure failure;
     double fail_value;                  /**< stress [Pa] or plastic strain */
+    bool failed_tension;                /**< failed particles keep the EOS tension */
 };
 
 struct model {

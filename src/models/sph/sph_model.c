@@ -46,7 +46,8 @@
  *     yield_stress (perfect), yield_a, yield_b, yield_n (power, JC), jc_c,
  *     jc_m, melt_temperature, room_temperature (293), reference_strain_rate
  *     (1), specific_heat, taylor_quinney (0.9); failure: none | stress |
- *     plastic_strain with failure_value; rate_model: none | cowper_symonds
+ *     plastic_strain with failure_value, failed_tension (false: a failed
+ *     particle carries no tension); rate_model: none | cowper_symonds
  *     with cs_d [1/s], cs_q (perfect / power yield and stress failure scaled
  *     by 1 + (epdot/D)^(1/q)).
  */
@@ -316,7 +317,7 @@ static int sph_parse_material(struct model *m, struct sim *sim, int index,
         "sound_speed", "hugoniot_slope", "gruneisen", "reference_pressure", "yield",
         "yield_stress", "yield_a", "yield_b", "yield_n", "jc_c", "jc_m", "melt_temperature",
         "room_temperature", "reference_strain_rate", "specific_heat", "taylor_quinney", "failure",
-        "failure_value", "rate_model", "cs_d", "cs_q", NULL};
+        "failure_value", "failed_tension", "rate_model", "cs_d", "cs_q", NULL};
     static const char *const rates[] = {"none", "cowper_symonds", NULL};
     static const char *const eoss[] = {"linear", "mie_gruneisen", "mie_gruneisen_ck", NULL};
     static const char *const ylds[] = {"elastic", "perfect", "power", "johnson_cook", NULL};
@@ -387,6 +388,7 @@ static int sph_parse_material(struct model *m, struct sim *sim, int index,
         (rc = deck_double(node, "taylor_quinney", false, 0.0, 1.0, &mt.beta_tq, err)) ||
         (rc = deck_double_pos(node, "failure_value", mt.failure != SPH_FAIL_NONE, &mt.fail_value,
                               err)) ||
+        (rc = deck_bool(node, "failed_tension", false, &mt.failed_tension, err)) ||
         (rc = deck_check_unused(node, "material", keys, err)))
         return rc;
     if (cs && jc)
