@@ -119,6 +119,7 @@ static void sph_destroy(struct model **pm)
     free(m->pinned);
     free(m->mat);
     sph_symmetry_destroy(&m->sym);
+    sph_tlsph_destroy(&m->tl);
     neighbor_list_destroy(&m->nl);
     free(m);
     *pm = NULL;
