@@ -119,7 +119,7 @@ static int sph_taylor_case(const char *name, const char *form, double hf, double
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
-             "Cu Taylor bar, %s, h = %.3g dx, dx = %.3g mm, %.1f neighbours, neighbour "
+             "Cu Taylor bar, %s, h = %.4g dx, dx = %.3g mm, %.1f neighbours, neighbour "
              "search %.1f %% of the loop (%zu builds; set-up build %.3g s)",
              form, hf, 0.4 / cbrt(scale > 0.0 ? scale : 1.0),
              2.0 * (double)out->bonds / (double)out->particles, 100.0 * nb_share, builds,
