@@ -96,7 +96,7 @@ static int sph_bench_run(const char *name, const char *yaml, int threads,
 /* The copper bar deck: @p form "updated" or "total", h = @p hf dx,
  * viscosity [q_a, q_b]; dx = 0.4 mm / scale^(1/3). */
 static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *form, double hf,
-                            double qa, double qb, long steps)
+                            double qa, double qb, long steps, const char *extra)
 {
     char run[128];
     if (steps > 0)
@@ -106,7 +106,7 @@ static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *f
     const double dx = 0.4e-3 / cbrt(scale > 0.0 ? scale : 1.0);
     snprintf(yaml, size,
              "model: {type: sph, kernel: wendland, h_factor: %.17g, viscosity: [%g, %g],\n"
-             "        formulation: %s, adaptive_dt: %s,\n"
+             "        formulation: %s, adaptive_dt: %s,%s\n"
              "        wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
              "materials:\n"
              "  copper: {density: 8930, youngs_modulus: 117.0e9, poisson_ratio: 0.35,\n"
@@ -116,7 +116,7 @@ static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *f
              "radius: 0.0032}}, material: copper}\n"
              "initial_velocity: [{group: all, value: [0, 0, -227.0]}]\n"
              "%s",
-             hf, qa, qb, form, steps > 0 ? "false" : "true", dx, 0.5 * dx, 0.5 * dx, 0.5 * dx,
+             hf, qa, qb, form, steps > 0 ? "false" : "true", extra, dx, 0.5 * dx, 0.5 * dx, 0.5 * dx,
              run);
 }
 
@@ -125,7 +125,7 @@ static int sph_taylor_case(const char *name, const char *form, double hf, double
                            struct spall_error *err)
 {
     char yaml[2048];
-    sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, qa, qb, 200);
+    sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, qa, qb, 200, "");
     double nb_share = 0.0;
     size_t builds = 0;
     double t_setup = 0.0, cpu = 0.0;
@@ -163,11 +163,12 @@ static int bench_sph_taylor_tl(int threads, double scale, struct bench_result *o
 
 /* The race's accuracy half: the bar run to rest (80 us, adaptive dt),
  * final length and mushroom radius. */
-static int sph_taylor_rest(const char *name, const char *form, double hf, double scale,
-                           int threads, struct bench_result *out, struct spall_error *err)
+static int sph_taylor_rest(const char *name, const char *form, double hf, const char *extra,
+                           double scale, int threads, struct bench_result *out,
+                           struct spall_error *err)
 {
     char yaml[2048];
-    sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, 1.0, 1.0, 0);
+    sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, 1.0, 1.0, 0, extra);
     double nb_share = 0.0, t_setup = 0.0, shape[2] = {0, 0}, cpu = 0.0;
     size_t builds = 0;
     int rc = sph_bench_run(name, yaml, threads, out, &nb_share, &builds, &t_setup, shape, &cpu,
@@ -185,14 +186,23 @@ static int sph_taylor_rest(const char *name, const char *form, double hf, double
 static int bench_sph_taylor_rest(int threads, double scale, struct bench_result *out,
                                  struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest", "total", 1.005, scale, threads, out, err);
+    return sph_taylor_rest("sph_taylor_cu_rest", "total", 1.005, "", scale, threads, out, err);
 }
 
 static int bench_sph_taylor_rest_ul(int threads, double scale, struct bench_result *out,
                                     struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest_ul32", "updated", 1.005, scale, threads, out,
+    return sph_taylor_rest("sph_taylor_cu_rest_ul32", "updated", 1.005, "", scale, threads, out,
                            err);
+}
+
+/* TLSPH with the staggered leapfrog: one force call per step and the plain
+ * time-step limit (sph_model.c skips the |B0^-1| reduction for it) */
+static int bench_sph_taylor_rest_lf(int threads, double scale, struct bench_result *out,
+                                    struct spall_error *err)
+{
+    return sph_taylor_rest("sph_taylor_cu_rest_lf", "total", 1.005,
+                           " time_integration: leapfrog,", scale, threads, out, err);
 }
 
 /* the same count with the updated form (its list carries the 20 % skin) */
@@ -249,6 +259,8 @@ const struct bench_case bench_sph_cases[] = {
      "the MACHDYN count), 200 steps", bench_sph_taylor_tl},
     {"sph_taylor_cu_rest", "the sph_taylor_cu_tl bar run to rest (80 us): final length and "
      "radius", bench_sph_taylor_rest},
+    {"sph_taylor_cu_rest_lf", "the sph_taylor_cu_rest bar with the leapfrog (plain dt limit)",
+     bench_sph_taylor_rest_lf},
     {"sph_taylor_cu_rest_ul32", "the sph_taylor_cu_ul32 bar run to rest (80 us)",
      bench_sph_taylor_rest_ul},
     {"sph_taylor_cu_ul32", "3D copper Taylor bar, updated form, support 2.01 dx, 200 steps",
