@@ -23,12 +23,25 @@
 #include <omp.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
+
+/* CPU seconds of the whole process (all threads): on a shared, oversubscribed
+ * machine the wall clock mostly measures the other jobs, the CPU time of
+ * the loop what this code costs per core. */
+static double sph_cpu_seconds(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0)
+        return 0.0;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 /* Build @p yaml, time its steps, fill @p out like bench_run_deck (memory:
  * resident set after the build / particles) and report the share of the
  * loop's wall time spent building neighbour lists and how many builds. */
 static int sph_bench_run(const char *name, const char *yaml, int threads,
                          struct bench_result *out, double *nb_share, size_t *builds,
+                         double *t_setup_nb, double shape[2], double *cpu,
                          struct spall_error *err)
 {
     omp_set_num_threads(threads);
@@ -43,10 +56,12 @@ static int sph_bench_run(const char *name, const char *yaml, int threads,
         return rc;
     double rss = bench_rss_bytes();
     const double tn0 = s->model->t_neighbor;
-    double t0 = omp_get_wtime();
+    *t_setup_nb = tn0;
+    double t0 = omp_get_wtime(), c0 = sph_cpu_seconds();
     while (!sim_done(s) && !rc)
         rc = sim_step(s, err);
     double wall = omp_get_wtime() - t0;
+    *cpu = sph_cpu_seconds() - c0;
     memset(out, 0, sizeof *out);
     snprintf(out->name, sizeof out->name, "%s", name);
     out->threads = threads;
@@ -59,19 +74,40 @@ static int sph_bench_run(const char *name, const char *yaml, int threads,
     out->bytes_per_particle = rss / (double)out->particles;
     *nb_share = (s->model->t_neighbor - tn0) / wall;
     *builds = s->model->n_builds;
+    if (shape) {
+        /* Taylor bar: length = axial extent + dx, mushroom radius = largest
+         * radius of the impact face's particles + dx/2 (as validation/sph_taylor.c) */
+        const struct particles *p = s->p;
+        const double dx = s->model->dx[0];
+        double zmax = -INFINITY, zmin = INFINITY, rmax = 0.0;
+        for (size_t i = 0; i < p->n_owned; i++) {
+            zmax = fmax(zmax, p->x[2][i]);
+            zmin = fmin(zmin, p->x[2][i]);
+            if (p->x0[2][i] < 1.5 * dx)
+                rmax = fmax(rmax, hypot(p->x[0][i], p->x[1][i]));
+        }
+        shape[0] = zmax - zmin + dx;
+        shape[1] = rmax + 0.5 * dx;
+    }
     sim_destroy(&s);
     return rc;
 }
 
-static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
-                            struct spall_error *err)
+/* The copper bar deck: @p form "updated" or "total", h = @p hf dx,
+ * viscosity [q_a, q_b]; dx = 0.4 mm / scale^(1/3). */
+static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *form, double hf,
+                            double qa, double qb, long steps, const char *extra)
 {
+    char run[128];
+    if (steps > 0)
+        snprintf(run, sizeof run, "run: {steps: %ld}\n", steps);
+    else /* to rest (the bar leaves the wall at ~ 50 us), adaptive dt */
+        snprintf(run, sizeof run, "run: {end_time: 8.0e-5}\n");
     const double dx = 0.4e-3 / cbrt(scale > 0.0 ? scale : 1.0);
-    const long steps = 200;
-    char yaml[2048];
-    snprintf(yaml, sizeof yaml,
-             "model: {type: sph, kernel: wendland, h_factor: 1.5, viscosity: [1.0, 1.0],\n"
-             "        adaptive_dt: false, wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
+    snprintf(yaml, size,
+             "model: {type: sph, kernel: wendland, h_factor: %.17g, viscosity: [%g, %g],\n"
+             "        formulation: %s, adaptive_dt: %s,%s\n"
+             "        wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
              "materials:\n"
              "  copper: {density: 8930, youngs_modulus: 117.0e9, poisson_ratio: 0.35,\n"
              "           yield: power, yield_a: 0.4e9, yield_b: 0.1e9, yield_n: 1.0}\n"
@@ -79,19 +115,105 @@ static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
              "body: {geometry: {cylinder: {base: [0, 0, 0], top: [0, 0, 0.0324], "
              "radius: 0.0032}}, material: copper}\n"
              "initial_velocity: [{group: all, value: [0, 0, -227.0]}]\n"
-             "run: {steps: %ld}\n",
-             dx, 0.5 * dx, 0.5 * dx, 0.5 * dx, steps);
+             "%s",
+             hf, qa, qb, form, steps > 0 ? "false" : "true", extra, dx, 0.5 * dx, 0.5 * dx, 0.5 * dx,
+             run);
+}
+
+static int sph_taylor_case(const char *name, const char *form, double hf, double qa, double qb,
+                           int threads, double scale, struct bench_result *out,
+                           struct spall_error *err)
+{
+    char yaml[2048];
+    sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, qa, qb, 200, "");
     double nb_share = 0.0;
     size_t builds = 0;
-    int rc = sph_bench_run("sph_taylor_cu", yaml, threads, out, &nb_share, &builds, err);
+    double t_setup = 0.0, cpu = 0.0;
+    int rc = sph_bench_run(name, yaml, threads, out, &nb_share, &builds, &t_setup, NULL, &cpu,
+                           err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
-             "3D Cu Taylor bar dx = %.3g mm, %.1f neighbours/particle, neighbour search "
-             "%.1f %% of wall time (%zu builds)",
-             dx * 1e3, 2.0 * (double)out->bonds / (double)out->particles, 100.0 * nb_share,
-             builds);
+             "%s, h = %.4g dx, dx = %.3g mm, %.1f neighbours; neighbour search %.1f %% "
+             "(%zu builds, set-up %.2g s); loop CPU %.3g s = %.3g p-steps/CPU-s",
+             form, hf, 0.4 / cbrt(scale > 0.0 ? scale : 1.0),
+             2.0 * (double)out->bonds / (double)out->particles, 100.0 * nb_share, builds,
+             t_setup, cpu, (double)out->particles * (double)out->steps / cpu);
     return rc;
+}
+
+/* updated form, h = 1.5 dx (Wendland support 3 dx: ~ 110 neighbours) */
+static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
+                            struct spall_error *err)
+{
+    return sph_taylor_case("sph_taylor_cu", "updated", 1.5, 1.0, 1.0, threads, scale, out, err);
+}
+
+/* The LAMMPS MACHDYN race at a matched neighbour count: MACHDYN's TLSPH
+ * examples set the kernel radius (atom diameter) to 2.01 dx
+ * (examples/PACKAGES/machdyn/aluminum_strip_pull), i.e. 32 neighbours on
+ * a simple-cubic lattice; the Wendland kernel with h = 1.005 dx has the
+ * same support 2.01 dx.  Total-Lagrangian form (fixed reference list). */
+static int bench_sph_taylor_tl(int threads, double scale, struct bench_result *out,
+                               struct spall_error *err)
+{
+    return sph_taylor_case("sph_taylor_cu_tl", "total", 1.005, 1.0, 1.0, threads, scale, out,
+                           err);
+}
+
+/* The race's accuracy half: the bar run to rest (80 us, adaptive dt),
+ * final length and mushroom radius. */
+static int sph_taylor_rest(const char *name, const char *form, double hf, const char *extra,
+                           double scale, int threads, struct bench_result *out,
+                           struct spall_error *err)
+{
+    char yaml[2048];
+    sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, 1.0, 1.0, 0, extra);
+    double nb_share = 0.0, t_setup = 0.0, shape[2] = {0, 0}, cpu = 0.0;
+    size_t builds = 0;
+    int rc = sph_bench_run(name, yaml, threads, out, &nb_share, &builds, &t_setup, shape, &cpu,
+                           err);
+    if (rc)
+        return rc;
+    snprintf(out->note, sizeof out->note,
+             "to 80 us, %s, h = %.4g dx, dx = %.3g mm: final length %.3f mm, mushroom radius "
+             "%.3f mm (L0 32.4, R0 3.2); loop CPU %.3g s",
+             form, hf, 0.4 / cbrt(scale > 0.0 ? scale : 1.0), shape[0] * 1e3, shape[1] * 1e3,
+             cpu);
+    return rc;
+}
+
+static int bench_sph_taylor_rest(int threads, double scale, struct bench_result *out,
+                                 struct spall_error *err)
+{
+    return sph_taylor_rest("sph_taylor_cu_rest", "total", 1.005, "", scale, threads, out, err);
+}
+
+static int bench_sph_taylor_rest_ul(int threads, double scale, struct bench_result *out,
+                                    struct spall_error *err)
+{
+    return sph_taylor_rest("sph_taylor_cu_rest_ul32", "updated", 1.005, "", scale, threads, out,
+                           err);
+}
+
+/* TLSPH with the staggered leapfrog: one force call per step and the plain
+ * time-step limit (sph_model.c skips the |B0^-1| reduction for it), and
+ * hourglass 1 (as the TLSPH beam): with the default 0.1 the mushroom's rim
+ * inverts after ~20 us at dx = 0.4 mm */
+static int bench_sph_taylor_rest_lf(int threads, double scale, struct bench_result *out,
+                                    struct spall_error *err)
+{
+    return sph_taylor_rest("sph_taylor_cu_rest_lf", "total", 1.005,
+                           " time_integration: leapfrog, hourglass: 1.0,", scale, threads, out,
+                           err);
+}
+
+/* the same count with the updated form (its list carries the 20 % skin) */
+static int bench_sph_taylor_ul32(int threads, double scale, struct bench_result *out,
+                                 struct spall_error *err)
+{
+    return sph_taylor_case("sph_taylor_cu_ul32", "updated", 1.005, 1.0, 1.0, threads, scale, out,
+                           err);
 }
 
 /* 2D plane strain: the two rubber rings of validation/sph_rings.c (Gray
@@ -120,7 +242,9 @@ static int bench_sph_rings(int threads, double scale, struct bench_result *out,
              dx, 0.5 * dx, 0.5 * dx, steps);
     double nb_share = 0.0;
     size_t builds = 0;
-    int rc = sph_bench_run("sph_rings_2d", yaml, threads, out, &nb_share, &builds, err);
+    double t_setup = 0.0, cpu = 0.0;
+    int rc = sph_bench_run("sph_rings_2d", yaml, threads, out, &nb_share, &builds, &t_setup,
+                           NULL, &cpu, err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
@@ -134,6 +258,16 @@ static int bench_sph_rings(int threads, double scale, struct bench_result *out,
 const struct bench_case bench_sph_cases[] = {
     {"sph_taylor_cu", "3D copper Taylor bar (LAMMPS race), dx = 0.4 mm, 200 steps",
      bench_sph_taylor},
+    {"sph_taylor_cu_tl", "3D copper Taylor bar, total-Lagrangian, support 2.01 dx (32 neighbours, "
+     "the MACHDYN count), 200 steps", bench_sph_taylor_tl},
+    {"sph_taylor_cu_rest", "the sph_taylor_cu_tl bar run to rest (80 us): final length and "
+     "radius", bench_sph_taylor_rest},
+    {"sph_taylor_cu_rest_lf", "the sph_taylor_cu_rest bar, leapfrog (plain dt limit), hourglass 1",
+     bench_sph_taylor_rest_lf},
+    {"sph_taylor_cu_rest_ul32", "the sph_taylor_cu_ul32 bar run to rest (80 us)",
+     bench_sph_taylor_rest_ul},
+    {"sph_taylor_cu_ul32", "3D copper Taylor bar, updated form, support 2.01 dx, 200 steps",
+     bench_sph_taylor_ul32},
     {"sph_rings_2d", "2D rubber rings (Gray et al. 2001), artificial stress, dx = 0.5 mm, 200 steps",
      bench_sph_rings},
 };

@@ -88,6 +88,7 @@ int cli_bench(int argc, char **argv)
             continue;
         for (int t = 0; t < n_threads; t++) {
             struct bench_result r;
+            memset(&r, 0, sizeof r);
             struct spall_error err = {0, ""};
             int rc = bench_case_at(c)->run(threads[t], scale, &r, &err);
             if (rc) {
@@ -98,6 +99,8 @@ int cli_bench(int argc, char **argv)
             printf("%-12s %7d %10zu %10zu %6ld %9.3f %14.4g %14.4g %10.1f\n", r.name, r.threads,
                    r.particles, r.bonds, r.steps, r.seconds, r.particle_steps_per_s,
                    r.bond_steps_per_s, r.bytes_per_particle);
+            if (r.note[0])
+                printf("    %s\n", r.note);
             fflush(stdout);
             if (jf) {
                 fprintf(jf,

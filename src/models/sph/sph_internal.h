@@ -67,6 +67,7 @@ struct sph_pair_src {
     const double *x[3], *v[3], *h, *rho, *c, *m2, *dx, *sr[6], *R[6];
 };
 struct sph_sym;
+struct sph_tl;
 
 struct sph_material {
     bool parsed;
@@ -123,6 +124,7 @@ struct model {
     double surface_z;      /**< axisymmetric: initial top surface (cavity depth origin) */
 
     struct sph_sym *sym;   /**< symmetry-plane ghosts (NULL: none) */
+    struct sph_tl *tl;     /**< TLSPH reference pair constants (sph_tlsph.c; NULL: none) */
     struct neighbor_list *nl;
     double nl_radius;
     size_t n_builds;
@@ -174,6 +176,8 @@ void sph_symmetry_destroy(struct sph_sym **sym);
 int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err);
 /** TLSPH rates: F, L, PK1 forces, energy, stress rates. */
 int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err);
+/** Free the TLSPH pair constants; sets *tl to NULL. */
+void sph_tlsph_destroy(struct sph_tl **tl);
 
 /* sph_axisym.c */
 /** Ring masses M = 2 pi r A rho0, planar masses, the surface; flags the sim. */

@@ -136,6 +136,7 @@ static void sph_destroy(struct model **pm)
     free(m->if_np);
     free(m->mat);
     sph_symmetry_destroy(&m->sym);
+    sph_tlsph_destroy(&m->tl);
     neighbor_list_destroy(&m->nl);
     free(m);
     *pm = NULL;
