@@ -180,6 +180,27 @@ static void test_examples_match(void **state)
     }
 }
 
+/* The runner on a coarse grid for 30 ns: the sphere has entered, is still
+ * moving, the history is filled and the tip depth grows with time. */
+static void test_run_short(void **state)
+{
+    (void)state;
+    struct spall_error e = {0, ""};
+    struct pen_sph_target t = pen_sph_target_sebs(40e6);
+    struct pen_sph_shot s = {20e-6, 7800.0, 215.0};
+    struct pen_sph_grid g = {.dx1_d = 0.34, .width = 1.0, .depth = 1.0, .t_end = 30e-9,
+                             .cavity_depth = 0.0};
+    struct pen_sph_outcome o;
+    assert_int_equal(pen_sph_setup_run(&t, &s, &g, &o, &e), SPALL_OK);
+    assert_false(o.at_rest);
+    assert_true(o.nh > 2);
+    assert_true(o.pmax > 1e-6 && o.pmax < 30e-9 * 215.0 + 1e-6);
+    assert_true(o.P[o.nh - 1] > o.P[0]);
+    assert_true(o.v_end > 0.0 && o.v_end < 215.0);
+    pen_sph_outcome_free(&o);
+    assert_null(o.t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -187,6 +208,7 @@ int main(void)
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_gelatin_special_case),
         cmocka_unit_test(test_examples_match),
+        cmocka_unit_test(test_run_short),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

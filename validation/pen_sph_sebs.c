@@ -106,7 +106,7 @@ int pen_case_sph_sebs(struct vreport *r, struct spall_error *err)
                          o.at_rest ? "sphere at rest" : "end time reached", ref.p_max * 1e6,
                          pref * 1e6, ref.t_f * 1e9, ref.re_max,
                          100.0 * (o.pmax / ref.p_max - 1.0), o.p_end * 1e6, o.v_end,
-                         15.0 * d / 7.38, o.d1max * 1e6, o.d2max * 1e6, o.balance, o.secs);
+                         15.0 * d / 7.38e-6, o.d1max * 1e6, o.d2max * 1e6, o.balance, o.secs);
             char plot[80], q[96];
             snprintf(plot, sizeof plot, "P(t), %.0f um at %.0f m/s, E = %.0f MPa", d * 1e6, v0,
                      Es[e] * 1e-6);
