@@ -18,9 +18,10 @@
  * Convention: P_max is the depth of the sphere's tip below the initial
  * surface, compared with the model's P_max + d/2 (the experimental
  * convention, Eq. 4.7), as pen-sph-gelatin compares with Poncelet + d/2:
- * the thesis fitted R and eta to the experimental P_max points (approach
- * b), which carry the nose like the gelatin experiment, and the tip depth
- * is what its SPH-vs-experiment figures plot.  The model without the nose
+ * Eq. 4.7 is the only convention the thesis states for experimental
+ * depths, and it fitted R and eta to the experimental P_max points
+ * (approach b); it does not say which point of the sphere its SEBS depths
+ * refer to, so the comparison with the model without the nose
  * is printed too.  Tolerance 15 %: issue 7 item 4c.
  */
 #include "validation/pen_sph_setup.h"
