@@ -19,6 +19,7 @@
 
 /* penetration cases header */
 #include "validation/pen_cases.h"
+#include "validation/pen_sph_setup.h"
 
 #include "validation/validation.h"
 
@@ -96,6 +97,8 @@ static const struct vcase cases[] = {
      "length / width, hole (axisymmetric)", false, sph_case_debris},
 
     /* penetration (issue 7) */
+    {"pen-sph-sebs", "axisymmetric SPH: steel 12-22 um into SEBS (E = 40, 50 MPa) vs Modified-CG",
+     false, pen_case_sph_sebs},
     {"pen-check-value", "seed 004 Eq. 4.6/4.7: silica 7.38 um into gelatin at 1290 m/s", true,
      pen_case_check_value},
     {"pen-ode", "GSL-integrated P(t) vs closed forms (Poncelet, Liu) and quadrature (MCG)", true,

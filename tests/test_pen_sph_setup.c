@@ -1,0 +1,214 @@
+/*
+ * Tests of the general SPH penetration deck builder
+ * (validation/pen_sph_setup.c): scale invariance in d, input checks, the
+ * gelatin deck of validation/pen_sph.c as a special case (same particles),
+ * and the shipped examples/pen_sph_sebs_* decks against the builder (same
+ * particles, material and impactor as the validation case pen-sph-sebs).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "core/particles.h"
+#include "core/rigid.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "io/deck_build.h"
+#include "spall/error.h"
+#include "validation/lattice_cases.h"
+#include "validation/pen_cases.h"
+#include "validation/pen_sph_setup.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The grid of pen-sph-sebs (validation/pen_sph_sebs.c, sebs_grid). */
+static struct pen_sph_grid sebs_grid(void)
+{
+    struct pen_sph_grid g = {.dx1_d = 0.1, .width = 1.0, .depth = 1.5, .t_end = 1.6e-6,
+                             .cavity_depth = 0.0};
+    return g;
+}
+
+static struct sim *build_text(const char *yaml)
+{
+    struct spall_error e = {0, ""};
+    struct sim *s = NULL;
+    int rc = vlat_build("test_pen_sph_setup", yaml, &s, &e);
+    if (rc)
+        fprintf(stderr, "%s\n", e.msg);
+    assert_int_equal(rc, SPALL_OK);
+    return s;
+}
+
+static struct sim *build_file(const char *path)
+{
+    struct spall_error e = {0, ""};
+    struct deck *d = NULL;
+    int rc = deck_load_file(&d, path, &e);
+    if (rc)
+        fprintf(stderr, "%s\n", e.msg);
+    assert_int_equal(rc, SPALL_OK);
+    struct sim *s = NULL;
+    struct run_output ro;
+    rc = deck_build_sim(d, &s, &ro, &e);
+    if (rc)
+        fprintf(stderr, "%s\n", e.msg);
+    assert_int_equal(rc, SPALL_OK);
+    deck_destroy(&d);
+    return s;
+}
+
+/* Same particles (count, positions, masses) to a relative 1e-9 of d. */
+static void same_particles(const struct sim *a, const struct sim *b, double d)
+{
+    assert_int_equal(a->p->n, b->p->n);
+    for (size_t i = 0; i < a->p->n; i++) {
+        assert_true(fabs(a->p->x[0][i] - b->p->x[0][i]) < 1e-9 * d);
+        assert_true(fabs(a->p->x[1][i] - b->p->x[1][i]) < 1e-9 * d);
+        assert_true(fabs(a->p->mass[i] / b->p->mass[i] - 1.0) < 1e-8);
+    }
+}
+
+static void same_impactor(const struct sim *a, const struct sim *b)
+{
+    const struct impactor *p = &a->rigid->im[0], *q = &b->rigid->im[0];
+    assert_true(fabs(p->radius / q->radius - 1.0) < 1e-8);
+    assert_true(fabs(p->mass / q->mass - 1.0) < 1e-8);
+    assert_true(fabs(p->x[1] / q->x[1] - 1.0) < 1e-8);
+    assert_true(fabs(p->v[1] / q->v[1] - 1.0) < 1e-12);
+}
+
+/* Every length scales with d: the five SEBS shots have the same particle
+ * count, and positions scale exactly by the ratio of diameters. */
+static void test_scale_invariance(void **state)
+{
+    (void)state;
+    static const double ds[5] = {20e-6, 16e-6, 13e-6, 12e-6, 22e-6};
+    struct spall_error e = {0, ""};
+    char buf[4096];
+    struct pen_sph_target t = pen_sph_target_sebs(40e6);
+    struct pen_sph_grid g = sebs_grid();
+    struct pen_sph_shot s0 = {20e-6, 7800.0, 215.0};
+    assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s0, &g, &e), SPALL_OK);
+    struct sim *a = build_text(buf);
+    for (int k = 1; k < 5; k++) {
+        struct pen_sph_shot s = {ds[k], 7800.0, 500.0};
+        assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_OK);
+        struct sim *b = build_text(buf);
+        assert_int_equal(a->p->n, b->p->n);
+        const double f = ds[k] / 20e-6;
+        for (size_t i = 0; i < a->p->n; i += 37)
+            assert_true(fabs(a->p->x[1][i] * f - b->p->x[1][i]) < 1e-9 * ds[k]);
+        assert_true(fabs(b->rigid->im[0].mass / a->rigid->im[0].mass - f * f * f) < 1e-8);
+        sim_destroy(&b);
+    }
+    sim_destroy(&a);
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    struct spall_error e = {0, ""};
+    char buf[4096];
+    struct pen_sph_target t = pen_sph_target_sebs(40e6);
+    struct pen_sph_grid g = sebs_grid();
+    struct pen_sph_shot s = {-20e-6, 7800.0, 215.0};
+    assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_ERR_INPUT);
+    assert_non_null(strstr(e.msg, "diameter"));
+    s.d = 20e-6;
+    t.nu = 0.5;
+    assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_ERR_INPUT);
+    assert_non_null(strstr(e.msg, "Poisson"));
+    t.nu = 0.495;
+    g.dx1_d = 0.0;
+    assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_ERR_INPUT);
+    g.dx1_d = 0.1;
+    assert_int_equal(pen_sph_setup_deck(buf, 200, &t, &s, &g, &e), SPALL_ERR_INPUT);
+    assert_non_null(strstr(e.msg, "buffer"));
+}
+
+/* At d = 7.38 um, dx1 = 0.75 um, width and depth 1 the builder lays out the
+ * gelatin deck of validation/pen_sph.c (pen_sph_deck): same particles and
+ * sphere. */
+static void test_gelatin_special_case(void **state)
+{
+    (void)state;
+    struct spall_error e = {0, ""};
+    char buf[4096], ref[4096];
+    pen_sph_deck(ref, sizeof ref, 1290.0, 20e6, 0.75e-6, 1.0, 260e-9);
+    struct pen_sph_target t = pen_sph_target_gelatin(20e6);
+    struct pen_sph_shot s = {7.38e-6, 1850.0, 1290.0};
+    struct pen_sph_grid g = {.dx1_d = 0.75 / 7.38, .width = 1.0, .depth = 1.0,
+                             .t_end = 260e-9, .cavity_depth = 15e-6};
+    assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_OK);
+    struct sim *a = build_text(ref), *b = build_text(buf);
+    same_particles(a, b, 7.38e-6);
+    same_impactor(a, b);
+    sim_destroy(&a);
+    sim_destroy(&b);
+}
+
+/* The shipped examples are the validation case's decks at E = 40 MPa. */
+static void test_examples_match(void **state)
+{
+    (void)state;
+    static const double shots[5][2] = {
+        {20e-6, 215.0}, {16e-6, 440.0}, {13e-6, 630.0}, {12e-6, 735.0}, {22e-6, 300.0}};
+    const char *src = getenv("SPALL_SOURCE_DIR");
+    struct spall_error e = {0, ""};
+    char buf[4096], path[1024];
+    struct pen_sph_target t = pen_sph_target_sebs(40e6);
+    struct pen_sph_grid g = sebs_grid();
+    for (int k = 0; k < 5; k++) {
+        struct pen_sph_shot s = {shots[k][0], 7800.0, shots[k][1]};
+        assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_OK);
+        snprintf(path, sizeof path, "%s/examples/pen_sph_sebs_%.0fum_%.0fms/"
+                 "pen_sph_sebs_%.0fum_%.0fms.yaml", src ? src : "..", s.d * 1e6, s.v0,
+                 s.d * 1e6, s.v0);
+        struct sim *a = build_text(buf), *b = build_file(path);
+        same_particles(a, b, s.d);
+        same_impactor(a, b);
+        assert_true(fabs(a->end_time / b->end_time - 1.0) < 1e-12);
+        sim_destroy(&a);
+        sim_destroy(&b);
+    }
+}
+
+/* The runner on a coarse grid for 30 ns: the sphere has entered, is still
+ * moving, the history is filled and the tip depth grows with time. */
+static void test_run_short(void **state)
+{
+    (void)state;
+    struct spall_error e = {0, ""};
+    struct pen_sph_target t = pen_sph_target_sebs(40e6);
+    struct pen_sph_shot s = {20e-6, 7800.0, 215.0};
+    struct pen_sph_grid g = {.dx1_d = 0.34, .width = 1.0, .depth = 1.0, .t_end = 30e-9,
+                             .cavity_depth = 0.0};
+    struct pen_sph_outcome o;
+    assert_int_equal(pen_sph_setup_run(&t, &s, &g, &o, &e), SPALL_OK);
+    assert_false(o.at_rest);
+    assert_true(o.nh > 2);
+    assert_true(o.pmax > 1e-6 && o.pmax < 30e-9 * 215.0 + 1e-6);
+    assert_true(o.P[o.nh - 1] > o.P[0]);
+    assert_true(o.v_end > 0.0 && o.v_end < 215.0);
+    pen_sph_outcome_free(&o);
+    assert_null(o.t);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_scale_invariance),
+        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_gelatin_special_case),
+        cmocka_unit_test(test_examples_match),
+        cmocka_unit_test(test_run_short),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

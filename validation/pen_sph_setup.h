@@ -1,0 +1,96 @@
+/**
+ * @file pen_sph_setup.h
+ * @brief General deck builder and runner of the axisymmetric SPH
+ *        penetration model (issue 7 items 3-4): a rigid sphere of any
+ *        diameter, density and speed into a soft elastic-plastic-
+ *        hydrodynamic target (seed 004 sec. 4.3-4.5), and the validation
+ *        case "pen-sph-sebs" (steel into 40 vol% SEBS, item 4c).
+ *
+ * The deck is the gelatin deck of validation/pen_sph.c (pen_sph_deck)
+ * with every length scaled by d / 7.38 um: graded spacing dx1 for
+ * r <= 8 um and z >= -100 um, then 2, 4, 8 dx1 out to r = 144 um (x width)
+ * and z = -250 um (x depth), those lengths times d / 7.38 um; every
+ * level's edges are rounded up to multiples of the next level's spacing.
+ * The sphere starts 0.25 um x d / 7.38 um above the surface.
+ */
+#ifndef SPALL_VALIDATION_PEN_SPH_SETUP_H
+#define SPALL_VALIDATION_PEN_SPH_SETUP_H
+
+#include <stddef.h>
+
+struct spall_error;
+struct vreport;
+
+/** Target material and its SPH numerics (SI). */
+struct pen_sph_target {
+    const char *name; /**< material key in the deck (letters, digits, '_') */
+    double rho;       /**< density [kg/m^3] */
+    double E, nu;     /**< Young's modulus [Pa], Poisson's ratio */
+    double A, B, n;   /**< yield A + B ep^n [Pa], [Pa], [1] */
+    double fail;      /**< von Mises failure stress [Pa] (the thesis: A) */
+    double c0, S;     /**< Mie-Grueneisen C_k form: sound speed [m/s], Hugoniot slope */
+    double gamma;     /**< Grueneisen Gamma (0 in the thesis' C_k form) */
+    double av_a, av_b; /**< artificial viscosity (q_a, q_b) */
+    double xsph;      /**< XSPH alpha_cs */
+};
+
+/** Rigid spherical projectile. */
+struct pen_sph_shot {
+    double d;     /**< diameter [m] */
+    double rho_p; /**< density [kg/m^3] (mass rho_p pi d^3 / 6) */
+    double v0;    /**< impact speed [m/s] (downwards) */
+};
+
+/** Discretisation and run length. */
+struct pen_sph_grid {
+    double dx1_d;        /**< finest spacing as a fraction of d (0.1 = d/10) */
+    double width;        /**< scales the two outer radial levels (1 = the gelatin deck) */
+    double depth;        /**< scales the four level depths (1 = the gelatin deck) */
+    double t_end;        /**< end time [s] (a validation run stops earlier, at rest) */
+    double cavity_depth; /**< depth of the cavity measurement [m]; 0: 15 um x d / 7.38 um */
+};
+
+/** 10 wt% gelatin of seed 004 Tab. 4.3 with modulus @p E; AV (0.5, 0.2),
+ *  XSPH 0.015 (sec. 4.4.1). */
+struct pen_sph_target pen_sph_target_gelatin(double E);
+/** 40 vol% SEBS of seed 004 Tab. 4.3 with modulus @p E (40-50 MPa);
+ *  AV (2, 1), XSPH 0.08 (sec. 4.5.1, Fig. 4.21-4.22). */
+struct pen_sph_target pen_sph_target_sebs(double E);
+
+/** Gap between the sphere's tip and the surface at t = 0 [m]. */
+double pen_sph_setup_gap(const struct pen_sph_shot *s);
+
+/** Write the YAML deck into @p buf (no header comments, no output block).
+ *  SPALL_ERR_INPUT if a parameter is not finite and positive where it must
+ *  be, or if @p len is too small. */
+int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
+                       const struct pen_sph_shot *s, const struct pen_sph_grid *g,
+                       struct spall_error *err);
+
+/** One run's results. */
+struct pen_sph_outcome {
+    double pmax, t_pmax; /**< deepest tip depth [m], its time after contact [s] */
+    double p_end, v_end; /**< tip depth [m] and speed [m/s] at the end */
+    double d1max, d2max; /**< largest cavity diameters at cavity_depth [m] */
+    double balance;      /**< energy balance / kinetic energy input */
+    int at_rest;         /**< 1 if the sphere stopped (V <= 0) before t_end */
+    size_t n;            /**< particles */
+    double secs;         /**< wall time of the run [s] */
+    double *t, *P;       /**< tip depth history, every 10 steps (owned) */
+    size_t nh;
+};
+
+/** Build the deck, run until the sphere comes to rest (V <= 0 after
+ *  contact) or t_end; P = depth of the tip below the initial surface,
+ *  t counted from first contact.  Free with pen_sph_outcome_free. */
+int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot *s,
+                      const struct pen_sph_grid *g, struct pen_sph_outcome *o,
+                      struct spall_error *err);
+void pen_sph_outcome_free(struct pen_sph_outcome *o);
+
+/** "pen-sph-sebs": the five steel-into-SEBS cases of seed 004 sec. 4.5 at
+ *  E = 40 and 50 MPa against the Modified-CG model (R = 25 MPa,
+ *  eta = 4.5e-2 Pa s) with the d/2 nose, 15 % (validation/pen_sph_sebs.c). */
+int pen_case_sph_sebs(struct vreport *r, struct spall_error *err);
+
+#endif
