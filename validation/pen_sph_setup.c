@@ -34,9 +34,10 @@ static const double setup_z_ref[4] = {100e-6, 130e-6, 170e-6, 250e-6};
 
 struct pen_sph_target pen_sph_target_gelatin(double E)
 {
-    /* seed 004 Tab. 4.3; AV and XSPH of sec. 4.4.1 */
+    /* seed 004 Tab. 4.3; AV and XSPH of sec. 4.4.1; no failure, as
+     * pen_sph_deck (validation/pen_sph.c explains why) */
     struct pen_sph_target t = {.name = "gelatin", .rho = 1030.0, .E = E, .nu = 0.499,
-                               .A = 21.0e6, .B = 1.0e4, .n = 0.1, .fail = 21.0e6,
+                               .A = 21.0e6, .B = 1.0e4, .n = 0.1, .fail = 0.0,
                                .c0 = 1520.0, .S = 1.8, .gamma = 0.0,
                                .av_a = 0.5, .av_b = 0.2, .xsph = 0.015};
     return t;
@@ -78,7 +79,7 @@ static int check_inputs(const struct pen_sph_target *t, const struct pen_sph_sho
         const char *what;
         double v;
     } need[] = {{"target density", t->rho},     {"Young's modulus", t->E},
-                {"yield A", t->A},              {"failure stress", t->fail},
+                {"yield A", t->A},
                 {"sound speed c0", t->c0},      {"projectile diameter", s->d},
                 {"projectile density", s->rho_p}, {"impact speed", s->v0},
                 {"dx1/d", g->dx1_d},            {"width", g->width},
@@ -92,10 +93,10 @@ static int check_inputs(const struct pen_sph_target *t, const struct pen_sph_sho
                                "pen_sph_setup: Poisson's ratio must be in (0, 0.5) (got %g)",
                                t->nu);
     if (!(t->B >= 0.0 && t->n >= 0.0 && t->S >= 0.0 && t->gamma >= 0.0 && t->av_a >= 0.0 &&
-          t->av_b >= 0.0 && t->xsph >= 0.0 && g->cavity_depth >= 0.0))
+          t->av_b >= 0.0 && t->xsph >= 0.0 && g->cavity_depth >= 0.0 && t->fail >= 0.0))
         return spall_error_set(err, SPALL_ERR_INPUT,
-                               "pen_sph_setup: B, n, S, Gamma, AV, XSPH and cavity depth must "
-                               "be >= 0");
+                               "pen_sph_setup: B, n, S, Gamma, AV, XSPH, failure stress and "
+                               "cavity depth must be >= 0");
     if (!t->name || !*t->name)
         return spall_error_set(err, SPALL_ERR_INPUT, "pen_sph_setup: target has no name");
     return SPALL_OK;
@@ -125,6 +126,13 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
     const double R = 0.5 * s->d, M = s->rho_p * 3.141592653589793 * s->d * s->d * s->d / 6.0;
     const double cav = g->cavity_depth > 0.0 ? g->cavity_depth : SETUP_CAVITY_REF * scale;
     size_t off = 0;
+    /* fail <= 0: no failure (the RADIOSS LAW3 reading of seed 004 sec. 4.3.2,
+     * see validation/pen_sph.c); > 0: von Mises failure stress */
+    char failure[64];
+    if (t->fail > 0.0)
+        snprintf(failure, sizeof failure, "failure: stress, failure_value: %.9g", t->fail);
+    else
+        snprintf(failure, sizeof failure, "failure: none");
     SETUP_APPEND("model: {type: sph, plane: axisymmetric, kernel: wendland, h_factor: 1.3,\n"
                  "        viscosity: [%.9g, %.9g], xsph: %.9g, cavity_depth: %.9g}\n"
                  "materials:\n"
@@ -132,11 +140,11 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
                  "       eos: mie_gruneisen_ck, sound_speed: %.9g, hugoniot_slope: %.9g,\n"
                  "       gruneisen: %.9g, yield: power, yield_a: %.9g, yield_b: %.9g, "
                  "yield_n: %.9g,\n"
-                 "       failure: stress, failure_value: %.9g}\n"
+                 "       %s}\n"
                  "lattice: {type: square, spacing: %.9g}\n"
                  "geometry:\n",
                  t->av_a, t->av_b, t->xsph, cav, t->name, t->rho, t->E, t->nu, t->c0, t->S,
-                 t->gamma, t->A, t->B, t->n, t->fail, dx1);
+                 t->gamma, t->A, t->B, t->n, failure, dx1);
     for (int k = 0; k < 4; k++)
         SETUP_APPEND("  l%d: {box: {min: [0, %.9g], max: [%.9g, 0]}}\n", k + 1, -z[k], r[k]);
     SETUP_APPEND("bodies:\n");

@@ -27,7 +27,7 @@ struct pen_sph_target {
     double rho;       /**< density [kg/m^3] */
     double E, nu;     /**< Young's modulus [Pa], Poisson's ratio */
     double A, B, n;   /**< yield A + B ep^n [Pa], [Pa], [1] */
-    double fail;      /**< von Mises failure stress [Pa] (the thesis: A) */
+    double fail;      /**< von Mises failure stress [Pa]; <= 0: no failure */
     double c0, S;     /**< Mie-Grueneisen C_k form: sound speed [m/s], Hugoniot slope */
     double gamma;     /**< Grueneisen Gamma (0 in the thesis' C_k form) */
     double av_a, av_b; /**< artificial viscosity (q_a, q_b) */
