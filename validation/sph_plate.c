@@ -155,8 +155,8 @@ int sph_case_plate(struct vreport *r, struct spall_error *err)
     if (!rc && !r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: with the mirrored clamp the plate matches the free-free "
                             "plate (+16 % / +6 % vs Timoshenko at 6 / 10 rows: SPH bending "
-                            "error ~ (h/H)^2), but at 16 rows a growing tensile-instability-"
-                            "like distortion makes it slower again (+15 %); see "
-                            "docs/validation.md");
+                            "error ~ (h/H)^2), but at 16 rows a distortion growing at the "
+                            "clamp (tensile instability at its corners suspected) makes it "
+                            "slower again (+15 %); see docs/validation.md");
     return rc;
 }
