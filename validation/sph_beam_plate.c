@@ -1,6 +1,6 @@
 /**
  * @file sph_beam_plate.c
- * @brief SPH validation cases "sph-gradient", "sph-beam" and "sph-plate".
+ * @brief SPH validation cases "sph-gradient" and "sph-beam".
  *
  * sph-gradient: a linear velocity field v = A x + b on a free 2D block and
  *   a free 3D block; CSPM (seed 004 Eqs. 3.10-3.11) must return A at every
@@ -15,12 +15,7 @@
  *   total-Lagrangian row (Wendland tolerance) and a quintic row with the
  *   kernel-averaged artificial stress (sph_as_smooth.c: the pointwise one
  *   makes the quintic blow up).
- * sph-plate: Gray, Monaghan & Swift (2001) oscillating plate: L = 0.2 m
- *   beyond a clamp of L/4, H = 0.02 m, E = 2 MPa, nu = 0.3975, rho = 1000,
- *   plane strain, CSPM, AV (0.1, 0.1), leapfrog, 10 rows, started with
- *   the first cantilever mode shape; the period
- *   against thin-plate theory omega^2 = E H^2 k^4 / (12 rho (1 - nu^2)),
- *   kL = 1.875104 -> omega = 24.73 rad/s (derived in docs/validation.md).
+ * sph-plate: validation/sph_plate.c.
  */
 #include "validation/lattice_cases.h"
 #include "validation/sph_beam.h"
@@ -263,93 +258,4 @@ int sph_case_beam(struct vreport *r, struct spall_error *err)
     return SPALL_OK;
 }
 
-/* ---- sph-plate --------------------------------------------------------- */
-
-static int plate_run(int rows, double *period, double *omega, size_t *np,
-                     struct spall_error *err)
-{
-    const double L = 0.2, H = 0.02, dx = H / rows;
-    char deck[3072];
-    snprintf(deck, sizeof deck,
-             "model: {type: sph, kernel: cubic_spline, h_factor: 1.5, plane: strain,\n"
-             "        time_integration: leapfrog, cspm: true, viscosity: [0.1, 0.1]}\n"
-             "materials: {rubber: {density: 1000, youngs_modulus: 2.0e6, poisson_ratio: 0.3975}}\n"
-             "lattice: {type: square, spacing: %.17g, origin: [%.17g, %.17g], thickness: 1.0}\n"
-             "body: {geometry: {box: {min: [%.17g, %.17g], max: [%.17g, %.17g]}}, "
-             "material: rubber}\n"
-             "groups: {clamp: {box: {min: [-1, -1], max: [0, 1]}}}\n"
-             "boundary_conditions: [{group: clamp, type: fixed}]\n"
-             "run: {end_time: 0.32}\n",
-             dx, 0.5 * dx, 0.5 * dx, -0.25 * L, -0.5 * H, L, 0.5 * H);
-    struct sim *s = NULL;
-    int rc = vlat_build("sph_plate", deck, &s, err);
-    if (rc)
-        return rc;
-    struct particles *p = s->p;
-    /* first cantilever mode, kL = 1.875104 */
-    const double kL = 1.875104068711961, k = kL / L;
-    const double Q = (cos(kL) + cosh(kL)) / (sin(kL) + sinh(kL));
-    const double fL = (cos(kL) - cosh(kL)) - Q * (sin(kL) - sinh(kL));
-    const double V = 0.1; /* tip speed [m/s]: amplitude V/omega = 4 mm = 2 % of L */
-    size_t tip = 0;
-    for (size_t i = 0; i < p->n; i++) {
-        double x = p->x0[0][i];
-        double f = x > 0 ? (cos(k * x) - cosh(k * x)) - Q * (sin(k * x) - sinh(k * x)) : 0.0;
-        p->v[1][i] = V * f / fL;
-        if (p->x0[0][i] > p->x0[0][tip] ||
-            (p->x0[0][i] == p->x0[0][tip] && fabs(p->x0[1][i]) < fabs(p->x0[1][tip])))
-            tip = i;
-    }
-    if ((rc = sim_initial_forces(s, err))) {
-        sim_destroy(&s);
-        return rc;
-    }
-    /* zero crossings of the tip displacement: down-crossing ~T/2, up ~T */
-    double prev = 0.0, t_prev = 0.0, t_down = NAN, t_up = NAN;
-    while (!sim_done(s) && !isfinite(t_up)) {
-        if ((rc = sim_step(s, err)))
-            break;
-        double u = p->x[1][tip] - p->x0[1][tip];
-        if (s->step > 5) {
-            if (prev > 0.0 && u <= 0.0 && !isfinite(t_down))
-                t_down = t_prev + (s->t - t_prev) * prev / (prev - u);
-            else if (prev < 0.0 && u >= 0.0 && isfinite(t_down))
-                t_up = t_prev + (s->t - t_prev) * (-prev) / (u - prev);
-        }
-        prev = u;
-        t_prev = s->t;
-    }
-    *period = t_up;
-    *omega = 2.0 * SPH_PI / t_up;
-    *np = p->n;
-    sim_destroy(&s);
-    return rc;
-}
-
-int sph_case_plate(struct vreport *r, struct spall_error *err)
-{
-    const double E = 2.0e6, nu = 0.3975, rho = 1000.0, H = 0.02, L = 0.2;
-    const double kL = 1.875104068711961, k = kL / L;
-    const double w_ref = sqrt(E * H * H * k * k * k * k / (12.0 * rho * (1.0 - nu * nu)));
-    const double T_ref = 2.0 * SPH_PI / w_ref;
-    const int rows = r->quick ? 6 : 10;
-    double T = NAN, w = NAN;
-    size_t np = 0;
-    int rc = plate_run(rows, &T, &w, &np, err);
-    if (rc)
-        return rc;
-    vreport_info(r, "plate: %d rows (%zu particles), omega = %.4f rad/s (theory %.4f)", rows, np,
-                 w, w_ref);
-    rc = vreport_check(r, "oscillating plate: period of the first mode", "s", T_ref, T, 0.03,
-                       true,
-                       "thin-plate theory, plane strain: omega^2 = E H^2 k^4/(12 rho (1-nu^2)), "
-                       "kL = 1.8751 (Gray, Monaghan & Swift 2001)",
-                       "3 %: the issue's tolerance; thick-plate shear (~0.7 %) and the finite "
-                       "clamp make SPH slightly softer than thin-plate theory",
-                       err);
-    if (!rc && !r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: SPH bending is soft at 6-16 rows (spurious particle modes; "
-                            "the clamped plate converges slowly, +18 % -> +10 % with CSPM); "
-                            "axial modes are right to 0.3 %; see docs/validation.md");
-    return rc;
-}
+/* sph-plate: validation/sph_plate.c */

@@ -68,6 +68,8 @@ struct sph_pair_src {
 };
 struct sph_sym;
 struct sph_tl;
+struct sph_clamp;
+struct deck_node;
 
 struct sph_material {
     bool parsed;
@@ -125,6 +127,7 @@ struct model {
 
     struct sph_sym *sym;   /**< symmetry-plane ghosts (NULL: none) */
     struct sph_tl *tl;     /**< TLSPH reference pair constants (sph_tlsph.c; NULL: none) */
+    struct sph_clamp *clamp; /**< mirrored clamp (sph_clamp.c; NULL: none) */
     struct neighbor_list *nl;
     double nl_radius;
     size_t n_builds;
@@ -170,6 +173,21 @@ int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src
                         struct spall_error *err);
 /** Free the ghost state; sets *sym to NULL. */
 void sph_symmetry_destroy(struct sph_sym **sym);
+
+/* sph_clamp.c */
+/** Parse model.clamp {group, point, normal}. */
+int sph_clamp_parse(const struct deck_node *node, int dim, struct sph_clamp **out,
+                    struct spall_error *err);
+/** Find the mirror image of every clamp particle near the plane. */
+int sph_clamp_init(struct model *m, struct sim *s, struct spall_error *err);
+/** Before a force call: clamp particles take -v and the mirrored position of their image. */
+void sph_clamp_begin(const struct model *m, struct sim *s);
+/** Mirror-consistent stress of the clamp particles (after the stress pass). */
+void sph_clamp_stress(const struct model *m);
+/** After a force call: clamp particles back at rest at their reference positions. */
+void sph_clamp_end(const struct model *m, struct sim *s);
+/** Free; sets *pc to NULL. */
+void sph_clamp_destroy(struct sph_clamp **pc);
 
 /* sph_tlsph.c */
 /** Reference neighbour list and corrected reference gradients (B0^-1). */

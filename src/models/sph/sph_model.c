@@ -28,6 +28,9 @@
  *     formulation: updated | total            total: TLSPH (sph_tlsph.c), reference
  *                                             kernel, no AS/XSPH (default updated)
  *     hourglass: kappa                        TLSPH hourglass coefficient (default 0.1)
+ *     clamp: {group: g, point: [...], normal: [...]}
+ *           mirrored clamp (sph_clamp.c): the fixed group g behind the plane
+ *           takes -v and the stress of its mirror images during force calls
  *     wall: {point: [...], normal: [...], stiffness: 1}
  *           rigid frictionless half-space; normal points from the wall into
  *           the body.  Penalty k = stiffness m (c0/dx)^2 on particles closer
@@ -137,6 +140,7 @@ static void sph_destroy(struct model **pm)
     free(m->mat);
     sph_symmetry_destroy(&m->sym);
     sph_tlsph_destroy(&m->tl);
+    sph_clamp_destroy(&m->clamp);
     neighbor_list_destroy(&m->nl);
     free(m);
     *pm = NULL;
@@ -160,7 +164,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                        "formulation", "hourglass",
                                        "wall", "pair_loop", "symmetry",
                                        "cavity_depth", "time_integration", "interface",
-                                       "interface_stiffness", "interface_distance", NULL};
+                                       "interface_stiffness", "interface_distance", "clamp", NULL};
     static const char *const ifaces[] = {"none", "bodies", "materials", NULL};
     *out = NULL;
     if (sim->dim < 2)
@@ -293,9 +297,27 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             return deck_error_key(err, params, "cavity_depth",
                                   "cavity_depth needs plane: axisymmetric");
     }
+    struct sph_clamp *clamp = NULL;
+    const struct deck_node *cl = params ? deck_get(params, "clamp") : NULL;
+    if (cl) {
+        /* sph_clamp.c hooks into the two-pass loops of sph_rates.c only */
+        if (o.symmetry[0] || o.symmetry[1] || o.plane == SPH_PLANE_AXISYMMETRIC ||
+            o.total_lagrangian)
+            return deck_error_key(err, params, "clamp",
+                                  "clamp works with the updated formulation's two-pass loops "
+                                  "only: not with symmetry planes, plane: axisymmetric or "
+                                  "formulation: total");
+        int rc = sph_clamp_parse(cl, sim->dim, &clamp, err);
+        if (rc)
+            return rc;
+        o.split_pairs = true;
+    }
     struct model *m = calloc(1, sizeof *m);
-    if (!m)
+    if (!m) {
+        sph_clamp_destroy(&clamp);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating the sph model");
+    }
+    m->clamp = clamp;
     m->sim = sim;
     m->opt = o;
     m->dim = sim->dim;
@@ -444,8 +466,11 @@ static int sph_init(struct model *m, struct sim *s, struct spall_error *err)
     }
     if (m->opt.plane == SPH_PLANE_AXISYMMETRIC)
         sph_axisym_init(m, s); /* ring masses */
-    int rc = m->opt.total_lagrangian ? sph_tlsph_init(m, s, err)
-                                     : sph_neighbors_update(m, s, true, err);
+    int rc = m->clamp ? sph_clamp_init(m, s, err) : SPALL_OK;
+    if (rc)
+        return rc;
+    rc = m->opt.total_lagrangian ? sph_tlsph_init(m, s, err)
+                                 : sph_neighbors_update(m, s, true, err);
     if (rc)
         return rc;
     for (size_t i = 0; i < n; i++)
@@ -488,7 +513,11 @@ static int sph_register_fields(struct model *m, struct sim *sim, struct field_re
 
 static int sph_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
+    if (m->clamp)
+        sph_clamp_begin(m, sim); /* sph_clamp.c: mirrored clamp around the force call */
     int rc = sph_compute_rates(m, sim, err);
+    if (m->clamp)
+        sph_clamp_end(m, sim);
     if (!rc && m->opt.iface != SPH_IFACE_NONE)
         sph_interface_forces(m, sim);
     return rc;

@@ -484,6 +484,8 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
         if (m->opt.as_zeta > 0.0)
             sph_artificial_stress(m, i);
     }
+    if (m->clamp)
+        sph_clamp_stress(m); /* sph_clamp.c */
     if (m->opt.as_smooth && m->opt.as_zeta > 0.0)
         sph_artificial_stress_smooth(m, s); /* sph_as_smooth.c */
     if (m->dim == 2)
