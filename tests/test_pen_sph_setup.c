@@ -145,7 +145,7 @@ static void test_gelatin_special_case(void **state)
     struct pen_sph_target t = pen_sph_target_gelatin(20e6);
     struct pen_sph_shot s = {7.38e-6, 1850.0, 1290.0};
     struct pen_sph_grid g = {.dx1_d = 0.75 / 7.38, .width = 1.0, .depth = 1.0,
-                             .t_end = 260e-9, .cavity_depth = 15e-6};
+                             .t_end = 260e-9, .cavity_depth = 15e-6, .k_first_contact = 1};
     assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_OK);
     struct sim *a = build_text(ref), *b = build_text(buf);
     same_particles(a, b, 7.38e-6);

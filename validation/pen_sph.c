@@ -114,7 +114,8 @@ void pen_sph_deck(char *buf, size_t len, double v0, double E, double dx1, double
         snprintf(buf + off, len - off,
                  "impactors:\n"
                  "  - {name: sphere, shape: sphere, position: [0, %.9g], radius: %.9g,\n"
-                 "     mass: %.9g, velocity: [0, %.9g], gravity: false, contact: penalty}\n"
+                 "     mass: %.9g, velocity: [0, %.9g], gravity: false, contact: penalty,\n"
+                 "     stiffness_dt: first_contact}\n"
                  "run: {end_time: %.9g}\n",
                  R + PEN_GAP, R, M, -v0, t_end);
 }

@@ -161,9 +161,10 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
     }
     SETUP_APPEND("impactors:\n"
                  "  - {name: sphere, shape: sphere, position: [0, %.9g], radius: %.9g,\n"
-                 "     mass: %.9g, velocity: [0, %.9g], gravity: false, contact: penalty}\n"
+                 "     mass: %.9g, velocity: [0, %.9g], gravity: false, contact: penalty%s}\n"
                  "run: {end_time: %.9g}\n",
-                 R + pen_sph_setup_gap(s), R, M, -s->v0, g->t_end);
+                 R + pen_sph_setup_gap(s), R, M, -s->v0,
+                 g->k_first_contact ? ",\n     stiffness_dt: first_contact" : "", g->t_end);
     if (off >= len)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "pen_sph_setup: deck needs %zu bytes, buffer has %zu", off + 1,

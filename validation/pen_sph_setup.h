@@ -48,6 +48,9 @@ struct pen_sph_grid {
     double depth;        /**< scales the four level depths (1 = the gelatin deck) */
     double t_end;        /**< end time [s] (a validation run stops earlier, at rest) */
     double cavity_depth; /**< depth of the cavity measurement [m]; 0: 15 um x d / 7.38 um */
+    int k_first_contact; /**< 1: the impactor's penalty stiffness is frozen at first contact
+                          *   (`stiffness_dt: first_contact`, as the gelatin deck); 0: per
+                          *   step (the SEBS case's numbers were measured so) */
 };
 
 /** 10 wt% gelatin of seed 004 Tab. 4.3 with modulus @p E; AV (0.5, 0.2),
