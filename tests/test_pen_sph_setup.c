@@ -134,8 +134,8 @@ static void test_bad_input(void **state)
 }
 
 /* At d = 7.38 um, dx1 = 0.75 um, width and depth 1 the builder lays out the
- * gelatin deck of validation/pen_sph.c (pen_sph_deck): same particles and
- * sphere. */
+ * gelatin deck of validation/pen_sph.c (pen_sph_deck, a wrapper of the
+ * builder since the two were merged): same particles and sphere. */
 static void test_gelatin_special_case(void **state)
 {
     (void)state;

@@ -36,170 +36,48 @@
  */
 #include "validation/lattice_cases.h"
 #include "validation/pen_cases.h"
+#include "validation/pen_sph_setup.h"
 #include "validation/validation.h"
 
-#include "core/particles.h"
-#include "core/rigid.h"
-#include "core/sim.h"
 #include "spall/error.h"
 #include "spall/penetration.h"
 
 #include <math.h>
-#include <omp.h>
 #include <stdio.h>
-#include <stdlib.h>
 
 #define PEN_D 7.38e-6
 #define PEN_RHO_P 1850.0
-#define PEN_GAP 0.25e-6
 
-struct pen_sph_run {
-    double pmax, t_pmax;  /**< deepest tip depth [m], its time after contact [s] */
-    double d1max, d2max;  /**< largest cavity diameters at 15 um [m] */
-    double p_end, v_end;  /**< depth and velocity at the end */
-    double balance;       /**< energy balance / input */
-    size_t n;             /**< particles */
-    double secs;
-    double *t, *P, *V;    /**< history (owned) */
-    size_t nh;
-};
-
-static double round_up(double x, double q)
+/* The gelatin grid: finest spacing @p dx1 [m], the two outer levels scaled
+ * by @p width; penalty stiffness frozen at first contact. */
+static struct pen_sph_grid gelatin_grid(double dx1, double width, double t_end)
 {
-    return ceil(x / q - 1e-9) * q;
+    return (struct pen_sph_grid){.dx1_d = dx1 / PEN_D, .width = width, .depth = 1.0,
+                                 .t_end = t_end, .cavity_depth = 15.0e-6, .k_first_contact = 1};
 }
 
-/* The deck of the file comment; width scales the two outer levels. */
+/* The deck of the file comment: the general builder (validation/
+ * pen_sph_setup.c) at d = 7.38 um with the gelatin target. */
 void pen_sph_deck(char *buf, size_t len, double v0, double E, double dx1, double width,
                   double t_end)
 {
-    double r[4] = {8e-6, 20e-6, 48e-6 * width, 144e-6 * width};
-    double z[4] = {100e-6, 130e-6, 170e-6, 250e-6};
-    for (int k = 0; k < 4; k++) {
-        double q = dx1 * (double)(1 << (k + 1 < 3 ? k + 1 : 3));
-        r[k] = round_up(r[k], q);
-        z[k] = round_up(z[k], q);
-    }
-    const double R = 0.5 * PEN_D, M = PEN_RHO_P * 3.141592653589793 * PEN_D * PEN_D * PEN_D / 6.0;
-    size_t off = (size_t)snprintf(
-        buf, len,
-        "model: {type: sph, plane: axisymmetric, kernel: wendland, h_factor: 1.3,\n"
-        "        viscosity: [0.5, 0.2], xsph: 0.015, cavity_depth: 15.0e-6}\n"
-        "materials:\n"
-        "  gelatin: {density: 1030, youngs_modulus: %.9g, poisson_ratio: 0.499,\n"
-        "            eos: mie_gruneisen_ck, sound_speed: 1520, hugoniot_slope: 1.8,\n"
-        "            gruneisen: 0, yield: power, yield_a: 21.0e6, yield_b: 1.0e4, yield_n: 0.1,\n"
-        "            failure: none}\n"
-        "lattice: {type: square, spacing: %.9g}\n"
-        "geometry:\n",
-        E, dx1);
-    for (int k = 0; k < 4 && off < len; k++)
-        off += (size_t)snprintf(buf + off, len - off,
-                                "  l%d: {box: {min: [0, %.9g], max: [%.9g, 0]}}\n", k + 1, -z[k],
-                                r[k]);
-    off += (size_t)snprintf(buf + off, len - off, "bodies:\n");
-    for (int k = 0; k < 4 && off < len; k++) {
-        double s = dx1 * (double)(1 << k);
-        char g[64];
-        if (k == 0)
-            snprintf(g, sizeof g, "l1");
-        else
-            snprintf(g, sizeof g, "{difference: [l%d, l%d]}", k + 1, k);
-        off += (size_t)snprintf(buf + off, len - off,
-                                "  - {geometry: %s, material: gelatin, lattice: {spacing: %.9g, "
-                                "origin: [%.9g, %.9g]}}\n",
-                                g, s, 0.5 * s, -0.5 * s);
-    }
-    if (off < len)
-        snprintf(buf + off, len - off,
-                 "impactors:\n"
-                 "  - {name: sphere, shape: sphere, position: [0, %.9g], radius: %.9g,\n"
-                 "     mass: %.9g, velocity: [0, %.9g], gravity: false, contact: penalty,\n"
-                 "     stiffness_dt: first_contact}\n"
-                 "run: {end_time: %.9g}\n",
-                 R + PEN_GAP, R, M, -v0, t_end);
-}
-
-static void run_free(struct pen_sph_run *o)
-{
-    free(o->t);
-    free(o->P);
-    free(o->V);
-    o->t = o->P = o->V = NULL;
+    const struct pen_sph_target t = pen_sph_target_gelatin(E);
+    const struct pen_sph_shot s = {PEN_D, PEN_RHO_P, v0};
+    const struct pen_sph_grid g = gelatin_grid(dx1, width, t_end);
+    struct spall_error err = {0, ""};
+    if (pen_sph_setup_deck(buf, len, &t, &s, &g, &err) && len > 0)
+        buf[0] = '\0'; /* an empty deck then fails to build, naming the deck */
 }
 
 static int pen_sph_run(double v0, double E, double dx1, double width, double t_end,
-                       struct pen_sph_run *o, struct spall_error *err)
+                       struct pen_sph_outcome *o, struct spall_error *err)
 {
-    char deck[4096];
-    pen_sph_deck(deck, sizeof deck, v0, E, dx1, width, t_end);
-    struct sim *s = NULL;
-    int rc = vlat_build("pen_sph", deck, &s, err);
-    if (rc)
-        return rc;
-    const struct impactor *im = &s->rigid->im[0];
-    const double R = im->radius, t_contact = PEN_GAP / v0;
-    size_t cap = 1024;
-    o->t = malloc(cap * sizeof *o->t);
-    o->P = malloc(cap * sizeof *o->P);
-    o->V = malloc(cap * sizeof *o->V);
-    if (!o->t || !o->P || !o->V) {
-        run_free(o);
-        sim_destroy(&s);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (pen_sph history)");
-    }
-    o->nh = 0;
-    o->pmax = -INFINITY;
-    o->d1max = o->d2max = 0.0;
-    o->n = s->p->n;
-    double t0 = omp_get_wtime(), e_in = 0.5 * im->mass * v0 * v0;
-    while (!sim_done(s) && !rc) {
-        if ((rc = sim_step(s, err)))
-            break;
-        double P = -(im->x[1] - R), t = s->t - t_contact;
-        if (P > o->pmax) {
-            o->pmax = P;
-            o->t_pmax = t;
-        }
-        o->d1max = fmax(o->d1max, vlat_history(s, "cavity_D1 [m]"));
-        o->d2max = fmax(o->d2max, vlat_history(s, "cavity_D2 [m]"));
-        if (s->step % 10 == 0) {
-            if (o->nh == cap) {
-                cap *= 2;
-                double *a = realloc(o->t, cap * sizeof *a);
-                if (a)
-                    o->t = a;
-                double *b = realloc(o->P, cap * sizeof *b);
-                if (b)
-                    o->P = b;
-                double *c = realloc(o->V, cap * sizeof *c);
-                if (c)
-                    o->V = c;
-                if (!a || !b || !c) {
-                    rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (pen_sph)");
-                    break;
-                }
-            }
-            o->t[o->nh] = t;
-            o->P[o->nh] = P;
-            o->V[o->nh] = -im->v[1];
-            o->nh++;
-        }
-        o->p_end = P;
-        o->v_end = -im->v[1];
-        if (t > 0.0 && !(im->v[1] < 0.0))
-            break; /* the sphere stopped: P_max reached (the cavity may still grow) */
-    }
-    o->secs = omp_get_wtime() - t0;
-    sim_update_energy(s);
-    o->balance = s->energy.balance / e_in;
-    sim_destroy(&s);
-    if (rc)
-        run_free(o);
-    return rc;
+    const struct pen_sph_target t = pen_sph_target_gelatin(E);
+    const struct pen_sph_shot s = {PEN_D, PEN_RHO_P, v0};
+    const struct pen_sph_grid g = gelatin_grid(dx1, width, t_end);
+    return pen_sph_setup_run(&t, &s, &g, o, err);
 }
 
-/* Poncelet (C_d = 0.375, R = 21 MPa) P_max + d/2 at v0 (Eq. 4.6, 4.7). */
 static int poncelet_nose(double v0, double *out, struct spall_error *err)
 {
     struct pen_params pp = {.model = PEN_PONCELET, .d = PEN_D, .rho_p = PEN_RHO_P,
@@ -210,7 +88,7 @@ static int poncelet_nose(double v0, double *out, struct spall_error *err)
     return rc;
 }
 
-static void run_info(struct vreport *r, const char *what, const struct pen_sph_run *o)
+static void run_info(struct vreport *r, const char *what, const struct pen_sph_outcome *o)
 {
     vreport_info(r,
                  "%s: %zu particles, P_max = %.2f um at %.0f ns after contact (P_max/d = %.2f), "
@@ -222,7 +100,7 @@ static void run_info(struct vreport *r, const char *what, const struct pen_sph_r
 
 int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err)
 {
-    struct pen_sph_run o = {0};
+    struct pen_sph_outcome o = {0};
     int rc = pen_sph_run(1290.0, 20.0e6, 0.75e-6, 1.0, 450.0e-9, &o, err);
     if (rc)
         return rc;
@@ -254,7 +132,7 @@ int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err)
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin)");
 out:
-    run_free(&o);
+    pen_sph_outcome_free(&o);
     return rc;
 }
 
@@ -263,14 +141,14 @@ int pen_case_sph_sweep(struct vreport *r, struct spall_error *err)
     static const double v0s[4] = {200.0, 700.0, 1050.0, 1420.0};
     static const double tend[4] = {200e-9, 400e-9, 450e-9, 450e-9};
     for (int k = 0; k < 4; k++) {
-        struct pen_sph_run o = {0};
+        struct pen_sph_outcome o = {0};
         int rc = pen_sph_run(v0s[k], 20.0e6, 0.75e-6, 1.0, tend[k], &o, err);
         if (rc)
             return rc;
         char what[96], q[96];
         snprintf(what, sizeof what, "%.0f m/s, E = 20 MPa, dx1 = 0.75 um (d/10)", v0s[k]);
         run_info(r, what, &o);
-        run_free(&o);
+        pen_sph_outcome_free(&o);
         double pn = 0.0;
         if ((rc = poncelet_nose(v0s[k], &pn, err)))
             return rc;
@@ -290,7 +168,7 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
     static const double Es[4] = {1.0e6, 10.0e6, 20.0e6, 40.0e6};
     double pm[4];
     for (int k = 0; k < 4; k++) {
-        struct pen_sph_run o = {0};
+        struct pen_sph_outcome o = {0};
         int rc = pen_sph_run(1290.0, Es[k], 0.75e-6, 1.0, 450.0e-9, &o, err);
         if (rc)
             return rc;
@@ -298,7 +176,7 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
         snprintf(what, sizeof what, "1290 m/s, E = %.0f MPa, dx1 = 0.75 um", Es[k] * 1e-6);
         run_info(r, what, &o);
         pm[k] = o.pmax;
-        run_free(&o);
+        pen_sph_outcome_free(&o);
     }
     bool mono = pm[0] > pm[1] && pm[1] > pm[2] && pm[2] > pm[3];
     int rc = vreport_check_true(r, "P_max decreases as E grows (1, 10, 20, 40 MPa)", mono,
@@ -323,7 +201,7 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
 
 /* Largest |P_a(t) - P_b(t)| over the common time span (b interpolated
  * linearly at a's samples), relative to b's P_max. */
-static double history_gap(const struct pen_sph_run *a, const struct pen_sph_run *b)
+static double history_gap(const struct pen_sph_outcome *a, const struct pen_sph_outcome *b)
 {
     double worst = 0.0;
     size_t j = 0;
@@ -342,7 +220,7 @@ static double history_gap(const struct pen_sph_run *a, const struct pen_sph_run 
 
 int pen_case_sph_convergence(struct vreport *r, struct spall_error *err)
 {
-    struct pen_sph_run a = {0}, b = {0}, c = {0};
+    struct pen_sph_outcome a = {0}, b = {0}, c = {0};
     int rc = pen_sph_run(1290.0, 20.0e6, 0.75e-6, 1.0, 300.0e-9, &a, err);
     if (!rc)
         rc = pen_sph_run(1290.0, 20.0e6, 0.5e-6, 1.0, 300.0e-9, &b, err);
@@ -377,8 +255,8 @@ int pen_case_sph_convergence(struct vreport *r, struct spall_error *err)
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
 out:
-    run_free(&a);
-    run_free(&b);
-    run_free(&c);
+    pen_sph_outcome_free(&a);
+    pen_sph_outcome_free(&b);
+    pen_sph_outcome_free(&c);
     return rc;
 }

@@ -6,8 +6,9 @@
  *        hydrodynamic target (seed 004 sec. 4.3-4.5), and the validation
  *        case "pen-sph-sebs" (steel into 40 vol% SEBS, item 4c).
  *
- * The deck is the gelatin deck of validation/pen_sph.c (pen_sph_deck)
- * with every length scaled by d / 7.38 um: graded spacing dx1 for
+ * At d = 7.38 um with the gelatin target this is the gelatin deck of
+ * validation/pen_sph.c (pen_sph_deck calls it); for other d every length
+ * is scaled by d / 7.38 um: graded spacing dx1 for
  * r <= 8 um and z >= -100 um, then 2, 4, 8 dx1 out to r = 144 um (x width)
  * and z = -250 um (x depth), those lengths times d / 7.38 um; every
  * level's edges are rounded up to multiples of the next level's spacing.
