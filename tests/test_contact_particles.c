@@ -12,6 +12,8 @@
 
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include "core/bond_list.h"
 #include "core/contact_particles.h"
 #include "core/particles.h"
@@ -28,22 +30,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-static struct sim *build(const char *yaml)
-{
-    struct deck *d = NULL;
-    struct spall_error err = {0, ""};
-    struct sim *s = NULL;
-    struct run_output ro;
-    int rc = deck_load_string(&d, "test.yaml", yaml, &err);
-    if (!rc)
-        rc = deck_build_sim(d, &s, &ro, &err);
-    if (rc)
-        fprintf(stderr, "%s\n", err.msg);
-    assert_int_equal(rc, SPALL_OK);
-    deck_destroy(&d);
-    return s;
-}
 
 static int build_fails(const char *yaml, const char *needle)
 {
@@ -89,7 +75,7 @@ static void test_no_bonds_across_bodies(void **state)
     (void)state;
     char deck[2048];
     blocks_deck(deck, sizeof deck, 0.01, "contact: {distance: 1.0e-3, stiffness: 1.0e6}\n");
-    struct sim *s = build(deck);
+    struct sim *s = test_build_ok(deck);
     const struct bond_list *bl = s->ops->bonds(s->model);
     assert_non_null(bl);
     size_t cross = 0;
@@ -113,7 +99,7 @@ static void run_blocks(double width, int threads, double **xout, size_t *nout, d
 #endif
     char deck[2048];
     blocks_deck(deck, sizeof deck, width, "contact: {distance: 1.0e-3, stiffness: 1.0e6}\n");
-    struct sim *s = build(deck);
+    struct sim *s = test_build_ok(deck);
     struct spall_error err = {0, ""};
     const struct particles *p = s->p;
     int gb = sim_find_group(s, "b");
@@ -213,7 +199,7 @@ static void test_same_body_unbonded(void **state)
              "initial_velocity: [{group: b, value: [0, -50]}]\n"
              "run: {end_time: 6.0e-5, dt_factor: 0.25}\n",
              9.5 * row, 10.5 * row, 20.5 * row);
-    struct sim *s = build(deck);
+    struct sim *s = test_build_ok(deck);
     struct spall_error err = {0, ""};
     const struct particles *p = s->p;
     double gmin = INFINITY;

@@ -7,13 +7,13 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include "core/bond_list.h"
 #include "core/fields.h"
 #include "core/fragments.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "io/deck.h"
-#include "io/deck_build.h"
 #include "models/model.h"
 #include "spall/error.h"
 
@@ -22,24 +22,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static struct sim *build(const char *yaml)
-{
-    struct deck *d = NULL;
-    struct spall_error err = {0, ""};
-    int rc = deck_load_string(&d, "test_fragments", yaml, &err);
-    if (rc)
-        fprintf(stderr, "%s\n", err.msg);
-    assert_int_equal(rc, SPALL_OK);
-    struct sim *s = NULL;
-    struct run_output ro;
-    rc = deck_build_sim(d, &s, &ro, &err);
-    if (rc)
-        fprintf(stderr, "%s\n", err.msg);
-    assert_int_equal(rc, SPALL_OK);
-    deck_destroy(&d);
-    return s;
-}
 
 /* 20 x 10 mm plate (alpha-beta: axial + angular springs); pre-crack at x = 10.25 mm across
  * the whole height (plus a stub that ends inside, which must not split) */
@@ -59,7 +41,7 @@ static const char *plate_deck =
 static void test_plate_cut_in_two(void **state)
 {
     (void)state;
-    struct sim *s = build(plate_deck);
+    struct sim *s = test_build_ok(plate_deck);
     const struct particles *p = s->p;
     struct fragments *f = NULL;
     struct spall_error err = {0, ""};
@@ -148,7 +130,7 @@ static void test_thread_independence(void **state)
     struct spall_error err = {0, ""};
     for (int pass = 0; pass < 2; pass++) {
         omp_set_num_threads(pass == 0 ? 1 : 2);
-        struct sim *s = build(burst_deck);
+        struct sim *s = test_build_ok(burst_deck);
         for (int k = 0; k < 300; k++)
             assert_int_equal(sim_step(s, &err), SPALL_OK);
         struct fragments *f = NULL;

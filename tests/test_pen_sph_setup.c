@@ -12,6 +12,8 @@
 
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -33,17 +35,6 @@ static struct pen_sph_grid sebs_grid(void)
     struct pen_sph_grid g = {.dx1_d = 0.1, .width = 1.0, .depth = 1.5, .t_end = 1.6e-6,
                              .cavity_depth = 0.0};
     return g;
-}
-
-static struct sim *build_text(const char *yaml)
-{
-    struct spall_error e = {0, ""};
-    struct sim *s = NULL;
-    int rc = vlat_build("test_pen_sph_setup", yaml, &s, &e);
-    if (rc)
-        fprintf(stderr, "%s\n", e.msg);
-    assert_int_equal(rc, SPALL_OK);
-    return s;
 }
 
 static struct sim *build_file(const char *path)
@@ -96,11 +87,11 @@ static void test_scale_invariance(void **state)
     struct pen_sph_grid g = sebs_grid();
     struct pen_sph_shot s0 = {20e-6, 7800.0, 215.0};
     assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s0, &g, &e), SPALL_OK);
-    struct sim *a = build_text(buf);
+    struct sim *a = test_build_ok(buf);
     for (int k = 1; k < 5; k++) {
         struct pen_sph_shot s = {ds[k], 7800.0, 500.0};
         assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_OK);
-        struct sim *b = build_text(buf);
+        struct sim *b = test_build_ok(buf);
         assert_int_equal(a->p->n, b->p->n);
         const double f = ds[k] / 20e-6;
         for (size_t i = 0; i < a->p->n; i += 37)
@@ -147,7 +138,7 @@ static void test_gelatin_special_case(void **state)
     struct pen_sph_grid g = {.dx1_d = 0.75 / 7.38, .width = 1.0, .depth = 1.0,
                              .t_end = 260e-9, .cavity_depth = 15e-6, .k_first_contact = 1};
     assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_OK);
-    struct sim *a = build_text(ref), *b = build_text(buf);
+    struct sim *a = test_build_ok(ref), *b = test_build_ok(buf);
     same_particles(a, b, 7.38e-6);
     same_impactor(a, b);
     sim_destroy(&a);
@@ -171,7 +162,7 @@ static void test_examples_match(void **state)
         snprintf(path, sizeof path, "%s/examples/pen_sph_sebs_%.0fum_%.0fms/"
                  "pen_sph_sebs_%.0fum_%.0fms.yaml", src ? src : "..", s.d * 1e6, s.v0,
                  s.d * 1e6, s.v0);
-        struct sim *a = build_text(buf), *b = build_file(path);
+        struct sim *a = test_build_ok(buf), *b = build_file(path);
         same_particles(a, b, s.d);
         same_impactor(a, b);
         assert_true(fabs(a->end_time / b->end_time - 1.0) < 1e-12);

@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -26,22 +28,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-static struct sim *build(const char *yaml)
-{
-    struct deck *d = NULL;
-    struct spall_error err = {0, ""};
-    struct sim *s = NULL;
-    struct run_output ro;
-    int rc = deck_load_string(&d, "test.yaml", yaml, &err);
-    if (!rc)
-        rc = deck_build_sim(d, &s, &ro, &err);
-    if (rc)
-        fprintf(stderr, "%s\n", err.msg);
-    assert_int_equal(rc, SPALL_OK);
-    deck_destroy(&d);
-    return s;
-}
 
 static int build_fails(const char *yaml, const char *needle)
 {
@@ -101,7 +87,7 @@ static const char *bounce_deck(const char *contact)
 
 static void check_bounce(const char *contact)
 {
-    struct sim *s = build(bounce_deck(contact));
+    struct sim *s = test_build_ok(bounce_deck(contact));
     double P0[3], P1[3];
     momentum(s, P0);
     double contacts = 0;
@@ -134,7 +120,7 @@ static void test_momentum_no_slip(void **state)
 static void test_energy_penalty(void **state)
 {
     (void)state;
-    struct sim *s = build(bounce_deck("penalty"));
+    struct sim *s = test_build_ok(bounce_deck("penalty"));
     double e0 = 0.5 * 0.005 * (0.3 * 0.3 + 25.0);
     double worst = 0.0;
     for (int k = 0; k < 400; k++) {
@@ -150,7 +136,7 @@ static void test_energy_penalty(void **state)
 static void test_free_fall(void **state)
 {
     (void)state;
-    struct sim *s = build("model: {type: lattice}\n"
+    struct sim *s = test_build_ok("model: {type: lattice}\n"
                           "materials:\n"
                           "  m: {density: 1000, youngs_modulus: 1.0e9,\n"
                           "      poisson_ratio: 0.3333333333333333, failure_strain: 1.0}\n"
@@ -177,7 +163,7 @@ static void test_friction_deceleration(void **state)
     (void)state;
     /* a soft block slides on a fixed wall; mean deceleration must be mu g */
     const double mu = 0.3, g = 9.8, v0 = 1.0;
-    struct sim *s = build("model: {type: lattice}\n"
+    struct sim *s = test_build_ok("model: {type: lattice}\n"
                           "materials:\n"
                           "  m: {density: 1000, youngs_modulus: 1.0e7,\n"
                           "      poisson_ratio: 0.3333333333333333, failure_strain: 1.0}\n"
@@ -206,7 +192,7 @@ static void test_friction_deceleration(void **state)
 static void test_no_slip_surface(void **state)
 {
     (void)state;
-    struct sim *s = build("model: {type: lattice}\n"
+    struct sim *s = test_build_ok("model: {type: lattice}\n"
                           "materials:\n"
                           "  m: {density: 1000, youngs_modulus: 1.0e9,\n"
                           "      poisson_ratio: 0.3333333333333333, failure_strain: 1.0}\n"

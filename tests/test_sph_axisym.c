@@ -19,25 +19,12 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static struct sim *build(const char *yaml)
-{
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
-    if (deck_load_string(&d, "t", yaml, &err) || deck_build_sim(d, &s, &ro, &err)) {
-        print_error("%s\n", err.msg);
-        deck_destroy(&d);
-        return NULL;
-    }
-    deck_destroy(&d);
-    return s;
-}
 
 /* Solid (r0 = 0) or hollow cylinder r in [r0, r1], z in [0, zl], dx = 1 mm. */
 static struct sim *cylinder(double r0, double r1, double zl)
@@ -51,7 +38,7 @@ static struct sim *cylinder(double r0, double r1, double zl)
              "body: {geometry: {box: {min: [%g, 0], max: [%g, %g]}}, material: m}\n"
              "run: {steps: 1}\n",
              r0, r1, zl);
-    return build(yaml);
+    return test_build(yaml);
 }
 
 /* interior: at least the kernel support (2 h = 2.6 dx) from every free surface */

@@ -10,8 +10,6 @@
  */
 #include "core/particles.h"
 #include "core/sim.h"
-#include "io/deck.h"
-#include "io/deck_build.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -19,25 +17,12 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <string.h>
-
-static struct sim *build(const char *yaml)
-{
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
-    if (deck_load_string(&d, "t", yaml, &err) || deck_build_sim(d, &s, &ro, &err)) {
-        print_error("%s\n", err.msg);
-        deck_destroy(&d);
-        return NULL;
-    }
-    deck_destroy(&d);
-    return s;
-}
 
 static void run(struct sim *s)
 {
@@ -76,9 +61,9 @@ static void test_fused_vs_split_2d(void **state)
     (void)state;
     char y[2048];
     snprintf(y, sizeof y, BLOCK2D, "fused");
-    struct sim *a = build(y);
+    struct sim *a = test_build(y);
     snprintf(y, sizeof y, BLOCK2D, "split");
-    struct sim *b = build(y);
+    struct sim *b = test_build(y);
     assert_non_null(a);
     assert_non_null(b);
     run(a);
@@ -113,9 +98,9 @@ static void test_fused_vs_split_3d(void **state)
     (void)state;
     char y[2048];
     snprintf(y, sizeof y, BAR3D, "fused", "none", FULL);
-    struct sim *a = build(y);
+    struct sim *a = test_build(y);
     snprintf(y, sizeof y, BAR3D, "split", "none", FULL);
-    struct sim *b = build(y);
+    struct sim *b = test_build(y);
     assert_non_null(a);
     assert_non_null(b);
     run(a);
@@ -131,9 +116,9 @@ static void test_quarter_symmetry(void **state)
     (void)state;
     char y[2048];
     snprintf(y, sizeof y, BAR3D, "fused", "none", FULL);
-    struct sim *full = build(y);
+    struct sim *full = test_build(y);
     snprintf(y, sizeof y, BAR3D, "fused", "xy", QUARTER);
-    struct sim *q = build(y);
+    struct sim *q = test_build(y);
     assert_non_null(full);
     assert_non_null(q);
     assert_int_equal(q->p->n * 4, full->p->n);
@@ -171,11 +156,11 @@ static void test_symmetry_threads(void **state)
     char y[2048];
     snprintf(y, sizeof y, BAR3D, "fused", "xy", QUARTER);
     omp_set_num_threads(1);
-    struct sim *a = build(y);
+    struct sim *a = test_build(y);
     assert_non_null(a);
     run(a);
     omp_set_num_threads(2);
-    struct sim *b = build(y);
+    struct sim *b = test_build(y);
     assert_non_null(b);
     run(b);
     assert_true(max_diff(a, b) == 0.0);

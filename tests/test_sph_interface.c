@@ -20,25 +20,12 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <string.h>
-
-static struct sim *build(const char *yaml)
-{
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
-    if (deck_load_string(&d, "t", yaml, &err) || deck_build_sim(d, &s, &ro, &err)) {
-        print_error("%s\n", err.msg);
-        deck_destroy(&d);
-        return NULL;
-    }
-    deck_destroy(&d);
-    return s;
-}
 
 /* Body 0: soft block (a) 10 x 10 mm; body 1: stiffer, denser block (b)
  * 6 mm high, 2.5 mm above, moving at (vx, -50) m/s; dx = 1 mm.  Plane
@@ -68,7 +55,7 @@ static struct sim *two_bodies(int axi, const char *iface, double vx)
              "run: {end_time: 2.4e-4}\n",
              axi ? "axisymmetric" : "strain", iface, axi == 2 ? 0.004 : 0.0, axi == 2 ? 0.004 : axi ? 0.0 : 0.002,
              axi ? 0.010 : 0.008, vx);
-    return build(yaml);
+    return test_build(yaml);
 }
 
 static void momentum(const struct sim *s, double P[2])

@@ -18,25 +18,12 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <string.h>
-
-static struct sim *build(const char *yaml)
-{
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
-    if (deck_load_string(&d, "t", yaml, &err) || deck_build_sim(d, &s, &ro, &err)) {
-        print_error("%s\n", err.msg);
-        deck_destroy(&d);
-        return NULL;
-    }
-    deck_destroy(&d);
-    return s;
-}
 
 static const char *BLOCK =
     "model: {type: sph, kernel: cubic_spline, h_factor: 1.3, viscosity: [0.5, 0.5],\n"
@@ -51,7 +38,7 @@ static const char *BLOCK =
 static void run_block(int threads, double *px, double *e0, double *e1, double *x_out, size_t nx)
 {
     omp_set_num_threads(threads);
-    struct sim *s = build(BLOCK);
+    struct sim *s = test_build(BLOCK);
     assert_non_null(s);
     struct spall_error err = {0};
     *e0 = s->energy.kinetic + s->energy.strain;
@@ -107,7 +94,7 @@ static void test_taylor_paths(void **state)
                  "initial_velocity: [{group: all, value: [0, 0, -400.0]}]\n"
                  "run: {end_time: 2.0e-6}\n",
                  forms[k]);
-        struct sim *s = build(yaml);
+        struct sim *s = test_build(yaml);
         assert_non_null(s);
         struct spall_error err = {0};
         while (!sim_done(s))

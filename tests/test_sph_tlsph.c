@@ -9,8 +9,6 @@
  */
 #include "core/particles.h"
 #include "core/sim.h"
-#include "io/deck.h"
-#include "io/deck_build.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -18,26 +16,13 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static struct sim *build(const char *yaml)
-{
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
-    if (deck_load_string(&d, "t", yaml, &err) || deck_build_sim(d, &s, &ro, &err)) {
-        print_error("%s\n", err.msg);
-        deck_destroy(&d);
-        return NULL;
-    }
-    deck_destroy(&d);
-    return s;
-}
 
 static void test_free_block_conservation(void **state)
 {
@@ -53,7 +38,7 @@ static void test_free_block_conservation(void **state)
         "initial_velocity: [{group: left, value: [-1.0, 0.3, 0.2]},\n"
         "                   {group: top, value: [0.8, -0.4, 0.5]}]\n"
         "run: {steps: 300}\n";
-    struct sim *s = build(yaml);
+    struct sim *s = test_build(yaml);
     assert_non_null(s);
     struct spall_error err = {0};
     double p0[3] = {0, 0, 0};
@@ -93,7 +78,7 @@ static void run_bar(int threads, double *xs, size_t nx)
         "       material: copper}\n"
         "initial_velocity: [{group: all, value: [0, 0, -227.0]}]\n"
         "run: {steps: 150}\n";
-    struct sim *s = build(yaml);
+    struct sim *s = test_build(yaml);
     assert_non_null(s);
     struct spall_error err = {0};
     while (!sim_done(s))
