@@ -252,6 +252,12 @@ void rigid_contact_forces(struct sim *s)
         int boxed = bounding_box(im, lo, hi);
         size_t nc = 0;
         double floss = 0.0;
+        /* stiffness_dt first_contact: k = eta m / dt^2 with the dt of the
+         * first contact step (stored below once a particle touched),
+         * constant after: a k that follows the adaptive dt (SPH: dt drops
+         * 6x as the first particle is hit) stiffens compressed springs and
+         * creates energy */
+        const double dk = im->stiffness_frozen && im->k_dt > 0.0 ? im->k_dt : dt;
         for (size_t i = 0; i < p->n_owned; i++) {
             double x[3], nrm[3];
             particle_pos(p, dim, i, x);
@@ -261,13 +267,6 @@ void rigid_contact_forces(struct sim *s)
             if (!(phi < 0.0))
                 continue;
             double m = p->mass[i];
-            /* stiffness_dt first_contact: k = eta m / dt^2 with the dt of
-             * the first contact step, constant after: a k that follows
-             * the adaptive dt (SPH: dt drops 6x as the first particle is
-             * hit) stiffens compressed springs and creates energy */
-            if (im->stiffness_frozen && !(im->k_dt > 0.0))
-                im->k_dt = dt;
-            const double dk = im->stiffness_frozen ? im->k_dt : dt;
             double kc = im->stiffness > 0 ? im->stiffness : im->stiffness_factor * m / (dk * dk);
             double fn = -kc * phi;
             double f[3] = {fn * nrm[0], fn * nrm[1], fn * nrm[2]};
@@ -302,6 +301,8 @@ void rigid_contact_forces(struct sim *s)
             im->f_pen[0] = 0.0;
         im->friction_loss += floss;
         im->n_contact = nc;
+        if (im->stiffness_frozen && nc > 0 && !(im->k_dt > 0.0))
+            im->k_dt = dt;
     }
 }
 
