@@ -7,8 +7,6 @@
  *        particles keep their tension either way; the key must be a bool.
  */
 #include "core/sim.h"
-#include "io/deck.h"
-#include "io/deck_build.h"
 #include "models/sph/sph_internal.h"
 #include "spall/error.h"
 
@@ -16,6 +14,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+
+#include "tests/test_support.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -33,14 +33,8 @@ static int build_rc(const char *mat_extra, struct sim **out)
              "body: {geometry: {box: {min: [0, 0], max: [0.004, 0.004]}}, material: m}\n"
              "run: {steps: 1}\n",
              mat_extra);
-    struct deck *d = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
-    int rc = deck_load_string(&d, "t", yaml, &err);
-    if (!rc)
-        rc = deck_build_sim(d, out, &ro, &err);
-    deck_destroy(&d);
-    return rc;
+    struct spall_error err = {0, ""};
+    return vlat_build("t", yaml, out, &err);
 }
 
 /* P of particle 0 (failed) and 1 (intact), both stretched to 0.99 rho0 */
