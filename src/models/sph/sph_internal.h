@@ -224,6 +224,12 @@ void sph_leapfrog_advance(struct model *m, struct sim *s, double dt);
 /* sph_material.c */
 /** Pressure from the EOS (compression positive). */
 double sph_eos_pressure(const struct sph_material *mt, double rho, double e);
+/** The pressure a particle carries: a failed one no tension (P >= 0)
+ *  unless its material has failed_tension (one rule for every update). */
+static inline double sph_carried_pressure(const struct sph_material *mt, bool failed, double P)
+{
+    return failed && P < 0.0 && !mt->failed_tension ? 0.0 : P;
+}
 /** Longitudinal sound speed at the given state. */
 double sph_sound_speed(const struct sph_material *mt, double rho, double e);
 /** Current yield stress (INFINITY: elastic). */

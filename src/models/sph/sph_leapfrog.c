@@ -72,9 +72,8 @@ void sph_leapfrog_advance(struct model *m, struct sim *s, double dt)
         for (int c = 0; c < 6; c++)
             m->S[c][i] += dt * m->dS[c][i];
         sph_plastic_return(m, i, dt, true);
-        double P = sph_eos_pressure(mt, m->rho[i], m->e[i]);
-        if (m->failed[i] && P < 0.0 && !mt->failed_tension)
-            P = 0.0;
+        const double P =
+            sph_carried_pressure(mt, m->failed[i], sph_eos_pressure(mt, m->rho[i], m->e[i]));
         const double pw1 = stress_power(m, i, P);
         m->e[i] += dt * 0.5 * (pw0 + pw1) / (0.5 * (rho0 + m->rho[i]));
     }

@@ -94,10 +94,8 @@ void sph_update_pressure(struct model *m, struct sim *s)
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         const struct sph_material *mt = &m->mat[mat[i]];
-        double P = sph_eos_pressure(mt, m->rho[i], m->e[i]);
-        if (m->failed[i] && P < 0.0 && !mt->failed_tension)
-            P = 0.0; /* a failed particle carries no tension (unless failed_tension) */
-        m->P[i] = P;
+        m->P[i] =
+            sph_carried_pressure(mt, m->failed[i], sph_eos_pressure(mt, m->rho[i], m->e[i]));
         m->c[i] = sph_sound_speed(mt, m->rho[i], m->e[i]);
     }
 }
