@@ -172,7 +172,7 @@ static void test_kinematic_expansion_stresses(void **state)
             s->p->x[0][i] += dt * s->p->v[0][i];
         }
     }
-    sph_update_pressure(m, s);
+    sph_update_pressure(m, s, SPH_FORM_ALL);
     const double eps = rate * dt * steps; /* 2e-3 */
     const double lam = mt->K - 2.0 * mt->G / 3.0;
     const double srr = 2.0 * (lam + mt->G) * eps, szz = 2.0 * lam * eps;

@@ -46,7 +46,7 @@ static void pressures(const char *extra, double *p_failed, double *p_intact)
     m->rho[0] = m->rho[1] = 0.99 * m->mat[0].rho0;
     m->failed[0] = 1;
     m->failed[1] = 0;
-    sph_update_pressure(m, s);
+    sph_update_pressure(m, s, SPH_FORM_ALL);
     *p_failed = m->P[0];
     *p_intact = m->P[1];
     sim_destroy(&s);

@@ -188,13 +188,15 @@ static int fill_body(struct build_ctx *c, const struct deck_node *body,
                      const struct lattice_spec *spec, const char *what, int32_t body_id,
                      struct spall_error *err)
 {
-    static const char *const keys[] = {"geometry", "material", "lattice", NULL};
+    static const char *const keys[] = {"geometry", "material", "lattice", "name", NULL};
     int rc = deck_expect_map(body, "a mapping with geometry and material", err);
     if (rc)
         return rc;
     int mat = 0;
     struct geom *g = NULL;
-    if ((rc = material_at_key(c, body, "material", &mat, err)) ||
+    const char *name = NULL; /* a label other sections use (model.body_formulation) */
+    if ((rc = deck_string(body, "name", false, &name, err)) ||
+        (rc = material_at_key(c, body, "material", &mat, err)) ||
         (rc = shape_at_key(c, body, "geometry", &g, err)) ||
         (rc = deck_check_unused(body, what, keys, err))) {
         geom_destroy(&g);

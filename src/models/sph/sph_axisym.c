@@ -278,7 +278,7 @@ int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err)
         return rc;
     m->n_pairs = m->nl->offset[n];
     m->cspm_fallbacks += pass_gradient_axi(m, s);
-    sph_update_pressure(m, s);
+    sph_update_pressure(m, s, SPH_FORM_ALL);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         double trD;

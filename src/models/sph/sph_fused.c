@@ -55,6 +55,8 @@ static inline void fused_pass(struct model *m, struct sim *s, const struct sph_p
     /* symmetric tensor storage xx yy zz xy yz xz */
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_UPDATED))
+            continue; /* a TLSPH particle of a mixed run (sph_forms.c) */
         const double hi = m->h[i], rhoi = m->rho[i], ci = m->c[i];
         const double xi0 = X0[i], xi1 = X1[i], xi2 = dim == 3 ? X2[i] : 0.0;
         const double vi0 = V0[i], vi1 = V1[i], vi2 = dim == 3 ? V2[i] : 0.0;
@@ -202,6 +204,8 @@ static void fused_prepare(struct model *m, struct sim *s)
     const bool as = m->opt.as_zeta > 0.0;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_UPDATED))
+            continue;
         const double ir2 = 1.0 / (m->rho[i] * m->rho[i]);
         for (int c = 0; c < 6; c++) {
             m->sig[c][i] = m->S[c][i] - (c < 3 ? m->P[i] : 0.0);
@@ -215,7 +219,7 @@ static void fused_prepare(struct model *m, struct sim *s)
 int sph_rates_fused(struct model *m, struct sim *s, struct spall_error *err)
 {
     struct particles *p = s->p;
-    sph_update_pressure(m, s);
+    sph_update_pressure(m, s, SPH_FORM_UPDATED);
     fused_prepare(m, s);
     struct sph_pair_src src;
     int rc;

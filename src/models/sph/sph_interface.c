@@ -133,7 +133,10 @@ int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct 
         for (size_t k = start; k < end; k++) {
             const size_t j = (size_t)nl->idx[k];
             if (iface_group(m, p, j) == gi) {
-                nl->idx[w++] = nl->idx[k];
+                /* inside a TLSPH body the pairs live in the reference list
+                 * (sph_tlsph.c): not in the current kernel list */
+                if (!m->form || m->form[i] == SPH_FORM_UPDATED)
+                    nl->idx[w++] = nl->idx[k];
                 continue;
             }
             double r2 = 0.0;

@@ -46,7 +46,9 @@ struct sph_options {
     bool variable_h;
     enum sph_plane plane;
     double skin;            /**< neighbour skin / h */
-    bool total_lagrangian;  /**< TLSPH (sph_tlsph.c) */
+    bool total_lagrangian;  /**< some (or every) body is TLSPH (sph_tlsph.c) */
+    bool split_forms;       /**< TLSPH bodies with interface: bodies: particles split
+                                 by formulation (m->form, sph_forms.c) */
     double hourglass;       /**< TLSPH hourglass coefficient kappa */
     bool wall;              /**< rigid half-space wall (penalty) */
     double wall_point[3], wall_normal[3]; /**< normal points into the body side */
@@ -145,7 +147,35 @@ struct model {
     double iface_energy;   /**< penalty energy [J] */
     size_t iface_pairs;    /**< pairs in contact at the last force evaluation */
     double iface_omega2;   /**< largest contact omega^2 (stable step) */
+    /* formulation per body (sph_forms.c) */
+    uint8_t *body_total;   /**< per deck body: 1 = TLSPH */
+    size_t n_bodies;
+    uint8_t *form;         /**< per particle SPH_FORM_*: a run whose bodies are split
+                                by formulation (NULL: one formulation, no split) */
+    size_t n_total;        /**< particles on TLSPH when form is set */
 };
+
+/** Formulation of a particle (m->form), and SPH_FORM_ALL for loops that
+ *  run over every particle of a mixed run. */
+enum { SPH_FORM_UPDATED = 0, SPH_FORM_TOTAL = 1, SPH_FORM_ALL = 2 };
+
+/** Particle i belongs to the other formulation than @p mine: the loops of
+ *  @p mine skip it.  Always false when the run has one formulation. */
+static inline bool sph_skip(const struct model *m, size_t i, int mine)
+{
+    return m->form && mine != SPH_FORM_ALL && m->form[i] != mine;
+}
+
+/* sph_forms.c */
+/** Formulation of every deck body: @p run_form (model.formulation) unless
+ *  model.body_formulation names the body (bodies[].name); *body_total has
+ *  *n_bodies entries (free it). */
+int sph_forms_parse(const struct deck_node *params, int run_form, uint8_t **body_total,
+                    size_t *n_bodies, struct spall_error *err);
+/** m->form of every particle from its body. */
+int sph_forms_init(struct model *m, struct sim *s, struct spall_error *err);
+/** Pairs in the TLSPH reference list (0: none). */
+size_t sph_tlsph_pairs(const struct model *m);
 
 /* sph_rates.c */
 /** (Re)build the neighbour list if particles moved more than half the skin. */
@@ -219,7 +249,7 @@ double sph_interface_stable_dt(const struct model *m);
 /** Leapfrog: advance rho, h, S (with the radial return) and the stress
  *  power part of e over @p dt with the velocity gradient L just computed
  *  from the half-step velocities; P from the new density. */
-void sph_leapfrog_advance(struct model *m, struct sim *s, double dt);
+void sph_leapfrog_advance(struct model *m, struct sim *s, double dt, int mine);
 
 /* sph_material.c */
 /** Pressure from the EOS (compression positive). */
@@ -237,8 +267,9 @@ double sph_yield_stress(const struct sph_material *mt, double ep, double epdot, 
 /** Rate factor of the yield (and stress-failure) stress: 1 + (epdot / D)^(1/q)
  *  with Cowper-Symonds, else 1. */
 double sph_rate_factor(const struct sph_material *mt, double epdot);
-/** Pressure of every particle; failed particles carry no tension. */
-void sph_update_pressure(struct model *m, struct sim *s);
+/** Pressure of every particle of formulation @p mine (SPH_FORM_*); failed
+ *  particles carry no tension. */
+void sph_update_pressure(struct model *m, struct sim *s, int mine);
 /** Jaumann stress rate of particle i from L (Eq. 3.28-3.30), and the plane-stress
  *  out-of-plane strain rate; also returns tr(D) (3D trace). */
 void sph_stress_rate(const struct model *m, size_t i, double *trD);

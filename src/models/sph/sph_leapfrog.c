@@ -51,13 +51,15 @@ static inline double stress_power(const struct model *m, size_t i, double P)
     return pw;
 }
 
-void sph_leapfrog_advance(struct model *m, struct sim *s, double dt)
+void sph_leapfrog_advance(struct model *m, struct sim *s, double dt, int mine)
 {
     const size_t n = s->p->n_owned;
     const int32_t *mat = s->p->material;
     const bool integ_rho = m->opt.density == SPH_DENSITY_CONTINUITY;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, mine))
+            continue;
         const struct sph_material *mt = &m->mat[mat[i]];
         double trD;
         sph_stress_rate(m, i, &trD); /* dS (Jaumann) and D_zz from L */

@@ -87,12 +87,14 @@ double sph_yield_stress(const struct sph_material *mt, double ep, double epdot, 
     return INFINITY;
 }
 
-void sph_update_pressure(struct model *m, struct sim *s)
+void sph_update_pressure(struct model *m, struct sim *s, int mine)
 {
     const size_t n = s->p->n_owned;
     const int32_t *mat = s->p->material;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, mine))
+            continue;
         const struct sph_material *mt = &m->mat[mat[i]];
         m->P[i] =
             sph_carried_pressure(mt, m->failed[i], sph_eos_pressure(mt, m->rho[i], m->e[i]));

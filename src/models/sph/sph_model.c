@@ -137,6 +137,8 @@ static void sph_destroy(struct model **pm)
     free(m->if_e);
     free(m->if_w);
     free(m->if_np);
+    free(m->body_total);
+    free(m->form);
     free(m->mat);
     sph_symmetry_destroy(&m->sym);
     sph_tlsph_destroy(&m->tl);
@@ -164,7 +166,8 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                        "formulation", "hourglass",
                                        "wall", "pair_loop", "symmetry",
                                        "cavity_depth", "time_integration", "interface",
-                                       "interface_stiffness", "interface_distance", "clamp", NULL};
+                                       "interface_stiffness", "interface_distance", "clamp",
+                                       "body_formulation", NULL};
     static const char *const ifaces[] = {"none", "bodies", "materials", NULL};
     *out = NULL;
     if (sim->dim < 2)
@@ -184,6 +187,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     o.iface_stiffness = 1.0;
     o.iface_distance = 1.0;
     bool adaptive = true;
+    int run_form = 0; /* model.formulation, before the per-body overrides */
     if (params) {
         int kern = 3, den = 0, pl = 1, form = 0, loop = 0, sym = 0, tint = 0, ifc = 0, rc;
         double av[2] = {o.av_a, o.av_b};
@@ -214,12 +218,36 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                               err)))
             return rc;
         o.iface = (enum sph_iface)ifc;
-        /* the ghosts of symmetry planes and the TLSPH reference list have
-         * their own neighbour lists, which the interface split does not see */
-        if (ifc && (sym || form == 1))
+        /* model.body_formulation (sph_forms.c): form becomes 1 when any
+         * body is TLSPH; a mixed run needs the interface between bodies */
+        uint8_t *body_total = NULL;
+        size_t n_bodies = 0;
+        if ((rc = sph_forms_parse(params, form, &body_total, &n_bodies, err)))
+            return rc;
+        bool any_total = false, all_total = true;
+        for (size_t k = 0; k < n_bodies; k++) {
+            any_total = any_total || body_total[k];
+            all_total = all_total && body_total[k];
+        }
+        free(body_total); /* parsed again into the model once it exists */
+        run_form = form;
+        if (any_total && !all_total && ifc != SPH_IFACE_BODIES)
+            return deck_error_key(err, params, "body_formulation",
+                                  "bodies of formulation total and updated must not share "
+                                  "kernel sums: this run mixes them, so it needs "
+                                  "interface: bodies (a penalty between bodies; now %s)",
+                                  ifaces[ifc]);
+        if (any_total && ifc == SPH_IFACE_MATERIALS)
             return deck_error_key(err, params, "interface",
-                                  "interface works with the updated formulation without "
-                                  "symmetry planes");
+                                  "formulation total takes interface: bodies, not materials "
+                                  "(its reference neighbours are kept per body)");
+        form = any_total ? 1 : 0;
+        o.split_forms = any_total && ifc == SPH_IFACE_BODIES;
+        /* the ghosts of symmetry planes have their own neighbour list,
+         * which the interface split does not see */
+        if (ifc && sym)
+            return deck_error_key(err, params, "interface",
+                                  "interface works without symmetry planes");
         o.leapfrog = tint == 1;
         /* the leapfrog advances the state between the gradient and the force
          * pass (sph_leapfrog.c): it needs the two-pass loops */
@@ -320,6 +348,13 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     m->clamp = clamp;
     m->sim = sim;
     m->opt = o;
+    if (o.split_forms) {
+        int rc = sph_forms_parse(params, run_form, &m->body_total, &m->n_bodies, err);
+        if (rc) {
+            sph_destroy(&m);
+            return rc;
+        }
+    }
     m->dim = sim->dim;
     m->alpha = sph_kernel_alpha(o.kernel, sim->dim);
     m->qmax = sph_kernel_support(o.kernel);
@@ -469,14 +504,23 @@ static int sph_init(struct model *m, struct sim *s, struct spall_error *err)
     int rc = m->clamp ? sph_clamp_init(m, s, err) : SPALL_OK;
     if (rc)
         return rc;
-    rc = m->opt.total_lagrangian ? sph_tlsph_init(m, s, err)
-                                 : sph_neighbors_update(m, s, true, err);
-    if (rc)
-        return rc;
+    if (m->opt.split_forms) {
+        /* bodies split by formulation (sph_forms.c): the TLSPH reference
+         * list, then the current list of the updated bodies and the
+         * interface */
+        if ((rc = sph_forms_init(m, s, err)) || (rc = sph_tlsph_init(m, s, err)) ||
+            (rc = sph_neighbors_update(m, s, true, err)))
+            return rc;
+    } else {
+        rc = m->opt.total_lagrangian ? sph_tlsph_init(m, s, err)
+                                     : sph_neighbors_update(m, s, true, err);
+        if (rc)
+            return rc;
+    }
     for (size_t i = 0; i < n; i++)
         for (int c = 0; c < 9; c++)
             m->Fdef[c][i] = (c % 4 == 0) ? 1.0 : 0.0;
-    sph_update_pressure(m, s);
+    sph_update_pressure(m, s, SPH_FORM_ALL);
     return SPALL_OK;
 }
 
@@ -703,10 +747,12 @@ static size_t sph_interactions(const struct model *m, const struct sim *sim)
 {
     /* rows of real particles only (with symmetry planes the list also
      * holds the ghosts' rows, which are never used) */
-    if (!m->nl)
-        return 0;
-    size_t n = sim->p->n_owned < m->nl->n ? sim->p->n_owned : m->nl->n;
-    return m->nl->offset[n] / 2;
+    size_t pairs = sph_tlsph_pairs(m); /* TLSPH reference list */
+    if (m->nl) {
+        size_t n = sim->p->n_owned < m->nl->n ? sim->p->n_owned : m->nl->n;
+        pairs += m->nl->offset[n];
+    }
+    return pairs / 2;
 }
 
 const struct model_ops sph_model_ops = {

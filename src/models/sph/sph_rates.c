@@ -143,6 +143,8 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
     if (summ) {
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; i++) {
+            if (sph_skip(m, i, SPH_FORM_UPDATED))
+                continue;
             double hi = m->h[i];
             double W0, F0;
             sph_kernel_eval(kern, alpha, 0.0, hi, pow(hi, dim), &W0, &F0);
@@ -167,6 +169,8 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
     }
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_UPDATED))
+            continue; /* a TLSPH particle of a mixed run (sph_forms.c) */
         double G[9] = {0}, B[9] = {0};
         const double hi = m->h[i];
         for (size_t k = off[i]; k < off[i + 1]; k++) {
@@ -305,6 +309,8 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_UPDATED))
+            continue;
         const double hi = m->h[i], rhoi = m->rho[i];
         const double ri2 = 1.0 / (rhoi * rhoi);
         double acc[3] = {0, 0, 0}, xv[3] = {0, 0, 0}, de = 0.0;
@@ -437,30 +443,14 @@ static void wall_forces(struct model *m, struct sim *s)
     memcpy(m->wall_force, ft, sizeof ft);
 }
 
-int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
+/* The updated form (fused or two-pass loops) on its particles. */
+static int updated_rates(struct model *m, struct sim *s, struct spall_error *err)
 {
     const size_t n = s->p->n_owned;
-    if (m->opt.total_lagrangian) {
-        int rc = sph_tlsph_rates(m, s, err);
-        if (!rc && m->opt.wall)
-            wall_forces(m, s);
-        return rc;
-    }
-    if (m->opt.plane == SPH_PLANE_AXISYMMETRIC) {
-        /* the wall's k is per ring mass and its force axial: as in 2D */
-        int rc = sph_axisym_rates(m, s, err);
-        if (!rc && m->opt.wall)
-            wall_forces(m, s);
-        return rc;
-    }
     /* no CSPM, continuity density: one fused pair loop (sph_fused.c) */
-    if (m->opt.symmetry[0] || m->opt.symmetry[1] || (!m->opt.cspm && m->opt.density == SPH_DENSITY_CONTINUITY &&
-                   !m->opt.split_pairs)) {
-        int rc = sph_rates_fused(m, s, err);
-        if (!rc && m->opt.wall)
-            wall_forces(m, s);
-        return rc;
-    }
+    if (m->opt.symmetry[0] || m->opt.symmetry[1] ||
+        (!m->opt.cspm && m->opt.density == SPH_DENSITY_CONTINUITY && !m->opt.split_pairs))
+        return sph_rates_fused(m, s, err);
     int rc = sph_neighbors_update(m, s, false, err);
     if (rc)
         return rc;
@@ -469,11 +459,13 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
     m->cspm_fallbacks += fb;
     const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L */
     if (lfdt > 0.0)
-        sph_leapfrog_advance(m, s, lfdt);
-    sph_update_pressure(m, s);
+        sph_leapfrog_advance(m, s, lfdt, SPH_FORM_UPDATED);
+    sph_update_pressure(m, s, SPH_FORM_UPDATED);
     const bool summ = m->opt.density == SPH_DENSITY_SUMMATION;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_UPDATED))
+            continue;
         double trD;
         sph_stress_rate(m, i, &trD);
         m->drho[i] = summ ? 0.0 : -m->rho[i] * trD; /* Eq. 3.18 */
@@ -495,10 +487,34 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
     if (lfdt > 0.0) {
         /* leapfrog: AV / AS heating of this step (the stress power is in) */
         for (size_t i = 0; i < n; i++)
-            m->e[i] += lfdt * m->de[i];
-        m->lf_dt = 0.0;
+            if (!sph_skip(m, i, SPH_FORM_UPDATED))
+                m->e[i] += lfdt * m->de[i];
     }
-    if (m->opt.wall)
-        wall_forces(m, s);
     return SPALL_OK;
+}
+
+int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
+{
+    int rc;
+    if (m->form) {
+        /* bodies split by formulation (sph_forms.c): TLSPH on its bodies,
+         * the updated form on the others (or only the current list, which
+         * also feeds the interface between the bodies) */
+        rc = sph_tlsph_rates(m, s, err);
+        if (!rc)
+            rc = m->n_total < s->p->n_owned ? updated_rates(m, s, err)
+                                            : sph_neighbors_update(m, s, false, err);
+        m->n_pairs = m->nl->offset[s->p->n_owned] + sph_tlsph_pairs(m);
+    } else if (m->opt.total_lagrangian) {
+        rc = sph_tlsph_rates(m, s, err);
+    } else if (m->opt.plane == SPH_PLANE_AXISYMMETRIC) {
+        /* the wall's k is per ring mass and its force axial: as in 2D */
+        rc = sph_axisym_rates(m, s, err);
+    } else {
+        rc = updated_rates(m, s, err);
+    }
+    m->lf_dt = 0.0; /* leapfrog: the state update of this step is done */
+    if (!rc && m->opt.wall)
+        wall_forces(m, s);
+    return rc;
 }

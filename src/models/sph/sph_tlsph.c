@@ -62,6 +62,7 @@ enum { TL_Q = 0, TL_FD = 9, TL_X = 18, TL_V = 21, TL_C = 24, TL_RHO, TL_H, TL_M,
        TL_X0 = 29, TL_STRIDE = 32 };
 
 struct sph_tl {
+    struct neighbor_list *nl; /**< reference-configuration list (fixed) */
     double *S0[3];        /**< sum_j G_ij (nonzero at surfaces) */
     double *pk;           /**< per particle, TL_STRIDE doubles (TL_Q ...) */
     struct tl_pair *pair; /**< per listed pair, same index as the neighbour list */
@@ -72,6 +73,7 @@ void sph_tlsph_destroy(struct sph_tl **tl)
     if (!tl || !*tl)
         return;
     struct sph_tl *t = *tl;
+    neighbor_list_destroy(&t->nl);
     free(t->pk);
     free(t->pair);
     for (int c = 0; c < 3; c++)
@@ -107,20 +109,38 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
     double hmax = 0.0;
     for (size_t i = 0; i < n; i++)
         hmax = fmax(hmax, m->h[i]);
-    neighbor_list_destroy(&m->nl);
     sph_tlsph_destroy(&m->tl);
     m->nl_radius = m->qmax * hmax;
     const double t0 = omp_get_wtime();
-    int rc = neighbor_list_build(&m->nl, dim, n, p->x0, m->nl_radius, err);
-    m->t_neighbor += omp_get_wtime() - t0;
+    struct neighbor_list *nl = NULL;
+    int rc = neighbor_list_build(&nl, dim, n, p->x0, m->nl_radius, err);
     if (rc)
         return rc;
+    if (m->form) {
+        /* bodies split by formulation (sph_forms.c): only the pairs inside
+         * one TLSPH body; the others' rows stay empty */
+        size_t w = 0, start = 0;
+        for (size_t i = 0; i < n; i++) {
+            const size_t end = nl->offset[i + 1];
+            for (size_t k = start; k < end && m->form[i] == SPH_FORM_TOTAL; k++) {
+                const size_t j = (size_t)nl->idx[k];
+                if (m->form[j] == SPH_FORM_TOTAL && p->body[j] == p->body[i])
+                    nl->idx[w++] = nl->idx[k];
+            }
+            start = end;
+            nl->offset[i + 1] = w;
+        }
+    }
+    m->t_neighbor += omp_get_wtime() - t0;
     m->n_builds = 1;
-    const size_t *off = m->nl->offset;
-    const int32_t *nb = m->nl->idx;
-    if ((rc = sph_tl_alloc(&m->tl, n, off[n], err)))
+    const size_t *off = nl->offset;
+    const int32_t *nb = nl->idx;
+    if ((rc = sph_tl_alloc(&m->tl, n, off[n], err))) {
+        neighbor_list_destroy(&nl);
         return rc;
+    }
     struct sph_tl *t = m->tl;
+    t->nl = nl;
     for (size_t i = 0; i < n; i++) {
         double *q = t->pk + i * TL_STRIDE;
         q[TL_VOL] = m->m2[i] / m->mat[p->material[i]].rho0;
@@ -132,6 +152,8 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
     size_t fallbacks = 0;
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_TOTAL))
+            continue;
         const double Ei = m->mat[p->material[i]].E;
         double B[9] = {0}, S0[3] = {0, 0, 0};
         for (size_t k = off[i]; k < off[i + 1]; k++) {
@@ -171,8 +193,8 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
 static inline int tl_deformation(struct model *m, size_t i, const int dim)
 {
     const struct sph_tl *t = m->tl;
-    const size_t *off = m->nl->offset;
-    const int32_t *nb = m->nl->idx;
+    const size_t *off = t->nl->offset;
+    const int32_t *nb = t->nl->idx;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
     double Ad[9] = {0}, Av[9] = {0};
     for (size_t k = off[i]; k < off[i + 1]; k++) {
@@ -234,8 +256,8 @@ static inline void tl_forces(struct model *m, struct particles *p, size_t i, dou
                              const int dim)
 {
     const struct sph_tl *t = m->tl;
-    const size_t *off = m->nl->offset;
-    const int32_t *nb = m->nl->idx;
+    const size_t *off = t->nl->offset;
+    const int32_t *nb = t->nl->idx;
     const double qa = m->opt.av_a, qb = m->opt.av_b;
     const bool av = qa > 0.0 || qb > 0.0;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
@@ -302,11 +324,13 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     struct particles *p = s->p;
     const size_t n = p->n_owned;
     const int dim = m->dim;
-    m->n_pairs = m->nl->offset[n];
-    int bad = 0;
     struct sph_tl *t = m->tl;
+    m->n_pairs = t->nl->offset[n];
+    int bad = 0;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_TOTAL))
+            continue;
         double *q = t->pk + i * TL_STRIDE;
         for (int d = 0; d < 3; d++) {
             q[TL_X + d] = d < dim ? p->x[d][i] : 0.0;
@@ -317,11 +341,13 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     if (dim == 3) {
 #pragma omp parallel for schedule(static) reduction(| : bad)
         for (size_t i = 0; i < n; i++)
-            bad |= tl_deformation(m, i, 3);
+            if (!sph_skip(m, i, SPH_FORM_TOTAL))
+                bad |= tl_deformation(m, i, 3);
     } else {
 #pragma omp parallel for schedule(static) reduction(| : bad)
         for (size_t i = 0; i < n; i++)
-            bad |= tl_deformation(m, i, 2);
+            if (!sph_skip(m, i, SPH_FORM_TOTAL))
+                bad |= tl_deformation(m, i, 2);
     }
     if (bad)
         return spall_error_set(err, SPALL_ERR_UNSTABLE,
@@ -329,11 +355,13 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
                                "t = %.6g s (det F <= 0)", s->t);
     const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L */
     if (lfdt > 0.0)
-        sph_leapfrog_advance(m, s, lfdt);
-    sph_update_pressure(m, s);
+        sph_leapfrog_advance(m, s, lfdt, SPH_FORM_TOTAL);
+    sph_update_pressure(m, s, SPH_FORM_TOTAL);
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_TOTAL))
+            continue;
         double trD;
         sph_stress_rate(m, i, &trD);
         m->drho[i] = -m->rho[i] * trD;
@@ -368,16 +396,23 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     if (dim == 3) {
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; i++)
-            tl_forces(m, p, i, wstress, 3);
+            if (!sph_skip(m, i, SPH_FORM_TOTAL))
+                tl_forces(m, p, i, wstress, 3);
     } else {
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; i++)
-            tl_forces(m, p, i, wstress, 2);
+            if (!sph_skip(m, i, SPH_FORM_TOTAL))
+                tl_forces(m, p, i, wstress, 2);
     }
     if (lfdt > 0.0) {
         for (size_t i = 0; i < n; i++)
-            m->e[i] += lfdt * m->de[i]; /* AV / hourglass heating */
-        m->lf_dt = 0.0;
+            if (!sph_skip(m, i, SPH_FORM_TOTAL))
+                m->e[i] += lfdt * m->de[i]; /* AV / hourglass heating */
     }
     return SPALL_OK;
+}
+
+size_t sph_tlsph_pairs(const struct model *m)
+{
+    return m->tl && m->tl->nl ? m->tl->nl->offset[m->tl->nl->n] : 0;
 }

@@ -1,0 +1,262 @@
+/**
+ * @file test_sph_forms.c
+ * @brief Formulation per body (sph_forms.c, `model.body_formulation`): an
+ *        updated-form block and a TLSPH block collide head-on through the
+ *        interface (momentum to round-off, energy within 1 %, no
+ *        interpenetration); every body marked total is the run-level
+ *        `formulation: total` bitwise; a TLSPH body that meets nothing
+ *        evolves bitwise as when it is alone; mixed runs without the
+ *        interface and unknown body names are refused.
+ */
+#include "core/particles.h"
+#include "core/sim.h"
+#include "models/sph/sph_internal.h"
+#include "spall/error.h"
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "tests/test_support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Body 0 `target`: soft block 10 x 10 mm (material a); body 1 `proj`:
+ * stiffer, denser block 6 x 6 mm, 2.5 mm above, at (vx, -50) m/s; dx =
+ * 1 mm, plane strain.  @p model_extra is appended to the model map. */
+static struct sim *two_bodies(const char *model_extra, double vx, double gap_y)
+{
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: sph, kernel: wendland, h_factor: 1.3, viscosity: [0.5, 0.2],\n"
+             "        plane: strain%s}\n"
+             "materials:\n"
+             "  a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"
+             "  b: {density: 2000, youngs_modulus: 1.0e8, poisson_ratio: 0.3}\n"
+             "lattice: {type: square, spacing: 1.0e-3}\n"
+             "geometry:\n"
+             "  g1: {box: {min: [0, 0], max: [0.010, 0.010]}}\n"
+             "  g2: {box: {min: [0.002, %g], max: [0.008, %g]}}\n"
+             "bodies:\n"
+             "  - {name: target, geometry: g1, material: a,\n"
+             "     lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0005]}}\n"
+             "  - {name: proj, geometry: g2, material: b,\n"
+             "     lattice: {spacing: 1.0e-3, origin: [0.0005, %g]}}\n"
+             "groups: {top: g2}\n"
+             "initial_velocity: [{group: top, value: [%g, -50]}]\n"
+             "run: {end_time: 2.4e-4}\n",
+             model_extra, 0.0115 + gap_y, 0.0175 + gap_y, 0.012 + gap_y, vx);
+    return test_build(yaml);
+}
+
+static void momentum(const struct sim *s, double P[2])
+{
+    P[0] = P[1] = 0.0;
+    for (size_t i = 0; i < s->p->n; i++)
+        for (int d = 0; d < 2; d++)
+            P[d] += s->p->mass[i] * s->p->v[d][i];
+}
+
+static double min_cross_distance(const struct sim *s)
+{
+    double best = INFINITY;
+    for (size_t i = 0; i < s->p->n; i++)
+        for (size_t j = i + 1; j < s->p->n; j++) {
+            if (s->p->body[i] == s->p->body[j])
+                continue;
+            double dx = s->p->x[0][i] - s->p->x[0][j], dy = s->p->x[1][i] - s->p->x[1][j];
+            best = fmin(best, sqrt(dx * dx + dy * dy));
+        }
+    return best;
+}
+
+static void test_mixed_head_on(void **state)
+{
+    (void)state;
+    struct sim *s = two_bodies(",\n        interface: bodies, body_formulation: {proj: total}",
+                               10.0, 0.0);
+    assert_non_null(s);
+    const struct model *m = s->model;
+    assert_non_null(m->form);
+    size_t n_tl = 0;
+    for (size_t i = 0; i < s->p->n; i++) {
+        assert_int_equal(m->form[i], s->p->body[i] == 1 ? SPH_FORM_TOTAL : SPH_FORM_UPDATED);
+        n_tl += m->form[i];
+    }
+    assert_int_equal(n_tl, 36);
+    struct spall_error err = {0};
+    double P0[2], P[2], dp = 0.0, dmin = INFINITY;
+    momentum(s, P0);
+    const double ke0 = s->energy.kinetic;
+    size_t maxpairs = 0;
+    while (!sim_done(s)) {
+        assert_int_equal(sim_step(s, &err), 0);
+        momentum(s, P);
+        for (int d = 0; d < 2; d++)
+            dp = fmax(dp, fabs(P[d] - P0[d]) / fabs(P0[1]));
+        dmin = fmin(dmin, min_cross_distance(s));
+        if (m->iface_pairs > maxpairs)
+            maxpairs = m->iface_pairs;
+    }
+    sim_update_energy(s);
+    const double de = s->energy.balance / ke0;
+    double mv = 0.0, mt = 0.0, jmin = INFINITY;
+    for (size_t i = 0; i < s->p->n; i++)
+        if (s->p->body[i] == 1) {
+            mv += s->p->mass[i] * s->p->v[1][i];
+            mt += s->p->mass[i];
+            jmin = fmin(jmin, m->Jdet[i]);
+        }
+    print_message("mixed updated/TLSPH head-on: |dP|/P0 %.3g, energy %.4g of KE0, min cross "
+                  "distance %.4g dx, TLSPH body v_y %.4g m/s, min det F %.4f, max pairs %zu\n",
+                  dp, de, dmin / 1e-3, mv / mt, jmin, maxpairs);
+    assert_true(maxpairs > 0);        /* the bodies met */
+    assert_true(dp < 1e-12);          /* every force pair equal and opposite */
+    assert_true(fabs(de) < 1e-2);     /* kinetic + internal + penalty */
+    assert_true(dmin > 0.8e-3);       /* overlap < 20 % of d = dx */
+    assert_true(mv / mt > -25.0);     /* the TLSPH block was stopped */
+    assert_true(jmin < 1.0 && jmin > 0.5); /* it was compressed: TLSPH F moved */
+    sim_destroy(&s);
+}
+
+/* Positions and velocities after the run. */
+static void final_state(struct sim *s, double *out, size_t n)
+{
+    struct spall_error err = {0};
+    while (!sim_done(s))
+        assert_int_equal(sim_step(s, &err), 0);
+    assert_int_equal(s->p->n * 4, n);
+    for (size_t i = 0; i < s->p->n; i++)
+        for (int d = 0; d < 2; d++) {
+            out[4 * i + d] = s->p->x[d][i];
+            out[4 * i + 2 + d] = s->p->v[d][i];
+        }
+}
+
+static void test_all_total_is_run_total(void **state)
+{
+    (void)state;
+    /* the two blocks glued through the kernel sums (no interface): the
+     * run-level TLSPH path, reached by either key */
+    struct sim *a = two_bodies(", formulation: total", 0.0, -1.5e-3);
+    struct sim *b = two_bodies(", body_formulation: {proj: total, target: total}", 0.0, -1.5e-3);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_null(b->model->form);
+    assert_true(b->model->opt.total_lagrangian);
+    const size_t n = a->p->n * 4;
+    double *xa = calloc(n, sizeof *xa), *xb = calloc(n, sizeof *xb);
+    final_state(a, xa, n);
+    final_state(b, xb, n);
+    assert_memory_equal(xa, xb, n * sizeof *xa);
+    /* with formulation: total, marking bodies updated splits the run */
+    sim_destroy(&b);
+    b = two_bodies(", formulation: total, interface: bodies, "
+                   "body_formulation: {target: updated}", 0.0, 0.0);
+    assert_non_null(b);
+    assert_non_null(b->model->form);
+    assert_int_equal(b->model->n_total, 36);
+    free(xa);
+    free(xb);
+    sim_destroy(&a);
+    sim_destroy(&b);
+}
+
+/* A TLSPH body that never meets the updated body (far apart, fixed dt)
+ * follows bitwise the same path as the same body alone in a TLSPH run:
+ * the split touches no TLSPH sum. */
+static void test_tlsph_body_unchanged(void **state)
+{
+    (void)state;
+    static const char *fmt =
+        "model: {type: sph, kernel: wendland, h_factor: 1.3, viscosity: [0.5, 0.2],\n"
+        "        plane: strain%s}\n"
+        "materials:\n"
+        "  a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"
+        "  b: {density: 2000, youngs_modulus: 1.0e8, poisson_ratio: 0.3}\n"
+        "lattice: {type: square, spacing: 1.0e-3}\n"
+        "bodies:\n"
+        "  - {name: proj, geometry: {box: {min: [0, 0], max: [0.006, 0.004]}}, material: b,\n"
+        "     lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0005]}}\n"
+        "%s"
+        "groups: {left: {box: {min: [0, 0], max: [0.002, 0.004]}}}\n"
+        "initial_velocity: [{group: left, value: [-20, 5]}]\n"
+        "run: {end_time: 1.0e-4, dt: 2.0e-7}\n";
+    char ya[2048], yb[2048];
+    snprintf(ya, sizeof ya, fmt, ", formulation: total", "");
+    snprintf(yb, sizeof yb, fmt, ", interface: bodies, body_formulation: {proj: total}",
+             "  - {name: far, geometry: {box: {min: [0.05, 0], max: [0.06, 0.01]}}, "
+             "material: a,\n     lattice: {spacing: 1.0e-3, origin: [0.0505, 0.0005]}}\n");
+    struct sim *a = test_build_ok(ya), *b = test_build_ok(yb);
+    assert_non_null(b->model->form);
+    struct spall_error err = {0};
+    while (!sim_done(a))
+        assert_int_equal(sim_step(a, &err), 0);
+    while (!sim_done(b))
+        assert_int_equal(sim_step(b, &err), 0);
+    assert_int_equal(a->step, b->step);
+    for (size_t i = 0; i < a->p->n; i++) {
+        assert_int_equal(b->p->body[i], 0);
+        for (int d = 0; d < 2; d++) {
+            assert_true(a->p->x[d][i] == b->p->x[d][i]);
+            assert_true(a->p->v[d][i] == b->p->v[d][i]);
+        }
+        assert_true(a->model->e[i] == b->model->e[i]);
+    }
+    sim_destroy(&a);
+    sim_destroy(&b);
+}
+
+static void expect_refused(const char *model_extra, const char *what)
+{
+    struct sim *s = NULL;
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: sph%s}\n"
+             "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
+             "lattice: {type: square, spacing: 1.0e-3}\n"
+             "bodies:\n"
+             "  - {name: one, geometry: {box: {min: [0, 0], max: [0.004, 0.004]}}, material: m,\n"
+             "     lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0005]}}\n"
+             "  - {name: two, geometry: {box: {min: [0, 0.006], max: [0.004, 0.01]}},\n"
+             "     material: m, lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0065]}}\n"
+             "run: {steps: 1}\n",
+             model_extra);
+    struct spall_error err = {0, ""};
+    int rc = vlat_build("t", yaml, &s, &err);
+    print_message("refused: %s\n", err.msg);
+    assert_int_not_equal(rc, 0);
+    assert_non_null(strstr(err.msg, what));
+    sim_destroy(&s);
+}
+
+static void test_refused(void **state)
+{
+    (void)state;
+    /* mixed without the interface: the message names the cause and the fix */
+    expect_refused(", body_formulation: {two: total}", "interface: bodies");
+    expect_refused(", interface: materials, body_formulation: {two: total}",
+                   "interface: bodies");
+    /* a body name no bodies[] entry has */
+    expect_refused(", interface: bodies, body_formulation: {three: total}", "'three'");
+    expect_refused(", interface: bodies, body_formulation: {two: lagrangian}", "lagrangian");
+    /* TLSPH is not axisymmetric (sph_axisym.c has its own loops) */
+    expect_refused(", interface: bodies, body_formulation: {two: total}, plane: axisymmetric",
+                   "axisymmetric");
+
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mixed_head_on),
+        cmocka_unit_test(test_all_total_is_run_total),
+        cmocka_unit_test(test_tlsph_body_unchanged),
+        cmocka_unit_test(test_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
