@@ -8,6 +8,7 @@
  *        evolves bitwise as when it is alone; mixed runs without the
  *        interface and unknown body names are refused.
  */
+#include "core/neighbor.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "models/sph/sph_internal.h"
@@ -211,6 +212,59 @@ static void test_tlsph_body_unchanged(void **state)
     sim_destroy(&b);
 }
 
+/* interface: materials with a TLSPH body: the updated target made of two
+ * bodies of one material stays one continuum (kernel pairs across them),
+ * the TLSPH body has no pair in the current kernel list and touches the
+ * target through the interface list only. */
+static void test_materials_split(void **state)
+{
+    (void)state;
+    static const char *yaml =
+        "model: {type: sph, plane: strain, interface: materials,\n"
+        "        body_formulation: {proj: total}}\n"
+        "materials:\n"
+        "  a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"
+        "  b: {density: 2000, youngs_modulus: 1.0e8, poisson_ratio: 0.3}\n"
+        "lattice: {type: square, spacing: 1.0e-3}\n"
+        "bodies:\n"
+        "  - {geometry: {box: {min: [0, 0], max: [0.01, 0.005]}}, material: a,\n"
+        "     lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0005]}}\n"
+        "  - {geometry: {box: {min: [0, 0.005], max: [0.01, 0.01]}}, material: a,\n"
+        "     lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0055]}}\n"
+        "  - {name: proj, geometry: {box: {min: [0.002, 0.0105], max: [0.008, 0.0145]}},\n"
+        "     material: b, lattice: {spacing: 1.0e-3, origin: [0.0005, 0.011]}}\n"
+        "run: {steps: 1}\n";
+    struct sim *s = test_build_ok(yaml);
+    struct model *m = s->model;
+    assert_non_null(m->form);
+    struct spall_error err = {0};
+    assert_int_equal(sph_neighbors_update(m, s, true, &err), 0);
+    size_t across = 0, with_tl = 0, iface_tl = 0, iface_other = 0;
+    for (size_t i = 0; i < s->p->n; i++) {
+        for (size_t k = m->nl->offset[i]; k < m->nl->offset[i + 1]; k++) {
+            size_t j = (size_t)m->nl->idx[k];
+            across += s->p->body[i] != s->p->body[j];
+            with_tl += m->form[i] || m->form[j];
+        }
+        for (size_t k = m->if_off[i]; k < m->if_off[i + 1]; k++) {
+            size_t j = (size_t)m->if_idx[k];
+            if (m->form[i] != m->form[j])
+                iface_tl++;
+            else
+                iface_other++;
+        }
+    }
+    print_message("materials split: %zu kernel pairs across the target bodies, %zu with "
+                  "TLSPH, %zu interface pairs TLSPH-target, %zu others, %zu reference pairs\n",
+                  across, with_tl, iface_tl, iface_other, sph_tlsph_pairs(m));
+    assert_true(across > 0);
+    assert_int_equal(with_tl, 0);
+    assert_true(iface_tl > 0);
+    assert_int_equal(iface_other, 0);
+    assert_true(sph_tlsph_pairs(m) > 0);
+    sim_destroy(&s);
+}
+
 static void expect_refused(const char *model_extra, const char *what)
 {
     struct sim *s = NULL;
@@ -239,8 +293,6 @@ static void test_refused(void **state)
     (void)state;
     /* mixed without the interface: the message names the cause and the fix */
     expect_refused(", body_formulation: {two: total}", "interface: bodies");
-    expect_refused(", interface: materials, body_formulation: {two: total}",
-                   "interface: bodies");
     /* a body name no bodies[] entry has */
     expect_refused(", interface: bodies, body_formulation: {three: total}", "'three'");
     expect_refused(", interface: bodies, body_formulation: {two: lagrangian}", "lagrangian");
@@ -256,6 +308,7 @@ int main(void)
         cmocka_unit_test(test_mixed_head_on),
         cmocka_unit_test(test_all_total_is_run_total),
         cmocka_unit_test(test_tlsph_body_unchanged),
+        cmocka_unit_test(test_materials_split),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -14,15 +14,19 @@
  * include target particles it later leaves.  So a run mixing the two
  * formulations needs `interface: bodies` (sph_interface.c): kernel sums
  * inside each body, a penalty between bodies; it is refused otherwise.
+ * `interface: materials` is accepted too (a graded target of several
+ * lattices of one material stays one continuum): the updated bodies then
+ * share sums per material, a TLSPH body still only with itself.
  *
  * How the split works (m->form, one byte per particle, NULL when every
  * particle has one formulation and no interface is asked for):
  *  - sph_tlsph_init keeps in the reference list only the pairs of one
  *    TLSPH body (same body, both total);
  *  - the current-configuration list (sph_rates.c) is built over all
- *    particles, and sph_interface_split moves pairs of different bodies
- *    into the penalty list, keeps the pairs inside an updated-form body and
- *    drops the pairs inside a TLSPH body (they live in the reference list);
+ *    particles, and sph_interface_split keeps the pairs inside an
+ *    updated-form body (material), drops the pairs inside a TLSPH body
+ *    (they live in the reference list) and moves every other pair to the
+ *    penalty list;
  *  - the updated-form loops (fused, two-pass, leapfrog, pressure) skip the
  *    TLSPH particles and the TLSPH loops skip the others: one predictable
  *    test per particle (not per pair), none at all when m->form is NULL.
@@ -32,8 +36,8 @@
  *
  * A run where every body ends up with one formulation is the plain run of
  * that formulation (no m->form, bitwise the same as `formulation:` alone)
- * unless `interface: bodies` is also given; TLSPH bodies with an interface
- * touch through the penalty like updated-form ones.
+ * unless an interface is also given; TLSPH bodies with an interface touch
+ * through the penalty like updated-form ones.
  */
 #include "models/sph/sph_internal.h"
 

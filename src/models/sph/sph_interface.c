@@ -132,12 +132,21 @@ int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct 
         const int32_t gi = iface_group(m, p, i);
         for (size_t k = start; k < end; k++) {
             const size_t j = (size_t)nl->idx[k];
-            if (iface_group(m, p, j) == gi) {
-                /* inside a TLSPH body the pairs live in the reference list
-                 * (sph_tlsph.c): not in the current kernel list */
-                if (!m->form || m->form[i] == SPH_FORM_UPDATED)
+            if (!m->form) {
+                if (iface_group(m, p, j) == gi) {
                     nl->idx[w++] = nl->idx[k];
-                continue;
+                    continue;
+                }
+            } else if (m->form[i] == m->form[j]) {
+                /* bodies split by formulation (sph_forms.c): a TLSPH body's
+                 * own pairs live in its reference list (sph_tlsph.c), not
+                 * here; the updated form keeps its groups' pairs */
+                if (m->form[i] == SPH_FORM_TOTAL && p->body[i] == p->body[j])
+                    continue;
+                if (m->form[i] == SPH_FORM_UPDATED && iface_group(m, p, j) == gi) {
+                    nl->idx[w++] = nl->idx[k];
+                    continue;
+                }
             }
             double r2 = 0.0;
             for (int d = 0; d < dim; d++) {

@@ -27,6 +27,9 @@
  *                                             predictor_corrector, Eqs. 3.35-3.37)
  *     formulation: updated | total            total: TLSPH (sph_tlsph.c), reference
  *                                             kernel, no AS/XSPH (default updated)
+ *     body_formulation: {name: updated | total}  per body (bodies[].name) override of
+ *                                             formulation (sph_forms.c); mixed runs need
+ *                                             interface: bodies | materials
  *     hourglass: kappa                        TLSPH hourglass coefficient (default 0.1)
  *     clamp: {group: g, point: [...], normal: [...]}
  *           mirrored clamp (sph_clamp.c): the fixed group g behind the plane
@@ -231,18 +234,13 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
         }
         free(body_total); /* parsed again into the model once it exists */
         run_form = form;
-        if (any_total && !all_total && ifc != SPH_IFACE_BODIES)
+        if (any_total && !all_total && ifc == SPH_IFACE_NONE)
             return deck_error_key(err, params, "body_formulation",
                                   "bodies of formulation total and updated must not share "
                                   "kernel sums: this run mixes them, so it needs "
-                                  "interface: bodies (a penalty between bodies; now %s)",
-                                  ifaces[ifc]);
-        if (any_total && ifc == SPH_IFACE_MATERIALS)
-            return deck_error_key(err, params, "interface",
-                                  "formulation total takes interface: bodies, not materials "
-                                  "(its reference neighbours are kept per body)");
+                                  "interface: bodies (or materials), a penalty between them");
         form = any_total ? 1 : 0;
-        o.split_forms = any_total && ifc == SPH_IFACE_BODIES;
+        o.split_forms = any_total && ifc != SPH_IFACE_NONE;
         /* the ghosts of symmetry planes have their own neighbour list,
          * which the interface split does not see */
         if (ifc && sym)
