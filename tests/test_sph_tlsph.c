@@ -97,11 +97,73 @@ static void test_bar_threads(void **state)
     assert_memory_equal(a, b, sizeof a);
 }
 
+/* det F guard: a TLSPH block whose positions are mapped by @p map (then
+ * one step) stops with a message naming particle @p who and @p what. */
+static void guard_case(const char *extra, int map, const char *who, const char *what)
+{
+    char yaml[1024];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: sph, plane: strain, formulation: total%s}\n"
+             "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
+             "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
+             "body: {geometry: {box: {min: [0, 0], max: [0.006, 0.006]}}, material: m}\n"
+             "run: {steps: 5}\n",
+             extra);
+    struct sim *s = test_build_ok(yaml);
+    struct spall_error err = {0, ""};
+    for (size_t i = 0; i < s->p->n; i++) {
+        double *x = &s->p->x[0][i], *y = &s->p->x[1][i];
+        if (map == 0) /* uniform compression to 30 % in x: det F = 0.3 */
+            *x *= 0.3;
+        else if (map == 1) /* simple shear gamma = 10: distortion (2 + 100)/2 = 51 */
+            *x += 10.0 * *y;
+        else if (map == 2) /* mirrored: det F = -1 */
+            *x = -*x;
+    }
+    int rc = 0;
+    while (!rc && !sim_done(s))
+        rc = sim_step(s, &err);
+    print_message("guard: %s\n", err.msg);
+    assert_int_equal(rc, SPALL_ERR_UNSTABLE);
+    assert_non_null(strstr(err.msg, who));
+    assert_non_null(strstr(err.msg, what));
+    sim_destroy(&s);
+}
+
+static void test_det_f_guard(void **state)
+{
+    (void)state;
+    guard_case(", det_f_range: [0.5, 2]", 0, "particle 0 ", "outside det_f_range [0.5, 2]");
+    guard_case(", max_distortion: 20", 1, "particle 0 ", "distortion 51");
+    guard_case("", 2, "particle 0 ", "inverted or singular (det F = -1");
+    /* defaults: det F 0.3 and distortion 51 run on */
+    for (int map = 0; map < 2; map++) {
+        char yaml[1024];
+        snprintf(yaml, sizeof yaml,
+                 "model: {type: sph, plane: strain, formulation: total}\n"
+                 "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
+                 "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
+                 "body: {geometry: {box: {min: [0, 0], max: [0.006, 0.006]}}, material: m}\n"
+                 "run: {steps: 1}\n");
+        struct sim *s = test_build_ok(yaml);
+        for (size_t i = 0; i < s->p->n; i++) {
+            if (map == 0)
+                s->p->x[0][i] *= 0.3;
+            else
+                s->p->x[0][i] += 10.0 * s->p->x[1][i];
+        }
+        struct spall_error err = {0, ""};
+        assert_int_equal(sim_step(s, &err), 0);
+        sim_destroy(&s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_free_block_conservation),
         cmocka_unit_test(test_bar_threads),
+        cmocka_unit_test(test_det_f_guard),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -30,6 +30,13 @@ enum sph_failure { SPH_FAIL_NONE, SPH_FAIL_STRESS, SPH_FAIL_PLASTIC_STRAIN };
  *  sums inside each body / material and a penalty between them. */
 enum sph_iface { SPH_IFACE_NONE, SPH_IFACE_BODIES, SPH_IFACE_MATERIALS };
 
+/** Defaults of the TLSPH det F guard (model.det_f_range, max_distortion;
+ *  sph_tlsph.c).  MACHDYN deletes particles outside 0.2 < det F < 2; these
+ *  only stop a run whose reference configuration is no longer usable. */
+#define SPH_DET_F_MIN 0.1
+#define SPH_DET_F_MAX 10.0
+#define SPH_MAX_DISTORTION 100.0
+
 /** Stress / tensor component order (symmetric): xx yy zz xy yz xz. */
 enum { SXX, SYY, SZZ, SXY, SYZ, SXZ };
 
@@ -50,6 +57,8 @@ struct sph_options {
     bool split_forms;       /**< TLSPH bodies with interface: bodies: particles split
                                  by formulation (m->form, sph_forms.c) */
     double hourglass;       /**< TLSPH hourglass coefficient kappa */
+    double det_f_range[2];  /**< TLSPH guard: det F outside stops the run */
+    double max_distortion;  /**< TLSPH guard: (|F|^2/dim)/J^(2/dim) above stops the run */
     bool wall;              /**< rigid half-space wall (penalty) */
     double wall_point[3], wall_normal[3]; /**< normal points into the body side */
     double wall_stiffness;  /**< penalty k = factor m (c/dx)^2 */
@@ -153,6 +162,7 @@ struct model {
     uint8_t *form;         /**< per particle SPH_FORM_*: a run whose bodies are split
                                 by formulation (NULL: one formulation, no split) */
     size_t n_total;        /**< particles on TLSPH when form is set */
+    double tl_jmin, tl_kmax; /**< TLSPH: smallest det F, largest distortion (last step) */
 };
 
 /** Formulation of a particle (m->form), and SPH_FORM_ALL for loops that

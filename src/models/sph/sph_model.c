@@ -31,6 +31,9 @@
  *                                             formulation (sph_forms.c); mixed runs need
  *                                             interface: bodies | materials
  *     hourglass: kappa                        TLSPH hourglass coefficient (default 0.1)
+ *     det_f_range: [lo, hi]                   TLSPH guard: a particle's det F outside stops
+ *                                             the run, naming it (default [0.1, 10])
+ *     max_distortion: k                       TLSPH guard on (|F|^2/dim)/J^(2/dim) (default 100)
  *     clamp: {group: g, point: [...], normal: [...]}
  *           mirrored clamp (sph_clamp.c): the fixed group g behind the plane
  *           takes -v and the stress of its mirror images during force calls
@@ -170,7 +173,8 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                        "wall", "pair_loop", "symmetry",
                                        "cavity_depth", "time_integration", "interface",
                                        "interface_stiffness", "interface_distance", "clamp",
-                                       "body_formulation", NULL};
+                                       "body_formulation", "det_f_range", "max_distortion",
+                                       NULL};
     static const char *const ifaces[] = {"none", "bodies", "materials", NULL};
     *out = NULL;
     if (sim->dim < 2)
@@ -187,6 +191,9 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     o.skin = 0.2;
     o.wall_stiffness = 1.0;
     o.hourglass = 0.1;
+    o.det_f_range[0] = SPH_DET_F_MIN;
+    o.det_f_range[1] = SPH_DET_F_MAX;
+    o.max_distortion = SPH_MAX_DISTORTION;
     o.iface_stiffness = 1.0;
     o.iface_distance = 1.0;
     bool adaptive = true;
@@ -209,6 +216,9 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_bool(params, "adaptive_dt", false, &adaptive, err)) ||
             (rc = deck_enum(params, "formulation", false, forms, &form, err)) ||
             (rc = deck_double(params, "hourglass", false, 0.0, 10.0, &o.hourglass, err)) ||
+            (rc = deck_vector(params, "det_f_range", false, 2, 2, o.det_f_range, err)) ||
+            (rc = deck_double(params, "max_distortion", false, 1.0, INFINITY, &o.max_distortion,
+                              err)) ||
             (rc = deck_enum(params, "pair_loop", false, loops, &loop, err)) ||
             (rc = deck_enum(params, "symmetry", false, syms, &sym, err)) ||
             (rc = deck_double(params, "cavity_depth", false, 0.0, INFINITY, &o.cavity_depth,
@@ -221,6 +231,10 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                               err)))
             return rc;
         o.iface = (enum sph_iface)ifc;
+        if (!(o.det_f_range[0] >= 0.0 && o.det_f_range[0] < 1.0 && o.det_f_range[1] > 1.0))
+            return deck_error_key(err, params, "det_f_range",
+                                  "det_f_range [%g, %g]; expected [lo, hi] with 0 <= lo < 1 < hi",
+                                  o.det_f_range[0], o.det_f_range[1]);
         /* model.body_formulation (sph_forms.c): form becomes 1 when any
          * body is TLSPH; a mixed run needs the interface between bodies */
         uint8_t *body_total = NULL;
@@ -710,6 +724,12 @@ static size_t sph_history(const struct model *m, const struct sim *sim, const ch
                                     m->wall_force[1] * m->opt.wall_normal[1] +
                                     m->wall_force[2] * m->opt.wall_normal[2]
                               : 0.0;
+    if (m->opt.total_lagrangian) {
+        names[k] = "min_det_F";
+        values[k++] = m->tl_jmin;
+        names[k] = "max_F_distortion";
+        values[k++] = m->tl_kmax;
+    }
     if (m->opt.iface != SPH_IFACE_NONE) {
         names[k] = "interface_pairs";
         values[k++] = (double)m->iface_pairs;

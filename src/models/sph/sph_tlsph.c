@@ -43,6 +43,8 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -189,8 +191,22 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
     return SPALL_OK;
 }
 
-/* Pass 1 for particle i: F, dF/dt, L (dimension a literal at the call). */
-static inline int tl_deformation(struct model *m, size_t i, const int dim)
+/* Distortion of F: (|F|^2 / dim) / J^(2/dim) >= 1, = 1 exactly for a
+ * rotation times an isotropic scaling (no shape change), (l^2 + l^-2)/2 for
+ * a 2D isochoric stretch l; plane strain uses the in-plane block. */
+static inline double tl_distortion(const double F[9], double J, int dim)
+{
+    double f2 = 0.0;
+    for (int a = 0; a < dim; a++)
+        for (int b = 0; b < dim; b++)
+            f2 += F[a * 3 + b] * F[a * 3 + b];
+    return dim == 2 ? f2 / (2.0 * J) : f2 / (3.0 * cbrt(J * J));
+}
+
+/* Pass 1 for particle i: F, dF/dt, L (dimension a literal at the call);
+ * *kap: the distortion of F (tl_distortion).  Returns 1 when F is singular
+ * or inverted (Jdet then holds the bad det F, Finv and L use F = I). */
+static inline int tl_deformation(struct model *m, size_t i, const int dim, double *kap)
 {
     const struct sph_tl *t = m->tl;
     const size_t *off = t->nl->offset;
@@ -227,14 +243,14 @@ static inline int tl_deformation(struct model *m, size_t i, const int dim)
     if (dim == 2)
         Fd[8] = 1.0;
     double Fi[9];
-    double J = sph_inverse(dim, Fd, Fi);
+    const double J = sph_inverse(dim, Fd, Fi);
     int bad = 0;
     if (!(J > 0.0) || !isfinite(J)) {
         bad = 1;
-        J = 1.0;
         for (int c = 0; c < 9; c++)
             Fi[c] = (c % 4 == 0) ? 1.0 : 0.0;
     }
+    *kap = bad ? INFINITY : tl_distortion(Fd, J, dim);
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) {
             double acc = 0.0;
@@ -249,6 +265,45 @@ static inline int tl_deformation(struct model *m, size_t i, const int dim)
     }
     m->Jdet[i] = J;
     return bad;
+}
+
+/* det F guard: the run stops at the first (lowest-index) TLSPH particle
+ * whose F is inverted (det F <= 0), whose det F leaves model.det_f_range or
+ * whose distortion exceeds model.max_distortion, naming the particle: past
+ * that the reference configuration no longer describes its neighbourhood
+ * (the fixed list of a TLSPH body cannot follow large shear or mixing). */
+static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, int dim,
+                          struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    double F[9];
+    for (int c = 0; c < 9; c++)
+        F[c] = m->Fdef[c][i];
+    const double J = m->Jdet[i];
+    const bool inv = !(J > 0.0) || !isfinite(J);
+    const double kap = inv ? INFINITY : tl_distortion(F, J, dim);
+    char why[160];
+    if (inv)
+        snprintf(why, sizeof why, "is inverted or singular (det F = %.4g <= 0)", J);
+    else if (J < m->opt.det_f_range[0] || J > m->opt.det_f_range[1])
+        snprintf(why, sizeof why, "has det F = %.4g outside det_f_range [%g, %g]", J,
+                 m->opt.det_f_range[0], m->opt.det_f_range[1]);
+    else
+        snprintf(why, sizeof why, "has distortion %.4g above max_distortion %g (det F = %.4g)",
+                 kap, m->opt.max_distortion, J);
+    char xs[128];
+    if (dim == 3)
+        snprintf(xs, sizeof xs, "(%.6g, %.6g, %.6g) m, now at (%.6g, %.6g, %.6g) m", p->x0[0][i],
+                 p->x0[1][i], p->x0[2][i], p->x[0][i], p->x[1][i], p->x[2][i]);
+    else
+        snprintf(xs, sizeof xs, "(%.6g, %.6g) m, now at (%.6g, %.6g) m", p->x0[0][i],
+                 p->x0[1][i], p->x[0][i], p->x[1][i]);
+    return spall_error_set(err, SPALL_ERR_UNSTABLE,
+                           "TLSPH: the deformation gradient of particle %zu (body %d, reference "
+                           "position %s) %s at t = %.6g s, step %ld; its reference "
+                           "neighbourhood no longer describes it (finer dx, a larger "
+                           "hourglass, or the updated formulation for this body)",
+                           i, (int)p->body[i], xs, why, s->t, s->step);
 }
 
 /* Pass 2 for particle i: force, internal energy rate (dimension literal). */
@@ -326,7 +381,6 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     const int dim = m->dim;
     struct sph_tl *t = m->tl;
     m->n_pairs = t->nl->offset[n];
-    int bad = 0;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         if (sph_skip(m, i, SPH_FORM_TOTAL))
@@ -337,22 +391,28 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
             q[TL_V + d] = d < dim ? p->v[d][i] : 0.0;
         }
     }
-    /* pass 1: F, dF/dt, L = dF F^-1 of the current state */
-    if (dim == 3) {
-#pragma omp parallel for schedule(static) reduction(| : bad)
-        for (size_t i = 0; i < n; i++)
-            if (!sph_skip(m, i, SPH_FORM_TOTAL))
-                bad |= tl_deformation(m, i, 3);
-    } else {
-#pragma omp parallel for schedule(static) reduction(| : bad)
-        for (size_t i = 0; i < n; i++)
-            if (!sph_skip(m, i, SPH_FORM_TOTAL))
-                bad |= tl_deformation(m, i, 2);
+    /* pass 1: F, dF/dt, L = dF F^-1 of the current state, and the det F
+     * guard (first offender: min reduction, thread independent) */
+    const double jlo = m->opt.det_f_range[0], jhi = m->opt.det_f_range[1];
+    const double klim = m->opt.max_distortion;
+    size_t first = SIZE_MAX;
+    double jmin = INFINITY, kmax = 1.0;
+#pragma omp parallel for schedule(static) reduction(min : first, jmin) reduction(max : kmax)
+    for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_TOTAL))
+            continue;
+        double kap;
+        const int b = dim == 3 ? tl_deformation(m, i, 3, &kap) : tl_deformation(m, i, 2, &kap);
+        const double J = m->Jdet[i];
+        if (b || J < jlo || J > jhi || kap > klim)
+            first = i < first ? i : first;
+        jmin = J < jmin ? J : jmin;
+        kmax = kap > kmax ? kap : kmax;
     }
-    if (bad)
-        return spall_error_set(err, SPALL_ERR_UNSTABLE,
-                               "TLSPH: a deformation gradient became singular or inverted at "
-                               "t = %.6g s (det F <= 0)", s->t);
+    m->tl_jmin = jmin;
+    m->tl_kmax = kmax;
+    if (first != SIZE_MAX)
+        return tl_guard_error(m, s, first, dim, err);
     const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L */
     if (lfdt > 0.0)
         sph_leapfrog_advance(m, s, lfdt, SPH_FORM_TOTAL);
