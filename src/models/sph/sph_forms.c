@@ -141,3 +141,14 @@ int sph_forms_init(struct model *m, struct sim *s, struct spall_error *err)
     }
     return SPALL_OK;
 }
+
+void sph_forms_describe(const struct model *m, const struct sim *s, char *buf, size_t len)
+{
+    size_t off = (size_t)snprintf(buf, len, "  formulation per body (TLSPH %zu of %zu particles):",
+                                  m->n_total, s->p->n_owned);
+    for (size_t k = 0; k < m->n_bodies && off < len; k++)
+        off += (size_t)snprintf(buf + off, len - off, "%s body %zu %s", k ? "," : "", k,
+                                m->body_total[k] ? "total" : "updated");
+    if (off < len)
+        snprintf(buf + off, len - off, "\n");
+}

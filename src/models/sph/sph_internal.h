@@ -184,6 +184,8 @@ int sph_forms_parse(const struct deck_node *params, int run_form, uint8_t **body
                     size_t *n_bodies, struct spall_error *err);
 /** m->form of every particle from its body. */
 int sph_forms_init(struct model *m, struct sim *s, struct spall_error *err);
+/** One run-log line: the formulation of every body and the particle counts. */
+void sph_forms_describe(const struct model *m, const struct sim *s, char *buf, size_t len);
 /** Pairs in the TLSPH reference list (0: none). */
 size_t sph_tlsph_pairs(const struct model *m);
 

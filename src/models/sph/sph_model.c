@@ -759,6 +759,8 @@ static void sph_describe(const struct model *m, const struct sim *sim, char *buf
                                 k, mt->E, mt->nu, mt->K, mt->G,
                                 sph_sound_speed(mt, mt->rho0, 0.0));
     }
+    if (m->form && off < len)
+        sph_forms_describe(m, sim, buf + off, len - off);
 }
 
 static size_t sph_interactions(const struct model *m, const struct sim *sim)
