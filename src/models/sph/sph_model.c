@@ -585,26 +585,43 @@ static int sph_advance_state(struct model *m, struct sim *sim, double dt, int st
         }
         return SPALL_OK;
     }
+    /* One loop per group of a few arrays instead of one loop over all ~40:
+     * the hardware prefetchers follow a handful of streams, not forty (the
+     * loops were 6x slower per particle once the state left the cache).
+     * Each value gets the same operations as before: bitwise the same. */
     if (stage == 0) {
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; i++) {
             m->rho_n[i] = m->rho[i];
-            m->e_n[i] = m->e[i];
             m->drho_n[i] = m->drho[i];
+            if (integ_rho)
+                m->rho[i] += dt * m->drho[i];
+        }
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            m->e_n[i] = m->e[i];
             m->de_n[i] = m->de[i];
-            if (vh) {
+            m->e[i] += dt * m->de[i];
+        }
+        if (vh) {
+#pragma omp parallel for schedule(static)
+            for (size_t i = 0; i < n; i++) {
                 m->h_n[i] = m->h[i];
                 m->dh_n[i] = m->dh[i];
                 m->h[i] += dt * m->dh[i];
             }
-            if (integ_rho)
-                m->rho[i] += dt * m->drho[i];
-            m->e[i] += dt * m->de[i];
-            for (int c = 0; c < 6; c++) {
-                m->S_n[c][i] = m->S[c][i];
-                m->dS_n[c][i] = m->dS[c][i];
-                m->S[c][i] += dt * m->dS[c][i];
+        }
+        for (int c = 0; c < 6; c++) {
+            double *S = m->S[c], *dS = m->dS[c], *S_n = m->S_n[c], *dS_n = m->dS_n[c];
+#pragma omp parallel for schedule(static)
+            for (size_t i = 0; i < n; i++) {
+                S_n[i] = S[i];
+                dS_n[i] = dS[i];
+                S[i] += dt * dS[i];
             }
+        }
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
             sph_plastic_return(m, i, dt, false);
             if (xsph && !m->pinned[i])
                 for (int d = 0; d < sim->dim; d++)
@@ -620,10 +637,16 @@ static int sph_advance_state(struct model *m, struct sim *sim, double dt, int st
         m->e[i] = m->e_n[i] + hdt * (m->de_n[i] + m->de[i]);
         if (vh)
             m->h[i] = m->h_n[i] + hdt * (m->dh_n[i] + m->dh[i]);
-        for (int c = 0; c < 6; c++)
-            m->S[c][i] = m->S_n[c][i] + hdt * (m->dS_n[c][i] + m->dS[c][i]);
-        sph_plastic_return(m, i, dt, true);
     }
+    for (int c = 0; c < 6; c++) {
+        double *S = m->S[c], *dS = m->dS[c], *S_n = m->S_n[c], *dS_n = m->dS_n[c];
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++)
+            S[i] = S_n[i] + hdt * (dS_n[i] + dS[i]);
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        sph_plastic_return(m, i, dt, true);
     return SPALL_OK;
 }
 
