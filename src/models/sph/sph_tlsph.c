@@ -344,30 +344,53 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
         m->e[i] += lfdt * m->de[i]; /* leapfrog: AV / hourglass heating */
 }
 
-/* One thread's share [lo, hi) of both stages, software-pipelined: stage 2
- * of particle i needs stage 1 done for every partner j, and |j - i| <= b
- * (t->band; the lattice order keeps b at a few layers), so stage 2 runs b
- * particles behind stage 1 while those partners' blocks are still in
- * cache -- one sweep over the particle data per step instead of five.
- * Particles whose partners reach into another thread's share (within b of
- * lo or hi) wait for the barrier.  Every particle does the same arithmetic
- * in the same order as with the stages run one after the other
- * (model.pair_loop: split): bitwise the same result. */
+/* Stage 0 for particle i: its current x, v into its packed block. */
+static inline void tl_pack(struct sph_tl *t, const struct particles *p, size_t i, const int dim)
+{
+    double *q = t->pk + i * TL_STRIDE;
+    for (int d = 0; d < 3; d++) {
+        q[TL_X + d] = d < dim ? p->x[d][i] : 0.0;
+        q[TL_V + d] = d < dim ? p->v[d][i] : 0.0;
+    }
+}
+
+/* One thread's share [lo, hi) of the three stages, software-pipelined:
+ * stage 1 of particle k needs stage 0 (x, v packed) of every partner j,
+ * stage 2 of i needs stage 1 of every partner, and |j - i| <= b (t->band;
+ * the lattice order keeps b at a few layers).  So the sweep packs b
+ * particles ahead of stage 1 and runs stage 2 b particles behind it, while
+ * those blocks are still in cache: one pass over the particle data per
+ * force call instead of five.  What a neighbouring thread's share reads (b
+ * particles at each end) is packed before a barrier; stage 2 of the
+ * particles within b of lo or hi waits for a second one.  Every particle
+ * does the same arithmetic as with the stages run one after the other
+ * (model.pair_loop: split, b = n): bitwise the same result. */
 static int tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, size_t hi,
                     double lfdt, bool pipelined, const int dim)
 {
-    const size_t b = pipelined ? m->tl->band : n;
-    /* stage 2 of i may run during the sweep when [i - b, i + b] stays in [lo, hi)
-     * or runs past the ends of the particle range */
+    struct sph_tl *t = m->tl;
+    const size_t b = pipelined ? t->band : n;
+    /* stage 0 in the sweep for [plo, phi), before it for the rest */
+    const size_t plo = lo + b < hi ? lo + b : hi, phi = hi > b && hi - b > plo ? hi - b : plo;
+    for (size_t i = lo; i < plo; i++)
+        tl_pack(t, p, i, dim);
+    for (size_t i = phi; i < hi; i++)
+        tl_pack(t, p, i, dim);
+#pragma omp barrier
+    /* stage 2 in the sweep for [clo, chi): partners [i - b, i + b] inside
+     * [lo, hi) or past the ends of the particle range */
     const size_t clo = lo == 0 ? 0 : lo + b, chi = hi == n ? n : (hi > b ? hi - b : 0);
     int bad = 0;
     for (size_t k = lo; k < hi; k++) {
+        if (k + b < phi)
+            tl_pack(t, p, k + b, dim);
         bad |= tl_stage_deform(m, k, lfdt, dim);
         if (k >= b && k - b >= clo && k - b < chi)
             tl_stage_forces(m, p, k - b, lfdt, dim);
     }
-    /* the tail whose partners end at n */
-    for (size_t i = (hi > b ? hi - b : 0) > clo ? (hi > b ? hi - b : 0) : clo; i < chi; i++)
+    /* those whose partners end at n (last share): stage 1 is complete */
+    const size_t tail = hi > b && hi - b > clo ? hi - b : clo;
+    for (size_t i = tail; i < chi; i++)
         tl_stage_forces(m, p, i, lfdt, dim);
 #pragma omp barrier
     for (size_t i = lo; i < hi; i++)
@@ -383,17 +406,8 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     const int dim = m->dim;
     m->n_pairs = m->nl->offset[n];
     int bad = 0;
-    struct sph_tl *t = m->tl;
     const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L */
     const bool pipelined = !m->opt.tl_split;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++) {
-        double *q = t->pk + i * TL_STRIDE;
-        for (int d = 0; d < 3; d++) {
-            q[TL_X + d] = d < dim ? p->x[d][i] : 0.0;
-            q[TL_V + d] = d < dim ? p->v[d][i] : 0.0;
-        }
-    }
 #pragma omp parallel reduction(| : bad)
     {
         const size_t nt = (size_t)omp_get_num_threads(), id = (size_t)omp_get_thread_num();
