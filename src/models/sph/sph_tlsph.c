@@ -61,10 +61,13 @@ struct tl_pair {
 enum { TL_Q = 0, TL_FD = 9, TL_X = 18, TL_V = 21, TL_C = 24, TL_RHO, TL_H, TL_M, TL_VOL,
        TL_X0 = 29, TL_STRIDE = 32 };
 
+/* What only particle i itself reads, one block instead of 13 arrays (13
+ * streams in the sweep): B0^-1, S0 = sum_j G_ij, the stress power P : dF/dt. */
+enum { TL_BI = 0, TL_S0 = 9, TL_PW = 12, TL_SELF = 16 };
+
 struct sph_tl {
-    double *S0[3];        /**< sum_j G_ij (nonzero at surfaces) */
+    double *self;         /**< per particle, TL_SELF doubles: B0^-1, S0, P : dF/dt */
     double *pk;           /**< per particle, TL_STRIDE doubles (TL_Q ...) */
-    double *pw;           /**< per particle: P_i : dF_i/dt (stress power / V0_i) */
     struct tl_pair *pair; /**< per listed pair, same index as the neighbour list */
     size_t band;          /**< max |j - i| over the list: the pipeline's lag */
 };
@@ -75,10 +78,8 @@ void sph_tlsph_destroy(struct sph_tl **tl)
         return;
     struct sph_tl *t = *tl;
     free(t->pk);
-    free(t->pw);
     free(t->pair);
-    for (int c = 0; c < 3; c++)
-        free(t->S0[c]);
+    free(t->self);
     free(t);
     *tl = NULL;
 }
@@ -90,10 +91,8 @@ static int sph_tl_alloc(struct sph_tl **out, size_t n, size_t np, struct spall_e
     if (t) {
         const size_t nn = n ? n : 1, pp = np ? np : 1;
         bad |= !(t->pk = calloc(nn * TL_STRIDE, sizeof(double)));
-        bad |= !(t->pw = calloc(nn, sizeof(double)));
+        bad |= !(t->self = calloc(nn * TL_SELF, sizeof(double)));
         bad |= !(t->pair = calloc(pp, sizeof *t->pair));
-        for (int c = 0; c < 3; c++)
-            bad |= !(t->S0[c] = calloc(nn, sizeof(double)));
     }
     *out = t;
     if (bad) {
@@ -170,9 +169,9 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
         else
             fallbacks++;
         for (int c = 0; c < 9; c++)
-            m->Bi[c][i] = Bi[c];
+            m->Bi[c][i] = t->self[i * TL_SELF + TL_BI + c] = Bi[c];
         for (int d = 0; d < 3; d++)
-            t->S0[d][i] = S0[d];
+            t->self[i * TL_SELF + TL_S0 + d] = S0[d];
     }
     m->cspm_fallbacks += fallbacks;
     return SPALL_OK;
@@ -209,7 +208,7 @@ static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const 
     }
     double Bi[9];
     for (int c = 0; c < 9; c++)
-        Bi[c] = m->Bi[c][i];
+        Bi[c] = t->self[i * TL_SELF + TL_BI + c];
     double Fd[9] = {0}, Fdot[9] = {0};
     for (int a = 0; a < dim; a++)
         for (int b = 0; b < dim; b++) {
@@ -274,7 +273,7 @@ static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const 
     for (int a = 0; a < dim; a++)
         for (int b = 0; b < dim; b++)
             pw += PK[a * 3 + b] * Fdot[a * 3 + b];
-    t->pw[i] = pw;
+    t->self[i * TL_SELF + TL_PW] = pw;
     return bad;
 }
 
@@ -331,12 +330,12 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
     for (int a = 0; a < dim; a++) {
         double qs = 0.0;
         for (int b = 0; b < dim; b++)
-            qs += qi[TL_Q + a * 3 + b] * t->S0[b][i];
+            qs += qi[TL_Q + a * 3 + b] * t->self[i * TL_SELF + TL_S0 + b];
         acc[a] += Vi * (fs[a] + qs);
     }
     /* stress power V0_i P_i : dF_i/dt (the leapfrog books it itself) */
     if (!(lfdt > 0.0))
-        de += Vi * t->pw[i];
+        de += Vi * t->self[i * TL_SELF + TL_PW];
     for (int a = 0; a < dim; a++)
         p->f[a][i] += p->mass[i] / mi * acc[a];
     m->de[i] = de / mi;
