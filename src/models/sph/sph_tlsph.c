@@ -33,6 +33,14 @@
  * so a pair costs two 3x3 products (Q_j G_ij and the hourglass F X_ij)
  * instead of four plus two kernel evaluations.  Every sum still gathers
  * over particle i's full row in list order: bitwise thread independent.
+ *
+ * Memory traffic (the race bar's state, ~30 MB, outgrows the cache): one
+ * force call is one sweep over the particles (tl_sweep) that packs x, v,
+ * runs stage 1 (F, L and the whole per-particle material update, with F,
+ * dF/dt, F^-1 and PK1 in registers) and stage 2 (forces) with lags of the
+ * list's index band b, so a partner's block is reused while cached; the
+ * per-particle data live in two blocks (pk, self) instead of separate
+ * arrays.  docs/performance.md has the measured effect of each step.
  */
 #include "models/sph/sph_internal.h"
 
@@ -244,8 +252,7 @@ static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const 
     sph_update_pressure_one(m, i);
     double trD;
     sph_stress_rate(m, i, &trD);
-    m->drho[i] = -m->rho[i] * trD;
-    m->dh[i] = 0.0;
+    m->drho[i] = -m->rho[i] * trD; /* dh stays 0 (allocated zero): h is fixed */
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
     double PK[9];
     for (int a = 0; a < 3; a++)
