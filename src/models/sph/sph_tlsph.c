@@ -293,7 +293,6 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
     const double qa = m->opt.av_a, qb = m->opt.av_b;
-    const bool av = qa > 0.0 || qb > 0.0;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
     const double Vi = qi[TL_VOL], mi = qi[TL_M], hi = qi[TL_H], ci = qi[TL_C], rhoi = qi[TL_RHO];
     double fs[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, de = 0.0;
@@ -310,13 +309,18 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
             cr2 += xij[d] * xij[d];
             vx += xij[d] * vij[d];
         }
-        double Pi = 0.0;
-        if (vx < 0.0 && av) {
-            const double hb = 0.5 * (hi + qj[TL_H]);
-            const double mu = hb * vx / (cr2 + 0.01 * hb * hb);
-            const double cb = 0.5 * (ci + qj[TL_C]);
-            Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + qj[TL_RHO]));
-        }
+        const double hb = 0.5 * (hi + qj[TL_H]);
+        const double mu = hb * vx / (cr2 + 0.01 * hb * hb);
+        const double cb = 0.5 * (ci + qj[TL_C]);
+        const double Pv = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + qj[TL_RHO]));
+        /* Pi = vx < 0 ? Pv : +0, as a bit mask: the sign of v_ij . x_ij is a
+         * coin toss in a bar moving as a whole, and the compiler turns a
+         * select back into a branch (mispredicted half the time) */
+        uint64_t pb;
+        memcpy(&pb, &Pv, sizeof pb);
+        pb &= (uint64_t)0 - (uint64_t)(vx < 0.0);
+        double Pi;
+        memcpy(&Pi, &pb, sizeof Pi);
         const double cav = -mi * qj[TL_M] * Pi * F;
         for (int a = 0; a < dim; a++) {
             double tj = 0.0, fx = 0.0;
