@@ -295,7 +295,7 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
     const double qa = m->opt.av_a, qb = m->opt.av_b;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
     const double Vi = qi[TL_VOL], mi = qi[TL_M], hi = qi[TL_H], ci = qi[TL_C], rhoi = qi[TL_RHO];
-    double fs[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, de = 0.0;
+    double fs[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, fv = 0.0;
     for (size_t k = off[i]; k < off[i + 1]; k++) {
         const struct tl_pair *pr = &t->pair[k];
         const double *qj = pk + (size_t)nb[k] * TL_STRIDE;
@@ -334,9 +334,12 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
              * -Pi F x_ij does negative work for any rotation */
             const double fo = cav * xij[a] + hg * (0.5 * fx - xij[a]);
             acc[a] += fo;
-            de -= 0.5 * fo * vij[a];
+            fv += fo * vij[a];
         }
     }
+    /* heating -1/2 sum f_ij . v_ij; the 1/2 outside the sum is exact
+     * (scaling by 2^-1 commutes with rounding): bitwise the per-pair form */
+    double de = 0.0 - 0.5 * fv;
     /* P_i g_i summed over the row: Q_i S0_i */
     for (int a = 0; a < dim; a++) {
         double qs = 0.0;
