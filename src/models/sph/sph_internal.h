@@ -121,6 +121,7 @@ struct model {
     double *wp;            /**< plastic work per particle [J] */
     double *Fdef[9], *Fdot[9], *Finv[9], *PK[9]; /**< TLSPH: F, dF/dt, F^-1, PK1 */
     double *Jdet;          /**< TLSPH: det F */
+    double *axl, *axl_s;   /**< axisymmetric: axis weight lambda and its sweep scratch (sph_axisym.c) */
     double wall_energy;    /**< penalty energy [J] */
     double wall_force[3];  /**< total wall force [N] */
     double surface_z;      /**< axisymmetric: initial top surface (cavity depth origin) */
