@@ -270,7 +270,10 @@ static void axis_weight_sweep(struct model *m, struct sim *s, const double *lin,
             }
         }
         const double hoop = 1.0 / (rhoi * Ri), den = a + d + hoop;
-        lout[i] = (images && den > 0.5 * hoop) ? (a + b - hoop - g) / den : 0.0;
+        double l = (images && den > 0.5 * hoop) ? (a + b - hoop - g) / den : 0.0;
+        /* bounded for sparse, disordered supports (lattice: -0.56 at most);
+         * any value keeps the conservation */
+        lout[i] = fmin(fmax(l, -1.0), 1.0);
     }
 }
 
