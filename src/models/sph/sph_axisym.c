@@ -216,8 +216,8 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
  * first ring, 3e-5 on the second (measured, square lattice, h = 1.3 dx);
  * between builds AXIS_WARM sweeps from the previous step's weights follow
  * the slowly moving particles (9 sweeps every step cost +53 % CPU on the
- * gelatin case).  The weights only set the consistency: any value, and
- * any history, keeps the conservation exact. */
+ * gelatin case, this +7 %).  The weights only set the consistency: any
+ * value, and any history, keeps the conservation exact. */
 #define AXIS_SWEEPS 9
 #define AXIS_WARM 2
 
