@@ -132,7 +132,7 @@ struct model {
     struct neighbor_list *nl;
     double nl_radius;
     size_t n_builds;
-    size_t axl_builds;     /**< axisymmetric: n_builds when the axis weights were last solved in full */
+    size_t axl_builds;     /**< axisymmetric: n_builds when the axis weights were last solved */
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
