@@ -214,8 +214,9 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
 /* Jacobi sweeps of the axis weights, solved from 0 after each
  * neighbour-list build and kept until the next: 9 sweeps leave a residual
  * of 1.2e-4 of the hoop term on the first ring, 3e-5 on the second
- * (measured, square lattice, h = 1.3 dx), and cost nothing measurable.
- * (Solving every step cost +53 % CPU on the gelatin case; 2 sweeps a step
+ * (measured, square lattice, h = 1.3 dx).  (Solving every step cost
+ * +53 % CPU on the gelatin case, this schedule +6-7 % per step against
+ * the former form, docs/sph.md; 2 sweeps a step
  * warm-started from the previous weights, +7 %, let the iteration run
  * away on the deformed axis of the deformable-sphere case: blow-up at
  * 44 ns.)  A particle whose weight still moved by more than AXIS_TOL in
