@@ -120,6 +120,7 @@ struct model {
     double *xv[3];         /**< XSPH velocity correction */
     double *x_build[3];    /**< positions at the last neighbour build */
     double *wp;            /**< plastic work per particle [J] */
+    double *axl, *axl_s;   /**< axisymmetric: axis weight lambda and its sweep scratch (sph_axisym.c) */
     double wall_energy;    /**< penalty energy [J] */
     double wall_force[3];  /**< total wall force [N] */
     double surface_z;      /**< axisymmetric: initial top surface (cavity depth origin) */
@@ -130,6 +131,7 @@ struct model {
     struct neighbor_list *nl;
     double nl_radius;
     size_t n_builds;
+    size_t axl_builds;     /**< axisymmetric: n_builds when the axis weights were last solved */
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;

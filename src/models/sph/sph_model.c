@@ -108,6 +108,8 @@ static size_t sph_arrays(struct model *m, double **a[SPH_N_ARRAYS])
         a[k++] = &m->L[c];
         a[k++] = &m->Bi[c];
     }
+    a[k++] = &m->axl;
+    a[k++] = &m->axl_s;
     for (int c = 0; c < 3; c++) {
         a[k++] = &m->xv[c];
         a[k++] = &m->x_build[c];
