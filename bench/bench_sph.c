@@ -121,11 +121,11 @@ static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *f
 }
 
 static int sph_taylor_case(const char *name, const char *form, double hf, double qa, double qb,
-                           int threads, double scale, struct bench_result *out,
+                           const char *extra, int threads, double scale, struct bench_result *out,
                            struct spall_error *err)
 {
     char yaml[2048];
-    sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, qa, qb, 200, "");
+    sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, qa, qb, 200, extra);
     double nb_share = 0.0;
     size_t builds = 0;
     double t_setup = 0.0, cpu = 0.0;
@@ -146,7 +146,8 @@ static int sph_taylor_case(const char *name, const char *form, double hf, double
 static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
                             struct spall_error *err)
 {
-    return sph_taylor_case("sph_taylor_cu", "updated", 1.5, 1.0, 1.0, threads, scale, out, err);
+    return sph_taylor_case("sph_taylor_cu", "updated", 1.5, 1.0, 1.0, "", threads, scale, out,
+                           err);
 }
 
 /* The LAMMPS MACHDYN race at a matched neighbour count: MACHDYN's TLSPH
@@ -157,8 +158,19 @@ static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
 static int bench_sph_taylor_tl(int threads, double scale, struct bench_result *out,
                                struct spall_error *err)
 {
-    return sph_taylor_case("sph_taylor_cu_tl", "total", 1.005, 1.0, 1.0, threads, scale, out,
+    return sph_taylor_case("sph_taylor_cu_tl", "total", 1.005, 1.0, 1.0, "", threads, scale, out,
                            err);
+}
+
+/* the same with the TLSPH stages run one after the other over all
+ * particles (pair_loop: split) instead of pipelined in one sweep
+ * (sph_tlsph.c): same arithmetic, bitwise the same result; what the
+ * pipeline's cache reuse is worth */
+static int bench_sph_taylor_tl_split(int threads, double scale, struct bench_result *out,
+                                     struct spall_error *err)
+{
+    return sph_taylor_case("sph_taylor_cu_tl_split", "total", 1.005, 1.0, 1.0,
+                           " pair_loop: split,", threads, scale, out, err);
 }
 
 /* The race's accuracy half: the bar run to rest (80 us, adaptive dt),
@@ -212,8 +224,8 @@ static int bench_sph_taylor_rest_lf(int threads, double scale, struct bench_resu
 static int bench_sph_taylor_ul32(int threads, double scale, struct bench_result *out,
                                  struct spall_error *err)
 {
-    return sph_taylor_case("sph_taylor_cu_ul32", "updated", 1.005, 1.0, 1.0, threads, scale, out,
-                           err);
+    return sph_taylor_case("sph_taylor_cu_ul32", "updated", 1.005, 1.0, 1.0, "", threads, scale,
+                           out, err);
 }
 
 /* 2D plane strain: the two rubber rings of validation/sph_rings.c (Gray
@@ -260,6 +272,8 @@ const struct bench_case bench_sph_cases[] = {
      bench_sph_taylor},
     {"sph_taylor_cu_tl", "3D copper Taylor bar, total-Lagrangian, support 2.01 dx (32 neighbours, "
      "the MACHDYN count), 200 steps", bench_sph_taylor_tl},
+    {"sph_taylor_cu_tl_split", "sph_taylor_cu_tl with the TLSPH stages one after the other "
+     "(pair_loop: split), not pipelined", bench_sph_taylor_tl_split},
     {"sph_taylor_cu_rest", "the sph_taylor_cu_tl bar run to rest (80 us): final length and "
      "radius", bench_sph_taylor_rest},
     {"sph_taylor_cu_rest_lf", "the sph_taylor_cu_rest bar, leapfrog (plain dt limit), hourglass 1",

@@ -200,8 +200,9 @@ static void test_kinematic_expansion_stresses(void **state)
  * bar speed sqrt(E / rho) (Poisson contraction free, an axisymmetric
  * result: plane strain would give sqrt(E / ((1 - nu^2) rho)), 4.8 % faster
  * at nu = 0.3).  First kinetic energy minimum at T/4, T = 2 L / c_bar
- * (measured +3.4 % with 6 particles across the radius: later local minima
- * are higher modes' wiggles, so only the first is used). */
+ * (measured +0.20 % with 6 particles across the diameter, +3.4 % before
+ * the adjoint form of sph_axisym.c: later local minima are higher modes'
+ * wiggles, so only the first is used). */
 static void test_rod_bar_speed(void **state)
 {
     (void)state;
@@ -232,7 +233,7 @@ static void test_rod_bar_speed(void **state)
     double T = 4.0 * tmin[0], Tbar = 2.0 * L / sqrt(E / rho);
     print_message("rod: period %.5g s, bar theory %.5g s (%.2f %%)\n", T, Tbar,
                   100.0 * (T / Tbar - 1.0));
-    assert_true(fabs(T / Tbar - 1.0) < 0.05);
+    assert_true(fabs(T / Tbar - 1.0) < 0.02);
     sim_destroy(&s);
 }
 

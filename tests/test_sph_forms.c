@@ -109,8 +109,8 @@ static void run_head_on(const char *label, const char *model_extra, size_t n_tl_
         if (s->p->body[i] == 1) {
             mv += s->p->mass[i] * s->p->v[1][i];
             mt += s->p->mass[i];
-            jmin = fmin(jmin, m->Jdet[i]);
         }
+    jmin = m->tl_jmin; /* smallest det F of the TLSPH block, last step */
     print_message("%s: |dP|/P0 %.3g, energy %.4g of KE0, min cross distance %.4g dx, "
                   "TLSPH block v_y %.4g m/s, min det F %.4f, max pairs %zu, %ld steps\n",
                   label, dp, de, dmin / 1e-3, mv / mt, jmin, maxpairs, s->step);

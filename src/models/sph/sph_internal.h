@@ -63,6 +63,7 @@ struct sph_options {
     double wall_point[3], wall_normal[3]; /**< normal points into the body side */
     double wall_stiffness;  /**< penalty k = factor m (c/dx)^2 */
     bool split_pairs;       /**< force the two-pass loops of sph_rates.c (verification) */
+    bool tl_split;          /**< TLSPH: stages one after the other, not pipelined (verification) */
     bool symmetry[3];       /**< mirror plane x_d = 0 (ghost particles, sph_symmetry.c) */
     double cavity_depth;    /**< axisymmetric: depth of the cavity-diameter history (0: off) */
     bool leapfrog;          /**< staggered leapfrog state update (sph_leapfrog.c) */
@@ -130,8 +131,7 @@ struct model {
     double *xv[3];         /**< XSPH velocity correction */
     double *x_build[3];    /**< positions at the last neighbour build */
     double *wp;            /**< plastic work per particle [J] */
-    double *Fdef[9], *Fdot[9], *Finv[9], *PK[9]; /**< TLSPH: F, dF/dt, F^-1, PK1 */
-    double *Jdet;          /**< TLSPH: det F */
+    double *axl, *axl_s;   /**< axisymmetric: axis weight lambda and its sweep scratch (sph_axisym.c) */
     double wall_energy;    /**< penalty energy [J] */
     double wall_force[3];  /**< total wall force [N] */
     double surface_z;      /**< axisymmetric: initial top surface (cavity depth origin) */
@@ -142,6 +142,7 @@ struct model {
     struct neighbor_list *nl;
     double nl_radius;
     size_t n_builds;
+    size_t axl_builds;     /**< axisymmetric: n_builds when the axis weights were last solved */
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
@@ -262,6 +263,8 @@ double sph_interface_stable_dt(const struct model *m);
  *  power part of e over @p dt with the velocity gradient L just computed
  *  from the half-step velocities; P from the new density. */
 void sph_leapfrog_advance(struct model *m, struct sim *s, double dt, int mine);
+/** The same for particle i alone (the fused TLSPH pass, sph_tlsph.c). */
+void sph_leapfrog_advance_one(struct model *m, size_t i, double dt);
 
 /* sph_material.c */
 /** Pressure from the EOS (compression positive). */
@@ -282,6 +285,8 @@ double sph_rate_factor(const struct sph_material *mt, double epdot);
 /** Pressure of every particle of formulation @p mine (SPH_FORM_*); failed
  *  particles carry no tension. */
 void sph_update_pressure(struct model *m, struct sim *s, int mine);
+/** Pressure and sound speed of particle i (what sph_update_pressure does per particle). */
+void sph_update_pressure_one(struct model *m, size_t i);
 /** Jaumann stress rate of particle i from L (Eq. 3.28-3.30), and the plane-stress
  *  out-of-plane strain rate; also returns tr(D) (3D trace). */
 void sph_stress_rate(const struct model *m, size_t i, double *trD);

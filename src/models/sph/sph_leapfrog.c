@@ -51,32 +51,34 @@ static inline double stress_power(const struct model *m, size_t i, double P)
     return pw;
 }
 
+void sph_leapfrog_advance_one(struct model *m, size_t i, double dt)
+{
+    const struct sph_material *mt = &m->mat[m->sim->p->material[i]];
+    const bool integ_rho = m->opt.density == SPH_DENSITY_CONTINUITY;
+    double trD;
+    sph_stress_rate(m, i, &trD); /* dS (Jaumann) and D_zz from L */
+    const double rho0 = m->rho[i];
+    const double pw0 = stress_power(m, i, m->P[i]);
+    if (integ_rho)
+        m->rho[i] = rho0 * (1.0 - dt * trD); /* Eq. 3.18 */
+    if (m->opt.variable_h) {
+        double trp = m->L[0][i] + m->L[4][i] + (m->dim == 3 ? m->L[8][i] : 0.0);
+        m->h[i] += dt * m->h[i] * trp / m->dim;
+    }
+    for (int c = 0; c < 6; c++)
+        m->S[c][i] += dt * m->dS[c][i];
+    sph_plastic_return(m, i, dt, true);
+    const double P =
+        sph_carried_pressure(mt, m->failed[i], sph_eos_pressure(mt, m->rho[i], m->e[i]));
+    const double pw1 = stress_power(m, i, P);
+    m->e[i] += dt * 0.5 * (pw0 + pw1) / (0.5 * (rho0 + m->rho[i]));
+}
+
 void sph_leapfrog_advance(struct model *m, struct sim *s, double dt, int mine)
 {
     const size_t n = s->p->n_owned;
-    const int32_t *mat = s->p->material;
-    const bool integ_rho = m->opt.density == SPH_DENSITY_CONTINUITY;
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++) {
-        if (sph_skip(m, i, mine))
-            continue;
-        const struct sph_material *mt = &m->mat[mat[i]];
-        double trD;
-        sph_stress_rate(m, i, &trD); /* dS (Jaumann) and D_zz from L */
-        const double rho0 = m->rho[i];
-        const double pw0 = stress_power(m, i, m->P[i]);
-        if (integ_rho)
-            m->rho[i] = rho0 * (1.0 - dt * trD); /* Eq. 3.18 */
-        if (m->opt.variable_h) {
-            double trp = m->L[0][i] + m->L[4][i] + (m->dim == 3 ? m->L[8][i] : 0.0);
-            m->h[i] += dt * m->h[i] * trp / m->dim;
-        }
-        for (int c = 0; c < 6; c++)
-            m->S[c][i] += dt * m->dS[c][i];
-        sph_plastic_return(m, i, dt, true);
-        const double P =
-            sph_carried_pressure(mt, m->failed[i], sph_eos_pressure(mt, m->rho[i], m->e[i]));
-        const double pw1 = stress_power(m, i, P);
-        m->e[i] += dt * 0.5 * (pw0 + pw1) / (0.5 * (rho0 + m->rho[i]));
-    }
+    for (size_t i = 0; i < n; i++)
+        if (!sph_skip(m, i, mine))
+            sph_leapfrog_advance_one(m, i, dt);
 }

@@ -87,19 +87,20 @@ double sph_yield_stress(const struct sph_material *mt, double ep, double epdot, 
     return INFINITY;
 }
 
+void sph_update_pressure_one(struct model *m, size_t i)
+{
+    const struct sph_material *mt = &m->mat[m->sim->p->material[i]];
+    m->P[i] = sph_carried_pressure(mt, m->failed[i], sph_eos_pressure(mt, m->rho[i], m->e[i]));
+    m->c[i] = sph_sound_speed(mt, m->rho[i], m->e[i]);
+}
+
 void sph_update_pressure(struct model *m, struct sim *s, int mine)
 {
     const size_t n = s->p->n_owned;
-    const int32_t *mat = s->p->material;
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++) {
-        if (sph_skip(m, i, mine))
-            continue;
-        const struct sph_material *mt = &m->mat[mat[i]];
-        m->P[i] =
-            sph_carried_pressure(mt, m->failed[i], sph_eos_pressure(mt, m->rho[i], m->e[i]));
-        m->c[i] = sph_sound_speed(mt, m->rho[i], m->e[i]);
-    }
+    for (size_t i = 0; i < n; i++)
+        if (!sph_skip(m, i, mine))
+            sph_update_pressure_one(m, i);
 }
 
 void sph_stress_rate(const struct model *m, size_t i, double *trD)

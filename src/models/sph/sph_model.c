@@ -75,7 +75,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SPH_N_ARRAYS 140
+#define SPH_N_ARRAYS 104
 
 /* Every per-particle double array of the model, for allocation and freeing. */
 static size_t sph_arrays(struct model *m, double **a[SPH_N_ARRAYS])
@@ -113,12 +113,9 @@ static size_t sph_arrays(struct model *m, double **a[SPH_N_ARRAYS])
     for (int c = 0; c < 9; c++) {
         a[k++] = &m->L[c];
         a[k++] = &m->Bi[c];
-        a[k++] = &m->Fdef[c];
-        a[k++] = &m->Fdot[c];
-        a[k++] = &m->Finv[c];
-        a[k++] = &m->PK[c];
     }
-    a[k++] = &m->Jdet;
+    a[k++] = &m->axl;
+    a[k++] = &m->axl_s;
     for (int c = 0; c < 3; c++) {
         a[k++] = &m->xv[c];
         a[k++] = &m->x_build[c];
@@ -264,6 +261,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
         /* the leapfrog advances the state between the gradient and the force
          * pass (sph_leapfrog.c): it needs the two-pass loops */
         o.split_pairs = loop == 1 || o.leapfrog;
+        o.tl_split = loop == 1;
         /* the smoothing of R sits between the passes of sph_rates.c */
         if (o.as_smooth && (sym || pl == 2))
             return deck_error_key(err, params, "artificial_stress_smoothing",
@@ -529,9 +527,6 @@ static int sph_init(struct model *m, struct sim *s, struct spall_error *err)
         if (rc)
             return rc;
     }
-    for (size_t i = 0; i < n; i++)
-        for (int c = 0; c < 9; c++)
-            m->Fdef[c][i] = (c % 4 == 0) ? 1.0 : 0.0;
     sph_update_pressure(m, s, SPH_FORM_ALL);
     return SPALL_OK;
 }
@@ -632,37 +627,61 @@ static int sph_advance_state(struct model *m, struct sim *sim, double dt, int st
     struct particles *p = sim->p;
     const size_t n = p->n_owned;
     const bool integ_rho = m->opt.density == SPH_DENSITY_CONTINUITY;
+    /* Streams that hold exact zeros are skipped (the state loops are bound
+     * by memory traffic once the state outgrows the cache): without
+     * variable_h every rate path sets dh = 0, so h_n = h and h stays put;
+     * without XSPH (xsph = 0) the drift xv is 0 * sum = 0. */
+    const bool vh = m->opt.variable_h, xsph = m->opt.xsph > 0.0;
     if (m->opt.leapfrog) {
         /* sph_leapfrog.c: the force call advances the state with this dt */
         if (stage == 0) {
             m->lf_dt = dt;
-            for (size_t i = 0; i < n; i++)
+            for (size_t i = 0; i < n && xsph; i++)
                 if (!m->pinned[i])
                     for (int d = 0; d < sim->dim; d++)
                         p->x[d][i] += dt * m->xv[d][i]; /* XSPH */
         }
         return SPALL_OK;
     }
+    /* One loop per group of a few arrays instead of one loop over all ~40:
+     * the hardware prefetchers follow a handful of streams, not forty (the
+     * loops were 6x slower per particle once the state left the cache).
+     * Each value gets the same operations as before: bitwise the same. */
     if (stage == 0) {
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; i++) {
             m->rho_n[i] = m->rho[i];
-            m->e_n[i] = m->e[i];
-            m->h_n[i] = m->h[i];
             m->drho_n[i] = m->drho[i];
-            m->de_n[i] = m->de[i];
-            m->dh_n[i] = m->dh[i];
             if (integ_rho)
                 m->rho[i] += dt * m->drho[i];
+        }
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            m->e_n[i] = m->e[i];
+            m->de_n[i] = m->de[i];
             m->e[i] += dt * m->de[i];
-            m->h[i] += dt * m->dh[i];
-            for (int c = 0; c < 6; c++) {
-                m->S_n[c][i] = m->S[c][i];
-                m->dS_n[c][i] = m->dS[c][i];
-                m->S[c][i] += dt * m->dS[c][i];
+        }
+        if (vh) {
+#pragma omp parallel for schedule(static)
+            for (size_t i = 0; i < n; i++) {
+                m->h_n[i] = m->h[i];
+                m->dh_n[i] = m->dh[i];
+                m->h[i] += dt * m->dh[i];
             }
+        }
+        for (int c = 0; c < 6; c++) {
+            double *S = m->S[c], *dS = m->dS[c], *S_n = m->S_n[c], *dS_n = m->dS_n[c];
+#pragma omp parallel for schedule(static)
+            for (size_t i = 0; i < n; i++) {
+                S_n[i] = S[i];
+                dS_n[i] = dS[i];
+                S[i] += dt * dS[i];
+            }
+        }
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
             sph_plastic_return(m, i, dt, false);
-            if (!m->pinned[i])
+            if (xsph && !m->pinned[i])
                 for (int d = 0; d < sim->dim; d++)
                     p->x[d][i] += dt * m->xv[d][i]; /* XSPH: particles move with v + xv */
         }
@@ -674,11 +693,18 @@ static int sph_advance_state(struct model *m, struct sim *sim, double dt, int st
         if (integ_rho)
             m->rho[i] = m->rho_n[i] + hdt * (m->drho_n[i] + m->drho[i]);
         m->e[i] = m->e_n[i] + hdt * (m->de_n[i] + m->de[i]);
-        m->h[i] = m->h_n[i] + hdt * (m->dh_n[i] + m->dh[i]);
-        for (int c = 0; c < 6; c++)
-            m->S[c][i] = m->S_n[c][i] + hdt * (m->dS_n[c][i] + m->dS[c][i]);
-        sph_plastic_return(m, i, dt, true);
+        if (vh)
+            m->h[i] = m->h_n[i] + hdt * (m->dh_n[i] + m->dh[i]);
     }
+    for (int c = 0; c < 6; c++) {
+        double *S = m->S[c], *dS = m->dS[c], *S_n = m->S_n[c], *dS_n = m->dS_n[c];
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++)
+            S[i] = S_n[i] + hdt * (dS_n[i] + dS[i]);
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        sph_plastic_return(m, i, dt, true);
     return SPALL_OK;
 }
 

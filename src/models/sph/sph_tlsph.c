@@ -33,6 +33,14 @@
  * so a pair costs two 3x3 products (Q_j G_ij and the hourglass F X_ij)
  * instead of four plus two kernel evaluations.  Every sum still gathers
  * over particle i's full row in list order: bitwise thread independent.
+ *
+ * Memory traffic (the race bar's state, ~30 MB, outgrows the cache): one
+ * force call is one sweep over the particles (tl_sweep) that packs x, v,
+ * runs stage 1 (F, L and the whole per-particle material update, with F,
+ * dF/dt, F^-1 and PK1 in registers) and stage 2 (forces) with lags of the
+ * list's index band b, so a partner's block is reused while cached; the
+ * per-particle data live in two blocks (pk, self) instead of separate
+ * arrays.  docs/performance.md has the measured effect of each step.
  */
 #include "models/sph/sph_internal.h"
 
@@ -63,11 +71,16 @@ struct tl_pair {
 enum { TL_Q = 0, TL_FD = 9, TL_X = 18, TL_V = 21, TL_C = 24, TL_RHO, TL_H, TL_M, TL_VOL,
        TL_X0 = 29, TL_STRIDE = 32 };
 
+/* What only particle i itself reads, one block instead of 13 arrays (13
+ * streams in the sweep): B0^-1, S0 = sum_j G_ij, the stress power P : dF/dt. */
+enum { TL_BI = 0, TL_S0 = 9, TL_PW = 12, TL_SELF = 16 };
+
 struct sph_tl {
     struct neighbor_list *nl; /**< reference-configuration list (fixed) */
-    double *S0[3];        /**< sum_j G_ij (nonzero at surfaces) */
+    double *self;         /**< per particle, TL_SELF doubles: B0^-1, S0, P : dF/dt */
     double *pk;           /**< per particle, TL_STRIDE doubles (TL_Q ...) */
     struct tl_pair *pair; /**< per listed pair, same index as the neighbour list */
+    size_t band;          /**< max |j - i| over the list: the pipeline's lag */
 };
 
 void sph_tlsph_destroy(struct sph_tl **tl)
@@ -78,8 +91,7 @@ void sph_tlsph_destroy(struct sph_tl **tl)
     neighbor_list_destroy(&t->nl);
     free(t->pk);
     free(t->pair);
-    for (int c = 0; c < 3; c++)
-        free(t->S0[c]);
+    free(t->self);
     free(t);
     *tl = NULL;
 }
@@ -91,9 +103,8 @@ static int sph_tl_alloc(struct sph_tl **out, size_t n, size_t np, struct spall_e
     if (t) {
         const size_t nn = n ? n : 1, pp = np ? np : 1;
         bad |= !(t->pk = calloc(nn * TL_STRIDE, sizeof(double)));
+        bad |= !(t->self = calloc(nn * TL_SELF, sizeof(double)));
         bad |= !(t->pair = calloc(pp, sizeof *t->pair));
-        for (int c = 0; c < 3; c++)
-            bad |= !(t->S0[c] = calloc(nn, sizeof(double)));
     }
     *out = t;
     if (bad) {
@@ -143,8 +154,15 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
     }
     struct sph_tl *t = m->tl;
     t->nl = nl;
+    t->band = 0;
     for (size_t i = 0; i < n; i++) {
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            const size_t j = (size_t)nb[k], d = j > i ? j - i : i - j;
+            t->band = d > t->band ? d : t->band;
+        }
         double *q = t->pk + i * TL_STRIDE;
+        for (int c = 0; c < 9; c++)
+            q[TL_FD + c] = (c % 4 == 0) ? 1.0 : 0.0;
         q[TL_VOL] = m->m2[i] / m->mat[p->material[i]].rho0;
         q[TL_M] = m->m2[i];
         for (int d = 0; d < 3; d++)
@@ -183,9 +201,9 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
         else
             fallbacks++;
         for (int c = 0; c < 9; c++)
-            m->Bi[c][i] = Bi[c];
+            m->Bi[c][i] = t->self[i * TL_SELF + TL_BI + c] = Bi[c];
         for (int d = 0; d < 3; d++)
-            t->S0[d][i] = S0[d];
+            t->self[i * TL_SELF + TL_S0 + d] = S0[d];
     }
     m->cspm_fallbacks += fallbacks;
     return SPALL_OK;
@@ -206,11 +224,10 @@ static inline double tl_distortion_pow(const double F[9], double J, int dim)
     return dim == 2 ? f2 / (2.0 * J) : f2 * f2 * f2 / (27.0 * J * J);
 }
 
-/* Pass 1 for particle i: F, dF/dt, L (dimension a literal at the call);
- * *kap: the distortion of F (tl_distortion).  Returns 1 when F is singular
- * or inverted (Jdet then holds the bad det F, Finv and L use F = I).
- * *kap is tl_distortion_pow. */
-static inline int tl_deformation(struct model *m, size_t i, const int dim, double *kap)
+/* F and dF/dt of particle i from the partners' packed x, v (dimension a
+ * literal at the call; F_zz = 1 in 2D). */
+static inline void tl_deformation(const struct model *m, size_t i, const int dim, double Fd[9],
+                                  double Fdot[9])
 {
     const struct sph_tl *t = m->tl;
     const size_t *off = t->nl->offset;
@@ -233,28 +250,55 @@ static inline int tl_deformation(struct model *m, size_t i, const int dim, doubl
                 Av[a * 3 + b] += dv[a] * G[b];
             }
     }
-    double Fd[9] = {0}, Fdot[9] = {0};
+    double Bi[9];
+    for (int c = 0; c < 9; c++) {
+        Bi[c] = t->self[i * TL_SELF + TL_BI + c];
+        Fd[c] = Fdot[c] = 0.0;
+    }
     for (int a = 0; a < dim; a++)
         for (int b = 0; b < dim; b++) {
             double sd = 0.0, sv = 0.0;
             for (int c = 0; c < dim; c++) {
-                sd += Ad[a * 3 + c] * m->Bi[c * 3 + b][i];
-                sv += Av[a * 3 + c] * m->Bi[c * 3 + b][i];
+                sd += Ad[a * 3 + c] * Bi[c * 3 + b];
+                sv += Av[a * 3 + c] * Bi[c * 3 + b];
             }
             Fd[a * 3 + b] = sd;
             Fdot[a * 3 + b] = sv;
         }
     if (dim == 2)
         Fd[8] = 1.0;
+}
+
+/* Stage 1 for particle i: F, dF/dt, L (tl_deformation), then everything
+ * that needs particle i alone -- the leapfrog state advance, pressure,
+ * Jaumann stress rate, PK1 = J sigma F^-T, Q = PK1 B0^-T and i's packed
+ * block for stage 2 (dimension a literal at the call).  F, dF/dt and F^-1
+ * stay in registers: no per-particle arrays are streamed for them.
+ * *Jout = det F, *kout = tl_distortion_pow (INFINITY when inverted) for
+ * the det F guard.  Returns 1 when det F <= 0 (identity used meanwhile). */
+static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const int dim,
+                                  double *Jout, double *kout)
+{
+    struct sph_tl *t = m->tl;
+    double *qi = t->pk + i * TL_STRIDE;
+    double Bi[9];
+    for (int c = 0; c < 9; c++)
+        Bi[c] = t->self[i * TL_SELF + TL_BI + c];
+    double Fd[9], Fdot[9];
+    tl_deformation(m, i, dim, Fd, Fdot);
     double Fi[9];
-    const double J = sph_inverse(dim, Fd, Fi);
+    double J = sph_inverse(dim, Fd, Fi);
     int bad = 0;
+    *Jout = J;
+    *kout = INFINITY;
     if (!(J > 0.0) || !isfinite(J)) {
         bad = 1;
+        J = 1.0;
         for (int c = 0; c < 9; c++)
             Fi[c] = (c % 4 == 0) ? 1.0 : 0.0;
+    } else {
+        *kout = tl_distortion_pow(Fd, J, dim);
     }
-    *kap = bad ? INFINITY : tl_distortion_pow(Fd, J, dim);
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) {
             double acc = 0.0;
@@ -262,12 +306,41 @@ static inline int tl_deformation(struct model *m, size_t i, const int dim, doubl
                 acc += Fdot[a * 3 + c] * Fi[c * 3 + b];
             m->L[a * 3 + b][i] = (a < dim && b < dim) ? acc : 0.0;
         }
-    for (int c = 0; c < 9; c++) {
-        m->Fdef[c][i] = Fd[c];
-        m->Fdot[c][i] = Fdot[c];
-        m->Finv[c][i] = Fi[c];
-    }
-    m->Jdet[i] = J;
+    /* the per-particle material update (was three loops over all particles) */
+    if (lfdt > 0.0)
+        sph_leapfrog_advance_one(m, i, lfdt); /* leapfrog: advance with this L */
+    sph_update_pressure_one(m, i);
+    double trD;
+    sph_stress_rate(m, i, &trD);
+    m->drho[i] = -m->rho[i] * trD; /* dh stays 0 (allocated zero): h is fixed */
+    static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
+    double PK[9];
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+            double acc = 0.0;
+            for (int c = 0; c < dim; c++) {
+                double sg = m->S[tix[a][c]][i] - (a == c ? m->P[i] : 0.0);
+                acc += sg * Fi[b * 3 + c];
+            }
+            PK[a * 3 + b] = J * acc;
+        }
+    for (int a = 0; a < 3; a++)
+        for (int c = 0; c < 3; c++) {
+            double acc = 0.0;
+            for (int b = 0; b < dim; b++)
+                acc += PK[a * 3 + b] * Bi[c * 3 + b];
+            qi[TL_Q + a * 3 + c] = acc;
+        }
+    for (int c = 0; c < 9; c++)
+        qi[TL_FD + c] = Fd[c];
+    qi[TL_C] = m->c[i];
+    qi[TL_RHO] = m->rho[i];
+    qi[TL_H] = m->h[i];
+    double pw = 0.0;
+    for (int a = 0; a < dim; a++)
+        for (int b = 0; b < dim; b++)
+            pw += PK[a * 3 + b] * Fdot[a * 3 + b];
+    t->self[i * TL_SELF + TL_PW] = pw;
     return bad;
 }
 
@@ -275,15 +348,18 @@ static inline int tl_deformation(struct model *m, size_t i, const int dim, doubl
  * whose F is inverted (det F <= 0), whose det F leaves model.det_f_range or
  * whose distortion exceeds model.max_distortion, naming the particle: past
  * that the reference configuration no longer describes its neighbourhood
- * (the fixed list of a TLSPH body cannot follow large shear or mixing). */
+ * (the fixed list of a TLSPH body cannot follow large shear or mixing).
+ * F is recomputed from the packed positions of this force call. */
 static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, int dim,
                           struct spall_error *err)
 {
     const struct particles *p = s->p;
-    double F[9];
-    for (int c = 0; c < 9; c++)
-        F[c] = m->Fdef[c][i];
-    const double J = m->Jdet[i];
+    double F[9], Fdot[9], Fi[9];
+    if (dim == 3)
+        tl_deformation(m, i, 3, F, Fdot);
+    else
+        tl_deformation(m, i, 2, F, Fdot);
+    const double J = sph_inverse(dim, F, Fi);
     const bool inv = !(J > 0.0) || !isfinite(J);
     const double kp = inv ? INFINITY : tl_distortion_pow(F, J, dim);
     const double kap = dim == 3 ? cbrt(kp) : kp;
@@ -311,18 +387,18 @@ static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, 
                            i, (int)p->body[i], xs, why, s->t, s->step);
 }
 
-/* Pass 2 for particle i: force, internal energy rate (dimension literal). */
-static inline void tl_forces(struct model *m, struct particles *p, size_t i, double wstress,
-                             const int dim)
+/* Stage 2 for particle i: force, internal energy rate (dimension literal);
+ * reads only finished stage-1 blocks of i's partners. */
+static inline void tl_stage_forces(struct model *m, struct particles *p, size_t i, double lfdt,
+                                   const int dim)
 {
     const struct sph_tl *t = m->tl;
     const size_t *off = t->nl->offset;
     const int32_t *nb = t->nl->idx;
     const double qa = m->opt.av_a, qb = m->opt.av_b;
-    const bool av = qa > 0.0 || qb > 0.0;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
     const double Vi = qi[TL_VOL], mi = qi[TL_M], hi = qi[TL_H], ci = qi[TL_C], rhoi = qi[TL_RHO];
-    double fs[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, de = 0.0;
+    double fs[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, fv = 0.0;
     for (size_t k = off[i]; k < off[i + 1]; k++) {
         const struct tl_pair *pr = &t->pair[k];
         const double *qj = pk + (size_t)nb[k] * TL_STRIDE;
@@ -336,13 +412,18 @@ static inline void tl_forces(struct model *m, struct particles *p, size_t i, dou
             cr2 += xij[d] * xij[d];
             vx += xij[d] * vij[d];
         }
-        double Pi = 0.0;
-        if (vx < 0.0 && av) {
-            const double hb = 0.5 * (hi + qj[TL_H]);
-            const double mu = hb * vx / (cr2 + 0.01 * hb * hb);
-            const double cb = 0.5 * (ci + qj[TL_C]);
-            Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + qj[TL_RHO]));
-        }
+        const double hb = 0.5 * (hi + qj[TL_H]);
+        const double mu = hb * vx / (cr2 + 0.01 * hb * hb);
+        const double cb = 0.5 * (ci + qj[TL_C]);
+        const double Pv = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + qj[TL_RHO]));
+        /* Pi = vx < 0 ? Pv : +0, as a bit mask: the sign of v_ij . x_ij is a
+         * coin toss in a bar moving as a whole, and the compiler turns a
+         * select back into a branch (mispredicted half the time) */
+        uint64_t pb;
+        memcpy(&pb, &Pv, sizeof pb);
+        pb &= (uint64_t)0 - (uint64_t)(vx < 0.0);
+        double Pi;
+        memcpy(&Pi, &pb, sizeof Pi);
         const double cav = -mi * qj[TL_M] * Pi * F;
         for (int a = 0; a < dim; a++) {
             double tj = 0.0, fx = 0.0;
@@ -356,27 +437,110 @@ static inline void tl_forces(struct model *m, struct particles *p, size_t i, dou
              * -Pi F x_ij does negative work for any rotation */
             const double fo = cav * xij[a] + hg * (0.5 * fx - xij[a]);
             acc[a] += fo;
-            de -= 0.5 * fo * vij[a];
+            fv += fo * vij[a];
         }
     }
+    /* heating -1/2 sum f_ij . v_ij; the 1/2 outside the sum is exact
+     * (scaling by 2^-1 commutes with rounding): bitwise the per-pair form */
+    double de = 0.0 - 0.5 * fv;
     /* P_i g_i summed over the row: Q_i S0_i */
     for (int a = 0; a < dim; a++) {
         double qs = 0.0;
         for (int b = 0; b < dim; b++)
-            qs += qi[TL_Q + a * 3 + b] * t->S0[b][i];
+            qs += qi[TL_Q + a * 3 + b] * t->self[i * TL_SELF + TL_S0 + b];
         acc[a] += Vi * (fs[a] + qs);
     }
-    /* stress power V0_i P_i : dF_i/dt (booked by the leapfrog itself) */
-    double pw = 0.0;
-    for (int a = 0; a < dim; a++)
-        for (int b = 0; b < dim; b++)
-            pw += m->PK[a * 3 + b][i] * m->Fdot[a * 3 + b][i];
-    de += wstress * Vi * pw;
+    /* stress power V0_i P_i : dF_i/dt (the leapfrog books it itself) */
+    if (!(lfdt > 0.0))
+        de += Vi * t->self[i * TL_SELF + TL_PW];
     for (int a = 0; a < dim; a++)
         p->f[a][i] += p->mass[i] / mi * acc[a];
     m->de[i] = de / mi;
-    for (int a = 0; a < dim; a++)
-        m->xv[a][i] = 0.0;
+    if (lfdt > 0.0)
+        m->e[i] += lfdt * m->de[i]; /* leapfrog: AV / hourglass heating */
+}
+
+/* Stage 0 for particle i: its current x, v into its packed block. */
+static inline void tl_pack(struct sph_tl *t, const struct particles *p, size_t i, const int dim)
+{
+    double *q = t->pk + i * TL_STRIDE;
+    for (int d = 0; d < 3; d++) {
+        q[TL_X + d] = d < dim ? p->x[d][i] : 0.0;
+        q[TL_V + d] = d < dim ? p->v[d][i] : 0.0;
+    }
+}
+
+/* One thread's share [lo, hi) of the three stages, software-pipelined:
+ * stage 1 of particle k needs stage 0 (x, v packed) of every partner j,
+ * stage 2 of i needs stage 1 of every partner, and |j - i| <= b (t->band;
+ * the lattice order keeps b at a few layers).  So the sweep packs b
+ * particles ahead of stage 1 and runs stage 2 b particles behind it, while
+ * those blocks are still in cache: one pass over the particle data per
+ * force call instead of five.  What a neighbouring thread's share reads (b
+ * particles at each end) is packed before a barrier; stage 2 of the
+ * particles within b of lo or hi waits for a second one.  Every particle
+ * does the same arithmetic as with the stages run one after the other
+ * (model.pair_loop: split, b = n): bitwise the same result. */
+/* What the det F guard collects over a thread's share. */
+struct tl_watch {
+    size_t first; /**< lowest index outside the guard's limits (SIZE_MAX: none) */
+    double jmin;  /**< smallest det F */
+    double kmax;  /**< largest tl_distortion_pow */
+};
+
+/* Stage 1 of particle k with the guard's bookkeeping; particles of
+ * updated-form bodies (formulation per body) are skipped. */
+static inline void tl_stage_deform_watch(struct model *m, size_t k, double lfdt, const int dim,
+                                         const double lim[3], struct tl_watch *w)
+{
+    if (sph_skip(m, k, SPH_FORM_TOTAL))
+        return;
+    double J, kap;
+    const int bad = tl_stage_deform(m, k, lfdt, dim, &J, &kap);
+    if ((bad || J < lim[0] || J > lim[1] || kap > lim[2]) && k < w->first)
+        w->first = k;
+    w->jmin = J < w->jmin ? J : w->jmin;
+    w->kmax = kap > w->kmax && !bad ? kap : w->kmax;
+}
+
+static inline void tl_stage_forces_mine(struct model *m, struct particles *p, size_t i,
+                                        double lfdt, const int dim)
+{
+    if (!sph_skip(m, i, SPH_FORM_TOTAL))
+        tl_stage_forces(m, p, i, lfdt, dim);
+}
+
+static void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, size_t hi,
+                     double lfdt, bool pipelined, const int dim, const double lim[3],
+                     struct tl_watch *w)
+{
+    struct sph_tl *t = m->tl;
+    const size_t b = pipelined ? t->band : n;
+    /* stage 0 in the sweep for [plo, phi), before it for the rest */
+    const size_t plo = lo + b < hi ? lo + b : hi, phi = hi > b && hi - b > plo ? hi - b : plo;
+    for (size_t i = lo; i < plo; i++)
+        tl_pack(t, p, i, dim);
+    for (size_t i = phi; i < hi; i++)
+        tl_pack(t, p, i, dim);
+#pragma omp barrier
+    /* stage 2 in the sweep for [clo, chi): partners [i - b, i + b] inside
+     * [lo, hi) or past the ends of the particle range */
+    const size_t clo = lo == 0 ? 0 : lo + b, chi = hi == n ? n : (hi > b ? hi - b : 0);
+    for (size_t k = lo; k < hi; k++) {
+        if (k + b < phi)
+            tl_pack(t, p, k + b, dim);
+        tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
+        if (k >= b && k - b >= clo && k - b < chi)
+            tl_stage_forces_mine(m, p, k - b, lfdt, dim);
+    }
+    /* those whose partners end at n (last share): stage 1 is complete */
+    const size_t tail = hi > b && hi - b > clo ? hi - b : clo;
+    for (size_t i = tail; i < chi; i++)
+        tl_stage_forces_mine(m, p, i, lfdt, dim);
+#pragma omp barrier
+    for (size_t i = lo; i < hi; i++)
+        if (i < clo || i >= chi)
+            tl_stage_forces_mine(m, p, i, lfdt, dim);
 }
 
 int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
@@ -384,98 +548,34 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     struct particles *p = s->p;
     const size_t n = p->n_owned;
     const int dim = m->dim;
-    struct sph_tl *t = m->tl;
-    m->n_pairs = t->nl->offset[n];
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++) {
-        if (sph_skip(m, i, SPH_FORM_TOTAL))
-            continue;
-        double *q = t->pk + i * TL_STRIDE;
-        for (int d = 0; d < 3; d++) {
-            q[TL_X + d] = d < dim ? p->x[d][i] : 0.0;
-            q[TL_V + d] = d < dim ? p->v[d][i] : 0.0;
-        }
-    }
-    /* pass 1: F, dF/dt, L = dF F^-1 of the current state, and the det F
-     * guard (first offender: min reduction, thread independent) */
-    const double jlo = m->opt.det_f_range[0], jhi = m->opt.det_f_range[1];
-    const double klim = dim == 3 ? m->opt.max_distortion * m->opt.max_distortion *
-                                       m->opt.max_distortion
-                                 : m->opt.max_distortion; /* tl_distortion_pow */
+    m->n_pairs = m->tl->nl->offset[n];
+    const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L
+                                   * (reset by the caller, sph_compute_rates) */
+    const bool pipelined = !m->opt.tl_split;
+    /* det F guard limits; the distortion limit as tl_distortion_pow */
+    const double md = m->opt.max_distortion;
+    const double lim[3] = {m->opt.det_f_range[0], m->opt.det_f_range[1],
+                           dim == 3 ? md * md * md : md};
     size_t first = SIZE_MAX;
     double jmin = INFINITY, kmax = 1.0;
-#pragma omp parallel for schedule(static) reduction(min : first, jmin) reduction(max : kmax)
-    for (size_t i = 0; i < n; i++) {
-        if (sph_skip(m, i, SPH_FORM_TOTAL))
-            continue;
-        double kap;
-        const int b = dim == 3 ? tl_deformation(m, i, 3, &kap) : tl_deformation(m, i, 2, &kap);
-        const double J = m->Jdet[i];
-        if (b || J < jlo || J > jhi || kap > klim)
-            first = i < first ? i : first;
-        jmin = J < jmin ? J : jmin;
-        kmax = kap > kmax ? kap : kmax;
+    /* first offender: min reduction, thread independent */
+#pragma omp parallel reduction(min : first, jmin) reduction(max : kmax)
+    {
+        const size_t nt = (size_t)omp_get_num_threads(), id = (size_t)omp_get_thread_num();
+        const size_t lo = n * id / nt, hi = n * (id + 1) / nt;
+        struct tl_watch w = {SIZE_MAX, INFINITY, 1.0};
+        if (dim == 3)
+            tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 3, lim, &w);
+        else
+            tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 2, lim, &w);
+        first = w.first;
+        jmin = w.jmin;
+        kmax = w.kmax;
     }
     m->tl_jmin = jmin;
     m->tl_kmax = dim == 3 ? cbrt(kmax) : kmax;
     if (first != SIZE_MAX)
         return tl_guard_error(m, s, first, dim, err);
-    const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L */
-    if (lfdt > 0.0)
-        sph_leapfrog_advance(m, s, lfdt, SPH_FORM_TOTAL);
-    sph_update_pressure(m, s, SPH_FORM_TOTAL);
-    static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++) {
-        if (sph_skip(m, i, SPH_FORM_TOTAL))
-            continue;
-        double trD;
-        sph_stress_rate(m, i, &trD);
-        m->drho[i] = -m->rho[i] * trD;
-        m->dh[i] = 0.0;
-        /* PK1 = J sigma F^-T, then Q = PK1 B0^-T */
-        double PK[9], *q = t->pk + i * TL_STRIDE;
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) {
-                double acc = 0.0;
-                for (int c = 0; c < dim; c++) {
-                    double sg = m->S[tix[a][c]][i] - (a == c ? m->P[i] : 0.0);
-                    acc += sg * m->Finv[b * 3 + c][i];
-                }
-                PK[a * 3 + b] = m->Jdet[i] * acc;
-                m->PK[a * 3 + b][i] = PK[a * 3 + b];
-            }
-        for (int a = 0; a < 3; a++)
-            for (int c = 0; c < 3; c++) {
-                double acc = 0.0;
-                for (int b = 0; b < dim; b++)
-                    acc += PK[a * 3 + b] * m->Bi[c * 3 + b][i];
-                q[TL_Q + a * 3 + c] = acc;
-            }
-        for (int c = 0; c < 9; c++)
-            q[TL_FD + c] = m->Fdef[c][i];
-        q[TL_C] = m->c[i];
-        q[TL_RHO] = m->rho[i];
-        q[TL_H] = m->h[i];
-    }
-    /* pass 2: forces, energy */
-    const double wstress = lfdt > 0.0 ? 0.0 : 1.0; /* leapfrog books it itself */
-    if (dim == 3) {
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; i++)
-            if (!sph_skip(m, i, SPH_FORM_TOTAL))
-                tl_forces(m, p, i, wstress, 3);
-    } else {
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; i++)
-            if (!sph_skip(m, i, SPH_FORM_TOTAL))
-                tl_forces(m, p, i, wstress, 2);
-    }
-    if (lfdt > 0.0) {
-        for (size_t i = 0; i < n; i++)
-            if (!sph_skip(m, i, SPH_FORM_TOTAL))
-                m->e[i] += lfdt * m->de[i]; /* AV / hourglass heating */
-    }
     return SPALL_OK;
 }
 
