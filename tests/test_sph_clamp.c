@@ -140,7 +140,7 @@ static void test_clamp_refused(void **state)
         {",\n        clamp: {group: clamp, point: [0, 0], normal: [0, 0]}", "normal is zero"},
         {",\n        clamp: {group: clamp, point: [0, 0], normal: [1, 0]}, "
          "formulation: total",
-         "updated formulation"},
+         "plain fixed group"}, /* TLSPH: pointed at the fixed-group clamp */
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         char yaml[2048];

@@ -344,7 +344,8 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             return deck_error_key(err, params, "clamp",
                                   "clamp works with the updated formulation's two-pass loops "
                                   "only: not with symmetry planes, plane: axisymmetric or "
-                                  "formulation: total");
+                                  "formulation: total (TLSPH needs none: a plain fixed "
+                                  "group clamps it, docs/validation.md sph-plate)");
         int rc = sph_clamp_parse(cl, sim->dim, &clamp, err);
         if (rc)
             return rc;
