@@ -32,6 +32,8 @@ struct pen_sph_target {
     double c0, S;     /**< Mie-Grueneisen C_k form: sound speed [m/s], Hugoniot slope */
     double gamma;     /**< Grueneisen Gamma (0 in the thesis' C_k form) */
     double av_a, av_b; /**< artificial viscosity (q_a, q_b) */
+    double av_length;  /**< AV length [m] instead of h (viscosity_length); 0: h */
+    int av_balsara;    /**< 1: AV times Balsara's switch (viscosity_switch) */
     double xsph;      /**< XSPH alpha_cs */
 };
 

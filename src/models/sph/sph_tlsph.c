@@ -236,7 +236,7 @@ static inline void tl_forces(struct model *m, struct particles *p, size_t i, dou
     const struct sph_tl *t = m->tl;
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
-    const double qa = m->opt.av_a, qb = m->opt.av_b;
+    const double qa = m->opt.av_a, qb = m->opt.av_b, lav = m->opt.av_length;
     const bool av = qa > 0.0 || qb > 0.0;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
     const double Vi = qi[TL_VOL], mi = qi[TL_M], hi = qi[TL_H], ci = qi[TL_C], rhoi = qi[TL_RHO];
@@ -257,7 +257,7 @@ static inline void tl_forces(struct model *m, struct particles *p, size_t i, dou
         double Pi = 0.0;
         if (vx < 0.0 && av) {
             const double hb = 0.5 * (hi + qj[TL_H]);
-            const double mu = hb * vx / (cr2 + 0.01 * hb * hb);
+            const double mu = (lav > 0.0 ? lav : hb) * vx / (cr2 + 0.01 * hb * hb);
             const double cb = 0.5 * (ci + qj[TL_C]);
             Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + qj[TL_RHO]));
         }
