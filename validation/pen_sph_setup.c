@@ -179,6 +179,45 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
     return SPALL_OK;
 }
 
+/* (h0^p - h1^p) / (h1^p - h2^p): rises with p for h0 > h1 > h2 */
+static double rich_ratio(const double h[3], double p)
+{
+    return (pow(h[0], p) - pow(h[1], p)) / (pow(h[1], p) - pow(h[2], p));
+}
+
+int pen_richardson(const double h[3], const double f[3], double *p, double *f_inf,
+                   struct spall_error *err)
+{
+    if (!(h[2] > 0.0 && h[1] > h[2] && h[0] > h[1]))
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "pen_richardson: spacings must decrease (%g, %g, %g)", h[0], h[1],
+                               h[2]);
+    const double d01 = f[0] - f[1], d12 = f[1] - f[2];
+    if (!(d01 * d12 > 0.0))
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "pen_richardson: not monotonic (differences %g, %g): no "
+                               "convergence order",
+                               d01, d12);
+    const double target = d01 / d12;
+    double lo = 0.05, hi = 20.0;
+    if (!(target > rich_ratio(h, lo) && target < rich_ratio(h, hi)))
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "pen_richardson: differences %g then %g do not shrink as any "
+                               "order p in [%g, %g] would make them",
+                               d01, d12, lo, hi);
+    for (int k = 0; k < 200 && hi - lo > 1e-12; k++) {
+        double mid = 0.5 * (lo + hi);
+        if (rich_ratio(h, mid) < target)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    *p = 0.5 * (lo + hi);
+    const double C = d12 / (pow(h[1], *p) - pow(h[2], *p));
+    *f_inf = f[2] - C * pow(h[2], *p);
+    return SPALL_OK;
+}
+
 void pen_sph_outcome_free(struct pen_sph_outcome *o)
 {
     free(o->t);

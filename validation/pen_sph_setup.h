@@ -94,6 +94,16 @@ int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot 
                       struct spall_error *err);
 void pen_sph_outcome_free(struct pen_sph_outcome *o);
 
+/** Richardson extrapolation of three results @p f at spacings @p h (h[0] >
+ *  h[1] > h[2], any ratios): f = f_inf + C h^p fitted through the three
+ *  points (p by bisection on (f0 - f1)/(f1 - f2) = (h0^p - h1^p)/(h1^p -
+ *  h2^p), p in [0.05, 20]).  SPALL_ERR_INPUT, with the cause in @p err, if
+ *  the h are not decreasing and positive, or if the sequence does not
+ *  converge monotonically (the differences change sign or do not shrink as
+ *  any p in that range would make them): then no estimate exists. */
+int pen_richardson(const double h[3], const double f[3], double *p, double *f_inf,
+                   struct spall_error *err);
+
 /** "pen-sph-sebs": the five steel-into-SEBS cases of seed 004 sec. 4.5 at
  *  E = 40 and 50 MPa against the Modified-CG model (R = 25 MPa,
  *  eta = 4.5e-2 Pa s) with the d/2 nose, 15 % (validation/pen_sph_sebs.c). */
