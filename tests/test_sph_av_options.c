@@ -129,7 +129,8 @@ static void free_dv(double *dv[2])
 static void check_length(const char *plane)
 {
     double *a[2], *b[2], *c[2];
-    size_t n = run_dv(plane, "viscosity: [1, 0], viscosity_length: 2.6e-3", FLOW_COMPRESSION, a, NULL);
+    size_t n =
+        run_dv(plane, "viscosity: [1, 0], viscosity_length: 2.6e-3", FLOW_COMPRESSION, a, NULL);
     assert_int_equal(run_dv(plane, "viscosity: [2, 0]", FLOW_COMPRESSION, b, NULL), n);
     assert_int_equal(run_dv(plane, "viscosity: [1, 0]", FLOW_COMPRESSION, c, NULL), n);
     double gap = rel_gap(n, a, b, c, NULL);

@@ -94,7 +94,8 @@ static int check_inputs(const struct pen_sph_target *t, const struct pen_sph_sho
                                "pen_sph_setup: Poisson's ratio must be in (0, 0.5) (got %g)",
                                t->nu);
     if (!(t->B >= 0.0 && t->n >= 0.0 && t->S >= 0.0 && t->gamma >= 0.0 && t->av_a >= 0.0 &&
-          t->av_b >= 0.0 && t->av_length >= 0.0 && t->xsph >= 0.0 && g->cavity_depth >= 0.0 && t->fail >= 0.0))
+          t->av_b >= 0.0 && t->av_length >= 0.0 && t->xsph >= 0.0 && g->cavity_depth >= 0.0 &&
+          t->fail >= 0.0))
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "pen_sph_setup: B, n, S, Gamma, AV, AV length, XSPH, failure "
                                "stress and cavity depth must be >= 0");
