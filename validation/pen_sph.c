@@ -28,8 +28,9 @@
  * when the sphere has stopped (V <= 0: P_max reached) or at its end time.
  *
  * Cases: "pen-sph-gelatin" (1290 m/s at d/10: P_max, its time, cavity;
- * d/10 to keep the full suite affordable: the d/15 run, 8166 particles,
- * costs ~6x and is ~14 % deeper, docs/validation.md),
+ * d/10 to keep the full suite affordable: d/15 (8166 particles, ~4x the
+ * CPU) is 12.9 % deeper and d/20 (14844, ~14x) 22.3 %, not converged,
+ * docs/validation.md),
  * "pen-sph-gelatin-sweep" (200-1420 m/s at d/10 vs Poncelet + d/2),
  * "pen-sph-gelatin-modulus" (E = 1, 10, 20, 40 MPa at d/10: trend),
  * "pen-sph-gelatin-convergence" (d/10, d/15, d/20 and half width at
