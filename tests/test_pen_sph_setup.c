@@ -192,6 +192,58 @@ static void test_run_short(void **state)
     assert_null(o.t);
 }
 
+/* The AV options reach the deck only when set: the default gelatin deck is
+ * unchanged, and the deck with them builds. */
+static void test_av_options_in_deck(void **state)
+{
+    (void)state;
+    struct spall_error e = {0, ""};
+    char buf[4096];
+    struct pen_sph_target t = pen_sph_target_gelatin(20e6);
+    struct pen_sph_shot s = {7.38e-6, 1850.0, 1290.0};
+    struct pen_sph_grid g = {.dx1_d = 0.1, .width = 1.0, .depth = 1.0, .t_end = 1e-9,
+                             .cavity_depth = 15e-6, .k_first_contact = 1};
+    assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_OK);
+    assert_null(strstr(buf, "viscosity_length"));
+    assert_null(strstr(buf, "viscosity_switch"));
+    t.av_length = 6.5e-7;
+    t.av_balsara = 1;
+    assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_OK);
+    assert_non_null(strstr(buf, "viscosity_length: 6.5e-07"));
+    assert_non_null(strstr(buf, "viscosity_switch: balsara"));
+    struct sim *a = test_build_ok(buf);
+    sim_destroy(&a);
+    t.av_length = -1.0;
+    assert_int_equal(pen_sph_setup_deck(buf, sizeof buf, &t, &s, &g, &e), SPALL_ERR_INPUT);
+}
+
+/* Richardson: f = 2 + 3 h^1.7 at the study's spacings (ratios 1.5, 1.33)
+ * gives p = 1.7 and f_inf = 2; a non-monotonic or diverging sequence and
+ * unordered spacings are refused. */
+static void test_richardson(void **state)
+{
+    (void)state;
+    struct spall_error e = {0, ""};
+    const double h[3] = {0.75, 0.5, 0.375};
+    double f[3], p = 0.0, fi = 0.0;
+    for (int k = 0; k < 3; k++)
+        f[k] = 2.0 + 3.0 * pow(h[k], 1.7);
+    assert_int_equal(pen_richardson(h, f, &p, &fi, &e), SPALL_OK);
+    assert_true(fabs(p - 1.7) < 1e-9);
+    assert_true(fabs(fi - 2.0) < 1e-9);
+    for (int k = 0; k < 3; k++) /* converging from below, order 1 */
+        f[k] = 5.0 - 2.0 * h[k];
+    assert_int_equal(pen_richardson(h, f, &p, &fi, &e), SPALL_OK);
+    assert_true(fabs(p - 1.0) < 1e-9 && fabs(fi - 5.0) < 1e-9);
+    const double osc[3] = {1.0, 2.0, 1.5}, grow[3] = {1.0, 1.1, 1.6};
+    assert_int_equal(pen_richardson(h, osc, &p, &fi, &e), SPALL_ERR_INPUT);
+    assert_non_null(strstr(e.msg, "monotonic"));
+    assert_int_equal(pen_richardson(h, grow, &p, &fi, &e), SPALL_ERR_INPUT);
+    assert_non_null(strstr(e.msg, "shrink"));
+    const double hb[3] = {0.5, 0.75, 0.375};
+    assert_int_equal(pen_richardson(hb, f, &p, &fi, &e), SPALL_ERR_INPUT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -200,6 +252,8 @@ int main(void)
         cmocka_unit_test(test_gelatin_special_case),
         cmocka_unit_test(test_examples_match),
         cmocka_unit_test(test_run_short),
+        cmocka_unit_test(test_av_options_in_deck),
+        cmocka_unit_test(test_richardson),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -117,6 +117,8 @@ static const struct vcase cases[] = {
      false, pen_case_sph_modulus},
     {"pen-sph-gelatin-convergence", "axisymmetric SPH: resolution and width study, 1290 m/s",
      false, pen_case_sph_convergence},
+    {"pen-sph-gelatin-av", "axisymmetric SPH: fixed-length AV and Balsara switch, d/10-d/20",
+     false, pen_case_sph_av_forms},
 
 };
 

@@ -42,5 +42,7 @@ int pen_case_sph_sweep(struct vreport *r, struct spall_error *err);
 int pen_case_sph_modulus(struct vreport *r, struct spall_error *err);
 /** "pen-sph-gelatin-convergence": resolution and target width at 1290 m/s. */
 int pen_case_sph_convergence(struct vreport *r, struct spall_error *err);
+/** "pen-sph-gelatin-av": fixed-length AV and Balsara switch, d/10-d/20. */
+int pen_case_sph_av_forms(struct vreport *r, struct spall_error *err);
 
 #endif

@@ -24,6 +24,7 @@
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* The reference geometry: the gelatin deck's lengths [m] at d = 7.38 um. */
 #define SETUP_D_REF 7.38e-6
@@ -93,10 +94,11 @@ static int check_inputs(const struct pen_sph_target *t, const struct pen_sph_sho
                                "pen_sph_setup: Poisson's ratio must be in (0, 0.5) (got %g)",
                                t->nu);
     if (!(t->B >= 0.0 && t->n >= 0.0 && t->S >= 0.0 && t->gamma >= 0.0 && t->av_a >= 0.0 &&
-          t->av_b >= 0.0 && t->xsph >= 0.0 && g->cavity_depth >= 0.0 && t->fail >= 0.0))
+          t->av_b >= 0.0 && t->av_length >= 0.0 && t->xsph >= 0.0 && g->cavity_depth >= 0.0 &&
+          t->fail >= 0.0))
         return spall_error_set(err, SPALL_ERR_INPUT,
-                               "pen_sph_setup: B, n, S, Gamma, AV, XSPH, failure stress and "
-                               "cavity depth must be >= 0");
+                               "pen_sph_setup: B, n, S, Gamma, AV, AV length, XSPH, failure "
+                               "stress and cavity depth must be >= 0");
     if (!t->name || !*t->name)
         return spall_error_set(err, SPALL_ERR_INPUT, "pen_sph_setup: target has no name");
     return SPALL_OK;
@@ -133,8 +135,14 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
         snprintf(failure, sizeof failure, "failure: stress, failure_value: %.9g", t->fail);
     else
         snprintf(failure, sizeof failure, "failure: none");
+    /* AV options only when set, so the default deck stays the gelatin deck */
+    char avx[96] = "";
+    if (t->av_length > 0.0)
+        snprintf(avx, sizeof avx, ", viscosity_length: %.9g", t->av_length);
+    if (t->av_balsara)
+        snprintf(avx + strlen(avx), sizeof avx - strlen(avx), ", viscosity_switch: balsara");
     SETUP_APPEND("model: {type: sph, plane: axisymmetric, kernel: wendland, h_factor: 1.3,\n"
-                 "        viscosity: [%.9g, %.9g], xsph: %.9g, cavity_depth: %.9g}\n"
+                 "        viscosity: [%.9g, %.9g]%s, xsph: %.9g, cavity_depth: %.9g}\n"
                  "materials:\n"
                  "  %s: {density: %.9g, youngs_modulus: %.9g, poisson_ratio: %.9g,\n"
                  "       eos: mie_gruneisen_ck, sound_speed: %.9g, hugoniot_slope: %.9g,\n"
@@ -143,7 +151,7 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
                  "       %s}\n"
                  "lattice: {type: square, spacing: %.9g}\n"
                  "geometry:\n",
-                 t->av_a, t->av_b, t->xsph, cav, t->name, t->rho, t->E, t->nu, t->c0, t->S,
+                 t->av_a, t->av_b, avx, t->xsph, cav, t->name, t->rho, t->E, t->nu, t->c0, t->S,
                  t->gamma, t->A, t->B, t->n, failure, dx1);
     for (int k = 0; k < 4; k++)
         SETUP_APPEND("  l%d: {box: {min: [0, %.9g], max: [%.9g, 0]}}\n", k + 1, -z[k], r[k]);
@@ -169,6 +177,45 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "pen_sph_setup: deck needs %zu bytes, buffer has %zu", off + 1,
                                len);
+    return SPALL_OK;
+}
+
+/* (h0^p - h1^p) / (h1^p - h2^p): rises with p for h0 > h1 > h2 */
+static double rich_ratio(const double h[3], double p)
+{
+    return (pow(h[0], p) - pow(h[1], p)) / (pow(h[1], p) - pow(h[2], p));
+}
+
+int pen_richardson(const double h[3], const double f[3], double *p, double *f_inf,
+                   struct spall_error *err)
+{
+    if (!(h[2] > 0.0 && h[1] > h[2] && h[0] > h[1]))
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "pen_richardson: spacings must decrease (%g, %g, %g)", h[0], h[1],
+                               h[2]);
+    const double d01 = f[0] - f[1], d12 = f[1] - f[2];
+    if (!(d01 * d12 > 0.0))
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "pen_richardson: not monotonic (differences %g, %g): no "
+                               "convergence order",
+                               d01, d12);
+    const double target = d01 / d12;
+    double lo = 0.05, hi = 20.0;
+    if (!(target > rich_ratio(h, lo) && target < rich_ratio(h, hi)))
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "pen_richardson: differences %g then %g do not shrink as any "
+                               "order p in [%g, %g] would make them",
+                               d01, d12, lo, hi);
+    for (int k = 0; k < 200 && hi - lo > 1e-12; k++) {
+        double mid = 0.5 * (lo + hi);
+        if (rich_ratio(h, mid) < target)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    *p = 0.5 * (lo + hi);
+    const double C = d12 / (pow(h[1], *p) - pow(h[2], *p));
+    *f_inf = f[2] - C * pow(h[2], *p);
     return SPALL_OK;
 }
 

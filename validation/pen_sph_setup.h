@@ -32,6 +32,8 @@ struct pen_sph_target {
     double c0, S;     /**< Mie-Grueneisen C_k form: sound speed [m/s], Hugoniot slope */
     double gamma;     /**< Grueneisen Gamma (0 in the thesis' C_k form) */
     double av_a, av_b; /**< artificial viscosity (q_a, q_b) */
+    double av_length;  /**< AV length [m] instead of h (viscosity_length); 0: h */
+    int av_balsara;    /**< 1: AV times Balsara's switch (viscosity_switch) */
     double xsph;      /**< XSPH alpha_cs */
 };
 
@@ -91,6 +93,16 @@ int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot 
                       const struct pen_sph_grid *g, struct pen_sph_outcome *o,
                       struct spall_error *err);
 void pen_sph_outcome_free(struct pen_sph_outcome *o);
+
+/** Richardson extrapolation of three results @p f at spacings @p h (h[0] >
+ *  h[1] > h[2], any ratios): f = f_inf + C h^p fitted through the three
+ *  points (p by bisection on (f0 - f1)/(f1 - f2) = (h0^p - h1^p)/(h1^p -
+ *  h2^p), p in [0.05, 20]).  SPALL_ERR_INPUT, with the cause in @p err, if
+ *  the h are not decreasing and positive, or if the sequence does not
+ *  converge monotonically (the differences change sign or do not shrink as
+ *  any p in that range would make them): then no estimate exists. */
+int pen_richardson(const double h[3], const double f[3], double *p, double *f_inf,
+                   struct spall_error *err);
 
 /** "pen-sph-sebs": the five steel-into-SEBS cases of seed 004 sec. 4.5 at
  *  E = 40 and 50 MPa against the Modified-CG model (R = 25 MPa,

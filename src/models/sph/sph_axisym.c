@@ -211,6 +211,20 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
     return fallbacks;
 }
 
+/* Balsara's switch (Balsara, J. Comput. Phys. 121 (1995) 357, cited from
+ * memory; seed 004 Tab. 2.2 "BAL"): f = |div v| / (|div v| + |curl v| +
+ * 1e-4 c / h), from the corrected velocity gradient of pass_gradient_axi
+ * (L[0] = dv_r/dr, L[1] = dv_r/dz, L[3] = dv_z/dr, L[4] = dv_z/dz, L[8] =
+ * v_r / r).  f -> 1 in compression, -> 0 in shear, so the AV stays on the
+ * shock and leaves the shear flow around the sphere. */
+static inline double balsara(const struct model *m, size_t i)
+{
+    const double dv = fabs(m->L[0][i] + m->L[4][i] + m->L[8][i]);
+    const double cv = fabs(m->L[1][i] - m->L[3][i]);
+    const double den = dv + cv + 1e-4 * m->c[i] / m->h[i];
+    return den > 0.0 ? dv / den : 1.0;
+}
+
 /* Jacobi sweeps of the axis weights, solved from 0 after each
  * neighbour-list build and kept until the next: 9 sweeps leave a residual
  * of 1.2e-4 of the hoop term on the first ring, 3e-5 on the second
@@ -322,7 +336,7 @@ static void pass_forces_axi(struct model *m, struct sim *s)
     const int32_t *nb = m->nl->idx;
     const enum sph_kernel kern = m->opt.kernel;
     const double alpha = m->alpha, qmax = m->qmax;
-    const double qa = m->opt.av_a, qb = m->opt.av_b, xs = m->opt.xsph;
+    const double qa = m->opt.av_a, qb = m->opt.av_b, xs = m->opt.xsph, lav = m->opt.av_length;
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
     const double *Srr = m->sig[SXX], *Szz = m->sig[SYY], *Stt = m->sig[SZZ], *Srz = m->sig[SXY];
     const double *lam = m->axl;
@@ -354,9 +368,12 @@ static void pass_forces_axi(struct model *m, struct sim *s)
                 const double vx = vr * dr + vz * dz;
                 double Pi = 0.0;
                 if (vx < 0.0) {
-                    double mu = hb * vx / (r2 + 0.01 * hb * hb); /* Eq. 2.21 */
+                    /* Eq. 2.21; viscosity_length: a fixed length instead of h */
+                    double mu = (lav > 0.0 ? lav : hb) * vx / (r2 + 0.01 * hb * hb);
                     double cb = 0.5 * (m->c[i] + m->c[j]);
                     Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + rhoj));
+                    if (m->opt.av_balsara) /* symmetric in i, j: momentum kept */
+                        Pi *= 0.5 * (balsara(m, i) + balsara(m, j));
                 }
                 const double gr = dr * F, gz = dz * F;
                 /* corrected gradients B^-T grad W, each particle its own B

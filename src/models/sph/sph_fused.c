@@ -45,6 +45,7 @@ static inline void fused_pass(struct model *m, struct sim *s, const struct sph_p
     const enum sph_kernel kern = m->opt.kernel;
     const double alpha = m->alpha, q2max = m->qmax * m->qmax;
     const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
+    const double lav = m->opt.av_length;
     const bool av = qa > 0.0 || qb > 0.0, as = zeta > 0.0;
     const double xs = m->opt.xsph;
     const bool summ = m->opt.density == SPH_DENSITY_SUMMATION;
@@ -118,7 +119,7 @@ static inline void fused_pass(struct model *m, struct sim *s, const struct sph_p
             const double vx = v0 * x0 + v1 * x1 + v2 * x2;
             if (av && vx < 0.0) {
                 /* Monaghan AV, Eq. 2.21: mu = h v.x / (r^2 + 0.01 h^2) */
-                const double mu = hb * vx / (r2 + 0.01 * hb * hb);
+                const double mu = (lav > 0.0 ? lav : hb) * vx / (r2 + 0.01 * hb * hb);
                 const double cb = 0.5 * (ci + Cs[j]);
                 Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + rhoj));
             }

@@ -46,6 +46,8 @@ struct sph_options {
     enum sph_density density;
     bool cspm;              /**< corrected velocity gradient (Eqs. 3.10-3.11) */
     double av_a, av_b;      /**< Monaghan AV q_a, q_b */
+    double av_length;       /**< AV length in mu_ij [m] (0: h_ij, Eq. 2.21) */
+    bool av_balsara;        /**< AV times the Balsara shear switch (axisymmetric only) */
     double as_zeta;         /**< artificial stress zeta (0: off) */
     double as_n;            /**< exponent n (4) */
     bool as_smooth;         /**< R_i kernel-averaged over i's neighbours (sph_as_smooth.c) */

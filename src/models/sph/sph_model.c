@@ -14,6 +14,10 @@
  *                                             gradient and, paired with it, the stress
  *                                             terms of momentum and energy
  *     viscosity: [q_a, q_b]                   Monaghan AV (default [1, 1])
+ *     viscosity_length: L                     [m] length in the AV's mu_ij instead of
+ *                                             h_ij (default 0: h_ij, Eq. 2.21)
+ *     viscosity_switch: none | balsara        AV times Balsara's shear switch (plane:
+ *                                             axisymmetric only; default none)
  *     artificial_stress: zeta                 Monaghan-Gray (default 0: off)
  *     artificial_stress_n: n                  (default 4)
  *     artificial_stress_smoothing: false      R_i averaged over the kernel
@@ -163,7 +167,8 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     static const char *const syms[] = {"none", "x", "y", "xy", NULL};
     static const char *const tints[] = {"predictor_corrector", "leapfrog", NULL};
     static const char *const keys[] = {"type", "kernel", "h_factor", "density", "cspm",
-                                       "viscosity", "artificial_stress", "artificial_stress_n",
+                                       "viscosity", "viscosity_length", "viscosity_switch",
+                                       "artificial_stress", "artificial_stress_n",
                                        "artificial_stress_smoothing",
                                        "xsph", "variable_h", "plane", "skin", "adaptive_dt",
                                        "formulation", "hourglass",
@@ -173,6 +178,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                        "body_formulation", "det_f_range", "max_distortion",
                                        NULL};
     static const char *const ifaces[] = {"none", "bodies", "materials", NULL};
+    static const char *const avsw[] = {"none", "balsara", NULL};
     *out = NULL;
     if (sim->dim < 2)
         return spall_error_set(err, SPALL_ERR_INPUT,
@@ -196,13 +202,16 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     bool adaptive = true;
     int run_form = 0; /* model.formulation, before the per-body overrides */
     if (params) {
-        int kern = 3, den = 0, pl = 1, form = 0, loop = 0, sym = 0, tint = 0, ifc = 0, rc;
+        int kern = 3, den = 0, pl = 1, form = 0, loop = 0, sym = 0, tint = 0, ifc = 0, avs = 0, rc;
         double av[2] = {o.av_a, o.av_b};
         if ((rc = deck_enum(params, "kernel", false, kernels, &kern, err)) ||
             (rc = deck_double(params, "h_factor", false, 0.5, 4.0, &o.h_factor, err)) ||
             (rc = deck_enum(params, "density", false, dens, &den, err)) ||
             (rc = deck_bool(params, "cspm", false, &o.cspm, err)) ||
             (rc = deck_vector(params, "viscosity", false, 2, 2, av, err)) ||
+            (rc = deck_double(params, "viscosity_length", false, 0.0, INFINITY, &o.av_length,
+                              err)) ||
+            (rc = deck_enum(params, "viscosity_switch", false, avsw, &avs, err)) ||
             (rc = deck_double(params, "artificial_stress", false, 0.0, 10.0, &o.as_zeta, err)) ||
             (rc = deck_double(params, "artificial_stress_n", false, 1.0, 20.0, &o.as_n, err)) ||
             (rc = deck_bool(params, "artificial_stress_smoothing", false, &o.as_smooth, err)) ||
@@ -228,6 +237,12 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                               err)))
             return rc;
         o.iface = (enum sph_iface)ifc;
+        o.av_balsara = avs == 1;
+        /* the switch needs the velocity gradient before the force pass:
+         * only sph_axisym.c has it there for every particle */
+        if (o.av_balsara && pl != 2)
+            return deck_error_key(err, params, "viscosity_switch",
+                                  "viscosity_switch: balsara needs plane: axisymmetric");
         if (!(o.det_f_range[0] >= 0.0 && o.det_f_range[0] < 1.0 && o.det_f_range[1] > 1.0))
             return deck_error_key(err, params, "det_f_range",
                                   "det_f_range [%g, %g]; expected [lo, hi] with 0 <= lo < 1 < hi",

@@ -302,6 +302,7 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     const enum sph_kernel kern = m->opt.kernel;
     const double alpha = m->alpha, qmax = m->qmax;
     const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
+    const double lav = m->opt.av_length;
     const double xs = m->opt.xsph;
     const bool cm = m->opt.cspm;
     /* leapfrog step: the stress power is booked by sph_leapfrog_advance */
@@ -341,7 +342,7 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
             double Pi = 0.0;
             if (vx < 0.0 && (qa > 0.0 || qb > 0.0)) {
                 /* Monaghan AV, Eq. 2.21: mu = h v.x / (r^2 + 0.01 h^2) */
-                double mu = hb * vx / (r2 + 0.01 * hb * hb);
+                double mu = (lav > 0.0 ? lav : hb) * vx / (r2 + 0.01 * hb * hb);
                 double cb = 0.5 * (m->c[i] + m->c[j]);
                 Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + rhoj));
             }

@@ -395,7 +395,7 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
     const struct sph_tl *t = m->tl;
     const size_t *off = t->nl->offset;
     const int32_t *nb = t->nl->idx;
-    const double qa = m->opt.av_a, qb = m->opt.av_b;
+    const double qa = m->opt.av_a, qb = m->opt.av_b, lav = m->opt.av_length;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
     const double Vi = qi[TL_VOL], mi = qi[TL_M], hi = qi[TL_H], ci = qi[TL_C], rhoi = qi[TL_RHO];
     double fs[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, fv = 0.0;
@@ -413,7 +413,7 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
             vx += xij[d] * vij[d];
         }
         const double hb = 0.5 * (hi + qj[TL_H]);
-        const double mu = hb * vx / (cr2 + 0.01 * hb * hb);
+        const double mu = (lav > 0.0 ? lav : hb) * vx / (cr2 + 0.01 * hb * hb);
         const double cb = 0.5 * (ci + qj[TL_C]);
         const double Pv = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + qj[TL_RHO]));
         /* Pi = vx < 0 ? Pv : +0, as a bit mask: the sign of v_ij . x_ij is a

@@ -1,0 +1,224 @@
+/**
+ * @file test_sph_av_options.c
+ * @brief The artificial-viscosity options of the SPH model (issue 7,
+ *        resolution study of pen-sph-gelatin): `viscosity_length` puts a
+ *        fixed length L in mu_ij instead of h_ij (Eq. 2.21), so with q_b = 0
+ *        the AV of (q_a, L = 2 h) is exactly that of (2 q_a, h), in the
+ *        planar and the axisymmetric pair loops; `viscosity_switch:
+ *        balsara` (axisymmetric) removes the AV from a pure shear flow and
+ *        keeps it in a pure compression, and is refused elsewhere.
+ */
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "io/deck_build.h"
+#include "spall/error.h"
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "tests/test_support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A 24 x 24 mm block, dx = 1 mm (h = 1.3 mm), in the given plane, with the
+ * model options @p av; fixed dt so that runs with different AV take the
+ * same step. */
+#define BLOCK 0.024
+static struct sim *block(const char *plane, const char *av)
+{
+    char yaml[1024];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: sph, kernel: wendland, h_factor: 1.3, plane: %s,\n"
+             "        adaptive_dt: false, %s}\n"
+             "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
+             "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
+             "body: {geometry: {box: {min: [0, 0], max: [%g, %g]}}, material: m}\n"
+             "run: {steps: 1, dt: 1.0e-6}\n",
+             plane, av, BLOCK, BLOCK);
+    return test_build_ok(yaml);
+}
+
+enum flow { FLOW_COMPRESSION, FLOW_SHEAR };
+
+/* One step from the velocity field @p f (linear: the corrected gradient is
+ * exact); returns the velocity change of every particle in dv[2][n]. */
+static void one_step(struct sim *s, enum flow f, double *dv[2])
+{
+    struct spall_error err = {0, ""};
+    /* 1/s; compression strong enough that Balsara's floor 1e-4 c / h
+     * (~9 /s here) is 0.3 % of |div v| = 3 g */
+    const double g = f == FLOW_COMPRESSION ? 1000.0 : 100.0;
+    for (size_t i = 0; i < s->p->n; i++) {
+        const double x = s->p->x[0][i], y = s->p->x[1][i];
+        s->p->v[0][i] = f == FLOW_COMPRESSION ? -g * x : 0.0;
+        s->p->v[1][i] = f == FLOW_COMPRESSION ? -g * y : g * x;
+    }
+    double *v0[2];
+    for (int d = 0; d < 2; d++) {
+        v0[d] = malloc(s->p->n * sizeof(double));
+        assert_non_null(v0[d]);
+        memcpy(v0[d], s->p->v[d], s->p->n * sizeof(double));
+    }
+    assert_int_equal(sim_step(s, &err), SPALL_OK);
+    for (int d = 0; d < 2; d++) {
+        for (size_t i = 0; i < s->p->n; i++)
+            dv[d][i] = s->p->v[d][i] - v0[d][i];
+        free(v0[d]);
+    }
+}
+
+/* Particles whose neighbours' neighbours (2 x 2h = 5.2 mm) are inside the
+ * block and off the axis: there the corrected gradient of a linear field is
+ * exact for every particle in reach (the axis images make v_z = g r a kink). */
+static int deep(double x, double y)
+{
+    const double m = 5.3e-3;
+    return x > m && y > m && x < BLOCK - m && y < BLOCK - m;
+}
+
+/* max |a - b| / max |b - c| over particles (all, or deep ones: xy given)
+ * and components */
+static double rel_gap(size_t n, double *a[2], double *b[2], double *c[2], const double *xy[2])
+{
+    double num = 0.0, den = 0.0;
+    for (int d = 0; d < 2; d++)
+        for (size_t i = 0; i < n; i++) {
+            if (xy && !deep(xy[0][i], xy[1][i]))
+                continue;
+            num = fmax(num, fabs(a[d][i] - b[d][i]));
+            den = fmax(den, fabs(b[d][i] - c[d][i]));
+        }
+    assert_true(den > 0.0);
+    return num / den;
+}
+
+/* Velocity changes of one step of @p flow with AV options @p av; the
+ * initial positions into xy if given. */
+static size_t run_dv(const char *plane, const char *av, enum flow flow, double *dv[2],
+                     double *xy[2])
+{
+    struct sim *s = block(plane, av);
+    size_t n = s->p->n;
+    for (int d = 0; xy && d < 2; d++) {
+        xy[d] = malloc(n * sizeof(double));
+        assert_non_null(xy[d]);
+        memcpy(xy[d], s->p->x[d], n * sizeof(double));
+    }
+    for (int d = 0; d < 2; d++) {
+        dv[d] = malloc(n * sizeof(double));
+        assert_non_null(dv[d]);
+    }
+    one_step(s, flow, dv);
+    sim_destroy(&s);
+    return n;
+}
+
+static void free_dv(double *dv[2])
+{
+    free(dv[0]);
+    free(dv[1]);
+}
+
+/* (q_a, L = 2 h) == (2 q_a, h) with q_b = 0, and differs from (q_a, h). */
+static void check_length(const char *plane)
+{
+    double *a[2], *b[2], *c[2];
+    size_t n =
+        run_dv(plane, "viscosity: [1, 0], viscosity_length: 2.6e-3", FLOW_COMPRESSION, a, NULL);
+    assert_int_equal(run_dv(plane, "viscosity: [2, 0]", FLOW_COMPRESSION, b, NULL), n);
+    assert_int_equal(run_dv(plane, "viscosity: [1, 0]", FLOW_COMPRESSION, c, NULL), n);
+    double gap = rel_gap(n, a, b, c, NULL);
+    print_message("%s: |dv(q_a = 1, L = 2h) - dv(q_a = 2)| / |dv(2) - dv(1)| = %.3g\n", plane,
+                  gap);
+    assert_true(gap < 1e-9);
+    free_dv(a);
+    free_dv(b);
+    free_dv(c);
+}
+
+static void test_length_planar(void **state)
+{
+    (void)state;
+    check_length("strain");
+}
+
+static void test_length_axisymmetric(void **state)
+{
+    (void)state;
+    check_length("axisymmetric");
+}
+
+/* Balsara: shear v_z = g r (div v = 0): the AV's share of dv vanishes;
+ * compression v = -g x (curl v = 0): it stays (f = 1 - O(1e-4 c / (h |div v|))). */
+static void test_balsara(void **state)
+{
+    (void)state;
+    const char *pl = "axisymmetric";
+    double *sw[2], *av[2], *no[2], *xy[2];
+    size_t n = run_dv(pl, "viscosity: [1, 1], viscosity_switch: balsara", FLOW_SHEAR, sw, xy);
+    run_dv(pl, "viscosity: [1, 1]", FLOW_SHEAR, av, NULL);
+    run_dv(pl, "viscosity: [0, 0]", FLOW_SHEAR, no, NULL);
+    const double *cxy[2] = {xy[0], xy[1]};
+    /* |switch - none| / |none - AV| on the deep particles */
+    double shear = rel_gap(n, sw, no, av, cxy);
+    free_dv(sw);
+    free_dv(av);
+    free_dv(no);
+    n = run_dv(pl, "viscosity: [1, 1], viscosity_switch: balsara", FLOW_COMPRESSION, sw, NULL);
+    run_dv(pl, "viscosity: [1, 1]", FLOW_COMPRESSION, av, NULL);
+    run_dv(pl, "viscosity: [0, 0]", FLOW_COMPRESSION, no, NULL);
+    double comp = rel_gap(n, sw, av, no, cxy); /* |switch - AV| / |AV - none| */
+    free_dv(xy);
+    free_dv(sw);
+    free_dv(av);
+    free_dv(no);
+    print_message("balsara: AV left in shear %.3g, AV removed in compression %.3g\n", shear, comp);
+    assert_true(shear < 1e-6);
+    assert_true(comp < 1e-2);
+}
+
+static void test_balsara_refused(void **state)
+{
+    (void)state;
+    struct deck *d = NULL;
+    struct sim *s = NULL;
+    struct run_output ro;
+    struct spall_error err = {0, ""};
+    const char *yaml = "model: {type: sph, viscosity_switch: balsara}\n"
+                       "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
+                       "lattice: {type: square, spacing: 1.0e-3}\n"
+                       "body: {geometry: {box: {min: [0, 0], max: [0.01, 0.01]}}, material: m}\n"
+                       "run: {steps: 1}\n";
+    assert_int_equal(deck_load_string(&d, "bad", yaml, &err), 0);
+    assert_int_equal(deck_build_sim(d, &s, &ro, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "axisymmetric"));
+    deck_destroy(&d);
+    assert_null(s);
+    const char *neg = "model: {type: sph, viscosity_length: -1}\n"
+                      "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
+                      "lattice: {type: square, spacing: 1.0e-3}\n"
+                      "body: {geometry: {box: {min: [0, 0], max: [0.01, 0.01]}}, material: m}\n"
+                      "run: {steps: 1}\n";
+    assert_int_equal(deck_load_string(&d, "bad", neg, &err), 0);
+    assert_int_equal(deck_build_sim(d, &s, &ro, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "viscosity_length"));
+    deck_destroy(&d);
+    assert_null(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_length_planar),
+        cmocka_unit_test(test_length_axisymmetric),
+        cmocka_unit_test(test_balsara),
+        cmocka_unit_test(test_balsara_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
