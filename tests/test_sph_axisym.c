@@ -240,20 +240,12 @@ static void test_rod_bar_speed(void **state)
 static void test_refused(void **state)
 {
     (void)state;
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
     const char *yaml = "model: {type: sph, plane: axisymmetric, artificial_stress: 0.3}\n"
                        "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
                        "lattice: {type: square, spacing: 1.0e-3}\n"
                        "body: {geometry: {box: {min: [0, 0], max: [0.01, 0.01]}}, material: m}\n"
                        "run: {steps: 1}\n";
-    assert_int_equal(deck_load_string(&d, "bad", yaml, &err), 0);
-    assert_int_equal(deck_build_sim(d, &s, &ro, &err), SPALL_ERR_INPUT);
-    assert_non_null(strstr(err.msg, "axisymmetric"));
-    deck_destroy(&d);
-    assert_null(s);
+    test_deck_refused(yaml, "axisymmetric");
 }
 
 int main(void)

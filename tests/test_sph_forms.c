@@ -54,27 +54,6 @@ static struct sim *two_bodies(const char *model_extra, double vx, double gap_y)
     return test_build(yaml);
 }
 
-static void momentum(const struct sim *s, double P[2])
-{
-    P[0] = P[1] = 0.0;
-    for (size_t i = 0; i < s->p->n; i++)
-        for (int d = 0; d < 2; d++)
-            P[d] += s->p->mass[i] * s->p->v[d][i];
-}
-
-static double min_cross_distance(const struct sim *s)
-{
-    double best = INFINITY;
-    for (size_t i = 0; i < s->p->n; i++)
-        for (size_t j = i + 1; j < s->p->n; j++) {
-            if (s->p->body[i] == s->p->body[j])
-                continue;
-            double dx = s->p->x[0][i] - s->p->x[0][j], dy = s->p->x[1][i] - s->p->x[1][j];
-            best = fmin(best, sqrt(dx * dx + dy * dy));
-        }
-    return best;
-}
-
 /* Head-on run of two_bodies with @p model_extra; @p n_tl_expect TLSPH
  * particles.  Momentum to round-off, energy balance within 1 %, no
  * interpenetration, the top block stopped and compressed. */
@@ -90,15 +69,15 @@ static void run_head_on(const char *label, const char *model_extra, size_t n_tl_
     assert_int_equal(n_tl, n_tl_expect);
     struct spall_error err = {0};
     double P0[2], P[2], dp = 0.0, dmin = INFINITY;
-    momentum(s, P0);
+    test_momentum_2d(s, P0);
     const double ke0 = s->energy.kinetic;
     size_t maxpairs = 0;
     while (!sim_done(s)) {
         assert_int_equal(sim_step(s, &err), 0);
-        momentum(s, P);
+        test_momentum_2d(s, P);
         for (int d = 0; d < 2; d++)
             dp = fmax(dp, fabs(P[d] - P0[d]) / fabs(P0[1]));
-        dmin = fmin(dmin, min_cross_distance(s));
+        dmin = fmin(dmin, test_min_cross_distance(s));
         if (m->iface_pairs > maxpairs)
             maxpairs = m->iface_pairs;
     }

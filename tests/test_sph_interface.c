@@ -58,28 +58,6 @@ static struct sim *two_bodies(int axi, const char *iface, double vx)
     return test_build(yaml);
 }
 
-static void momentum(const struct sim *s, double P[2])
-{
-    P[0] = P[1] = 0.0;
-    for (size_t i = 0; i < s->p->n; i++)
-        for (int d = 0; d < 2; d++)
-            P[d] += s->p->mass[i] * s->p->v[d][i];
-}
-
-/* Smallest distance between particles of different bodies. */
-static double min_cross_distance(const struct sim *s)
-{
-    double best = INFINITY;
-    for (size_t i = 0; i < s->p->n; i++)
-        for (size_t j = i + 1; j < s->p->n; j++) {
-            if (s->p->body[i] == s->p->body[j])
-                continue;
-            double dx = s->p->x[0][i] - s->p->x[0][j], dy = s->p->x[1][i] - s->p->x[1][j];
-            best = fmin(best, sqrt(dx * dx + dy * dy));
-        }
-    return best;
-}
-
 static void test_kernel_list_inside_bodies(void **state)
 {
     (void)state;
@@ -115,7 +93,7 @@ static void run_impact(int axi, const char *iface, double vx, double *dp, double
     assert_non_null(s);
     struct spall_error err = {0};
     double P0[2], P[2];
-    momentum(s, P0);
+    test_momentum_2d(s, P0);
     const double ke0 = s->energy.kinetic;
     *dp = 0.0;
     *dmin = INFINITY;
@@ -123,12 +101,12 @@ static void run_impact(int axi, const char *iface, double vx, double *dp, double
     const struct model *m = s->model;
     while (!sim_done(s)) {
         assert_int_equal(sim_step(s, &err), 0);
-        momentum(s, P);
+        test_momentum_2d(s, P);
         /* the rings' radial momenta cancel around the circumference (not
          * a sum over particles); the axial one is conserved */
         for (int d = axi ? 1 : 0; d < 2; d++)
             *dp = fmax(*dp, fabs(P[d] - P0[d]) / fabs(P0[1]));
-        *dmin = fmin(*dmin, min_cross_distance(s));
+        *dmin = fmin(*dmin, test_min_cross_distance(s));
         if (m->iface_pairs > *maxpairs)
             *maxpairs = m->iface_pairs;
     }

@@ -110,20 +110,12 @@ static void test_taylor_paths(void **state)
 static void test_bad_decks(void **state)
 {
     (void)state;
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
     const char *yaml = "model: {type: sph, kernel: nonsense}\n"
                        "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
                        "lattice: {type: square, spacing: 1.0e-3}\n"
                        "body: {geometry: {box: {min: [0, 0], max: [0.01, 0.01]}}, material: m}\n"
                        "run: {steps: 1}\n";
-    assert_int_equal(deck_load_string(&d, "bad", yaml, &err), 0);
-    assert_int_equal(deck_build_sim(d, &s, &ro, &err), SPALL_ERR_INPUT);
-    assert_non_null(strstr(err.msg, "kernel"));
-    deck_destroy(&d);
-    assert_null(s);
+    test_deck_refused(yaml, "kernel");
 }
 
 int main(void)

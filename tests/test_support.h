@@ -7,9 +7,15 @@
 #ifndef SPALL_TEST_SUPPORT_H
 #define SPALL_TEST_SUPPORT_H
 
+#include "core/particles.h"
 #include "core/sim.h"
+#include "io/deck.h"
+#include "io/deck_build.h"
 #include "spall/error.h"
 #include "validation/lattice_cases.h"
+
+#include <math.h>
+#include <string.h>
 
 /** The simulation of @p yaml, or NULL with the cause printed (for tests
  *  that also feed decks the engine must refuse). */
@@ -31,6 +37,46 @@ static inline struct sim *test_build_ok(const char *yaml)
     struct sim *s = test_build(yaml);
     assert_non_null(s);
     return s;
+}
+
+/** @p yaml must be refused as bad input (SPALL_ERR_INPUT, no simulation)
+ *  with a message that contains @p needle. */
+static inline void test_deck_refused(const char *yaml, const char *needle)
+{
+    struct deck *d = NULL;
+    struct sim *s = NULL;
+    struct run_output ro;
+    struct spall_error err = {0, ""};
+    assert_int_equal(deck_load_string(&d, "bad", yaml, &err), 0);
+    assert_int_equal(deck_build_sim(d, &s, &ro, &err), SPALL_ERR_INPUT);
+    print_message("refused: %s\n", err.msg);
+    assert_non_null(strstr(err.msg, needle));
+    deck_destroy(&d);
+    assert_null(s);
+}
+
+/** Total momentum of a 2D run. */
+static inline void test_momentum_2d(const struct sim *s, double P[2])
+{
+    P[0] = P[1] = 0.0;
+    for (size_t i = 0; i < s->p->n; i++)
+        for (int d = 0; d < 2; d++)
+            P[d] += s->p->mass[i] * s->p->v[d][i];
+}
+
+/** Smallest distance between particles of different bodies (2D, O(N^2):
+ *  small tests only). */
+static inline double test_min_cross_distance(const struct sim *s)
+{
+    double best = INFINITY;
+    for (size_t i = 0; i < s->p->n; i++)
+        for (size_t j = i + 1; j < s->p->n; j++) {
+            if (s->p->body[i] == s->p->body[j])
+                continue;
+            double dx = s->p->x[0][i] - s->p->x[0][j], dy = s->p->x[1][i] - s->p->x[1][j];
+            best = fmin(best, sqrt(dx * dx + dy * dy));
+        }
+    return best;
 }
 
 #endif
