@@ -2,7 +2,9 @@
  * @file sph_beam.h
  * @brief Shared driver of the SPH cantilever cases (validation/sph_beam_plate.c,
  *        validation/sph_beam_large.c): seed 004 sec. 3.4.1 beam, dx = 1 mm,
- *        plane stress, clamp = 3 fixed columns, quadratic 1.5 ms load ramp.
+ *        plane stress, quadratic 1.5 ms load ramp; clamp = 3 fixed columns
+ *        behind x = 0 (the thesis' form) or the mirrored clamp
+ *        (src/models/sph/sph_clamp.c) on 5 columns, symmetric about x = 0.
  */
 #ifndef SPALL_VALIDATION_SPH_BEAM_H
 #define SPALL_VALIDATION_SPH_BEAM_H
@@ -23,14 +25,21 @@ struct sph_beam_result {
     double external; /**< work of the load [J] */
 };
 
-/** Run the beam with @p kernel, end load @p force [N], h = @p hfac dx and
- *  extra model keys @p extra (flow-mapping text). */
+/** Clamp forms of the beam. */
+enum sph_beam_clamp {
+    SPH_BEAM_FIXED = 0, /**< 3 columns of fixed particles behind x = 0 (seed 004) */
+    SPH_BEAM_MIRROR = 1 /**< model.clamp on 5 fixed columns: ghosts mirror the beam */
+};
+
+/** Run the beam with @p kernel, end load @p force [N], h = @p hfac dx,
+ *  extra model keys @p extra (flow-mapping text) and clamp form @p clamp. */
 int sph_beam_run(const char *kernel, double force, double hfac, const char *extra,
-                 struct sph_beam_result *out, struct spall_error *err);
+                 enum sph_beam_clamp clamp, struct sph_beam_result *out,
+                 struct spall_error *err);
 /** sph_beam_run, an unstable run noted in @p r and returned as mean = NaN;
  *  the outcome is printed as an info line. */
 int sph_beam_run_or_note(struct vreport *r, const char *what, const char *kernel, double force,
-                         double hfac, const char *extra, struct sph_beam_result *res,
-                         struct spall_error *err);
+                         double hfac, const char *extra, enum sph_beam_clamp clamp,
+                         struct sph_beam_result *res, struct spall_error *err);
 
 #endif
