@@ -45,8 +45,10 @@ struct sph_taylor2d_result {
 /** "sph-taylor-2d": iron rod of seed 004 Table 3.5 (Libersky & Petschek). */
 int sph_case_taylor2d(struct vreport *r, struct spall_error *err);
 /** One 2D rod run with @p n particles across the diameter, sampled at t1 and
- *  t2; @p axisymmetric: 1 = axisymmetric rod (r, z), 0 = plane strain. */
-int sph_taylor2d_run(int n, int axisymmetric, double t1, double t2,
+ *  t2; @p axisymmetric: 1 = axisymmetric rod (r, z), 0 = plane strain;
+ *  @p av: extra model keys for the artificial viscosity (e.g.
+ *  "viscosity_length: 2.4e-4"), NULL or "" for the thesis form. */
+int sph_taylor2d_run(int n, int axisymmetric, const char *av, double t1, double t2,
                      struct sph_taylor2d_result *out, struct spall_error *err);
 
 /** Time the rings case runs: contact, rebound and separation. */
