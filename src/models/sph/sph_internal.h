@@ -289,6 +289,10 @@ double sph_rate_factor(const struct sph_material *mt, double epdot);
 void sph_update_pressure(struct model *m, struct sim *s, int mine);
 /** Pressure and sound speed of particle i (what sph_update_pressure does per particle). */
 void sph_update_pressure_one(struct model *m, size_t i);
+/** Parse and check `materials:` entry @p index of an SPH run into m->mat
+ *  (the model_ops parse_material hook, sph_material.c). */
+int sph_material_parse(struct model *m, struct sim *sim, int index,
+                       const struct deck_node *node, struct spall_error *err);
 /** Jaumann stress rate of particle i from L (Eq. 3.28-3.30), and the plane-stress
  *  out-of-plane strain rate; also returns tr(D) (3D trace). */
 void sph_stress_rate(const struct model *m, size_t i, double *trD);

@@ -10,8 +10,13 @@
 
 #include "core/particles.h"
 #include "core/sim.h"
+#include "io/deck.h"
+#include "spall/error.h"
 
 #include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
 
 double sph_eos_pressure(const struct sph_material *mt, double rho, double e)
 {
@@ -214,4 +219,101 @@ void sph_plastic_return(struct model *m, size_t i, double dt, bool commit)
             m->S[c][i] = 0.0;
     }
     (void)dt;
+}
+
+/* One `materials:` entry of an SPH run (docs/decks.md, SPH material keys):
+ * elastic constants, EOS, yield, rate and failure laws, checked. */
+int sph_material_parse(struct model *m, struct sim *sim, int index,
+                       const struct deck_node *node, struct spall_error *err)
+{
+    static const char *const keys[] = {
+        "density", "youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus", "eos",
+        "sound_speed", "hugoniot_slope", "gruneisen", "reference_pressure", "yield",
+        "yield_stress", "yield_a", "yield_b", "yield_n", "jc_c", "jc_m", "melt_temperature",
+        "room_temperature", "reference_strain_rate", "specific_heat", "taylor_quinney", "failure",
+        "failure_value", "failed_tension", "rate_model", "cs_d", "cs_q", NULL};
+    static const char *const rates[] = {"none", "cowper_symonds", NULL};
+    static const char *const eoss[] = {"linear", "mie_gruneisen", "mie_gruneisen_ck", NULL};
+    static const char *const ylds[] = {"elastic", "perfect", "power", "johnson_cook", NULL};
+    static const char *const fails[] = {"none", "stress", "plastic_strain", NULL};
+    if ((size_t)index >= m->n_mat) {
+        struct sph_material *q = realloc(m->mat, ((size_t)index + 1) * sizeof *q);
+        if (!q)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for materials");
+        memset(q + m->n_mat, 0, ((size_t)index + 1 - m->n_mat) * sizeof *q);
+        m->mat = q;
+        m->n_mat = (size_t)index + 1;
+    }
+    struct sph_material mt;
+    memset(&mt, 0, sizeof mt);
+    mt.rho0 = sim->materials[index].density;
+    mt.Troom = 293.0;
+    mt.eps0 = 1.0;
+    mt.beta_tq = 0.9;
+    mt.Tm = INFINITY;
+    int eos = 0, yld = 0, fl = 0, rt = 0, rc;
+    bool has_e = deck_peek(node, "youngs_modulus") != NULL;
+    if (has_e) {
+        if ((rc = deck_double_pos(node, "youngs_modulus", true, &mt.E, err)) ||
+            (rc = deck_double(node, "poisson_ratio", true, -0.999, 0.4999, &mt.nu, err)))
+            return rc;
+        mt.K = mt.E / (3.0 * (1.0 - 2.0 * mt.nu));
+        mt.G = mt.E / (2.0 * (1.0 + mt.nu));
+    } else {
+        if ((rc = deck_double_pos(node, "bulk_modulus", true, &mt.K, err)) ||
+            (rc = deck_double(node, "shear_modulus", true, 0.0, INFINITY, &mt.G, err)))
+            return rc;
+        mt.E = 9.0 * mt.K * mt.G / (3.0 * mt.K + mt.G);
+        mt.nu = (3.0 * mt.K - 2.0 * mt.G) / (2.0 * (3.0 * mt.K + mt.G));
+    }
+    if ((rc = deck_enum(node, "eos", false, eoss, &eos, err)) ||
+        (rc = deck_enum(node, "yield", false, ylds, &yld, err)) ||
+        (rc = deck_enum(node, "failure", false, fails, &fl, err)) ||
+        (rc = deck_enum(node, "rate_model", false, rates, &rt, err)))
+        return rc;
+    mt.rate = (enum sph_rate)rt;
+    /* Cowper-Symonds D, q: required and > 0 with rate_model cowper_symonds */
+    bool cs = mt.rate == SPH_RATE_COWPER_SYMONDS;
+    if ((rc = deck_double_pos(node, "cs_d", cs, &mt.cs_d, err)) ||
+        (rc = deck_double_pos(node, "cs_q", cs, &mt.cs_q, err)))
+        return rc;
+    mt.eos = (enum sph_eos)eos;
+    mt.yield = (enum sph_yield)yld;
+    mt.failure = (enum sph_failure)fl;
+    if (mt.eos != SPH_EOS_LINEAR &&
+        ((rc = deck_double_pos(node, "sound_speed", true, &mt.mg_c, err)) ||
+         (rc = deck_double_pos(node, "hugoniot_slope", true, &mt.mg_s, err)) ||
+         (rc = deck_double(node, "gruneisen", true, 0.0, 10.0, &mt.mg_gamma, err)) ||
+         (rc = deck_double(node, "reference_pressure", false, -INFINITY, INFINITY, &mt.mg_p0,
+                           err))))
+        return rc;
+    bool need_a = mt.yield == SPH_YIELD_POWER || mt.yield == SPH_YIELD_JOHNSON_COOK;
+    bool jc = mt.yield == SPH_YIELD_JOHNSON_COOK;
+    if ((rc = deck_double_pos(node, "yield_stress", mt.yield == SPH_YIELD_PERFECT, &mt.sy, err)) ||
+        (rc = deck_double_pos(node, "yield_a", need_a, &mt.A, err)) ||
+        (rc = deck_double(node, "yield_b", false, 0.0, INFINITY, &mt.B, err)) ||
+        (rc = deck_double(node, "yield_n", false, 0.0, 10.0, &mt.n, err)) ||
+        (rc = deck_double(node, "jc_c", false, 0.0, 10.0, &mt.jc_c, err)) ||
+        (rc = deck_double(node, "jc_m", false, 0.0, 10.0, &mt.jc_m, err)) ||
+        (rc = deck_double_pos(node, "melt_temperature", false, &mt.Tm, err)) ||
+        (rc = deck_double_pos(node, "room_temperature", false, &mt.Troom, err)) ||
+        (rc = deck_double_pos(node, "reference_strain_rate", false, &mt.eps0, err)) ||
+        (rc = deck_double_pos(node, "specific_heat", jc, &mt.cp, err)) ||
+        (rc = deck_double(node, "taylor_quinney", false, 0.0, 1.0, &mt.beta_tq, err)) ||
+        (rc = deck_double_pos(node, "failure_value", mt.failure != SPH_FAIL_NONE, &mt.fail_value,
+                              err)) ||
+        (rc = deck_bool(node, "failed_tension", false, &mt.failed_tension, err)) ||
+        (rc = deck_check_unused(node, "material", keys, err)))
+        return rc;
+    if (cs && jc)
+        return deck_error_key(err, node, "rate_model",
+                              "rate_model cowper_symonds with yield johnson_cook: JC has its own "
+                              "rate term");
+    if (jc && !(mt.Tm > mt.Troom))
+        return deck_error_key(err, node, "melt_temperature",
+                              "melt_temperature %g K must exceed room_temperature %g K", mt.Tm,
+                              mt.Troom);
+    mt.parsed = true;
+    m->mat[index] = mt;
+    return SPALL_OK;
 }
