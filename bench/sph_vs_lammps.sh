@@ -1,5 +1,7 @@
 #!/bin/sh
-# SPH race (issue 6 item 8), run by hand:  sh bench/sph_vs_lammps.sh [build-dir]
+# SPH race (issue 6 item 8), side by side with LAMMPS MACHDYN, run by hand:
+#
+#   LMP=$(sh bench/lammps_machdyn_build.sh) sh bench/sph_vs_lammps.sh [build-dir] [--rest]
 #
 # The problem: copper Taylor bar L0 = 32.4 mm, R0 = 3.2 mm, 227 m/s onto a
 # rigid wall, E = 117 GPa, nu = 0.35, rho = 8930 kg/m^3, sigma_y = 0.4 GPa
@@ -7,43 +9,54 @@
 # (16 848 particles; --scale 0.3: dx = 0.598 mm, 4 752 particles).
 #
 # Matched neighbour count: LAMMPS MACHDYN's TLSPH examples set the kernel
-# radius (the atom "diameter") to 2.01 dx
-# (/usr/share/lammps/examples/PACKAGES/machdyn/aluminum_strip_pull/in.*,
-# rubber_strip_pull, funnel_flow; Debian lammps-examples 20220106), and
-# pair smd/tlsph takes h = radius_i + radius_j as the support of its spiky
-# kernel (src/MACHDYN/pair_smd_tlsph.cpp): 32 neighbours inside a cubic
-# lattice, 27.3 on average over this bar.  spall's Wendland kernel with
-# h = 1.005 dx has the same support 2.01 dx (bench case sph_taylor_cu_tl).
-# Other MACHDYN settings of those examples: hourglass coefficient 10, Q1 =
-# 0.56 (metal) / 1.0, Q2 = 0, time step 0.1 x kernel radius / wave speed
-# (fix smd/adjust_dt 0.1).  The hourglass and viscosity terms are not the
-# same formulas as spall's (kappa = 0.1 on the pair mismatch; Monaghan AV
-# [1, 1]): matched are the problem, the kernel support and the neighbour
-# count, not the stabilisation.
+# radius (the atom "diameter") to 2.01 dx (examples/PACKAGES/machdyn/
+# aluminum_strip_pull, rubber_strip_pull, funnel_flow), and pair smd/tlsph
+# takes h = radius_i + radius_j as the support of its spiky kernel: 32
+# neighbours inside a cubic lattice, 27.3 on average over this bar.
+# spall's Wendland kernel with h = 1.005 dx has the same support 2.01 dx
+# (bench case sph_taylor_cu_tl).  Same AV (Monaghan [1, 1] in both; MACHDYN
+# Q1 = Q2 = 1).  Not matched (different formulas): the hourglass control
+# (MACHDYN 10 on its own pair-error measure; spall kappa = 0.1 default, 1 in
+# the rest case) and the time step (MACHDYN 0.1 x radius / c; spall 0.3 h /
+# (c + |v|) with the leapfrog).  Throughput is per particle-step, so the time
+# step does not enter it; it enters the cost per simulated microsecond.
 #
-# 1. spall on 1 and 2 threads, both sizes (wall clock of the time loop).
-# 2. LAMMPS MACHDYN on the same bar, if `lmp` has the package.  Debian's
-#    lammps 20220106 does NOT include MACHDYN (checked 2026-11-23:
-#    `lmp -h | grep -ci smd` prints 0), so on this machine only step 1 runs;
-#    the input below is written for a LAMMPS built with -D PKG_MACHDYN=on
-#    (needs Eigen3) and has not been run.
+# 1. throughput, 200 steps, one core each: spall (1 and 2 threads) and
+#    LAMMPS (serial build: one core) on both sizes;
+# 2. with --rest: the accuracy half, both codes run to 80 us and report the
+#    final length (axial extent + dx) and mushroom radius (largest radius of
+#    a particle + dx/2), spall with the leapfrog and hourglass 1
+#    (sph_taylor_cu_rest_lf), LAMMPS with the settings above.
+#
+# LMP defaults to `lmp` on PATH; Debian's lammps 20220106 binary has no
+# MACHDYN (`lmp -h | grep -c smd/tlsph` prints 0), its source package does:
+# bench/lammps_machdyn_build.sh builds one.
 set -eu
 BUILD=${1:-build}
+REST=${2:-}
+LMP=${LMP:-lmp}
 echo "== spall: copper Taylor bar, 200 steps"
 for s in 1 0.3; do
     for t in 1 2; do
-        OMP_WAIT_POLICY=passive "$BUILD/spall" bench sph_taylor_cu_tl sph_taylor_cu \
-            --threads "$t" --scale "$s" || true
+        OMP_WAIT_POLICY=passive "$BUILD/spall" bench sph_taylor_cu_tl --threads "$t" \
+            --scale "$s" || true
     done
 done
-if ! command -v lmp >/dev/null 2>&1 || [ "$(lmp -h 2>&1 | grep -ci 'smd/tlsph')" = 0 ]; then
-    echo "== LAMMPS: no lmp with the MACHDYN package (smd/tlsph) here; skipped"
+if [ "$REST" = "--rest" ]; then
+    for s in 0.125 0.3 1; do
+        OMP_NUM_THREADS=1 "$BUILD/spall" bench sph_taylor_cu_rest_lf --threads 1 --scale "$s" \
+            || true
+    done
+fi
+if ! command -v "$LMP" >/dev/null 2>&1 || [ "$("$LMP" -h 2>&1 | grep -c 'smd/tlsph')" = 0 ]; then
+    echo "== LAMMPS: no lmp with the MACHDYN package (smd/tlsph) at '$LMP'; skipped"
+    echo "   (LMP=\$(sh bench/lammps_machdyn_build.sh) builds one from Debian's source)"
     exit 0
 fi
 dir=$(mktemp -d)
-for dx in 0.4e-3 0.598e-3; do
-cat > "$dir/in.taylor" <<LMP
-# copper Taylor bar, TLSPH (MACHDYN), SI units, dx = $dx m
+machdyn_input() { # $1 = dx [m], $2 = run length: steps or "rest"
+    cat <<LMP
+# copper Taylor bar, TLSPH (MACHDYN), SI units, dx = $1 m
 units          si
 dimension      3
 boundary       sm sm sm
@@ -51,13 +64,13 @@ atom_style     smd
 comm_modify    vel yes
 newton         off
 atom_modify    map array
-variable       dx equal $dx
+variable       dx equal $1
 variable       h  equal 2.01*\${dx}     # kernel diameter = support radius (MACHDYN examples)
 neighbor       \${h} bin
 neigh_modify   every 10 delay 0 check yes
 lattice        sc \${dx} origin 0.5 0.5 0.5
 region         bar cylinder z 0 0 3.2e-3 0 32.4e-3 units box
-region         box block -8e-3 8e-3 -8e-3 8e-3 -1e-3 34e-3 units box
+region         box block -12e-3 12e-3 -12e-3 12e-3 -1e-3 34e-3 units box
 create_box     1 box
 create_atoms   1 region bar
 group          tlsph type 1
@@ -77,16 +90,53 @@ fix            dtfix tlsph smd/adjust_dt 0.1
 fix            integ tlsph smd/integrate_tlsph
 compute        nn all smd/tlsph/num/neighs
 compute        nnave all reduce ave c_nn
-thermo         50
-thermo_style   custom step time f_dtfix c_nnave
-run            200
+variable       r atom sqrt(x*x+y*y)
+compute        rmax all reduce max v_r
+variable       zlo equal bound(all,zmin)
+variable       zhi equal bound(all,zmax)
+variable       len equal v_zhi-v_zlo+\${dx}
+variable       rad equal c_rmax+0.5*\${dx}
+thermo         500
+thermo_style   custom step time f_dtfix c_nnave v_len v_rad
+thermo_modify  norm no
 LMP
-for t in 1 2; do
-    echo "== LAMMPS MACHDYN, dx = $dx, $t thread(s) (MPI ranks)"
-    (cd "$dir" && mpirun -np "$t" lmp -in in.taylor > log.$t 2>&1 || lmp -in in.taylor > log.$t 2>&1)
-    atoms=$(grep -m1 "Created .* atoms" "$dir/log.$t" | awk '{print $2}')
-    loop=$(grep -m1 "^Loop time" "$dir/log.$t" | awk '{print $4}')
-    grep -E "average # of neighbors|^ +200 " "$dir/log.$t" || true
-    awk -v n="$atoms" -v s="$loop" 'BEGIN {printf "   %d atoms, 200 steps in %.3f s: %.4g particle-steps/s\n", n, s, n * 200 / s}'
+    if [ "$2" = rest ]; then
+        # fix smd/adjust_dt sets the step; run in chunks of 100 steps until 80 us
+        cat <<LMP
+run            200
+variable       tnow equal time
+label          more
+if "\${tnow} >= 80e-6" then "jump SELF done"
+run            100 post no
+jump           SELF more
+label          done
+print          "RESULT time \${tnow} length \$(v_len) radius \$(v_rad) steps \$(step)"
+LMP
+    else
+        echo "run            $2"
+    fi
+}
+for dx in 0.4e-3 0.598e-3; do
+    machdyn_input "$dx" 200 > "$dir/in.taylor"
+    echo "== LAMMPS MACHDYN, dx = $dx, 1 core (serial), 200 steps"
+    (cd "$dir" && "$LMP" -in in.taylor > log.200 2>&1)
+    atoms=$(grep -m1 "Created .* atoms" "$dir/log.200" | awk '{print $2}')
+    loop=$(grep -m1 "^Loop time" "$dir/log.200" | awk '{print $4}')
+    cpu=$(grep -m1 "% CPU use" "$dir/log.200" | awk '{sub("%", "", $1); print $1}')
+    grep -E "^ +200 " "$dir/log.200" || true
+    # LAMMPS' loop time is wall clock; "% CPU use" turns it into CPU
+    # seconds, comparable with spall's "loop CPU" on a shared machine
+    awk -v n="$atoms" -v s="$loop" -v c="$cpu" 'BEGIN {printf "   %d atoms, 200 steps in %.3f s wall (%.1f %% CPU): %.4g particle-steps/s, %.4g per CPU-second\n", n, s, c, n * 200 / s, n * 200 / (s * c / 100)}'
 done
-done
+if [ "$REST" = "--rest" ]; then
+    for dx in 0.8e-3 0.598e-3 0.4e-3; do
+        machdyn_input "$dx" rest > "$dir/in.rest"
+        echo "== LAMMPS MACHDYN to 80 us, dx = $dx"
+        start=$(date +%s)
+        (cd "$dir" && "$LMP" -in in.rest > log.rest 2>&1) || tail -5 "$dir/log.rest"
+        end=$(date +%s)
+        grep -E "^RESULT|ERROR|WARNING.*deleted" "$dir/log.rest" | head -5 || true
+        echo "   wall $((end - start)) s"
+    done
+fi
+rm -rf "$dir"
