@@ -28,6 +28,7 @@
  * thread count.  Not in seed 004 (an option, default off).
  */
 #include "models/sph/sph_internal.h"
+#include "models/sph/sph_pairs.h"
 
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -43,8 +44,9 @@ void sph_artificial_stress_smooth(struct model *m, const struct sim *s)
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
     const enum sph_kernel kern = m->opt.kernel;
+    const struct sph_support sp = sph_support_of(m);
     const int dim = m->dim;
-    const double alpha = m->alpha, qmax = m->qmax;
+    const double alpha = m->alpha;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i];
@@ -56,17 +58,10 @@ void sph_artificial_stress_smooth(struct model *m, const struct sim *s)
             acc[c] = w * m->R[c][i];
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             const size_t j = (size_t)nb[k];
-            const double hb = 0.5 * (hi + m->h[j]);
-            double r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                double dd = p->x[d][i] - p->x[d][j];
-                r2 += dd * dd;
-            }
-            if (r2 >= qmax * qmax * hb * hb)
+            struct sph_pair pr;
+            if (!sph_pair_in_support(&sp, dim, p->x, m->h, i, j, &pr))
                 continue;
-            double W, F;
-            sph_kernel_eval(kern, alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W, &F);
-            w = m->m2[j] / m->rho[j] * W;
+            w = m->m2[j] / m->rho[j] * pr.W;
             ws += w;
             for (int c = 0; c < 6; c++)
                 acc[c] += w * m->R[c][j];

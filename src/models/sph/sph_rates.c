@@ -27,6 +27,7 @@
  * the oscillating plate, pumps energy into the system exponentially.
  */
 #include "models/sph/sph_internal.h"
+#include "models/sph/sph_pairs.h"
 
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -56,12 +57,7 @@ static void sph_neighbors_trim(struct model *m, const struct particles *p, doubl
         for (size_t k = start; k < end; k++) {
             size_t j = (size_t)nl->idx[k];
             double reach = m->qmax * (m->h[i] > m->h[j] ? m->h[i] : m->h[j]) + skin_abs;
-            double r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                double dd = p->x[d][i] - p->x[d][j];
-                r2 += dd * dd;
-            }
-            if (r2 <= reach * reach)
+            if (sph_dist2(p->x, dim, i, j) <= reach * reach)
                 nl->idx[w++] = nl->idx[k];
         }
         start = end;
@@ -137,7 +133,8 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
     const enum sph_kernel kern = m->opt.kernel;
-    const double alpha = m->alpha, qmax = m->qmax;
+    const struct sph_support sp = sph_support_of(m);
+    const double alpha = m->alpha;
     const bool cspm = m->opt.cspm, summ = m->opt.density == SPH_DENSITY_SUMMATION;
     size_t fallbacks = 0;
     if (summ) {
@@ -151,18 +148,9 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
             double rho = m->m2[i] * W0;
             for (size_t k = off[i]; k < off[i + 1]; k++) {
                 size_t j = (size_t)nb[k];
-                double hb = 0.5 * (hi + m->h[j]);
-                double r2 = 0.0;
-                for (int d = 0; d < dim; d++) {
-                    double dd = p->x[d][i] - p->x[d][j];
-                    r2 += dd * dd;
-                }
-                if (r2 >= qmax * qmax * hb * hb)
-                    continue;
-                double W, F;
-                sph_kernel_eval(kern, alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W,
-                                &F);
-                rho += m->m2[j] * W;
+                struct sph_pair pr;
+                if (sph_pair_in_support(&sp, dim, p->x, m->h, i, j, &pr))
+                    rho += m->m2[j] * pr.W;
             }
             m->rho[i] = rho;
         }
@@ -172,22 +160,14 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
         if (sph_skip(m, i, SPH_FORM_UPDATED))
             continue; /* a TLSPH particle of a mixed run (sph_forms.c) */
         double G[9] = {0}, B[9] = {0};
-        const double hi = m->h[i];
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             size_t j = (size_t)nb[k];
-            double hb = 0.5 * (hi + m->h[j]);
-            double xij[3] = {0, 0, 0};
-            double r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                xij[d] = p->x[d][i] - p->x[d][j];
-                r2 += xij[d] * xij[d];
-            }
-            if (r2 >= qmax * qmax * hb * hb)
+            struct sph_pair pr;
+            if (!sph_pair_in_support(&sp, dim, p->x, m->h, i, j, &pr))
                 continue;
-            double W, F;
-            sph_kernel_eval(kern, alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W, &F);
+            const double *xij = pr.x;
             double Vj = m->m2[j] / m->rho[j];
-            double VF = Vj * F; /* grad_i W = F x_ij */
+            double VF = Vj * pr.F; /* grad_i W = F x_ij */
             for (int a = 0; a < dim; a++) {
                 double dv = p->v[a][j] - p->v[a][i];
                 double dxa = -xij[a];
@@ -300,7 +280,8 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
     const enum sph_kernel kern = m->opt.kernel;
-    const double alpha = m->alpha, qmax = m->qmax;
+    const struct sph_support sp = sph_support_of(m);
+    const double alpha = m->alpha;
     const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
     const double lav = m->opt.av_length;
     const double xs = m->opt.xsph;
@@ -323,20 +304,16 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
         }
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             size_t j = (size_t)nb[k];
-            double hb = 0.5 * (hi + m->h[j]);
-            double xij[3] = {0, 0, 0}, vij[3] = {0, 0, 0};
-            double r2 = 0.0, vx = 0.0;
+            struct sph_pair pr;
+            if (!sph_pair_in_support(&sp, dim, p->x, m->h, i, j, &pr))
+                continue;
+            const double *xij = pr.x;
+            const double hb = pr.hb, r2 = pr.r2, W = pr.W, F = pr.F;
+            double vij[3] = {0, 0, 0}, vx = 0.0;
             for (int d = 0; d < dim; d++) {
-                xij[d] = p->x[d][i] - p->x[d][j];
                 vij[d] = p->v[d][i] - p->v[d][j];
-                r2 += xij[d] * xij[d];
                 vx += vij[d] * xij[d];
             }
-            if (r2 >= qmax * qmax * hb * hb)
-                continue;
-            const double hd = dim == 2 ? hb * hb : hb * hb * hb;
-            double W, F;
-            sph_kernel_eval(kern, alpha, sqrt(r2), hb, hd, &W, &F);
             const double rhoj = m->rho[j];
             const double rj2 = 1.0 / (rhoj * rhoj);
             double Pi = 0.0;
@@ -351,7 +328,8 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
                 double Wd = Wdi;
                 if (m->h[j] != hi || m->dx[j] != m->dx[i]) {
                     double Fd;
-                    sph_kernel_eval(kern, alpha, 0.5 * (m->dx[i] + m->dx[j]), hb, hd, &Wd, &Fd);
+                    sph_kernel_eval(kern, alpha, 0.5 * (m->dx[i] + m->dx[j]), hb,
+                                    dim == 2 ? hb * hb : hb * hb * hb, &Wd, &Fd);
                 }
                 double f1 = Wd > 0.0 ? W / Wd : 0.0;
                 fn = asn == 4.0 ? (f1 * f1) * (f1 * f1) : pow(f1, asn);
