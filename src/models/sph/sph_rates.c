@@ -65,6 +65,21 @@ static void sph_neighbors_trim(struct model *m, const struct particles *p, doubl
     }
 }
 
+double sph_max_move2(const struct model *m, const struct particles *p)
+{
+    double d2max = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        double d2 = 0.0;
+        for (int d = 0; d < m->dim; d++) {
+            double dd = p->x[d][i] - m->x_build[d][i];
+            d2 += dd * dd;
+        }
+        if (d2 > d2max)
+            d2max = d2;
+    }
+    return d2max;
+}
+
 int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err)
 {
     const struct particles *p = s->p;
@@ -75,18 +90,8 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
         if (m->h[i] > hmax)
             hmax = m->h[i];
     if (!force && m->nl) {
-        double d2max = 0.0;
-        for (size_t i = 0; i < n; i++) {
-            double d2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                double dd = p->x[d][i] - m->x_build[d][i];
-                d2 += dd * dd;
-            }
-            if (d2 > d2max)
-                d2max = d2;
-        }
         /* a pair can close in by at most twice the largest displacement */
-        if (m->qmax * hmax + 2.0 * sqrt(d2max) <= m->nl_radius)
+        if (m->qmax * hmax + 2.0 * sqrt(sph_max_move2(m, p)) <= m->nl_radius)
             return SPALL_OK;
     }
     double t0 = omp_get_wtime();

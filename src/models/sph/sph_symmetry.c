@@ -183,18 +183,8 @@ int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src
     for (size_t i = 0; i < n; i++)
         hmax = fmax(hmax, m->h[i]);
     bool rebuild = !g->built || !m->nl;
-    if (!rebuild) {
-        double d2max = 0.0;
-        for (size_t i = 0; i < n; i++) {
-            double d2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                double dd = p->x[d][i] - m->x_build[d][i];
-                d2 += dd * dd;
-            }
-            d2max = fmax(d2max, d2);
-        }
-        rebuild = m->qmax * hmax + 2.0 * sqrt(d2max) > m->nl_radius;
-    }
+    if (!rebuild)
+        rebuild = m->qmax * hmax + 2.0 * sqrt(sph_max_move2(m, p)) > m->nl_radius;
     int rc;
     if (rebuild) {
         m->nl_radius = m->qmax * hmax * (1.0 + m->opt.skin);
