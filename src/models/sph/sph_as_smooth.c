@@ -47,7 +47,7 @@ void sph_artificial_stress_smooth(struct model *m, const struct sim *s)
     const struct sph_support sp = sph_support_of(m);
     const int dim = m->dim;
     const double alpha = m->alpha;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i];
         double W0, F0;
@@ -58,10 +58,11 @@ void sph_artificial_stress_smooth(struct model *m, const struct sim *s)
             acc[c] = w * m->R[c][i];
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             const size_t j = (size_t)nb[k];
-            struct sph_pair pr;
-            if (!sph_pair_in_support(&sp, dim, p->x, m->h, i, j, &pr))
+            double W, F;
+            if (!sph_pair_kernel(&sp, dim, sph_dist2(p->x, dim, i, j), 0.5 * (hi + m->h[j]), &W,
+                                 &F))
                 continue;
-            w = m->m2[j] / m->rho[j] * pr.W;
+            w = m->m2[j] / m->rho[j] * W;
             ws += w;
             for (int c = 0; c < 6; c++)
                 acc[c] += w * m->R[c][j];

@@ -163,7 +163,7 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
     const struct sph_support sp = sph_support_of(m);
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
     size_t fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
+#pragma omp parallel for schedule(static) firstprivate(sp) reduction(+ : fallbacks)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i];
         double G[4] = {0, 0, 0, 0}; /* rr rz zr zz */
@@ -268,7 +268,7 @@ static void axis_weight_sweep(struct model *m, struct sim *s, const double *lin,
     const struct sph_support sp = sph_support_of(m);
     const double qmax = m->qmax;
     const double *X = p->x[0], *Z = p->x[1];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i], rhoi = m->rho[i];
         const double Ri = hoop_radius(m, X, i);
@@ -350,7 +350,7 @@ static void pass_forces_axi(struct model *m, struct sim *s)
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
     const double *Srr = m->sig[SXX], *Szz = m->sig[SYY], *Stt = m->sig[SZZ], *Srz = m->sig[SXY];
     const double *lam = m->axl;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i], rhoi = m->rho[i];
         const double ri2 = 1.0 / (rhoi * rhoi);

@@ -2,18 +2,18 @@
  * @file sph_pairs.h
  * @brief SPH-internal: the "pair within kernel support" step every SPH pair
  *        pass repeats (summation density, CSPM gradient, forces, smoothed
- *        artificial stress, the axisymmetric passes): mean smoothing length
- *        h_ij = (h_i + h_j)/2, the support test r < qmax h_ij and the
- *        kernel W, F (seed 004 Eqs. 3.8-3.9; grad_i W = F x_ij).
+ *        artificial stress, the three axisymmetric passes): separation
+ *        x_ij and r^2, mean smoothing length h_ij = (h_i + h_j)/2, the
+ *        support test r < qmax h_ij and the kernel W, F (seed 004
+ *        Eqs. 3.8-3.9; grad_i W = F x_ij).
  *
- * One definition instead of eight copies, so that a pass cannot disagree
- * with the others on which pairs interact.  Everything is static inline
- * and takes dim as an argument that is literal (or loop-invariant) at the
- * call sites: the passes compile to the same loops as the copies they
- * replace, and every value is computed by the same operations in the same
- * order (bitwise the same results).  The fused loop (sph_fused.c) keeps its
- * own specialised test (same h shortcut, inlined Wendland): it is the hot
- * loop and was tuned separately.
+ * One definition instead of eight copies, so that no pass can disagree
+ * with the others on which pairs interact.  Everything is static inline;
+ * every value is computed by the same operations in the same order as in
+ * the copies it replaces (bitwise the same results: histories and fields
+ * of SPH cases compared before/after, docs/sph.md).  The fused loop
+ * (sph_fused.c) keeps its own specialised test (same-h shortcut, inlined
+ * Wendland): it is the tuned hot loop of the default path.
  */
 #ifndef SPALL_SPH_PAIRS_H
 #define SPALL_SPH_PAIRS_H
@@ -24,8 +24,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-/** Kernel parameters of the support test, copied out of the model before a
- *  pass so the pair loop keeps them in registers. */
+/** Kernel parameters of the support test, copied out of the model once per
+ *  pass (the passes list it firstprivate: one private copy per thread). */
 struct sph_support {
     enum sph_kernel kern;
     double alpha; /**< normalisation alpha_d */
@@ -38,15 +38,25 @@ static inline struct sph_support sph_support_of(const struct model *m)
     return sp;
 }
 
-/** |x_i - x_j|^2 over the first @p dim components. */
+/** x_ij = x_i - x_j into @p xij (xij[2] = 0 in 2D); returns |x_ij|^2.
+ *  SPH runs in 2D and 3D only (refused in 1D at create), so the sum is
+ *  written out: no loop over dim in the pair loops, where the OpenMP
+ *  outlining leaves dim a run-time value (the loop cost ~4 % of the
+ *  two-pass rates, measured).  The value is the former loop's bit for bit:
+ *  0 + a = a for a >= 0, and (a + b) + 0 = a + b. */
+static inline double sph_sep(double *const x[3], int dim, size_t i, size_t j, double xij[3])
+{
+    xij[0] = x[0][i] - x[0][j];
+    xij[1] = x[1][i] - x[1][j];
+    xij[2] = dim == 3 ? x[2][i] - x[2][j] : 0.0;
+    return xij[0] * xij[0] + xij[1] * xij[1] + xij[2] * xij[2];
+}
+
+/** |x_i - x_j|^2 (2D or 3D), as sph_sep without the vector. */
 static inline double sph_dist2(double *const x[3], int dim, size_t i, size_t j)
 {
-    double r2 = 0.0;
-    for (int d = 0; d < dim; d++) {
-        double dd = x[d][i] - x[d][j];
-        r2 += dd * dd;
-    }
-    return r2;
+    double xij[3];
+    return sph_sep(x, dim, i, j, xij);
 }
 
 /** Support test and kernel of a pair at squared distance @p r2 with mean
@@ -59,30 +69,6 @@ static inline bool sph_pair_kernel(const struct sph_support *sp, int dim, double
         return false;
     sph_kernel_eval(sp->kern, sp->alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, W, F);
     return true;
-}
-
-/** One pair (i, j) of the Cartesian passes. */
-struct sph_pair {
-    double x[3]; /**< x_ij = x_i - x_j (components >= dim are 0) */
-    double r2;   /**< |x_ij|^2 */
-    double hb;   /**< (h_i + h_j) / 2 */
-    double W, F; /**< kernel and radial factor (valid when in support) */
-};
-
-/** Fill @p pr for particles i, j at positions @p x with smoothing lengths
- *  @p h; true when j is within i's kernel support (W, F then set). */
-static inline bool sph_pair_in_support(const struct sph_support *sp, int dim, double *const x[3],
-                                       const double *h, size_t i, size_t j, struct sph_pair *pr)
-{
-    pr->hb = 0.5 * (h[i] + h[j]);
-    double r2 = 0.0;
-    pr->x[0] = pr->x[1] = pr->x[2] = 0.0;
-    for (int d = 0; d < dim; d++) {
-        pr->x[d] = x[d][i] - x[d][j];
-        r2 += pr->x[d] * pr->x[d];
-    }
-    pr->r2 = r2;
-    return sph_pair_kernel(sp, dim, r2, pr->hb, &pr->W, &pr->F);
 }
 
 #endif

@@ -143,7 +143,7 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
     const bool cspm = m->opt.cspm, summ = m->opt.density == SPH_DENSITY_SUMMATION;
     size_t fallbacks = 0;
     if (summ) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) firstprivate(sp)
         for (size_t i = 0; i < n; i++) {
             if (sph_skip(m, i, SPH_FORM_UPDATED))
                 continue;
@@ -153,26 +153,29 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
             double rho = m->m2[i] * W0;
             for (size_t k = off[i]; k < off[i + 1]; k++) {
                 size_t j = (size_t)nb[k];
-                struct sph_pair pr;
-                if (sph_pair_in_support(&sp, dim, p->x, m->h, i, j, &pr))
-                    rho += m->m2[j] * pr.W;
+                double W, F;
+                if (sph_pair_kernel(&sp, dim, sph_dist2(p->x, dim, i, j), 0.5 * (hi + m->h[j]),
+                                    &W, &F))
+                    rho += m->m2[j] * W;
             }
             m->rho[i] = rho;
         }
     }
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
+#pragma omp parallel for schedule(static) firstprivate(sp) reduction(+ : fallbacks)
     for (size_t i = 0; i < n; i++) {
         if (sph_skip(m, i, SPH_FORM_UPDATED))
             continue; /* a TLSPH particle of a mixed run (sph_forms.c) */
         double G[9] = {0}, B[9] = {0};
+        const double hi = m->h[i];
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             size_t j = (size_t)nb[k];
-            struct sph_pair pr;
-            if (!sph_pair_in_support(&sp, dim, p->x, m->h, i, j, &pr))
+            double xij[3] = {0, 0, 0};
+            const double r2 = sph_sep(p->x, dim, i, j, xij), hb = 0.5 * (hi + m->h[j]);
+            double W, F;
+            if (!sph_pair_kernel(&sp, dim, r2, hb, &W, &F))
                 continue;
-            const double *xij = pr.x;
             double Vj = m->m2[j] / m->rho[j];
-            double VF = Vj * pr.F; /* grad_i W = F x_ij */
+            double VF = Vj * F; /* grad_i W = F x_ij */
             for (int a = 0; a < dim; a++) {
                 double dv = p->v[a][j] - p->v[a][i];
                 double dxa = -xij[a];
@@ -294,7 +297,7 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     /* leapfrog step: the stress power is booked by sph_leapfrog_advance */
     const double wstress = m->lf_dt > 0.0 ? 0.0 : 1.0;
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
         if (sph_skip(m, i, SPH_FORM_UPDATED))
             continue;
@@ -309,16 +312,16 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
         }
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             size_t j = (size_t)nb[k];
-            struct sph_pair pr;
-            if (!sph_pair_in_support(&sp, dim, p->x, m->h, i, j, &pr))
-                continue;
-            const double *xij = pr.x;
-            const double hb = pr.hb, r2 = pr.r2, W = pr.W, F = pr.F;
-            double vij[3] = {0, 0, 0}, vx = 0.0;
+            double xij[3] = {0, 0, 0}, vij[3] = {0, 0, 0};
+            const double r2 = sph_sep(p->x, dim, i, j, xij), hb = 0.5 * (hi + m->h[j]);
+            double vx = 0.0;
             for (int d = 0; d < dim; d++) {
                 vij[d] = p->v[d][i] - p->v[d][j];
                 vx += vij[d] * xij[d];
             }
+            double W, F;
+            if (!sph_pair_kernel(&sp, dim, r2, hb, &W, &F))
+                continue;
             const double rhoj = m->rho[j];
             const double rj2 = 1.0 / (rhoj * rhoj);
             double Pi = 0.0;
