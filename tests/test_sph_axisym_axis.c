@@ -1,9 +1,10 @@
 /**
  * @file test_sph_axisym_axis.c
  * @brief Axisymmetric SPH (sph_axisym.c): a ring driven across the axis is
- *        reflected without creating energy (axis_reflect mirrors every copy
- *        of the odd quantities the integrator keeps: v_half of the
- *        predictor-corrector, S_rz and its saved state).
+ *        reflected without creating energy (axis_reflect, through the
+ *        core's sim_reflect_particle, mirrors every copy of the odd
+ *        quantities: v_half of the predictor-corrector, S_rz and its saved
+ *        state; tests/test_reflect.c checks the operation itself).
  *
  * Before the fix a reflected particle kept the unmirrored predictor-
  * corrector velocity (still heading for the axis) and crossed it again

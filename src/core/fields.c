@@ -29,6 +29,19 @@ int field_registry_add(struct field_registry *reg, const struct field_desc *desc
     if (desc->ncomp < 1 || desc->ncomp > 9)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "field '%s': %d components", desc->name,
                                desc->ncomp);
+    if (desc->parity != FIELD_EVEN) {
+        /* the reflection negates stored doubles in place; a computed field
+         * follows from the state it is computed from */
+        const int need = desc->parity == FIELD_VECTOR ? 0 : desc->parity == FIELD_SYMTENSOR ? 6 : 9;
+        if (desc->compute || desc->type != FIELD_F64)
+            return spall_error_set(err, SPALL_ERR_INTERNAL,
+                                   "field '%s': a reflection parity needs a stored double field",
+                                   desc->name);
+        if (need ? desc->ncomp != need : desc->ncomp > 3)
+            return spall_error_set(err, SPALL_ERR_INTERNAL,
+                                   "field '%s': %d components do not fit its reflection parity",
+                                   desc->name, desc->ncomp);
+    }
     if (field_registry_find(reg, desc->name))
         return spall_error_set(err, SPALL_ERR_INTERNAL, "field '%s' registered twice", desc->name);
     if (reg->n == reg->cap) {
@@ -46,6 +59,13 @@ int field_registry_add(struct field_registry *reg, const struct field_desc *desc
 int field_registry_add_f64(struct field_registry *reg, const char *name, const char *unit,
                            int ncomp, double **comp[], unsigned flags, struct spall_error *err)
 {
+    return field_registry_add_f64_parity(reg, name, unit, ncomp, comp, flags, FIELD_EVEN, err);
+}
+
+int field_registry_add_f64_parity(struct field_registry *reg, const char *name, const char *unit,
+                                  int ncomp, double **comp[], unsigned flags,
+                                  enum field_parity parity, struct spall_error *err)
+{
     struct field_desc d;
     memset(&d, 0, sizeof d);
     strncpy(d.name, name, sizeof d.name - 1);
@@ -55,6 +75,7 @@ int field_registry_add_f64(struct field_registry *reg, const char *name, const c
     d.flags = flags;
     for (int c = 0; c < ncomp && c < 9; c++)
         d.comp[c] = (void **)comp[c];
+    d.parity = parity;
     return field_registry_add(reg, &d, err);
 }
 
@@ -80,6 +101,56 @@ const struct field_desc *field_registry_find(const struct field_registry *reg, c
         if (strcmp(reg->fields[k].name, name) == 0)
             return &reg->fields[k];
     return NULL;
+}
+
+unsigned field_parity_planes(enum field_parity par, int c)
+{
+    /* symmetric storage xx yy zz xy yz xz: the two indices of component c */
+    static const int sa[6] = {0, 1, 2, 0, 1, 0}, sb[6] = {0, 1, 2, 1, 2, 2};
+    int a, b;
+    switch (par) {
+    case FIELD_VECTOR: return c >= 0 && c < 3 ? 1u << c : 0u;
+    case FIELD_SYMTENSOR:
+        if (c < 0 || c >= 6)
+            return 0u;
+        a = sa[c];
+        b = sb[c];
+        break;
+    case FIELD_TENSOR:
+        if (c < 0 || c >= 9)
+            return 0u;
+        a = c / 3;
+        b = c % 3;
+        break;
+    case FIELD_EVEN:
+    default: return 0u;
+    }
+    /* x_a x_b changes sign when exactly one of a, b is the plane's axis */
+    return a == b ? 0u : (1u << a) | (1u << b);
+}
+
+double field_reflect_sign(enum field_parity par, int c, unsigned planes)
+{
+    unsigned odd = field_parity_planes(par, c) & planes, flips = 0;
+    for (; odd; odd &= odd - 1)
+        flips++;
+    return flips & 1u ? -1.0 : 1.0;
+}
+
+void field_reflect(const struct field_registry *reg, size_t i, int k)
+{
+    if (k < 0 || k > 2)
+        return;
+    for (size_t q = 0; q < reg->n; q++) {
+        const struct field_desc *f = &reg->fields[q];
+        if (f->parity == FIELD_EVEN)
+            continue;
+        for (int c = 0; c < f->ncomp; c++)
+            if (field_parity_planes(f->parity, c) & (1u << k)) {
+                double *a = *(double **)f->comp[c];
+                a[i] = -a[i];
+            }
+    }
 }
 
 static double value_as_double(const struct field_desc *f, int c, size_t i)

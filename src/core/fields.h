@@ -31,6 +31,20 @@ enum field_flags {
 
 #define FIELD_NAME_LEN 48
 
+/** How a field's components change under the reflection x_k -> -x_k of the
+ *  current configuration (sim_reflect_particle, core/integrator.c).  Every
+ *  stored field that carries state from one force call to the next must
+ *  declare its parity; fields recomputed from that state in every force
+ *  call, and computed fields, may stay FIELD_EVEN. */
+enum field_parity {
+    FIELD_EVEN = 0,  /**< scalars, labels, the reference configuration (default) */
+    FIELD_VECTOR,    /**< component c (c < 3) is odd in plane c: position, velocity, force */
+    FIELD_SYMTENSOR, /**< symmetric tensor, components xx yy zz xy yz xz: a shear
+                          component ab (a != b) is odd in planes a and b */
+    FIELD_TENSOR     /**< full 3x3 tensor, row-major (ab at 3a + b): ab odd in
+                          planes a and b when a != b */
+};
+
 /** Fills out[i*ncomp + c] for i in [0, n). */
 typedef void (*field_compute_fn)(const void *ctx, size_t n, double *out);
 
@@ -45,6 +59,7 @@ struct field_desc {
     void **comp[9];
     field_compute_fn compute; /**< computed field (always FIELD_F64) */
     const void *ctx;          /**< passed to compute */
+    enum field_parity parity; /**< reflection parity (stored FIELD_F64 only) */
 };
 
 struct field_registry {
@@ -63,6 +78,11 @@ int field_registry_add(struct field_registry *reg, const struct field_desc *desc
 int field_registry_add_f64(struct field_registry *reg, const char *name, const char *unit,
                            int ncomp, double **comp[], unsigned flags, struct spall_error *err);
 
+/** As field_registry_add_f64, declaring the field's reflection parity. */
+int field_registry_add_f64_parity(struct field_registry *reg, const char *name, const char *unit,
+                                  int ncomp, double **comp[], unsigned flags,
+                                  enum field_parity parity, struct spall_error *err);
+
 /** Convenience: register a computed double field (values filled by @p fn
  *  with @p ctx when the field is written). */
 int field_registry_add_computed(struct field_registry *reg, const char *name, const char *unit,
@@ -75,6 +95,21 @@ const struct field_desc *field_registry_find(const struct field_registry *reg, c
 /** Copy the values of particles [0, n) into @p out as doubles, interleaved
  *  (out[i*ncomp + c]); works for stored and computed fields of any type. */
 void field_gather_f64(const struct field_desc *f, size_t n, double *out);
+
+/** Planes (bit k: the plane x_k = 0) in which component @p c of a field of
+ *  parity @p par changes sign. */
+unsigned field_parity_planes(enum field_parity par, int c);
+
+/** Sign (+1 or -1) of component @p c of a field of parity @p par after the
+ *  reflections in every plane of @p planes (bit k: x_k = 0; two bits: the
+ *  composition, e.g. the image in both planes of a quarter model). */
+double field_reflect_sign(enum field_parity par, int c, unsigned planes);
+
+/** Reflect particle @p i in the plane x_k = 0 in every stored field of the
+ *  registry: the components odd in plane k change sign, nothing else is
+ *  touched.  The integrator's private copies are not in the registry: use
+ *  sim_reflect_particle (core/sim.h), which calls this. */
+void field_reflect(const struct field_registry *reg, size_t i, int k);
 
 /** Bytes one particle's value of this field occupies when packed. */
 size_t field_packed_size(const struct field_desc *f);

@@ -12,6 +12,8 @@
  *      the force that took (the reaction) recorded per BC
  *   5. model end_step (bond breaking), NaN check.
  * The integrator knows nothing of the model; it sees only f.
+ * sim_reflect_particle mirrors one particle through the field registry's
+ * parities plus the integrator's own velocity copies (v_half).
  */
 #include "core/contact_particles.h"
 #include "core/fields.h"
@@ -345,6 +347,19 @@ bool sim_done(const struct sim *s)
     if (s->adaptive_dt)
         return s->t >= s->end_time * (1.0 - 1e-12);
     return s->step >= s->n_steps;
+}
+
+void sim_reflect_particle(struct sim *s, size_t i, int k)
+{
+    if (k < 0 || k >= s->dim || i >= s->p->n)
+        return;
+    field_reflect(s->fields, i, k);
+    /* the integrator's private velocity copy: within a predictor-corrector
+     * step, v_half is what the corrector kicks from (sim_step restores it
+     * after the predicted-velocity force call), so it must be mirrored
+     * with p->v, else the particle resumes the unreflected velocity */
+    if (s->v_half[k])
+        s->v_half[k][i] = -s->v_half[k][i];
 }
 
 void sim_group_reaction(const struct sim *s, int g, double out[3])

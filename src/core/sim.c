@@ -234,12 +234,17 @@ static int register_core_fields(struct sim *s, struct spall_error *err)
     double **ms[1] = {&p->mass};
     double **vol[1] = {&p->volume};
     unsigned all = FIELD_OUTPUT | FIELD_RESTART | FIELD_MIGRATE | FIELD_GHOST;
-    int rc = field_registry_add_f64(s->fields, "position", "m", s->dim, xs, all | FIELD_DEFAULT, err);
+    /* position, velocity and force are vectors under sim_reflect_particle;
+     * the reference position is the particle's label in the reference
+     * configuration, which a reflection of the current one leaves alone */
+    int rc = field_registry_add_f64_parity(s->fields, "position", "m", s->dim, xs,
+                                           all | FIELD_DEFAULT, FIELD_VECTOR, err);
     if (!rc)
-        rc = field_registry_add_f64(s->fields, "velocity", "m/s", s->dim, vs, all | FIELD_DEFAULT,
-                                    err);
+        rc = field_registry_add_f64_parity(s->fields, "velocity", "m/s", s->dim, vs,
+                                           all | FIELD_DEFAULT, FIELD_VECTOR, err);
     if (!rc)
-        rc = field_registry_add_f64(s->fields, "force", "N", s->dim, fs, FIELD_OUTPUT, err);
+        rc = field_registry_add_f64_parity(s->fields, "force", "N", s->dim, fs, FIELD_OUTPUT,
+                                           FIELD_VECTOR, err);
     if (!rc)
         rc = field_registry_add_f64(s->fields, "reference_position", "m", s->dim, x0s,
                                     FIELD_OUTPUT | FIELD_RESTART | FIELD_MIGRATE, err);

@@ -171,6 +171,16 @@ bool sim_done(const struct sim *s);
 /** Recompute the energy account from the current state. */
 void sim_update_energy(struct sim *s);
 
+/** Reflect particle @p i in the plane x_k = 0 (k < dim) of the current
+ *  configuration: every stored field of the registry negates its components
+ *  odd in plane k (their declared enum field_parity: position, velocity,
+ *  force and the models' vectors and tensors), and the integrator negates
+ *  its own copies of the velocity (predictor-corrector v_half).  A second
+ *  call with the same i, k restores the state bit for bit.  For models
+ *  whose geometry is symmetric about the plane (the axis r = 0 of
+ *  axisymmetric runs: the mirror image of a ring is the same ring). */
+void sim_reflect_particle(struct sim *s, size_t i, int k);
+
 /** Resultant force [N] the constraints/loads applied to group @p g this step. */
 void sim_group_reaction(const struct sim *s, int g, double out[3]);
 

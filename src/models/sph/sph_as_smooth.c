@@ -28,6 +28,7 @@
  * thread count.  Not in seed 004 (an option, default off).
  */
 #include "models/sph/sph_internal.h"
+#include "models/sph/sph_pairs.h"
 
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -43,9 +44,10 @@ void sph_artificial_stress_smooth(struct model *m, const struct sim *s)
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
     const enum sph_kernel kern = m->opt.kernel;
+    const struct sph_support sp = sph_support_of(m);
     const int dim = m->dim;
-    const double alpha = m->alpha, qmax = m->qmax;
-#pragma omp parallel for schedule(static)
+    const double alpha = m->alpha;
+#pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i];
         double W0, F0;
@@ -56,16 +58,10 @@ void sph_artificial_stress_smooth(struct model *m, const struct sim *s)
             acc[c] = w * m->R[c][i];
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             const size_t j = (size_t)nb[k];
-            const double hb = 0.5 * (hi + m->h[j]);
-            double r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                double dd = p->x[d][i] - p->x[d][j];
-                r2 += dd * dd;
-            }
-            if (r2 >= qmax * qmax * hb * hb)
-                continue;
             double W, F;
-            sph_kernel_eval(kern, alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W, &F);
+            if (!sph_pair_kernel(&sp, dim, sph_dist2(p->x, dim, i, j), 0.5 * (hi + m->h[j]), &W,
+                                 &F))
+                continue;
             w = m->m2[j] / m->rho[j] * W;
             ws += w;
             for (int c = 0; c < 6; c++)

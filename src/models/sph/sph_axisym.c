@@ -89,6 +89,7 @@
  * impact energy in the first two steps of the 2D Taylor rod, n = 16).
  */
 #include "models/sph/sph_internal.h"
+#include "models/sph/sph_pairs.h"
 
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -126,30 +127,27 @@ void sph_axisym_init(struct model *m, struct sim *s)
 }
 
 /* Reflect particles that crossed the axis (the mirror image of the ring is
- * the same ring: r, v_r and sig_rz odd), refresh the planar masses.
+ * the same ring), refresh the planar masses.
  *
- * Every copy of the odd quantities that outlives this call is mirrored with
- * them.  The predictor-corrector (integrator.c, sim_step) calls the rates
- * with v_pred and then restores v_half, and sph_advance_state corrects S
- * from S_n and dS_n: mirroring only p->v left the reflected particle at -r
- * -> +r with the velocity of the unmirrored side, i.e. still heading for
- * the axis, crossing it again every step (measured, examples/
- * pen_sph_deformable with `failure: stress`: a failed gel ring at the axis
- * at 9-15 km/s, energy balance +218 %; tests/test_sph_axisym_axis.c). */
+ * The reflection is the core's (sim_reflect_particle, core/integrator.c):
+ * it mirrors every copy of the odd quantities that outlives this call:
+ * r, v_r and the force through the field registry's parities, the stress
+ * S and the predictor-corrector's S_n and dS_n (registered with
+ * FIELD_SYMTENSOR parity: S_rz, component xy, odd) and the integrator's
+ * half-step velocity v_half.  All of them matter: the predictor-corrector
+ * (integrator.c, sim_step) calls the rates with v_pred and then restores
+ * v_half, and sph_advance_state corrects S from S_n and dS_n; mirroring
+ * only p->v left the reflected particle at -r -> +r with the velocity of
+ * the unmirrored side, i.e. still heading for the axis, crossing it again
+ * every step (measured, examples/pen_sph_deformable with `failure:
+ * stress`: a failed gel ring at the axis at 9-15 km/s, energy balance
+ * +218 %; tests/test_sph_axisym_axis.c). */
 static void axis_reflect(struct model *m, struct sim *s)
 {
     struct particles *p = s->p;
-    const bool pc = s->integrator == INTEGRATOR_PREDICTOR_CORRECTOR;
     for (size_t i = 0; i < p->n_owned; i++) {
-        if (p->x[0][i] < 0.0) {
-            p->x[0][i] = -p->x[0][i];
-            p->v[0][i] = -p->v[0][i];
-            if (pc)
-                s->v_half[0][i] = -s->v_half[0][i];
-            m->S[SXY][i] = -m->S[SXY][i];
-            m->S_n[SXY][i] = -m->S_n[SXY][i];
-            m->dS_n[SXY][i] = -m->dS_n[SXY][i];
-        }
+        if (p->x[0][i] < 0.0)
+            sim_reflect_particle(s, i, 0);
         m->m2[i] = p->mass[i] / (TWO_PI * hoop_radius(m, p->x[0], i));
     }
 }
@@ -162,11 +160,10 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
     const size_t n = p->n_owned;
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
-    const enum sph_kernel kern = m->opt.kernel;
-    const double alpha = m->alpha, qmax = m->qmax;
+    const struct sph_support sp = sph_support_of(m);
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
     size_t fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
+#pragma omp parallel for schedule(static) firstprivate(sp) reduction(+ : fallbacks)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i];
         double G[4] = {0, 0, 0, 0}; /* rr rz zr zz */
@@ -175,17 +172,16 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
         for (size_t k = off[i]; k <= off[i + 1]; k++) {
             const bool self = k == off[i + 1];
             const size_t j = self ? i : (size_t)nb[k];
-            const double hb = 0.5 * (hi + m->h[j]), R2 = qmax * qmax * hb * hb;
+            const double hb = 0.5 * (hi + m->h[j]);
             const double Vj = m->m2[j] / m->rho[j];
             const double dz = Z[i] - Z[j], dvz = VZ[j] - VZ[i];
             for (int img = self ? 1 : 0; img < 2; img++) {
                 double dr = img ? X[i] + X[j] : X[i] - X[j];
                 double dvr = img ? -VR[j] - VR[i] : VR[j] - VR[i];
                 double r2 = dr * dr + dz * dz;
-                if (r2 >= R2)
-                    continue;
                 double W, F;
-                sph_kernel_eval(kern, alpha, sqrt(r2), hb, hb * hb, &W, &F);
+                if (!sph_pair_kernel(&sp, 2, r2, hb, &W, &F))
+                    continue;
                 double VF = Vj * F;
                 G[0] += dvr * VF * dr;
                 G[1] += dvr * VF * dz;
@@ -269,10 +265,10 @@ static void axis_weight_sweep(struct model *m, struct sim *s, const double *lin,
     const size_t n = p->n_owned;
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
-    const enum sph_kernel kern = m->opt.kernel;
-    const double alpha = m->alpha, qmax = m->qmax;
+    const struct sph_support sp = sph_support_of(m);
+    const double qmax = m->qmax;
     const double *X = p->x[0], *Z = p->x[1];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i], rhoi = m->rho[i];
         const double Ri = hoop_radius(m, X, i);
@@ -287,16 +283,15 @@ static void axis_weight_sweep(struct model *m, struct sim *s, const double *lin,
         for (size_t k = off[i]; k <= off[i + 1]; k++) {
             const bool self = k == off[i + 1];
             const size_t j = self ? i : (size_t)nb[k];
-            const double hb = 0.5 * (hi + m->h[j]), R2 = qmax * qmax * hb * hb;
+            const double hb = 0.5 * (hi + m->h[j]);
             const double dz = Z[i] - Z[j];
             const double w = m->m2[j] * hoop_radius(m, X, j) / (Ri * m->rho[j] * m->rho[j]);
             for (int img = self ? 1 : 0; img < 2; img++) {
                 const double sgn = img ? -1.0 : 1.0, dr = X[i] - sgn * X[j];
                 const double r2 = dr * dr + dz * dz;
-                if (r2 >= R2)
-                    continue;
                 double W, F;
-                sph_kernel_eval(kern, alpha, sqrt(r2), hb, hb * hb, &W, &F);
+                if (!sph_pair_kernel(&sp, 2, r2, hb, &W, &F))
+                    continue;
                 const double gr = dr * F, gz = dz * F;
                 const double gir = m->Bi[0][i] * gr + m->Bi[3][i] * gz;
                 const double gjr = m->Bi[0][j] * gr + sgn * m->Bi[3][j] * gz;
@@ -350,13 +345,12 @@ static void pass_forces_axi(struct model *m, struct sim *s)
     const size_t n = p->n_owned;
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
-    const enum sph_kernel kern = m->opt.kernel;
-    const double alpha = m->alpha, qmax = m->qmax;
+    const struct sph_support sp = sph_support_of(m);
     const double qa = m->opt.av_a, qb = m->opt.av_b, xs = m->opt.xsph, lav = m->opt.av_length;
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
     const double *Srr = m->sig[SXX], *Szz = m->sig[SYY], *Stt = m->sig[SZZ], *Srz = m->sig[SXY];
     const double *lam = m->axl;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i], rhoi = m->rho[i];
         const double ri2 = 1.0 / (rhoi * rhoi);
@@ -366,7 +360,7 @@ static void pass_forces_axi(struct model *m, struct sim *s)
         for (size_t k = off[i]; k <= off[i + 1]; k++) {
             const bool self = k == off[i + 1];
             const size_t j = self ? i : (size_t)nb[k];
-            const double hb = 0.5 * (hi + m->h[j]), R2 = qmax * qmax * hb * hb;
+            const double hb = 0.5 * (hi + m->h[j]);
             const double rhoj = m->rho[j], rj2 = 1.0 / (rhoj * rhoj), mj = m->m2[j];
             const double dz = Z[i] - Z[j], vz = VZ[i] - VZ[j];
             const double Rj = hoop_radius(m, X, j);
@@ -377,10 +371,9 @@ static void pass_forces_axi(struct model *m, struct sim *s)
                 const double sgn = img ? -1.0 : 1.0;
                 const double dr = X[i] - sgn * X[j], vr = VR[i] - sgn * VR[j];
                 const double r2 = dr * dr + dz * dz;
-                if (r2 >= R2)
-                    continue;
                 double W, F;
-                sph_kernel_eval(kern, alpha, sqrt(r2), hb, hb * hb, &W, &F);
+                if (!sph_pair_kernel(&sp, 2, r2, hb, &W, &F))
+                    continue;
                 const double vx = vr * dr + vz * dz;
                 double Pi = 0.0;
                 if (vx < 0.0) {

@@ -76,6 +76,7 @@
  * validated.
  */
 #include "models/sph/sph_internal.h"
+#include "models/sph/sph_pairs.h"
 
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -148,11 +149,7 @@ int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct 
                     continue;
                 }
             }
-            double r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                double dd = p->x[d][i] - p->x[d][j];
-                r2 += dd * dd;
-            }
+            const double r2 = sph_dist2(p->x, dim, i, j);
             const double reach = fd * (m->dx[i] + m->dx[j]) + skin_abs;
             if (r2 > reach * reach)
                 continue;

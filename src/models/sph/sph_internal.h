@@ -15,6 +15,7 @@
 #include <stdint.h>
 
 struct neighbor_list;
+struct particles;
 struct sim;
 struct spall_error;
 
@@ -195,6 +196,10 @@ size_t sph_tlsph_pairs(const struct model *m);
 /* sph_rates.c */
 /** (Re)build the neighbour list if particles moved more than half the skin. */
 int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err);
+/** Largest squared displacement of an owned particle since the last
+ *  neighbour build (x - x_build): the skin test of sph_neighbors_update and
+ *  sph_symmetry_update. */
+double sph_max_move2(const struct model *m, const struct particles *p);
 /** All rates of the current state: drho, de, dS, accelerations into sim->p->f. */
 int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err);
 

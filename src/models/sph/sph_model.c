@@ -457,9 +457,12 @@ static int sph_register_fields(struct model *m, struct sim *sim, struct field_re
 {
     (void)sim;
     int rc;
-    double **sc[6];
-    for (int c = 0; c < 6; c++)
+    double **sc[6], **scn[6], **dscn[6];
+    for (int c = 0; c < 6; c++) {
         sc[c] = &m->S[c];
+        scn[c] = &m->S_n[c];
+        dscn[c] = &m->dS_n[c];
+    }
     double **r1[1] = {&m->rho}, **p1[1] = {&m->P}, **e1[1] = {&m->e}, **ep1[1] = {&m->ep},
            **t1[1] = {&m->T};
     if ((rc = field_registry_add_f64(reg, "density", "kg/m^3", 1, r1, FIELD_OUTPUT | FIELD_DEFAULT,
@@ -470,7 +473,18 @@ static int sph_register_fields(struct model *m, struct sim *sim, struct field_re
         (rc = field_registry_add_f64(reg, "plastic_strain", "1", 1, ep1,
                                      FIELD_OUTPUT | FIELD_DEFAULT, err)) ||
         (rc = field_registry_add_f64(reg, "temperature", "K", 1, t1, FIELD_OUTPUT, err)) ||
-        (rc = field_registry_add_f64(reg, "deviatoric_stress", "Pa", 6, sc, FIELD_OUTPUT, err)))
+        (rc = field_registry_add_f64_parity(reg, "deviatoric_stress", "Pa", 6, sc, FIELD_OUTPUT,
+                                            FIELD_SYMTENSOR, err)) ||
+        /* Not output: the predictor-corrector's copies of the stress
+         * state between its two stages (sph_advance_state), registered for
+         * their parity so that sim_reflect_particle mirrors them with S
+         * (the axis reflection of sph_axisym.c acts between the stages).
+         * The other odd arrays (dS, sig, L, Bi, R, xv) are recomputed by
+         * the force call from the reflected state before they are read. */
+        (rc = field_registry_add_f64_parity(reg, "deviatoric_stress_n", "Pa", 6, scn, 0,
+                                            FIELD_SYMTENSOR, err)) ||
+        (rc = field_registry_add_f64_parity(reg, "deviatoric_stress_rate_n", "Pa/s", 6, dscn, 0,
+                                            FIELD_SYMTENSOR, err)))
         return rc;
     struct field_desc d;
     memset(&d, 0, sizeof d);

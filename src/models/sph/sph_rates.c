@@ -27,6 +27,7 @@
  * the oscillating plate, pumps energy into the system exponentially.
  */
 #include "models/sph/sph_internal.h"
+#include "models/sph/sph_pairs.h"
 
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -56,17 +57,27 @@ static void sph_neighbors_trim(struct model *m, const struct particles *p, doubl
         for (size_t k = start; k < end; k++) {
             size_t j = (size_t)nl->idx[k];
             double reach = m->qmax * (m->h[i] > m->h[j] ? m->h[i] : m->h[j]) + skin_abs;
-            double r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                double dd = p->x[d][i] - p->x[d][j];
-                r2 += dd * dd;
-            }
-            if (r2 <= reach * reach)
+            if (sph_dist2(p->x, dim, i, j) <= reach * reach)
                 nl->idx[w++] = nl->idx[k];
         }
         start = end;
         nl->offset[i + 1] = w;
     }
+}
+
+double sph_max_move2(const struct model *m, const struct particles *p)
+{
+    double d2max = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        double d2 = 0.0;
+        for (int d = 0; d < m->dim; d++) {
+            double dd = p->x[d][i] - m->x_build[d][i];
+            d2 += dd * dd;
+        }
+        if (d2 > d2max)
+            d2max = d2;
+    }
+    return d2max;
 }
 
 int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err)
@@ -79,18 +90,8 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
         if (m->h[i] > hmax)
             hmax = m->h[i];
     if (!force && m->nl) {
-        double d2max = 0.0;
-        for (size_t i = 0; i < n; i++) {
-            double d2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                double dd = p->x[d][i] - m->x_build[d][i];
-                d2 += dd * dd;
-            }
-            if (d2 > d2max)
-                d2max = d2;
-        }
         /* a pair can close in by at most twice the largest displacement */
-        if (m->qmax * hmax + 2.0 * sqrt(d2max) <= m->nl_radius)
+        if (m->qmax * hmax + 2.0 * sqrt(sph_max_move2(m, p)) <= m->nl_radius)
             return SPALL_OK;
     }
     double t0 = omp_get_wtime();
@@ -137,11 +138,12 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
     const enum sph_kernel kern = m->opt.kernel;
-    const double alpha = m->alpha, qmax = m->qmax;
+    const struct sph_support sp = sph_support_of(m);
+    const double alpha = m->alpha;
     const bool cspm = m->opt.cspm, summ = m->opt.density == SPH_DENSITY_SUMMATION;
     size_t fallbacks = 0;
     if (summ) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) firstprivate(sp)
         for (size_t i = 0; i < n; i++) {
             if (sph_skip(m, i, SPH_FORM_UPDATED))
                 continue;
@@ -151,23 +153,15 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
             double rho = m->m2[i] * W0;
             for (size_t k = off[i]; k < off[i + 1]; k++) {
                 size_t j = (size_t)nb[k];
-                double hb = 0.5 * (hi + m->h[j]);
-                double r2 = 0.0;
-                for (int d = 0; d < dim; d++) {
-                    double dd = p->x[d][i] - p->x[d][j];
-                    r2 += dd * dd;
-                }
-                if (r2 >= qmax * qmax * hb * hb)
-                    continue;
                 double W, F;
-                sph_kernel_eval(kern, alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W,
-                                &F);
-                rho += m->m2[j] * W;
+                if (sph_pair_kernel(&sp, dim, sph_dist2(p->x, dim, i, j), 0.5 * (hi + m->h[j]),
+                                    &W, &F))
+                    rho += m->m2[j] * W;
             }
             m->rho[i] = rho;
         }
     }
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
+#pragma omp parallel for schedule(static) firstprivate(sp) reduction(+ : fallbacks)
     for (size_t i = 0; i < n; i++) {
         if (sph_skip(m, i, SPH_FORM_UPDATED))
             continue; /* a TLSPH particle of a mixed run (sph_forms.c) */
@@ -175,17 +169,11 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
         const double hi = m->h[i];
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             size_t j = (size_t)nb[k];
-            double hb = 0.5 * (hi + m->h[j]);
             double xij[3] = {0, 0, 0};
-            double r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                xij[d] = p->x[d][i] - p->x[d][j];
-                r2 += xij[d] * xij[d];
-            }
-            if (r2 >= qmax * qmax * hb * hb)
-                continue;
+            const double r2 = sph_sep(p->x, dim, i, j, xij), hb = 0.5 * (hi + m->h[j]);
             double W, F;
-            sph_kernel_eval(kern, alpha, sqrt(r2), hb, dim == 2 ? hb * hb : hb * hb * hb, &W, &F);
+            if (!sph_pair_kernel(&sp, dim, r2, hb, &W, &F))
+                continue;
             double Vj = m->m2[j] / m->rho[j];
             double VF = Vj * F; /* grad_i W = F x_ij */
             for (int a = 0; a < dim; a++) {
@@ -300,7 +288,8 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
     const enum sph_kernel kern = m->opt.kernel;
-    const double alpha = m->alpha, qmax = m->qmax;
+    const struct sph_support sp = sph_support_of(m);
+    const double alpha = m->alpha;
     const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
     const double lav = m->opt.av_length;
     const double xs = m->opt.xsph;
@@ -308,7 +297,7 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     /* leapfrog step: the stress power is booked by sph_leapfrog_advance */
     const double wstress = m->lf_dt > 0.0 ? 0.0 : 1.0;
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
         if (sph_skip(m, i, SPH_FORM_UPDATED))
             continue;
@@ -323,20 +312,16 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
         }
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             size_t j = (size_t)nb[k];
-            double hb = 0.5 * (hi + m->h[j]);
             double xij[3] = {0, 0, 0}, vij[3] = {0, 0, 0};
-            double r2 = 0.0, vx = 0.0;
+            const double r2 = sph_sep(p->x, dim, i, j, xij), hb = 0.5 * (hi + m->h[j]);
+            double vx = 0.0;
             for (int d = 0; d < dim; d++) {
-                xij[d] = p->x[d][i] - p->x[d][j];
                 vij[d] = p->v[d][i] - p->v[d][j];
-                r2 += xij[d] * xij[d];
                 vx += vij[d] * xij[d];
             }
-            if (r2 >= qmax * qmax * hb * hb)
-                continue;
-            const double hd = dim == 2 ? hb * hb : hb * hb * hb;
             double W, F;
-            sph_kernel_eval(kern, alpha, sqrt(r2), hb, hd, &W, &F);
+            if (!sph_pair_kernel(&sp, dim, r2, hb, &W, &F))
+                continue;
             const double rhoj = m->rho[j];
             const double rj2 = 1.0 / (rhoj * rhoj);
             double Pi = 0.0;
@@ -351,7 +336,8 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
                 double Wd = Wdi;
                 if (m->h[j] != hi || m->dx[j] != m->dx[i]) {
                     double Fd;
-                    sph_kernel_eval(kern, alpha, 0.5 * (m->dx[i] + m->dx[j]), hb, hd, &Wd, &Fd);
+                    sph_kernel_eval(kern, alpha, 0.5 * (m->dx[i] + m->dx[j]), hb,
+                                    dim == 2 ? hb * hb : hb * hb * hb, &Wd, &Fd);
                 }
                 double f1 = Wd > 0.0 ? W / Wd : 0.0;
                 fn = asn == 4.0 ? (f1 * f1) * (f1 * f1) : pow(f1, asn);

@@ -9,7 +9,8 @@
  * third ghost mirrored in both).  A ghost carries its source's scalars (h,
  * rho, c, m, dx) and its velocity and tensors reflected: for the plane
  * x = 0, v_x -> -v_x and the shear components with one x index (xy, xz)
- * change sign.  Ghosts only act as neighbours; their rates are never
+ * change sign (the signs are the core's field parities, core/fields.h,
+ * the same that sim_reflect_particle applies).  Ghosts only act as neighbours; their rates are never
  * computed.  The pair force between a particle and the ghost of itself or
  * of a neighbour is then exactly the force the missing half of the body
  * would exert on it (the mirrored half moves as the mirror image), which
@@ -27,6 +28,7 @@
  */
 #include "models/sph/sph_internal.h"
 
+#include "core/fields.h"
 #include "core/neighbor.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -136,17 +138,23 @@ static void sym_fill(struct model *m, struct sim *s)
     for (int k = 0; k < SYM_NARR; k++)
         if (srcs[k])
             memcpy(b[k], srcs[k], n * sizeof(double));
-    /* reflection signs of (xx yy zz xy yz xz) for masks 1 (x), 2 (y), 3 (both) */
-    static const double tsign[4][6] = {{1, 1, 1, 1, 1, 1},
-                                       {1, 1, 1, -1, 1, -1},
-                                       {1, 1, 1, -1, -1, 1},
-                                       {1, 1, 1, 1, -1, -1}};
+    /* reflection signs for masks 1 (x), 2 (y), 3 (both), from the core's
+     * parities (core/fields.h, the ones sim_reflect_particle uses): of the
+     * vector components (x, v) and of the symmetric tensors (sr, R, stored
+     * xx yy zz xy yz xz) */
+    double vsign[4][3], tsign[4][6];
+    for (unsigned mk = 0; mk < 4; mk++) {
+        for (int d = 0; d < 3; d++)
+            vsign[mk][d] = field_reflect_sign(FIELD_VECTOR, d, mk);
+        for (int c = 0; c < 6; c++)
+            tsign[mk][c] = field_reflect_sign(FIELD_SYMTENSOR, c, mk);
+    }
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < ng; k++) {
         const size_t j = (size_t)g->gsrc[k], o = n + k;
         const int mk = g->gmask[k];
         for (int d = 0; d < dim; d++) {
-            double sg = (d < 2 && (mk >> d) & 1) ? -1.0 : 1.0;
+            double sg = vsign[mk][d];
             b[d][o] = sg * srcs[d][j];
             b[3 + d][o] = sg * srcs[3 + d][j];
         }
@@ -175,18 +183,8 @@ int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src
     for (size_t i = 0; i < n; i++)
         hmax = fmax(hmax, m->h[i]);
     bool rebuild = !g->built || !m->nl;
-    if (!rebuild) {
-        double d2max = 0.0;
-        for (size_t i = 0; i < n; i++) {
-            double d2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                double dd = p->x[d][i] - m->x_build[d][i];
-                d2 += dd * dd;
-            }
-            d2max = fmax(d2max, d2);
-        }
-        rebuild = m->qmax * hmax + 2.0 * sqrt(d2max) > m->nl_radius;
-    }
+    if (!rebuild)
+        rebuild = m->qmax * hmax + 2.0 * sqrt(sph_max_move2(m, p)) > m->nl_radius;
     int rc;
     if (rebuild) {
         m->nl_radius = m->qmax * hmax * (1.0 + m->opt.skin);
