@@ -250,6 +250,25 @@ int main(int argc, char **argv)
         if (!(fabs(p->x[1][tip]) < 1.0) || gx / dx > 3.0)
             break; /* torn: enough said */
     }
+    { /* the largest stretch of an initially adjacent pair, and where */
+        double best = 1.0;
+        size_t bi = 0, bj = 0;
+        for (size_t i = 0; i < p->n; i++)
+            for (size_t j = i + 1; j < p->n; j++) {
+                double X = p->x0[0][j] - p->x0[0][i], Y = p->x0[1][j] - p->x0[1][i];
+                double R2 = X * X + Y * Y;
+                if (R2 > 1.0201 * dx * dx)
+                    continue;
+                double st = hypot(p->x[0][j] - p->x[0][i], p->x[1][j] - p->x[1][i]) / sqrt(R2);
+                if (st > best) {
+                    best = st;
+                    bi = i;
+                    bj = j;
+                }
+            }
+        printf("# STRETCH max %.3f between (%.1f, %.1f) and (%.1f, %.1f) mm\n", best,
+               p->x0[0][bi] * 1e3, p->x0[1][bi] * 1e3, p->x0[0][bj] * 1e3, p->x0[1][bj] * 1e3);
+    }
     printf("# RESULT t_end %.4f ms, tip-column mean deflection 1.5-3 ms %.2f mm (%+.2f %% vs "
            "81.1), max %.2f mm\n",
            s->t * 1e3, tacc > 0 ? acc / tacc * 1e3 : NAN,
