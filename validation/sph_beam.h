@@ -3,11 +3,14 @@
  * @brief Shared driver of the SPH cantilever cases (validation/sph_beam_plate.c,
  *        validation/sph_beam_large.c): seed 004 sec. 3.4.1 beam, dx = 1 mm,
  *        plane stress, quadratic 1.5 ms load ramp; clamp = 3 fixed columns
- *        behind x = 0 (the thesis' form) or the mirrored clamp
+ *        behind x = 0 (the thesis' form), 1 fixed column (the thesis' "left
+ *        edge fixed" read literally) or the mirrored clamp
  *        (src/models/sph/sph_clamp.c) on 5 columns, symmetric about x = 0.
  */
 #ifndef SPALL_VALIDATION_SPH_BEAM_H
 #define SPALL_VALIDATION_SPH_BEAM_H
+
+#include <stddef.h>
 
 struct vreport;
 struct spall_error;
@@ -28,9 +31,13 @@ struct sph_beam_result {
 /** Clamp forms of the beam. */
 enum sph_beam_clamp {
     SPH_BEAM_FIXED = 0, /**< 3 columns of fixed particles behind x = 0 (seed 004) */
-    SPH_BEAM_MIRROR = 1 /**< model.clamp on 5 fixed columns: ghosts mirror the beam */
+    SPH_BEAM_MIRROR = 1, /**< model.clamp on 5 fixed columns: ghosts mirror the beam */
+    SPH_BEAM_EDGE = 2    /**< 1 column of fixed particles behind x = 0 (the edge only) */
 };
 
+/** The beam's deck text (into @p deck, @p len bytes) for sph_beam_run. */
+void sph_beam_deck(const char *kernel, double force, double hfac, const char *extra,
+                   enum sph_beam_clamp clamp, char *deck, size_t len);
 /** Run the beam with @p kernel, end load @p force [N], h = @p hfac dx,
  *  extra model keys @p extra (flow-mapping text) and clamp form @p clamp. */
 int sph_beam_run(const char *kernel, double force, double hfac, const char *extra,

@@ -126,20 +126,20 @@ static double max_pair_stretch(const struct particles *p, double dx)
     return best;
 }
 
-int sph_beam_run(const char *kernel, double force, double hfac, const char *extra,
-                 enum sph_beam_clamp clamp, struct sph_beam_result *out,
-                 struct spall_error *err)
+void sph_beam_deck(const char *kernel, double force, double hfac, const char *extra,
+                   enum sph_beam_clamp clamp, char *deck, size_t len)
 {
-    char deck[3072];
     /* the mirrored clamp needs each ghost's mirror image in the beam and a
      * clamp as deep as the widest support (3h = 4.2 mm at h = 1.4 dx): 5
      * columns; the thesis' fixed clamp keeps its 3 columns */
     const bool mirror = clamp == SPH_BEAM_MIRROR;
     const char *ckey = mirror ? ", clamp: {group: clamp, point: [0, 0], normal: [1, 0]}" : "";
-    const double xmin = mirror ? -0.005 : -0.003;
+    /* the edge clamp: one fixed column, the thesis' "left edge of the beam
+     * is fixed" (seed 004 sec. 3.4.1, Fig. 3.5) read literally */
+    const double xmin = mirror ? -0.005 : clamp == SPH_BEAM_EDGE ? -0.001 : -0.003;
     /* leapfrog: the predictor-corrector is unstable for these undamped
      * elastic beams at dt_factor 0.5 (sph_leapfrog.c) */
-    snprintf(deck, sizeof deck,
+    snprintf(deck, len,
              "model: {type: sph, kernel: %s, h_factor: %g, plane: stress,\n"
              "        time_integration: leapfrog, %s%s}\n"
              "materials: {steel: {density: 7800, youngs_modulus: 210.0e9, poisson_ratio: 0.3}}\n"
@@ -156,6 +156,14 @@ int sph_beam_run(const char *kernel, double force, double hfac, const char *extr
              "     function: {type: quadratic_ramp, duration: 1.5e-3}}\n"
              "run: {end_time: 3.0e-3, dt_factor: 0.5}\n",
              kernel, hfac, extra, ckey, xmin, -force);
+}
+
+int sph_beam_run(const char *kernel, double force, double hfac, const char *extra,
+                 enum sph_beam_clamp clamp, struct sph_beam_result *out,
+                 struct spall_error *err)
+{
+    char deck[3072];
+    sph_beam_deck(kernel, force, hfac, extra, clamp, deck, sizeof deck);
     out->mean = out->final = out->max = out->stretch = NAN;
     struct sim *s = NULL;
     int rc = vlat_build("sph_beam", deck, &s, err);
