@@ -192,6 +192,36 @@ static void test_run_short(void **state)
     assert_null(o.t);
 }
 
+/* The rebound option: gelatin at 200 m/s on a coarse grid; with
+ * t_rebound the runner goes on past P_max (seed 004 sec. 5: the spheres
+ * rebound in the experiments), sees V turn upward after P_max and the tip
+ * come back; without it the run stops at rest, as before. */
+static void test_run_rebound(void **state)
+{
+    (void)state;
+    struct spall_error e = {0, ""};
+    struct pen_sph_target t = pen_sph_target_gelatin(20e6);
+    struct pen_sph_shot s = {7.38e-6, 1850.0, 200.0};
+    struct pen_sph_grid g = {.dx1_d = 0.34, .width = 1.0, .depth = 1.0, .t_end = 400e-9,
+                             .cavity_depth = 15e-6, .k_first_contact = 1};
+    struct pen_sph_outcome a, b;
+    assert_int_equal(pen_sph_setup_run(&t, &s, &g, &a, &e), SPALL_OK);
+    assert_true(a.at_rest);
+    assert_false(a.rebounded);
+    g.t_rebound = 160e-9;
+    assert_int_equal(pen_sph_setup_run(&t, &s, &g, &b, &e), SPALL_OK);
+    assert_true(b.at_rest);
+    assert_true(b.rebounded);
+    /* same run up to rest: the same maximum */
+    assert_true(fabs(b.pmax - a.pmax) < 1e-12);
+    assert_true(b.t_rev >= b.t_pmax && b.t_rev <= b.t_pmax + 1e-9);
+    assert_true(b.v_reb > 0.0 && b.t_reb >= b.t_rev);
+    assert_true(b.recovery > 0.0 && fabs(b.recovery - (b.pmax - b.p_end)) < 1e-15);
+    assert_true(b.t[b.nh - 1] >= 160e-9 - 1e-9); /* ran on to t_rebound */
+    pen_sph_outcome_free(&a);
+    pen_sph_outcome_free(&b);
+}
+
 /* The AV options reach the deck only when set: the default gelatin deck is
  * unchanged, and the deck with them builds. */
 static void test_av_options_in_deck(void **state)
@@ -252,6 +282,7 @@ int main(void)
         cmocka_unit_test(test_gelatin_special_case),
         cmocka_unit_test(test_examples_match),
         cmocka_unit_test(test_run_short),
+        cmocka_unit_test(test_run_rebound),
         cmocka_unit_test(test_av_options_in_deck),
         cmocka_unit_test(test_richardson),
     };

@@ -286,11 +286,27 @@ int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot 
         }
         o->p_end = P;
         o->v_end = -im->v[1];
-        if (tc > 0.0 && !(im->v[1] < 0.0)) {
+        if (tc > 0.0 && !(im->v[1] < 0.0) && !o->at_rest) {
             o->at_rest = 1; /* P_max reached; the cavity may still grow */
-            break;
+            if (!(g->t_rebound > 0.0))
+                break;
+        }
+        if (o->at_rest && g->t_rebound > 0.0) {
+            /* rebound (seed 004 sec. 5: observed after P_max, never
+             * modelled there): V > 0 is upward, the sphere leaving */
+            if (!o->rebounded && im->v[1] > 0.0) {
+                o->rebounded = 1;
+                o->t_rev = tc;
+            }
+            if (o->rebounded && im->v[1] > o->v_reb) {
+                o->v_reb = im->v[1];
+                o->t_reb = tc;
+            }
+            if (tc >= g->t_rebound)
+                break;
         }
     }
+    o->recovery = o->pmax - o->p_end;
     o->secs = omp_get_wtime() - t0;
     sim_update_energy(sim);
     o->balance = sim->energy.balance / e_in;

@@ -54,6 +54,8 @@ struct pen_sph_grid {
     int k_first_contact; /**< 1: the impactor's penalty stiffness is frozen at first contact
                           *   (`stiffness_dt: first_contact`, as the gelatin deck); 0: per
                           *   step (the SEBS case's numbers were measured so) */
+    double t_rebound;    /**< > 0: do not stop at P_max; run on to this time after contact
+                          *   (or t_end) and measure the rebound; 0: stop at rest */
 };
 
 /** 10 wt% gelatin of seed 004 Tab. 4.3 with modulus @p E; AV (0.5, 0.2),
@@ -78,8 +80,13 @@ struct pen_sph_outcome {
     double pmax, t_pmax; /**< deepest tip depth [m], its time after contact [s] */
     double p_end, v_end; /**< tip depth [m] and speed [m/s] at the end */
     double d1max, d2max; /**< largest cavity diameters at cavity_depth [m] */
-    double balance;      /**< energy balance / kinetic energy input */
+    double balance;      /**< energy balance / kinetic energy input (at the last step) */
     int at_rest;         /**< 1 if the sphere stopped (V <= 0) before t_end */
+    /* rebound (grid t_rebound > 0 only): */
+    int rebounded;       /**< 1 if V turned upward after P_max */
+    double t_rev;        /**< time V turned upward, after contact [s] */
+    double v_reb, t_reb; /**< peak upward speed after t_rev [m/s] and its time [s] */
+    double recovery;     /**< tip recovery at the end, pmax - p_end [m] */
     size_t n;            /**< particles */
     double secs;         /**< wall time of the run [s] */
     double *t, *P;       /**< tip depth history, every 10 steps (owned) */
@@ -87,8 +94,10 @@ struct pen_sph_outcome {
 };
 
 /** Build the deck, run until the sphere comes to rest (V <= 0 after
- *  contact) or t_end; P = depth of the tip below the initial surface,
- *  t counted from first contact.  Free with pen_sph_outcome_free. */
+ *  contact) or t_end; with g->t_rebound > 0 run on past rest to
+ *  min(t_rebound after contact, t_end) and fill the rebound fields.
+ *  P = depth of the tip below the initial surface, t counted from first
+ *  contact.  Free with pen_sph_outcome_free. */
 int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot *s,
                       const struct pen_sph_grid *g, struct pen_sph_outcome *o,
                       struct spall_error *err);

@@ -54,6 +54,23 @@ grep -Eq "^eta +0\.045 " fitb.txt && ok || { ko "fit b eta"; cat fitb.txt; }
 "$spall" penetrate mcg --d 1e-3 --v0 1000 --projectile steel --target sebs --eta 1e-4 --R 25e6 \
     >/dev/null 2>warn.txt && grep -q "Re = " warn.txt && ok || ko "Re warning"
 
+# examples/pen_sweep (issue 7 item 7): velocity x diameter tables, the
+# P_max/d tables (one row per v0, one column per d) and the PNG plots
+bash "$src/examples/pen_sweep/pen_sweep.sh" "$spall" sw > sw.txt 2>&1 || { ko "pen_sweep.sh"; cat sw.txt; }
+[ "$(grep -vc '^#' sw/gelatin.csv)" -eq 88 ] && ok || ko "pen_sweep gelatin rows (3 d x 29 v0)"
+[ "$(grep -vc '^#' sw/sebs.csv)" -eq 176 ] && ok || ko "pen_sweep sebs rows (5 d x 35 v0)"
+[ "$(grep -vc '^#' sw/sebs_poncelet.csv)" -eq 176 ] && ok || ko "pen_sweep sebs_poncelet rows"
+grep -q '^v0,d=11,d=13,d=16,d=20,d=22$' sw/sebs_table.csv && ok || ko "pen_sweep table header"
+[ "$(grep -vc '^#' sw/sebs_table.csv)" -eq 36 ] && ok || ko "pen_sweep table rows"
+# the table is the long form's P_max/d: d = 16 um, v0 = 450 m/s both ways
+long=$(awk -F, '$1 + 0 == 16e-6 && $2 + 0 == 450 { printf "%.6g", $6 }' sw/sebs.csv)
+wide=$(awk -F, '$1 == "450" { print $4 }' sw/sebs_table.csv)
+[ -n "$long" ] && [ "$long" = "$wide" ] && ok || ko "pen_sweep table value ($long vs $wide)"
+for f in gelatin sebs sebs_poncelet; do
+    [ "$(head -c 4 sw/$f.png | tail -c 3)" = "PNG" ] && ok || ko "pen_sweep $f.png"
+done
+bash "$src/examples/pen_sweep/pen_sweep.sh" "$tmp/nope" sw2 >/dev/null 2>&1; [ $? -eq 2 ] && ok || ko "pen_sweep missing spall"
+
 bad "unknown mode" "unknown mode" bogus
 bad "bad number" "--d needs a number" poncelet --d x
 bad "negative R" "R must be" poncelet --d 1e-5 --v0 100 --rho-p 1 --rho-t 1 --cd 0.4 --R -3
