@@ -54,6 +54,10 @@ struct pen_sph_grid {
     int k_first_contact; /**< 1: the impactor's penalty stiffness is frozen at first contact
                           *   (`stiffness_dt: first_contact`, as the gelatin deck); 0: per
                           *   step (the SEBS case's numbers were measured so) */
+    int surface_contact; /**< 1: the sphere's contact surface pushed out by dx1/2
+                          *   (impactor key `contact_offset`), so that the gel's
+                          *   particle surfaces, not centres, meet radius d/2; 0: on
+                          *   centres (effective radius d/2 - dx1/2, the cases' decks) */
 };
 
 /** 10 wt% gelatin of seed 004 Tab. 4.3 with modulus @p E; AV (0.5, 0.2),
