@@ -167,12 +167,20 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
                      "origin: [%.9g, %.9g]}}\n",
                      geo, t->name, sp, 0.5 * sp, -0.5 * sp);
     }
+    /* surface_contact: the gel particles' surfaces (dx1/2 ahead of their
+     * centres) meet the sphere, whose effective radius is otherwise d/2 -
+     * dx1/2 and grows with refinement (docs/validation.md, pen-sph-gelatin,
+     * "The rest: the entry") */
+    char offset[64] = "";
+    if (g->surface_contact)
+        snprintf(offset, sizeof offset, ", contact_offset: %.9g", 0.5 * dx1);
     SETUP_APPEND("impactors:\n"
                  "  - {name: sphere, shape: sphere, position: [0, %.9g], radius: %.9g,\n"
-                 "     mass: %.9g, velocity: [0, %.9g], gravity: false, contact: penalty%s}\n"
+                 "     mass: %.9g, velocity: [0, %.9g], gravity: false, contact: penalty%s%s}\n"
                  "run: {end_time: %.9g}\n",
                  R + pen_sph_setup_gap(s), R, M, -s->v0,
-                 g->k_first_contact ? ",\n     stiffness_dt: first_contact" : "", g->t_end);
+                 g->k_first_contact ? ",\n     stiffness_dt: first_contact" : "", offset,
+                 g->t_end);
     if (off >= len)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "pen_sph_setup: deck needs %zu bytes, buffer has %zu", off + 1,

@@ -56,6 +56,10 @@ struct pen_sph_grid {
                           *   step (the SEBS case's numbers were measured so) */
     double t_rebound;    /**< > 0: do not stop at P_max; run on to this time after contact
                           *   (or t_end) and measure the rebound; 0: stop at rest */
+    int surface_contact; /**< 1: the sphere's contact surface pushed out by dx1/2
+                          *   (impactor key `contact_offset`), so that the gel's
+                          *   particle surfaces, not centres, meet radius d/2; 0: on
+                          *   centres (effective radius d/2 - dx1/2, the cases' decks) */
 };
 
 /** 10 wt% gelatin of seed 004 Tab. 4.3 with modulus @p E; AV (0.5, 0.2),

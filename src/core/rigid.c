@@ -178,6 +178,7 @@ static int bounding_box(const struct impactor *im, double lo[3], double hi[3])
             c[d] = im->x[d] - half * im->axis[d];
         R = sqrt(half * half + rad * rad);
     }
+    R += im->contact_offset;
     for (int d = 0; d < 3; d++) {
         lo[d] = c[d] - R;
         hi[d] = c[d] + R;
@@ -263,7 +264,9 @@ void rigid_contact_forces(struct sim *s)
             particle_pos(p, dim, i, x);
             if (boxed && !in_box(x, lo, hi, dim))
                 continue;
-            double phi = rigid_distance(im, x, nrm);
+            /* contact_offset: a particle stands for a cell of its spacing, so
+             * its surface, dx/2 ahead of its centre, meets the body */
+            double phi = rigid_distance(im, x, nrm) - im->contact_offset;
             if (!(phi < 0.0))
                 continue;
             double m = p->mass[i];
@@ -326,7 +329,9 @@ void rigid_no_slip(struct sim *s, double dt)
             particle_pos(p, dim, i, x);
             if (boxed && !in_box(x, lo, hi, dim))
                 continue;
-            double phi = rigid_distance(im, x, nrm);
+            /* contact_offset: a particle stands for a cell of its spacing, so
+             * its surface, dx/2 ahead of its centre, meets the body */
+            double phi = rigid_distance(im, x, nrm) - im->contact_offset;
             if (!(phi < 0.0))
                 continue;
             double m = p->mass[i];

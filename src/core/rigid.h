@@ -60,6 +60,9 @@ struct impactor {
     bool stiffness_frozen;   /**< eta: dt of the first contact step, not of each step */
     double k_dt;             /**< frozen: that dt (0 before the first contact) */
     double friction;         /**< Coulomb mu */
+    double contact_offset;   /**< contact surface pushed out by this [m] along its
+                                  normal (the particles' half spacing: their
+                                  surfaces, not centres, meet the body) */
     /* state / diagnostics */
     double f_pen[3];     /**< penalty force of the body on the impactor [N] */
     double f_noslip[3];  /**< no-slip resistant force of the last step [N] */

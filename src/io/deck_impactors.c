@@ -40,7 +40,7 @@ static int parse_one(struct sim *s, const struct deck_node *n, struct spall_erro
                                        "edge_radius", "nose_radius", "axis", "normal", "mass",
                                        "velocity", "motion", "function", "gravity", "contact",
                                        "stiffness_factor", "stiffness", "friction",
-                                       "stiffness_dt", NULL};
+                                       "stiffness_dt", "contact_offset", NULL};
     static const char *const kdts[] = {"step", "first_contact", NULL};
     static const char *const shapes[] = {"sphere", "cylinder", "round_nose", "wall", "flat_punch",
                                          NULL};
@@ -74,7 +74,8 @@ static int parse_one(struct sim *s, const struct deck_node *n, struct spall_erro
         (rc = deck_double(n, "stiffness_factor", false, 1e-6, 1.0, &im.stiffness_factor, err)) ||
         (rc = deck_double_pos(n, "stiffness", false, &im.stiffness, err)) ||
         (rc = deck_double(n, "friction", false, 0.0, INFINITY, &im.friction, err)) ||
-        (rc = deck_enum(n, "stiffness_dt", false, kdts, &kdt, err)))
+        (rc = deck_enum(n, "stiffness_dt", false, kdts, &kdt, err)) ||
+        (rc = deck_double(n, "contact_offset", false, 0.0, INFINITY, &im.contact_offset, err)))
         return rc;
     im.stiffness_frozen = kdt == 1;
     im.motion = (enum rigid_motion)motion;
