@@ -12,7 +12,9 @@ Why not CAX4R/CAX4 and why implicit (README.md has the runs): CalculiX 2.20
 expands CAX elements into a 2-degree C3D8R/C3D8 layer tied by MPCs; there the
 initial velocity was not applied (bar never moved), CAX4R (C3D8R) stopped
 converging at 45 us and CAX4 (C3D8) locks; explicit steps collapsed to
-4e-10 s as the face-centre elements flatten.  C3D8I, implicit, reached 80 us.
+4e-10 s as the face-centre elements flatten.  C3D8I, implicit, reaches
+80 us, but only by inverting face-centre elements from 12-22 us on
+(post_taylor.py reports V/V0 and the inverted count).
 
 SI units, axis z.  Impact face z = 0: u_z = 0, in-plane free -- a
 frictionless rigid wall while the face keeps pushing on it (check RF_z of

@@ -70,14 +70,16 @@ def volume(blk):                           # (V / V0 whole bar, # elements < 0)
     return scale * sum(vols) / v0, sum(v < 0 for v in vols)
 
 
-ts = sorted(hist)                          # L, R at 20 us (before tangling)
-k = next((i for i, t in enumerate(ts) if t >= 20e-6), None)
-if k:
-    f = (20e-6 - ts[k - 1]) / (ts[k] - ts[k - 1])
-    L20, R20 = (hist[ts[k - 1]][i] + f * (hist[ts[k]][i] - hist[ts[k - 1]][i])
-                for i in (0, 1))
-    print(f"t = 20 us (interpolated): length = {1e3 * L20:.4f} mm  "
-          f"radius = {1e3 * R20:.4f} mm")
+ts = sorted(hist)                          # L, R before the tangling
+for tq in (10e-6, 20e-6):
+    k = next((i for i, t in enumerate(ts) if t >= tq), None)
+    if k:
+        f = (tq - ts[k - 1]) / (ts[k] - ts[k - 1])
+        Lq, Rq = (hist[ts[k - 1]][i] + f * (hist[ts[k]][i]
+                                             - hist[ts[k - 1]][i])
+                  for i in (0, 1))
+        print(f"t = {1e6 * tq:.0f} us (interpolated): length = "
+              f"{1e3 * Lq:.4f} mm  radius = {1e3 * Rq:.4f} mm")
 alln = [b for b in blocks if b[0] == "displacements" and b[1] == "NALL"]
 if alln:                                   # side nodes crossing z = 0?
     def low(b):                            # (min z, its radius) over nodes
