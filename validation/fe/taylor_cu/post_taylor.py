@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Final length/radius and wall-force history from a gen_taylor.py run.
+
+Usage: python3 post_taylor.py JOB      (reads JOB.inp and JOB.dat)
+length = max over rear-face nodes of z + u_z minus min over impact-face
+nodes of z + u_z (the face is held at u_z = 0, so the min is 0);
+radius = max over impact-face nodes of |(x + u_x, y + u_y)|.
+"""
+import math
+import re
+import sys
+
+job = sys.argv[1]
+xyz, els, sec, scale = {}, [], None, 1.0
+for line in open(job + ".inp"):
+    if line.startswith("** RF_SCALE="):  # model part -> whole bar
+        scale = float(line.split("=")[1])
+    if line.startswith("*"):
+        sec = line.upper().split(",")[0]
+        continue
+    f = line.split(",")
+    if sec == "*NODE":
+        xyz[int(f[0])] = tuple(map(float, f[1:4]))
+    elif sec == "*ELEMENT":
+        els.append([int(v) for v in f[1:9]])
+
+blocks = []                                # (kind, set, time, rows)
+cur = None
+for line in open(job + ".dat"):
+    h = re.match(r"\s*(displacements|velocities|total force)\s.*for set (\S+)"
+                 r" and time\s+(\S+)", line)
+    if h:
+        cur = (h.group(1), h.group(2), float(h.group(3)), [])
+        blocks.append(cur)
+    elif cur and line.strip():
+        cur[3].append([float(v) for v in line.split()])
+
+
+def shape(wall, top):                      # (length, radius) of one state
+    zmin = min(xyz[int(r[0])][2] + r[3] for r in wall[3])
+    zmax = max(xyz[int(r[0])][2] + r[3] for r in top[3])
+    rad = max(math.hypot(xyz[int(r[0])][0] + r[1], xyz[int(r[0])][1] + r[2])
+              for r in wall[3])
+    return zmax - zmin, rad
+
+
+walls = [b for b in blocks if b[0] == "displacements" and b[1] == "WALL"]
+tops = [b for b in blocks if b[0] == "displacements" and b[1] == "TOP"]
+hist = {w[2]: shape(w, t) for w, t in zip(walls, tops)}
+t_end = walls[-1][2]
+print(f"t = {t_end:.4e} s  length = {1e3 * hist[t_end][0]:.4f} mm  "
+      f"radius = {1e3 * hist[t_end][1]:.4f} mm")
+
+def tet(a, b, c, d):                       # signed volume of a tetrahedron
+    u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
+    return (u[0] * (v[1] * w[2] - v[2] * w[1])
+            - u[1] * (v[0] * w[2] - v[2] * w[0])
+            + u[2] * (v[0] * w[1] - v[1] * w[0])) / 6
+
+
+def volume(blk):                           # (V / V0 whole bar, # elements < 0)
+    p = {int(r[0]): [xyz[int(r[0])][k] + r[1 + k] for k in range(3)]
+         for r in blk[3]}
+    vols = []
+    for e in els:                          # 6 tets around diagonal 1-7
+        n = [p[i] for i in e]
+        vols.append(sum(tet(n[0], n[a], n[b], n[6]) for a, b in
+                        ((1, 2), (2, 3), (3, 7), (7, 4), (4, 5), (5, 1))))
+    v0 = math.pi * 3.2e-3 ** 2 * 32.4e-3
+    return scale * sum(vols) / v0, sum(v < 0 for v in vols)
+
+
+ts = sorted(hist)                          # L, R before the tangling
+for tq in (10e-6, 20e-6):
+    k = next((i for i, t in enumerate(ts) if t >= tq), None)
+    if k:
+        f = (tq - ts[k - 1]) / (ts[k] - ts[k - 1])
+        Lq, Rq = (hist[ts[k - 1]][i] + f * (hist[ts[k]][i]
+                                             - hist[ts[k - 1]][i])
+                  for i in (0, 1))
+        print(f"t = {1e6 * tq:.0f} us (interpolated): length = "
+              f"{1e3 * Lq:.4f} mm  radius = {1e3 * Rq:.4f} mm")
+alln = [b for b in blocks if b[0] == "displacements" and b[1] == "NALL"]
+if alln:                                   # side nodes crossing z = 0?
+    def low(b):                            # (min z, its radius) over nodes
+        return min((xyz[int(r[0])][2] + r[3],
+                    math.hypot(xyz[int(r[0])][0] + r[1],
+                               xyz[int(r[0])][1] + r[2])) for r in b[3])
+    below = [b[2] for b in alln if low(b)[0] < -1e-6]
+    z, r = low(alln[-1])
+    vol = {b[2]: volume(b) for b in alln}
+    print(f"deformed volume / initial = {vol[alln[-1][2]][0]:.5f}; "
+          f"elements with negative volume: "
+          f"{vol[alln[-1][2]][1]} of {len(els)}")
+    print("side nodes below the wall plane (z < -1 um) from t = "
+          + (f"{below[0]:.3e} s" if below else "never")
+          + f"; at t = {alln[-1][2]:.4e} s the lowest node is at z = "
+          f"{1e3 * z:.4f} mm, r = {1e3 * r:.4f} mm")
+# axial RF of the wall, scaled to the whole bar; > 0 = the wall pushes
+rf = [(b[2], scale * b[3][0][2]) for b in blocks
+      if b[0] == "total force" and b[1] == "WALL"]
+neg = [(t, f) for t, f in rf if f < 0]
+print(f"wall force samples {len(rf)}, peak {max(f for _, f in rf):.4e} N, "
+      f"first tensile sample: "
+      + (f"t = {neg[0][0]:.3e} s, F = {neg[0][1]:.3e} N" if neg else "none"))
+tip = [(b[2], b[3][0][3]) for b in blocks
+       if b[0] == "velocities" and b[1] == "TIP"]
+for t, v in tip[:: max(1, len(tip) // 12)] + tip[-1:]:
+    L, R = hist.get(t, (math.nan, math.nan))
+    vr, nneg = vol.get(t, (math.nan, 0)) if alln else (math.nan, 0)
+    print(f"  t = {1e6 * t:6.2f} us  rear-axis v_z = {v:8.2f} m/s  wall "
+          f"force = {dict(rf).get(t, math.nan):9.3e} N  L = {1e3 * L:.3f} mm"
+          f"  R = {1e3 * R:.3f} mm  V/V0 = {vr:.4f} ({nneg} inverted)")
