@@ -18,6 +18,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include <math.h>
 #include <stdio.h>
 
@@ -75,10 +77,6 @@ static void test_frozen_stiffness_conserves(void **state)
 static void test_bad_value(void **state)
 {
     (void)state;
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
     const char *yaml =
         "model: {type: sph}\n"
         "materials: {a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
@@ -87,10 +85,7 @@ static void test_bad_value(void **state)
         "impactors: [{name: b, shape: sphere, position: [0.002, 0.006], radius: 0.001,\n"
         "             mass: 1.0e-3, stiffness_dt: initial}]\n"
         "run: {steps: 1}\n";
-    assert_int_equal(deck_load_string(&d, "t", yaml, &err), 0);
-    assert_int_not_equal(deck_build_sim(d, &s, &ro, &err), 0);
-    deck_destroy(&d);
-    sim_destroy(&s);
+    test_deck_refused(yaml, "stiffness_dt");
 }
 
 int main(void)

@@ -20,6 +20,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tests/test_support.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -84,10 +86,6 @@ static void test_offset_is_larger_sphere(void **state)
 static void test_negative_offset_refused(void **state)
 {
     (void)state;
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    struct spall_error err = {0};
     const char *yaml =
         "model: {type: sph}\n"
         "materials: {a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
@@ -96,11 +94,7 @@ static void test_negative_offset_refused(void **state)
         "impactors: [{name: b, shape: sphere, position: [0.002, 0.006], radius: 0.001,\n"
         "             mass: 1.0e-3, contact_offset: -1.0e-4}]\n"
         "run: {steps: 1}\n";
-    assert_int_equal(deck_load_string(&d, "t", yaml, &err), 0);
-    assert_int_not_equal(deck_build_sim(d, &s, &ro, &err), 0);
-    assert_non_null(strstr(err.msg, "contact_offset"));
-    deck_destroy(&d);
-    sim_destroy(&s);
+    test_deck_refused(yaml, "contact_offset");
 }
 
 static void test_builder_key(void **state)
