@@ -208,6 +208,16 @@ static int bench_sph_taylor_rest_ul(int threads, double scale, struct bench_resu
                            err);
 }
 
+/* the sph_taylor_cu bar (updated form, h = 1.5 dx) run to rest: what
+ * spall's updated form gives against the FE reference of the race's
+ * accuracy half (validation/fe/taylor_cu) */
+static int bench_sph_taylor_rest_ul15(int threads, double scale, struct bench_result *out,
+                                      struct spall_error *err)
+{
+    return sph_taylor_rest("sph_taylor_cu_rest_ul", "updated", 1.5, "", scale, threads, out,
+                           err);
+}
+
 /* TLSPH with the staggered leapfrog: one force call per step and the plain
  * time-step limit (sph_model.c skips the |B0^-1| reduction for it), and
  * hourglass 1 (as the TLSPH beam): with the default 0.1 the mushroom's rim
@@ -280,6 +290,8 @@ const struct bench_case bench_sph_cases[] = {
      bench_sph_taylor_rest_lf},
     {"sph_taylor_cu_rest_ul32", "the sph_taylor_cu_ul32 bar run to rest (80 us)",
      bench_sph_taylor_rest_ul},
+    {"sph_taylor_cu_rest_ul", "the sph_taylor_cu bar (updated form, h = 1.5 dx) run to rest "
+     "(80 us)", bench_sph_taylor_rest_ul15},
     {"sph_taylor_cu_ul32", "3D copper Taylor bar, updated form, support 2.01 dx, 200 steps",
      bench_sph_taylor_ul32},
     {"sph_rings_2d", "2D rubber rings (Gray et al. 2001), artificial stress, dx = 0.5 mm, 200 steps",
