@@ -236,6 +236,15 @@ void rigid_drift(struct sim *s, double dt)
     }
 }
 
+/* Signed gap between particle centre x and the body's contact surface
+ * (penalty and no-slip contact alike): contact_offset pushes the surface
+ * out, since a particle stands for a cell of its spacing and its surface,
+ * dx/2 ahead of its centre, meets the body. */
+static inline double contact_gap(const struct impactor *im, const double x[3], double nrm[3])
+{
+    return rigid_distance(im, x, nrm) - im->contact_offset;
+}
+
 void rigid_contact_forces(struct sim *s)
 {
     if (!s->rigid)
@@ -264,9 +273,7 @@ void rigid_contact_forces(struct sim *s)
             particle_pos(p, dim, i, x);
             if (boxed && !in_box(x, lo, hi, dim))
                 continue;
-            /* contact_offset: a particle stands for a cell of its spacing, so
-             * its surface, dx/2 ahead of its centre, meets the body */
-            double phi = rigid_distance(im, x, nrm) - im->contact_offset;
+            double phi = contact_gap(im, x, nrm);
             if (!(phi < 0.0))
                 continue;
             double m = p->mass[i];
@@ -329,9 +336,7 @@ void rigid_no_slip(struct sim *s, double dt)
             particle_pos(p, dim, i, x);
             if (boxed && !in_box(x, lo, hi, dim))
                 continue;
-            /* contact_offset: a particle stands for a cell of its spacing, so
-             * its surface, dx/2 ahead of its centre, meets the body */
-            double phi = rigid_distance(im, x, nrm) - im->contact_offset;
+            double phi = contact_gap(im, x, nrm);
             if (!(phi < 0.0))
                 continue;
             double m = p->mass[i];
