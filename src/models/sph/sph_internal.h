@@ -62,6 +62,9 @@ struct sph_options {
     double hourglass;       /**< TLSPH hourglass coefficient kappa */
     double det_f_range[2];  /**< TLSPH guard: det F outside stops the run */
     double max_distortion;  /**< TLSPH guard: (|F|^2/dim)/J^(2/dim) above stops the run */
+    long reref_every;       /**< TLSPH: re-reference every N steps (0: off; sph_tlsph_reref.c) */
+    double reref_distortion; /**< TLSPH: re-reference when the distortion exceeds it (0: off) */
+    double reref_isotropy;  /**< TLSPH update: grow h where the neighbourhood's isotropy is below */
     bool wall;              /**< rigid half-space wall (penalty) */
     double wall_point[3], wall_normal[3]; /**< normal points into the body side */
     double wall_stiffness;  /**< penalty k = factor m (c/dx)^2 */
@@ -167,6 +170,10 @@ struct model {
                                 by formulation (NULL: one formulation, no split) */
     size_t n_total;        /**< particles on TLSPH when form is set */
     double tl_jmin, tl_kmax; /**< TLSPH: smallest det F, largest distortion (last step) */
+    size_t tl_rerefs;      /**< TLSPH: reference updates so far (sph_tlsph_reref.c) */
+    long tl_reref_step;    /**< TLSPH: step of the last reference update (0: none) */
+    double t_reref;        /**< TLSPH: wall seconds spent in reference updates */
+    size_t tl_hgrown;      /**< TLSPH: h growths (x1.2) at reference updates */
 };
 
 /** Formulation of a particle (m->form), and SPH_FORM_ALL for loops that
@@ -244,8 +251,24 @@ void sph_clamp_destroy(struct sph_clamp **pc);
 int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err);
 /** TLSPH rates: F, L, PK1 forces, energy, stress rates. */
 int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err);
+/** The reference list, pair constants and B0^-1 of configuration @p X with
+ *  volumes m / @p rho (NULL: the materials' rho0); sph_tlsph_init passes
+ *  p->x0, a re-reference the current x and rho.  F = I on @p X. */
+int sph_tlsph_reference(struct model *m, struct sim *s, double *const X[3], const double *rho,
+                        struct spall_error *err);
 /** Free the TLSPH pair constants; sets *tl to NULL. */
 void sph_tlsph_destroy(struct sph_tl **tl);
+/** F of TLSPH particle i at the last force call (tests, diagnostics). */
+void sph_tlsph_deformation(const struct model *m, size_t i, double F[9]);
+
+/* sph_tlsph_reref.c */
+/** Parse model.reference_update {every, distortion} into @p o (TLSPH runs only). */
+int sph_tlsph_reref_parse(const struct deck_node *params, struct sph_options *o,
+                          struct spall_error *err);
+/** Replace the TLSPH reference configuration by the current one now. */
+int sph_tlsph_reref(struct model *m, struct sim *s, struct spall_error *err);
+/** End of a step: re-reference when model.reference_update says so. */
+int sph_tlsph_reref_step(struct model *m, struct sim *s, struct spall_error *err);
 
 /* sph_axisym.c */
 /** Ring masses M = 2 pi r A rho0, planar masses, the surface; flags the sim. */

@@ -38,6 +38,10 @@
  *     det_f_range: [lo, hi]                   TLSPH guard: a particle's det F outside stops
  *                                             the run, naming it (default [0.1, 10])
  *     max_distortion: k                       TLSPH guard on (|F|^2/dim)/J^(2/dim) (default 100)
+ *     reference_update: {every: N, distortion: k}  TLSPH re-referencing (sph_tlsph_reref.c):
+ *                                             reference := current configuration every N
+ *                                             steps and/or when the distortion exceeds k
+ *                                             (1 < k < max_distortion; default off)
  *     clamp: {group: g, point: [...], normal: [...]}
  *           mirrored clamp (sph_clamp.c): the fixed group g behind the plane
  *           takes -v and the stress of its mirror images during force calls
@@ -176,7 +180,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                        "cavity_depth", "time_integration", "interface",
                                        "interface_stiffness", "interface_distance", "clamp",
                                        "body_formulation", "det_f_range", "max_distortion",
-                                       NULL};
+                                       "reference_update", NULL};
     static const char *const ifaces[] = {"none", "bodies", "materials", NULL};
     static const char *const avsw[] = {"none", "balsara", NULL};
     *out = NULL;
@@ -301,6 +305,8 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                   "symmetry planes work with the fused loop only: updated "
                                   "formulation, continuity density, no cspm");
         o.total_lagrangian = form == 1;
+        if ((rc = sph_tlsph_reref_parse(params, &o, err))) /* sph_tlsph_reref.c */
+            return rc;
         if (av[0] < 0.0 || av[1] < 0.0)
             return deck_error_key(err, params, "viscosity",
                                   "viscosity [%g, %g]; expected [q_a, q_b] both >= 0", av[0],
@@ -545,10 +551,8 @@ static double sph_stable_dt(const struct model *m, const struct sim *sim)
 
 static int sph_end_step(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    (void)m;
-    (void)sim;
-    (void)err;
-    return SPALL_OK;
+    /* TLSPH re-referencing (model.reference_update): the step's state is complete */
+    return sph_tlsph_reref_step(m, sim, err);
 }
 
 /* Predictor-corrector for rho, e, S, h (Eqs. 3.35-3.37 applied to the
@@ -690,6 +694,10 @@ static size_t sph_history(const struct model *m, const struct sim *sim, const ch
         values[k++] = m->tl_jmin;
         names[k] = "max_F_distortion";
         values[k++] = m->tl_kmax;
+        if (m->opt.reref_every || m->opt.reref_distortion > 0.0) {
+            names[k] = "reference_updates";
+            values[k++] = (double)m->tl_rerefs;
+        }
     }
     if (m->opt.iface != SPH_IFACE_NONE) {
         names[k] = "interface_pairs";

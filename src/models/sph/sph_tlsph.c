@@ -114,7 +114,11 @@ static int sph_tl_alloc(struct sph_tl **out, size_t n, size_t np, struct spall_e
     return SPALL_OK;
 }
 
-int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
+/* The reference configuration is an input: the deck's positions (p->x0)
+ * and rest volumes at the start, the current ones on a re-reference
+ * (sph_tlsph_reref.c).  p->x0 itself is never changed (output, groups). */
+int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], const double *rho,
+                        struct spall_error *err)
 {
     struct particles *p = s->p;
     const size_t n = p->n_owned;
@@ -123,21 +127,30 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
     for (size_t i = 0; i < n; i++)
         hmax = fmax(hmax, m->h[i]);
     sph_tlsph_destroy(&m->tl);
-    m->nl_radius = m->qmax * hmax;
+    const double radius = m->qmax * hmax;
+    if (!m->nl) /* a mixed run's updated list keeps its own radius (with skin) */
+        m->nl_radius = radius;
     const double t0 = omp_get_wtime();
     struct neighbor_list *nl = NULL;
-    int rc = neighbor_list_build(&nl, dim, n, p->x0, m->nl_radius, err);
+    int rc = neighbor_list_build(&nl, dim, n, Xr, radius, err);
     if (rc)
         return rc;
-    if (m->form) {
+    if (m->form || rho) {
         /* bodies split by formulation (sph_forms.c): only the pairs inside
-         * one TLSPH body; the others' rows stay empty */
+         * one TLSPH body; the others' rows stay empty.  A re-reference (rho
+         * given; h may have grown per particle, sph_tlsph_reref.c) also
+         * drops the pairs beyond their support qmax (h_i + h_j)/2 (W = 0) */
         size_t w = 0, start = 0;
         for (size_t i = 0; i < n; i++) {
             const size_t end = nl->offset[i + 1];
-            for (size_t k = start; k < end && m->form[i] == SPH_FORM_TOTAL; k++) {
+            for (size_t k = start; k < end && (!m->form || m->form[i] == SPH_FORM_TOTAL); k++) {
                 const size_t j = (size_t)nl->idx[k];
-                if (m->form[j] == SPH_FORM_TOTAL && p->body[j] == p->body[i])
+                if (m->form && (m->form[j] != SPH_FORM_TOTAL || p->body[j] != p->body[i]))
+                    continue;
+                double r2 = 0.0, sup = 0.5 * m->qmax * (m->h[i] + m->h[j]);
+                for (int d = 0; d < dim && rho; d++)
+                    r2 += (Xr[d][i] - Xr[d][j]) * (Xr[d][i] - Xr[d][j]);
+                if (!rho || r2 < sup * sup)
                     nl->idx[w++] = nl->idx[k];
             }
             start = end;
@@ -145,7 +158,7 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
         }
     }
     m->t_neighbor += omp_get_wtime() - t0;
-    m->n_builds = 1;
+    m->n_builds++;
     const size_t *off = nl->offset;
     const int32_t *nb = nl->idx;
     if ((rc = sph_tl_alloc(&m->tl, n, off[n], err))) {
@@ -163,10 +176,10 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
         double *q = t->pk + i * TL_STRIDE;
         for (int c = 0; c < 9; c++)
             q[TL_FD + c] = (c % 4 == 0) ? 1.0 : 0.0;
-        q[TL_VOL] = m->m2[i] / m->mat[p->material[i]].rho0;
+        q[TL_VOL] = m->m2[i] / (rho ? rho[i] : m->mat[p->material[i]].rho0);
         q[TL_M] = m->m2[i];
         for (int d = 0; d < 3; d++)
-            q[TL_X0 + d] = d < dim ? p->x0[d][i] : 0.0;
+            q[TL_X0 + d] = d < dim ? Xr[d][i] : 0.0;
     }
     const double kappa = m->opt.hourglass;
     size_t fallbacks = 0;
@@ -180,7 +193,7 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
             size_t j = (size_t)nb[k];
             double hb = 0.5 * (m->h[i] + m->h[j]), X[3] = {0, 0, 0}, r2 = 0.0;
             for (int d = 0; d < dim; d++) {
-                X[d] = p->x0[d][i] - p->x0[d][j];
+                X[d] = Xr[d][i] - Xr[d][j];
                 r2 += X[d] * X[d];
             }
             double W, F;
@@ -207,6 +220,11 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
     }
     m->cspm_fallbacks += fallbacks;
     return SPALL_OK;
+}
+
+int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
+{
+    return sph_tlsph_reference(m, s, s->p->x0, NULL, err);
 }
 
 /* Distortion of F: kappa = (|F|^2 / dim) / J^(2/dim) >= 1, = 1 exactly
@@ -582,4 +600,9 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
 size_t sph_tlsph_pairs(const struct model *m)
 {
     return m->tl && m->tl->nl ? m->tl->nl->offset[m->tl->nl->n] : 0;
+}
+
+void sph_tlsph_deformation(const struct model *m, size_t i, double F[9])
+{
+    memcpy(F, m->tl->pk + i * TL_STRIDE + TL_FD, 9 * sizeof(double));
 }

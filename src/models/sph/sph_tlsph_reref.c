@@ -1,0 +1,203 @@
+/**
+ * @file sph_tlsph_reref.c
+ * @brief Re-referencing of total-Lagrangian SPH (issue 6 items 6 and 8):
+ *        model.reference_update {every: N, distortion: k}.
+ *
+ * Why: TLSPH (sph_tlsph.c) keeps its kernel, partners and corrected
+ * gradients on one reference configuration.  A Taylor bar's foot flows to
+ * plastic strains of ~3: the fixed partners of a particle end up spread
+ * along the flow and squeezed across it, and the hourglass force (the
+ * mismatch x_ij - Fbar X_ij against that old reference) resists the flow.
+ * The remedy of Lagrangian codes with large deformation (MACHDYN's
+ * *UPDATE_CONSTANT / *UPDATE_PAIRWISE) is to restart the reference from
+ * the current configuration now and then.
+ *
+ * An update at the end of a step (all fields at t_n+1):
+ *   X := x,  V0 := m / rho (current density),
+ *   reference list, W0, dW/dr / r, hourglass constants and B0^-1 rebuilt
+ *   on X with the same radius rule (qmax max h; h is fixed),
+ * so F = I on the new reference (B0 B0^-1, to round-off) and the next
+ * force call sees F relative to x_n+1.  Nothing of the material state
+ * changes: the stress enters TLSPH only through the Cauchy state (S, P
+ * from rho and e, ep), integrated with L = dF/dt F^-1 (the Jaumann rate),
+ * not through F itself, so S, P, rho, e, ep and the velocities carry over
+ * bitwise; PK1 = J sigma F^-T = sigma right after the update, and with V0
+ * = m/rho the force V0_i V0_j (P_i g_i + P_j g_j) is the corrected
+ * updated-form force of the current configuration.  Momentum stays
+ * exact (the new list is symmetric, G_ij = -G_ji); kinetic + internal
+ * energy is continuous across the update (nothing stored is reset: the
+ * hourglass work was already booked as heat).  What is lost is only the
+ * hourglass memory of the old reference.  p->x0 (output displacement,
+ * groups, the guard's message) keeps the deck's positions; the reference
+ * lives in the TLSPH block (sph_tlsph.c).
+ *
+ * Trigger: every N steps since the last update, and/or when the largest
+ * distortion kappa = (|F|^2/dim)/J^(2/dim) of the last force call (the det F
+ * guard's measure, history column max_F_distortion) exceeds k.  Every TLSPH
+ * particle is re-referenced at once (the rebuild is one O(N) neighbour
+ * search, cheap against the steps in between: docs/performance.md).
+ */
+#include "models/sph/sph_internal.h"
+
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck.h"
+#include "spall/error.h"
+
+#include <limits.h>
+#include <math.h>
+#include <omp.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+int sph_tlsph_reref_parse(const struct deck_node *params, struct sph_options *o,
+                          struct spall_error *err)
+{
+    static const char *const keys[] = {"every", "distortion", "isotropy", NULL};
+    const struct deck_node *r = deck_get(params, "reference_update");
+    if (!r)
+        return SPALL_OK;
+    int rc = deck_expect_map(r, "a mapping with every: N and/or distortion: k", err);
+    if (rc)
+        return rc;
+    if (!o->total_lagrangian)
+        return deck_error_key(err, params, "reference_update",
+                              "reference_update re-references total-Lagrangian bodies; this "
+                              "run has none (formulation: total or body_formulation)");
+    long every = 0;
+    double k = 0.0, iso = 0.2;
+    if ((rc = deck_long(r, "every", false, 1, LONG_MAX, &every, err)) ||
+        (rc = deck_double(r, "distortion", false, 1.0, INFINITY, &k, err)) ||
+        (rc = deck_double(r, "isotropy", false, 0.0, 1.0, &iso, err)) ||
+        (rc = deck_check_unused(r, "model.reference_update", keys, err)))
+        return rc;
+    const bool has_k = deck_peek(r, "distortion") != NULL;
+    if (!every && !has_k)
+        return deck_error_key(err, params, "reference_update",
+                              "reference_update names no trigger; expected every: N (steps) "
+                              "and/or distortion: k (> 1)");
+    if (has_k && !(k > 1.0))
+        return deck_error_key(err, r, "distortion",
+                              "distortion %g; expected k > 1 (1 is an undistorted F: it would "
+                              "re-reference every step)",
+                              k);
+    if (has_k && !(k < o->max_distortion))
+        return deck_error_key(err, r, "distortion",
+                              "distortion %g; expected k < max_distortion (%g): the det F guard "
+                              "would stop the run before the update",
+                              k, o->max_distortion);
+    o->reref_every = every;
+    o->reref_isotropy = iso;
+    o->reref_distortion = has_k ? k : 0.0;
+    return SPALL_OK;
+}
+
+/* Isotropy of particle i's kernel neighbourhood on the current positions:
+ * M = sum_j V_j |dW/dr / r| x_ij (x) x_ij (the uncorrected B0, = I inside a
+ * regular lattice, I/2 at a flat surface), s = dim^dim det M / (tr M)^dim in
+ * [0, 1]: 1 for any M proportional to I, 0 when the partners lie on a
+ * plane or a line.  One pass: every TLSPH particle with s < @p smin gets
+ * h *= 1.2 (at most twice its initial h); *grown counts them. */
+static int reref_isotropy_pass(struct model *m, const struct sim *s, double smin, size_t *grown,
+                               struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const int dim = m->dim;
+    double hmax = 0.0;
+    for (size_t i = 0; i < n; i++)
+        hmax = fmax(hmax, m->h[i]);
+    struct neighbor_list *nl = NULL;
+    int rc = neighbor_list_build(&nl, dim, n, p->x, m->qmax * hmax, err);
+    if (rc)
+        return rc;
+    uint8_t *grow = calloc(n ? n : 1, 1);
+    if (!grow) {
+        neighbor_list_destroy(&nl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH reference update)");
+    }
+    size_t count = 0;
+#pragma omp parallel for schedule(static) reduction(+ : count)
+    for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_TOTAL) || !(m->h[i] < 2.0 * m->opt.h_factor * m->dx[i]))
+            continue;
+        double M[9] = {0};
+        for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++) {
+            const size_t j = (size_t)nl->idx[k];
+            if (m->form && (m->form[j] != SPH_FORM_TOTAL || p->body[j] != p->body[i]))
+                continue;
+            const double hb = 0.5 * (m->h[i] + m->h[j]);
+            double X[3] = {0, 0, 0}, r2 = 0.0;
+            for (int d = 0; d < dim; d++) {
+                X[d] = p->x[d][i] - p->x[d][j];
+                r2 += X[d] * X[d];
+            }
+            if (!(r2 > 0.0) || r2 >= m->qmax * m->qmax * hb * hb)
+                continue;
+            double W, F;
+            sph_kernel_eval(m->opt.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
+            const double w = fabs(F) * m->m2[j] / m->rho[j];
+            for (int a = 0; a < dim; a++)
+                for (int b = 0; b < dim; b++)
+                    M[a * 3 + b] += w * X[a] * X[b];
+        }
+        double inv[9], tr = 0.0;
+        for (int a = 0; a < dim; a++)
+            tr += M[a * 4];
+        M[8] = dim == 2 ? 1.0 : M[8];
+        const double det = sph_inverse(dim, M, inv);
+        const double iso = tr > 0.0 ? (dim == 3 ? 27.0 * det / (tr * tr * tr) : 4.0 * det / (tr * tr))
+                                    : 0.0;
+        if (iso < smin) {
+            grow[i] = 1;
+            count++;
+        }
+    }
+    for (size_t i = 0; i < n; i++)
+        if (grow[i])
+            m->h[i] = fmin(1.2 * m->h[i], 2.0 * m->opt.h_factor * m->dx[i]);
+    free(grow);
+    neighbor_list_destroy(&nl);
+    *grown = count;
+    return SPALL_OK;
+}
+
+int sph_tlsph_reref(struct model *m, struct sim *s, struct spall_error *err)
+{
+    const double t0 = omp_get_wtime();
+    int rc = SPALL_OK;
+    /* h grows where the current neighbourhood has gone flat (the foot of a
+     * Taylor bar: stretched 2x radially, squeezed axially, so with the
+     * initial h the in-plane partners leave the support and B0 turns
+     * singular); a few passes of 1.2x, as MACHDYN grows the radius of
+     * particles with too few partners */
+    for (int round = 0; round < 4 && m->opt.reref_isotropy > 0.0; round++) {
+        size_t grown = 0;
+        if ((rc = reref_isotropy_pass(m, s, m->opt.reref_isotropy, &grown, err)))
+            return rc;
+        m->tl_hgrown += grown;
+        if (!grown)
+            break;
+    }
+    /* V0 = m / rho with the current (continuity) density: the same mass
+     * over the volume the particle fills now */
+    rc = sph_tlsph_reference(m, s, s->p->x, m->rho, err);
+    if (rc)
+        return rc;
+    m->tl_rerefs++;
+    m->tl_reref_step = s->step;
+    m->t_reref += omp_get_wtime() - t0;
+    return SPALL_OK;
+}
+
+int sph_tlsph_reref_step(struct model *m, struct sim *s, struct spall_error *err)
+{
+    const struct sph_options *o = &m->opt;
+    if (!m->tl || (!o->reref_every && !(o->reref_distortion > 0.0)))
+        return SPALL_OK;
+    const bool due = (o->reref_every > 0 && s->step - m->tl_reref_step >= o->reref_every) ||
+                     (o->reref_distortion > 0.0 && m->tl_kmax > o->reref_distortion);
+    return due ? sph_tlsph_reref(m, s, err) : SPALL_OK;
+}
