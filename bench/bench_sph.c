@@ -41,7 +41,7 @@ static double sph_cpu_seconds(void)
  * loop's wall time spent building neighbour lists and how many builds. */
 static int sph_bench_run(const char *name, const char *yaml, int threads,
                          struct bench_result *out, double *nb_share, size_t *builds,
-                         double *t_setup_nb, double shape[2], double *cpu,
+                         double *t_setup_nb, double shape[2], double *cpu, double *rr,
                          struct spall_error *err)
 {
     omp_set_num_threads(threads);
@@ -89,6 +89,17 @@ static int sph_bench_run(const char *name, const char *yaml, int threads,
         shape[0] = zmax - zmin + dx;
         shape[1] = rmax + 0.5 * dx;
     }
+    if (rr) {
+        /* TLSPH re-referencing: updates, their wall time, h growths, partners per particle */
+        const struct model *m = s->model;
+        double hmax = 0.0;
+        for (size_t i = 0; i < s->p->n_owned; i++)
+            hmax = fmax(hmax, m->h[i] / (m->opt.h_factor * m->dx[i]));
+        rr[0] = (double)m->tl_rerefs;
+        rr[1] = m->t_reref;
+        rr[2] = hmax;
+        rr[3] = (double)sph_tlsph_pairs(m) / (double)s->p->n_owned;
+    }
     sim_destroy(&s);
     return rc;
 }
@@ -130,7 +141,7 @@ static int sph_taylor_case(const char *name, const char *form, double hf, double
     size_t builds = 0;
     double t_setup = 0.0, cpu = 0.0;
     int rc = sph_bench_run(name, yaml, threads, out, &nb_share, &builds, &t_setup, NULL, &cpu,
-                           err);
+                           NULL, err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
@@ -183,8 +194,9 @@ static int sph_taylor_rest(const char *name, const char *form, double hf, const 
     sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, 1.0, 1.0, 0, extra);
     double nb_share = 0.0, t_setup = 0.0, shape[2] = {0, 0}, cpu = 0.0;
     size_t builds = 0;
+    double rr[4] = {0, 0, 0, 0};
     int rc = sph_bench_run(name, yaml, threads, out, &nb_share, &builds, &t_setup, shape, &cpu,
-                           err);
+                           rr, err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
@@ -192,6 +204,12 @@ static int sph_taylor_rest(const char *name, const char *form, double hf, const 
              "%.3f mm (L0 32.4, R0 3.2); loop CPU %.3g s",
              form, hf, 0.4 / cbrt(scale > 0.0 ? scale : 1.0), shape[0] * 1e3, shape[1] * 1e3,
              cpu);
+    if (rr[0] > 0.0) {
+        const size_t len = strlen(out->note);
+        snprintf(out->note + len, sizeof out->note - len,
+                 "; %.0f reference updates (%.3g s wall), h <= %.3g h0, %.1f partners at the end",
+                 rr[0], rr[1], rr[2], rr[3]);
+    }
     return rc;
 }
 
@@ -230,6 +248,18 @@ static int bench_sph_taylor_rest_lf(int threads, double scale, struct bench_resu
                            err);
 }
 
+/* TLSPH with re-referencing (sph_tlsph_reref.c): the _rest_lf bar with the
+ * default hourglass 0.1 (which alone inverts the rim at dx = 0.4 mm) and
+ * the reference replaced by the current configuration whenever a
+ * particle's distortion passes 1.2 */
+static int bench_sph_taylor_rest_rr(int threads, double scale, struct bench_result *out,
+                                    struct spall_error *err)
+{
+    return sph_taylor_rest("sph_taylor_cu_rest_rr", "total", 1.005,
+                           " time_integration: leapfrog, reference_update: {distortion: 1.2},",
+                           scale, threads, out, err);
+}
+
 /* the same count with the updated form (its list carries the 20 % skin) */
 static int bench_sph_taylor_ul32(int threads, double scale, struct bench_result *out,
                                  struct spall_error *err)
@@ -266,7 +296,7 @@ static int bench_sph_rings(int threads, double scale, struct bench_result *out,
     size_t builds = 0;
     double t_setup = 0.0, cpu = 0.0;
     int rc = sph_bench_run("sph_rings_2d", yaml, threads, out, &nb_share, &builds, &t_setup,
-                           NULL, &cpu, err);
+                           NULL, &cpu, NULL, err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
@@ -288,6 +318,8 @@ const struct bench_case bench_sph_cases[] = {
      "radius", bench_sph_taylor_rest},
     {"sph_taylor_cu_rest_lf", "the sph_taylor_cu_rest bar, leapfrog (plain dt limit), hourglass 1",
      bench_sph_taylor_rest_lf},
+    {"sph_taylor_cu_rest_rr", "the sph_taylor_cu_rest_lf bar, hourglass 0.1, reference updated "
+     "when the distortion passes 1.2", bench_sph_taylor_rest_rr},
     {"sph_taylor_cu_rest_ul32", "the sph_taylor_cu_ul32 bar run to rest (80 us)",
      bench_sph_taylor_rest_ul},
     {"sph_taylor_cu_rest_ul", "the sph_taylor_cu bar (updated form, h = 1.5 dx) run to rest "

@@ -310,6 +310,59 @@ static void test_guard(void **state)
     assert_non_null(strstr(msg, "distortion 51"));
 }
 
+/* A 2D block (h = 1.005 dx: support 2.01 dx) stretched 2.2x in x before
+ * step 1 and re-referenced after it: with the initial h its x partners
+ * leave the support, the new neighbourhood is a column (B0 singular) and
+ * the guard stops step 2; the isotropy pass grows h until they are back
+ * (F = I at step 2). */
+static int stretched_block(const char *upd, size_t *grown, double *hmax, double *jmin,
+                           char *msg, size_t len)
+{
+    char yaml[1024];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: sph, plane: strain, formulation: total, h_factor: 1.005,\n"
+             "        reference_update: {every: 1%s}}\n"
+             "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
+             "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
+             "body: {geometry: {box: {min: [0, 0], max: [0.006, 0.006]}}, material: m}\n"
+             "run: {steps: 2}\n",
+             upd);
+    struct sim *s = test_build_ok(yaml);
+    for (size_t i = 0; i < s->p->n; i++)
+        s->p->x[0][i] *= 2.2;
+    struct spall_error err = {0, ""};
+    int rc = 0;
+    while (!rc && !sim_done(s))
+        rc = sim_step(s, &err);
+    *grown = s->model->tl_hgrown;
+    *hmax = 0.0;
+    for (size_t i = 0; i < s->p->n; i++)
+        *hmax = fmax(*hmax, s->model->h[i] / (1.005 * s->model->dx[i]));
+    *jmin = s->model->tl_jmin;
+    snprintf(msg, len, "%s", err.msg);
+    sim_destroy(&s);
+    return rc;
+}
+
+static void test_isotropy(void **state)
+{
+    (void)state;
+    omp_set_num_threads(1);
+    size_t grown;
+    double hmax, jmin;
+    char msg[512];
+    assert_int_equal(stretched_block(", isotropy: 0", &grown, &hmax, &jmin, msg, sizeof msg),
+                     SPALL_ERR_UNSTABLE);
+    print_message("isotropy 0: %s\n", msg);
+    assert_non_null(strstr(msg, "inverted or singular"));
+    assert_int_equal(grown, 0);
+    assert_int_equal(stretched_block("", &grown, &hmax, &jmin, msg, sizeof msg), 0);
+    print_message("isotropy 0.2: %zu growths, max h / h0 = %.3f, det F >= %.15g at step 2\n",
+                  grown, hmax, jmin);
+    assert_true(grown > 0 && hmax > 1.1 && hmax <= 2.0 + 1e-12);
+    assert_true(fabs(jmin - 1.0) < 1e-6);
+}
+
 static void refused_form(const char *form, const char *model_extra, const char *needle)
 {
     char yaml[1024];
@@ -339,6 +392,7 @@ static void test_refused(void **state)
             "expected k < max_distortion (10)");
     refused(", reference_update: {}", "names no trigger");
     refused(", reference_update: {evry: 3}", "unknown key 'evry'");
+    refused(", reference_update: {every: 3, isotropy: 1.5}", "isotropy");
     refused(", reference_update: 5", "every: N and/or distortion: k");
     refused_form("updated", ", reference_update: {every: 5}",
                  "re-references total-Lagrangian bodies");
@@ -353,6 +407,7 @@ int main(void)
         cmocka_unit_test(test_conservation),
         cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_guard),
+        cmocka_unit_test(test_isotropy),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -38,10 +38,12 @@
  *     det_f_range: [lo, hi]                   TLSPH guard: a particle's det F outside stops
  *                                             the run, naming it (default [0.1, 10])
  *     max_distortion: k                       TLSPH guard on (|F|^2/dim)/J^(2/dim) (default 100)
- *     reference_update: {every: N, distortion: k}  TLSPH re-referencing (sph_tlsph_reref.c):
- *                                             reference := current configuration every N
- *                                             steps and/or when the distortion exceeds k
- *                                             (1 < k < max_distortion; default off)
+ *     reference_update: {every: N, distortion: k, isotropy: s}  TLSPH re-referencing
+ *                                             (sph_tlsph_reref.c): reference := current
+ *                                             configuration every N steps and/or when the
+ *                                             distortion exceeds k (1 < k < max_distortion);
+ *                                             h grows where the new neighbourhood's isotropy
+ *                                             is below s (default 0.2); default off
  *     clamp: {group: g, point: [...], normal: [...]}
  *           mirrored clamp (sph_clamp.c): the fixed group g behind the plane
  *           takes -v and the stress of its mirror images during force calls
