@@ -15,7 +15,8 @@
  * An update at the end of a step (all fields at t_n+1):
  *   X := x,  V0 := m / rho (current density),
  *   reference list, W0, dW/dr / r, hourglass constants and B0^-1 rebuilt
- *   on X with the same radius rule (qmax max h; h is fixed),
+ *   on X with the same radius rule (qmax max h; pairs kept within their
+ *   own support qmax (h_i + h_j)/2),
  * so F = I on the new reference (B0 B0^-1, to round-off) and the next
  * force call sees F relative to x_n+1.  Nothing of the material state
  * changes: the stress enters TLSPH only through the Cauchy state (S, P
@@ -30,6 +31,13 @@
  * hourglass memory of the old reference.  p->x0 (output displacement,
  * groups, the guard's message) keeps the deck's positions; the reference
  * lives in the TLSPH block (sph_tlsph.c).
+ *
+ * h: fixed between updates, but an update grows it (x1.2, up to 4 rounds,
+ * at most 2 h0) where the current neighbourhood has gone flat: the foot of
+ * the copper Taylor bar at dx = 0.4 mm, stretched ~2x radially with the
+ * initial support 2.01 dx0, re-referenced onto a vertical column of
+ * partners (B0 singular, det F = 6e-4 one step later) without it
+ * (docs/performance.md, "Re-referencing").
  *
  * Trigger: every N steps since the last update, and/or when the largest
  * distortion kappa = (|F|^2/dim)/J^(2/dim) of the last force call (the det F
