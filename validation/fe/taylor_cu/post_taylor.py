@@ -113,7 +113,7 @@ if alln:                                   # side nodes crossing z = 0?
               f"centroids (r, z) [mm]: "
               + " ".join(where(k) for k in first[:8]))
         print("inverted at the end, initial (r, z) [mm]: "
-              + " ".join(where(k) for k in vol[alln[-1][2]][2][:12]))
+              + " ".join(where(k) for k in vol[alln[-1][2]][2][:40]))
     print("side nodes below the wall plane (z < -1 um) from t = "
           + (f"{below[0]:.3e} s" if below else "never")
           + f"; at t = {alln[-1][2]:.4e} s the lowest node is at z = "
