@@ -1,27 +1,33 @@
 #!/usr/bin/env python3
 """Write a CalculiX deck for the copper Taylor bar (issue 6 item 8).
 
-Usage: python3 gen_taylor.py NR [wedge|quarter] [ELTYPE] > JOB.inp
+Usage: python3 gen_taylor.py NR [wedge|quarter] [ELTYPE] [key=value ...]
   NR      elements across R0 (even for quarter); axial layers 10.125 NR
-  wedge   (default) one element thick 5-degree sector: an axisymmetric
-          model built from 3D bricks (the axis column is degenerate)
+  wedge   (default) one element thick sector (5 degrees unless angle=):
+          an axisymmetric model built from 3D bricks, every node off the
+          plane y = 0 held in its own radial plane by *EQUATION (the axis
+          column is degenerate unless hole=)
   quarter 3D quarter bar, O-grid cross-section (square core 0.45 R0)
-  ELTYPE  C3D8I (default; incompatible modes) or C3D8R / C3D8
+  ELTYPE  C3D8I (default; incompatible modes), C3D8R, C3D8, or the 20-node
+          C3D20R / C3D20 (midside nodes; in the wedge the theta midside
+          nodes lie on the arc)
+  options: see the comment at opt below (hole, angle, tend, dtmax,
+          explicit, energy)
 
-Why not CAX4R/CAX4 and why implicit (README.md has the runs): CalculiX 2.20
-expands CAX elements into a 2-degree C3D8R/C3D8 layer tied by MPCs; there the
-initial velocity was not applied (bar never moved), CAX4R (C3D8R) stopped
-converging at 45 us and CAX4 (C3D8) locks; explicit steps collapsed to
-4e-10 s as the face-centre elements flatten.  C3D8I, implicit, reaches
-80 us, but only by inverting face-centre elements from 12-22 us on
-(post_taylor.py reports V/V0 and the inverted count).
+The reference (README.md): C3D20R, 20-degree wedge, implicit -- no
+inverted element, volume and energy kept, final length flat over NR = 2-6.
+C3D8I wedges invert face-centre elements at NR = 8 (5 and 20 degrees) and
+at NR >= 4 (5 degrees); CAX4R/CAX4 are expanded by CalculiX 2.20 into a
+2-degree C3D8R/C3D8 layer (initial velocity lost, CAX4R stalls at 45 us,
+CAX4 locks); C3D8R implicit stalls at 40-47 us.
 
 SI units, axis z.  Impact face z = 0: u_z = 0, in-plane free -- a
 frictionless rigid wall while the face keeps pushing on it (check RF_z of
 set WALL stays >= 0, see post_taylor.py).  Material: E = 117 GPa,
 nu = 0.35, rho = 8930 kg/m^3, sigma_y = 0.4 GPa + 0.1 GPa * eps_p (two-point
 *PLASTIC table, isotropic), no rate/temperature effect.
-v0 = -227 m/s along z; implicit HHT dynamics (alpha = -0.05) to 80 us.
+v0 = -227 m/s along z; implicit HHT dynamics (alpha = -0.05) to 80 us
+(tend=), or central differences with explicit=N.
 """
 import math
 import sys
@@ -31,6 +37,18 @@ WEDGE_DEG, CORE = 5.0, 0.45
 nr = int(sys.argv[1])
 geom = sys.argv[2] if len(sys.argv) > 2 else "wedge"
 eltype = sys.argv[3] if len(sys.argv) > 3 else "C3D8I"
+# key=value options after the positional ones:
+#   hole=F   wedge only: axial pinhole of radius F * R0 (free surface), so
+#            that no brick on the axis is degenerate (where does the
+#            inversion come from?)
+#   angle=A  wedge only: sector angle in degrees (default 5)
+#   tend=T   end time [s] (default 80e-6; run past the rest point)
+#   dtmax=D  largest implicit increment [s] (default 2e-7)
+opt = dict(a.split("=", 1) for a in sys.argv[4:])
+hole = float(opt.get("hole", 0.0))
+WEDGE_DEG = float(opt.get("angle", WEDGE_DEG))
+T_END = float(opt.get("tend", T_END))
+DT_MAX = opt.get("dtmax", "2e-7")         # kept as text: same deck as before
 nz = int(nr * L0 / R0 + 0.5)              # 10.125 NR, rounded half up
 
 # --- 2D cross-section: nodes merged by coordinates, quads CCW about +z ---
@@ -45,17 +63,35 @@ def node2(x, y):
     return key2id[k]
 
 
+quadratic = eltype.startswith("C3D20")   # 20-node bricks: midside nodes
+
+
 def block(pt, ns, nt):                    # mapped grid pt(s, t), ns x nt
-    g = [[node2(*pt(s, t)) for t in range(nt + 1)] for s in range(ns + 1)]
-    for s in range(ns):
-        for t in range(nt):
-            quads.append([g[s][t], g[s + 1][t], g[s + 1][t + 1], g[s][t + 1]])
+    if not quadratic:
+        g = [[node2(*pt(s, t)) for t in range(nt + 1)] for s in range(ns + 1)]
+        for s in range(ns):
+            for t in range(nt):
+                quads.append([g[s][t], g[s + 1][t], g[s + 1][t + 1],
+                              g[s][t + 1]])
+        return
+    # 8-node quads: corners then midsides 01, 12, 23, 30 (grid at half step)
+    g = [[node2(*pt(s / 2, t / 2)) for t in range(2 * nt + 1)]
+         for s in range(2 * ns + 1)]
+    for s in range(0, 2 * ns, 2):
+        for t in range(0, 2 * nt, 2):
+            quads.append([g[s][t], g[s + 2][t], g[s + 2][t + 2], g[s][t + 2],
+                          g[s + 1][t], g[s + 2][t + 1], g[s + 1][t + 2],
+                          g[s][t + 1]])
 
 
 if geom == "wedge":                        # r along x, one sector element
     al = math.radians(WEDGE_DEG)
-    block(lambda s, t: (R0 * s / nr * math.cos(al * t),
-                        R0 * s / nr * math.sin(al * t)), nr, 1)
+    r_in = hole * R0
+
+    def rad(s):
+        return r_in + (R0 - r_in) * s / nr
+    block(lambda s, t: (rad(s) * math.cos(al * t),
+                        rad(s) * math.sin(al * t)), nr, 1)
     scale = 360.0 / WEDGE_DEG              # RF of the sector -> whole bar
 else:
     m, a = nr // 2, CORE * R0
@@ -76,72 +112,118 @@ def area(q):                               # signed area of a 2D quad
                      for i in range(4))
 
 
-quads = [q if area(q) > 0 else q[::-1] for q in quads]
+def flip(q):                               # reverse the orientation
+    return ([q[0], q[3], q[2], q[1], q[7], q[6], q[5], q[4]] if quadratic
+            else q[::-1])
+
+
+quads = [q if area(q[:4]) > 0 else flip(q) for q in quads]
 n2 = len(xy)
+corner2 = sorted({i for q in quads for i in q[:4]})
+used2 = sorted({i for q in quads for i in q})  # not the 8-node face centres
+# 3D nodes: level k = 0 .. nlev at z = L0 k / nlev; with 20-node bricks the
+# odd levels carry only the corner positions (vertical midside nodes)
+nlev = nz * (2 if quadratic else 1)
+ids = {}
+for k in range(nlev + 1):
+    for i2 in (corner2 if quadratic and k % 2 else used2):
+        ids[(i2, k)] = len(ids) + 1       # = 1 + i2 + n2 k for linear bricks
 
 
-def nid(i2, k):                            # 3D node id: 2D node i2, layer k
-    return 1 + i2 + n2 * k
+def nid(i2, k):                            # 3D node id: 2D node i2, level k
+    return ids[(i2, k)]
 
 
 out = ["*HEADING", f"Copper Taylor bar, {geom} {eltype}, NR={nr}, NZ={nz}",
        f"** RF_SCALE={scale}", "*NODE, NSET=NALL"]
-for k in range(nz + 1):
-    for i2, (x, y) in enumerate(xy):
-        out.append(f"{nid(i2, k)}, {x:.10e}, {y:.10e}, {L0 * k / nz:.10e}")
+for (i2, k), n in ids.items():
+    x, y = xy[i2]
+    out.append(f"{n}, {x:.10e}, {y:.10e}, {L0 * k / nlev:.10e}")
 out.append(f"*ELEMENT, TYPE={eltype}, ELSET=EALL")
 for k in range(nz):
     for e, q in enumerate(quads):          # degenerate on the axis (wedge)
-        out.append(f"{1 + e + len(quads) * k}, "
-                   + ", ".join(str(nid(i, k)) for i in q) + ", "
-                   + ", ".join(str(nid(i, k + 1)) for i in q))
+        if quadratic:                      # CalculiX C3D20 node order
+            a, b, c = 2 * k, 2 * k + 1, 2 * k + 2
+            n = ([nid(i, a) for i in q[:4]] + [nid(i, c) for i in q[:4]]
+                 + [nid(i, a) for i in q[4:]] + [nid(i, c) for i in q[4:]]
+                 + [nid(i, b) for i in q[:4]])
+            out.append(f"{1 + e + len(quads) * k}, "
+                       + ", ".join(map(str, n[:15])) + ",")
+            out.append(", ".join(map(str, n[15:])))
+        else:
+            out.append(f"{1 + e + len(quads) * k}, "
+                       + ", ".join(str(nid(i, k)) for i in q) + ", "
+                       + ", ".join(str(nid(i, k + 1)) for i in q))
 
 
-def nset(name, ids):
+def nset(name, nodes):
     out.append(f"*NSET, NSET={name}")
-    ids = list(ids)
-    for j in range(0, len(ids), 10):
-        out.append(", ".join(map(str, ids[j:j + 10])) + ",")
+    nodes = list(nodes)
+    for j in range(0, len(nodes), 10):
+        out.append(", ".join(map(str, nodes[j:j + 10])) + ",")
 
 
 def layers(pred):                          # all 3D nodes over a 2D predicate
-    return [nid(i, k) for k in range(nz + 1)
-            for i, p in enumerate(xy) if pred(*p)]
+    return [n for (i, k), n in ids.items() if pred(*xy[i])]
 
 
 tol = 1e-12
 nset("YSYM", layers(lambda x, y: abs(y) < tol))           # plane y = 0
 if geom == "wedge":                        # tilted plane, axis excluded
-    nset("AXIS", layers(lambda x, y: abs(x) < tol and abs(y) < tol))
-    tilt = layers(lambda x, y: abs(y) > tol)
+    if hole == 0.0:
+        nset("AXIS", layers(lambda x, y: abs(x) < tol and abs(y) < tol))
+    # off the plane y = 0: the plane theta = alpha and, with 20-node
+    # bricks, the midside nodes at alpha / 2 (each held in its own plane)
+    tilt = [(n, math.atan2(xy[i][1], xy[i][0])) for (i, k), n in ids.items()
+            if abs(xy[i][1]) > tol]
 else:
     nset("XSYM", layers(lambda x, y: abs(x) < tol))       # plane x = 0
-nset("WALL", [nid(i, 0) for i in range(n2)])              # impact face
-nset("TOP", [nid(i, nz) for i in range(n2)])              # rear face
-nset("TIP", [nid(key2id[(0, 0)], nz)])                    # rear, on axis
+nset("WALL", [nid(i, 0) for i in used2])                 # impact face
+nset("TOP", [nid(i, nlev) for i in used2])               # rear face
+tip = min(range(n2), key=lambda i: math.hypot(*xy[i]))    # axis (or hole)
+nset("TIP", [nid(tip, nlev)])                             # rear, on axis
 out += ["*MATERIAL, NAME=CU", "*ELASTIC", "117e9, 0.35",
         "*DENSITY", "8930.", "*PLASTIC", "0.4e9, 0.", "1.4e9, 10.",
         "*SOLID SECTION, ELSET=EALL, MATERIAL=CU",
         "*BOUNDARY", "YSYM, 2, 2", "WALL, 3, 3"]
 if geom == "wedge":
-    out += ["AXIS, 1, 2"]
-    # sector face theta = alpha: velocity normal to it is zero,
-    # cos(a) u_y - sin(a) u_x = 0 (u_y dependent)
-    c, s = math.cos(al), math.sin(al)
-    for n in tilt:
+    if hole == 0.0:
+        out += ["AXIS, 1, 2"]
+    # axisymmetry: a node at angle th moves in its radial plane (on the
+    # sector face th = alpha: zero normal velocity), cos(th) u_y -
+    # sin(th) u_x = 0 (u_y dependent)
+    for n, th in tilt:
+        c, s = math.cos(th), math.sin(th)
         out += ["*EQUATION", "2", f"{n}, 2, {c:.12f}, {n}, 1, {-s:.12f}"]
 else:
     out += ["XSYM, 1, 1"]
-out += ["*INITIAL CONDITIONS, TYPE=VELOCITY", f"NALL, 3, {-V0}",
-        "*STEP, NLGEOM, INC=100000",
-        "*DYNAMIC, ALPHA=-0.05",           # dt0, period, dt_min, dt_max
-        f"1e-7, {T_END}, 1e-12, 2e-7"]
-for name, var in (("WALL", "RF"), ("TIP", "U, V"), ("WALL", "U"),
-                  ("TOP", "U")):           # every 10 increments + the end
-    tot = ", TOTALS=ONLY" if var == "RF" else ""
-    out += [f"*NODE PRINT, NSET={name}{tot}, FREQUENCY=10", var]
-# all nodes: lets post_taylor.py check whether side nodes cross the wall
-# plane z = 0 (only the face nodes are held there).  FREQUENCY is one value
-# for all *NODE PRINT requests of a step in CalculiX (the last one wins).
-out += ["*NODE PRINT, NSET=NALL, FREQUENCY=10", "U", "*END STEP"]
+out += ["*INITIAL CONDITIONS, TYPE=VELOCITY", f"NALL, 3, {-V0}"]
+# explicit=N: central differences (*DYNAMIC, EXPLICIT; stable increment set
+# by CalculiX) in N equal steps, because explicit steps print only at their
+# end in CalculiX 2.20 (FREQUENCY / *TIME POINTS gave nothing in between)
+nexp = int(opt.get("explicit", 0))
+for st in range(max(nexp, 1)):
+    if nexp:
+        out += ["*STEP, NLGEOM, INC=10000000", "*DYNAMIC, EXPLICIT",
+                f"1e-9, {T_END / nexp:.6e}"]
+        freq = 10000000                   # step end only
+    else:
+        out += ["*STEP, NLGEOM, INC=100000",
+                "*DYNAMIC, ALPHA=-0.05",   # dt0, period, dt_min, dt_max
+                f"{'1e-7' if float(DT_MAX) >= 1e-7 else DT_MAX}, {T_END}, "
+                f"1e-12, {DT_MAX}"]
+        freq = 10                          # every 10 increments + the end
+    for name, var in (("WALL", "RF"), ("TIP", "U, V"), ("WALL", "U"),
+                      ("TOP", "U")):
+        tot = ", TOTALS=ONLY" if var == "RF" else ""
+        out += [f"*NODE PRINT, NSET={name}{tot}, FREQUENCY={freq}", var]
+    # all nodes: lets post_taylor.py check whether side nodes cross the
+    # wall plane z = 0 (only the face nodes are held there).  FREQUENCY is
+    # one value for all *NODE PRINT requests of a step in CalculiX (the
+    # last one wins).
+    out += [f"*NODE PRINT, NSET=NALL, FREQUENCY={freq}", "U"]
+    if opt.get("energy"):                 # energy=1: internal (elastic +
+        out += [f"*EL PRINT, ELSET=EALL, TOTALS=ONLY, FREQUENCY={freq}",
+                "ELSE, ELKE"]             # plastic) and kinetic, sector
+    out += ["*END STEP"]
 print("\n".join(out))

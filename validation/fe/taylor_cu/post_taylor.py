@@ -12,17 +12,23 @@ import sys
 
 job = sys.argv[1]
 xyz, els, sec, scale = {}, [], None, 1.0
+npe, buf = 8, []                           # nodes per element, pending row
 for line in open(job + ".inp"):
     if line.startswith("** RF_SCALE="):  # model part -> whole bar
         scale = float(line.split("=")[1])
     if line.startswith("*"):
         sec = line.upper().split(",")[0]
+        if sec == "*ELEMENT":
+            npe = 20 if "C3D20" in line.upper() else 8
         continue
     f = line.split(",")
     if sec == "*NODE":
         xyz[int(f[0])] = tuple(map(float, f[1:4]))
-    elif sec == "*ELEMENT":
-        els.append([int(v) for v in f[1:9]])
+    elif sec == "*ELEMENT":               # rows may continue on a 2nd line
+        buf += [int(v) for v in f if v.strip()]
+        if len(buf) == 1 + npe:
+            els.append(buf[1:9])          # corners only (volume, centroid)
+            buf = []
 
 blocks = []                                # (kind, set, time, rows)
 cur = None
@@ -32,6 +38,8 @@ for line in open(job + ".dat"):
     if h:
         cur = (h.group(1), h.group(2), float(h.group(3)), [])
         blocks.append(cur)
+    elif " for set " in line:              # another kind of block
+        cur = None
     elif cur and line.strip():
         cur[3].append([float(v) for v in line.split()])
 
@@ -67,11 +75,17 @@ def volume(blk):                           # (V / V0 whole bar, # elements < 0)
         vols.append(sum(tet(n[0], n[a], n[b], n[6]) for a, b in
                         ((1, 2), (2, 3), (3, 7), (7, 4), (4, 5), (5, 1))))
     v0 = math.pi * 3.2e-3 ** 2 * 32.4e-3
-    return scale * sum(vols) / v0, sum(v < 0 for v in vols)
+    return (scale * sum(vols) / v0, sum(v < 0 for v in vols),
+            [k for k, v in enumerate(vols) if v < 0])
+
+
+def where(k):                              # initial centroid (r, z) [mm]
+    c = [sum(xyz[i][d] for i in els[k]) / 8 for d in range(3)]
+    return f"({1e3 * math.hypot(c[0], c[1]):.2f}, {1e3 * c[2]:.2f})"
 
 
 ts = sorted(hist)                          # L, R before the tangling
-for tq in (10e-6, 20e-6):
+for tq in (10e-6, 20e-6, 80e-6):
     k = next((i for i, t in enumerate(ts) if t >= tq), None)
     if k:
         f = (tq - ts[k - 1]) / (ts[k] - ts[k - 1])
@@ -92,6 +106,14 @@ if alln:                                   # side nodes crossing z = 0?
     print(f"deformed volume / initial = {vol[alln[-1][2]][0]:.5f}; "
           f"elements with negative volume: "
           f"{vol[alln[-1][2]][1]} of {len(els)}")
+    bad = [b[2] for b in alln if vol[b[2]][1]]
+    if bad:                                # where the inversion starts
+        first = vol[bad[0]][2]
+        print(f"first inverted elements at t = {bad[0]:.3e} s, initial "
+              f"centroids (r, z) [mm]: "
+              + " ".join(where(k) for k in first[:8]))
+        print("inverted at the end, initial (r, z) [mm]: "
+              + " ".join(where(k) for k in vol[alln[-1][2]][2][:40]))
     print("side nodes below the wall plane (z < -1 um) from t = "
           + (f"{below[0]:.3e} s" if below else "never")
           + f"; at t = {alln[-1][2]:.4e} s the lowest node is at z = "
@@ -105,9 +127,42 @@ print(f"wall force samples {len(rf)}, peak {max(f for _, f in rf):.4e} N, "
       + (f"t = {neg[0][0]:.3e} s, F = {neg[0][1]:.3e} N" if neg else "none"))
 tip = [(b[2], b[3][0][3]) for b in blocks
        if b[0] == "velocities" and b[1] == "TIP"]
+# rest point: the rear-axis velocity first turns from < 0 to >= 0; L and R
+# interpolated linearly there (printed states are <= 2 us apart)
+up = next((k for k in range(1, len(tip))
+           if tip[k - 1][1] < 0 <= tip[k][1]), None)
+if up is not None:
+    (t0, v0_), (t1, v1) = tip[up - 1], tip[up]
+    f = -v0_ / (v1 - v0_)
+    Lr, Rr = (hist[t0][i] + f * (hist[t1][i] - hist[t0][i]) for i in (0, 1))
+    print(f"at rest (rear-axis v_z = 0) t = {1e6 * (t0 + f * (t1 - t0)):.2f}"
+          f" us: length = {1e3 * Lr:.4f} mm  radius = {1e3 * Rr:.4f} mm")
+else:
+    print("at rest: not reached (rear-axis v_z < 0 at every printed state)")
 for t, v in tip[:: max(1, len(tip) // 12)] + tip[-1:]:
     L, R = hist.get(t, (math.nan, math.nan))
-    vr, nneg = vol.get(t, (math.nan, 0)) if alln else (math.nan, 0)
+    vr, nneg = vol.get(t, (math.nan, 0))[:2] if alln else (math.nan, 0)
     print(f"  t = {1e6 * t:6.2f} us  rear-axis v_z = {v:8.2f} m/s  wall "
           f"force = {dict(rf).get(t, math.nan):9.3e} N  L = {1e3 * L:.3f} mm"
           f"  R = {1e3 * R:.3f} mm  V/V0 = {vr:.4f} ({nneg} inverted)")
+# energies (gen_taylor.py energy=1), scaled to the whole bar: internal
+# (elastic + plastic work) + kinetic against the initial kinetic energy
+en = {}
+kind = None
+for line in open(job + ".dat"):
+    h = re.match(r"\s*total (internal|kinetic) energy for set \S+ and time"
+                 r"\s+(\S+)", line)
+    if h:
+        kind, t = h.group(1), float(h.group(2))
+    elif kind and line.strip():
+        en.setdefault(t, {})[kind] = scale * float(line.split()[0])
+        kind = None
+if en:
+    m0 = 8930 * math.pi * 3.2e-3 ** 2 * 32.4e-3
+    ek0 = 0.5 * m0 * 227.0 ** 2
+    for t in sorted(en)[:: max(1, len(en) // 8)] + [max(en)]:
+        e = en[t]
+        print(f"  t = {1e6 * t:6.2f} us  internal {e.get('internal', 0):7.2f}"
+              f" J  kinetic {e.get('kinetic', 0):7.2f} J  sum / "
+              f"(1/2 m v0^2 = {ek0:.1f} J) = "
+              f"{(e.get('internal', 0) + e.get('kinetic', 0)) / ek0:.4f}")
