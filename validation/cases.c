@@ -116,7 +116,7 @@ static const struct vcase cases[] = {
     {"pen-sph-gelatin-modulus", "axisymmetric SPH: E = 1-40 MPa at 1290 m/s (trend of P_max)",
      false, pen_case_sph_modulus},
     {"pen-sph-gelatin-convergence",
-     "axisymmetric SPH: d/10-d/20 and width, 1290 m/s (fixed AV length, contact offset)",
+     "axisymmetric SPH: d/10-d/25 and width, 1290 m/s (fixed AV length, contact offset)",
      false, pen_case_sph_convergence},
     {"pen-sph-gelatin-av", "axisymmetric SPH: fixed-length AV and Balsara switch, d/10-d/20",
      false, pen_case_sph_av_forms},
