@@ -155,8 +155,16 @@ int main(int argc, char **argv)
         vpl += p->mass[i] / m->rho[i];
         if (fabs(p->x[1][i] + 15e-6) < 0.5e-6 && p->x[0][i] > rpl) rpl = p->x[0][i];
     }
-    printf("plastic(ep>0.01): n=%zu vol=%.4g r_reach(15um)=%.2f um D1end/2=%.2f um width=%.2f um\n",
-           npl, vpl, rpl * 1e6, 0.5 * d1end * 1e6, (rpl - 0.5 * d1end) * 1e6);
+    size_t nfail = 0;
+    double vfail = 0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        if (m->failed && m->failed[i]) {
+            nfail++;
+            vfail += p->mass[i] / m->rho[i];
+        }
+    printf("plastic(ep>0.01): n=%zu vol=%.4g r_reach(15um)=%.2f um D1end/2=%.2f um width=%.2f um | "
+           "failed: n=%zu vol=%.4g\n",
+           npl, vpl, rpl * 1e6, 0.5 * d1end * 1e6, (rpl - 0.5 * d1end) * 1e6, nfail, vfail);
     printf("N=%g n=%zu Pmax=%.3f t=%.1f P25=%.3f P50=%.3f P100=%.3f P150=%.3f P200=%.3f P250=%.3f P300=%.3f "
            "D1max=%.2f bal=%.4f | Ei=%.3f Wp=%.3f Edev=%.3f Evol=%.3f AVheat~%.3f Ekgel=%.3f (frac of e_in) secs=%.0f\n",
            N, p->n_owned, pmax * 1e6, tpm * 1e9, pm[0] * 1e6, pm[1] * 1e6, pm[2] * 1e6, pm[3] * 1e6, pm[4] * 1e6,
