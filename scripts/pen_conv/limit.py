@@ -27,3 +27,12 @@ for q in (0.5, 1.0, 2.0):
 random.seed(1)
 Ls = sorted(fit([a + random.uniform(-0.3, 0.3) for a in f])[2] for _ in range(400))
 print('fit limit with +-0.3 um noise: 10/50/90 %% = %.1f / %.1f / %.1f um' % (Ls[40], Ls[200], Ls[360]))
+
+# early P(t) with the fifth level, d/30 run to 120 ns only (q13 sc_L_30_t120)
+h5 = h + [0.25]
+for name, g in (('P(25 ns)', [20.437, 21.043, 21.378, 21.534, 21.643]),
+                ('P(50 ns)', [33.099, 34.203, 34.865, 35.185, 35.407]),
+                ('P(100 ns)', [49.013, 50.999, 52.108, 52.678, 53.102])):
+    res, p, L = fit(g, h5)
+    print('%s over d/10-d/30: order %.2f, limit %.2f um, rms %.3f um; d/30 %.1f %% short' %
+          (name, p, L, math.sqrt(res / 5), 100 * (1 - g[4] / L)))
