@@ -3,7 +3,8 @@
  * (validation/pen_sph_setup.c): scale invariance in d, input checks, the
  * gelatin deck of validation/pen_sph.c as a special case (same particles),
  * and the shipped examples/pen_sph_sebs_* decks against the builder (same
- * particles, material and impactor as the validation case pen-sph-sebs).
+ * particles, material and impactor as the validation case pen-sph-sebs),
+ * and the grids of pen-sph-gelatin-convergence (levels tile the box).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -19,6 +20,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
+#include "models/sph/sph_internal.h"
 #include "spall/error.h"
 #include "validation/lattice_cases.h"
 #include "validation/pen_cases.h"
@@ -274,6 +276,44 @@ static void test_richardson(void **state)
     assert_int_equal(pen_richardson(hb, f, &p, &fi, &e), SPALL_ERR_INPUT);
 }
 
+/* The grids of pen-sph-gelatin-convergence (validation/pen_sph.c): d/10,
+ * d/15, d/20, d/25 at full width and d/15 1.5x wider, converging form.
+ * The four graded levels must tile the (r, z) box without gaps or
+ * overlaps (sum of dx_i^2 = the box's area, the box's corner from the
+ * particles), the 1.5x grid reach r = 216 um (144 um x 1.5), and the
+ * sphere's contact surface sit dx1/2 out (contact_offset). */
+static void test_convergence_grids(void **state)
+{
+    (void)state;
+    static const double dx[5] = {0.75e-6, 0.5e-6, 0.375e-6, 0.3e-6, 0.5e-6};
+    static const double width[5] = {1.0, 1.0, 1.0, 1.0, 1.5};
+    struct pen_sph_target t = pen_sph_target_gelatin(20e6);
+    t.av_length = 0.65e-6;
+    const struct pen_sph_shot s = {7.38e-6, 1850.0, 1290.0};
+    for (int k = 0; k < 5; k++) {
+        struct pen_sph_grid g = {.dx1_d = dx[k] / 7.38e-6, .width = width[k], .depth = 1.0,
+                                 .t_end = 300e-9, .cavity_depth = 15e-6,
+                                 .k_first_contact = 1, .surface_contact = 1};
+        static char deck[4096];
+        struct spall_error e = {0, ""};
+        assert_int_equal(pen_sph_setup_deck(deck, sizeof deck, &t, &s, &g, &e), SPALL_OK);
+        assert_non_null(strstr(deck, "viscosity_length: 6.5e-07"));
+        struct sim *sim = NULL;
+        assert_int_equal(vlat_build("conv", deck, &sim, &e), SPALL_OK);
+        const struct model *m = sim->model;
+        double area = 0.0, rmax = 0.0, zmax = 0.0;
+        for (size_t i = 0; i < sim->p->n; i++) {
+            area += m->dx[i] * m->dx[i];
+            rmax = fmax(rmax, sim->p->x[0][i] + 0.5 * m->dx[i]);
+            zmax = fmax(zmax, -sim->p->x[1][i] + 0.5 * m->dx[i]);
+        }
+        assert_true(fabs(area / (rmax * zmax) - 1.0) < 1e-9);
+        assert_true(fabs(rmax - 144e-6 * width[k]) < 1e-3 * dx[k]);
+        assert_true(fabs(sim->rigid->im[0].contact_offset - 0.5 * dx[k]) < 1e-9 * dx[k]);
+        sim_destroy(&sim);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -285,6 +325,7 @@ int main(void)
         cmocka_unit_test(test_run_rebound),
         cmocka_unit_test(test_av_options_in_deck),
         cmocka_unit_test(test_richardson),
+        cmocka_unit_test(test_convergence_grids),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

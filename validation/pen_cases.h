@@ -40,7 +40,8 @@ int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err);
 int pen_case_sph_sweep(struct vreport *r, struct spall_error *err);
 /** "pen-sph-gelatin-modulus": E = 1, 10, 20, 40 MPa at 1290 m/s (trend). */
 int pen_case_sph_modulus(struct vreport *r, struct spall_error *err);
-/** "pen-sph-gelatin-convergence": resolution and target width at 1290 m/s. */
+/** "pen-sph-gelatin-convergence": resolution and target width at 1290 m/s in
+ *  the converging form (fixed AV length, contact offset dx1/2). */
 int pen_case_sph_convergence(struct vreport *r, struct spall_error *err);
 /** "pen-sph-gelatin-av": fixed-length AV and Balsara switch, d/10-d/20. */
 int pen_case_sph_av_forms(struct vreport *r, struct spall_error *err);

@@ -34,8 +34,9 @@
  * docs/validation.md),
  * "pen-sph-gelatin-sweep" (200-1420 m/s at d/10 vs Poncelet + d/2),
  * "pen-sph-gelatin-modulus" (E = 1, 10, 20, 40 MPa at d/10: trend),
- * "pen-sph-gelatin-convergence" (d/10, d/15, d/20 and half width at
- * 1290 m/s; Richardson estimate when the sequence converges),
+ * "pen-sph-gelatin-convergence" (d/10, d/15, d/20, d/25 and 1.5x width at d/15,
+ * 1290 m/s, in the converging form: fixed AV length + contact offset;
+ * Richardson estimate when the sequence converges),
  * "pen-sph-gelatin-av" (two AV forms at d/10, d/15, d/20: fixed viscous
  * length, Balsara switch).
  */
@@ -261,101 +262,143 @@ static double p_at(const struct pen_sph_outcome *o, double tq)
     return NAN;
 }
 
-/* The three spacings of the resolution study: d/10, d/15, d/20 (0.75, 0.5,
- * 0.375 um: the finest level halves from d/10 to d/20). */
-static const double conv_dx[3] = {0.75e-6, 0.5e-6, 0.375e-6};
-static const char *const conv_name[3] = {"d/10", "d/15", "d/20"};
+/* The spacings of the resolution study: d/10, d/15, d/20, d/25 (0.75, 0.5,
+ * 0.375, 0.3 um: the finest level halves from d/10 to d/20); the AV-form
+ * case runs the first three. */
+static const double conv_dx[4] = {0.75e-6, 0.5e-6, 0.375e-6, 0.3e-6};
+static const char *const conv_name[4] = {"d/10", "d/15", "d/20", "d/25"};
 
-/* Info lines of one resolution sequence @p o[3] (form @p form): P at 50,
- * 100, 200 ns, P_max and its time, the Richardson estimate of P_max if the
- * sequence converges monotonically, and its distance to the experiment's
- * 67 um; returns 1 if P_max converges with a Richardson order p >= 0.5
- * (the linear AV term is O(h): order 1 expected once the AV's share is
- * resolved).  Smaller increments alone do not count: with the spacings
- * 0.75, 0.5, 0.375 um an increment ratio below ln 1.5 / ln(4/3) = 1.41
- * means P_max still grows like ln(1/dx) or faster, i.e. no limit is in
- * sight. */
-static int sequence_info(struct vreport *r, const char *form, const struct pen_sph_outcome o[3])
+/* Info lines of one resolution sequence @p o[n] (n = 3 or 4, the first n
+ * spacings of conv_dx; form @p form): P at 50, 100, 200 ns, P_max and its
+ * time, the Richardson estimate of P_max from the finest three levels if
+ * they converge monotonically (with n = 4 also from the coarsest three:
+ * the two estimates' spread is a measure of its uncertainty) and its
+ * distance to the experiment's 67 um; returns 1 if P_max converges over
+ * the finest three with a Richardson order p >= 0.5 (the linear AV term
+ * and the contact layer are O(dx): order 1 expected once resolved).
+ * Smaller increments alone do not count: with the spacings 0.75, 0.5,
+ * 0.375 um an increment ratio below ln 1.5 / ln(4/3) = 1.41 means P_max
+ * still grows like ln(1/dx) or faster, i.e. no limit is in sight. */
+static int sequence_info(struct vreport *r, const char *form, const struct pen_sph_outcome *o,
+                         int n)
 {
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < n; k++)
         vreport_info(r,
                      "%s, %s (%zu particles): P(50, 100, 200 ns) = %.2f, %.2f, %.2f um; "
                      "P_max %.2f um at %.0f ns; energy balance %.2g; %.0f s",
                      form, conv_name[k], o[k].n, p_at(&o[k], 50e-9) * 1e6,
                      p_at(&o[k], 100e-9) * 1e6, p_at(&o[k], 200e-9) * 1e6, o[k].pmax * 1e6,
                      o[k].t_pmax * 1e9, o[k].balance, o[k].secs);
-    const double f[3] = {o[0].pmax, o[1].pmax, o[2].pmax};
-    double p = 0.0, finf = 0.0;
-    struct spall_error e = {0, ""};
-    const int rich = pen_richardson(conv_dx, f, &p, &finf, &e) == SPALL_OK;
-    vreport_info(r, "%s: P_max increments d/10 -> d/15 %+.2f um, d/15 -> d/20 %+.2f um", form,
-                 (f[1] - f[0]) * 1e6, (f[2] - f[1]) * 1e6);
-    if (rich)
-        vreport_info(r, "%s: Richardson P_max(dx -> 0) = %.2f um (order %.2f), %+.1f %% vs the "
-                     "experiment's 67 um",
-                     form, finf * 1e6, p, 100.0 * (finf / 67e-6 - 1.0));
-    else
-        vreport_info(r, "%s: no Richardson estimate (%s)", form, e.msg);
-    const double g01 = history_gap(&o[0], &o[1]), g12 = history_gap(&o[1], &o[2]);
-    vreport_info(r, "%s: max |P(t) difference| / P_max: d/10-d/15 %.3f, d/15-d/20 %.3f", form, g01,
-                 g12);
-    return rich && p >= 0.5;
+    for (int k = 1; k < n; k++)
+        vreport_info(r, "%s: P_max increment %s -> %s %+.2f um (%+.2f %%); max |P(t) "
+                     "difference| / P_max %.3f",
+                     form, conv_name[k - 1], conv_name[k], (o[k].pmax - o[k - 1].pmax) * 1e6,
+                     100.0 * (o[k].pmax / o[k - 1].pmax - 1.0), history_gap(&o[k - 1], &o[k]));
+    int conv = 0;
+    for (int s = n - 3; s >= 0; s--) {
+        const double f[3] = {o[s].pmax, o[s + 1].pmax, o[s + 2].pmax};
+        double p = 0.0, finf = 0.0;
+        struct spall_error e = {0, ""};
+        const int rich = pen_richardson(&conv_dx[s], f, &p, &finf, &e) == SPALL_OK;
+        if (rich)
+            vreport_info(r,
+                         "%s, %s-%s: Richardson P_max(dx -> 0) = %.2f um (order %.2f), %+.1f %% "
+                         "vs the experiment's 67 um; %s is %.1f %% short of it",
+                         form, conv_name[s], conv_name[s + 2], finf * 1e6, p,
+                         100.0 * (finf / 67e-6 - 1.0), conv_name[s + 2],
+                         100.0 * (1.0 - f[2] / finf));
+        else
+            vreport_info(r, "%s, %s-%s: no Richardson estimate (%s)", form, conv_name[s],
+                         conv_name[s + 2], e.msg);
+        if (s == n - 3)
+            conv = rich && p >= 0.5;
+    }
+    return conv;
 }
 
+/* "pen-sph-gelatin-convergence" (issue 7 item 3): P(t) must not change when
+ * the target is refined or made wider.  Run in the converging form of the
+ * gelatin deck: AV length fixed at 0.65 um (viscosity_length: h at d/15,
+ * where the thesis set (0.5, 0.2)) and the sphere's contact on the gel's
+ * particle surfaces (contact_offset = dx1/2, builder flag surface_contact).
+ * The cases' deck (AV with h, contact on particle centres) cannot converge:
+ * every refinement changes the equations (the AV's h) and the sphere's
+ * effective radius (d/2 - dx1/2); the other gelatin cases keep it because
+ * their numbers are compared with the thesis at the thesis' resolution
+ * (docs/validation.md, pen-sph-gelatin, "The rest: the entry").
+ * Levels d/10, d/15, d/20, d/25 (d/25: 23 133 particles, about half of
+ * the case's time) and d/15 with the target 1.5x wider.
+ * Tolerances: 3 % for the change of P_max between the two finest levels (a
+ * third of the 10 % of the comparisons with the experiment, item 4a, so
+ * that the resolution does not decide them; at a low order the distance to
+ * the limit is several times the last change, so the Richardson check
+ * stays); 2 % for the width (nothing
+ * physical changes: only the side wave, back at the shot line at 189 ns in
+ * the full-width target and 284 ns in the wider one, before or around
+ * P_max). */
 int pen_case_sph_convergence(struct vreport *r, struct spall_error *err)
 {
-    struct pen_sph_outcome o[3] = {{0}}, c = {0};
+    struct pen_sph_outcome o[4] = {{0}}, w = {0};
+    struct pen_sph_target t = pen_sph_target_gelatin(20.0e6);
+    t.av_length = 1.3 * 0.5e-6;
+    const struct pen_sph_shot s = {PEN_D, PEN_RHO_P, 1290.0};
     int rc = SPALL_OK;
-    for (int k = 0; k < 3 && !rc; k++)
-        rc = pen_sph_run(1290.0, 20.0e6, conv_dx[k], 1.0, 300.0e-9, &o[k], err);
-    if (!rc)
-        rc = pen_sph_run(1290.0, 20.0e6, 0.75e-6, 0.5, 300.0e-9, &c, err);
+    for (int k = 0; k < 5 && !rc; k++) {
+        /* k = 4: d/15 with the two outer radial levels 1.5x wider (to 216 um) */
+        struct pen_sph_grid g = gelatin_grid(conv_dx[k < 4 ? k : 1], k < 4 ? 1.0 : 1.5, 300.0e-9);
+        g.surface_contact = 1;
+        rc = pen_sph_setup_run(&t, &s, &g, k < 4 ? &o[k] : &w, err);
+    }
     if (rc)
         goto out;
-    run_info(r, "d/10, full width", &o[0]);
-    run_info(r, "d/15, full width", &o[1]);
-    run_info(r, "d/20, full width", &o[2]);
-    run_info(r, "d/10, half width (outer levels to 72 um)", &c);
-    const int shrink = sequence_info(r, "AV (0.5, 0.2) with h (the deck)", o);
-    if ((rc = vreport_check(r, "P_max d/10 vs d/15", "m", o[1].pmax, o[0].pmax, 0.05, true,
-                            "this model at d/15", "5 %: resolution study", err)))
+    for (int k = 0; k < 4; k++) {
+        char what[64];
+        snprintf(what, sizeof what, "%s, full width", conv_name[k]);
+        run_info(r, what, &o[k]);
+    }
+    run_info(r, "d/15, 1.5x width (outer levels to 216 um)", &w);
+    static const char form[] = "AV length 0.65 um + contact offset dx1/2";
+    const int conv = sequence_info(r, form, o, 4);
+    vreport_info(r, "%s, d/10: P_max %.2f um; the cases' deck (AV with h, contact on centres) "
+                 "at d/10 is pen-sph-gelatin's P_max",
+                 form, o[0].pmax * 1e6);
+    if ((rc = vreport_check(r, "P_max d/20 vs d/25", "m", o[3].pmax, o[2].pmax, 0.03, true,
+                            "this model at d/25 (converging form)",
+                            "3 %: a third of the 10 % against the experiment", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
-    if ((rc = vreport_check(r, "P_max d/15 vs d/20", "m", o[2].pmax, o[1].pmax, 0.05, true,
-                            "this model at d/20", "5 %: resolution study", err)))
+    if ((rc = vreport_check(r, "max |P(t) d/20 - P(t) d/25| / P_max(d/25)", "1", 0.0,
+                            history_gap(&o[2], &o[3]), 0.03, false,
+                            "this model at d/25 (converging form)",
+                            "3 %: the whole P(t), not only its maximum", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
     if ((rc = vreport_check_true(r,
-                                 "P_max converges d/10 -> d/15 -> d/20 (Richardson order >= 0.5)",
-                                 shrink, "this model at d/10, d/15, d/20",
-                                 "a converging sequence", err)))
+                                 "P_max converges d/15 -> d/20 -> d/25 (Richardson order >= 0.5)",
+                                 conv, "this model at d/15, d/20, d/25 (converging form)",
+                                 "a converging sequence with a usable limit", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
-    if ((rc = vreport_check(r, "P_max half vs full width (d/10)", "m", o[0].pmax, c.pmax, 0.02,
-                            true, "this model, full width", "2 %: the far field must not matter",
-                            err)))
+    if ((rc = vreport_check(r, "P_max 1.5x vs full width (d/15)", "m", o[1].pmax, w.pmax, 0.02,
+                            true, "this model, full width (converging form)",
+                            "2 %: the far field must not matter", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
-    if ((rc = vreport_check(r, "max |P(t) d/10 - P(t) d/15| / P_max(d/15)", "1", 0.0,
-                            history_gap(&o[0], &o[1]), 0.05, false, "this model at d/15",
-                            "5 %: the whole P(t), not only its maximum", err)))
-        goto out;
-    if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
-    if ((rc = vreport_check(r, "max |P(t) half - P(t) full width| / P_max", "1", 0.0,
-                            history_gap(&c, &o[0]), 0.02, false, "this model, full width",
+    if ((rc = vreport_check(r, "max |P(t) 1.5x - P(t) full width| / P_max (d/15)", "1", 0.0,
+                            history_gap(&w, &o[1]), 0.02, false,
+                            "this model, full width (converging form)",
                             "2 %: the far field must not matter", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
 out:
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < 4; k++)
         pen_sph_outcome_free(&o[k]);
-    pen_sph_outcome_free(&c);
+    pen_sph_outcome_free(&w);
     return rc;
 }
 
@@ -382,7 +425,7 @@ int pen_case_sph_av_forms(struct vreport *r, struct spall_error *err)
             rc = pen_sph_setup_run(&t, &s, &g, &o[k], err);
         }
         if (!rc) {
-            const int shrink = sequence_info(r, form[f], o);
+            const int shrink = sequence_info(r, form[f], o, 3);
             char q[160];
             snprintf(q, sizeof q, "%s: P_max converges d/10 -> d/20 (Richardson order >= 0.5)",
                      form[f]);

@@ -143,6 +143,28 @@ int main(int argc, char **argv)
         Edev += p->mass[i] / m->rho[i] * S2 / (4 * mt->G);
         Evol += p->mass[i] / m->rho[i] * m->P[i] * m->P[i] / (2 * mt->K);
     }
+    /* plastic zone at rest (pen-conv3): the gelatin deck has no failure, so
+     * the zone where the gel yielded (ep > 1 %) stands in for a "failed
+     * zone": its volume (sum m/rho) and its radial reach at the cavity
+     * depth 15 um (|z + 15 um| < 0.5 um), to see whether they scale with dx */
+    double vpl = 0, rpl = 0, d1end = vlat_history(sim, "cavity_D1 [m]");
+    size_t npl = 0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        if (!(m->ep[i] > 0.01)) continue;
+        npl++;
+        vpl += p->mass[i] / m->rho[i];
+        if (fabs(p->x[1][i] + 15e-6) < 0.5e-6 && p->x[0][i] > rpl) rpl = p->x[0][i];
+    }
+    size_t nfail = 0;
+    double vfail = 0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        if (m->failed && m->failed[i]) {
+            nfail++;
+            vfail += p->mass[i] / m->rho[i];
+        }
+    printf("plastic(ep>0.01): n=%zu vol=%.4g r_reach(15um)=%.2f um D1end/2=%.2f um width=%.2f um | "
+           "failed: n=%zu vol=%.4g\n",
+           npl, vpl, rpl * 1e6, 0.5 * d1end * 1e6, (rpl - 0.5 * d1end) * 1e6, nfail, vfail);
     printf("N=%g n=%zu Pmax=%.3f t=%.1f P25=%.3f P50=%.3f P100=%.3f P150=%.3f P200=%.3f P250=%.3f P300=%.3f "
            "D1max=%.2f bal=%.4f | Ei=%.3f Wp=%.3f Edev=%.3f Evol=%.3f AVheat~%.3f Ekgel=%.3f (frac of e_in) secs=%.0f\n",
            N, p->n_owned, pmax * 1e6, tpm * 1e9, pm[0] * 1e6, pm[1] * 1e6, pm[2] * 1e6, pm[3] * 1e6, pm[4] * 1e6,
