@@ -30,9 +30,16 @@
  *   F_i     = [sum_j (x_j - x_i) (x) G_ij] B0_i^-1,   G_ij = V0_j grad_X W (uncorrected)
  *   P_i g_i(ij) V0_j = Q_i G_ij,                     Q_i = P_i B0_i^-T   (per particle)
  *   sum_j V0_i V0_j v_ij . P_i g_i(ij) = -V0_i P_i : dF_i/dt           (stress power)
- * so a pair costs two 3x3 products (Q_j G_ij and the hourglass F X_ij)
- * instead of four plus two kernel evaluations.  Every sum still gathers
- * over particle i's full row in list order: bitwise thread independent.
+ * so a pair costs two 3x3 products ((Q_i + Q_j) X_ij and the hourglass
+ * (F_i + F_j) X_ij) instead of four plus two kernel evaluations.  The force
+ * stage walks the half list (j > i: the upper part of each sorted row)
+ * and applies each pair's force to both particles (antisymmetric, exact
+ * negatives), so each pair's AV (two divisions) and products are evaluated
+ * once instead of twice; stage 1 (F, dF/dt) still gathers over full rows
+ * (a scatter of its 18 sums would move as much data as the partner reads it
+ * saves).  Each particle's sums run over its lower partners, then its upper
+ * ones, each in increasing index, on any number of threads: bitwise thread
+ * independent (tl_sweep has the scheme).
  *
  * Memory traffic (the race bar's state, ~30 MB, outgrows the cache): one
  * force call is one sweep over the particles (tl_sweep) that packs x, v,
@@ -40,7 +47,8 @@
  * dF/dt, F^-1 and PK1 in registers) and stage 2 (forces) with lags of the
  * list's index band b, so a partner's block is reused while cached; the
  * per-particle data live in two blocks (pk, self) instead of separate
- * arrays.  docs/performance.md has the measured effect of each step.
+ * arrays.  docs/performance.md has the measured effect of each step
+ * (the half list: "Side by side with LAMMPS MACHDYN").
  */
 #include "models/sph/sph_internal.h"
 
