@@ -39,6 +39,8 @@ static void test_tlsph_fixed_clamp(void **state)
                            SPH_PLATE_FIXED, true, &res, &err);
     assert_int_equal(rc, SPALL_OK);
     const double T = sph_plate_theory_period(SPH_PLATE_FIXED);
+    print_message("TLSPH plate: first half period %.9g s = %.6f T, energy balance %.4g of %.4g J\n",
+                  res.half, res.half / T, res.balance, res.energy0);
     /* 6 rows: +19.6 % (dx/H = 1/6 bending error; Timoshenko alone +0.94 %) */
     assert_true(res.half > 1.15 * T && res.half < 1.25 * T);
     assert_true(isnan(res.period));

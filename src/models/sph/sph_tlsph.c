@@ -24,15 +24,23 @@
  *
  * Cost (issue 6 item 8): the neighbour list, the kernel values and every
  * per-pair constant live on the reference configuration, so they are
- * computed once (struct sph_tl) and never rebuilt.  The corrections are
+ * computed once (struct sph_tl), rebuilt only when model.reference_update
+ * re-references the body (sph_tlsph_reref.c).  The corrections are
  * moved out of the pair sums, which is exact algebra (only the rounding
  * changes):
  *   F_i     = [sum_j (x_j - x_i) (x) G_ij] B0_i^-1,   G_ij = V0_j grad_X W (uncorrected)
  *   P_i g_i(ij) V0_j = Q_i G_ij,                     Q_i = P_i B0_i^-T   (per particle)
  *   sum_j V0_i V0_j v_ij . P_i g_i(ij) = -V0_i P_i : dF_i/dt           (stress power)
- * so a pair costs two 3x3 products (Q_j G_ij and the hourglass F X_ij)
- * instead of four plus two kernel evaluations.  Every sum still gathers
- * over particle i's full row in list order: bitwise thread independent.
+ * so a pair costs two 3x3 products ((Q_i + Q_j) X_ij and the hourglass
+ * (F_i + F_j) X_ij) instead of four plus two kernel evaluations.  The force
+ * stage walks the half list (j > i: the upper part of each sorted row)
+ * and applies each pair's force to both particles (antisymmetric, exact
+ * negatives), so each pair's AV (two divisions) and products are evaluated
+ * once instead of twice; stage 1 (F, dF/dt) still gathers over full rows
+ * (a scatter of its 18 sums would move as much data as the partner reads it
+ * saves).  Each particle's sums run over its lower partners, then its upper
+ * ones, each in increasing index, on any number of threads: bitwise thread
+ * independent (tl_sweep has the scheme).
  *
  * Memory traffic (the race bar's state, ~30 MB, outgrows the cache): one
  * force call is one sweep over the particles (tl_sweep) that packs x, v,
@@ -40,7 +48,8 @@
  * dF/dt, F^-1 and PK1 in registers) and stage 2 (forces) with lags of the
  * list's index band b, so a partner's block is reused while cached; the
  * per-particle data live in two blocks (pk, self) instead of separate
- * arrays.  docs/performance.md has the measured effect of each step.
+ * arrays.  docs/performance.md has the measured effect of each step
+ * (the half list: "Side by side with LAMMPS MACHDYN").
  */
 #include "models/sph/sph_internal.h"
 
@@ -56,7 +65,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Reference-configuration constants of a pair (fixed list: never rebuilt).
+/* Reference-configuration constants of a pair (rebuilt only on a re-reference).
  * X_i - X_j is gathered from the packed block instead (x0 shares its cache
  * line with v and V0): the pair stream was the stall of pass 1. */
 struct tl_pair {
@@ -71,15 +80,18 @@ struct tl_pair {
 enum { TL_Q = 0, TL_FD = 9, TL_X = 18, TL_V = 21, TL_C = 24, TL_RHO, TL_H, TL_M, TL_VOL,
        TL_X0 = 29, TL_STRIDE = 32 };
 
-/* What only particle i itself reads, one block instead of 13 arrays (13
- * streams in the sweep): B0^-1, S0 = sum_j G_ij, the stress power P : dF/dt. */
-enum { TL_BI = 0, TL_S0 = 9, TL_PW = 12, TL_SELF = 16 };
+/* What only particle i itself reads and writes, one block instead of 13
+ * arrays (13 streams in the sweep): B0^-1; the stage-2 accumulators (force
+ * and sum f_ij . v_ij) into which the lower rows scatter; the stress power
+ * P : dF/dt. */
+enum { TL_BI = 0, TL_ACC = 9, TL_FV = 12, TL_PW = 13, TL_SELF = 16 };
 
 struct sph_tl {
     struct neighbor_list *nl; /**< reference-configuration list (fixed) */
-    double *self;         /**< per particle, TL_SELF doubles: B0^-1, S0, P : dF/dt */
+    double *self;         /**< per particle, TL_SELF doubles: B0^-1, accumulators, P : dF/dt */
     double *pk;           /**< per particle, TL_STRIDE doubles (TL_Q ...) */
     struct tl_pair *pair; /**< per listed pair, same index as the neighbour list */
+    size_t *up;           /**< per particle: first list index of row i with j > i */
     size_t band;          /**< max |j - i| over the list: the pipeline's lag */
 };
 
@@ -92,6 +104,7 @@ void sph_tlsph_destroy(struct sph_tl **tl)
     free(t->pk);
     free(t->pair);
     free(t->self);
+    free(t->up);
     free(t);
     *tl = NULL;
 }
@@ -105,6 +118,7 @@ static int sph_tl_alloc(struct sph_tl **out, size_t n, size_t np, struct spall_e
         bad |= !(t->pk = calloc(nn * TL_STRIDE, sizeof(double)));
         bad |= !(t->self = calloc(nn * TL_SELF, sizeof(double)));
         bad |= !(t->pair = calloc(pp, sizeof *t->pair));
+        bad |= !(t->up = calloc(nn, sizeof *t->up));
     }
     *out = t;
     if (bad) {
@@ -169,6 +183,12 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
     t->nl = nl;
     t->band = 0;
     for (size_t i = 0; i < n; i++) {
+        /* rows are sorted ascending (neighbor.c): the upper part j > i,
+         * the pairs stage 2 evaluates, starts at up[i] */
+        size_t u = off[i];
+        while (u < off[i + 1] && (size_t)nb[u] < i)
+            u++;
+        t->up[i] = u;
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             const size_t j = (size_t)nb[k], d = j > i ? j - i : i - j;
             t->band = d > t->band ? d : t->band;
@@ -188,7 +208,7 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
         if (sph_skip(m, i, SPH_FORM_TOTAL))
             continue;
         const double Ei = m->mat[p->material[i]].E;
-        double B[9] = {0}, S0[3] = {0, 0, 0};
+        double B[9] = {0};
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             size_t j = (size_t)nb[k];
             double hb = 0.5 * (m->h[i] + m->h[j]), X[3] = {0, 0, 0}, r2 = 0.0;
@@ -202,11 +222,9 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
             struct tl_pair *pr = &t->pair[k];
             pr->F = F;
             pr->hg = kappa * 0.5 * (Ei + m->mat[p->material[j]].E) * Vi * V * W / r2;
-            for (int a = 0; a < dim; a++) {
-                S0[a] += V * F * X[a];
+            for (int a = 0; a < dim; a++)
                 for (int b = 0; b < dim; b++)
                     B[a * 3 + b] += -X[a] * V * F * X[b];
-            }
         }
         double Bi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, inv[9];
         if (fabs(sph_inverse(dim, B, inv)) > 1e-3)
@@ -215,8 +233,6 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
             fallbacks++;
         for (int c = 0; c < 9; c++)
             m->Bi[c][i] = t->self[i * TL_SELF + TL_BI + c] = Bi[c];
-        for (int d = 0; d < 3; d++)
-            t->self[i * TL_SELF + TL_S0 + d] = S0[d];
     }
     m->cspm_fallbacks += fallbacks;
     return SPALL_OK;
@@ -358,7 +374,10 @@ static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const 
     for (int a = 0; a < dim; a++)
         for (int b = 0; b < dim; b++)
             pw += PK[a * 3 + b] * Fdot[a * 3 + b];
-    t->self[i * TL_SELF + TL_PW] = pw;
+    double *si = t->self + i * TL_SELF;
+    si[TL_PW] = pw;
+    for (int c = 0; c < 4; c++) /* stage-2 accumulators (TL_ACC, TL_FV): the */
+        si[TL_ACC + c] = 0.0;   /* lower rows scatter into them after this */
     return bad;
 }
 
@@ -398,39 +417,50 @@ static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, 
         snprintf(xs, sizeof xs, "(%.6g, %.6g) m, now at (%.6g, %.6g) m", p->x0[0][i],
                  p->x0[1][i], p->x[0][i], p->x[1][i]);
     return spall_error_set(err, SPALL_ERR_UNSTABLE,
-                           "TLSPH: the deformation gradient of particle %zu (body %d, reference "
+                           "TLSPH: the deformation gradient of particle %zu (body %d, initial "
                            "position %s) %s at t = %.6g s, step %ld; its reference "
                            "neighbourhood no longer describes it (finer dx, a larger "
-                           "hourglass, or the updated formulation for this body)",
+                           "hourglass, model.reference_update, or the updated "
+                           "formulation for this body)",
                            i, (int)p->body[i], xs, why, s->t, s->step);
 }
 
-/* Stage 2 for particle i: force, internal energy rate (dimension literal);
- * reads only finished stage-1 blocks of i's partners. */
-static inline void tl_stage_forces(struct model *m, struct particles *p, size_t i, double lfdt,
-                                   const int dim)
+/* Stage 2, row i: every pair (i, j) with j > i evaluated once, in this
+ * orientation whoever evaluates it (so a pair crossing two threads' shares,
+ * evaluated by both, is bitwise the same on each side).  The pair force is
+ * antisymmetric, so particle j gets exactly its negative (exact in floating
+ * point): with Q = PK1 B0^-T and X_ij = X_i - X_j,
+ *   f_i(ij) = V0_i V0_j F_ij (Q_i + Q_j) X_ij               (stress: P_i g_i + P_j g_j)
+ *           + cav x_ij + hg ((Fd_i + Fd_j) X_ij / 2 - x_ij)  (AV, hourglass)
+ * and f_j(ij) = -f_i(ij); the heating -1/2 f . v_ij is the same for both.
+ * j in [lo, hi) gets its share in its accumulator; i's sums continue from
+ * its own (the lower rows' contributions, in increasing row order) in
+ * acc[0..2], acc[3] (sum f . v_ij).  So each particle's sums run over its
+ * lower partners, then its upper ones, each in increasing index, whatever
+ * the thread shares: bitwise thread independent.  Dimension a literal. */
+static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
+                                 const double qa, const double qb, const double lav,
+                                 double acc[4])
 {
-    const struct sph_tl *t = m->tl;
-    const size_t *off = t->nl->offset;
     const int32_t *nb = t->nl->idx;
-    const double qa = m->opt.av_a, qb = m->opt.av_b, lav = m->opt.av_length;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
-    const double Vi = qi[TL_VOL], mi = qi[TL_M], hi = qi[TL_H], ci = qi[TL_C], rhoi = qi[TL_RHO];
-    double fs[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, fv = 0.0;
-    for (size_t k = off[i]; k < off[i + 1]; k++) {
+    const double Vi = qi[TL_VOL], mi = qi[TL_M], hi_ = qi[TL_H], ci = qi[TL_C];
+    const double rhoi = qi[TL_RHO];
+    const size_t end = t->nl->offset[i + 1];
+    for (size_t k = t->up[i]; k < end; k++) {
         const struct tl_pair *pr = &t->pair[k];
-        const double *qj = pk + (size_t)nb[k] * TL_STRIDE;
-        const double F = pr->F, VF = qj[TL_VOL] * F, hg = pr->hg;
-        double X[3], G[3], xij[3], vij[3], cr2 = 0.0, vx = 0.0;
+        const size_t j = (size_t)nb[k];
+        const double *qj = pk + j * TL_STRIDE;
+        const double F = pr->F, hg = pr->hg, sv = Vi * qj[TL_VOL] * F;
+        double X[3], xij[3], vij[3], cr2 = 0.0, vx = 0.0;
         for (int d = 0; d < dim; d++) {
             X[d] = qi[TL_X0 + d] - qj[TL_X0 + d];
-            G[d] = VF * X[d];
             xij[d] = qi[TL_X + d] - qj[TL_X + d];
             vij[d] = qi[TL_V + d] - qj[TL_V + d];
             cr2 += xij[d] * xij[d];
             vx += xij[d] * vij[d];
         }
-        const double hb = 0.5 * (hi + qj[TL_H]);
+        const double hb = 0.5 * (hi_ + qj[TL_H]);
         const double mu = (lav > 0.0 ? lav : hb) * vx / (cr2 + 0.01 * hb * hb);
         const double cb = 0.5 * (ci + qj[TL_C]);
         const double Pv = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + qj[TL_RHO]));
@@ -443,34 +473,50 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
         double Pi;
         memcpy(&Pi, &pb, sizeof Pi);
         const double cav = -mi * qj[TL_M] * Pi * F;
+        double fp[3] = {0, 0, 0}, fv = 0.0;
         for (int a = 0; a < dim; a++) {
-            double tj = 0.0, fx = 0.0;
+            double tq = 0.0, fx = 0.0;
             for (int b = 0; b < dim; b++) {
-                tj += qj[TL_Q + a * 3 + b] * G[b];
+                tq += (qi[TL_Q + a * 3 + b] + qj[TL_Q + a * 3 + b]) * X[b];
                 fx += (qi[TL_FD + a * 3 + b] + qj[TL_FD + a * 3 + b]) * X[b];
             }
-            fs[a] += tj;
             /* hourglass: mismatch of x_j - x_i against Fbar (X_j - X_i);
              * AV along the CURRENT pair line (reference kernel magnitude):
              * -Pi F x_ij does negative work for any rotation */
             const double fo = cav * xij[a] + hg * (0.5 * fx - xij[a]);
-            acc[a] += fo;
             fv += fo * vij[a];
+            fp[a] = sv * tq + fo;
+        }
+        for (int a = 0; a < dim; a++)
+            acc[a] += fp[a];
+        acc[3] += fv;
+        if (j - lo < hi - lo) { /* lo <= j < hi: mine (j > i >= lo - b) */
+            double *sj = t->self + j * TL_SELF;
+            for (int a = 0; a < dim; a++)
+                sj[TL_ACC + a] -= fp[a];
+            sj[TL_FV] += fv;
         }
     }
+}
+
+/* Stage 2 of a row of mine: its sums from the lower rows (own accumulator),
+ * its own row, then the force and the internal energy rate. */
+static inline void tl_stage_forces(struct model *m, struct particles *p, size_t i, size_t lo,
+                                   size_t hi, double lfdt, const int dim)
+{
+    struct sph_tl *t = m->tl;
+    const double *si = t->self + i * TL_SELF, *qi = t->pk + i * TL_STRIDE;
+    double acc[4] = {si[TL_ACC], si[TL_ACC + 1], si[TL_ACC + 2], si[TL_FV]};
+    tl_row_forces(t, i, lo, hi, dim, m->opt.av_a, m->opt.av_b, m->opt.av_length, acc);
+    if (sph_skip(m, i, SPH_FORM_TOTAL))
+        return; /* an updated-form particle: empty row, no accumulator */
+    const double Vi = qi[TL_VOL], mi = qi[TL_M];
     /* heating -1/2 sum f_ij . v_ij; the 1/2 outside the sum is exact
      * (scaling by 2^-1 commutes with rounding): bitwise the per-pair form */
-    double de = 0.0 - 0.5 * fv;
-    /* P_i g_i summed over the row: Q_i S0_i */
-    for (int a = 0; a < dim; a++) {
-        double qs = 0.0;
-        for (int b = 0; b < dim; b++)
-            qs += qi[TL_Q + a * 3 + b] * t->self[i * TL_SELF + TL_S0 + b];
-        acc[a] += Vi * (fs[a] + qs);
-    }
+    double de = 0.0 - 0.5 * acc[3];
     /* stress power V0_i P_i : dF_i/dt (the leapfrog books it itself) */
     if (!(lfdt > 0.0))
-        de += Vi * t->self[i * TL_SELF + TL_PW];
+        de += Vi * si[TL_PW];
     for (int a = 0; a < dim; a++)
         p->f[a][i] += p->mass[i] / mi * acc[a];
     m->de[i] = de / mi;
@@ -488,17 +534,6 @@ static inline void tl_pack(struct sph_tl *t, const struct particles *p, size_t i
     }
 }
 
-/* One thread's share [lo, hi) of the three stages, software-pipelined:
- * stage 1 of particle k needs stage 0 (x, v packed) of every partner j,
- * stage 2 of i needs stage 1 of every partner, and |j - i| <= b (t->band;
- * the lattice order keeps b at a few layers).  So the sweep packs b
- * particles ahead of stage 1 and runs stage 2 b particles behind it, while
- * those blocks are still in cache: one pass over the particle data per
- * force call instead of five.  What a neighbouring thread's share reads (b
- * particles at each end) is packed before a barrier; stage 2 of the
- * particles within b of lo or hi waits for a second one.  Every particle
- * does the same arithmetic as with the stages run one after the other
- * (model.pair_loop: split, b = n): bitwise the same result. */
 /* What the det F guard collects over a thread's share. */
 struct tl_watch {
     size_t first; /**< lowest index outside the guard's limits (SIZE_MAX: none) */
@@ -521,44 +556,56 @@ static inline void tl_stage_deform_watch(struct model *m, size_t k, double lfdt,
     w->kmax = kap > w->kmax && !bad ? kap : w->kmax;
 }
 
-static inline void tl_stage_forces_mine(struct model *m, struct particles *p, size_t i,
-                                        double lfdt, const int dim)
-{
-    if (!sph_skip(m, i, SPH_FORM_TOTAL))
-        tl_stage_forces(m, p, i, lfdt, dim);
-}
-
+/* One thread's share [lo, hi) of the three stages, software-pipelined:
+ * stage 1 of particle k needs stage 0 (x, v packed) of every partner j,
+ * row i of stage 2 needs stage 1 of every partner, and |j - i| <= b
+ * (t->band; the lattice order keeps b at a few layers).  So the sweep packs
+ * b particles ahead of stage 1 and runs stage 2 b particles behind it,
+ * while those blocks are still in cache: one pass over the particle data
+ * per force call instead of five.  Stage 2 scatters each pair into the
+ * upper particle, so its rows must run in increasing order: the rows of
+ * the b particles below lo that reach into [lo, hi) (the lower neighbour's,
+ * evaluated here again for the scatter into mine) come first, then mine.
+ * They need stage 1 of the b particles at each end of every share, which
+ * runs before a barrier (stage 0 of 2b at each end before a first one).
+ * Every particle does the same arithmetic in the same order as with the
+ * stages run one after the other (model.pair_loop: split, b = n): bitwise
+ * the same result on any number of threads. */
 static void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, size_t hi,
                      double lfdt, bool pipelined, const int dim, const double lim[3],
                      struct tl_watch *w)
 {
     struct sph_tl *t = m->tl;
     const size_t b = pipelined ? t->band : n;
-    /* stage 0 in the sweep for [plo, phi), before it for the rest */
-    const size_t plo = lo + b < hi ? lo + b : hi, phi = hi > b && hi - b > plo ? hi - b : plo;
-    for (size_t i = lo; i < plo; i++)
+    /* stage 0 before the barriers for [lo, pa) and [pb, hi), in the sweep between */
+    const size_t pa = hi - lo > 2 * b ? lo + 2 * b : hi, pb = hi - pa > 2 * b ? hi - 2 * b : pa;
+    for (size_t i = lo; i < pa; i++)
         tl_pack(t, p, i, dim);
-    for (size_t i = phi; i < hi; i++)
+    for (size_t i = pb; i < hi; i++)
         tl_pack(t, p, i, dim);
 #pragma omp barrier
-    /* stage 2 in the sweep for [clo, chi): partners [i - b, i + b] inside
-     * [lo, hi) or past the ends of the particle range */
-    const size_t clo = lo == 0 ? 0 : lo + b, chi = hi == n ? n : (hi > b ? hi - b : 0);
-    for (size_t k = lo; k < hi; k++) {
-        if (k + b < phi)
+    /* stage 1 before the second barrier for [lo, e1) and [e2, hi) */
+    const size_t e1 = hi - lo > b ? lo + b : hi, e2 = hi - e1 > b ? hi - b : e1;
+    for (size_t k = lo; k < e1; k++)
+        tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
+    for (size_t k = e2; k < hi; k++)
+        tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
+#pragma omp barrier
+    const double qa = m->opt.av_a, qb = m->opt.av_b, lav = m->opt.av_length;
+    for (size_t i = lo > b ? lo - b : 0; i < lo; i++) {
+        double ghost[4] = {0, 0, 0, 0}; /* row i's own sums: its owner's */
+        tl_row_forces(t, i, lo, hi, dim, qa, qb, lav, ghost);
+    }
+    size_t r = lo; /* next row of stage 2 */
+    for (size_t k = e1; k < e2; k++) {
+        if (k + b < pb)
             tl_pack(t, p, k + b, dim);
         tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
-        if (k >= b && k - b >= clo && k - b < chi)
-            tl_stage_forces_mine(m, p, k - b, lfdt, dim);
+        for (; r + b <= k; r++) /* partners r .. r + b <= k: stage 1 done */
+            tl_stage_forces(m, p, r, lo, hi, lfdt, dim);
     }
-    /* those whose partners end at n (last share): stage 1 is complete */
-    const size_t tail = hi > b && hi - b > clo ? hi - b : clo;
-    for (size_t i = tail; i < chi; i++)
-        tl_stage_forces_mine(m, p, i, lfdt, dim);
-#pragma omp barrier
-    for (size_t i = lo; i < hi; i++)
-        if (i < clo || i >= chi)
-            tl_stage_forces_mine(m, p, i, lfdt, dim);
+    for (; r < hi; r++) /* partners past hi: their stage 1 ran before the barrier */
+        tl_stage_forces(m, p, r, lo, hi, lfdt, dim);
 }
 
 int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
