@@ -19,6 +19,7 @@
 #include <cmocka.h>
 
 #include "tests/test_support.h"
+#include "tests/test_tlsph_bar.h"
 
 #include <math.h>
 #include <omp.h>
@@ -72,22 +73,7 @@ static void test_free_block_conservation(void **state)
 static void run_bar_keys(int threads, const char *extra, double *xs, size_t nx)
 {
     omp_set_num_threads(threads);
-    char yaml[1024];
-    snprintf(yaml, sizeof yaml,
-             "model: {type: sph, kernel: wendland, h_factor: 1.005, formulation: total,%s\n"
-             "        viscosity: [1.0, 1.0], wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
-             "materials:\n"
-             "  copper: {density: 8930, youngs_modulus: 117.0e9, poisson_ratio: 0.35,\n"
-             "           yield: power, yield_a: 0.4e9, yield_b: 0.1e9, yield_n: 1.0}\n"
-             "lattice: {type: sc, spacing: 1.0e-3, origin: [0.0005, 0.0005, 0.0005]}\n"
-             "body: {geometry: {cylinder: {base: [0, 0, 0], top: [0, 0, 0.010], "
-             "radius: 0.003}},\n"
-             "       material: copper}\n"
-             "initial_velocity: [{group: all, value: [0, 0, -227.0]}]\n"
-             "run: {steps: 150}\n",
-             extra);
-    struct sim *s = test_build(yaml);
-    assert_non_null(s);
+    struct sim *s = test_tlsph_bar(extra, 150);
     struct spall_error err = {0};
     while (!sim_done(s))
         assert_int_equal(sim_step(s, &err), 0);

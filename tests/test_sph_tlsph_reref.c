@@ -23,33 +23,13 @@
 #include <cmocka.h>
 
 #include "tests/test_support.h"
+#include "tests/test_tlsph_bar.h"
 
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* The small copper bar of test_sph_tlsph.c (about 280 particles) with
- * @p extra model keys, @p steps steps. */
-static struct sim *bar(const char *extra, long steps)
-{
-    char yaml[1024];
-    snprintf(yaml, sizeof yaml,
-             "model: {type: sph, kernel: wendland, h_factor: 1.005, formulation: total,%s\n"
-             "        viscosity: [1.0, 1.0], wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
-             "materials:\n"
-             "  copper: {density: 8930, youngs_modulus: 117.0e9, poisson_ratio: 0.35,\n"
-             "           yield: power, yield_a: 0.4e9, yield_b: 0.1e9, yield_n: 1.0}\n"
-             "lattice: {type: sc, spacing: 1.0e-3, origin: [0.0005, 0.0005, 0.0005]}\n"
-             "body: {geometry: {cylinder: {base: [0, 0, 0], top: [0, 0, 0.010], "
-             "radius: 0.003}},\n"
-             "       material: copper}\n"
-             "initial_velocity: [{group: all, value: [0, 0, -227.0]}]\n"
-             "run: {steps: %ld}\n",
-             extra, steps);
-    return test_build_ok(yaml);
-}
 
 static void run_to_end(struct sim *s)
 {
@@ -83,7 +63,7 @@ static void test_update_keeps_state(void **state)
 {
     (void)state;
     omp_set_num_threads(1);
-    struct sim *s = bar("", 60); /* 60 steps into the impact: plastic foot */
+    struct sim *s = test_tlsph_bar("", 60); /* 60 steps into the impact: plastic foot */
     run_to_end(s);
     struct model *m = s->model;
     const size_t n = s->p->n;
@@ -199,7 +179,7 @@ static void test_conservation(void **state)
 static void bar_state(int threads, const char *extra, double *xs, size_t nx)
 {
     omp_set_num_threads(threads);
-    struct sim *s = bar(extra, 150);
+    struct sim *s = test_tlsph_bar(extra, 150);
     run_to_end(s);
     assert_int_equal(s->model->tl_rerefs, 7);
     memset(xs, 0, nx * sizeof *xs);
