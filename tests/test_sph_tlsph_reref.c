@@ -143,21 +143,12 @@ static double free_block(const char *extra)
              extra);
     omp_set_num_threads(1);
     struct sim *s = test_build_ok(yaml);
-    double p0[3] = {0, 0, 0};
-    for (size_t i = 0; i < s->p->n; i++)
-        for (int d = 0; d < 3; d++)
-            p0[d] += s->p->mass[i] * s->p->v[d][i];
-    sim_update_energy(s);
-    const double e0 = s->energy.kinetic + s->energy.strain;
+    double p0[3], p1[3];
+    test_momentum_3d(s, p0);
+    const double e0 = test_mech_energy(s);
     run_to_end(s);
-    sim_update_energy(s);
-    const double e1 = s->energy.kinetic + s->energy.strain;
-    double p1[3] = {0, 0, 0}, pscale = 0.0;
-    for (size_t i = 0; i < s->p->n; i++)
-        for (int d = 0; d < 3; d++) {
-            p1[d] += s->p->mass[i] * s->p->v[d][i];
-            pscale += s->p->mass[i] * fabs(s->p->v[d][i]);
-        }
+    const double e1 = test_mech_energy(s);
+    const double pscale = test_momentum_3d(s, p1);
     for (int d = 0; d < 3; d++)
         assert_true(fabs(p1[d] - p0[d]) < 1e-12 * pscale);
     print_message("%s: %zu updates, energy %.9g -> %.9g\n", extra[0] ? extra : "no updates",

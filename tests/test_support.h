@@ -64,6 +64,27 @@ static inline void test_momentum_2d(const struct sim *s, double P[2])
             P[d] += s->p->mass[i] * s->p->v[d][i];
 }
 
+/** Total momentum of a 3D run into @p P; returns sum m |v_d| over all
+ *  particles and components (the scale for a round-off tolerance). */
+static inline double test_momentum_3d(const struct sim *s, double P[3])
+{
+    double scale = 0.0;
+    P[0] = P[1] = P[2] = 0.0;
+    for (size_t i = 0; i < s->p->n; i++)
+        for (int d = 0; d < 3; d++) {
+            P[d] += s->p->mass[i] * s->p->v[d][i];
+            scale += s->p->mass[i] * fabs(s->p->v[d][i]);
+        }
+    return scale;
+}
+
+/** Kinetic + strain energy of @p s, refreshed. */
+static inline double test_mech_energy(struct sim *s)
+{
+    sim_update_energy(s);
+    return s->energy.kinetic + s->energy.strain;
+}
+
 /** Smallest distance between particles of different bodies (2D, O(N^2):
  *  small tests only). */
 static inline double test_min_cross_distance(const struct sim *s)
