@@ -20,46 +20,19 @@
 #include <cmocka.h>
 
 #include "tests/test_support.h"
+#include "tests/test_sph_two_bodies.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Body 0 `target`: soft block 10 x 10 mm (material a); body 1 `proj`:
- * stiffer, denser block 6 x 6 mm, 2.5 mm above, at (vx, -50) m/s; dx =
- * 1 mm, plane strain.  @p model_extra is appended to the model map. */
-static struct sim *two_bodies(const char *model_extra, double vx, double gap_y)
-{
-    char yaml[2048];
-    snprintf(yaml, sizeof yaml,
-             "model: {type: sph, kernel: wendland, h_factor: 1.3, viscosity: [0.5, 0.2],\n"
-             "        plane: strain%s}\n"
-             "materials:\n"
-             "  a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"
-             "  b: {density: 2000, youngs_modulus: 1.0e8, poisson_ratio: 0.3}\n"
-             "lattice: {type: square, spacing: 1.0e-3}\n"
-             "geometry:\n"
-             "  g1: {box: {min: [0, 0], max: [0.010, 0.010]}}\n"
-             "  g2: {box: {min: [0.002, %g], max: [0.008, %g]}}\n"
-             "bodies:\n"
-             "  - {name: target, geometry: g1, material: a,\n"
-             "     lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0005]}}\n"
-             "  - {name: proj, geometry: g2, material: b,\n"
-             "     lattice: {spacing: 1.0e-3, origin: [0.0005, %g]}}\n"
-             "groups: {top: g2}\n"
-             "initial_velocity: [{group: top, value: [%g, -50]}]\n"
-             "run: {end_time: 2.4e-4}\n",
-             model_extra, 0.0115 + gap_y, 0.0175 + gap_y, 0.012 + gap_y, vx);
-    return test_build(yaml);
-}
-
 /* Head-on run of two_bodies with @p model_extra; @p n_tl_expect TLSPH
  * particles.  Momentum to round-off, energy balance within 1 %, no
  * interpenetration, the top block stopped and compressed. */
 static void run_head_on(const char *label, const char *model_extra, size_t n_tl_expect)
 {
-    struct sim *s = two_bodies(model_extra, 10.0, 0.0);
+    struct sim *s = test_two_bodies(model_extra, 10.0, 0.0);
     assert_non_null(s);
     const struct model *m = s->model;
     assert_non_null(m->form);
@@ -139,8 +112,8 @@ static void test_all_total_is_run_total(void **state)
     (void)state;
     /* the two blocks glued through the kernel sums (no interface): the
      * run-level TLSPH path, reached by either key */
-    struct sim *a = two_bodies(", formulation: total", 0.0, -1.5e-3);
-    struct sim *b = two_bodies(", body_formulation: {proj: total, target: total}", 0.0, -1.5e-3);
+    struct sim *a = test_two_bodies(", formulation: total", 0.0, -1.5e-3);
+    struct sim *b = test_two_bodies(", body_formulation: {proj: total, target: total}", 0.0, -1.5e-3);
     assert_non_null(a);
     assert_non_null(b);
     assert_null(b->model->form);
@@ -152,7 +125,7 @@ static void test_all_total_is_run_total(void **state)
     assert_memory_equal(xa, xb, n * sizeof *xa);
     /* with formulation: total, marking bodies updated splits the run */
     sim_destroy(&b);
-    b = two_bodies(", formulation: total, interface: bodies, "
+    b = test_two_bodies(", formulation: total, interface: bodies, "
                    "body_formulation: {target: updated}", 0.0, 0.0);
     assert_non_null(b);
     assert_non_null(b->model->form);

@@ -24,6 +24,7 @@
 
 #include "tests/test_support.h"
 #include "tests/test_tlsph_bar.h"
+#include "tests/test_sph_two_bodies.h"
 
 #include <math.h>
 #include <omp.h>
@@ -345,26 +346,10 @@ static void test_mixed_bodies(void **state)
 {
     (void)state;
     omp_set_num_threads(1);
-    static const char *yaml =
-        "model: {type: sph, kernel: wendland, h_factor: 1.3, viscosity: [0.5, 0.2],\n"
-        "        plane: strain, interface: bodies, body_formulation: {proj: total},\n"
-        "        reference_update: {every: 50}}\n"
-        "materials:\n"
-        "  a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"
-        "  b: {density: 2000, youngs_modulus: 1.0e8, poisson_ratio: 0.3}\n"
-        "lattice: {type: square, spacing: 1.0e-3}\n"
-        "geometry:\n"
-        "  g1: {box: {min: [0, 0], max: [0.010, 0.010]}}\n"
-        "  g2: {box: {min: [0.002, 0.0115], max: [0.008, 0.0175]}}\n"
-        "bodies:\n"
-        "  - {name: target, geometry: g1, material: a,\n"
-        "     lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0005]}}\n"
-        "  - {name: proj, geometry: g2, material: b,\n"
-        "     lattice: {spacing: 1.0e-3, origin: [0.0005, 0.012]}}\n"
-        "groups: {top: g2}\n"
-        "initial_velocity: [{group: top, value: [10, -50]}]\n"
-        "run: {end_time: 2.4e-4}\n";
-    struct sim *s = test_build_ok(yaml);
+    struct sim *s = test_two_bodies(", interface: bodies, body_formulation: {proj: total},\n"
+                                    "        reference_update: {every: 50}",
+                                    10.0, 0.0);
+    assert_non_null(s);
     const struct model *m = s->model;
     double P0[2], P[2], dp = 0.0;
     test_momentum_2d(s, P0);
