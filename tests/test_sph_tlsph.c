@@ -68,12 +68,7 @@ static void run_bar_keys(int threads, const char *extra, double *xs, size_t nx)
     struct spall_error err = {0};
     while (!sim_done(s))
         assert_int_equal(sim_step(s, &err), 0);
-    memset(xs, 0, nx * sizeof *xs);
-    for (size_t i = 0; i < s->p->n && 6 * i + 5 < nx; i++)
-        for (int d = 0; d < 3; d++) {
-            xs[6 * i + d] = s->p->x[d][i];
-            xs[6 * i + 3 + d] = s->p->v[d][i];
-        }
+    test_pack_xv(s, xs, nx);
     sim_destroy(&s);
 }
 

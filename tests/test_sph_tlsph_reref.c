@@ -174,12 +174,7 @@ static void bar_state(int threads, const char *extra, double *xs, size_t nx)
     struct sim *s = test_tlsph_bar(extra, 150);
     run_to_end(s);
     assert_int_equal(s->model->tl_rerefs, 7);
-    memset(xs, 0, nx * sizeof *xs);
-    for (size_t i = 0; i < s->p->n && 6 * i + 5 < nx; i++)
-        for (int d = 0; d < 3; d++) {
-            xs[6 * i + d] = s->p->x[d][i];
-            xs[6 * i + 3 + d] = s->p->v[d][i];
-        }
+    test_pack_xv(s, xs, nx);
     sim_destroy(&s);
 }
 

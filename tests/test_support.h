@@ -85,6 +85,18 @@ static inline double test_mech_energy(struct sim *s)
     return s->energy.kinetic + s->energy.strain;
 }
 
+/** x and v of every particle of a 3D run into @p xs (6 values per
+ *  particle, zero-padded to @p nx): the state that bitwise checks compare. */
+static inline void test_pack_xv(const struct sim *s, double *xs, size_t nx)
+{
+    memset(xs, 0, nx * sizeof *xs);
+    for (size_t i = 0; i < s->p->n && 6 * i + 5 < nx; i++)
+        for (int d = 0; d < 3; d++) {
+            xs[6 * i + d] = s->p->x[d][i];
+            xs[6 * i + 3 + d] = s->p->v[d][i];
+        }
+}
+
 /** Smallest distance between particles of different bodies (2D, O(N^2):
  *  small tests only). */
 static inline double test_min_cross_distance(const struct sim *s)
