@@ -20,7 +20,7 @@ struct bench_result {
     double particle_steps_per_s;
     double bond_steps_per_s;
     double bytes_per_particle;  /**< resident memory growth / particles */
-    char note[256];
+    char note[384];
 };
 
 struct bench_case {

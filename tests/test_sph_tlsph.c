@@ -91,14 +91,19 @@ static void test_bar_threads(void **state)
  * arithmetic per particle, so every position and velocity must agree
  * bitwise -- on 1 thread, 2 threads (shares > 2b: pipelined inside, edges
  * after the barrier) and 5 threads (shares < 2b: everything after it), for
- * both time integrators (the leapfrog advances the state inside stage 1). */
+ * both time integrators (the leapfrog advances the state inside stage 1)
+ * and with viscosity_switch: balsara. */
 static void test_pipeline_split(void **state)
 {
     (void)state;
     enum { NX = 6 * 400 };
-    static double ref[NX], got[NX];
-    static const char *const tint[2] = {"", " time_integration: leapfrog, hourglass: 1.0,"};
-    for (int k = 0; k < 2; k++) {
+    static double ref[NX], got[NX], lf[NX];
+    /* the third: Balsara's switch, whose f_j the rows read from the
+     * partners' blocks written in their stage 1 */
+    static const char *const tint[3] = {"", " time_integration: leapfrog, hourglass: 1.0,",
+                                        " time_integration: leapfrog, hourglass: 1.0, "
+                                        "viscosity_switch: balsara,"};
+    for (int k = 0; k < 3; k++) {
         char split[128];
         snprintf(split, sizeof split, "%s pair_loop: split,", tint[k]);
         run_bar_keys(1, split, ref, NX);
@@ -108,7 +113,10 @@ static void test_pipeline_split(void **state)
             run_bar_keys(threads[t], tint[k], got, NX);
             assert_memory_equal(ref, got, sizeof ref);
         }
+        if (k == 1)
+            memcpy(lf, ref, sizeof lf);
     }
+    assert_true(memcmp(lf, ref, sizeof lf) != 0); /* the switch acts on the bar */
 }
 
 /* det F guard: a TLSPH block whose positions are mapped by @p map (then

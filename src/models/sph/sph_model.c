@@ -17,7 +17,8 @@
  *     viscosity_length: L                     [m] length in the AV's mu_ij instead of
  *                                             h_ij (default 0: h_ij, Eq. 2.21)
  *     viscosity_switch: none | balsara        AV times Balsara's shear switch (plane:
- *                                             axisymmetric only; default none)
+ *                                             axisymmetric or formulation: total;
+ *                                             default none)
  *     artificial_stress: zeta                 Monaghan-Gray (default 0: off)
  *     artificial_stress_n: n                  (default 4)
  *     artificial_stress_smoothing: false      R_i averaged over the kernel
@@ -244,11 +245,6 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             return rc;
         o.iface = (enum sph_iface)ifc;
         o.av_balsara = avs == 1;
-        /* the switch needs the velocity gradient before the force pass:
-         * only sph_axisym.c has it there for every particle */
-        if (o.av_balsara && pl != 2)
-            return deck_error_key(err, params, "viscosity_switch",
-                                  "viscosity_switch: balsara needs plane: axisymmetric");
         if (!(o.det_f_range[0] >= 0.0 && o.det_f_range[0] < 1.0 && o.det_f_range[1] > 1.0))
             return deck_error_key(err, params, "det_f_range",
                                   "det_f_range [%g, %g]; expected [lo, hi] with 0 <= lo < 1 < hi",
@@ -272,6 +268,12 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                   "kernel sums: this run mixes them, so it needs "
                                   "interface: bodies (or materials), a penalty between them");
         form = any_total ? 1 : 0;
+        /* the switch needs the velocity gradient before the force pass:
+         * sph_axisym.c and TLSPH's stage 1 (sph_tlsph.c) have it there */
+        if (o.av_balsara && pl != 2 && !(any_total && all_total))
+            return deck_error_key(err, params, "viscosity_switch",
+                                  "viscosity_switch: balsara needs plane: axisymmetric or "
+                                  "formulation: total for every body");
         o.split_forms = any_total && ifc != SPH_IFACE_NONE;
         /* the ghosts of symmetry planes have their own neighbour list,
          * which the interface split does not see */

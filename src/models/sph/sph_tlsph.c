@@ -83,8 +83,9 @@ enum { TL_Q = 0, TL_FD = 9, TL_X = 18, TL_V = 21, TL_C = 24, TL_RHO, TL_H, TL_M,
 /* What only particle i itself reads and writes, one block instead of 13
  * arrays (13 streams in the sweep): B0^-1; the stage-2 accumulators (force
  * and sum f_ij . v_ij) into which the lower rows scatter; the stress power
- * P : dF/dt. */
-enum { TL_BI = 0, TL_ACC = 9, TL_FV = 12, TL_PW = 13, TL_SELF = 16 };
+ * P : dF/dt; Balsara's factor f (model.viscosity_switch, read by the rows
+ * of i's partners, written in i's stage 1 like Q). */
+enum { TL_BI = 0, TL_ACC = 9, TL_FV = 12, TL_PW = 13, TL_SW = 14, TL_SELF = 16 };
 
 struct sph_tl {
     struct neighbor_list *nl; /**< reference-configuration list (fixed) */
@@ -376,6 +377,16 @@ static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const 
             pw += PK[a * 3 + b] * Fdot[a * 3 + b];
     double *si = t->self + i * TL_SELF;
     si[TL_PW] = pw;
+    if (m->opt.av_balsara) {
+        /* Balsara's switch (seed 004 Tab. 2.2 "BAL", as sph_axisym.c):
+         * f = |div v| / (|div v| + |curl v| + 1e-4 c/h) from this L; the
+         * AV of pair ij is scaled by (f_i + f_j)/2 in stage 2 */
+        const double dv = fabs(m->L[0][i] + m->L[4][i] + m->L[8][i]);
+        const double cx = m->L[7][i] - m->L[5][i], cy = m->L[2][i] - m->L[6][i];
+        const double cz = m->L[3][i] - m->L[1][i];
+        const double den = dv + sqrt(cx * cx + cy * cy + cz * cz) + 1e-4 * m->c[i] / m->h[i];
+        si[TL_SW] = den > 0.0 ? dv / den : 1.0;
+    }
     for (int c = 0; c < 4; c++) /* stage-2 accumulators (TL_ACC, TL_FV): the */
         si[TL_ACC + c] = 0.0;   /* lower rows scatter into them after this */
     return bad;
@@ -440,12 +451,13 @@ static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, 
  * the thread shares: bitwise thread independent.  Dimension a literal. */
 static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
                                  const double qa, const double qb, const double lav,
-                                 double acc[4])
+                                 const bool bal, double acc[4])
 {
     const int32_t *nb = t->nl->idx;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
     const double Vi = qi[TL_VOL], mi = qi[TL_M], hi_ = qi[TL_H], ci = qi[TL_C];
     const double rhoi = qi[TL_RHO];
+    const double fsi = bal ? t->self[i * TL_SELF + TL_SW] : 1.0;
     const size_t end = t->nl->offset[i + 1];
     for (size_t k = t->up[i]; k < end; k++) {
         const struct tl_pair *pr = &t->pair[k];
@@ -472,7 +484,9 @@ static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t h
         pb &= (uint64_t)0 - (uint64_t)(vx < 0.0);
         double Pi;
         memcpy(&Pi, &pb, sizeof Pi);
-        const double cav = -mi * qj[TL_M] * Pi * F;
+        /* Balsara: Pi (f_i + f_j)/2, symmetric in i, j (momentum kept); off: x 1 exactly */
+        const double sw = bal ? 0.5 * (fsi + t->self[j * TL_SELF + TL_SW]) : 1.0;
+        const double cav = -mi * qj[TL_M] * Pi * F * sw;
         double fp[3] = {0, 0, 0}, fv = 0.0;
         for (int a = 0; a < dim; a++) {
             double tq = 0.0, fx = 0.0;
@@ -507,7 +521,12 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
     struct sph_tl *t = m->tl;
     const double *si = t->self + i * TL_SELF, *qi = t->pk + i * TL_STRIDE;
     double acc[4] = {si[TL_ACC], si[TL_ACC + 1], si[TL_ACC + 2], si[TL_FV]};
-    tl_row_forces(t, i, lo, hi, dim, m->opt.av_a, m->opt.av_b, m->opt.av_length, acc);
+    /* the switch a literal at each call: the inlined row of the default
+     * (off) path carries no per-pair cost of it */
+    if (m->opt.av_balsara)
+        tl_row_forces(t, i, lo, hi, dim, m->opt.av_a, m->opt.av_b, m->opt.av_length, true, acc);
+    else
+        tl_row_forces(t, i, lo, hi, dim, m->opt.av_a, m->opt.av_b, m->opt.av_length, false, acc);
     if (sph_skip(m, i, SPH_FORM_TOTAL))
         return; /* an updated-form particle: empty row, no accumulator */
     const double Vi = qi[TL_VOL], mi = qi[TL_M];
@@ -594,7 +613,10 @@ static void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, 
     const double qa = m->opt.av_a, qb = m->opt.av_b, lav = m->opt.av_length;
     for (size_t i = lo > b ? lo - b : 0; i < lo; i++) {
         double ghost[4] = {0, 0, 0, 0}; /* row i's own sums: its owner's */
-        tl_row_forces(t, i, lo, hi, dim, qa, qb, lav, ghost);
+        if (m->opt.av_balsara)
+            tl_row_forces(t, i, lo, hi, dim, qa, qb, lav, true, ghost);
+        else
+            tl_row_forces(t, i, lo, hi, dim, qa, qb, lav, false, ghost);
     }
     size_t r = lo; /* next row of stage 2 */
     for (size_t k = e1; k < e2; k++) {
