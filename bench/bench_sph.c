@@ -279,6 +279,18 @@ static int bench_sph_taylor_rest_bal(int threads, double scale, struct bench_res
                            scale, threads, out, err);
 }
 
+/* throughput of the configuration the race's accuracy half reports
+ * (sph_taylor_cu_rest_bal: leapfrog, hourglass 1, Balsara's switch),
+ * 200 steps: what the accurate bar costs per particle-step */
+static int bench_sph_taylor_tl_bal(int threads, double scale, struct bench_result *out,
+                                   struct spall_error *err)
+{
+    return sph_taylor_case("sph_taylor_cu_tl_bal", "total", 1.005, 1.0, 1.0,
+                           " time_integration: leapfrog, hourglass: 1.0, viscosity_switch: "
+                           "balsara,",
+                           threads, scale, out, err);
+}
+
 /* the same count with the updated form (its list carries the 20 % skin) */
 static int bench_sph_taylor_ul32(int threads, double scale, struct bench_result *out,
                                  struct spall_error *err)
@@ -341,6 +353,8 @@ const struct bench_case bench_sph_cases[] = {
      "when the distortion passes 1.2", bench_sph_taylor_rest_rr},
     {"sph_taylor_cu_rest_bal", "the sph_taylor_cu_rest_lf bar with Balsara's switch on the "
      "artificial viscosity", bench_sph_taylor_rest_bal},
+    {"sph_taylor_cu_tl_bal", "sph_taylor_cu_tl in the accurate bar's settings (leapfrog, "
+     "hourglass 1, Balsara's switch), 200 steps", bench_sph_taylor_tl_bal},
     {"sph_taylor_cu_rest_ul32", "the sph_taylor_cu_ul32 bar run to rest (80 us)",
      bench_sph_taylor_rest_ul},
     {"sph_taylor_cu_rest_ul", "the sph_taylor_cu bar (updated form, h = 1.5 dx) run to rest "
