@@ -65,6 +65,41 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The hot sweep in two versions, picked once at load time by the CPU
+ * (GCC function multi-versioning, an ifunc): x86-64-v3 (AVX2, FMA) and the
+ * build's baseline.  Every thread runs the same version, so the results
+ * stay bitwise thread independent; FMA contraction changes the rounding
+ * against the baseline version (docs/performance.md, "TLSPH speed,
+ * 2026-12-02").  SPALL_NO_CLONES builds the baseline only. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
+    !defined(SPALL_NO_CLONES)
+#define TL_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#define TL_CLONED 1
+#else
+#define TL_CLONES
+#endif
+#if defined(__GNUC__)
+#define TL_INLINE static inline __attribute__((always_inline))
+#else
+#define TL_INLINE static inline
+#endif
+
+#ifdef TL_CLONED
+/* Four doubles as one value (GCC vector extension), used by the x86-64-v3
+ * version only (t->wide: the baseline version would run it as two SSE
+ * halves through memory, 1.8x slower); never passed by value (-Wpsabi);
+ * loaded from any 8-byte boundary. */
+#define TL_HAVE_V4 1
+typedef double tl_v4 __attribute__((vector_size(4 * sizeof(double))));
+static inline void tl_madd4(tl_v4 *acc, const double *p, const double *q, double x)
+{
+    tl_v4 a, b;
+    memcpy(&a, p, sizeof a);
+    memcpy(&b, q, sizeof b);
+    *acc += (a + b) * x; /* *acc += (p + q) x, lane by lane */
+}
+#endif
+
 /* Reference-configuration constants of a pair (rebuilt only on a re-reference).
  * X_i - X_j is gathered from the packed block instead (x0 shares its cache
  * line with v and V0): the pair stream was the stall of pass 1. */
@@ -93,6 +128,7 @@ struct sph_tl {
     struct tl_pair *pair; /**< per listed pair, same index as the neighbour list */
     size_t *up;           /**< per particle: first list index of row i with j > i */
     size_t band;          /**< max |j - i| over the list: the pipeline's lag */
+    bool wide;            /**< the CPU runs the x86-64-v3 version (TL_CLONES) */
 };
 
 void sph_tlsph_destroy(struct sph_tl **tl)
@@ -182,6 +218,10 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
     struct sph_tl *t = m->tl;
     t->nl = nl;
     t->band = 0;
+#ifdef TL_CLONED
+    __builtin_cpu_init(); /* what the ifunc resolver of TL_CLONES checks */
+    t->wide = __builtin_cpu_supports("x86-64-v3");
+#endif
     for (size_t i = 0; i < n; i++) {
         /* rows are sorted ascending (neighbor.c): the upper part j > i,
          * the pairs stage 2 evaluates, starts at up[i] */
@@ -260,30 +300,38 @@ static inline double tl_distortion_pow(const double F[9], double J, int dim)
 
 /* F and dF/dt of particle i from the partners' packed x, v (dimension a
  * literal at the call; F_zz = 1 in 2D). */
-static inline void tl_deformation(const struct model *m, size_t i, const int dim, double Fd[9],
+TL_INLINE void tl_deformation(const struct model *m, size_t i, const int dim, double Fd[9],
                                   double Fdot[9])
 {
     const struct sph_tl *t = m->tl;
     const size_t *off = t->nl->offset;
     const int32_t *nb = t->nl->idx;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
-    double Ad[9] = {0}, Av[9] = {0};
+    /* A[b][c] = sum_j d_c G_b with d = (x_j - x_i, v_j - v_i): the 18 sums
+     * as three rows of 2 dim, so that they stay in registers (as Ad[a][b],
+     * Av[a][b] the compiler kept one on the stack: a store-to-load chain
+     * through every pair).  Each sum's terms and order are unchanged. */
+    double A[3][6] = {{0}};
     for (size_t k = off[i]; k < off[i + 1]; k++) {
         const struct tl_pair *pr = &t->pair[k];
         const double *qj = pk + (size_t)nb[k] * TL_STRIDE;
         const double VF = qj[TL_VOL] * pr->F;
-        double G[3], dx[3], dv[3];
+        double G[3], dxv[6];
         for (int d = 0; d < dim; d++) {
             G[d] = VF * (qi[TL_X0 + d] - qj[TL_X0 + d]);
-            dx[d] = qj[TL_X + d] - qi[TL_X + d];
-            dv[d] = qj[TL_V + d] - qi[TL_V + d];
+            dxv[d] = qj[TL_X + d] - qi[TL_X + d];
+            dxv[dim + d] = qj[TL_V + d] - qi[TL_V + d];
         }
-        for (int a = 0; a < dim; a++)
-            for (int b = 0; b < dim; b++) {
-                Ad[a * 3 + b] += dx[a] * G[b];
-                Av[a * 3 + b] += dv[a] * G[b];
-            }
+        for (int b = 0; b < dim; b++)
+            for (int c = 0; c < 2 * dim; c++)
+                A[b][c] += dxv[c] * G[b];
     }
+    double Ad[9] = {0}, Av[9] = {0};
+    for (int a = 0; a < dim; a++)
+        for (int b = 0; b < dim; b++) {
+            Ad[a * 3 + b] = A[b][a];
+            Av[a * 3 + b] = A[b][dim + a];
+        }
     double Bi[9];
     for (int c = 0; c < 9; c++) {
         Bi[c] = t->self[i * TL_SELF + TL_BI + c];
@@ -310,7 +358,7 @@ static inline void tl_deformation(const struct model *m, size_t i, const int dim
  * stay in registers: no per-particle arrays are streamed for them.
  * *Jout = det F, *kout = tl_distortion_pow (INFINITY when inverted) for
  * the det F guard.  Returns 1 when det F <= 0 (identity used meanwhile). */
-static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const int dim,
+TL_INLINE int tl_stage_deform(struct model *m, size_t i, double lfdt, const int dim,
                                   double *Jout, double *kout)
 {
     struct sph_tl *t = m->tl;
@@ -363,10 +411,10 @@ static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const 
             double acc = 0.0;
             for (int b = 0; b < dim; b++)
                 acc += PK[a * 3 + b] * Bi[c * 3 + b];
-            qi[TL_Q + a * 3 + c] = acc;
+            qi[TL_Q + c * 3 + a] = acc; /* by columns (tl_row_forces) */
         }
     for (int c = 0; c < 9; c++)
-        qi[TL_FD + c] = Fd[c];
+        qi[TL_FD + c] = Fd[c % 3 * 3 + c / 3]; /* by columns */
     qi[TL_C] = m->c[i];
     qi[TL_RHO] = m->rho[i];
     qi[TL_H] = m->h[i];
@@ -438,7 +486,7 @@ static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, 
  * acc[0..2], acc[3] (sum f . v_ij).  So each particle's sums run over its
  * lower partners, then its upper ones, each in increasing index, whatever
  * the thread shares: bitwise thread independent.  Dimension a literal. */
-static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
+TL_INLINE void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
                                  const double qa, const double qb, const double lav,
                                  double acc[4])
 {
@@ -447,6 +495,9 @@ static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t h
     const double Vi = qi[TL_VOL], mi = qi[TL_M], hi_ = qi[TL_H], ci = qi[TL_C];
     const double rhoi = qi[TL_RHO];
     const size_t end = t->nl->offset[i + 1];
+#ifdef TL_HAVE_V4
+    const bool wide = t->wide;
+#endif
     for (size_t k = t->up[i]; k < end; k++) {
         const struct tl_pair *pr = &t->pair[k];
         const size_t j = (size_t)nb[k];
@@ -473,19 +524,39 @@ static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t h
         double Pi;
         memcpy(&Pi, &pb, sizeof Pi);
         const double cav = -mi * qj[TL_M] * Pi * F;
+        /* (Q_i + Q_j) X and (Fd_i + Fd_j) X by columns (stored column by
+         * column): four lanes at once, lane 3 (the next column's first
+         * entry) unused.  Per entry the same sum, in the same order, as
+         * tq_a = sum_b (Q_i + Q_j)_ab X_b. */
+        double tq[3] = {0, 0, 0}, fx[3] = {0, 0, 0};
+#ifdef TL_HAVE_V4
+        if (wide) { /* the AVX2 version runs (t->wide) */
+            tl_v4 tq4 = {0, 0, 0, 0}, fx4 = {0, 0, 0, 0};
+            for (int b = 0; b < dim; b++) {
+                tl_madd4(&tq4, qi + TL_Q + 3 * b, qj + TL_Q + 3 * b, X[b]);
+                tl_madd4(&fx4, qi + TL_FD + 3 * b, qj + TL_FD + 3 * b, X[b]);
+            }
+            for (int a = 0; a < dim; a++) {
+                tq[a] = tq4[a];
+                fx[a] = fx4[a];
+            }
+        } else
+#endif
+        {
+            for (int a = 0; a < dim; a++)
+                for (int b = 0; b < dim; b++) {
+                    tq[a] += (qi[TL_Q + 3 * b + a] + qj[TL_Q + 3 * b + a]) * X[b];
+                    fx[a] += (qi[TL_FD + 3 * b + a] + qj[TL_FD + 3 * b + a]) * X[b];
+                }
+        }
         double fp[3] = {0, 0, 0}, fv = 0.0;
         for (int a = 0; a < dim; a++) {
-            double tq = 0.0, fx = 0.0;
-            for (int b = 0; b < dim; b++) {
-                tq += (qi[TL_Q + a * 3 + b] + qj[TL_Q + a * 3 + b]) * X[b];
-                fx += (qi[TL_FD + a * 3 + b] + qj[TL_FD + a * 3 + b]) * X[b];
-            }
             /* hourglass: mismatch of x_j - x_i against Fbar (X_j - X_i);
              * AV along the CURRENT pair line (reference kernel magnitude):
              * -Pi F x_ij does negative work for any rotation */
-            const double fo = cav * xij[a] + hg * (0.5 * fx - xij[a]);
+            const double fo = cav * xij[a] + hg * (0.5 * fx[a] - xij[a]);
             fv += fo * vij[a];
-            fp[a] = sv * tq + fo;
+            fp[a] = sv * tq[a] + fo;
         }
         for (int a = 0; a < dim; a++)
             acc[a] += fp[a];
@@ -499,15 +570,42 @@ static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t h
     }
 }
 
+/* Row and force stage out of line, one instance each per CPU version: the
+ * pair arithmetic must be the same machine code wherever a row runs (its
+ * owner's stage 2, the neighbour share's re-evaluation for the scatter,
+ * the split or pipelined order), since FMA contraction is decided per
+ * inlined copy (tests/test_sph_tlsph.c caught the copies disagreeing). */
+TL_CLONES static void tl_row3(struct sph_tl *t, size_t i, size_t lo, size_t hi,
+                              const double av[3], double acc[4])
+{
+    tl_row_forces(t, i, lo, hi, 3, av[0], av[1], av[2], acc);
+}
+
+TL_CLONES static void tl_row2(struct sph_tl *t, size_t i, size_t lo, size_t hi,
+                              const double av[3], double acc[4])
+{
+    tl_row_forces(t, i, lo, hi, 2, av[0], av[1], av[2], acc);
+}
+
+static inline void tl_row(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
+                          const double av[3], double acc[4])
+{
+    if (dim == 3)
+        tl_row3(t, i, lo, hi, av, acc);
+    else
+        tl_row2(t, i, lo, hi, av, acc);
+}
+
 /* Stage 2 of a row of mine: its sums from the lower rows (own accumulator),
  * its own row, then the force and the internal energy rate. */
-static inline void tl_stage_forces(struct model *m, struct particles *p, size_t i, size_t lo,
+TL_INLINE void tl_stage_forces(struct model *m, struct particles *p, size_t i, size_t lo,
                                    size_t hi, double lfdt, const int dim)
 {
     struct sph_tl *t = m->tl;
     const double *si = t->self + i * TL_SELF, *qi = t->pk + i * TL_STRIDE;
     double acc[4] = {si[TL_ACC], si[TL_ACC + 1], si[TL_ACC + 2], si[TL_FV]};
-    tl_row_forces(t, i, lo, hi, dim, m->opt.av_a, m->opt.av_b, m->opt.av_length, acc);
+    const double av[3] = {m->opt.av_a, m->opt.av_b, m->opt.av_length};
+    tl_row(t, i, lo, hi, dim, av, acc);
     if (sph_skip(m, i, SPH_FORM_TOTAL))
         return; /* an updated-form particle: empty row, no accumulator */
     const double Vi = qi[TL_VOL], mi = qi[TL_M];
@@ -522,6 +620,18 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
     m->de[i] = de / mi;
     if (lfdt > 0.0)
         m->e[i] += lfdt * m->de[i]; /* leapfrog: AV / hourglass heating */
+}
+
+TL_CLONES static void tl_forces3(struct model *m, struct particles *p, size_t i, size_t lo,
+                                 size_t hi, double lfdt)
+{
+    tl_stage_forces(m, p, i, lo, hi, lfdt, 3);
+}
+
+TL_CLONES static void tl_forces2(struct model *m, struct particles *p, size_t i, size_t lo,
+                                 size_t hi, double lfdt)
+{
+    tl_stage_forces(m, p, i, lo, hi, lfdt, 2);
 }
 
 /* Stage 0 for particle i: its current x, v into its packed block. */
@@ -543,7 +653,7 @@ struct tl_watch {
 
 /* Stage 1 of particle k with the guard's bookkeeping; particles of
  * updated-form bodies (formulation per body) are skipped. */
-static inline void tl_stage_deform_watch(struct model *m, size_t k, double lfdt, const int dim,
+TL_INLINE void tl_stage_deform_watch(struct model *m, size_t k, double lfdt, const int dim,
                                          const double lim[3], struct tl_watch *w)
 {
     if (sph_skip(m, k, SPH_FORM_TOTAL))
@@ -554,6 +664,31 @@ static inline void tl_stage_deform_watch(struct model *m, size_t k, double lfdt,
         w->first = k;
     w->jmin = J < w->jmin ? J : w->jmin;
     w->kmax = kap > w->kmax && !bad ? kap : w->kmax;
+}
+
+/* Stage 1 kept out of line (inlined into the sweep it spilled more: +9 %
+ * instructions, callgrind), one version per CPU level like the sweep and
+ * with the dimension a literal (a multi-versioned function is not
+ * specialised by constant propagation). */
+TL_CLONES static void tl_deform3(struct model *m, size_t k, double lfdt, const double lim[3],
+                                 struct tl_watch *w)
+{
+    tl_stage_deform_watch(m, k, lfdt, 3, lim, w);
+}
+
+TL_CLONES static void tl_deform2(struct model *m, size_t k, double lfdt, const double lim[3],
+                                 struct tl_watch *w)
+{
+    tl_stage_deform_watch(m, k, lfdt, 2, lim, w);
+}
+
+static inline void tl_deform(struct model *m, size_t k, double lfdt, const int dim,
+                             const double lim[3], struct tl_watch *w)
+{
+    if (dim == 3)
+        tl_deform3(m, k, lfdt, lim, w);
+    else
+        tl_deform2(m, k, lfdt, lim, w);
 }
 
 /* One thread's share [lo, hi) of the three stages, software-pipelined:
@@ -571,7 +706,7 @@ static inline void tl_stage_deform_watch(struct model *m, size_t k, double lfdt,
  * Every particle does the same arithmetic in the same order as with the
  * stages run one after the other (model.pair_loop: split, b = n): bitwise
  * the same result on any number of threads. */
-static void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, size_t hi,
+TL_INLINE void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, size_t hi,
                      double lfdt, bool pipelined, const int dim, const double lim[3],
                      struct tl_watch *w)
 {
@@ -587,25 +722,41 @@ static void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, 
     /* stage 1 before the second barrier for [lo, e1) and [e2, hi) */
     const size_t e1 = hi - lo > b ? lo + b : hi, e2 = hi - e1 > b ? hi - b : e1;
     for (size_t k = lo; k < e1; k++)
-        tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
+        tl_deform(m, k, lfdt, dim, lim, w);
     for (size_t k = e2; k < hi; k++)
-        tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
+        tl_deform(m, k, lfdt, dim, lim, w);
 #pragma omp barrier
-    const double qa = m->opt.av_a, qb = m->opt.av_b, lav = m->opt.av_length;
+    const double av[3] = {m->opt.av_a, m->opt.av_b, m->opt.av_length};
     for (size_t i = lo > b ? lo - b : 0; i < lo; i++) {
         double ghost[4] = {0, 0, 0, 0}; /* row i's own sums: its owner's */
-        tl_row_forces(t, i, lo, hi, dim, qa, qb, lav, ghost);
+        tl_row(t, i, lo, hi, dim, av, ghost);
     }
     size_t r = lo; /* next row of stage 2 */
     for (size_t k = e1; k < e2; k++) {
         if (k + b < pb)
             tl_pack(t, p, k + b, dim);
-        tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
+        tl_deform(m, k, lfdt, dim, lim, w);
         for (; r + b <= k; r++) /* partners r .. r + b <= k: stage 1 done */
-            tl_stage_forces(m, p, r, lo, hi, lfdt, dim);
+            (dim == 3 ? tl_forces3 : tl_forces2)(m, p, r, lo, hi, lfdt);
     }
     for (; r < hi; r++) /* partners past hi: their stage 1 ran before the barrier */
-        tl_stage_forces(m, p, r, lo, hi, lfdt, dim);
+        (dim == 3 ? tl_forces3 : tl_forces2)(m, p, r, lo, hi, lfdt);
+}
+
+/* tl_sweep with the dimension a literal (a multi-versioned function is not
+ * specialised by constant propagation, so the literal is given here) */
+TL_CLONES static void tl_sweep3(struct model *m, struct particles *p, size_t n, size_t lo,
+                                size_t hi, double lfdt, bool pipelined, const double lim[3],
+                                struct tl_watch *w)
+{
+    tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 3, lim, w);
+}
+
+TL_CLONES static void tl_sweep2(struct model *m, struct particles *p, size_t n, size_t lo,
+                                size_t hi, double lfdt, bool pipelined, const double lim[3],
+                                struct tl_watch *w)
+{
+    tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 2, lim, w);
 }
 
 int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
@@ -630,9 +781,9 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
         const size_t lo = n * id / nt, hi = n * (id + 1) / nt;
         struct tl_watch w = {SIZE_MAX, INFINITY, 1.0};
         if (dim == 3)
-            tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 3, lim, &w);
+            tl_sweep3(m, p, n, lo, hi, lfdt, pipelined, lim, &w);
         else
-            tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 2, lim, &w);
+            tl_sweep2(m, p, n, lo, hi, lfdt, pipelined, lim, &w);
         first = w.first;
         jmin = w.jmin;
         kmax = w.kmax;
@@ -651,5 +802,7 @@ size_t sph_tlsph_pairs(const struct model *m)
 
 void sph_tlsph_deformation(const struct model *m, size_t i, double F[9])
 {
-    memcpy(F, m->tl->pk + i * TL_STRIDE + TL_FD, 9 * sizeof(double));
+    const double *fd = m->tl->pk + i * TL_STRIDE + TL_FD; /* stored by columns */
+    for (int c = 0; c < 9; c++)
+        F[c] = fd[c % 3 * 3 + c / 3];
 }
