@@ -312,6 +312,32 @@ TL_INLINE void tl_deformation(const struct model *m, size_t i, const int dim, do
      * Av[a][b] the compiler kept one on the stack: a store-to-load chain
      * through every pair).  Each sum's terms and order are unchanged. */
     double A[3][6] = {{0}};
+#ifdef TL_HAVE_V4
+    if (dim == 3 && t->wide) { /* rows of A as lanes (dx, dv_0 | dv_1, dv_2, -, -) */
+        tl_v4 a0[3], a1[3], xi0, xi1;
+        for (int b = 0; b < 3; b++)
+            a0[b] = a1[b] = (tl_v4){0, 0, 0, 0};
+        memcpy(&xi0, qi + TL_X, sizeof xi0);
+        memcpy(&xi1, qi + TL_V + 1, sizeof xi1);
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            const double *qj = pk + (size_t)nb[k] * TL_STRIDE;
+            const double VF = qj[TL_VOL] * t->pair[k].F;
+            tl_v4 d0, d1;
+            memcpy(&d0, qj + TL_X, sizeof d0);
+            memcpy(&d1, qj + TL_V + 1, sizeof d1);
+            d0 -= xi0;
+            d1 -= xi1;
+            for (int b = 0; b < 3; b++) {
+                const double G = VF * (qi[TL_X0 + b] - qj[TL_X0 + b]);
+                a0[b] += d0 * G;
+                a1[b] += d1 * G;
+            }
+        }
+        for (int b = 0; b < 3; b++)
+            for (int c = 0; c < 6; c++)
+                A[b][c] = c < 4 ? a0[b][c] : a1[b][c - 4];
+    } else
+#endif
     for (size_t k = off[i]; k < off[i + 1]; k++) {
         const struct tl_pair *pr = &t->pair[k];
         const double *qj = pk + (size_t)nb[k] * TL_STRIDE;
