@@ -50,6 +50,16 @@
  * per-particle data live in two blocks (pk, self) instead of separate
  * arrays.  docs/performance.md has the measured effect of each step
  * (the half list: "Side by side with LAMMPS MACHDYN").
+ *
+ * CPU versions (docs/performance.md, "TLSPH speed, 2026-12-02"): the
+ * stages are built twice (TL_CLONES, sph_tlsph_data.h), for x86-64-v3
+ * (AVX2, FMA; this file is compiled with -ffp-contract=fast) and for the
+ * build's baseline, picked once per run by the CPU.  The v3 version sums
+ * the stage-1 gather and the stage-2 3x3 products four lanes at once (Q
+ * and Fd are stored by columns).  Each stage is one out-of-line function
+ * per version, so a pair's arithmetic is the same machine code wherever it
+ * runs: bitwise thread independent and split = pipelined, as before; the
+ * baseline version is bitwise the code before the versions.
  */
 #include "models/sph/sph_internal.h"
 
@@ -65,223 +75,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The hot sweep in two versions, picked once at load time by the CPU
- * (GCC function multi-versioning, an ifunc): x86-64-v3 (AVX2, FMA) and the
- * build's baseline.  Every thread runs the same version, so the results
- * stay bitwise thread independent; FMA contraction changes the rounding
- * against the baseline version (docs/performance.md, "TLSPH speed,
- * 2026-12-02").  SPALL_NO_CLONES builds the baseline only. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
-    !defined(SPALL_NO_CLONES)
-#define TL_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#define TL_CLONED 1
-#else
-#define TL_CLONES
-#endif
-#if defined(__GNUC__)
-#define TL_INLINE static inline __attribute__((always_inline))
-#else
-#define TL_INLINE static inline
-#endif
-
-#ifdef TL_CLONED
-/* Four doubles as one value (GCC vector extension), used by the x86-64-v3
- * version only (t->wide: the baseline version would run it as two SSE
- * halves through memory, 1.8x slower); never passed by value (-Wpsabi);
- * loaded from any 8-byte boundary. */
-#define TL_HAVE_V4 1
-typedef double tl_v4 __attribute__((vector_size(4 * sizeof(double))));
-static inline void tl_madd4(tl_v4 *acc, const double *p, const double *q, double x)
-{
-    tl_v4 a, b;
-    memcpy(&a, p, sizeof a);
-    memcpy(&b, q, sizeof b);
-    *acc += (a + b) * x; /* *acc += (p + q) x, lane by lane */
-}
-#endif
-
-/* Reference-configuration constants of a pair (rebuilt only on a re-reference).
- * X_i - X_j is gathered from the packed block instead (x0 shares its cache
- * line with v and V0): the pair stream was the stall of pass 1. */
-struct tl_pair {
-    double F;    /**< (dW/dr) / r of the reference kernel */
-    double hg;   /**< kappa (E_i + E_j)/2 V0_i V0_j W / |X_ij|^2 */
-};
-
-/* What a pair loop gathers from partner j, packed in one block per
- * particle (4 cache lines) instead of 26 separate arrays: the SoA layout
- * spilled the array pointers and touched a line per array and partner.
- * Refreshed each step from the SoA state (O(N)). */
-enum { TL_Q = 0, TL_FD = 9, TL_X = 18, TL_V = 21, TL_C = 24, TL_RHO, TL_H, TL_M, TL_VOL,
-       TL_X0 = 29, TL_STRIDE = 32 };
-
-/* What only particle i itself reads and writes, one block instead of 13
- * arrays (13 streams in the sweep): B0^-1; the stage-2 accumulators (force
- * and sum f_ij . v_ij) into which the lower rows scatter; the stress power
- * P : dF/dt. */
-enum { TL_BI = 0, TL_ACC = 9, TL_FV = 12, TL_PW = 13, TL_SELF = 16 };
-
-struct sph_tl {
-    struct neighbor_list *nl; /**< reference-configuration list (fixed) */
-    double *self;         /**< per particle, TL_SELF doubles: B0^-1, accumulators, P : dF/dt */
-    double *pk;           /**< per particle, TL_STRIDE doubles (TL_Q ...) */
-    struct tl_pair *pair; /**< per listed pair, same index as the neighbour list */
-    size_t *up;           /**< per particle: first list index of row i with j > i */
-    size_t band;          /**< max |j - i| over the list: the pipeline's lag */
-    bool wide;            /**< the CPU runs the x86-64-v3 version (TL_CLONES) */
-};
-
-void sph_tlsph_destroy(struct sph_tl **tl)
-{
-    if (!tl || !*tl)
-        return;
-    struct sph_tl *t = *tl;
-    neighbor_list_destroy(&t->nl);
-    free(t->pk);
-    free(t->pair);
-    free(t->self);
-    free(t->up);
-    free(t);
-    *tl = NULL;
-}
-
-static int sph_tl_alloc(struct sph_tl **out, size_t n, size_t np, struct spall_error *err)
-{
-    struct sph_tl *t = calloc(1, sizeof *t);
-    int bad = !t;
-    if (t) {
-        const size_t nn = n ? n : 1, pp = np ? np : 1;
-        bad |= !(t->pk = calloc(nn * TL_STRIDE, sizeof(double)));
-        bad |= !(t->self = calloc(nn * TL_SELF, sizeof(double)));
-        bad |= !(t->pair = calloc(pp, sizeof *t->pair));
-        bad |= !(t->up = calloc(nn, sizeof *t->up));
-    }
-    *out = t;
-    if (bad) {
-        sph_tlsph_destroy(out);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH pair constants)");
-    }
-    return SPALL_OK;
-}
-
-/* The reference configuration is an input: the deck's positions (p->x0)
- * and rest volumes at the start, the current ones on a re-reference
- * (sph_tlsph_reref.c).  p->x0 itself is never changed (output, groups). */
-int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], const double *rho,
-                        struct spall_error *err)
-{
-    struct particles *p = s->p;
-    const size_t n = p->n_owned;
-    const int dim = m->dim;
-    double hmax = 0.0;
-    for (size_t i = 0; i < n; i++)
-        hmax = fmax(hmax, m->h[i]);
-    sph_tlsph_destroy(&m->tl);
-    const double radius = m->qmax * hmax;
-    if (!m->nl) /* a mixed run's updated list keeps its own radius (with skin) */
-        m->nl_radius = radius;
-    const double t0 = omp_get_wtime();
-    struct neighbor_list *nl = NULL;
-    int rc = neighbor_list_build(&nl, dim, n, Xr, radius, err);
-    if (rc)
-        return rc;
-    if (m->form || rho) {
-        /* bodies split by formulation (sph_forms.c): only the pairs inside
-         * one TLSPH body; the others' rows stay empty.  A re-reference (rho
-         * given; h may have grown per particle, sph_tlsph_reref.c) also
-         * drops the pairs beyond their support qmax (h_i + h_j)/2 (W = 0) */
-        size_t w = 0, start = 0;
-        for (size_t i = 0; i < n; i++) {
-            const size_t end = nl->offset[i + 1];
-            for (size_t k = start; k < end && (!m->form || m->form[i] == SPH_FORM_TOTAL); k++) {
-                const size_t j = (size_t)nl->idx[k];
-                if (m->form && (m->form[j] != SPH_FORM_TOTAL || p->body[j] != p->body[i]))
-                    continue;
-                double r2 = 0.0, sup = 0.5 * m->qmax * (m->h[i] + m->h[j]);
-                for (int d = 0; d < dim && rho; d++)
-                    r2 += (Xr[d][i] - Xr[d][j]) * (Xr[d][i] - Xr[d][j]);
-                if (!rho || r2 < sup * sup)
-                    nl->idx[w++] = nl->idx[k];
-            }
-            start = end;
-            nl->offset[i + 1] = w;
-        }
-    }
-    m->t_neighbor += omp_get_wtime() - t0;
-    m->n_builds++;
-    const size_t *off = nl->offset;
-    const int32_t *nb = nl->idx;
-    if ((rc = sph_tl_alloc(&m->tl, n, off[n], err))) {
-        neighbor_list_destroy(&nl);
-        return rc;
-    }
-    struct sph_tl *t = m->tl;
-    t->nl = nl;
-    t->band = 0;
-#ifdef TL_CLONED
-    __builtin_cpu_init(); /* what the ifunc resolver of TL_CLONES checks */
-    t->wide = __builtin_cpu_supports("x86-64-v3");
-#endif
-    for (size_t i = 0; i < n; i++) {
-        /* rows are sorted ascending (neighbor.c): the upper part j > i,
-         * the pairs stage 2 evaluates, starts at up[i] */
-        size_t u = off[i];
-        while (u < off[i + 1] && (size_t)nb[u] < i)
-            u++;
-        t->up[i] = u;
-        for (size_t k = off[i]; k < off[i + 1]; k++) {
-            const size_t j = (size_t)nb[k], d = j > i ? j - i : i - j;
-            t->band = d > t->band ? d : t->band;
-        }
-        double *q = t->pk + i * TL_STRIDE;
-        for (int c = 0; c < 9; c++)
-            q[TL_FD + c] = (c % 4 == 0) ? 1.0 : 0.0;
-        q[TL_VOL] = m->m2[i] / (rho ? rho[i] : m->mat[p->material[i]].rho0);
-        q[TL_M] = m->m2[i];
-        for (int d = 0; d < 3; d++)
-            q[TL_X0 + d] = d < dim ? Xr[d][i] : 0.0;
-    }
-    const double kappa = m->opt.hourglass;
-    size_t fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
-    for (size_t i = 0; i < n; i++) {
-        if (sph_skip(m, i, SPH_FORM_TOTAL))
-            continue;
-        const double Ei = m->mat[p->material[i]].E;
-        double B[9] = {0};
-        for (size_t k = off[i]; k < off[i + 1]; k++) {
-            size_t j = (size_t)nb[k];
-            double hb = 0.5 * (m->h[i] + m->h[j]), X[3] = {0, 0, 0}, r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                X[d] = Xr[d][i] - Xr[d][j];
-                r2 += X[d] * X[d];
-            }
-            double W, F;
-            sph_kernel_eval(m->opt.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
-            const double Vi = t->pk[i * TL_STRIDE + TL_VOL], V = t->pk[j * TL_STRIDE + TL_VOL];
-            struct tl_pair *pr = &t->pair[k];
-            pr->F = F;
-            pr->hg = kappa * 0.5 * (Ei + m->mat[p->material[j]].E) * Vi * V * W / r2;
-            for (int a = 0; a < dim; a++)
-                for (int b = 0; b < dim; b++)
-                    B[a * 3 + b] += -X[a] * V * F * X[b];
-        }
-        double Bi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, inv[9];
-        if (fabs(sph_inverse(dim, B, inv)) > 1e-3)
-            memcpy(Bi, inv, sizeof Bi);
-        else
-            fallbacks++;
-        for (int c = 0; c < 9; c++)
-            m->Bi[c][i] = t->self[i * TL_SELF + TL_BI + c] = Bi[c];
-    }
-    m->cspm_fallbacks += fallbacks;
-    return SPALL_OK;
-}
-
-int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
-{
-    return sph_tlsph_reference(m, s, s->p->x0, NULL, err);
-}
+#include "models/sph/sph_tlsph_data.h"
 
 /* Distortion of F: kappa = (|F|^2 / dim) / J^(2/dim) >= 1, = 1 exactly
  * for a rotation times an isotropic scaling (no shape change),
@@ -819,16 +613,4 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     if (first != SIZE_MAX)
         return tl_guard_error(m, s, first, dim, err);
     return SPALL_OK;
-}
-
-size_t sph_tlsph_pairs(const struct model *m)
-{
-    return m->tl && m->tl->nl ? m->tl->nl->offset[m->tl->nl->n] : 0;
-}
-
-void sph_tlsph_deformation(const struct model *m, size_t i, double F[9])
-{
-    const double *fd = m->tl->pk + i * TL_STRIDE + TL_FD; /* stored by columns */
-    for (int c = 0; c < 9; c++)
-        F[c] = fd[c % 3 * 3 + c / 3];
 }
