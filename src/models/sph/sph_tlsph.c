@@ -50,6 +50,16 @@
  * per-particle data live in two blocks (pk, self) instead of separate
  * arrays.  docs/performance.md has the measured effect of each step
  * (the half list: "Side by side with LAMMPS MACHDYN").
+ *
+ * CPU versions (docs/performance.md, "TLSPH speed, 2026-12-02"): the
+ * stages are built twice (TL_CLONES, sph_tlsph_data.h), for x86-64-v3
+ * (AVX2, FMA; this file is compiled with -ffp-contract=fast) and for the
+ * build's baseline, picked once per run by the CPU.  The v3 version sums
+ * the stage-1 gather and the stage-2 3x3 products four lanes at once (Q
+ * and Fd are stored by columns).  Each stage is one out-of-line function
+ * per version, so a pair's arithmetic is the same machine code wherever it
+ * runs: bitwise thread independent and split = pipelined, as before; the
+ * baseline version is bitwise the code before the versions.
  */
 #include "models/sph/sph_internal.h"
 
@@ -65,184 +75,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Reference-configuration constants of a pair (rebuilt only on a re-reference).
- * X_i - X_j is gathered from the packed block instead (x0 shares its cache
- * line with v and V0): the pair stream was the stall of pass 1. */
-struct tl_pair {
-    double F;    /**< (dW/dr) / r of the reference kernel */
-    double hg;   /**< kappa (E_i + E_j)/2 V0_i V0_j W / |X_ij|^2 */
-};
-
-/* What a pair loop gathers from partner j, packed in one block per
- * particle (4 cache lines) instead of 26 separate arrays: the SoA layout
- * spilled the array pointers and touched a line per array and partner.
- * Refreshed each step from the SoA state (O(N)). */
-enum { TL_Q = 0, TL_FD = 9, TL_X = 18, TL_V = 21, TL_C = 24, TL_RHO, TL_H, TL_M, TL_VOL,
-       TL_X0 = 29, TL_STRIDE = 32 };
-
-/* What only particle i itself reads and writes, one block instead of 13
- * arrays (13 streams in the sweep): B0^-1; the stage-2 accumulators (force
- * and sum f_ij . v_ij) into which the lower rows scatter; the stress power
- * P : dF/dt; Balsara's factor f (model.viscosity_switch, read by the rows
- * of i's partners, written in i's stage 1 like Q). */
-enum { TL_BI = 0, TL_ACC = 9, TL_FV = 12, TL_PW = 13, TL_SW = 14, TL_SELF = 16 };
-
-struct sph_tl {
-    struct neighbor_list *nl; /**< reference-configuration list (fixed) */
-    double *self;         /**< per particle, TL_SELF doubles: B0^-1, accumulators, P : dF/dt */
-    double *pk;           /**< per particle, TL_STRIDE doubles (TL_Q ...) */
-    struct tl_pair *pair; /**< per listed pair, same index as the neighbour list */
-    size_t *up;           /**< per particle: first list index of row i with j > i */
-    size_t band;          /**< max |j - i| over the list: the pipeline's lag */
-};
-
-void sph_tlsph_destroy(struct sph_tl **tl)
-{
-    if (!tl || !*tl)
-        return;
-    struct sph_tl *t = *tl;
-    neighbor_list_destroy(&t->nl);
-    free(t->pk);
-    free(t->pair);
-    free(t->self);
-    free(t->up);
-    free(t);
-    *tl = NULL;
-}
-
-static int sph_tl_alloc(struct sph_tl **out, size_t n, size_t np, struct spall_error *err)
-{
-    struct sph_tl *t = calloc(1, sizeof *t);
-    int bad = !t;
-    if (t) {
-        const size_t nn = n ? n : 1, pp = np ? np : 1;
-        bad |= !(t->pk = calloc(nn * TL_STRIDE, sizeof(double)));
-        bad |= !(t->self = calloc(nn * TL_SELF, sizeof(double)));
-        bad |= !(t->pair = calloc(pp, sizeof *t->pair));
-        bad |= !(t->up = calloc(nn, sizeof *t->up));
-    }
-    *out = t;
-    if (bad) {
-        sph_tlsph_destroy(out);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH pair constants)");
-    }
-    return SPALL_OK;
-}
-
-/* The reference configuration is an input: the deck's positions (p->x0)
- * and rest volumes at the start, the current ones on a re-reference
- * (sph_tlsph_reref.c).  p->x0 itself is never changed (output, groups). */
-int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], const double *rho,
-                        struct spall_error *err)
-{
-    struct particles *p = s->p;
-    const size_t n = p->n_owned;
-    const int dim = m->dim;
-    double hmax = 0.0;
-    for (size_t i = 0; i < n; i++)
-        hmax = fmax(hmax, m->h[i]);
-    sph_tlsph_destroy(&m->tl);
-    const double radius = m->qmax * hmax;
-    if (!m->nl) /* a mixed run's updated list keeps its own radius (with skin) */
-        m->nl_radius = radius;
-    const double t0 = omp_get_wtime();
-    struct neighbor_list *nl = NULL;
-    int rc = neighbor_list_build(&nl, dim, n, Xr, radius, err);
-    if (rc)
-        return rc;
-    if (m->form || rho) {
-        /* bodies split by formulation (sph_forms.c): only the pairs inside
-         * one TLSPH body; the others' rows stay empty.  A re-reference (rho
-         * given; h may have grown per particle, sph_tlsph_reref.c) also
-         * drops the pairs beyond their support qmax (h_i + h_j)/2 (W = 0) */
-        size_t w = 0, start = 0;
-        for (size_t i = 0; i < n; i++) {
-            const size_t end = nl->offset[i + 1];
-            for (size_t k = start; k < end && (!m->form || m->form[i] == SPH_FORM_TOTAL); k++) {
-                const size_t j = (size_t)nl->idx[k];
-                if (m->form && (m->form[j] != SPH_FORM_TOTAL || p->body[j] != p->body[i]))
-                    continue;
-                double r2 = 0.0, sup = 0.5 * m->qmax * (m->h[i] + m->h[j]);
-                for (int d = 0; d < dim && rho; d++)
-                    r2 += (Xr[d][i] - Xr[d][j]) * (Xr[d][i] - Xr[d][j]);
-                if (!rho || r2 < sup * sup)
-                    nl->idx[w++] = nl->idx[k];
-            }
-            start = end;
-            nl->offset[i + 1] = w;
-        }
-    }
-    m->t_neighbor += omp_get_wtime() - t0;
-    m->n_builds++;
-    const size_t *off = nl->offset;
-    const int32_t *nb = nl->idx;
-    if ((rc = sph_tl_alloc(&m->tl, n, off[n], err))) {
-        neighbor_list_destroy(&nl);
-        return rc;
-    }
-    struct sph_tl *t = m->tl;
-    t->nl = nl;
-    t->band = 0;
-    for (size_t i = 0; i < n; i++) {
-        /* rows are sorted ascending (neighbor.c): the upper part j > i,
-         * the pairs stage 2 evaluates, starts at up[i] */
-        size_t u = off[i];
-        while (u < off[i + 1] && (size_t)nb[u] < i)
-            u++;
-        t->up[i] = u;
-        for (size_t k = off[i]; k < off[i + 1]; k++) {
-            const size_t j = (size_t)nb[k], d = j > i ? j - i : i - j;
-            t->band = d > t->band ? d : t->band;
-        }
-        double *q = t->pk + i * TL_STRIDE;
-        for (int c = 0; c < 9; c++)
-            q[TL_FD + c] = (c % 4 == 0) ? 1.0 : 0.0;
-        q[TL_VOL] = m->m2[i] / (rho ? rho[i] : m->mat[p->material[i]].rho0);
-        q[TL_M] = m->m2[i];
-        for (int d = 0; d < 3; d++)
-            q[TL_X0 + d] = d < dim ? Xr[d][i] : 0.0;
-    }
-    const double kappa = m->opt.hourglass;
-    size_t fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
-    for (size_t i = 0; i < n; i++) {
-        if (sph_skip(m, i, SPH_FORM_TOTAL))
-            continue;
-        const double Ei = m->mat[p->material[i]].E;
-        double B[9] = {0};
-        for (size_t k = off[i]; k < off[i + 1]; k++) {
-            size_t j = (size_t)nb[k];
-            double hb = 0.5 * (m->h[i] + m->h[j]), X[3] = {0, 0, 0}, r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                X[d] = Xr[d][i] - Xr[d][j];
-                r2 += X[d] * X[d];
-            }
-            double W, F;
-            sph_kernel_eval(m->opt.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
-            const double Vi = t->pk[i * TL_STRIDE + TL_VOL], V = t->pk[j * TL_STRIDE + TL_VOL];
-            struct tl_pair *pr = &t->pair[k];
-            pr->F = F;
-            pr->hg = kappa * 0.5 * (Ei + m->mat[p->material[j]].E) * Vi * V * W / r2;
-            for (int a = 0; a < dim; a++)
-                for (int b = 0; b < dim; b++)
-                    B[a * 3 + b] += -X[a] * V * F * X[b];
-        }
-        double Bi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, inv[9];
-        if (fabs(sph_inverse(dim, B, inv)) > 1e-3)
-            memcpy(Bi, inv, sizeof Bi);
-        else
-            fallbacks++;
-        for (int c = 0; c < 9; c++)
-            m->Bi[c][i] = t->self[i * TL_SELF + TL_BI + c] = Bi[c];
-    }
-    m->cspm_fallbacks += fallbacks;
-    return SPALL_OK;
-}
-
-int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
-{
-    return sph_tlsph_reference(m, s, s->p->x0, NULL, err);
-}
+#include "models/sph/sph_tlsph_data.h"
 
 /* Distortion of F: kappa = (|F|^2 / dim) / J^(2/dim) >= 1, = 1 exactly
  * for a rotation times an isotropic scaling (no shape change),
@@ -261,30 +94,64 @@ static inline double tl_distortion_pow(const double F[9], double J, int dim)
 
 /* F and dF/dt of particle i from the partners' packed x, v (dimension a
  * literal at the call; F_zz = 1 in 2D). */
-static inline void tl_deformation(const struct model *m, size_t i, const int dim, double Fd[9],
+TL_INLINE void tl_deformation(const struct model *m, size_t i, const int dim, double Fd[9],
                                   double Fdot[9])
 {
     const struct sph_tl *t = m->tl;
     const size_t *off = t->nl->offset;
     const int32_t *nb = t->nl->idx;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
-    double Ad[9] = {0}, Av[9] = {0};
+    /* A[b][c] = sum_j d_c G_b with d = (x_j - x_i, v_j - v_i): the 18 sums
+     * as three rows of 2 dim, so that they stay in registers (as Ad[a][b],
+     * Av[a][b] the compiler kept one on the stack: a store-to-load chain
+     * through every pair).  Each sum's terms and order are unchanged. */
+    double A[3][6] = {{0}};
+#ifdef TL_HAVE_V4
+    if (dim == 3 && t->wide) { /* rows of A as lanes (dx, dv_0 | dv_1, dv_2, -, -) */
+        tl_v4 a0[3], a1[3], xi0, xi1;
+        for (int b = 0; b < 3; b++)
+            a0[b] = a1[b] = (tl_v4){0, 0, 0, 0};
+        memcpy(&xi0, qi + TL_X, sizeof xi0);
+        memcpy(&xi1, qi + TL_V + 1, sizeof xi1);
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            const double *qj = pk + (size_t)nb[k] * TL_STRIDE;
+            const double VF = qj[TL_VOL] * t->pair[k].F;
+            tl_v4 d0, d1;
+            memcpy(&d0, qj + TL_X, sizeof d0);
+            memcpy(&d1, qj + TL_V + 1, sizeof d1);
+            d0 -= xi0;
+            d1 -= xi1;
+            for (int b = 0; b < 3; b++) {
+                const double G = VF * (qi[TL_X0 + b] - qj[TL_X0 + b]);
+                a0[b] += d0 * G;
+                a1[b] += d1 * G;
+            }
+        }
+        for (int b = 0; b < 3; b++)
+            for (int c = 0; c < 6; c++)
+                A[b][c] = c < 4 ? a0[b][c] : a1[b][c - 4];
+    } else
+#endif
     for (size_t k = off[i]; k < off[i + 1]; k++) {
         const struct tl_pair *pr = &t->pair[k];
         const double *qj = pk + (size_t)nb[k] * TL_STRIDE;
         const double VF = qj[TL_VOL] * pr->F;
-        double G[3], dx[3], dv[3];
+        double G[3], dxv[6];
         for (int d = 0; d < dim; d++) {
             G[d] = VF * (qi[TL_X0 + d] - qj[TL_X0 + d]);
-            dx[d] = qj[TL_X + d] - qi[TL_X + d];
-            dv[d] = qj[TL_V + d] - qi[TL_V + d];
+            dxv[d] = qj[TL_X + d] - qi[TL_X + d];
+            dxv[dim + d] = qj[TL_V + d] - qi[TL_V + d];
         }
-        for (int a = 0; a < dim; a++)
-            for (int b = 0; b < dim; b++) {
-                Ad[a * 3 + b] += dx[a] * G[b];
-                Av[a * 3 + b] += dv[a] * G[b];
-            }
+        for (int b = 0; b < dim; b++)
+            for (int c = 0; c < 2 * dim; c++)
+                A[b][c] += dxv[c] * G[b];
     }
+    double Ad[9] = {0}, Av[9] = {0};
+    for (int a = 0; a < dim; a++)
+        for (int b = 0; b < dim; b++) {
+            Ad[a * 3 + b] = A[b][a];
+            Av[a * 3 + b] = A[b][dim + a];
+        }
     double Bi[9];
     for (int c = 0; c < 9; c++) {
         Bi[c] = t->self[i * TL_SELF + TL_BI + c];
@@ -311,7 +178,7 @@ static inline void tl_deformation(const struct model *m, size_t i, const int dim
  * stay in registers: no per-particle arrays are streamed for them.
  * *Jout = det F, *kout = tl_distortion_pow (INFINITY when inverted) for
  * the det F guard.  Returns 1 when det F <= 0 (identity used meanwhile). */
-static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const int dim,
+TL_INLINE int tl_stage_deform(struct model *m, size_t i, double lfdt, const int dim,
                                   double *Jout, double *kout)
 {
     struct sph_tl *t = m->tl;
@@ -364,10 +231,10 @@ static inline int tl_stage_deform(struct model *m, size_t i, double lfdt, const 
             double acc = 0.0;
             for (int b = 0; b < dim; b++)
                 acc += PK[a * 3 + b] * Bi[c * 3 + b];
-            qi[TL_Q + a * 3 + c] = acc;
+            qi[TL_Q + c * 3 + a] = acc; /* by columns (tl_row_forces) */
         }
     for (int c = 0; c < 9; c++)
-        qi[TL_FD + c] = Fd[c];
+        qi[TL_FD + c] = Fd[c % 3 * 3 + c / 3]; /* by columns */
     qi[TL_C] = m->c[i];
     qi[TL_RHO] = m->rho[i];
     qi[TL_H] = m->h[i];
@@ -449,7 +316,7 @@ static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, 
  * acc[0..2], acc[3] (sum f . v_ij).  So each particle's sums run over its
  * lower partners, then its upper ones, each in increasing index, whatever
  * the thread shares: bitwise thread independent.  Dimension a literal. */
-static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
+TL_INLINE void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
                                  const double qa, const double qb, const double lav,
                                  const bool bal, double acc[4])
 {
@@ -459,6 +326,9 @@ static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t h
     const double rhoi = qi[TL_RHO];
     const double fsi = bal ? t->self[i * TL_SELF + TL_SW] : 1.0;
     const size_t end = t->nl->offset[i + 1];
+#ifdef TL_HAVE_V4
+    const bool wide = t->wide;
+#endif
     for (size_t k = t->up[i]; k < end; k++) {
         const struct tl_pair *pr = &t->pair[k];
         const size_t j = (size_t)nb[k];
@@ -487,19 +357,39 @@ static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t h
         /* Balsara: Pi (f_i + f_j)/2, symmetric in i, j (momentum kept); off: x 1 exactly */
         const double sw = bal ? 0.5 * (fsi + t->self[j * TL_SELF + TL_SW]) : 1.0;
         const double cav = -mi * qj[TL_M] * Pi * F * sw;
+        /* (Q_i + Q_j) X and (Fd_i + Fd_j) X by columns (stored column by
+         * column): four lanes at once, lane 3 (the next column's first
+         * entry) unused.  Per entry the same sum, in the same order, as
+         * tq_a = sum_b (Q_i + Q_j)_ab X_b. */
+        double tq[3] = {0, 0, 0}, fx[3] = {0, 0, 0};
+#ifdef TL_HAVE_V4
+        if (wide) { /* the AVX2 version runs (t->wide) */
+            tl_v4 tq4 = {0, 0, 0, 0}, fx4 = {0, 0, 0, 0};
+            for (int b = 0; b < dim; b++) {
+                tl_madd4(&tq4, qi + TL_Q + 3 * b, qj + TL_Q + 3 * b, X[b]);
+                tl_madd4(&fx4, qi + TL_FD + 3 * b, qj + TL_FD + 3 * b, X[b]);
+            }
+            for (int a = 0; a < dim; a++) {
+                tq[a] = tq4[a];
+                fx[a] = fx4[a];
+            }
+        } else
+#endif
+        {
+            for (int a = 0; a < dim; a++)
+                for (int b = 0; b < dim; b++) {
+                    tq[a] += (qi[TL_Q + 3 * b + a] + qj[TL_Q + 3 * b + a]) * X[b];
+                    fx[a] += (qi[TL_FD + 3 * b + a] + qj[TL_FD + 3 * b + a]) * X[b];
+                }
+        }
         double fp[3] = {0, 0, 0}, fv = 0.0;
         for (int a = 0; a < dim; a++) {
-            double tq = 0.0, fx = 0.0;
-            for (int b = 0; b < dim; b++) {
-                tq += (qi[TL_Q + a * 3 + b] + qj[TL_Q + a * 3 + b]) * X[b];
-                fx += (qi[TL_FD + a * 3 + b] + qj[TL_FD + a * 3 + b]) * X[b];
-            }
             /* hourglass: mismatch of x_j - x_i against Fbar (X_j - X_i);
              * AV along the CURRENT pair line (reference kernel magnitude):
              * -Pi F x_ij does negative work for any rotation */
-            const double fo = cav * xij[a] + hg * (0.5 * fx - xij[a]);
+            const double fo = cav * xij[a] + hg * (0.5 * fx[a] - xij[a]);
             fv += fo * vij[a];
-            fp[a] = sv * tq + fo;
+            fp[a] = sv * tq[a] + fo;
         }
         for (int a = 0; a < dim; a++)
             acc[a] += fp[a];
@@ -513,20 +403,56 @@ static inline void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t h
     }
 }
 
+/* Row and force stage out of line, one instance each per CPU version: the
+ * pair arithmetic must be the same machine code wherever a row runs (its
+ * owner's stage 2, the neighbour share's re-evaluation for the scatter,
+ * the split or pipelined order), since FMA contraction is decided per
+ * inlined copy (tests/test_sph_tlsph.c caught the copies disagreeing). */
+TL_CLONES static void tl_row3(struct sph_tl *t, size_t i, size_t lo, size_t hi,
+                              const double av[3], double acc[4])
+{
+    tl_row_forces(t, i, lo, hi, 3, av[0], av[1], av[2], false, acc);
+}
+
+TL_CLONES static void tl_row2(struct sph_tl *t, size_t i, size_t lo, size_t hi,
+                              const double av[3], double acc[4])
+{
+    tl_row_forces(t, i, lo, hi, 2, av[0], av[1], av[2], false, acc);
+}
+
+/* the same rows with Balsara's switch (model.viscosity_switch): the switch
+ * a literal in each instance, so the default rows carry no per-pair cost */
+TL_CLONES static void tl_row3_bal(struct sph_tl *t, size_t i, size_t lo, size_t hi,
+                                  const double av[3], double acc[4])
+{
+    tl_row_forces(t, i, lo, hi, 3, av[0], av[1], av[2], true, acc);
+}
+
+TL_CLONES static void tl_row2_bal(struct sph_tl *t, size_t i, size_t lo, size_t hi,
+                                  const double av[3], double acc[4])
+{
+    tl_row_forces(t, i, lo, hi, 2, av[0], av[1], av[2], true, acc);
+}
+
+static inline void tl_row(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
+                          const bool bal, const double av[3], double acc[4])
+{
+    if (dim == 3)
+        (bal ? tl_row3_bal : tl_row3)(t, i, lo, hi, av, acc);
+    else
+        (bal ? tl_row2_bal : tl_row2)(t, i, lo, hi, av, acc);
+}
+
 /* Stage 2 of a row of mine: its sums from the lower rows (own accumulator),
  * its own row, then the force and the internal energy rate. */
-static inline void tl_stage_forces(struct model *m, struct particles *p, size_t i, size_t lo,
+TL_INLINE void tl_stage_forces(struct model *m, struct particles *p, size_t i, size_t lo,
                                    size_t hi, double lfdt, const int dim)
 {
     struct sph_tl *t = m->tl;
     const double *si = t->self + i * TL_SELF, *qi = t->pk + i * TL_STRIDE;
     double acc[4] = {si[TL_ACC], si[TL_ACC + 1], si[TL_ACC + 2], si[TL_FV]};
-    /* the switch a literal at each call: the inlined row of the default
-     * (off) path carries no per-pair cost of it */
-    if (m->opt.av_balsara)
-        tl_row_forces(t, i, lo, hi, dim, m->opt.av_a, m->opt.av_b, m->opt.av_length, true, acc);
-    else
-        tl_row_forces(t, i, lo, hi, dim, m->opt.av_a, m->opt.av_b, m->opt.av_length, false, acc);
+    const double av[3] = {m->opt.av_a, m->opt.av_b, m->opt.av_length};
+    tl_row(t, i, lo, hi, dim, m->opt.av_balsara, av, acc);
     if (sph_skip(m, i, SPH_FORM_TOTAL))
         return; /* an updated-form particle: empty row, no accumulator */
     const double Vi = qi[TL_VOL], mi = qi[TL_M];
@@ -541,6 +467,18 @@ static inline void tl_stage_forces(struct model *m, struct particles *p, size_t 
     m->de[i] = de / mi;
     if (lfdt > 0.0)
         m->e[i] += lfdt * m->de[i]; /* leapfrog: AV / hourglass heating */
+}
+
+TL_CLONES static void tl_forces3(struct model *m, struct particles *p, size_t i, size_t lo,
+                                 size_t hi, double lfdt)
+{
+    tl_stage_forces(m, p, i, lo, hi, lfdt, 3);
+}
+
+TL_CLONES static void tl_forces2(struct model *m, struct particles *p, size_t i, size_t lo,
+                                 size_t hi, double lfdt)
+{
+    tl_stage_forces(m, p, i, lo, hi, lfdt, 2);
 }
 
 /* Stage 0 for particle i: its current x, v into its packed block. */
@@ -562,7 +500,7 @@ struct tl_watch {
 
 /* Stage 1 of particle k with the guard's bookkeeping; particles of
  * updated-form bodies (formulation per body) are skipped. */
-static inline void tl_stage_deform_watch(struct model *m, size_t k, double lfdt, const int dim,
+TL_INLINE void tl_stage_deform_watch(struct model *m, size_t k, double lfdt, const int dim,
                                          const double lim[3], struct tl_watch *w)
 {
     if (sph_skip(m, k, SPH_FORM_TOTAL))
@@ -573,6 +511,31 @@ static inline void tl_stage_deform_watch(struct model *m, size_t k, double lfdt,
         w->first = k;
     w->jmin = J < w->jmin ? J : w->jmin;
     w->kmax = kap > w->kmax && !bad ? kap : w->kmax;
+}
+
+/* Stage 1 kept out of line (inlined into the sweep it spilled more: +9 %
+ * instructions, callgrind), one version per CPU level like the sweep and
+ * with the dimension a literal (a multi-versioned function is not
+ * specialised by constant propagation). */
+TL_CLONES static void tl_deform3(struct model *m, size_t k, double lfdt, const double lim[3],
+                                 struct tl_watch *w)
+{
+    tl_stage_deform_watch(m, k, lfdt, 3, lim, w);
+}
+
+TL_CLONES static void tl_deform2(struct model *m, size_t k, double lfdt, const double lim[3],
+                                 struct tl_watch *w)
+{
+    tl_stage_deform_watch(m, k, lfdt, 2, lim, w);
+}
+
+static inline void tl_deform(struct model *m, size_t k, double lfdt, const int dim,
+                             const double lim[3], struct tl_watch *w)
+{
+    if (dim == 3)
+        tl_deform3(m, k, lfdt, lim, w);
+    else
+        tl_deform2(m, k, lfdt, lim, w);
 }
 
 /* One thread's share [lo, hi) of the three stages, software-pipelined:
@@ -590,7 +553,7 @@ static inline void tl_stage_deform_watch(struct model *m, size_t k, double lfdt,
  * Every particle does the same arithmetic in the same order as with the
  * stages run one after the other (model.pair_loop: split, b = n): bitwise
  * the same result on any number of threads. */
-static void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, size_t hi,
+TL_INLINE void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, size_t hi,
                      double lfdt, bool pipelined, const int dim, const double lim[3],
                      struct tl_watch *w)
 {
@@ -606,28 +569,41 @@ static void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, 
     /* stage 1 before the second barrier for [lo, e1) and [e2, hi) */
     const size_t e1 = hi - lo > b ? lo + b : hi, e2 = hi - e1 > b ? hi - b : e1;
     for (size_t k = lo; k < e1; k++)
-        tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
+        tl_deform(m, k, lfdt, dim, lim, w);
     for (size_t k = e2; k < hi; k++)
-        tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
+        tl_deform(m, k, lfdt, dim, lim, w);
 #pragma omp barrier
-    const double qa = m->opt.av_a, qb = m->opt.av_b, lav = m->opt.av_length;
+    const double av[3] = {m->opt.av_a, m->opt.av_b, m->opt.av_length};
     for (size_t i = lo > b ? lo - b : 0; i < lo; i++) {
         double ghost[4] = {0, 0, 0, 0}; /* row i's own sums: its owner's */
-        if (m->opt.av_balsara)
-            tl_row_forces(t, i, lo, hi, dim, qa, qb, lav, true, ghost);
-        else
-            tl_row_forces(t, i, lo, hi, dim, qa, qb, lav, false, ghost);
+        tl_row(t, i, lo, hi, dim, m->opt.av_balsara, av, ghost);
     }
     size_t r = lo; /* next row of stage 2 */
     for (size_t k = e1; k < e2; k++) {
         if (k + b < pb)
             tl_pack(t, p, k + b, dim);
-        tl_stage_deform_watch(m, k, lfdt, dim, lim, w);
+        tl_deform(m, k, lfdt, dim, lim, w);
         for (; r + b <= k; r++) /* partners r .. r + b <= k: stage 1 done */
-            tl_stage_forces(m, p, r, lo, hi, lfdt, dim);
+            (dim == 3 ? tl_forces3 : tl_forces2)(m, p, r, lo, hi, lfdt);
     }
     for (; r < hi; r++) /* partners past hi: their stage 1 ran before the barrier */
-        tl_stage_forces(m, p, r, lo, hi, lfdt, dim);
+        (dim == 3 ? tl_forces3 : tl_forces2)(m, p, r, lo, hi, lfdt);
+}
+
+/* tl_sweep with the dimension a literal (a multi-versioned function is not
+ * specialised by constant propagation, so the literal is given here) */
+TL_CLONES static void tl_sweep3(struct model *m, struct particles *p, size_t n, size_t lo,
+                                size_t hi, double lfdt, bool pipelined, const double lim[3],
+                                struct tl_watch *w)
+{
+    tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 3, lim, w);
+}
+
+TL_CLONES static void tl_sweep2(struct model *m, struct particles *p, size_t n, size_t lo,
+                                size_t hi, double lfdt, bool pipelined, const double lim[3],
+                                struct tl_watch *w)
+{
+    tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 2, lim, w);
 }
 
 int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
@@ -652,9 +628,9 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
         const size_t lo = n * id / nt, hi = n * (id + 1) / nt;
         struct tl_watch w = {SIZE_MAX, INFINITY, 1.0};
         if (dim == 3)
-            tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 3, lim, &w);
+            tl_sweep3(m, p, n, lo, hi, lfdt, pipelined, lim, &w);
         else
-            tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 2, lim, &w);
+            tl_sweep2(m, p, n, lo, hi, lfdt, pipelined, lim, &w);
         first = w.first;
         jmin = w.jmin;
         kmax = w.kmax;
@@ -664,14 +640,4 @@ int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
     if (first != SIZE_MAX)
         return tl_guard_error(m, s, first, dim, err);
     return SPALL_OK;
-}
-
-size_t sph_tlsph_pairs(const struct model *m)
-{
-    return m->tl && m->tl->nl ? m->tl->nl->offset[m->tl->nl->n] : 0;
-}
-
-void sph_tlsph_deformation(const struct model *m, size_t i, double F[9])
-{
-    memcpy(F, m->tl->pk + i * TL_STRIDE + TL_FD, 9 * sizeof(double));
 }

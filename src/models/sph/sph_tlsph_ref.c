@@ -1,0 +1,183 @@
+/**
+ * @file sph_tlsph_ref.c
+ * @brief Total-Lagrangian SPH: the reference configuration -- the fixed
+ *        neighbour list, the pair constants, B0^-1 and the packed blocks
+ *        (built at set-up and on a re-reference, sph_tlsph_reref.c) -- and
+ *        the accessors.  The force sweep and the formulas: sph_tlsph.c.
+ */
+#include "models/sph/sph_tlsph_data.h"
+
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+void sph_tlsph_destroy(struct sph_tl **tl)
+{
+    if (!tl || !*tl)
+        return;
+    struct sph_tl *t = *tl;
+    neighbor_list_destroy(&t->nl);
+    free(t->pk);
+    free(t->pair);
+    free(t->self);
+    free(t->up);
+    free(t);
+    *tl = NULL;
+}
+
+static int sph_tl_alloc(struct sph_tl **out, size_t n, size_t np, struct spall_error *err)
+{
+    struct sph_tl *t = calloc(1, sizeof *t);
+    int bad = !t;
+    if (t) {
+        const size_t nn = n ? n : 1, pp = np ? np : 1;
+        bad |= !(t->pk = calloc(nn * TL_STRIDE, sizeof(double)));
+        bad |= !(t->self = calloc(nn * TL_SELF, sizeof(double)));
+        bad |= !(t->pair = calloc(pp, sizeof *t->pair));
+        bad |= !(t->up = calloc(nn, sizeof *t->up));
+    }
+    *out = t;
+    if (bad) {
+        sph_tlsph_destroy(out);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH pair constants)");
+    }
+    return SPALL_OK;
+}
+
+/* The reference configuration is an input: the deck's positions (p->x0)
+ * and rest volumes at the start, the current ones on a re-reference
+ * (sph_tlsph_reref.c).  p->x0 itself is never changed (output, groups). */
+int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], const double *rho,
+                        struct spall_error *err)
+{
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const int dim = m->dim;
+    double hmax = 0.0;
+    for (size_t i = 0; i < n; i++)
+        hmax = fmax(hmax, m->h[i]);
+    sph_tlsph_destroy(&m->tl);
+    const double radius = m->qmax * hmax;
+    if (!m->nl) /* a mixed run's updated list keeps its own radius (with skin) */
+        m->nl_radius = radius;
+    const double t0 = omp_get_wtime();
+    struct neighbor_list *nl = NULL;
+    int rc = neighbor_list_build(&nl, dim, n, Xr, radius, err);
+    if (rc)
+        return rc;
+    if (m->form || rho) {
+        /* bodies split by formulation (sph_forms.c): only the pairs inside
+         * one TLSPH body; the others' rows stay empty.  A re-reference (rho
+         * given; h may have grown per particle, sph_tlsph_reref.c) also
+         * drops the pairs beyond their support qmax (h_i + h_j)/2 (W = 0) */
+        size_t w = 0, start = 0;
+        for (size_t i = 0; i < n; i++) {
+            const size_t end = nl->offset[i + 1];
+            for (size_t k = start; k < end && (!m->form || m->form[i] == SPH_FORM_TOTAL); k++) {
+                const size_t j = (size_t)nl->idx[k];
+                if (m->form && (m->form[j] != SPH_FORM_TOTAL || p->body[j] != p->body[i]))
+                    continue;
+                double r2 = 0.0, sup = 0.5 * m->qmax * (m->h[i] + m->h[j]);
+                for (int d = 0; d < dim && rho; d++)
+                    r2 += (Xr[d][i] - Xr[d][j]) * (Xr[d][i] - Xr[d][j]);
+                if (!rho || r2 < sup * sup)
+                    nl->idx[w++] = nl->idx[k];
+            }
+            start = end;
+            nl->offset[i + 1] = w;
+        }
+    }
+    m->t_neighbor += omp_get_wtime() - t0;
+    m->n_builds++;
+    const size_t *off = nl->offset;
+    const int32_t *nb = nl->idx;
+    if ((rc = sph_tl_alloc(&m->tl, n, off[n], err))) {
+        neighbor_list_destroy(&nl);
+        return rc;
+    }
+    struct sph_tl *t = m->tl;
+    t->nl = nl;
+    t->band = 0;
+#ifdef TL_CLONED
+    __builtin_cpu_init(); /* what the ifunc resolver of TL_CLONES checks */
+    t->wide = __builtin_cpu_supports("x86-64-v3");
+#endif
+    for (size_t i = 0; i < n; i++) {
+        /* rows are sorted ascending (neighbor.c): the upper part j > i,
+         * the pairs stage 2 evaluates, starts at up[i] */
+        size_t u = off[i];
+        while (u < off[i + 1] && (size_t)nb[u] < i)
+            u++;
+        t->up[i] = u;
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            const size_t j = (size_t)nb[k], d = j > i ? j - i : i - j;
+            t->band = d > t->band ? d : t->band;
+        }
+        double *q = t->pk + i * TL_STRIDE;
+        for (int c = 0; c < 9; c++)
+            q[TL_FD + c] = (c % 4 == 0) ? 1.0 : 0.0;
+        q[TL_VOL] = m->m2[i] / (rho ? rho[i] : m->mat[p->material[i]].rho0);
+        q[TL_M] = m->m2[i];
+        for (int d = 0; d < 3; d++)
+            q[TL_X0 + d] = d < dim ? Xr[d][i] : 0.0;
+    }
+    const double kappa = m->opt.hourglass;
+    size_t fallbacks = 0;
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
+    for (size_t i = 0; i < n; i++) {
+        if (sph_skip(m, i, SPH_FORM_TOTAL))
+            continue;
+        const double Ei = m->mat[p->material[i]].E;
+        double B[9] = {0};
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            size_t j = (size_t)nb[k];
+            double hb = 0.5 * (m->h[i] + m->h[j]), X[3] = {0, 0, 0}, r2 = 0.0;
+            for (int d = 0; d < dim; d++) {
+                X[d] = Xr[d][i] - Xr[d][j];
+                r2 += X[d] * X[d];
+            }
+            double W, F;
+            sph_kernel_eval(m->opt.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
+            const double Vi = t->pk[i * TL_STRIDE + TL_VOL], V = t->pk[j * TL_STRIDE + TL_VOL];
+            struct tl_pair *pr = &t->pair[k];
+            pr->F = F;
+            pr->hg = kappa * 0.5 * (Ei + m->mat[p->material[j]].E) * Vi * V * W / r2;
+            for (int a = 0; a < dim; a++)
+                for (int b = 0; b < dim; b++)
+                    B[a * 3 + b] += -X[a] * V * F * X[b];
+        }
+        double Bi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, inv[9];
+        if (fabs(sph_inverse(dim, B, inv)) > 1e-3)
+            memcpy(Bi, inv, sizeof Bi);
+        else
+            fallbacks++;
+        for (int c = 0; c < 9; c++)
+            m->Bi[c][i] = t->self[i * TL_SELF + TL_BI + c] = Bi[c];
+    }
+    m->cspm_fallbacks += fallbacks;
+    return SPALL_OK;
+}
+
+int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
+{
+    return sph_tlsph_reference(m, s, s->p->x0, NULL, err);
+}
+
+size_t sph_tlsph_pairs(const struct model *m)
+{
+    return m->tl && m->tl->nl ? m->tl->nl->offset[m->tl->nl->n] : 0;
+}
+
+void sph_tlsph_deformation(const struct model *m, size_t i, double F[9])
+{
+    const double *fd = m->tl->pk + i * TL_STRIDE + TL_FD; /* stored by columns */
+    for (int c = 0; c < 9; c++)
+        F[c] = fd[c % 3 * 3 + c / 3];
+}
