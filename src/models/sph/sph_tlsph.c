@@ -209,12 +209,18 @@ TL_INLINE int tl_stage_deform(struct model *m, size_t i, double lfdt, const int 
             m->L[a * 3 + b][i] = (a < dim && b < dim) ? acc : 0.0;
         }
     /* the per-particle material update (was three loops over all particles) */
-    if (lfdt > 0.0)
-        sph_leapfrog_advance_one(m, i, lfdt); /* leapfrog: advance with this L */
-    sph_update_pressure_one(m, i);
-    double trD;
-    sph_stress_rate(m, i, &trD);
-    m->drho[i] = -m->rho[i] * trD; /* dh stays 0 (allocated zero): h is fixed */
+    if (lfdt > 0.0) {
+        /* leapfrog: advance rho, S, e with this L; the rates dS, drho at the
+         * new state would only feed the predictor-corrector (the next
+         * advance recomputes them from its own L), so they are not formed */
+        sph_leapfrog_advance_one(m, i, lfdt);
+        sph_update_pressure_one(m, i);
+    } else {
+        sph_update_pressure_one(m, i);
+        double trD;
+        sph_stress_rate(m, i, &trD);
+        m->drho[i] = -m->rho[i] * trD; /* dh stays 0 (allocated zero): h is fixed */
+    }
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
     double PK[9];
     for (int a = 0; a < 3; a++)
