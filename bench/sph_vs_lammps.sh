@@ -21,6 +21,10 @@
 # (c + |v|) with the leapfrog).  Throughput is per particle-step, so the time
 # step does not enter it; it enters the cost per simulated microsecond.
 #
+# OMP_WAIT_POLICY (default passive, for a shared machine) is passed to spall;
+# on an idle machine OMP_WAIT_POLICY=active lets the two threads of the
+# pipelined sweep meet at its barriers without sleeping (docs/performance.md).
+#
 # 1. throughput, 200 steps, one core each: spall (1 and 2 threads) and
 #    LAMMPS (serial build: one core) on both sizes;
 # 2. with --rest: the accuracy half, both codes run to 80 us and report the
@@ -38,7 +42,7 @@ LMP=${LMP:-lmp}
 echo "== spall: copper Taylor bar, 200 steps"
 for s in 1 0.3; do
     for t in 1 2; do
-        OMP_WAIT_POLICY=passive "$BUILD/spall" bench sph_taylor_cu_tl --threads "$t" \
+        OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} "$BUILD/spall" bench sph_taylor_cu_tl --threads "$t" \
             --scale "$s" || true
     done
 done
