@@ -26,8 +26,9 @@ struct bench_result {
 struct bench_case {
     const char *name;
     const char *title;
-    /** Run with @p threads OpenMP threads; @p scale in (0,1] shrinks the
-     *  problem (1 = the documented size). */
+    /** Run with @p threads OpenMP threads; @p scale in (0, 16] scales the
+     *  problem (1 = the documented size; < 1 quick runs, > 1 resolution
+     *  studies). */
     int (*run)(int threads, double scale, struct bench_result *out, struct spall_error *err);
 };
 
