@@ -279,6 +279,18 @@ static int bench_sph_taylor_rest_bal(int threads, double scale, struct bench_res
                            scale, threads, out, err);
 }
 
+/* the _rest_bal bar with re-referencing (distortion 1.2): below dx = 0.4 mm
+ * the fixed reference inverts at the impact face's axis (det F <= 0 at
+ * 18-27 us for dx = 0.3 and 0.25 mm, with or without the switch) */
+static int bench_sph_taylor_rest_rrbal(int threads, double scale, struct bench_result *out,
+                                       struct spall_error *err)
+{
+    return sph_taylor_rest("sph_taylor_cu_rest_rrbal", "total", 1.005,
+                           " time_integration: leapfrog, hourglass: 1.0, viscosity_switch: "
+                           "balsara, reference_update: {distortion: 1.2},",
+                           scale, threads, out, err);
+}
+
 /* throughput of the configuration the race's accuracy half reports
  * (sph_taylor_cu_rest_bal: leapfrog, hourglass 1, Balsara's switch),
  * 200 steps: what the accurate bar costs per particle-step */
@@ -353,6 +365,8 @@ const struct bench_case bench_sph_cases[] = {
      "when the distortion passes 1.2", bench_sph_taylor_rest_rr},
     {"sph_taylor_cu_rest_bal", "the sph_taylor_cu_rest_lf bar with Balsara's switch on the "
      "artificial viscosity", bench_sph_taylor_rest_bal},
+    {"sph_taylor_cu_rest_rrbal", "the sph_taylor_cu_rest_bal bar with the reference updated "
+     "when the distortion passes 1.2", bench_sph_taylor_rest_rrbal},
     {"sph_taylor_cu_tl_bal", "sph_taylor_cu_tl in the accurate bar's settings (leapfrog, "
      "hourglass 1, Balsara's switch), 200 steps", bench_sph_taylor_tl_bal},
     {"sph_taylor_cu_rest_ul32", "the sph_taylor_cu_ul32 bar run to rest (80 us)",
