@@ -231,10 +231,8 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
  * shock and leaves the shear flow around the sphere. */
 static inline double balsara(const struct model *m, size_t i)
 {
-    const double dv = fabs(m->L[0][i] + m->L[4][i] + m->L[8][i]);
-    const double cv = fabs(m->L[1][i] - m->L[3][i]);
-    const double den = dv + cv + 1e-4 * m->c[i] / m->h[i];
-    return den > 0.0 ? dv / den : 1.0;
+    return sph_balsara_factor(fabs(m->L[0][i] + m->L[4][i] + m->L[8][i]),
+                              fabs(m->L[1][i] - m->L[3][i]), m->c[i], m->h[i]);
 }
 
 /* Jacobi sweeps of the axis weights, solved from 0 after each

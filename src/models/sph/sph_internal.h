@@ -305,6 +305,15 @@ static inline double sph_carried_pressure(const struct sph_material *mt, bool fa
 {
     return failed && P < 0.0 && !mt->failed_tension ? 0.0 : P;
 }
+/** Balsara's switch (seed 004 Tab. 2.2 "BAL"): f = |div v| / (|div v| +
+ *  |curl v| + 1e-4 c / h), -> 1 in compression, -> 0 in shear; the AV of a
+ *  pair is scaled by (f_i + f_j) / 2.  @p div, @p curl are the magnitudes
+ *  from the caller's velocity gradient (axisymmetric or Cartesian). */
+static inline double sph_balsara_factor(double div, double curl, double c, double h)
+{
+    const double den = div + curl + 1e-4 * c / h;
+    return den > 0.0 ? div / den : 1.0;
+}
 /** Longitudinal sound speed at the given state. */
 double sph_sound_speed(const struct sph_material *mt, double rho, double e);
 /** Current yield stress (INFINITY: elastic). */

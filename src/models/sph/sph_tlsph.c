@@ -254,11 +254,10 @@ TL_INLINE int tl_stage_deform(struct model *m, size_t i, double lfdt, const int 
         /* Balsara's switch (seed 004 Tab. 2.2 "BAL", as sph_axisym.c):
          * f = |div v| / (|div v| + |curl v| + 1e-4 c/h) from this L; the
          * AV of pair ij is scaled by (f_i + f_j)/2 in stage 2 */
-        const double dv = fabs(m->L[0][i] + m->L[4][i] + m->L[8][i]);
         const double cx = m->L[7][i] - m->L[5][i], cy = m->L[2][i] - m->L[6][i];
         const double cz = m->L[3][i] - m->L[1][i];
-        const double den = dv + sqrt(cx * cx + cy * cy + cz * cz) + 1e-4 * m->c[i] / m->h[i];
-        si[TL_SW] = den > 0.0 ? dv / den : 1.0;
+        si[TL_SW] = sph_balsara_factor(fabs(m->L[0][i] + m->L[4][i] + m->L[8][i]),
+                                       sqrt(cx * cx + cy * cy + cz * cz), m->c[i], m->h[i]);
     }
     for (int c = 0; c < 4; c++) /* stage-2 accumulators (TL_ACC, TL_FV): the */
         si[TL_ACC + c] = 0.0;   /* lower rows scatter into them after this */
@@ -414,31 +413,20 @@ TL_INLINE void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t hi, c
  * owner's stage 2, the neighbour share's re-evaluation for the scatter,
  * the split or pipelined order), since FMA contraction is decided per
  * inlined copy (tests/test_sph_tlsph.c caught the copies disagreeing). */
-TL_CLONES static void tl_row3(struct sph_tl *t, size_t i, size_t lo, size_t hi,
-                              const double av[3], double acc[4])
-{
-    tl_row_forces(t, i, lo, hi, 3, av[0], av[1], av[2], false, acc);
-}
-
-TL_CLONES static void tl_row2(struct sph_tl *t, size_t i, size_t lo, size_t hi,
-                              const double av[3], double acc[4])
-{
-    tl_row_forces(t, i, lo, hi, 2, av[0], av[1], av[2], false, acc);
-}
-
-/* the same rows with Balsara's switch (model.viscosity_switch): the switch
- * a literal in each instance, so the default rows carry no per-pair cost */
-TL_CLONES static void tl_row3_bal(struct sph_tl *t, size_t i, size_t lo, size_t hi,
-                                  const double av[3], double acc[4])
-{
-    tl_row_forces(t, i, lo, hi, 3, av[0], av[1], av[2], true, acc);
-}
-
-TL_CLONES static void tl_row2_bal(struct sph_tl *t, size_t i, size_t lo, size_t hi,
-                                  const double av[3], double acc[4])
-{
-    tl_row_forces(t, i, lo, hi, 2, av[0], av[1], av[2], true, acc);
-}
+#define TL_ROW_INSTANCE(NAME, DIM, BAL)                                                         \
+    TL_CLONES static void NAME(struct sph_tl *t, size_t i, size_t lo, size_t hi,                 \
+                               const double av[3], double acc[4])                                \
+    {                                                                                            \
+        tl_row_forces(t, i, lo, hi, DIM, av[0], av[1], av[2], BAL, acc);                         \
+    }
+/* 3D and 2D, without and with Balsara's switch (model.viscosity_switch):
+ * the switch a literal in each instance, so the default rows carry no
+ * per-pair cost of it */
+TL_ROW_INSTANCE(tl_row3, 3, false)
+TL_ROW_INSTANCE(tl_row2, 2, false)
+TL_ROW_INSTANCE(tl_row3_bal, 3, true)
+TL_ROW_INSTANCE(tl_row2_bal, 2, true)
+#undef TL_ROW_INSTANCE
 
 static inline void tl_row(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
                           const bool bal, const double av[3], double acc[4])
