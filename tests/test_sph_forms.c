@@ -143,12 +143,7 @@ static void test_tlsph_body_unchanged(void **state)
 {
     (void)state;
     static const char *fmt =
-        "model: {type: sph, kernel: wendland, h_factor: 1.3, viscosity: [0.5, 0.2],\n"
-        "        plane: strain%s}\n"
-        "materials:\n"
-        "  a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"
-        "  b: {density: 2000, youngs_modulus: 1.0e8, poisson_ratio: 0.3}\n"
-        "lattice: {type: square, spacing: 1.0e-3}\n"
+        TEST_SPH_AB_HEAD
         "bodies:\n"
         "  - {name: proj, geometry: {box: {min: [0, 0], max: [0.006, 0.004]}}, material: b,\n"
         "     lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0005]}}\n"

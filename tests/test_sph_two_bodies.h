@@ -9,6 +9,16 @@
 
 #include <stdio.h>
 
+/* The decks' head: plane-strain Wendland SPH with the model map's tail a
+ * %s, materials a (soft) and b (stiff, dense), a 1 mm square lattice. */
+#define TEST_SPH_AB_HEAD                                                                           \
+    "model: {type: sph, kernel: wendland, h_factor: 1.3, viscosity: [0.5, 0.2],\n"                 \
+    "        plane: strain%s}\n"                                                                    \
+    "materials:\n"                                                                                  \
+    "  a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"                             \
+    "  b: {density: 2000, youngs_modulus: 1.0e8, poisson_ratio: 0.3}\n"                             \
+    "lattice: {type: square, spacing: 1.0e-3}\n"
+
 /* Body 0 `target`: soft block 10 x 10 mm (material a); body 1 `proj`:
  * stiffer, denser block 6 x 6 mm, 2.5 mm above, at (vx, -50) m/s; dx =
  * 1 mm, plane strain.  @p model_extra is appended to the model map. */
@@ -16,12 +26,7 @@ static inline struct sim *test_two_bodies(const char *model_extra, double vx, do
 {
     char yaml[2048];
     snprintf(yaml, sizeof yaml,
-             "model: {type: sph, kernel: wendland, h_factor: 1.3, viscosity: [0.5, 0.2],\n"
-             "        plane: strain%s}\n"
-             "materials:\n"
-             "  a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"
-             "  b: {density: 2000, youngs_modulus: 1.0e8, poisson_ratio: 0.3}\n"
-             "lattice: {type: square, spacing: 1.0e-3}\n"
+             TEST_SPH_AB_HEAD
              "geometry:\n"
              "  g1: {box: {min: [0, 0], max: [0.010, 0.010]}}\n"
              "  g2: {box: {min: [0.002, %g], max: [0.008, %g]}}\n"
