@@ -87,6 +87,41 @@ static void test_one_sided_and_owned(void **state)
     particles_destroy(&p);
 }
 
+/* 2D: an axisymmetric body in the half-plane x = r, y = z -- the same cone
+ * as layers of three rings (r, r/2, 0); y is the height, |x| the radius;
+ * 1D particles are refused */
+static void test_axisymmetric_2d(void **state)
+{
+    (void)state;
+    struct particles *p = NULL;
+    struct spall_error err = {0, ""};
+    assert_int_equal(particles_create(&p, 2, 60, &err), SPALL_OK);
+    for (size_t k = 0; k < 20; k++) {
+        const double z = (double)k * CDZ, r = cone_r(z);
+        const double pts[3][3] = {{r, z, 0.0}, {0.5 * r, z, 0.0}, {0.0, z, 0.0}};
+        for (int j = 0; j < 3; j++) {
+            size_t idx;
+            assert_int_equal(particles_append(p, pts[j], 0, &idx, &err), SPALL_OK);
+        }
+    }
+    const double z0s[3] = {0.5e-3, 1.0e-3, 2.45e-3};
+    for (int a = 0; a < 3; a++) {
+        double r = 0.0;
+        assert_int_equal(profile_radius(p, z0s[a], 0.35e-3, 0.1e-3, &r, &err), SPALL_OK);
+        assert_true(fabs(r - (cone_r(z0s[a]) + 0.1e-3)) < 1e-15);
+    }
+    particles_destroy(&p);
+    assert_int_equal(particles_create(&p, 1, 4, &err), SPALL_OK);
+    size_t idx;
+    const double one[3] = {1e-3, 0.0, 0.0};
+    assert_int_equal(particles_append(p, one, 0, &idx, &err), SPALL_OK);
+    double r = -1.0;
+    assert_int_equal(profile_radius(p, 0.0, 1e-3, 0.0, &r, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "1D"));
+    assert_true(r == -1.0);
+    particles_destroy(&p);
+}
+
 /* no particle in the bands, or a band half-width <= 0: an input error
  * naming the height */
 static void test_errors(void **state)
@@ -107,6 +142,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cone_exact),
         cmocka_unit_test(test_one_sided_and_owned),
+        cmocka_unit_test(test_axisymmetric_2d),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

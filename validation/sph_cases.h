@@ -37,6 +37,7 @@ int sph_taylor3d_run(int n, bool quarter, double *len, double *rad, size_t *np, 
 /** Outcome of one 2D Taylor-rod run (sph_taylor2d.c): [0] at t1, [1] at t2. */
 struct sph_taylor2d_result {
     double len[2], rad[2], undeformed[2]; /**< final length, foot radius, undeformed length [m] */
+    double prof[2][2]; /**< outer radius 0.5 mm / 1 mm above the impact face [m] (profile.h) */
     double balance[2];                    /**< energy balance / initial kinetic energy */
     double v_end;                         /**< mean axial velocity at t2 [m/s] */
     size_t particles;

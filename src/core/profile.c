@@ -17,14 +17,22 @@ int profile_radius(const struct particles *p, double z0, double w, double offset
                                "profile radius: height %g m, band half-width %g m; expected a "
                                "finite height and a half-width > 0",
                                z0, w);
+    if (p->dim < 2)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "profile radius: %dD particles; expected 3D, or 2D axisymmetric "
+                               "(x = r, y = z)",
+                               p->dim);
     /* outermost particle of the band below z0 (k = 0) and above it (k = 1) */
     double rb[2] = {-1.0, -1.0}, zb[2] = {0.0, 0.0};
+    /* 3D: the axis is z; 2D: an axisymmetric body in the (r, z) half-plane
+     * (sph plane: axisymmetric, x = r >= 0, y = z) */
+    const int ax = p->dim == 3 ? 2 : 1;
     for (size_t i = 0; i < p->n_owned; i++) {
-        const double z = p->x[2][i];
+        const double z = p->x[ax][i];
         if (!(z >= z0 - w && z < z0 + w))
             continue;
         const int k = z >= z0;
-        const double ri = hypot(p->x[0][i], p->x[1][i]);
+        const double ri = p->dim == 3 ? hypot(p->x[0][i], p->x[1][i]) : fabs(p->x[0][i]);
         if (ri > rb[k]) {
             rb[k] = ri;
             zb[k] = z;

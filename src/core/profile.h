@@ -12,7 +12,9 @@
  * and 1 mm above the wall the FE radius is converged to 0.02-0.04 mm.
  *
  * Measure (particles [0, n_owned)): the outermost particle (largest
- * sqrt(x^2 + y^2)) of the band z0 - w <= z < z0 and that of the band
+ * sqrt(x^2 + y^2); in 2D, an axisymmetric body in the half-plane x = r,
+ * y = z, the largest |x| with y as the height) of the band z0 - w <= z < z0
+ * and that of the band
  * z0 <= z < z0 + w; the straight line through the two, evaluated at z0
  * (one band empty: the other's radius); plus @p offset, the distance from
  * an outermost particle centre to the surface (dx/2 for a particle that is

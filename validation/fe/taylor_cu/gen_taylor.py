@@ -45,6 +45,21 @@ eltype = sys.argv[3] if len(sys.argv) > 3 else "C3D8I"
 #   tend=T   end time [s] (default 80e-6; run past the rest point)
 #   dtmax=D  largest implicit increment [s] (default 2e-7)
 opt = dict(a.split("=", 1) for a in sys.argv[4:])
+# another bar (the copper bar's values are the defaults, and its decks stay
+# byte-identical when none of these is given):
+#   L0=, R0= [m], v0= [m/s], E= [Pa], nu=, rho= [kg/m^3], sy= yield stress
+#   [Pa], hard= linear hardening modulus [Pa] (0: perfectly plastic),
+#   name= heading text; peeq=1 prints the equivalent plastic strain of
+#   every integration point (post_taylor.py: the undeformed length X).  The bar's data go into the deck as "** BAR" so
+#   that post_taylor.py reads them.
+MAT = None
+if any(k in opt for k in ("L0", "R0", "v0", "E", "nu", "rho", "sy", "hard")):
+    L0 = float(opt.get("L0", L0))
+    R0 = float(opt.get("R0", R0))
+    V0 = float(opt.get("v0", V0))
+    MAT = (float(opt.get("E", 117e9)), float(opt.get("nu", 0.35)),
+           float(opt.get("rho", 8930.0)), float(opt.get("sy", 0.4e9)),
+           float(opt.get("hard", 0.1e9)))
 hole = float(opt.get("hole", 0.0))
 WEDGE_DEG = float(opt.get("angle", WEDGE_DEG))
 T_END = float(opt.get("tend", T_END))
@@ -134,8 +149,11 @@ def nid(i2, k):                            # 3D node id: 2D node i2, level k
     return ids[(i2, k)]
 
 
-out = ["*HEADING", f"Copper Taylor bar, {geom} {eltype}, NR={nr}, NZ={nz}",
-       f"** RF_SCALE={scale}", "*NODE, NSET=NALL"]
+out = ["*HEADING", f"{opt.get('name', 'Copper')} Taylor bar, {geom} {eltype}, "
+       f"NR={nr}, NZ={nz}", f"** RF_SCALE={scale}"]
+if MAT:
+    out.append(f"** BAR L0={L0!r} R0={R0!r} V0={V0!r} RHO={MAT[2]!r}")
+out.append("*NODE, NSET=NALL")
 for (i2, k), n in ids.items():
     x, y = xy[i2]
     out.append(f"{n}, {x:.10e}, {y:.10e}, {L0 * k / nlev:.10e}")
@@ -182,8 +200,13 @@ nset("WALL", [nid(i, 0) for i in used2])                 # impact face
 nset("TOP", [nid(i, nlev) for i in used2])               # rear face
 tip = min(range(n2), key=lambda i: math.hypot(*xy[i]))    # axis (or hole)
 nset("TIP", [nid(tip, nlev)])                             # rear, on axis
-out += ["*MATERIAL, NAME=CU", "*ELASTIC", "117e9, 0.35",
-        "*DENSITY", "8930.", "*PLASTIC", "0.4e9, 0.", "1.4e9, 10.",
+if MAT:                                    # sigma_y + hard * eps_p to 10
+    mat = ["*ELASTIC", f"{MAT[0]!r}, {MAT[1]!r}", "*DENSITY", f"{MAT[2]!r}",
+           "*PLASTIC", f"{MAT[3]!r}, 0.", f"{MAT[3] + 10 * MAT[4]!r}, 10."]
+else:
+    mat = ["*ELASTIC", "117e9, 0.35", "*DENSITY", "8930.", "*PLASTIC",
+           "0.4e9, 0.", "1.4e9, 10."]
+out += ["*MATERIAL, NAME=CU"] + mat + [
         "*SOLID SECTION, ELSET=EALL, MATERIAL=CU",
         "*BOUNDARY", "YSYM, 2, 2", "WALL, 3, 3"]
 if geom == "wedge":
@@ -225,5 +248,7 @@ for st in range(max(nexp, 1)):
     if opt.get("energy"):                 # energy=1: internal (elastic +
         out += [f"*EL PRINT, ELSET=EALL, TOTALS=ONLY, FREQUENCY={freq}",
                 "ELSE, ELKE"]             # plastic) and kinetic, sector
+    if opt.get("peeq"):                   # peeq=1: equivalent plastic strain
+        out += [f"*EL PRINT, ELSET=EALL, FREQUENCY={freq}", "PEEQ"]  # per point
     out += ["*END STEP"]
 print("\n".join(out))

@@ -12,10 +12,14 @@ import sys
 
 job = sys.argv[1]
 xyz, els, sec, scale = {}, [], None, 1.0
+BAR = dict(L0=32.4e-3, R0=3.2e-3, V0=227.0, RHO=8930.0)   # copper default
 npe, buf = 8, []                           # nodes per element, pending row
 for line in open(job + ".inp"):
     if line.startswith("** RF_SCALE="):  # model part -> whole bar
         scale = float(line.split("=")[1])
+    if line.startswith("** BAR "):        # another bar (gen_taylor.py L0= ...)
+        BAR.update((k, float(v)) for k, v in
+                   (f.split("=") for f in line.split()[2:]))
     if line.startswith("*"):
         sec = line.upper().split(",")[0]
         if sec == "*ELEMENT":
@@ -74,7 +78,7 @@ def volume(blk):                           # (V / V0 whole bar, # elements < 0)
         n = [p[i] for i in e]
         vols.append(sum(tet(n[0], n[a], n[b], n[6]) for a, b in
                         ((1, 2), (2, 3), (3, 7), (7, 4), (4, 5), (5, 1))))
-    v0 = math.pi * 3.2e-3 ** 2 * 32.4e-3
+    v0 = math.pi * BAR["R0"] ** 2 * BAR["L0"]
     return (scale * sum(vols) / v0, sum(v < 0 for v in vols),
             [k for k, v in enumerate(vols) if v < 0])
 
@@ -82,6 +86,29 @@ def volume(blk):                           # (V / V0 whole bar, # elements < 0)
 def where(k):                              # initial centroid (r, z) [mm]
     c = [sum(xyz[i][d] for i in els[k]) / 8 for d in range(3)]
     return f"({1e3 * math.hypot(c[0], c[1]):.2f}, {1e3 * c[2]:.2f})"
+
+
+def profile(blk, z0):                      # outer radius at height z0
+    """Largest radius where the deformed outer surface (the nodes that
+    start on r = R0, in order of their initial z) crosses the height z0;
+    linear between nodes.  The same measure as spall's profile_radius
+    (src/core/profile.h) up to its band interpolation."""
+    u = {int(r[0]): r[1:4] for r in blk[3]}
+    side = sorted((xyz[n][2], n) for n in u
+                  if math.hypot(xyz[n][0], xyz[n][1]) > BAR["R0"] * (1 - 1e-9))
+    pts, seen = [], set()
+    for z, n in side:                      # one node per initial height
+        if round(z * 1e10) in seen:
+            continue
+        seen.add(round(z * 1e10))
+        p = [xyz[n][k] + u[n][k] for k in range(3)]
+        pts.append((math.hypot(p[0], p[1]), p[2]))
+    best = math.nan
+    for (ra, za), (rb, zb) in zip(pts, pts[1:]):
+        if (za - z0) * (zb - z0) <= 0 and za != zb:
+            r = ra + (rb - ra) * (z0 - za) / (zb - za)
+            best = r if not best >= r else best
+    return best
 
 
 ts = sorted(hist)                          # L, R before the tangling
@@ -137,6 +164,12 @@ if up is not None:
     Lr, Rr = (hist[t0][i] + f * (hist[t1][i] - hist[t0][i]) for i in (0, 1))
     print(f"at rest (rear-axis v_z = 0) t = {1e6 * (t0 + f * (t1 - t0)):.2f}"
           f" us: length = {1e3 * Lr:.4f} mm  radius = {1e3 * Rr:.4f} mm")
+    nall = {b[2]: b for b in alln}
+    if t0 in nall and t1 in nall:          # mushroom radius above the wall
+        print("  outer radius at rest, " + ", ".join(
+            f"z = {1e3 * z0:.2f} mm: "
+            f"{1e3 * ((1 - f) * profile(nall[t0], z0) + f * profile(nall[t1], z0)):.4f} mm"
+            for z0 in (0.5e-3, 1e-3)))
 else:
     print("at rest: not reached (rear-axis v_z < 0 at every printed state)")
 for t, v in tip[:: max(1, len(tip) // 12)] + tip[-1:]:
@@ -145,6 +178,48 @@ for t, v in tip[:: max(1, len(tip) // 12)] + tip[-1:]:
     print(f"  t = {1e6 * t:6.2f} us  rear-axis v_z = {v:8.2f} m/s  wall "
           f"force = {dict(rf).get(t, math.nan):9.3e} N  L = {1e3 * L:.3f} mm"
           f"  R = {1e3 * R:.3f} mm  V/V0 = {vr:.4f} ({nneg} inverted)")
+# undeformed length X (gen_taylor.py peeq=1), the measure of the SPH case
+# sph-taylor-2d: from the height where the equivalent plastic strain on the
+# axis first falls below 0.2 % (elements of the axis column, mean over their
+# integration points, placed at their deformed centroid; linear between
+# them) to the rear face; at the last printed state
+pe, cur_t = {}, None
+for line in open(job + ".dat"):
+    h = re.match(r"\s*equivalent plastic strain .*time\s+(\S+)", line)
+    if h:
+        cur_t = float(h.group(1))
+        pe[cur_t] = {}
+    elif cur_t is not None and line.strip():
+        f = line.split()
+        if len(f) == 3:
+            pe[cur_t].setdefault(int(f[0]), []).append(float(f[2]))
+    if line.strip() and " for set " in line and "plastic" not in line:
+        cur_t = None
+if pe and alln:
+    tl = max(pe)
+    blk = {b[2]: b for b in alln}.get(tl)
+    if blk:
+        u = {int(r[0]): r[1:4] for r in blk[3]}
+        col = []                            # (deformed centroid z, mean PEEQ)
+        for k, e in enumerate(els):
+            c0 = [sum(xyz[i][d] for i in e) / 8 for d in range(3)]
+            zc = sum(xyz[i][2] + u[i][2] for i in e) / 8
+            rc0 = math.hypot(c0[0], c0[1])
+            col.append((rc0, zc, sum(pe[tl][k + 1]) / len(pe[tl][k + 1])))
+        rmin = min(c[0] for c in col)
+        axis = sorted((z, p) for r, z, p in col if r < rmin * 1.5)
+        top = max(xyz[int(r[0])][2] + r[3] for r in blk[3])
+        zx = None
+        for (za, pa), (zb, pb) in zip(axis, axis[1:]):
+            if pa >= 2e-3 > pb:
+                zx = za + (zb - za) * (pa - 2e-3) / (pa - pb)
+                break
+        print(f"undeformed length X at t = {1e6 * tl:.2f} us: "
+              + (f"{1e3 * (top - zx):.3f} mm (PEEQ on the axis falls below "
+                 f"0.2 % at z = {1e3 * zx:.3f} mm)" if zx is not None
+                 else "not found (PEEQ on the axis never falls below 0.2 %)"))
+        print("  axis PEEQ (z [mm], mean): " + " ".join(
+            f"{1e3 * z:.2f}:{p:.4f}" for z, p in axis))
 # energies (gen_taylor.py energy=1), scaled to the whole bar: internal
 # (elastic + plastic work) + kinetic against the initial kinetic energy
 en = {}
@@ -158,8 +233,8 @@ for line in open(job + ".dat"):
         en.setdefault(t, {})[kind] = scale * float(line.split()[0])
         kind = None
 if en:
-    m0 = 8930 * math.pi * 3.2e-3 ** 2 * 32.4e-3
-    ek0 = 0.5 * m0 * 227.0 ** 2
+    m0 = BAR["RHO"] * math.pi * BAR["R0"] ** 2 * BAR["L0"]
+    ek0 = 0.5 * m0 * BAR["V0"] ** 2
     for t in sorted(en)[:: max(1, len(en) // 8)] + [max(en)]:
         e = en[t]
         print(f"  t = {1e6 * t:6.2f} us  internal {e.get('internal', 0):7.2f}"
