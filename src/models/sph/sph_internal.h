@@ -48,7 +48,7 @@ struct sph_options {
     bool cspm;              /**< corrected velocity gradient (Eqs. 3.10-3.11) */
     double av_a, av_b;      /**< Monaghan AV q_a, q_b */
     double av_length;       /**< AV length in mu_ij [m] (0: h_ij, Eq. 2.21) */
-    bool av_balsara;        /**< AV times the Balsara shear switch (axisymmetric only) */
+    bool av_balsara;        /**< AV times the Balsara shear switch (not with symmetry planes) */
     double as_zeta;         /**< artificial stress zeta (0: off) */
     double as_n;            /**< exponent n (4) */
     bool as_smooth;         /**< R_i kernel-averaged over i's neighbours (sph_as_smooth.c) */
@@ -313,6 +313,18 @@ static inline double sph_balsara_factor(double div, double curl, double c, doubl
 {
     const double den = div + curl + 1e-4 * c / h;
     return den > 0.0 ? div / den : 1.0;
+}
+/** Balsara's factor of an updated-form particle i of a Cartesian run (plane
+ *  strain / stress or 3D) from its velocity gradient m->L of this force
+ *  call (sph_rates.c pass A): div = L_xx + L_yy (+ L_zz in 3D; the
+ *  plane-stress thickness rate is left out, the AV acts in the plane),
+ *  |curl| the full vorticity (in 2D only its z component is non-zero). */
+static inline double sph_balsara_cartesian(const struct model *m, size_t i, int dim)
+{
+    const double div = m->L[0][i] + m->L[4][i] + (dim == 3 ? m->L[8][i] : 0.0);
+    const double cx = m->L[7][i] - m->L[5][i], cy = m->L[2][i] - m->L[6][i];
+    const double cz = m->L[3][i] - m->L[1][i];
+    return sph_balsara_factor(fabs(div), sqrt(cx * cx + cy * cy + cz * cz), m->c[i], m->h[i]);
 }
 /** Longitudinal sound speed at the given state. */
 double sph_sound_speed(const struct sph_material *mt, double rho, double e);

@@ -16,9 +16,9 @@
  *     viscosity: [q_a, q_b]                   Monaghan AV (default [1, 1])
  *     viscosity_length: L                     [m] length in the AV's mu_ij instead of
  *                                             h_ij (default 0: h_ij, Eq. 2.21)
- *     viscosity_switch: none | balsara        AV times Balsara's shear switch (plane:
- *                                             axisymmetric or formulation: total;
- *                                             default none)
+ *     viscosity_switch: none | balsara        AV times Balsara's shear switch (every
+ *                                             form but symmetry planes and mixed
+ *                                             formulations; default none)
  *     artificial_stress: zeta                 Monaghan-Gray (default 0: off)
  *     artificial_stress_n: n                  (default 4)
  *     artificial_stress_smoothing: false      R_i averaged over the kernel
@@ -269,11 +269,18 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                   "interface: bodies (or materials), a penalty between them");
         form = any_total ? 1 : 0;
         /* the switch needs the velocity gradient before the force pass:
-         * sph_axisym.c and TLSPH's stage 1 (sph_tlsph.c) have it there */
-        if (o.av_balsara && pl != 2 && !(any_total && all_total))
+         * sph_axisym.c, TLSPH's stage 1 (sph_tlsph.c) and the two-pass
+         * loops of sph_rates.c have it there, the fused loop does not */
+        if (o.av_balsara && any_total && !all_total)
             return deck_error_key(err, params, "viscosity_switch",
-                                  "viscosity_switch: balsara needs plane: axisymmetric or "
-                                  "formulation: total for every body");
+                                  "viscosity_switch: balsara in a run that mixes formulations "
+                                  "total and updated is not implemented: use it with one "
+                                  "formulation for every body");
+        if (o.av_balsara && pl != 2 && !any_total && sym)
+            return deck_error_key(err, params, "viscosity_switch",
+                                  "viscosity_switch: balsara in the updated form needs the "
+                                  "two-pass loops, which symmetry planes do not have: model "
+                                  "the whole body instead of using symmetry");
         o.split_forms = any_total && ifc != SPH_IFACE_NONE;
         /* the ghosts of symmetry planes have their own neighbour list,
          * which the interface split does not see */
@@ -291,6 +298,8 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                   "artificial_stress_smoothing works with the two-pass loops "
                                   "only: not with symmetry planes or plane: axisymmetric");
         o.split_pairs = o.split_pairs || o.as_smooth;
+        /* Balsara's switch, Cartesian updated form: sph_rates.c pass C */
+        o.split_pairs = o.split_pairs || (o.av_balsara && pl != 2 && !any_total);
         o.symmetry[0] = sym == 1 || sym == 3;
         o.symmetry[1] = sym == 2 || sym == 3;
         if (sym == 3 && sim->dim < 3)

@@ -293,7 +293,7 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
     const double lav = m->opt.av_length;
     const double xs = m->opt.xsph;
-    const bool cm = m->opt.cspm;
+    const bool cm = m->opt.cspm, bal = m->opt.av_balsara;
     /* leapfrog step: the stress power is booked by sph_leapfrog_advance */
     const double wstress = m->lf_dt > 0.0 ? 0.0 : 1.0;
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
@@ -310,6 +310,8 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
             sph_kernel_eval(kern, alpha, m->dx[i], hi, dim == 2 ? hi * hi : hi * hi * hi, &Wdi,
                             &Fd);
         }
+        /* Balsara's switch from pass A's velocity gradient (this call) */
+        const double fi = bal ? sph_balsara_cartesian(m, i, dim) : 1.0;
         for (size_t k = off[i]; k < off[i + 1]; k++) {
             size_t j = (size_t)nb[k];
             double xij[3] = {0, 0, 0}, vij[3] = {0, 0, 0};
@@ -330,6 +332,8 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
                 double mu = (lav > 0.0 ? lav : hb) * vx / (r2 + 0.01 * hb * hb);
                 double cb = 0.5 * (m->c[i] + m->c[j]);
                 Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + rhoj));
+                if (bal) /* symmetric in i, j: momentum kept (as sph_axisym.c) */
+                    Pi *= 0.5 * (fi + sph_balsara_cartesian(m, j, dim));
             }
             double fn = 0.0;
             if (zeta > 0.0) {

@@ -49,17 +49,21 @@ opt = dict(a.split("=", 1) for a in sys.argv[4:])
 # byte-identical when none of these is given):
 #   L0=, R0= [m], v0= [m/s], E= [Pa], nu=, rho= [kg/m^3], sy= yield stress
 #   [Pa], hard= linear hardening modulus [Pa] (0: perfectly plastic),
+#   pb=, pn= power-law hardening sy + pb eps_p^pn instead (a 20-point
+#   *PLASTIC table to eps_p = 10; pb= 0: off),
 #   name= heading text; peeq=1 prints the equivalent plastic strain of
 #   every integration point (post_taylor.py: the undeformed length X).  The bar's data go into the deck as "** BAR" so
 #   that post_taylor.py reads them.
 MAT = None
-if any(k in opt for k in ("L0", "R0", "v0", "E", "nu", "rho", "sy", "hard")):
+if any(k in opt for k in ("L0", "R0", "v0", "E", "nu", "rho", "sy", "hard",
+                          "pb", "pn")):
     L0 = float(opt.get("L0", L0))
     R0 = float(opt.get("R0", R0))
     V0 = float(opt.get("v0", V0))
     MAT = (float(opt.get("E", 117e9)), float(opt.get("nu", 0.35)),
            float(opt.get("rho", 8930.0)), float(opt.get("sy", 0.4e9)),
-           float(opt.get("hard", 0.1e9)))
+           float(opt.get("hard", 0.1e9)), float(opt.get("pb", 0.0)),
+           float(opt.get("pn", 1.0)))
 hole = float(opt.get("hole", 0.0))
 WEDGE_DEG = float(opt.get("angle", WEDGE_DEG))
 T_END = float(opt.get("tend", T_END))
@@ -200,7 +204,13 @@ nset("WALL", [nid(i, 0) for i in used2])                 # impact face
 nset("TOP", [nid(i, nlev) for i in used2])               # rear face
 tip = min(range(n2), key=lambda i: math.hypot(*xy[i]))    # axis (or hole)
 nset("TIP", [nid(tip, nlev)])                             # rear, on axis
-if MAT:                                    # sigma_y + hard * eps_p to 10
+if MAT and MAT[5] > 0.0:                   # power law sy + pb eps_p^pn
+    mat = ["*ELASTIC", f"{MAT[0]!r}, {MAT[1]!r}", "*DENSITY", f"{MAT[2]!r}",
+           "*PLASTIC"] + [f"{MAT[3] + MAT[5] * e ** MAT[6]!r}, {e!r}" for e in
+                          (0.0, 1e-3, 2e-3, 5e-3, 0.01, 0.02, 0.03, 0.05, 0.075,
+                           0.1, 0.15, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 5.0,
+                           10.0)]
+elif MAT:                                  # sigma_y + hard * eps_p to 10
     mat = ["*ELASTIC", f"{MAT[0]!r}, {MAT[1]!r}", "*DENSITY", f"{MAT[2]!r}",
            "*PLASTIC", f"{MAT[3]!r}, 0.", f"{MAT[3] + 10 * MAT[4]!r}, 10."]
 else:
