@@ -29,10 +29,12 @@ int sph_case_plate(struct vreport *r, struct spall_error *err);
 int sph_case_taylor3d(struct vreport *r, struct spall_error *err);
 
 /** One 3D Taylor-bar run (n particles across; quarter model with mirror
- *  planes when @p quarter): final length, mushroom radius [m], particle
+ *  planes when @p quarter; @p power_law: yield a + b eps_p^n without rate
+ *  and heating instead of Johnson-Cook): final length, mushroom radius,
+ *  outer radius 0.5 mm above the face (@p r05, may be NULL) [m], particle
  *  count, wall seconds. */
-int sph_taylor3d_run(int n, bool quarter, double *len, double *rad, size_t *np, double *secs,
-                     struct spall_error *err);
+int sph_taylor3d_run(int n, bool quarter, bool power_law, double *len, double *rad, double *r05,
+                     size_t *np, double *secs, struct spall_error *err);
 
 /** Outcome of one 2D Taylor-rod run (sph_taylor2d.c): [0] at t1, [1] at t2. */
 struct sph_taylor2d_result {
