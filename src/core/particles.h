@@ -24,6 +24,12 @@ struct spall_error;
  *  on it: every particle's arithmetic is the same either way. */
 #define SPALL_OMP_MIN_PARTICLES 4096
 
+/** Most particles a run may hold (lattice_fill refuses more).  A particle
+ *  costs ~130 B here and ~1 kB with a model's state and neighbour lists, so
+ *  1e8 is beyond any machine this code runs on; a deck that asks for more
+ *  has a typo in a spacing and is refused before it allocates. */
+#define SPALL_MAX_PARTICLES 100000000.0
+
 struct particles {
     int dim;          /**< 1, 2 or 3 */
     size_t n;         /**< owned + ghost particles */
