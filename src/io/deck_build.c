@@ -598,7 +598,7 @@ static int parse_initial_velocity(struct build_ctx *c, const struct deck_node *r
         double v[3] = {0, 0, 0};
         if ((rc = deck_expect_map(n, "a mapping with group and value", err)) ||
             (rc = group_at_key(c, n, "group", &g, err)) ||
-            (rc = deck_vector(n, "value", true, (size_t)c->dim, (size_t)c->dim, v, err)) ||
+            (rc = deck_velocity(n, "value", true, (size_t)c->dim, v, err)) ||
             (rc = deck_check_unused(n, "initial_velocity", keys, err)))
             return rc;
         const struct group *gr = &c->sim->groups[g];
@@ -755,8 +755,13 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
                     strstr(err->msg, "time step") != NULL;
         char msg[SPALL_ERROR_MSG_LEN];
         snprintf(msg, sizeof msg, "%s", err->msg);
+        const struct deck_node *at = deck_node_at_prefix(root, msg); /* "model.clamp: ..." */
         if (at_dt)
             deck_error_key(err, run, "dt", "%s", msg);
+        else if (at)
+            deck_error(err, at, "%s", msg);
+        else if (deck_peek(root, "model")) /* the model's set-up refused it */
+            deck_error_key(err, root, "model", "%s", msg);
         else
             spall_error_set(err, rc, "%s: %s", d->path, msg);
         err->code = rc;
