@@ -159,9 +159,8 @@ static int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3]
         for (size_t i = 0; i < n; i++) {
             double v = x[d][i];
             if (!isfinite(v))
-                return spall_error_set(err, SPALL_ERR_UNSTABLE,
-                                       "run went unstable: neighbour search: particle %zu has a "
-                                       "non-finite position",
+                return spall_error_set(err, SPALL_ERR_INPUT,
+                                       "neighbour search: particle %zu has a non-finite position",
                                        i);
             lo[d] = v < lo[d] ? v : lo[d];
             hi[d] = v > hi[d] ? v : hi[d];
