@@ -25,7 +25,8 @@ timeout-setup (killed before run.log's header, i.e. in the set-up, and
 again with 6x the time: a bug), slow-setup (the set-up finished with 6x
 the time: a large but legitimate deck, e.g. a box grown to 1 m) and
 timeout-stepping (killed after the set-up: acceptable).
-Writes DIR/summary.txt and DIR/bugs/NNN.yaml (+ .err) for every bug.
+Writes DIR/summary.txt, DIR/all.tsv (every mutant's class and first line)
+and DIR/bugs/NNN.yaml (+ .err) for every bug.
 Python 3 with PyYAML.
 """
 import argparse
@@ -241,6 +242,7 @@ def main():
         shutil.rmtree(work, ignore_errors=True)
         return 0
     summary = open(os.path.join(a.out, "summary.txt"), "w")
+    every = open(os.path.join(a.out, "all.tsv"), "w")  # deck, mutation, class, exit, message
     nbug = 0
     totals = {}
     for deck in a.decks:
@@ -287,6 +289,8 @@ def main():
         with ThreadPoolExecutor(max_workers=a.jobs) as ex:
             for k, rc, err, parts in ex.map(job, range(len(muts))):
                 c = classify(rc, err, parts)
+                msg = (err.strip().splitlines() or [""])[0][:300].replace("\t", " ")
+                print(f"{name}\t{muts[k][0]}\t{c}\t{rc}\t{msg}", file=every)
                 counts[c] = counts.get(c, 0) + 1
                 totals[c] = totals.get(c, 0) + 1
                 if c.startswith("bug") or c in ("timeout-setup", "refused-no-position"):
@@ -306,6 +310,7 @@ def main():
         print(f"{name}: {len(muts)} mutants {dict(sorted(counts.items()))}", flush=True)
     print(f"TOTAL {dict(sorted(totals.items()))}", file=summary)
     summary.close()
+    every.close()
     shutil.rmtree(work, ignore_errors=True)
     print(f"TOTAL {dict(sorted(totals.items()))}")
     return 0
