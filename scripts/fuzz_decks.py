@@ -11,6 +11,8 @@ the deck refuses a step count); then each mutant of that short deck runs as
 `timeout S spall run MUTANT -o OUT --no-progress` with OMP_NUM_THREADS=1 and
 nice 10.  Mutants (deterministic for a given --seed):
   - every number -> 0, -1, -x, 1e300, -1e-300, .nan, .inf, a string
+  - every string -> '', abc, 5000 x's, null; every mapping / sequence ->
+    {}, [], null, 7
   - every mapping key deleted (one at a time)
   - every sequence shortened by one / lengthened by one (last item repeated)
   - every mapping replaced by a sequence of its values, every sequence by a
@@ -136,6 +138,16 @@ def tree_mutants(tree, rng):
                 t = copy.deepcopy(tree)
                 set_at(t, path, Raw(neg(v) if r == "NEG" else r))
                 muts.append((f"num {where} -> {r}", dump(t)))
+        if isinstance(v, str) and not is_num(v):
+            for r, label in (("", "''"), ("abc", "abc"), ("x" * 5000, "x*5000"), (None, "null")):
+                t = copy.deepcopy(tree)
+                set_at(t, path, r)
+                muts.append((f"str {where} -> {label}", dump(t)))
+        if isinstance(v, (dict, list)):
+            for r, label in (({}, "{}"), ([], "[]"), (None, "null"), (Raw("7"), "7")):
+                t = copy.deepcopy(tree)
+                set_at(t, path, r)
+                muts.append((f"node {where} -> {label}", dump(t)))
         if isinstance(path[-1], str):
             t = copy.deepcopy(tree)
             del get_at(t, path[:-1])[path[-1]]
@@ -220,6 +232,7 @@ def main():
     ap.add_argument("--max", type=int, default=0, help="mutants per deck (0: all)")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=int, default=10)
+    ap.add_argument("--only", default="", help="regex: keep mutants whose description matches")
     ap.add_argument("--replay", action="store_true",
                     help="run the given files as they are (e.g. DIR/bugs/*.yaml) and classify them")
     a = ap.parse_args()
@@ -266,6 +279,8 @@ def main():
             continue
         text = dump(short)
         muts = tree_mutants(short, rng) + text_mutants(text, rng)
+        if a.only:
+            muts = [m for m in muts if re.search(a.only, m[0])]
         if a.max and len(muts) > a.max:
             muts = rng.sample(muts, a.max)
 

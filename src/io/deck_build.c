@@ -16,6 +16,7 @@
 #include "io/deck_contact.h"
 #include "io/deck_impactors.h"
 #include "io/deck_inclusions.h"
+#include "io/output.h"
 #include "models/model.h"
 #include "spall/error.h"
 
@@ -765,6 +766,13 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
         else
             spall_error_set(err, rc, "%s: %s", d->path, msg);
         err->code = rc;
+        goto fail;
+    }
+    size_t bad = 0; /* output.fields, refused before any output exists */
+    if ((rc = field_writer_check_names(c.sim, ro->fields, ro->n_fields, &bad, err))) {
+        char msg[SPALL_ERROR_MSG_LEN];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        deck_error(err, deck_peek(deck_peek(root, "output"), "fields")->items[bad], "%s", msg);
         goto fail;
     }
     *out = c.sim;

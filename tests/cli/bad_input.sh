@@ -75,6 +75,11 @@ check "sph clamp without fixed bc" "$sph" "model.clamp: group 'clamp' needs a fi
 check "sph no stable step" "$(echo "$sph" | sed 's/density: 1000,/density: 1000, eos: mie_gruneisen, sound_speed: 1.0e300, hugoniot_slope: 1.5, gruneisen: 2,/')
 boundary_conditions: [{group: clamp, type: fixed}]
 " "no finite stable time step"
+# an unknown output field: positioned, cut short, and refused before the
+# output directory exists (was: no position, after creating the directory)
+check "unknown output field" "${base}run: {steps: 10}
+output: {fields: [velocity, $(printf 'x%.0s' $(seq 300))]}
+" "unknown output field 'xxxx"
 
 # a missing deck file: one line, exit 2
 "$spall" run missing.yaml -o out2 2>stderr.txt; rc=$?
