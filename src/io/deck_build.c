@@ -178,7 +178,7 @@ static int material_at_key(struct build_ctx *c, const struct deck_node *map, con
         return rc;
     *index = sim_find_material(c->sim, name);
     if (*index < 0)
-        return deck_error(err, deck_peek(map, key), "unknown material '%s'; define it under 'materials:'",
+        return deck_error(err, deck_peek(map, key), "unknown material '%.64s'; define it under 'materials:'",
                           name);
     return SPALL_OK;
 }
@@ -373,7 +373,7 @@ static int group_at_key(struct build_ctx *c, const struct deck_node *map, const 
     *g = sim_find_group(c->sim, name);
     if (*g < 0)
         return deck_error(err, deck_peek(map, key),
-                          "unknown group '%s'; define it under 'groups:' (or use 'all')", name);
+                          "unknown group '%.64s'; define it under 'groups:' (or use 'all')", name);
     return SPALL_OK;
 }
 

@@ -80,6 +80,11 @@ boundary_conditions: [{group: clamp, type: fixed}]
 check "unknown output field" "${base}run: {steps: 10}
 output: {fields: [velocity, $(printf 'x%.0s' $(seq 300))]}
 " "unknown output field 'xxxx"
+# a 3000-character unknown name is quoted cut short (was: a 1 kB line)
+check "long unknown name" "$(echo "$base" | sed "s/body: {geometry: plate/body: {geometry: $(printf 'x%.0s' $(seq 3000))/")
+run: {steps: 10}
+" "unknown geometry 'xxxx"
+if [ "$(wc -c < stderr.txt)" -gt 300 ]; then echo "FAIL long unknown name: $(wc -c < stderr.txt) bytes"; fail=$((fail+1)); fi
 
 # a missing deck file: one line, exit 2
 "$spall" run missing.yaml -o out2 2>stderr.txt; rc=$?
