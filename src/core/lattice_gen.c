@@ -129,11 +129,10 @@ static double estimate_sites(const struct lattice_spec *spec, const struct geom 
                              const long imin[3], const long imax[3], double candidates)
 {
     enum { SAMPLES = 64 };
-    long n[3], stride[3];
+    long n[3], len[3];
     for (int d = 0; d < 3; d++) {
-        long len = imax[d] - imin[d] + 1;
-        n[d] = len < SAMPLES ? len : SAMPLES;
-        stride[d] = len / n[d];
+        len[d] = imax[d] - imin[d] + 1;
+        n[d] = len[d] < SAMPLES ? len[d] : SAMPLES;
     }
     double hit = 0.0, tried = 0.0;
     for (long c = 0; c < n[2]; c++)
@@ -142,8 +141,8 @@ static double estimate_sites(const struct lattice_spec *spec, const struct geom 
                 double pos[3];
                 tried += 1.0;
                 /* odd offsets so FCC parity and row shifts are sampled too */
-                long i = imin[0] + a * stride[0] + (b + c) % 2;
-                long j = imin[1] + b * stride[1], k = imin[2] + c * stride[2];
+                long i = imin[0] + a * len[0] / n[0] + (b + c) % 2; /* evenly spread */
+                long j = imin[1] + b * len[1] / n[1], k = imin[2] + c * len[2] / n[2];
                 if (site_position(spec, step, rotated, ca, sa, i, j, k, pos) &&
                     geom_contains(region, pos, dim))
                     hit += 1.0;
