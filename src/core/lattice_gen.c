@@ -24,7 +24,7 @@
 #include <string.h>
 
 /** Refuse to enumerate more candidate sites than this (a typo in a spacing):
- *  100 x SPALL_MAX_PARTICLES.  Measured (2026-12-02, Release, one thread):
+ *  1000 x SPALL_MAX_PARTICLES_DEFAULT.  Measured (2026-12-02, Release, one thread):
  *  1.85e9 candidates of a thin 2D frame in 3.7 s, so <= ~20 s here (4e10
  *  before: ~80 s of set-up, a hang to the user). */
 #define LATTICE_MAX_CANDIDATES 1.0e10
@@ -225,17 +225,18 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
                                "region would need %.3g lattice candidates at spacing %g m",
                                candidates, spec->spacing);
 
-    /* Refuse a fill beyond SPALL_MAX_PARTICLES before allocating: the kept
+    /* Refuse a fill beyond the particle limit before allocating: the kept
      * fraction of the candidates, estimated on a regular sub-grid. */
-    double total = (double)p->n + candidates;
-    if (total > SPALL_MAX_PARTICLES) {
+    double limit = p->max_n ? (double)p->max_n : SPALL_MAX_PARTICLES_DEFAULT;
+    if ((double)p->n + candidates > limit) {
         double est = estimate_sites(spec, region, dim, step, rotated, ca, sa, imin, imax,
                                     candidates);
-        if ((double)p->n + est > SPALL_MAX_PARTICLES)
+        if ((double)p->n + est > limit)
             return spall_error_set(err, SPALL_ERR_INPUT,
                                    "would hold about %.3g particles at lattice spacing %g m, more "
-                                   "than the limit of %.0e particles; coarsen the spacing",
-                                   (double)p->n + est, spec->spacing, SPALL_MAX_PARTICLES);
+                                   "than the limit of %.3g (run.max_particles); coarsen the "
+                                   "spacing or raise the limit",
+                                   (double)p->n + est, spec->spacing, limit);
     }
 
     size_t added = 0;
@@ -246,13 +247,14 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
                 if (!site_position(spec, step, rotated, ca, sa, i, j, k, pos) ||
                     !geom_contains(region, pos, dim))
                     continue;
-                if ((double)p->n >= SPALL_MAX_PARTICLES) {
+                if ((double)p->n >= limit) {
                     if (n_added)
                         *n_added = added;
                     return spall_error_set(err, SPALL_ERR_INPUT,
-                                           "holds more than the limit of %.0e particles at "
-                                           "lattice spacing %g m; coarsen the spacing",
-                                           SPALL_MAX_PARTICLES, spec->spacing);
+                                           "holds more than the limit of %.3g particles "
+                                           "(run.max_particles) at lattice spacing %g m; coarsen "
+                                           "the spacing or raise the limit",
+                                           limit, spec->spacing);
                 }
                 int rc = particles_append(p, pos, material, NULL, err);
                 if (rc) {

@@ -640,11 +640,24 @@ static int parse_probes(struct build_ctx *c, const struct deck_node *root, struc
     return SPALL_OK;
 }
 
+/* run.max_particles, read before the bodies are filled (lattice_fill refuses more). */
+static int parse_max_particles(struct build_ctx *c, const struct deck_node *root,
+                               struct spall_error *err)
+{
+    const struct deck_node *r = deck_peek(root, "run");
+    long max = (long)SPALL_MAX_PARTICLES_DEFAULT;
+    int rc = r && r->kind == DECK_MAPPING ? deck_long(r, "max_particles", false, 1,
+                                                      (long)SPALL_MAX_PARTICLES_LIMIT, &max, err)
+                                          : SPALL_OK;
+    c->sim->p->max_n = (size_t)max;
+    return rc;
+}
+
 static int parse_run(struct build_ctx *c, const struct deck_node *root, struct run_output *ro,
                      struct spall_error *err)
 {
     static const char *const keys[] = {"end_time", "steps", "dt", "dt_factor", "dt_override",
-                                       "threads", "energy_blowup", "seed", NULL};
+                                       "threads", "energy_blowup", "seed", "max_particles", NULL};
     const struct deck_node *r = deck_get(root, "run");
     if (!r)
         return deck_error(err, root, "missing required key 'run' (end_time or steps)");
@@ -734,7 +747,8 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
     if ((rc = parse_lattice(&c, root, err)))
         goto fail;
     if ((rc = parse_model(&c, root, err)) || (rc = parse_materials(&c, root, err)) ||
-        (rc = parse_body(&c, root, err)) || (rc = parse_regions(&c, root, err)) ||
+        (rc = parse_max_particles(&c, root, err)) || (rc = parse_body(&c, root, err)) ||
+        (rc = parse_regions(&c, root, err)) ||
         (rc = deck_parse_inclusions(c.sim, root, c.geometry, c.dim, err)))
         goto fail;
     assign_masses(c.sim);

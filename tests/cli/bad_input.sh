@@ -48,7 +48,11 @@ run: {steps: 10}
 # a spacing typo asking for ~1.2e8 particles is refused before allocating
 check "huge particle count" "$(echo "$base" | sed 's/spacing: 0.001/spacing: 1.0e-6/')
 run: {steps: 10}
-" "more than the limit of 1e+08 particles"
+" "more than the limit of 1e+07 (run.max_particles)"
+check "run.max_particles" "${base}run: {steps: 10, max_particles: 50}
+" "more than the limit of 50 (run.max_particles)"
+check "run.max_particles range" "${base}run: {steps: 10, max_particles: 1e10}
+" "max_particles"
 # a far-away circle intersected with the plate: empty bounding box (was a hang)
 check "empty intersection" "$(echo "$base" | sed 's/plate: {box: {min: \[0, 0\], max: \[0.01, 0.01\]}}/plate: {intersection: [{circle: {center: [1.0e300, 0], radius: 0.005}}, {box: {min: [0, 0], max: [0.01, 0.01]}}]}/')
 run: {steps: 10}
