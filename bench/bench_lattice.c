@@ -90,7 +90,7 @@ static int bench_lattice2d(int threads, double scale, struct bench_result *out,
              "  left: {box: {min: [-1, -1], max: [%.17g, 1]}}\n"
              "boundary_conditions:\n"
              "  - {group: left, type: velocity, components: [x], value: -1.0}\n"
-             "run: {steps: %ld}\n",
+             "run: {steps: %ld, max_particles: 1e9}\n",
              r0, -0.25 * r0, -0.25 * r0, w, h, 0.5 * r0, steps);
     int rc = bench_run_deck("lattice2d", yaml, threads, 0, out, err);
     if (!rc)

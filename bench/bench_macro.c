@@ -42,7 +42,7 @@ static int bench_macro_rod(int threads, double scale, struct bench_result *out,
              "boundary_conditions:\n"
              "  - {group: bottom, type: velocity, components: [z], value: -0.5}\n"
              "  - {group: top, type: velocity, components: [z], value: 0.5}\n"
-             "run: {steps: %ld}\n",
+             "run: {steps: %ld, max_particles: 1e9}\n",
              r0, -e, L + e, 0.5 * D + e, 0.25 * r0, L - 0.25 * r0, steps);
     int rc = bench_run_deck("macro_rod", yaml, threads, 0, out, err);
     if (rc)

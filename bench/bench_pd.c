@@ -42,7 +42,7 @@ static int bench_pd3d(int threads, double scale, struct bench_result *out,
              "boundary_conditions:\n"
              "  - {group: left, type: velocity, components: [x], value: -5.0}\n"
              "  - {group: right, type: velocity, components: [x], value: 5.0}\n"
-             "run: {dt: 5.0e-8, dt_override: true, steps: %ld}\n",
+             "run: {dt: 5.0e-8, dt_override: true, steps: %ld, max_particles: 1e9}\n",
              dx, (nx - 0.5) * dx, (ny - 0.5) * dx, (ny - 0.5) * dx, (nx - 2.5) * dx, steps);
     int rc = bench_run_deck("pd3d", yaml, threads, 0, out, err);
     if (rc)

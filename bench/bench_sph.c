@@ -116,9 +116,9 @@ static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *f
 {
     char run[128];
     if (steps > 0)
-        snprintf(run, sizeof run, "run: {steps: %ld}\n", steps);
+        snprintf(run, sizeof run, "run: {steps: %ld, max_particles: 1e9}\n", steps);
     else /* to rest (the bar leaves the wall at ~ 50 us), adaptive dt */
-        snprintf(run, sizeof run, "run: {end_time: 8.0e-5}\n");
+        snprintf(run, sizeof run, "run: {end_time: 8.0e-5, max_particles: 1e9}\n");
     const double dx = 0.4e-3 / cbrt(scale > 0.0 ? scale : 1.0);
     snprintf(yaml, size,
              "model: {type: sph, kernel: wendland, h_factor: %.17g, viscosity: [%g, %g],\n"
@@ -333,7 +333,7 @@ static int bench_sph_rings(int threads, double scale, struct bench_result *out,
              "       material: rubber}\n"
              "groups: {left: {box: {min: [-1, -1], max: [0, 1]}}}\n"
              "initial_velocity: [{group: left, value: [7.5, 0]}]\n"
-             "run: {steps: %ld}\n",
+             "run: {steps: %ld, max_particles: 1e9}\n",
              dx, 0.5 * dx, 0.5 * dx, steps);
     double nb_share = 0.0;
     size_t builds = 0;

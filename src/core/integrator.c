@@ -285,6 +285,26 @@ static int check_finite(const struct sim *s, size_t *bad)
     return 0;
 }
 
+static int unstable_error(const struct sim *s, size_t bad, struct spall_error *err)
+{
+    return spall_error_set(err, SPALL_ERR_UNSTABLE,
+                           "run went unstable at step %ld, t = %.6g s: particle %zu (id %lld) "
+                           "has a non-finite position or velocity",
+                           s->step, s->t, bad, (long long)s->p->gid[bad]);
+}
+
+/* A force call that failed on non-finite positions or velocities (the
+ * neighbour search refuses them as input) is an unstable run, not bad input. */
+static int unstable_or(const struct sim *s, int rc, struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    for (size_t i = 0; i < p->n_owned; i++)
+        for (int d = 0; d < s->dim; d++)
+            if (!isfinite(p->x[d][i]) || !isfinite(p->v[d][i]))
+                return unstable_error(s, i, err);
+    return rc;
+}
+
 int sim_step(struct sim *s, struct spall_error *err)
 {
     const double dt = s->dt;
@@ -308,9 +328,9 @@ int sim_step(struct sim *s, struct spall_error *err)
         impose_velocities_silent(s, s->t);
     }
     if (s->ops->advance_state && (rc = s->ops->advance_state(s->model, s, dt, 0, err)))
-        return rc;
+        return unstable_or(s, rc, err);
     if ((rc = compute_all_forces(s, err)))
-        return rc;
+        return unstable_or(s, rc, err);
     if (pc)
         for (int d = 0; d < s->dim; d++)
             memcpy(s->p->v[d], s->v_half[d], s->p->n_owned * sizeof(double));
@@ -319,10 +339,10 @@ int sim_step(struct sim *s, struct spall_error *err)
     impose_velocities(s, s->t, half, 1);
     rigid_no_slip(s, dt);
     if (s->ops->advance_state && (rc = s->ops->advance_state(s->model, s, dt, 1, err)))
-        return rc;
+        return unstable_or(s, rc, err);
     rc = s->ops->end_step(s->model, s, err);
     if (rc)
-        return rc;
+        return unstable_or(s, rc, err);
     if (s->adaptive_dt) {
         /* e.g. SPH, Eq. 3.38: the limit moves with the sound speed and
          * particle velocities; never step past end_time */
@@ -335,10 +355,7 @@ int sim_step(struct sim *s, struct spall_error *err)
     }
     size_t bad = 0;
     if (check_finite(s, &bad))
-        return spall_error_set(err, SPALL_ERR_UNSTABLE,
-                               "run went unstable at step %ld, t = %.6g s: particle %zu (id %lld) "
-                               "has a non-finite position or velocity",
-                               s->step, s->t, bad, (long long)s->p->gid[bad]);
+        return unstable_error(s, bad, err);
     return SPALL_OK;
 }
 

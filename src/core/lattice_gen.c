@@ -23,8 +23,13 @@
 #include <math.h>
 #include <string.h>
 
-/** Refuse to enumerate more candidate sites than this (a typo in a spacing). */
-#define LATTICE_MAX_CANDIDATES 4.0e10
+/** Refuse to enumerate more candidate sites than this (a typo in a spacing):
+ *  1000 x SPALL_MAX_PARTICLES_DEFAULT.  Measured (2026-12-02, Release, one thread):
+ *  1.85e9 candidates of a thin 2D frame in 3.7 s, so <= ~20 s here (4e10
+ *  before: ~80 s of set-up, a hang to the user). */
+#define LATTICE_MAX_CANDIDATES 1.0e10
+/** Largest lattice index from the origin (the (long) conversion must be defined). */
+#define LATTICE_MAX_INDEX 1.0e15
 
 static const char *const lattice_names[] = {"chain", "triangular", "square", "sc", "fcc",
                                             "triple_honeycomb"};
@@ -99,6 +104,52 @@ static bool lattice_local(const struct lattice_spec *s, const double step[3], lo
     }
 }
 
+/** Site position of index (i, j, k) in space; false when not a site. */
+static bool site_position(const struct lattice_spec *spec, const double step[3], bool rotated,
+                          double ca, double sa, long i, long j, long k, double pos[3])
+{
+    double loc[3];
+    if (!lattice_local(spec, step, i, j, k, loc))
+        return false;
+    memcpy(pos, spec->origin, 3 * sizeof(double));
+    if (rotated) {
+        pos[0] += ca * loc[0] - sa * loc[1];
+        pos[1] += sa * loc[0] + ca * loc[1];
+    } else {
+        for (int d = 0; d < lattice_kind_dim(spec->kind); d++)
+            pos[d] += loc[d];
+    }
+    return true;
+}
+
+/** Estimated number of sites of the index box inside @p region: the kept
+ *  fraction of a regular sub-grid of at most 64 points per axis. */
+static double estimate_sites(const struct lattice_spec *spec, const struct geom *region, int dim,
+                             const double step[3], bool rotated, double ca, double sa,
+                             const long imin[3], const long imax[3], double candidates)
+{
+    enum { SAMPLES = 64 };
+    long n[3], len[3];
+    for (int d = 0; d < 3; d++) {
+        len[d] = imax[d] - imin[d] + 1;
+        n[d] = len[d] < SAMPLES ? len[d] : SAMPLES;
+    }
+    double hit = 0.0, tried = 0.0;
+    for (long c = 0; c < n[2]; c++)
+        for (long b = 0; b < n[1]; b++)
+            for (long a = 0; a < n[0]; a++) {
+                double pos[3];
+                tried += 1.0;
+                /* odd offsets so FCC parity and row shifts are sampled too */
+                long i = imin[0] + a * len[0] / n[0] + (b + c) % 2; /* evenly spread */
+                long j = imin[1] + b * len[1] / n[1], k = imin[2] + c * len[2] / n[2];
+                if (site_position(spec, step, rotated, ca, sa, i, j, k, pos) &&
+                    geom_contains(region, pos, dim))
+                    hit += 1.0;
+            }
+    return tried > 0.0 ? candidates * hit / tried : candidates;
+}
+
 int lattice_fill(struct particles *p, const struct lattice_spec *spec, const struct geom *region,
                  int32_t material, size_t *n_added, struct spall_error *err)
 {
@@ -152,6 +203,16 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
     double candidates = 1.0;
     for (int d = 0; d < ldim; d++) {
         double a = floor(llo[d] / step[d]) - 1.0, b = ceil(lhi[d] / step[d]) + 1.0;
+        if (!(b >= a)) /* an empty bounding box (disjoint intersection) */
+            return spall_error_set(err, SPALL_ERR_INPUT,
+                                   "contains no lattice site (%s, spacing %g m): its bounding box "
+                                   "is empty",
+                                   lattice_kind_name(spec->kind), spec->spacing);
+        if (!(fabs(a) < LATTICE_MAX_INDEX && fabs(b) < LATTICE_MAX_INDEX))
+            return spall_error_set(err, SPALL_ERR_INPUT,
+                                   "lies %.3g lattice steps from the lattice origin (spacing %g m); "
+                                   "expected at most %.0e",
+                                   fmax(fabs(a), fabs(b)), spec->spacing, LATTICE_MAX_INDEX);
         if (!(b - a < LATTICE_MAX_CANDIDATES))
             return spall_error_set(err, SPALL_ERR_INPUT,
                                    "region is too large for lattice spacing %g m", spec->spacing);
@@ -164,24 +225,37 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
                                "region would need %.3g lattice candidates at spacing %g m",
                                candidates, spec->spacing);
 
+    /* Refuse a fill beyond the particle limit before allocating: the kept
+     * fraction of the candidates, estimated on a regular sub-grid. */
+    double limit = p->max_n ? (double)p->max_n : SPALL_MAX_PARTICLES_DEFAULT;
+    if ((double)p->n + candidates > limit) {
+        double est = estimate_sites(spec, region, dim, step, rotated, ca, sa, imin, imax,
+                                    candidates);
+        if ((double)p->n + est > limit)
+            return spall_error_set(err, SPALL_ERR_INPUT,
+                                   "would hold about %.3g particles at lattice spacing %g m, more "
+                                   "than the limit of %.3g (run.max_particles); coarsen the "
+                                   "spacing or raise the limit",
+                                   (double)p->n + est, spec->spacing, limit);
+    }
+
     size_t added = 0;
     for (long k = imin[2]; k <= imax[2]; k++) {
         for (long j = imin[1]; j <= imax[1]; j++) {
             for (long i = imin[0]; i <= imax[0]; i++) {
-                double loc[3];
-                if (!lattice_local(spec, step, i, j, k, loc))
-                    continue;
                 double pos[3];
-                memcpy(pos, spec->origin, sizeof pos);
-                if (rotated) {
-                    pos[0] += ca * loc[0] - sa * loc[1];
-                    pos[1] += sa * loc[0] + ca * loc[1];
-                } else {
-                    for (int d = 0; d < ldim; d++)
-                        pos[d] += loc[d];
-                }
-                if (!geom_contains(region, pos, dim))
+                if (!site_position(spec, step, rotated, ca, sa, i, j, k, pos) ||
+                    !geom_contains(region, pos, dim))
                     continue;
+                if ((double)p->n >= limit) {
+                    if (n_added)
+                        *n_added = added;
+                    return spall_error_set(err, SPALL_ERR_INPUT,
+                                           "holds more than the limit of %.3g particles "
+                                           "(run.max_particles) at lattice spacing %g m; coarsen "
+                                           "the spacing or raise the limit",
+                                           limit, spec->spacing);
+                }
                 int rc = particles_append(p, pos, material, NULL, err);
                 if (rc) {
                     if (n_added)

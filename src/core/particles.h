@@ -24,11 +24,21 @@ struct spall_error;
  *  on it: every particle's arithmetic is the same either way. */
 #define SPALL_OMP_MIN_PARTICLES 4096
 
+/** Default of the most particles a run may hold (deck `run.max_particles`;
+ *  lattice_fill refuses more, before allocating).  A particle costs ~130 B
+ *  here and ~1 kB with a model's state and neighbour lists: 1e7 particles
+ *  need ~10 GB; a deck that asks for more (a typo in a spacing) would be
+ *  killed for memory on most machines. */
+#define SPALL_MAX_PARTICLES_DEFAULT 1.0e7
+/** Largest allowed `run.max_particles`. */
+#define SPALL_MAX_PARTICLES_LIMIT 1.0e9
+
 struct particles {
     int dim;          /**< 1, 2 or 3 */
     size_t n;         /**< owned + ghost particles */
     size_t n_owned;   /**< particles owned by this rank */
     size_t cap;       /**< allocated capacity */
+    size_t max_n;     /**< lattice_fill stops here (0: SPALL_MAX_PARTICLES_DEFAULT) */
     double *x[3];     /**< current position */
     double *x0[3];    /**< reference (initial) position */
     double *v[3];     /**< velocity */

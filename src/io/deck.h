@@ -96,6 +96,13 @@ int deck_enum(const struct deck_node *map, const char *key, bool required,
  *  between @p min_len and @p max_len numbers; missing trailing components are 0. */
 int deck_vector(const struct deck_node *map, const char *key, bool required, size_t min_len,
                 size_t max_len, double *out, struct spall_error *err);
+/** A velocity [m/s] of @p len components (deck_vector); refused with
+ *  SPALL_ERR_PHYSICS when its magnitude is not below the speed of light. */
+int deck_velocity(const struct deck_node *map, const char *key, bool required, size_t len,
+                  double *out, struct spall_error *err);
+/** The node that the leading "a.b[2].c: " of @p msg names below @p root
+ *  (messages of the models and of sim_prepare), or NULL. */
+const struct deck_node *deck_node_at_prefix(const struct deck_node *root, const char *msg);
 
 /** Scalar node -> double, with the node's position in errors. */
 int deck_node_double(const struct deck_node *node, double *out, struct spall_error *err);

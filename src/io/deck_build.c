@@ -16,6 +16,7 @@
 #include "io/deck_contact.h"
 #include "io/deck_impactors.h"
 #include "io/deck_inclusions.h"
+#include "io/output.h"
 #include "models/model.h"
 #include "spall/error.h"
 
@@ -177,7 +178,7 @@ static int material_at_key(struct build_ctx *c, const struct deck_node *map, con
         return rc;
     *index = sim_find_material(c->sim, name);
     if (*index < 0)
-        return deck_error(err, deck_peek(map, key), "unknown material '%s'; define it under 'materials:'",
+        return deck_error(err, deck_peek(map, key), "unknown material '%.64s'; define it under 'materials:'",
                           name);
     return SPALL_OK;
 }
@@ -372,7 +373,7 @@ static int group_at_key(struct build_ctx *c, const struct deck_node *map, const 
     *g = sim_find_group(c->sim, name);
     if (*g < 0)
         return deck_error(err, deck_peek(map, key),
-                          "unknown group '%s'; define it under 'groups:' (or use 'all')", name);
+                          "unknown group '%.64s'; define it under 'groups:' (or use 'all')", name);
     return SPALL_OK;
 }
 
@@ -598,7 +599,7 @@ static int parse_initial_velocity(struct build_ctx *c, const struct deck_node *r
         double v[3] = {0, 0, 0};
         if ((rc = deck_expect_map(n, "a mapping with group and value", err)) ||
             (rc = group_at_key(c, n, "group", &g, err)) ||
-            (rc = deck_vector(n, "value", true, (size_t)c->dim, (size_t)c->dim, v, err)) ||
+            (rc = deck_velocity(n, "value", true, (size_t)c->dim, v, err)) ||
             (rc = deck_check_unused(n, "initial_velocity", keys, err)))
             return rc;
         const struct group *gr = &c->sim->groups[g];
@@ -639,11 +640,24 @@ static int parse_probes(struct build_ctx *c, const struct deck_node *root, struc
     return SPALL_OK;
 }
 
+/* run.max_particles, read before the bodies are filled (lattice_fill refuses more). */
+static int parse_max_particles(struct build_ctx *c, const struct deck_node *root,
+                               struct spall_error *err)
+{
+    const struct deck_node *r = deck_peek(root, "run");
+    long max = (long)SPALL_MAX_PARTICLES_DEFAULT;
+    int rc = r && r->kind == DECK_MAPPING ? deck_long(r, "max_particles", false, 1,
+                                                      (long)SPALL_MAX_PARTICLES_LIMIT, &max, err)
+                                          : SPALL_OK;
+    c->sim->p->max_n = (size_t)max;
+    return rc;
+}
+
 static int parse_run(struct build_ctx *c, const struct deck_node *root, struct run_output *ro,
                      struct spall_error *err)
 {
     static const char *const keys[] = {"end_time", "steps", "dt", "dt_factor", "dt_override",
-                                       "threads", "energy_blowup", "seed", NULL};
+                                       "threads", "energy_blowup", "seed", "max_particles", NULL};
     const struct deck_node *r = deck_get(root, "run");
     if (!r)
         return deck_error(err, root, "missing required key 'run' (end_time or steps)");
@@ -733,7 +747,8 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
     if ((rc = parse_lattice(&c, root, err)))
         goto fail;
     if ((rc = parse_model(&c, root, err)) || (rc = parse_materials(&c, root, err)) ||
-        (rc = parse_body(&c, root, err)) || (rc = parse_regions(&c, root, err)) ||
+        (rc = parse_max_particles(&c, root, err)) || (rc = parse_body(&c, root, err)) ||
+        (rc = parse_regions(&c, root, err)) ||
         (rc = deck_parse_inclusions(c.sim, root, c.geometry, c.dim, err)))
         goto fail;
     assign_masses(c.sim);
@@ -755,11 +770,23 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
                     strstr(err->msg, "time step") != NULL;
         char msg[SPALL_ERROR_MSG_LEN];
         snprintf(msg, sizeof msg, "%s", err->msg);
+        const struct deck_node *at = deck_node_at_prefix(root, msg); /* "model.clamp: ..." */
         if (at_dt)
             deck_error_key(err, run, "dt", "%s", msg);
+        else if (at)
+            deck_error(err, at, "%s", msg);
+        else if (deck_peek(root, "model")) /* the model's set-up refused it */
+            deck_error_key(err, root, "model", "%s", msg);
         else
             spall_error_set(err, rc, "%s: %s", d->path, msg);
         err->code = rc;
+        goto fail;
+    }
+    size_t bad = 0; /* output.fields, refused before any output exists */
+    if ((rc = field_writer_check_names(c.sim, ro->fields, ro->n_fields, &bad, err))) {
+        char msg[SPALL_ERROR_MSG_LEN];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        deck_error(err, deck_peek(deck_peek(root, "output"), "fields")->items[bad], "%s", msg);
         goto fail;
     }
     *out = c.sim;

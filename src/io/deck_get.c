@@ -499,3 +499,63 @@ int deck_check_unused(const struct deck_node *map, const char *what, const char 
     }
     return SPALL_OK;
 }
+
+/* Speed of light in vacuum [m/s] (exact, SI). */
+#define DECK_SPEED_OF_LIGHT 299792458.0
+
+int deck_velocity(const struct deck_node *map, const char *key, bool required, size_t len,
+                  double *out, struct spall_error *err)
+{
+    double v[3] = {0, 0, 0};
+    if (len > 3)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "deck_velocity: %zu components", len);
+    int rc = deck_vector(map, key, required, len, len, v, err);
+    if (rc || !deck_peek(map, key))
+        return rc;
+    double vmax = 0.0, s2 = 0.0; /* |v| = vmax |v / vmax|, without overflow */
+    for (size_t d = 0; d < len; d++)
+        vmax = fmax(vmax, fabs(v[d]));
+    for (size_t d = 0; vmax > 0.0 && d < len; d++)
+        s2 += (v[d] / vmax) * (v[d] / vmax);
+    double speed = vmax * sqrt(s2);
+    if (!(speed < DECK_SPEED_OF_LIGHT)) {
+        deck_error_key(err, map, key,
+                       "key '%.200s': speed %g m/s is not below the speed of light (%.9g m/s)", key,
+                       speed, DECK_SPEED_OF_LIGHT);
+        err->code = SPALL_ERR_PHYSICS;
+        return SPALL_ERR_PHYSICS;
+    }
+    memcpy(out, v, len * sizeof(double));
+    return SPALL_OK;
+}
+
+const struct deck_node *deck_node_at_prefix(const struct deck_node *root, const char *msg)
+{
+    size_t len = strcspn(msg, ": ");
+    if (!root || len == 0 || msg[len] != ':' || len >= 256)
+        return NULL;
+    char path[256];
+    memcpy(path, msg, len);
+    path[len] = '\0';
+    const struct deck_node *n = root;
+    for (char *s = path; n && *s;) {
+        if (*s == '[') { /* "[k]": a sequence item */
+            char *end;
+            unsigned long k = strtoul(s + 1, &end, 10);
+            if (end == s + 1 || *end != ']' || n->kind != DECK_SEQUENCE || k >= n->n)
+                return NULL;
+            n = n->items[k];
+            s = end + 1;
+        } else {
+            size_t w = strcspn(s, ".[");
+            char c = s[w];
+            s[w] = '\0';
+            n = deck_peek(n, s);
+            s[w] = c;
+            s += w;
+        }
+        if (*s == '.')
+            ++s;
+    }
+    return n == root ? NULL : n;
+}

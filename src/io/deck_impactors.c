@@ -69,7 +69,7 @@ static int parse_one(struct sim *s, const struct deck_node *n, struct spall_erro
     if ((rc = deck_vector(n, "position", true, (size_t)dim, (size_t)dim, im.x, err)) ||
         (rc = deck_enum(n, "motion", false, motions, &motion, err)) ||
         (rc = deck_enum(n, "contact", false, contacts, &contact, err)) ||
-        (rc = deck_vector(n, "velocity", false, (size_t)dim, (size_t)dim, im.v, err)) ||
+        (rc = deck_velocity(n, "velocity", false, (size_t)dim, im.v, err)) ||
         (rc = deck_bool(n, "gravity", false, &im.gravity, err)) ||
         (rc = deck_double(n, "stiffness_factor", false, 1e-6, 1.0, &im.stiffness_factor, err)) ||
         (rc = deck_double_pos(n, "stiffness", false, &im.stiffness, err)) ||

@@ -62,7 +62,7 @@ static int incl_entry(struct sim *s, const struct deck_node *e, size_t entry,
     const int mat = sim_find_material(s, name);
     if (mat < 0)
         return deck_error(err, deck_peek(e, "material"),
-                          "unknown material '%s'; define it under 'materials:'", name);
+                          "unknown material '%.64s'; define it under 'materials:'", name);
     if ((rc = deck_long(e, "count", true, 1, INCL_MAX_COUNT, &count, err)) ||
         (rc = deck_long(e, "seed", false, 0, LONG_MAX, &seed, err)) ||
         (rc = deck_double(e, "min_gap", false, 0.0, INFINITY, &gap, err)))

@@ -171,7 +171,7 @@ static int parse_shape(const struct deck_shape_ctx *c, const struct deck_node *n
     if (node->kind == DECK_SCALAR) {
         const struct deck_node *named = c->geometry ? deck_peek(c->geometry, node->scalar) : NULL;
         if (!named)
-            return deck_error(err, node, "unknown geometry '%s'; define it under 'geometry:'",
+            return deck_error(err, node, "unknown geometry '%.64s'; define it under 'geometry:'",
                               node->scalar);
         return parse_shape(c, named, depth + 1, out, err);
     }
@@ -194,7 +194,7 @@ static int parse_shape(const struct deck_shape_ctx *c, const struct deck_node *n
         if (strcmp(kind, *k) == 0)
             return parse_primitive(c, kind, body, out, err);
     return deck_error_key(err, node, kind,
-                          "unknown shape '%s'; expected one of: box, rectangle, circle, sphere, "
+                          "unknown shape '%.64s'; expected one of: box, rectangle, circle, sphere, "
                           "cylinder, halfspace, polygon, union, intersection, difference",
                           kind);
 }

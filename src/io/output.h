@@ -25,6 +25,10 @@ struct field_writer;
  *  are refused listing the registered ones.  "position" is always written. */
 int field_writer_create(struct field_writer **out, const char *dir, const struct sim *s,
                         const char *const *names, size_t n_names, struct spall_error *err);
+/** The check of field_writer_create's @p names alone (deck_build_sim runs it
+ *  before any output exists); *bad is the index of the refused name. */
+int field_writer_check_names(const struct sim *s, const char *const *names, size_t n_names,
+                             size_t *bad, struct spall_error *err);
 /** Write one frame for the current state of @p s. */
 int field_writer_write(struct field_writer *w, const struct sim *s, struct spall_error *err);
 size_t field_writer_frames(const struct field_writer *w);

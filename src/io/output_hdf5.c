@@ -258,8 +258,27 @@ static int unknown_field(struct spall_error *err, const struct field_registry *r
             break;
         len += (size_t)m;
     }
-    return spall_error_set(err, SPALL_ERR_INPUT, "%s output field '%s'; registered fields: %s",
-                           why, name, len ? list : "(none)");
+    size_t cut = strlen(name) > 64 ? 64 : strlen(name); /* a long typo stays one short line */
+    return spall_error_set(err, SPALL_ERR_INPUT,
+                           "%s output field '%.*s%s'; expected one of the registered fields: %s",
+                           why, (int)cut, name, name[cut] ? "..." : "", len ? list : "(none)");
+}
+
+int field_writer_check_names(const struct sim *s, const char *const *names, size_t n_names,
+                             size_t *bad, struct spall_error *err)
+{
+    const struct field_registry *reg = s->fields;
+    if (!reg)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "field writer: no field registry");
+    for (size_t k = 0; k < n_names && names; k++) {
+        const struct field_desc *f = field_registry_find(reg, names[k]);
+        *bad = k;
+        if (!f)
+            return unknown_field(err, reg, names[k], "unknown");
+        if (!(f->flags & FIELD_OUTPUT) && strcmp(f->name, OUTPUT_POSITION) != 0)
+            return unknown_field(err, reg, names[k], "not an");
+    }
+    return SPALL_OK;
 }
 
 int field_writer_create(struct field_writer **out, const char *dir, const struct sim *s,
@@ -267,15 +286,10 @@ int field_writer_create(struct field_writer **out, const char *dir, const struct
 {
     *out = NULL;
     const struct field_registry *reg = s->fields;
-    if (!reg)
-        return spall_error_set(err, SPALL_ERR_INTERNAL, "field writer: no field registry");
-    for (size_t k = 0; k < n_names && names; k++) {
-        const struct field_desc *f = field_registry_find(reg, names[k]);
-        if (!f)
-            return unknown_field(err, reg, names[k], "unknown");
-        if (!(f->flags & FIELD_OUTPUT) && strcmp(f->name, OUTPUT_POSITION) != 0)
-            return unknown_field(err, reg, names[k], "not an");
-    }
+    size_t bad = 0;
+    int rc0 = field_writer_check_names(s, names, n_names, &bad, err);
+    if (rc0)
+        return rc0;
 
     struct field_writer *w = calloc(1, sizeof *w);
     if (!w)
