@@ -242,6 +242,16 @@ static int bench_sph_taylor_rest_ul15(int threads, double scale, struct bench_re
                            err);
 }
 
+/* the _rest_ul bar with Balsara's switch (sph_rates.c: the updated form's
+ * two-pass loops): the AV in shear against the FE reference, as the
+ * TLSPH _rest_bal bar */
+static int bench_sph_taylor_rest_ulbal(int threads, double scale, struct bench_result *out,
+                                       struct spall_error *err)
+{
+    return sph_taylor_rest("sph_taylor_cu_rest_ulbal", "updated", 1.5,
+                           " viscosity_switch: balsara,", scale, threads, out, err);
+}
+
 /* TLSPH with the staggered leapfrog: one force call per step and the plain
  * time-step limit (sph_model.c skips the |B0^-1| reduction for it), and
  * hourglass 1 (as the TLSPH beam): with the default 0.1 the mushroom's rim
@@ -373,6 +383,8 @@ const struct bench_case bench_sph_cases[] = {
      bench_sph_taylor_rest_ul},
     {"sph_taylor_cu_rest_ul", "the sph_taylor_cu bar (updated form, h = 1.5 dx) run to rest "
      "(80 us)", bench_sph_taylor_rest_ul15},
+    {"sph_taylor_cu_rest_ulbal", "the sph_taylor_cu_rest_ul bar with Balsara's switch",
+     bench_sph_taylor_rest_ulbal},
     {"sph_taylor_cu_ul32", "3D copper Taylor bar, updated form, support 2.01 dx, 200 steps",
      bench_sph_taylor_ul32},
     {"sph_rings_2d", "2D rubber rings (Gray et al. 2001), artificial stress, dx = 0.5 mm, 200 steps",
