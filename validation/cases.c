@@ -87,10 +87,10 @@ static const struct vcase cases[] = {
      false, sph_case_beam_large},
     {"sph-leapfrog", "SPH: leapfrog keeps an undamped plate's energy (PC does not)", true,
      sph_case_leapfrog},
-    {"sph-taylor-3d", "SPH: 4340 steel Taylor bar 181 m/s, Johnson-Cook (seed 004 Table 3.6)",
-     false, sph_case_taylor3d},
+    {"sph-taylor-3d", "SPH: 4340 steel Taylor bar 181 m/s, Johnson-Cook (seed 004 Table 3.6); "
+     "power-law bar against FE", false, sph_case_taylor3d},
     {"sph-taylor-2d", "SPH: iron rod on a wall, Mie-Grueneisen, perfectly plastic (seed 004 "
-     "Table 3.5), axisymmetric", false, sph_case_taylor2d},
+     "Table 3.5), axisymmetric, against FE", false, sph_case_taylor2d},
     {"sph-rings", "SPH: two rubber rings collide and rebound, energy balance (Gray et al. 2001)",
      false, sph_case_rings},
     {"sph-debris-cloud", "SPH: Al sphere 10 mm on a 4 mm Al plate at 6.18 km/s, debris-cloud "
