@@ -85,6 +85,12 @@ static void test_mixed_head_on(void **state)
      * both formulations' force passes) */
     run_head_on("updated (cspm, split) + TLSPH",
                 ", cspm: true,\n        interface: bodies, body_formulation: {proj: total}", 36);
+    /* Balsara's switch on both: TLSPH's stage 1 and the updated form's
+     * two-pass loops (sph_rates.c) in one run */
+    run_head_on("updated (balsara) + TLSPH (balsara)",
+                ", viscosity_switch: balsara,\n        interface: bodies, "
+                "body_formulation: {proj: total}",
+                36);
     run_head_on("updated (leapfrog) + TLSPH",
                 ", time_integration: leapfrog,\n        interface: bodies, "
                 "body_formulation: {proj: total}",

@@ -17,8 +17,7 @@
  *     viscosity_length: L                     [m] length in the AV's mu_ij instead of
  *                                             h_ij (default 0: h_ij, Eq. 2.21)
  *     viscosity_switch: none | balsara        AV times Balsara's shear switch (every
- *                                             form but symmetry planes and mixed
- *                                             formulations; default none)
+ *                                             form but symmetry planes; default none)
  *     artificial_stress: zeta                 Monaghan-Gray (default 0: off)
  *     artificial_stress_n: n                  (default 4)
  *     artificial_stress_smoothing: false      R_i averaged over the kernel
@@ -271,12 +270,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
         /* the switch needs the velocity gradient before the force pass:
          * sph_axisym.c, TLSPH's stage 1 (sph_tlsph.c) and the two-pass
          * loops of sph_rates.c have it there, the fused loop does not */
-        if (o.av_balsara && any_total && !all_total)
-            return deck_error_key(err, params, "viscosity_switch",
-                                  "viscosity_switch: balsara in a run that mixes formulations "
-                                  "total and updated is not implemented: use it with one "
-                                  "formulation for every body");
-        if (o.av_balsara && pl != 2 && !any_total && sym)
+        if (o.av_balsara && pl != 2 && !all_total && sym)
             return deck_error_key(err, params, "viscosity_switch",
                                   "viscosity_switch: balsara in the updated form needs the "
                                   "two-pass loops, which symmetry planes do not have: model "
@@ -298,8 +292,9 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                   "artificial_stress_smoothing works with the two-pass loops "
                                   "only: not with symmetry planes or plane: axisymmetric");
         o.split_pairs = o.split_pairs || o.as_smooth;
-        /* Balsara's switch, Cartesian updated form: sph_rates.c pass C */
-        o.split_pairs = o.split_pairs || (o.av_balsara && pl != 2 && !any_total);
+        /* Balsara's switch, Cartesian updated form (alone or beside TLSPH
+         * bodies, whose switch is TLSPH's stage 1): sph_rates.c pass C */
+        o.split_pairs = o.split_pairs || (o.av_balsara && pl != 2 && !all_total);
         o.symmetry[0] = sym == 1 || sym == 3;
         o.symmetry[1] = sym == 2 || sym == 3;
         if (sym == 3 && sim->dim < 3)
