@@ -189,12 +189,12 @@ for line in open(job + ".dat"):
     if h:
         cur_t = float(h.group(1))
         pe[cur_t] = {}
+    elif " for set " in line:              # another kind of block
+        cur_t = None
     elif cur_t is not None and line.strip():
         f = line.split()
         if len(f) == 3:
             pe[cur_t].setdefault(int(f[0]), []).append(float(f[2]))
-    if line.strip() and " for set " in line and "plastic" not in line:
-        cur_t = None
 if pe and alln:
     tl = max(pe)
     blk = {b[2]: b for b in alln}.get(tl)
