@@ -99,6 +99,8 @@ static const struct vcase cases[] = {
     /* penetration (issue 7) */
     {"pen-sph-sebs", "axisymmetric SPH: steel 12-22 um into SEBS (E = 40, 50 MPa) vs Modified-CG",
      false, pen_case_sph_sebs},
+    {"pen-sph-sebs-convergence", "axisymmetric SPH: two SEBS shots at d/10-d/20 (fixed AV "
+     "length, contact offset) vs Modified-CG", false, pen_case_sph_sebs_convergence},
     {"pen-check-value", "seed 004 Eq. 4.6/4.7: silica 7.38 um into gelatin at 1290 m/s", true,
      pen_case_check_value},
     {"pen-ode", "GSL-integrated P(t) vs closed forms (Poncelet, Liu) and quadrature (MCG)", true,

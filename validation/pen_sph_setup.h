@@ -121,5 +121,8 @@ int pen_richardson(const double h[3], const double f[3], double *p, double *f_in
  *  E = 40 and 50 MPa against the Modified-CG model (R = 25 MPa,
  *  eta = 4.5e-2 Pa s) with the d/2 nose, 15 % (validation/pen_sph_sebs.c). */
 int pen_case_sph_sebs(struct vreport *r, struct spall_error *err);
+/** "pen-sph-sebs-convergence": two SEBS shots at d/10, d/15, d/20 with the AV
+ *  length fixed at 0.13 d and the contact on particle surfaces. */
+int pen_case_sph_sebs_convergence(struct vreport *r, struct spall_error *err);
 
 #endif
