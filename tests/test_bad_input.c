@@ -64,6 +64,18 @@ static const struct bad_case cases[] = {
     {"unknown lattice type", BASE_MODEL BASE_MAT "lattice: {type: hexagonal, spacing: 0.001}\n" BASE_GEO
                                                  BASE_BODY BASE_RUN,
      SPALL_ERR_INPUT, "5:17", "triangular"},
+    {"rings body in the lattice model",
+     BASE_MODEL BASE_MAT BASE_LAT BASE_GEO
+     "bodies:\n  - {geometry: plate, material: m, lattice: {type: rings, origin: [0.005, 0.005]}}\n"
+     BASE_RUN,
+     SPALL_ERR_INPUT, "9:", "needs a model that takes each particle's own volume"},
+    {"rings lattice in the lattice model",
+     BASE_MODEL BASE_MAT "lattice: {type: rings, spacing: 0.001}\n" BASE_GEO BASE_BODY BASE_RUN,
+     SPALL_ERR_INPUT, "5:", "lattice type 'rings' needs a model"},
+    {"3D body lattice in a 2D run",
+     BASE_MODEL BASE_MAT BASE_LAT BASE_GEO
+     "bodies:\n  - {geometry: plate, material: m, lattice: {type: shells}}\n" BASE_RUN,
+     SPALL_ERR_INPUT, "9:", "'shells' is 3D; expected a 2D type"},
     {"unknown material name", BASE_MODEL BASE_MAT BASE_LAT BASE_GEO "body: {geometry: plate, material: steel}\n" BASE_RUN,
      SPALL_ERR_INPUT, "8:", "unknown material 'steel'"},
     {"unknown geometry name", BASE_MODEL BASE_MAT BASE_LAT BASE_GEO "body: {geometry: slab, material: m}\n" BASE_RUN,

@@ -17,6 +17,7 @@
 #include "core/lattice_gen.h"
 
 #include "core/geometry.h"
+#include "core/lattice_polar.h"
 #include "core/particles.h"
 #include "spall/error.h"
 
@@ -32,7 +33,7 @@
 #define LATTICE_MAX_INDEX 1.0e15
 
 static const char *const lattice_names[] = {"chain", "triangular", "square", "sc", "fcc",
-                                            "triple_honeycomb"};
+                                            "triple_honeycomb", "rings", "shells"};
 
 /** The triple honeycomb has the triangular lattice's sites and shells. */
 static enum lattice_kind geometry_kind(enum lattice_kind kind)
@@ -65,9 +66,11 @@ int lattice_kind_dim(enum lattice_kind kind)
     case LATTICE_TRIANGULAR:
     case LATTICE_SQUARE:
     case LATTICE_TRIPLE_HONEYCOMB:
+    case LATTICE_RINGS:
         return 2;
     case LATTICE_SC:
     case LATTICE_FCC:
+    case LATTICE_SHELLS:
         return 3;
     }
     return 0;
@@ -165,6 +168,13 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "%s lattice is %dD but the particles are %dD",
                                lattice_kind_name(spec->kind), ldim, p->dim);
+    if (lattice_kind_is_polar(spec->kind)) {
+        size_t polar_added = 0;
+        int rc = lattice_polar_fill(p, spec, region, material, &polar_added, err);
+        if (n_added)
+            *n_added = polar_added;
+        return rc;
+    }
     int dim = p->dim;
     double lo[3], hi[3];
     if (!geom_bounds(region, dim, lo, hi))
@@ -351,8 +361,10 @@ double lattice_site_volume(const struct lattice_spec *spec, double thickness_or_
          * t = 2 r0/sqrt(3) this is r0^3, the paper's choice (seed 000). */
         return sqrt(3.0) / 2.0 * r0 * r0 * thickness_or_area;
     case LATTICE_SQUARE:
+    case LATTICE_RINGS:
         return r0 * r0 * thickness_or_area;
     case LATTICE_SC:
+    case LATTICE_SHELLS:
         return r0 * r0 * r0;
     case LATTICE_FCC: {
         double a = sqrt(2.0) * r0; /* 4 sites per cubic cell */
@@ -362,6 +374,14 @@ double lattice_site_volume(const struct lattice_spec *spec, double thickness_or_
         break;
     }
     return 0.0;
+}
+
+double lattice_site_volume_at(const struct lattice_spec *spec, const double pos[3],
+                              double thickness_or_area)
+{
+    if (lattice_kind_is_polar(spec->kind))
+        return lattice_polar_site_volume(spec, pos, thickness_or_area);
+    return lattice_site_volume(spec, thickness_or_area);
 }
 
 int lattice_sublattice(const struct lattice_spec *spec, const double pos[2])

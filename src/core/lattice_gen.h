@@ -28,7 +28,9 @@ enum lattice_kind {
     LATTICE_SQUARE,
     LATTICE_SC,
     LATTICE_FCC,
-    LATTICE_TRIPLE_HONEYCOMB
+    LATTICE_TRIPLE_HONEYCOMB,
+    LATTICE_RINGS, /**< 2D concentric rings around the origin (core/lattice_polar.h) */
+    LATTICE_SHELLS /**< 3D concentric spherical shells around the origin */
 };
 
 struct lattice_spec {
@@ -38,7 +40,8 @@ struct lattice_spec {
     double angle;      /**< 2D: rotation of the lattice about z [rad] */
 };
 
-/** Parse "chain", "triangular", "square", "sc", "fcc", "triple_honeycomb";
+/** Parse "chain", "triangular", "square", "sc", "fcc", "triple_honeycomb",
+ *  "rings", "shells";
  *  returns -1 if unknown. */
 int lattice_kind_from_name(const char *name);
 const char *lattice_kind_name(enum lattice_kind kind);
@@ -66,7 +69,12 @@ int lattice_shell_count(enum lattice_kind kind, int shell);
 int lattice_sublattice(const struct lattice_spec *spec, const double pos[2]);
 
 /** Volume per site [m^3].  2D kinds need the plate thickness t (> 0);
- *  1D needs the cross-section area passed as thickness_or_area. */
+ *  1D needs the cross-section area passed as thickness_or_area.  For rings
+ *  and shells the nominal dx^2 t or dx^3 (sites differ: see below). */
 double lattice_site_volume(const struct lattice_spec *spec, double thickness_or_area);
+/** Volume of the site at @p pos: lattice_site_volume, except on rings and
+ *  shells, whose sites own their layer's share (lattice_polar_site_volume). */
+double lattice_site_volume_at(const struct lattice_spec *spec, const double pos[3],
+                              double thickness_or_area);
 
 #endif

@@ -10,12 +10,14 @@
 
 #include "core/geometry.h"
 #include "core/lattice_gen.h"
+#include "core/lattice_polar.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_contact.h"
 #include "io/deck_impactors.h"
 #include "io/deck_inclusions.h"
+#include "io/deck_time_function.h"
 #include "io/output.h"
 #include "models/model.h"
 #include "spall/error.h"
@@ -82,11 +84,13 @@ static int select_particles(const struct sim *s, const struct geom *g, size_t **
 
 /* ---- sections ------------------------------------------------------------ */
 
+/* The deck's lattice types, in the order of enum lattice_kind. */
+static const char *const lattice_type_names[] = {"chain", "triangular", "square", "sc", "fcc",
+                                                 "triple_honeycomb", "rings", "shells", NULL};
+
 static int parse_lattice(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
 {
     static const char *const keys[] = {"type", "spacing", "origin", "angle", "thickness", NULL};
-    static const char *const kinds[] = {"chain", "triangular", "square", "sc", "fcc",
-                                        "triple_honeycomb", NULL};
     const struct deck_node *lat = deck_get(root, "lattice");
     if (!lat)
         return deck_error(err, root, "missing required key 'lattice' (the particle lattice)");
@@ -95,14 +99,14 @@ static int parse_lattice(struct build_ctx *c, const struct deck_node *root, stru
         return rc;
     int kind = 0;
     double spacing = 0, origin[3] = {0, 0, 0}, angle_deg = 0, thickness = 0;
-    if ((rc = deck_enum(lat, "type", true, kinds, &kind, err)) ||
+    if ((rc = deck_enum(lat, "type", true, lattice_type_names, &kind, err)) ||
         (rc = deck_double_pos(lat, "spacing", true, &spacing, err)) ||
         (rc = deck_vector(lat, "origin", false, 1, 3, origin, err)) ||
         (rc = deck_double(lat, "angle", false, -360.0, 360.0, &angle_deg, err)) ||
         (rc = deck_double_pos(lat, "thickness", false, &thickness, err)) ||
         (rc = deck_check_unused(lat, "lattice", keys, err)))
         return rc;
-    enum lattice_kind lk = (enum lattice_kind)lattice_kind_from_name(kinds[kind]);
+    enum lattice_kind lk = (enum lattice_kind)lattice_kind_from_name(lattice_type_names[kind]);
     c->dim = lattice_kind_dim(lk);
     rc = sim_create(&c->sim, c->dim, err);
     if (rc)
@@ -138,6 +142,12 @@ static int parse_model(struct build_ctx *c, const struct deck_node *root, struct
     int idx = 0;
     if ((rc = deck_enum(m, "type", true, model_names(), &idx, err)))
         return rc;
+    const struct model_ops *ops = model_find(model_names()[idx]);
+    if (lattice_kind_is_polar(c->sim->lattice.kind) && ops && !ops->particle_volumes)
+        return deck_error_key(err, deck_peek(root, "lattice"), "type",
+                              "lattice type '%s' needs a model that takes each particle's own "
+                              "volume (sph); the %s model needs a regular lattice",
+                              lattice_kind_name(c->sim->lattice.kind), ops->name);
     return sim_set_model(c->sim, model_names()[idx], m, err);
 }
 
@@ -203,6 +213,16 @@ static int fill_body(struct build_ctx *c, const struct deck_node *body,
         geom_destroy(&g);
         return rc;
     }
+    const struct model_ops *ops = c->sim->ops;
+    if ((spec->kind != c->sim->lattice.kind || lattice_kind_is_polar(spec->kind)) &&
+        !(ops && ops->particle_volumes)) {
+        geom_destroy(&g);
+        return deck_error(err, deck_peek(body, "lattice") ? deck_peek(body, "lattice") : body,
+                          "%s: lattice type '%s' needs a model that takes each particle's own "
+                          "volume (sph); the %s model uses the deck's lattice '%s' everywhere",
+                          what, lattice_kind_name(spec->kind), ops ? ops->name : "?",
+                          lattice_kind_name(c->sim->lattice.kind));
+    }
     size_t first = c->sim->p->n, added = 0;
     rc = lattice_fill(c->sim->p, spec, g, mat, &added, err);
     geom_destroy(&g);
@@ -215,11 +235,12 @@ static int fill_body(struct build_ctx *c, const struct deck_node *body,
                                   msg);
         return deck_error_key(err, body, "geometry", "%s: the geometry %s", what, msg);
     }
-    double vol = lattice_site_volume(spec, c->sim->thickness);
+    struct particles *p = c->sim->p;
     for (size_t i = first; i < first + added; i++) {
-        c->sim->p->volume[i] = vol;
-        c->sim->p->mass[i] = c->sim->materials[mat].density * vol;
-        c->sim->p->body[i] = body_id;
+        double pos[3] = {p->x[0][i], p->dim > 1 ? p->x[1][i] : 0.0, p->dim > 2 ? p->x[2][i] : 0.0};
+        p->volume[i] = lattice_site_volume_at(spec, pos, c->sim->thickness);
+        p->mass[i] = c->sim->materials[mat].density * p->volume[i];
+        p->body[i] = body_id;
     }
     return SPALL_OK;
 }
@@ -248,16 +269,25 @@ static int parse_body(struct build_ctx *c, const struct deck_node *root, struct 
         struct lattice_spec spec = c->sim->lattice;
         const struct deck_node *ln = deck_peek(b, "lattice");
         if (ln) {
-            static const char *const keys[] = {"spacing", "origin", "angle", NULL};
+            static const char *const keys[] = {"type", "spacing", "origin", "angle", NULL};
             double angle_deg = spec.angle / DEG_TO_RAD;
+            int kind = (int)spec.kind;
             (void)deck_get(b, "lattice");
-            if ((rc = deck_expect_map(ln, "a mapping with spacing, origin, angle", err)) ||
+            if ((rc = deck_expect_map(ln, "a mapping with type, spacing, origin, angle", err)) ||
+                (rc = deck_enum(ln, "type", false, lattice_type_names, &kind, err)) ||
                 (rc = deck_double_pos(ln, "spacing", false, &spec.spacing, err)) ||
                 (rc = deck_vector(ln, "origin", false, 1, 3, spec.origin, err)) ||
                 (rc = deck_double(ln, "angle", false, -360.0, 360.0, &angle_deg, err)) ||
                 (rc = deck_check_unused(ln, "bodies[].lattice", keys, err)))
                 return rc;
             spec.angle = angle_deg * DEG_TO_RAD;
+            spec.kind = (enum lattice_kind)kind;
+            if (lattice_kind_dim(spec.kind) != c->dim)
+                return deck_error_key(err, ln, "type",
+                                      "lattice type '%s' is %dD; expected a %dD type like the "
+                                      "deck's lattice '%s'",
+                                      lattice_kind_name(spec.kind), lattice_kind_dim(spec.kind),
+                                      c->dim, lattice_kind_name(c->sim->lattice.kind));
         }
         char what[32];
         snprintf(what, sizeof what, "bodies[%zu]", k);
@@ -415,70 +445,6 @@ static int parse_precracks(struct build_ctx *c, const struct deck_node *root,
     return SPALL_OK;
 }
 
-static int parse_time_function(const struct deck_node *bcn, struct time_function *tf,
-                               struct spall_error *err)
-{
-    static const char *const kinds[] = {"constant", "linear_ramp", "quadratic_ramp", "table",
-                                        NULL};
-    static const char *const keys[] = {"type", "duration", "points", NULL};
-    memset(tf, 0, sizeof *tf);
-    const struct deck_node *fn = deck_get(bcn, "function");
-    if (!fn)
-        return SPALL_OK;
-    int rc = deck_expect_map(fn, "a time function mapping (type, duration or points)", err);
-    if (rc)
-        return rc;
-    int kind = 0;
-    if ((rc = deck_enum(fn, "type", true, kinds, &kind, err)))
-        return rc;
-    tf->kind = (enum time_function_kind)kind;
-    if (tf->kind == TF_LINEAR_RAMP || tf->kind == TF_QUADRATIC_RAMP) {
-        if ((rc = deck_double_pos(fn, "duration", true, &tf->t_ramp, err)))
-            return rc;
-    } else if (tf->kind == TF_TABLE) {
-        const struct deck_node *pts = deck_get(fn, "points");
-        if (!pts)
-            return deck_error(err, fn, "missing required key 'points' ([[t, f], ...]) in table");
-        if ((rc = deck_expect_seq(pts, "a list of [time, factor] pairs", err)))
-            return rc;
-        if (pts->n < 1)
-            return deck_error(err, pts, "a table needs at least one [time, factor] point");
-        tf->t = malloc(pts->n * sizeof *tf->t);
-        tf->f = malloc(pts->n * sizeof *tf->f);
-        if (!tf->t || !tf->f) {
-            time_function_free(tf);
-            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory reading table");
-        }
-        tf->n = pts->n;
-        for (size_t k = 0; k < pts->n; k++) {
-            const struct deck_node *pt = pts->items[k];
-            if (pt->kind != DECK_SEQUENCE || pt->n != 2) {
-                time_function_free(tf);
-                return deck_error(err, pt, "table point must be [time, factor]");
-            }
-            if ((rc = deck_node_double(pt->items[0], &tf->t[k], err)) ||
-                (rc = deck_node_double(pt->items[1], &tf->f[k], err))) {
-                time_function_free(tf);
-                return rc;
-            }
-            if (k > 0 && !(tf->t[k] > tf->t[k - 1])) {
-                time_function_free(tf);
-                return deck_error(err, pt, "table times must increase strictly");
-            }
-        }
-    }
-    rc = deck_check_unused(fn, "function", keys, err);
-    if (rc)
-        time_function_free(tf);
-    return rc;
-}
-
-int deck_build_time_function(const struct deck_node *map, struct time_function *tf,
-                             struct spall_error *err)
-{
-    return parse_time_function(map, tf, err);
-}
-
 static int parse_components(const struct deck_node *map, int dim, unsigned *mask,
                             struct spall_error *err)
 {
@@ -572,7 +538,7 @@ static int parse_bcs(struct build_ctx *c, const struct deck_node *root, struct s
             if ((rc = deck_double_pos(n, "area", false, &b.area, err)))
                 return rc;
         }
-        if ((rc = parse_time_function(n, &b.tf, err)))
+        if ((rc = deck_build_time_function(n, &b.tf, err)))
             return rc;
         if ((rc = deck_check_unused(n, "boundary condition", keys, err)) ||
             (rc = sim_add_bc(c->sim, &b, err))) {

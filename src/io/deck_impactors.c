@@ -14,6 +14,7 @@
 #include "core/rigid.h"
 #include "core/sim.h"
 #include "io/deck.h"
+#include "io/deck_time_function.h"
 #include "spall/error.h"
 
 #include <math.h>

@@ -9,13 +9,8 @@
 struct deck_node;
 struct sim;
 struct spall_error;
-struct time_function;
 
 /** Read `impactors:` of the deck root (absent: nothing to do). */
 int deck_parse_impactors(struct sim *s, const struct deck_node *root, struct spall_error *err);
-
-/** The `function:` key of @p map (a time function; absent: constant 1). */
-int deck_build_time_function(const struct deck_node *map, struct time_function *tf,
-                             struct spall_error *err);
 
 #endif

@@ -20,6 +20,7 @@
 #ifndef SPALL_MODEL_H
 #define SPALL_MODEL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 struct bond_list;
@@ -41,6 +42,10 @@ struct model_energy {
 struct model_ops {
     const char *name;    /**< deck `model.type` */
     const char *summary; /**< one line for `spall --help` */
+    /** The model takes each particle's own volume and spacing from the fill
+     *  (not the lattice's): bodies may then use other lattice types than
+     *  the deck's `lattice:`, including the body-fitted rings and shells. */
+    bool particle_volumes;
 
     /** Parse the `model:` mapping (keys other than `type`) and create the model. */
     int (*create)(struct model **out, struct sim *sim, const struct deck_node *params,

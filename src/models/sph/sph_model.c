@@ -779,6 +779,7 @@ static size_t sph_interactions(const struct model *m, const struct sim *sim)
 const struct model_ops sph_model_ops = {
     .name = "sph",
     .summary = "SPH for elastic-plastic solids: six kernels, CSPM, AV/AS/XSPH, JC, Mie-Grueneisen",
+    .particle_volumes = true,
     .create = sph_create,
     .parse_material = sph_material_parse,
     .init = sph_init,
