@@ -257,16 +257,7 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
                 if (!site_position(spec, step, rotated, ca, sa, i, j, k, pos) ||
                     !geom_contains(region, pos, dim))
                     continue;
-                if ((double)p->n >= limit) {
-                    if (n_added)
-                        *n_added = added;
-                    return spall_error_set(err, SPALL_ERR_INPUT,
-                                           "holds more than the limit of %.3g particles "
-                                           "(run.max_particles) at lattice spacing %g m; coarsen "
-                                           "the spacing or raise the limit",
-                                           limit, spec->spacing);
-                }
-                int rc = particles_append(p, pos, material, NULL, err);
+                int rc = lattice_append_site(p, pos, material, limit, spec->spacing, err);
                 if (rc) {
                     if (n_added)
                         *n_added = added;
@@ -282,6 +273,17 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
         return spall_error_set(err, SPALL_ERR_INPUT, "contains no lattice site (%s, spacing %g m)",
                                lattice_kind_name(spec->kind), spec->spacing);
     return SPALL_OK;
+}
+
+int lattice_append_site(struct particles *p, const double pos[3], int32_t material, double limit,
+                        double spacing, struct spall_error *err)
+{
+    if ((double)p->n >= limit)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "holds more than the limit of %.3g particles (run.max_particles) at "
+                               "lattice spacing %g m; coarsen the spacing or raise the limit",
+                               limit, spacing);
+    return particles_append(p, pos, material, NULL, err);
 }
 
 /* Shell radii in units of r0 and their populations for a bulk site.

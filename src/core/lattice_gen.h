@@ -54,6 +54,11 @@ int lattice_kind_dim(enum lattice_kind kind);
 int lattice_fill(struct particles *p, const struct lattice_spec *spec, const struct geom *region,
                  int32_t material, size_t *n_added, struct spall_error *err);
 
+/** Append one site at @p pos (for the fill implementations): refused once
+ *  the run holds @p limit particles (run.max_particles). */
+int lattice_append_site(struct particles *p, const double pos[3], int32_t material, double limit,
+                        double spacing, struct spall_error *err);
+
 /** Distance of the k-th neighbour shell (k = 1 nearest, 2 second...). */
 double lattice_shell_distance(const struct lattice_spec *spec, int shell);
 /** Number of neighbours in shell k of a bulk site. */

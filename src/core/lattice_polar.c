@@ -135,15 +135,7 @@ int lattice_polar_fill(struct particles *p, const struct lattice_spec *s, const 
                 pos[d] += rel[d];
             if (!geom_contains(region, pos, dim))
                 continue;
-            if ((double)p->n >= limit) {
-                *n_added = added;
-                return spall_error_set(err, SPALL_ERR_INPUT,
-                                       "holds more than the limit of %.3g particles "
-                                       "(run.max_particles) at lattice spacing %g m; coarsen "
-                                       "the spacing or raise the limit",
-                                       limit, s->spacing);
-            }
-            int rc = particles_append(p, pos, material, NULL, err);
+            int rc = lattice_append_site(p, pos, material, limit, s->spacing, err);
             if (rc) {
                 *n_added = added;
                 return rc;
