@@ -24,11 +24,6 @@
 #include <math.h>
 #include <string.h>
 
-/** Refuse to enumerate more candidate sites than this (a typo in a spacing):
- *  1000 x SPALL_MAX_PARTICLES_DEFAULT.  Measured (2026-12-02, Release, one thread):
- *  1.85e9 candidates of a thin 2D frame in 3.7 s, so <= ~20 s here (4e10
- *  before: ~80 s of set-up, a hang to the user). */
-#define LATTICE_MAX_CANDIDATES 1.0e10
 /** Largest lattice index from the origin (the (long) conversion must be defined). */
 #define LATTICE_MAX_INDEX 1.0e15
 
@@ -168,13 +163,6 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "%s lattice is %dD but the particles are %dD",
                                lattice_kind_name(spec->kind), ldim, p->dim);
-    if (lattice_kind_is_polar(spec->kind)) {
-        size_t polar_added = 0;
-        int rc = lattice_polar_fill(p, spec, region, material, &polar_added, err);
-        if (n_added)
-            *n_added = polar_added;
-        return rc;
-    }
     int dim = p->dim;
     double lo[3], hi[3];
     if (!geom_bounds(region, dim, lo, hi))
@@ -183,6 +171,14 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
     for (int d = 0; d < dim; d++)
         if (!isfinite(lo[d]) || !isfinite(hi[d]))
             return spall_error_set(err, SPALL_ERR_INPUT, "region has a non-finite bounding box");
+    double limit = p->max_n ? (double)p->max_n : SPALL_MAX_PARTICLES_DEFAULT;
+    if (lattice_kind_is_polar(spec->kind)) {
+        size_t polar_added = 0;
+        int rc = lattice_polar_fill(p, spec, region, lo, hi, limit, material, &polar_added, err);
+        if (n_added)
+            *n_added = polar_added;
+        return rc;
+    }
 
     double step[3];
     lattice_steps(spec, step);
@@ -237,7 +233,6 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
 
     /* Refuse a fill beyond the particle limit before allocating: the kept
      * fraction of the candidates, estimated on a regular sub-grid. */
-    double limit = p->max_n ? (double)p->max_n : SPALL_MAX_PARTICLES_DEFAULT;
     if ((double)p->n + candidates > limit) {
         double est = estimate_sites(spec, region, dim, step, rotated, ca, sa, imin, imax,
                                     candidates);

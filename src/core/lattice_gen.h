@@ -33,6 +33,12 @@ enum lattice_kind {
     LATTICE_SHELLS /**< 3D concentric spherical shells around the origin */
 };
 
+/** Refuse to enumerate more candidate sites than this (a typo in a spacing):
+ *  1000 x SPALL_MAX_PARTICLES_DEFAULT.  Measured (2026-12-02, Release, one thread):
+ *  1.85e9 candidates of a thin 2D frame in 3.7 s, so <= ~20 s here (4e10
+ *  before: ~80 s of set-up, a hang to the user). */
+#define LATTICE_MAX_CANDIDATES 1.0e10
+
 struct lattice_spec {
     enum lattice_kind kind;
     double spacing;    /**< nearest-neighbour distance r0 [m] */

@@ -84,8 +84,6 @@ double lattice_polar_site_volume(const struct lattice_spec *s, const double pos[
     for (int d = 0; d < dim; d++)
         r2 += (pos[d] - s->origin[d]) * (pos[d] - s->origin[d]);
     long k = (long)floor(sqrt(r2) / dx); /* sites sit mid-layer: rho = (k + 1/2) dx */
-    if (k < 0)
-        k = 0;
     double rho = ((double)k + 0.5) * dx, n = (double)layer_sites(s->kind, k);
     if (s->kind == LATTICE_RINGS)
         return 2.0 * POLAR_PI * rho * dx / n * thickness;
@@ -93,20 +91,15 @@ double lattice_polar_site_volume(const struct lattice_spec *s, const double pos[
 }
 
 int lattice_polar_fill(struct particles *p, const struct lattice_spec *s, const struct geom *region,
-                       int32_t material, size_t *n_added, struct spall_error *err)
+                       const double lo[3], const double hi[3], double limit, int32_t material,
+                       size_t *n_added, struct spall_error *err)
 {
     const int dim = p->dim, ldim = s->kind == LATTICE_RINGS ? 2 : 3;
-    double lo[3], hi[3];
-    if (!geom_bounds(region, dim, lo, hi))
-        return spall_error_set(err, SPALL_ERR_INPUT,
-                               "region is unbounded (intersect a half-space with a bounded shape)");
     /* Layers that can meet the bounding box: from the box's nearest to its
      * farthest point as seen from the centre. */
     double near2 = 0.0, far2 = 0.0;
     for (int d = 0; d < ldim; d++) {
         double a = lo[d] - s->origin[d], b = hi[d] - s->origin[d];
-        if (!isfinite(a) || !isfinite(b))
-            return spall_error_set(err, SPALL_ERR_INPUT, "region has a non-finite bounding box");
         double nearest = a > 0.0 ? a : (b < 0.0 ? -b : 0.0);
         near2 += nearest * nearest;
         far2 += fmax(a * a, b * b);
@@ -115,11 +108,10 @@ int lattice_polar_fill(struct particles *p, const struct lattice_spec *s, const 
     double kmax = ceil(sqrt(far2) / s->spacing) + 1.0;
     if (k0 < 0)
         k0 = 0;
-    /* candidates ~ pi K^2 (rings) or 4/3 pi K^3 (shells) */
-    double candidates = ldim == 2 ? POLAR_PI * (kmax + 1.0) * (kmax + 1.0)
-                                  : 4.2 * (kmax + 1.0) * (kmax + 1.0) * (kmax + 1.0);
-    double limit = p->max_n ? (double)p->max_n : SPALL_MAX_PARTICLES_DEFAULT;
-    if (!(candidates < 1.0e10)) /* lattice_gen.c's candidate limit */
+    /* candidates: the disc's or ball's area / volume in dx^2 / dx^3 */
+    double K = kmax + 1.0;
+    double candidates = ldim == 2 ? POLAR_PI * K * K : 4.0 / 3.0 * POLAR_PI * K * K * K;
+    if (!(candidates < LATTICE_MAX_CANDIDATES))
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "region reaches %.3g %s from the lattice origin at spacing %g m; "
                                "expected a body around the origin (the centre of the %s)",

@@ -24,10 +24,12 @@ struct spall_error;
 bool lattice_kind_is_polar(enum lattice_kind kind);
 
 /** Append the sites of the rings / shells centred at spec->origin that lie
- *  inside @p region (lattice_fill calls this for the polar kinds). */
+ *  inside @p region, whose finite bounding box is @p lo .. @p hi, up to
+ *  @p limit particles in the run (lattice_fill checks the spec and the
+ *  region, then calls this for the polar kinds). */
 int lattice_polar_fill(struct particles *p, const struct lattice_spec *spec,
-                       const struct geom *region, int32_t material, size_t *n_added,
-                       struct spall_error *err);
+                       const struct geom *region, const double lo[3], const double hi[3],
+                       double limit, int32_t material, size_t *n_added, struct spall_error *err);
 
 /** Volume owned by the site at @p pos [m^3]: its layer's area (rings, times
  *  @p thickness) or volume (shells) over the layer's site count. */

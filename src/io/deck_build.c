@@ -214,8 +214,8 @@ static int fill_body(struct build_ctx *c, const struct deck_node *body,
         return rc;
     }
     const struct model_ops *ops = c->sim->ops;
-    if ((spec->kind != c->sim->lattice.kind || lattice_kind_is_polar(spec->kind)) &&
-        !(ops && ops->particle_volumes)) {
+    /* (a polar deck lattice in such a model was refused with the model) */
+    if (spec->kind != c->sim->lattice.kind && !(ops && ops->particle_volumes)) {
         geom_destroy(&g);
         return deck_error(err, deck_peek(body, "lattice") ? deck_peek(body, "lattice") : body,
                           "%s: lattice type '%s' needs a model that takes each particle's own "
