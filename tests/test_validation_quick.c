@@ -30,7 +30,9 @@
 #define MAX_TESTS 64
 #define MAX_PREFIXES 4
 
-/** A model family: the cases whose name starts with one of the prefixes. */
+/** A model family: the cases whose name starts with one of the prefixes; a
+ *  case belongs to the group with the longest matching prefix, so a heavy
+ *  case can have a group (and a ctest label) of its own. */
 struct gate_group {
     const char *name;
     const char *prefixes[MAX_PREFIXES];
@@ -40,11 +42,40 @@ static const struct gate_group groups[] = {
     {"lattice", {"lattice-", "abg-", "thermal-"}},
     {"impact", {"impact-"}},
     {"pd", {"pd-"}},
+    {"pd-fracture", {"pd-branching", "pd-kalthoff", "pd-lamina-a", "pd-lamina-b"}},
     {"macro", {"macro-"}},
     {"sph", {"sph-"}},
+    {"sph-rings", {"sph-rings"}},
     {"pen", {"pen-"}},
 };
 #define N_GROUPS (sizeof groups / sizeof groups[0])
+
+/** Length of the longest prefix of group @p g that @p case_name starts with (0: none). */
+static size_t group_match(const struct gate_group *g, const char *case_name)
+{
+    size_t best = 0;
+    for (size_t p = 0; p < MAX_PREFIXES && g->prefixes[p]; p++) {
+        size_t len = strlen(g->prefixes[p]);
+        if (len > best && strncmp(case_name, g->prefixes[p], len) == 0)
+            best = len;
+    }
+    return best;
+}
+
+/** The group a case belongs to (longest matching prefix); NULL if none. */
+static const struct gate_group *case_group(const char *case_name)
+{
+    const struct gate_group *best = NULL;
+    size_t best_len = 0;
+    for (size_t g = 0; g < N_GROUPS; g++) {
+        size_t len = group_match(&groups[g], case_name);
+        if (len > best_len) {
+            best_len = len;
+            best = &groups[g];
+        }
+    }
+    return best;
+}
 
 /** A check that fails in the gate's configuration and is accepted by name;
  *  the cause of each gap is in the check's note and docs/validation.md. */
@@ -73,6 +104,8 @@ static const struct known_gap known_gaps[] = {
     /* #5 item 5: a band collapses along the axis instead of {111} glide */
     {"macro-rod-large", "n_phi = 4, free ends: compressive collapse strain"},
     {"macro-rod-large", "n_phi = 4, free ends: share of slip normals on {111} after collapse"},
+    /* #4 item 5c: the first bonds break at a corner of the stepped hole edge */
+    {"pd-lamina-a", "A-0: crack start, distance from the hole's centre line"},
     /* #6 item 7c: no published length or radius for this set-up was found */
     {"sph-taylor-2d", "published final length / radius for this set-up found"},
     /* #6 item 7g: second-hand experiment; cause not separated (quick: d/20) */
@@ -81,14 +114,6 @@ static const struct known_gap known_gaps[] = {
     /* #7 item 4a: Poncelet's P(t) is flat near the maximum */
     {"pen-gelatin-time", "gelatin 1290 m/s: Poncelet T_f (Eq. 4.3) vs 200-250 ns"},
     {NULL, NULL}};
-
-static bool group_has(const struct gate_group *g, const char *case_name)
-{
-    for (size_t p = 0; p < MAX_PREFIXES && g->prefixes[p]; p++)
-        if (strncmp(case_name, g->prefixes[p], strlen(g->prefixes[p])) == 0)
-            return true;
-    return false;
-}
 
 static bool gap_listed(const char *case_name, const char *quantity)
 {
@@ -110,7 +135,7 @@ static const struct vcase *find_case(const char *name)
 }
 
 /** Registry sanity: unique names, a title and a run function each, the
- *  lattice cases present, every case in exactly one group, the four cases
+ *  lattice cases present, every case in a group, the four cases
  *  the gate runs as they are, and every listed gap naming a gated case. */
 static void test_registry(void **state)
 {
@@ -127,13 +152,9 @@ static void test_registry(void **state)
         assert_true(c[k].status == NULL || strlen(c[k].status) > 0);
         for (size_t q = k + 1; q < n; q++)
             assert_string_not_equal(c[k].name, c[q].name);
-        size_t in_groups = 0;
-        for (size_t g = 0; g < N_GROUPS; g++)
-            in_groups += group_has(&groups[g], c[k].name);
-        if (in_groups != 1)
-            print_message("case %s is in %zu gate groups (add its prefix to one)\n", c[k].name,
-                          in_groups);
-        assert_int_equal(in_groups, 1);
+        if (!case_group(c[k].name))
+            print_message("case %s is in no gate group (add its prefix to one)\n", c[k].name);
+        assert_non_null(case_group(c[k].name));
     }
     static const char *const expected[] = {"lattice-patch", "lattice-waves", "lattice-energy",
                                            "lattice-chain-break", "lattice-threads"};
@@ -232,7 +253,7 @@ int main(int argc, char **argv)
     size_t nt = 0;
     tests[nt++] = (struct CMUnitTest)cmocka_unit_test(test_registry);
     for (size_t k = 0; k < n && nt < MAX_TESTS; k++) {
-        if (cases[k].gate == VGATE_OFF || (only && !group_has(only, cases[k].name)))
+        if (cases[k].gate == VGATE_OFF || (only && case_group(cases[k].name) != only))
             continue;
         tests[nt++] = (struct CMUnitTest){cases[k].name, test_case, NULL, NULL,
                                           (void *)&cases[k]};

@@ -77,9 +77,9 @@ static const struct vcase cases[] = {
     {"pd-kalthoff", "Kalthoff-Winkler plate: crack angle 65-72 deg",
      VKIND_VALIDATION, VGATE_FULL, NULL, pd_case_kalthoff},
     {"pd-lamina-a", "T700 open-hole laminae A-0/45/90: crack along fibers, start",
-     VKIND_VALIDATION, VGATE_OFF, NULL, pd_case_lamina_a},
+     VKIND_VALIDATION, VGATE_QUICK, NULL, pd_case_lamina_a},
     {"pd-lamina-b", "T700 line-crack laminae B-theta-alpha (mixed mode): crack along fibers",
-     VKIND_VALIDATION, VGATE_OFF, NULL, pd_case_lamina_b},
+     VKIND_VALIDATION, VGATE_QUICK, NULL, pd_case_lamina_b},
 
     /* macro-particle (issue 5) */
     {"macro-calibration", "seed 001 Table 1: E from Eq. 15 for Al and Cu",
