@@ -108,20 +108,20 @@ int vreport_write_report(const struct vreport *r, const char *dir, struct spall_
         pass += r->checks[k].pass;
     fprintf(f, "# spall validation report\n\n%zu checks: %zu passed, %zu failed.\n\n", r->n, pass,
             r->n - pass);
-    fprintf(f, "| case | quantity | kind | unit | reference | measured | error | tolerance | "
-               "result |\n"
+    fprintf(f, "| case | quantity | unit | reference | measured | error | tolerance | result | "
+               "kind |\n"
                "|---|---|---|---|---|---|---|---|---|\n");
     for (size_t k = 0; k < r->n; k++) {
         const struct vcheck *c = &r->checks[k];
         fprintf(f, "| %s | ", c->case_name);
         md(f, c->quantity);
-        fprintf(f, " | %s | %s | %.6g | %.6g | ", vkind_name(c->kind), c->unit, c->reference,
-                c->measured);
+        fprintf(f, " | %s | %.6g | %.6g | ", c->unit, c->reference, c->measured);
         if (c->relative)
             fprintf(f, "%.3g %% | %.3g %% | ", 100.0 * check_err(c), 100.0 * c->tolerance);
         else
             fprintf(f, "%.3g | %.3g | ", check_err(c), c->tolerance);
-        fprintf(f, "%s |\n", c->pass ? "PASS" : c->known_gap ? "FAIL (known gap)" : "**FAIL**");
+        fprintf(f, "%s | %s |\n", c->pass ? "PASS" : c->known_gap ? "FAIL (known gap)" : "**FAIL**",
+                vkind_name(c->kind));
     }
     int rc = SPALL_OK;
     const char *last_case = NULL;
