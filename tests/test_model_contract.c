@@ -95,6 +95,22 @@ static size_t all_fixtures(struct fixture_ref *out)
     return n;
 }
 
+/* One check of one fixture: prints what failed and counts it (every
+ * fixture is reported before the test fails). */
+static int failed(int ok, const struct model_fixture *fx, const char *what, double value)
+{
+    if (!ok)
+        printf("  FAIL %s: %s (%.3e)\n", fx->label, what, value);
+    return !ok;
+}
+
+/* Why a fixture has an allowance, printed with its result. */
+static void print_why(const struct model_fixture *fx)
+{
+    if (fx->why)
+        printf("    (%s: %s)\n", fx->label, fx->why);
+}
+
 static int fixture_dim(const struct model_fixture *fx)
 {
     int kind = lattice_kind_from_name(fx->lattice);
@@ -307,6 +323,7 @@ static void test_newton_momentum(void **state)
     (void)state;
     struct fixture_ref fx[MAX_FIXTURES];
     size_t n = all_fixtures(fx);
+    int bad = 0;
     for (size_t k = 0; k < n; k++) {
         struct sim *s = build(fx[k].fx, &base_frame, radius_of(fx[k].fx));
         set_state(s, s, &base_frame, NULL);
@@ -326,13 +343,19 @@ static void test_newton_momentum(void **state)
         printf("  %-28s %zu particles: |sum f|/sum|f| %.2e, |sum r x f|/sum|r||f| %.2e, "
                "momentum %.2e, angular momentum %.2e\n",
                fx[k].fx->label, s->p->n, worst_f, worst_t, worst_p, worst_l);
-        /* pair forces cancel to round-off: ~1e-16 per pair, summed */
-        assert_true(worst_f <= 1e-12);
-        assert_true(worst_t <= 1e-12);
-        assert_true(worst_p <= 1e-12);
-        assert_true(worst_l <= 1e-12);
+        if (fx[k].fx->torque > 0.0)
+            print_why(fx[k].fx);
+        /* pair forces cancel to round-off: ~1e-16 per pair, summed (1e-17
+         * measured); a model whose pair forces are not central may have a
+         * torque, stated with its measured value in its fixture */
+        const double tol_t = fmax(1e-12, fx[k].fx->torque);
+        bad += failed(worst_f <= 1e-12, fx[k].fx, "net force", worst_f);
+        bad += failed(worst_t <= tol_t, fx[k].fx, "net torque", worst_t);
+        bad += failed(worst_p <= 1e-12, fx[k].fx, "momentum drift", worst_p);
+        bad += failed(worst_l <= tol_t, fx[k].fx, "angular momentum drift", worst_l);
         sim_destroy(&s);
     }
+    assert_int_equal(bad, 0);
 }
 
 /* Base particle matching each particle of @p s (built in frame @p fr): the
@@ -409,19 +432,30 @@ static void test_frame_invariance(void **state)
     size_t n = all_fixtures(fx);
     /* c: several body sizes away, not a lattice vector; the angle: no
      * symmetry of any 2D lattice */
-    const struct frame moved = {0.0, {0.0173, -0.0091, 0.0057}};
-    const struct frame turned = {37.0, {0.0173, -0.0091, 0.0057}};
+    int bad = 0;
     for (size_t k = 0; k < n; k++) {
+        const struct model_fixture *f = fx[k].fx;
+        /* c: several body sizes away, not a lattice vector; the angle: no
+         * symmetry of any 2D lattice unless the fixture asks for one */
+        const struct frame moved = {0.0, {0.0173, -0.0091, 0.0057}};
+        const struct frame turned = {f->rotation_deg != 0.0 ? f->rotation_deg : 37.0,
+                                     {0.0173, -0.0091, 0.0057}};
         double tu, tv, ru, rv;
         frame_invariance(&fx[k], &moved, &tu, &tv);
         frame_invariance(&fx[k], &turned, &ru, &rv);
-        printf("  %-28s translated: u %.2e v %.2e; rotated: u %.2e v %.2e\n", fx[k].fx->label,
-               tu, tv, ru, rv);
-        /* same arithmetic up to the rounding of the positions (|c| ~ 20
-         * spacings) and of the rotation: ~1e-13 after RUN_STEPS steps */
-        assert_true(tu <= 1e-10 && tv <= 1e-10);
-        assert_true(ru <= 1e-10 && rv <= 1e-10);
+        printf("  %-28s translated: u %.2e v %.2e; rotated (%s): u %.2e v %.2e\n", f->label, tu,
+               tv, fixture_dim(f) == 3 ? "120 deg about [111]" : "deck angle", ru, rv);
+        if (f->rotation_deg != 0.0)
+            print_why(f);
+        /* the same arithmetic up to the rounding of the positions (|c| ~ 20
+         * spacings) and of the rotation: <= 2e-11 measured after RUN_STEPS
+         * steps of these random (particle-scale) motions */
+        bad += failed(tu <= 1e-10, f, "translation: displacement", tu);
+        bad += failed(tv <= 1e-10, f, "translation: velocity", tv);
+        bad += failed(ru <= 1e-10, f, "rotation: displacement", ru);
+        bad += failed(rv <= 1e-10, f, "rotation: velocity", rv);
     }
+    assert_int_equal(bad, 0);
 }
 
 /* Largest |energy balance| over @p steps steps of @p dt from a smooth
@@ -463,15 +497,17 @@ static void test_energy_order(void **state)
     (void)state;
     struct fixture_ref fx[MAX_FIXTURES];
     size_t n = all_fixtures(fx);
+    int bad = 0;
     for (size_t k = 0; k < n; k++) {
         double e1 = energy_error(fx[k].fx, 1.0, RUN_STEPS, 1);
         double e2 = energy_error(fx[k].fx, 0.5, 2 * RUN_STEPS, 2);
         printf("  %-28s max |energy error| / kinetic: %.3e at dt, %.3e at dt/2, ratio %.3f\n",
                fx[k].fx->label, e1, e2, e1 / e2);
-        /* second order: 4, within the higher-order terms at dt ~ 0.3-0.9 of
-         * the stability limit */
-        assert_true(e1 / e2 >= 3.0 && e1 / e2 <= 5.0);
+        /* second order: 4, within the higher-order terms at the models'
+         * default steps */
+        bad += failed(e1 / e2 >= 3.0 && e1 / e2 <= 5.0, fx[k].fx, "energy error ratio", e1 / e2);
     }
+    assert_int_equal(bad, 0);
 }
 
 /* Every stored field's bytes for particles [0, n), concatenated. */

@@ -42,12 +42,17 @@ struct model_energy {
 /** A small elastic free body of one model/formulation for the model
  *  contract test (tests/test_model_contract.c), defined in the model's own
  *  folder (*_fixture.c).  The test places the body (a disc or sphere of
- *  material `m` on the lattice, translated and rotated) and runs it. */
+ *  material `m` on the lattice, translated and rotated) and runs it.
+ *  Allowances are for properties of the method only, each stated in `why`
+ *  with its measured value. */
 struct model_fixture {
     const char *label;   /**< e.g. "sph-total"; NULL ends the list */
     const char *deck;    /**< the deck's `model:` and `materials:` sections */
     const char *lattice; /**< lattice type (sets the dimension) */
     double spacing;      /**< lattice spacing [m] */
+    double rotation_deg; /**< 2D rotation of the frame check; 0: a generic angle */
+    double torque;       /**< allowed |sum r x f| / sum |r||f|; 0: round-off */
+    const char *why;     /**< cause and measured value of any allowance */
 };
 
 struct model_ops {

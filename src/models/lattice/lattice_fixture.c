@@ -9,9 +9,10 @@
 #include "models/model.h"
 
 const struct model_fixture lattice_fixtures[] = {
-    {"lattice-triangular-angular",
-     "model: {type: lattice}\n"
-     "materials:\n  m: {density: 2000, youngs_modulus: 1.0e9, poisson_ratio: 0.25, "
-     "failure_strain: 0.5}\n",
-     "triangular", 1.0e-3},
-    {NULL, NULL, NULL, 0.0}};
+    {.label = "lattice-triangular-angular",
+     .deck = "model: {type: lattice}\n"
+             "materials:\n  m: {density: 2000, youngs_modulus: 1.0e9, poisson_ratio: 0.25, "
+             "failure_strain: 0.5}\n",
+     .lattice = "triangular",
+     .spacing = 1.0e-3},
+    {.label = NULL}};
