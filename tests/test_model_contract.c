@@ -66,7 +66,7 @@ struct fixture_ref {
  * (1, 1, 1) (x -> y -> z -> x), which maps the cubic lattices and a sphere
  * centred on a site onto themselves: the deck only moves the origin. */
 struct frame {
-    double angle_deg;
+    double angle_deg; /**< 2D: the angle; 3D: any non-zero value selects R */
     double c[3];
 };
 
@@ -309,10 +309,9 @@ static double dist3(const double a[3], const double b[3])
                 (a[2] - b[2]) * (a[2] - b[2]));
 }
 
-static void position_of(const struct particles *p, int dim, double *const x[3], size_t i,
-                        double out[3])
+/* Component array @p x of particle i as a 3-vector (zero beyond dim). */
+static void vec_of(int dim, double *const x[3], size_t i, double out[3])
 {
-    (void)p;
     for (int d = 0; d < 3; d++)
         out[d] = d < dim ? x[d][i] : 0.0;
 }
@@ -367,14 +366,14 @@ static size_t *match_particles(const struct sim *s, const struct sim *base, cons
     assert_non_null(match);
     for (size_t j = 0; j < n; j++) {
         double x[3], y[3], rel[3];
-        position_of(s->p, s->dim, s->p->x0, j, x);
+        vec_of(s->dim, s->p->x0, j, x);
         for (int d = 0; d < 3; d++)
             rel[d] = x[d] - fr->c[d];
         rotate_back(fr, s->dim, rel, y);
         size_t best = n;
         for (size_t i = 0; i < n; i++) {
             double xb[3];
-            position_of(base->p, base->dim, base->p->x0, i, xb);
+            vec_of(base->dim, base->p->x0, i, xb);
             if (dist3(xb, y) < 1e-6 * s->lattice.spacing)
                 best = i;
         }
@@ -401,12 +400,12 @@ static void frame_invariance(const struct fixture_ref *r, const struct frame *fr
     for (size_t j = 0; j < b->p->n; j++) {
         size_t i = match[j];
         double xa[3], x0a[3], va[3], xb[3], x0b[3], vb[3], ua[3], ub[3], rua[3], rva[3];
-        position_of(a->p, dim, a->p->x, i, xa);
-        position_of(a->p, dim, a->p->x0, i, x0a);
-        position_of(a->p, dim, a->p->v, i, va);
-        position_of(b->p, dim, b->p->x, j, xb);
-        position_of(b->p, dim, b->p->x0, j, x0b);
-        position_of(b->p, dim, b->p->v, j, vb);
+        vec_of(dim, a->p->x, i, xa);
+        vec_of(dim, a->p->x0, i, x0a);
+        vec_of(dim, a->p->v, i, va);
+        vec_of(dim, b->p->x, j, xb);
+        vec_of(dim, b->p->x0, j, x0b);
+        vec_of(dim, b->p->v, j, vb);
         for (int d = 0; d < 3; d++) {
             ua[d] = xa[d] - x0a[d];
             ub[d] = xb[d] - x0b[d];
