@@ -56,11 +56,6 @@
 #define RADIUS_3D 2.9
 #define DEG (3.14159265358979323846 / 180.0)
 
-struct fixture_ref {
-    const char *model;
-    const struct model_fixture *fx;
-};
-
 /* A rigid motion: x -> R x + c.  2D: R is the deck's lattice angle.  3D:
  * lattices have no angle key, so R is the 120 degree rotation about
  * (1, 1, 1) (x -> y -> z -> x), which maps the cubic lattices and a sphere
@@ -73,7 +68,7 @@ struct frame {
 static const struct frame base_frame = {0.0, {0.0, 0.0, 0.0}};
 
 /* Every fixture of every registered model. */
-static size_t all_fixtures(struct fixture_ref *out)
+static size_t all_fixtures(const struct model_fixture **out)
 {
     size_t n = 0;
     for (const char *const *name = model_names(); *name; name++) {
@@ -87,8 +82,7 @@ static size_t all_fixtures(struct fixture_ref *out)
         }
         for (const struct model_fixture *f = ops->fixtures; f->label; f++) {
             assert_true(n < MAX_FIXTURES);
-            out[n].model = *name;
-            out[n++].fx = f;
+            out[n++] = f;
         }
     }
     assert_true(n > 0);
@@ -111,6 +105,18 @@ static void print_why(const struct model_fixture *fx)
         printf("    (%s: %s)\n", fx->label, fx->why);
 }
 
+/* Run one check (returning its failures) on every fixture; fail after all
+ * were reported. */
+static void for_every_fixture(int (*check)(const struct model_fixture *fx))
+{
+    const struct model_fixture *fx[MAX_FIXTURES];
+    size_t n = all_fixtures(fx);
+    int bad = 0;
+    for (size_t k = 0; k < n; k++)
+        bad += check(fx[k]);
+    assert_int_equal(bad, 0);
+}
+
 static int fixture_dim(const struct model_fixture *fx)
 {
     int kind = lattice_kind_from_name(fx->lattice);
@@ -118,35 +124,31 @@ static int fixture_dim(const struct model_fixture *fx)
     return lattice_kind_dim((enum lattice_kind)kind);
 }
 
-static void rotate(const struct frame *fr, int dim, const double a[3], double out[3])
+/* out = R a, or R^T a with @p inverse. */
+static void rotate_dir(const struct frame *fr, int dim, const double a[3], double out[3],
+                       int inverse)
 {
+    double R[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     if (dim == 2) {
-        double t = fr->angle_deg * DEG, ct = cos(t), st = sin(t);
-        out[0] = ct * a[0] - st * a[1];
-        out[1] = st * a[0] + ct * a[1];
-        out[2] = 0.0;
-    } else if (fr->angle_deg != 0.0) {
-        out[0] = a[2];
-        out[1] = a[0];
-        out[2] = a[1];
-    } else {
-        memcpy(out, a, 3 * sizeof *out);
+        double t = fr->angle_deg * DEG;
+        R[0][0] = R[1][1] = cos(t);
+        R[1][0] = sin(t);
+        R[0][1] = -R[1][0];
+        R[2][2] = 0.0; /* no third component in 2D */
+    } else if (fr->angle_deg != 0.0) { /* x -> y -> z -> x */
+        static const double C[3][3] = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
+        memcpy(R, C, sizeof R);
+    }
+    for (int r = 0; r < 3; r++) {
+        out[r] = 0.0;
+        for (int c = 0; c < 3; c++)
+            out[r] += (inverse ? R[c][r] : R[r][c]) * a[c];
     }
 }
 
-static void rotate_back(const struct frame *fr, int dim, const double a[3], double out[3])
+static void rotate(const struct frame *fr, int dim, const double a[3], double out[3])
 {
-    if (dim == 2) {
-        struct frame inv = *fr;
-        inv.angle_deg = -fr->angle_deg;
-        rotate(&inv, dim, a, out);
-    } else if (fr->angle_deg != 0.0) {
-        out[0] = a[1];
-        out[1] = a[2];
-        out[2] = a[0];
-    } else {
-        memcpy(out, a, 3 * sizeof *out);
-    }
+    rotate_dir(fr, dim, a, out, 0);
 }
 
 /* The fixture's body of radius radius_dx spacings in frame @p fr, at a fixed
@@ -317,44 +319,39 @@ static void vec_of(int dim, double *const x[3], size_t i, double out[3])
 }
 
 /* 1. Newton's third law and the momenta. */
-static void test_newton_momentum(void **state)
+static int newton_momentum(const struct model_fixture *fx)
 {
-    (void)state;
-    struct fixture_ref fx[MAX_FIXTURES];
-    size_t n = all_fixtures(fx);
     int bad = 0;
-    for (size_t k = 0; k < n; k++) {
-        struct sim *s = build(fx[k].fx, &base_frame, radius_of(fx[k].fx));
-        set_state(s, s, &base_frame, NULL);
-        double P0[3], L0[3], sp, sl, P[3], L[3], spk, slk;
-        momenta(s, P0, L0, &sp, &sl);
-        double worst_f = 0.0, worst_t = 0.0, worst_p = 0.0, worst_l = 0.0;
-        for (long step = 0; step <= RUN_STEPS; step++) {
-            if (step > 0)
-                run_steps(s, 1, fx[k].fx->label);
-            double tr, fr = newton_residual(s, &tr);
-            worst_f = fmax(worst_f, fr);
-            worst_t = fmax(worst_t, tr);
-            momenta(s, P, L, &spk, &slk);
-            worst_p = fmax(worst_p, dist3(P, P0) / sp);
-            worst_l = fmax(worst_l, dist3(L, L0) / sl);
-        }
-        printf("  %-28s %zu particles: |sum f|/sum|f| %.2e, |sum r x f|/sum|r||f| %.2e, "
-               "momentum %.2e, angular momentum %.2e\n",
-               fx[k].fx->label, s->p->n, worst_f, worst_t, worst_p, worst_l);
-        if (fx[k].fx->torque > 0.0)
-            print_why(fx[k].fx);
-        /* pair forces cancel to round-off: ~1e-16 per pair, summed (1e-17
-         * measured); a model whose pair forces are not central may have a
-         * torque, stated with its measured value in its fixture */
-        const double tol_t = fmax(1e-12, fx[k].fx->torque);
-        bad += failed(worst_f <= 1e-12, fx[k].fx, "net force", worst_f);
-        bad += failed(worst_t <= tol_t, fx[k].fx, "net torque", worst_t);
-        bad += failed(worst_p <= 1e-12, fx[k].fx, "momentum drift", worst_p);
-        bad += failed(worst_l <= tol_t, fx[k].fx, "angular momentum drift", worst_l);
-        sim_destroy(&s);
+    struct sim *s = build(fx, &base_frame, radius_of(fx));
+    set_state(s, s, &base_frame, NULL);
+    double P0[3], L0[3], sp, sl, P[3], L[3], spk, slk;
+    momenta(s, P0, L0, &sp, &sl);
+    double worst_f = 0.0, worst_t = 0.0, worst_p = 0.0, worst_l = 0.0;
+    for (long step = 0; step <= RUN_STEPS; step++) {
+        if (step > 0)
+            run_steps(s, 1, fx->label);
+        double tr, fr = newton_residual(s, &tr);
+        worst_f = fmax(worst_f, fr);
+        worst_t = fmax(worst_t, tr);
+        momenta(s, P, L, &spk, &slk);
+        worst_p = fmax(worst_p, dist3(P, P0) / sp);
+        worst_l = fmax(worst_l, dist3(L, L0) / sl);
     }
-    assert_int_equal(bad, 0);
+    printf("  %-28s %zu particles: |sum f|/sum|f| %.2e, |sum r x f|/sum|r||f| %.2e, "
+           "momentum %.2e, angular momentum %.2e\n",
+           fx->label, s->p->n, worst_f, worst_t, worst_p, worst_l);
+    if (fx->torque > 0.0)
+        print_why(fx);
+    /* pair forces cancel to round-off: ~1e-16 per pair, summed (1e-17
+     * measured); a model whose pair forces are not central may have a
+     * torque, stated with its measured value in its fixture */
+    const double tol_t = fmax(1e-12, fx->torque);
+    bad += failed(worst_f <= 1e-12, fx, "net force", worst_f);
+    bad += failed(worst_t <= tol_t, fx, "net torque", worst_t);
+    bad += failed(worst_p <= 1e-12, fx, "momentum drift", worst_p);
+    bad += failed(worst_l <= tol_t, fx, "angular momentum drift", worst_l);
+    sim_destroy(&s);
+    return bad;
 }
 
 /* Base particle matching each particle of @p s (built in frame @p fr): the
@@ -369,7 +366,7 @@ static size_t *match_particles(const struct sim *s, const struct sim *base, cons
         vec_of(s->dim, s->p->x0, j, x);
         for (int d = 0; d < 3; d++)
             rel[d] = x[d] - fr->c[d];
-        rotate_back(fr, s->dim, rel, y);
+        rotate_dir(fr, s->dim, rel, y, 1);
         size_t best = n;
         for (size_t i = 0; i < n; i++) {
             double xb[3];
@@ -384,17 +381,17 @@ static size_t *match_particles(const struct sim *s, const struct sim *base, cons
 }
 
 /* 2. Run from S and from R S + c; compare R(result) with the second run. */
-static void frame_invariance(const struct fixture_ref *r, const struct frame *fr,
+static void frame_invariance(const struct model_fixture *fx, const struct frame *fr,
                              double *err_u, double *err_v)
 {
-    double rad = radius_of(r->fx);
-    struct sim *a = build(r->fx, &base_frame, rad), *b = build(r->fx, fr, rad);
+    double rad = radius_of(fx);
+    struct sim *a = build(fx, &base_frame, rad), *b = build(fx, fr, rad);
     size_t *match = match_particles(b, a, fr);
     set_state(a, a, &base_frame, NULL);
     set_state(b, a, fr, match);
     b->dt = a->dt;
-    run_steps(a, RUN_STEPS, r->fx->label);
-    run_steps(b, RUN_STEPS, r->fx->label);
+    run_steps(a, RUN_STEPS, fx->label);
+    run_steps(b, RUN_STEPS, fx->label);
     double umax = 0.0, vmax = 0.0, eu = 0.0, ev = 0.0;
     const int dim = a->dim;
     for (size_t j = 0; j < b->p->n; j++) {
@@ -424,37 +421,29 @@ static void frame_invariance(const struct fixture_ref *r, const struct frame *fr
     sim_destroy(&b);
 }
 
-static void test_frame_invariance(void **state)
+static int frame_check(const struct model_fixture *f)
 {
-    (void)state;
-    struct fixture_ref fx[MAX_FIXTURES];
-    size_t n = all_fixtures(fx);
-    /* c: several body sizes away, not a lattice vector; the angle: no
-     * symmetry of any 2D lattice */
     int bad = 0;
-    for (size_t k = 0; k < n; k++) {
-        const struct model_fixture *f = fx[k].fx;
-        /* c: several body sizes away, not a lattice vector; the angle: no
-         * symmetry of any 2D lattice unless the fixture asks for one */
-        const struct frame moved = {0.0, {0.0173, -0.0091, 0.0057}};
-        const struct frame turned = {f->rotation_deg != 0.0 ? f->rotation_deg : 37.0,
-                                     {0.0173, -0.0091, 0.0057}};
-        double tu, tv, ru, rv;
-        frame_invariance(&fx[k], &moved, &tu, &tv);
-        frame_invariance(&fx[k], &turned, &ru, &rv);
-        printf("  %-28s translated: u %.2e v %.2e; rotated (%s): u %.2e v %.2e\n", f->label, tu,
-               tv, fixture_dim(f) == 3 ? "120 deg about [111]" : "deck angle", ru, rv);
-        if (f->rotation_deg != 0.0)
-            print_why(f);
-        /* the same arithmetic up to the rounding of the positions (|c| ~ 20
-         * spacings) and of the rotation: <= 2e-11 measured after RUN_STEPS
-         * steps of these random (particle-scale) motions */
-        bad += failed(tu <= 1e-10, f, "translation: displacement", tu);
-        bad += failed(tv <= 1e-10, f, "translation: velocity", tv);
-        bad += failed(ru <= 1e-10, f, "rotation: displacement", ru);
-        bad += failed(rv <= 1e-10, f, "rotation: velocity", rv);
-    }
-    assert_int_equal(bad, 0);
+    /* c: several body sizes away, not a lattice vector; the angle: no
+     * symmetry of any 2D lattice unless the fixture asks for one */
+    const struct frame moved = {0.0, {0.0173, -0.0091, 0.0057}};
+    const struct frame turned = {f->rotation_deg != 0.0 ? f->rotation_deg : 37.0,
+                                 {0.0173, -0.0091, 0.0057}};
+    double tu, tv, ru, rv;
+    frame_invariance(f, &moved, &tu, &tv);
+    frame_invariance(f, &turned, &ru, &rv);
+    printf("  %-28s translated: u %.2e v %.2e; rotated (%s): u %.2e v %.2e\n", f->label, tu,
+           tv, fixture_dim(f) == 3 ? "120 deg about [111]" : "deck angle", ru, rv);
+    if (f->rotation_deg != 0.0)
+        print_why(f);
+    /* the same arithmetic up to the rounding of the positions (|c| ~ 20
+     * spacings) and of the rotation: <= 2e-11 measured after RUN_STEPS
+     * steps of these random (particle-scale) motions */
+    bad += failed(tu <= 1e-10, f, "translation: displacement", tu);
+    bad += failed(tv <= 1e-10, f, "translation: velocity", tv);
+    bad += failed(ru <= 1e-10, f, "rotation: displacement", ru);
+    bad += failed(rv <= 1e-10, f, "rotation: velocity", rv);
+    return bad;
 }
 
 /* Largest |energy balance| over @p steps steps of @p dt from a smooth
@@ -491,22 +480,17 @@ static double energy_error(const struct model_fixture *fx, double dt_scale, long
 }
 
 /* 3. Second-order energy error of an elastic free body. */
-static void test_energy_order(void **state)
+static int energy_order(const struct model_fixture *fx)
 {
-    (void)state;
-    struct fixture_ref fx[MAX_FIXTURES];
-    size_t n = all_fixtures(fx);
     int bad = 0;
-    for (size_t k = 0; k < n; k++) {
-        double e1 = energy_error(fx[k].fx, 1.0, RUN_STEPS, 1);
-        double e2 = energy_error(fx[k].fx, 0.5, 2 * RUN_STEPS, 2);
-        printf("  %-28s max |energy error| / kinetic: %.3e at dt, %.3e at dt/2, ratio %.3f\n",
-               fx[k].fx->label, e1, e2, e1 / e2);
-        /* second order: 4, within the higher-order terms at the models'
-         * default steps */
-        bad += failed(e1 / e2 >= 3.0 && e1 / e2 <= 5.0, fx[k].fx, "energy error ratio", e1 / e2);
-    }
-    assert_int_equal(bad, 0);
+    double e1 = energy_error(fx, 1.0, RUN_STEPS, 1);
+    double e2 = energy_error(fx, 0.5, 2 * RUN_STEPS, 2);
+    printf("  %-28s max |energy error| / kinetic: %.3e at dt, %.3e at dt/2, ratio %.3f\n",
+           fx->label, e1, e2, e1 / e2);
+    /* second order: 4, within the higher-order terms at the models'
+     * default steps */
+    bad += failed(e1 / e2 >= 3.0 && e1 / e2 <= 5.0, fx, "energy error ratio", e1 / e2);
+    return bad;
 }
 
 /* Every stored field's bytes for particles [0, n), concatenated. */
@@ -534,105 +518,112 @@ static unsigned char *stored_bytes(const struct sim *s, size_t *len)
 }
 
 /* 4. One and two threads, bitwise. */
-static void test_threads(void **state)
+static int threads_check(const struct model_fixture *fx)
 {
-    (void)state;
-    struct fixture_ref fx[MAX_FIXTURES];
-    size_t n = all_fixtures(fx);
     const int saved = omp_get_max_threads();
-    for (size_t k = 0; k < n; k++) {
-        /* a body above SPALL_OMP_MIN_PARTICLES, so that the loops with a
-         * size threshold run on two threads too */
-        double rad = fixture_dim(fx[k].fx) == 2 ? 38.0 : 10.5;
-        unsigned char *bytes[2];
-        size_t len[2], np = 0;
-        for (int t = 0; t < 2; t++) {
-            omp_set_num_threads(t + 1);
-            struct sim *s = build(fx[k].fx, &base_frame, rad);
-            assert_true(s->p->n > SPALL_OMP_MIN_PARTICLES);
-            np = s->p->n;
-            set_state(s, s, &base_frame, NULL);
-            run_steps(s, 5, fx[k].fx->label);
-            bytes[t] = stored_bytes(s, &len[t]);
-            sim_destroy(&s);
-        }
-        omp_set_num_threads(saved);
-        printf("  %-28s %zu particles, 5 steps: %zu bytes of stored fields %s on 1 and 2 "
-               "threads\n",
-               fx[k].fx->label, np, len[0],
-               len[0] == len[1] && memcmp(bytes[0], bytes[1], len[0]) == 0 ? "identical"
-                                                                           : "DIFFER");
-        assert_int_equal(len[0], len[1]);
-        assert_memory_equal(bytes[0], bytes[1], len[0]);
-        free(bytes[0]);
-        free(bytes[1]);
+    int bad = 0;
+    /* a body above SPALL_OMP_MIN_PARTICLES, so that the loops with a
+     * size threshold run on two threads too */
+    double rad = fixture_dim(fx) == 2 ? 38.0 : 10.5;
+    unsigned char *bytes[2];
+    size_t len[2], np = 0;
+    for (int t = 0; t < 2; t++) {
+        omp_set_num_threads(t + 1);
+        struct sim *s = build(fx, &base_frame, rad);
+        assert_true(s->p->n > SPALL_OMP_MIN_PARTICLES);
+        np = s->p->n;
+        set_state(s, s, &base_frame, NULL);
+        run_steps(s, 5, fx->label);
+        bytes[t] = stored_bytes(s, &len[t]);
+        sim_destroy(&s);
     }
+    omp_set_num_threads(saved);
+    printf("  %-28s %zu particles, 5 steps: %zu bytes of stored fields %s on 1 and 2 "
+           "threads\n",
+           fx->label, np, len[0],
+           len[0] == len[1] && memcmp(bytes[0], bytes[1], len[0]) == 0 ? "identical"
+                                                                       : "differ");
+    bad += failed(len[0] == len[1] && memcmp(bytes[0], bytes[1], len[0]) == 0, fx,
+                  "1 and 2 threads differ", 0.0);
+    free(bytes[0]);
+    free(bytes[1]);
+    return bad;
 }
 
 /* 5. Pack every particle's stored fields, scramble, unpack: byte-identical. */
-static void test_pack_unpack(void **state)
+static int pack_unpack(const struct model_fixture *fx)
 {
-    (void)state;
-    struct fixture_ref fx[MAX_FIXTURES];
-    size_t n = all_fixtures(fx);
-    for (size_t k = 0; k < n; k++) {
-        struct sim *s = build(fx[k].fx, &base_frame, radius_of(fx[k].fx));
-        set_state(s, s, &base_frame, NULL);
-        run_steps(s, 5, fx[k].fx->label);
-        const struct field_registry *reg = s->fields;
-        const size_t np = s->p->n;
-        size_t per = 0, stored = 0;
-        char skipped[512] = "";
-        for (size_t f = 0; f < reg->n; f++) {
-            size_t sz = field_packed_size(&reg->fields[f]);
-            per += sz;
-            if (sz)
-                stored++;
-            else if (strlen(skipped) + FIELD_NAME_LEN + 2 < sizeof skipped) {
-                strcat(skipped, " ");
-                strcat(skipped, reg->fields[f].name);
-            }
+    int bad = 0;
+    struct sim *s = build(fx, &base_frame, radius_of(fx));
+    set_state(s, s, &base_frame, NULL);
+    run_steps(s, 5, fx->label);
+    const struct field_registry *reg = s->fields;
+    const size_t np = s->p->n;
+    size_t per = 0, stored = 0;
+    char skipped[512] = "";
+    for (size_t f = 0; f < reg->n; f++) {
+        size_t sz = field_packed_size(&reg->fields[f]);
+        per += sz;
+        if (sz)
+            stored++;
+        else if (strlen(skipped) + FIELD_NAME_LEN + 2 < sizeof skipped) {
+            strcat(skipped, " ");
+            strcat(skipped, reg->fields[f].name);
         }
-        size_t len_before;
-        unsigned char *before = stored_bytes(s, &len_before);
-        unsigned char *buf = malloc(per * np + 1);
-        assert_non_null(buf);
-        unsigned char *at = buf;
-        for (size_t i = 0; i < np; i++)
-            for (size_t f = 0; f < reg->n; f++) {
-                field_pack(&reg->fields[f], i, at);
-                at += field_packed_size(&reg->fields[f]);
-            }
-        for (size_t f = 0; f < reg->n; f++) { /* scramble */
-            const struct field_desc *d = &reg->fields[f];
-            size_t sz = field_packed_size(d);
-            for (int c = 0; sz && c < d->ncomp; c++)
-                memset(*d->comp[c], 0xA5, sz / (size_t)d->ncomp * np);
-        }
-        at = buf;
-        for (size_t i = 0; i < np; i++)
-            for (size_t f = 0; f < reg->n; f++) {
-                field_unpack(&reg->fields[f], i, at);
-                at += field_packed_size(&reg->fields[f]);
-            }
-        size_t len_after;
-        unsigned char *after = stored_bytes(s, &len_after);
-        printf("  %-28s %zu stored fields (%zu B/particle) round-trip; computed, skipped:%s\n",
-               fx[k].fx->label, stored, per, skipped[0] ? skipped : " none");
-        assert_int_equal(len_before, len_after);
-        assert_memory_equal(before, after, len_before);
-        free(before);
-        free(after);
-        free(buf);
-        sim_destroy(&s);
     }
+    size_t len_before;
+    unsigned char *before = stored_bytes(s, &len_before);
+    unsigned char *buf = malloc(per * np + 1);
+    assert_non_null(buf);
+    unsigned char *at = buf;
+    for (size_t i = 0; i < np; i++)
+        for (size_t f = 0; f < reg->n; f++) {
+            field_pack(&reg->fields[f], i, at);
+            at += field_packed_size(&reg->fields[f]);
+        }
+    for (size_t f = 0; f < reg->n; f++) { /* scramble */
+        const struct field_desc *d = &reg->fields[f];
+        size_t sz = field_packed_size(d);
+        for (int c = 0; sz && c < d->ncomp; c++)
+            memset(*d->comp[c], 0xA5, sz / (size_t)d->ncomp * np);
+    }
+    at = buf;
+    for (size_t i = 0; i < np; i++)
+        for (size_t f = 0; f < reg->n; f++) {
+            field_unpack(&reg->fields[f], i, at);
+            at += field_packed_size(&reg->fields[f]);
+        }
+    size_t len_after;
+    unsigned char *after = stored_bytes(s, &len_after);
+    printf("  %-28s %zu stored fields (%zu B/particle) round-trip; computed, skipped:%s\n",
+           fx->label, stored, per, skipped[0] ? skipped : " none");
+    bad += failed(len_before == len_after && memcmp(before, after, len_before) == 0, fx,
+                  "pack/unpack changed the state", 0.0);
+    free(before);
+    free(after);
+    free(buf);
+    sim_destroy(&s);
+    return bad;
+}
+
+/* The checks, each run on every fixture (one cmocka test per check). */
+static int (*const checks[])(const struct model_fixture *fx) = {
+    newton_momentum, frame_check, energy_order, threads_check, pack_unpack};
+
+static void test_contract(void **state)
+{
+    int (*const *check)(const struct model_fixture *) = *state;
+    for_every_fixture(*check);
 }
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_newton_momentum), cmocka_unit_test(test_frame_invariance),
-        cmocka_unit_test(test_energy_order), cmocka_unit_test(test_threads),
-        cmocka_unit_test(test_pack_unpack)};
+    static const char *const names[] = {"newton_third_law_and_momenta", "frame_invariance",
+                                        "energy_second_order", "threads_bitwise",
+                                        "pack_unpack_round_trip"};
+    struct CMUnitTest tests[sizeof checks / sizeof checks[0]];
+    for (size_t k = 0; k < sizeof checks / sizeof checks[0]; k++)
+        tests[k] = (struct CMUnitTest){.name = names[k], .test_func = test_contract,
+                                       .initial_state = (void *)&checks[k]};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
