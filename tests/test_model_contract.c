@@ -22,6 +22,10 @@
  *      than SPALL_OMP_MIN_PARTICLES so that every parallel loop runs split;
  *   5. field_pack / field_unpack of every stored registered per-particle
  *      field (what migration and restart use) restores it byte for byte.
+ * A fixture may state an allowance (torque, a lattice-symmetric rotation)
+ * only for a property of its method, with the measured value (struct
+ * model_fixture.why); the test prints it.  Each check reports every
+ * fixture before it fails.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -47,7 +51,7 @@
 
 #define MAX_FIXTURES 64
 /* Steps of a contract run: long enough for waves to cross the body (~9
- * spacings) a few times, short enough for a few seconds under ASan. */
+ * spacings) once or more, short enough for a few seconds under ASan. */
 #define RUN_STEPS 40
 /* Body radius in spacings: 2D ~60, 3D ~100-150 particles; not close to a
  * lattice shell radius, so boundary sites are kept or dropped the same way
@@ -213,8 +217,8 @@ static void perturbation(const struct sim *s, size_t i, double du[3], double v[3
     }
 }
 
-/* Apply the perturbation of base particle match[j] (j without @p match), rotated into
- * frame @p fr to particle j of @p s, then recompute the forces of that state. */
+/* Give particle j of @p s the perturbation of base particle match[j] (j
+ * without @p match) rotated into frame @p fr; recompute the forces. */
 static void set_state(struct sim *s, const struct sim *base, const struct frame *fr,
                       const size_t *match)
 {
@@ -246,8 +250,8 @@ static void run_steps(struct sim *s, long n, const char *label)
         }
 }
 
-/* Check 1 on the current forces: returns max(|sum f| / sum |f|,
- * |sum r x f| / sum |r||f|) (r from the centre of mass). */
+/* Check 1 on the current forces: returns |sum f| / sum |f| and sets
+ * @p torque_ratio = |sum r x f| / sum |r||f| (r from the centre of mass). */
 static double newton_residual(const struct sim *s, double *torque_ratio)
 {
     const struct particles *p = s->p;
