@@ -2,7 +2,7 @@
  * @file lattice_fixture.c
  * @brief The lattice model's body for the model contract test
  *        (tests/test_model_contract.c): a triangular lattice with nu = 0.25,
- *        so the alpha-beta angular springs (non-central forces, seed 000
+ *        so the alpha-beta angular springs (non-central forces, [Wang2010]
  *        Eq. 17) act besides the axial springs; unbreakable at the test's
  *        strains (~1e-3).
  */

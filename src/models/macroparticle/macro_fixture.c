@@ -1,7 +1,7 @@
 /**
  * @file macro_fixture.c
  * @brief The macro-particle model's body for the model contract test
- *        (tests/test_model_contract.c): aluminium Mie pairs on FCC (seed 001),
+ *        (tests/test_model_contract.c): aluminium Mie pairs on FCC ([Saitoh]),
  *        no Langevin bath (a free elastic body: random forces would break the
  *        energy and frame checks by design).
  */

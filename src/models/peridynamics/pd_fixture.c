@@ -21,7 +21,7 @@ const struct model_fixture pd_fixtures[] = {
      .spacing = 1.0e-3,
      .rotation_deg = 90.0,
      .why = "the surface factors are the family energies under stretches along the global x "
-            "and y axes (Madenci & Oterkus 2014 Eq. 4.31), so the corrected body is invariant "
+            "and y axes ([MadenciOterkus2014] Eq. 4.31), so the corrected body is invariant "
             "only under the lattice's own rotations; at 37 degrees the runs differ by 0.55 of "
             "the displacement"},
     {.label = NULL}};
