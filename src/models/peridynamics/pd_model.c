@@ -555,6 +555,7 @@ static size_t pd_interactions(const struct model *m, const struct sim *sim)
     return m->bl ? bond_list_count(m->bl) : 0;
 }
 
+extern const struct model_fixture pd_fixtures[]; /* pd_fixture.c */
 const struct model_ops peridynamics_model_ops = {
     .name = "peridynamics",
     .summary = "bond-based peridynamics (PMB, PDLM lattice, orthotropic laminae)",
@@ -571,6 +572,7 @@ const struct model_ops peridynamics_model_ops = {
     .describe = pd_describe,
     .destroy = pd_destroy,
     .interactions = pd_interactions,
+    .fixtures = pd_fixtures,
 };
 
 /** Damage field for validation code (same as the `damage` output field). */
