@@ -18,6 +18,9 @@
  *  - lattice ([Wang2010] Eq. 26): a bond breaks when its strain passes the
  *    failure strain eps_max, or sigma_TS / E for the linear law given a
  *    tensile strength.
+ * And a notched PD plate: the first bond breaks at the notch tip when the
+ * plate's largest stretch passes s_c (the G_c-based initiation load is not
+ * checked here).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -28,6 +31,7 @@
 #include "tests/test_support.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 
 /* Two-particle chain (spacing r0 = 1 mm): left fixed, right pulled at V =
  * 1 m/s with dt such that one step stretches the bond by ~s_c / 1000.  Returns
@@ -107,12 +111,102 @@ static void test_lattice_failure_strain(void **state)
                   "tensile_strength: 1.5e7", 1.5e7 / 1.0e9);
 }
 
+/* Largest stretch over the reference pairs (a, b) of the list (2D). */
+static double max_stretch(const struct sim *s, const size_t *pa, const size_t *pb, size_t np,
+                          size_t *where)
+{
+    const struct particles *p = s->p;
+    double best = -INFINITY;
+    for (size_t k = 0; k < np; k++) {
+        const size_t a = pa[k], b = pb[k];
+        double l0 = 0.0, l = 0.0;
+        for (int d = 0; d < 2; d++) {
+            const double d0 = p->x0[d][b] - p->x0[d][a], d1 = p->x[d][b] - p->x[d][a];
+            l0 += d0 * d0;
+            l += d1 * d1;
+        }
+        const double st = sqrt(l / l0) - 1.0;
+        if (st > best) {
+            best = st;
+            *where = a;
+        }
+    }
+    return best;
+}
+
+/* A notched PD plate (plane stress) pulled apart by its top and bottom rows:
+ * the first bond breaks at the notch tip, in the first step in which the
+ * largest bond stretch of the plate passes s_c.  The notch is a slot 5 dx
+ * wide, so no bond crosses it; every pair closer than the family radius
+ * (delta + dx/2, partial volumes) is a bond. */
+static void test_pd_notch_tip(void **state)
+{
+    (void)state;
+    const double dx = 1.0e-3, s_c = 0.005, tip[2] = {0.0155, 0.010};
+    struct sim *s = test_build_ok(
+        "model: {type: peridynamics}\n"
+        "materials: {m: {density: 1000, youngs_modulus: 1.0e9, critical_stretch: 0.005}}\n"
+        "lattice: {type: square, spacing: 1.0e-3, thickness: 1.0e-3}\n"
+        "body: {geometry: {difference: [{box: {min: [0, 0], max: [0.0405, 0.0205]}},\n"
+        "                               {box: {min: [-1, 0.0075], max: [0.0155, 0.0125]}}]},\n"
+        "       material: m}\n"
+        "groups:\n"
+        "  top: {box: {min: [-1, 0.0185], max: [1, 1]}}\n"
+        "  bottom: {box: {min: [-1, -1], max: [1, 0.0015]}}\n"
+        "boundary_conditions:\n"
+        "  - {group: top, type: velocity, components: [y], value: 0.5}\n"
+        "  - {group: bottom, type: velocity, components: [y], value: -0.5}\n"
+        "run: {steps: 2000}\n");
+    const struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const double rf = (3.015 + 0.5) * dx; /* default horizon_factor */
+    size_t np = 0, cap = 32 * n;
+    size_t *pa = malloc(cap * sizeof *pa), *pb = malloc(cap * sizeof *pb);
+    assert_non_null(pa);
+    assert_non_null(pb);
+    for (size_t a = 0; a < n; a++)
+        for (size_t b = a + 1; b < n; b++) {
+            const double ex = p->x0[0][b] - p->x0[0][a], ey = p->x0[1][b] - p->x0[1][a];
+            if (ex * ex + ey * ey <= rf * rf) {
+                assert_true(np < cap);
+                pa[np] = a;
+                pb[np++] = b;
+            }
+        }
+    struct spall_error err = {0, ""};
+    double hold = 0.0, brk = 0.0;
+    size_t at = 0;
+    int broke = 0;
+    while (!sim_done(s) && !broke) {
+        assert_int_equal(sim_step(s, &err), SPALL_OK);
+        const double st = max_stretch(s, pa, pb, np, &at);
+        broke = vlat_history(s, "bonds_broken") > 0.0;
+        if (broke)
+            brk = st;
+        else
+            hold = st;
+    }
+    assert_true(broke);
+    const double rx = p->x0[0][at] - tip[0], ry = p->x0[1][at] - tip[1];
+    print_message("notched plate (%zu bonds): largest stretch %.6g intact, %.6g at the first "
+                  "break (s_c = %g), %.2f dx from the notch tip\n",
+                  np, hold, brk, s_c, sqrt(rx * rx + ry * ry) / dx);
+    assert_true(hold < s_c);
+    assert_true(brk > s_c);
+    assert_true(brk - hold < 0.1 * s_c); /* the step resolves the threshold */
+    assert_true(sqrt(rx * rx + ry * ry) < 3.0 * dx);
+    free(pa);
+    free(pb);
+    sim_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pd_critical_stretch),
         cmocka_unit_test(test_pd_fracture_energy),
         cmocka_unit_test(test_lattice_failure_strain),
+        cmocka_unit_test(test_pd_notch_tip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
