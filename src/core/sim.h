@@ -76,12 +76,16 @@ struct energy_account {
     double balance;      /**< kinetic + strain + dissipated + damping - external - initial */
 };
 
-/** Time integrators (both second order, same positions):
+/** Time integrators (all second order, same positions):
  *  verlet: forces of step n+1 see the half-step velocities;
  *  predictor_corrector: they see the predicted v_n + dt a_n (seed 004
  *  Eqs. 3.35-3.37), which velocity-dependent forces (artificial viscosity)
- *  expect. */
-enum integrator_kind { INTEGRATOR_VERLET, INTEGRATOR_PREDICTOR_CORRECTOR };
+ *  expect; the model's state is predicted and corrected around the force
+ *  call (model_ops.advance_state);
+ *  leapfrog: velocity Verlet with the model's state staggered on the
+ *  velocities, advanced by dt inside the force call of each step
+ *  (model_ops.compute_forces_kick; sph_leapfrog.c). */
+enum integrator_kind { INTEGRATOR_VERLET, INTEGRATOR_PREDICTOR_CORRECTOR, INTEGRATOR_LEAPFROG };
 
 struct sim {
     int dim;
@@ -123,8 +127,12 @@ struct sim {
     long n_steps;
 
     double energy_blowup; /**< stop if total energy exceeds this factor x reference */
+    long energy_check_every; /**< sim_step checks the energy blow-up every this many
+                                  steps and at the last (0: n_steps / 2000, at least 1) */
     struct energy_account energy;
     double *v_half[3];    /**< predictor-corrector scratch (owned) */
+    uint8_t *no_drift_velocity; /**< 1: a BC prescribes the particle's velocity, the
+                                     model's drift velocity does not move it (owned) */
     int threads;          /**< OpenMP threads (0 = library default) */
     uint64_t seed;        /**< random seed for stochastic features */
     struct rigid_set *rigid; /**< rigid impactors / supports (core/rigid.h), may be NULL */
@@ -160,8 +168,12 @@ int sim_prepare(struct sim *s, struct spall_error *err);
  *  the initial energy account. */
 int sim_initial_forces(struct sim *s, struct spall_error *err);
 
-/** Advance one step (velocity Verlet). Detects NaN / energy blow-up and
- *  returns SPALL_ERR_UNSTABLE naming step, time and particle. */
+/** Advance one step with s->integrator (the sequence is in models/model.h).
+ *  Detects non-finite positions or velocities (every step) and an energy
+ *  blow-up (mechanical energy above energy_blowup times the energy put in,
+ *  every energy_check_every steps and at the last, after which the energy
+ *  account is current) and returns SPALL_ERR_UNSTABLE naming step, time
+ *  and particle. */
 int sim_step(struct sim *s, struct spall_error *err);
 
 /** True when the run has reached its end (steps, or end_time with an
