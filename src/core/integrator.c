@@ -229,11 +229,24 @@ static void account_load_work(struct sim *s, double dt)
     }
 }
 
+/* Axisymmetric runs (x = r): a particle that crossed the axis goes on as
+ * the mirror image of its ring (the same ring), r -> -r with every odd
+ * quantity (sim_reflect_particle), before the force call sees it. */
+static void reflect_axis(struct sim *s)
+{
+    const struct particles *p = s->p;
+    for (size_t i = 0; i < p->n_owned; i++)
+        if (p->x[0][i] < 0.0)
+            sim_reflect_particle(s, i, 0);
+}
+
 /* All forces at the current state.  @p state_dt > 0: the leapfrog's force
  * call, which also advances the model's state by state_dt (compute_forces_kick). */
 static int compute_all_forces(struct sim *s, double state_dt, struct spall_error *err)
 {
     particles_zero_forces(s->p);
+    if (s->axisymmetric)
+        reflect_axis(s);
     int rc = state_dt > 0.0 ? s->ops->compute_forces_kick(s->model, s, state_dt, err)
                             : s->ops->compute_forces(s->model, s, err);
     if (rc)

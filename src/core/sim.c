@@ -200,7 +200,15 @@ int sim_set_model(struct sim *s, const char *name, const struct deck_node *param
                                name, list);
     }
     s->ops = ops;
-    return ops->create(&s->model, s, params, err);
+    int rc = ops->create(&s->model, s, params, err);
+    if (rc || !ops->time_scheme)
+        return rc;
+    struct time_scheme ts = {s->integrator, s->adaptive_dt, s->dt_factor};
+    ops->time_scheme(s->model, &ts);
+    s->integrator = ts.integrator;
+    s->adaptive_dt = ts.adaptive_dt;
+    s->dt_factor = ts.dt_factor;
+    return SPALL_OK;
 }
 
 /* ---- computed core fields ------------------------------------------------ */

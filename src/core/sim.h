@@ -87,6 +87,14 @@ struct energy_account {
  *  (model_ops.compute_forces_kick; sph_leapfrog.c). */
 enum integrator_kind { INTEGRATOR_VERLET, INTEGRATOR_PREDICTOR_CORRECTOR, INTEGRATOR_LEAPFROG };
 
+/** The time integration a model asks for (model_ops.time_scheme); the
+ *  engine's default is velocity Verlet, fixed dt, dt_factor 0.5. */
+struct time_scheme {
+    enum integrator_kind integrator;
+    bool adaptive_dt; /**< dt = dt_factor * stable_dt every step */
+    double dt_factor; /**< default factor on the stable step (run.dt_factor wins) */
+};
+
 struct sim {
     int dim;
     enum integrator_kind integrator;
@@ -155,7 +163,8 @@ int sim_add_bc(struct sim *s, const struct bc *bc, struct spall_error *err);
 int sim_add_precrack(struct sim *s, const struct precrack *c, struct spall_error *err);
 int sim_add_probe(struct sim *s, const char *name, const double pos[3], struct spall_error *err);
 
-/** Select a model by name and create it with the deck's params (may be NULL). */
+/** Select a model by name and create it with the deck's params (may be NULL);
+ *  then take the model's time scheme (integrator, adaptive dt, dt factor). */
 int sim_set_model(struct sim *s, const char *name, const struct deck_node *params,
                   struct spall_error *err);
 

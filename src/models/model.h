@@ -46,6 +46,7 @@ struct field_registry;
 struct precrack;
 struct sim;
 struct spall_error;
+struct time_scheme;
 struct model; /* opaque, defined by each model */
 
 /** Energies summed over owned particles [J]. */
@@ -124,6 +125,10 @@ struct model_ops {
      *  after compute_forces and applied as F = -c m v.  Returns false to
      *  keep the engine's current coefficient. */
     bool (*damping)(const struct model *m, const struct sim *sim, double *c);
+    /** Optional: the integrator, adaptive dt and default dt factor the model
+     *  needs (@p ts holds the engine's defaults), read once by sim_set_model
+     *  right after create; the deck's run keys, parsed later, still win. */
+    void (*time_scheme)(const struct model *m, struct time_scheme *ts);
     /** Number of pair interactions (bonds counted once) for throughput
      *  reports; optional (NULL: 0). */
     size_t (*interactions)(const struct model *m, const struct sim *sim);

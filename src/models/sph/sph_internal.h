@@ -73,6 +73,7 @@ struct sph_options {
     bool symmetry[3];       /**< mirror plane x_d = 0 (ghost particles, sph_symmetry.c) */
     double cavity_depth;    /**< axisymmetric: depth of the cavity-diameter history (0: off) */
     bool leapfrog;          /**< staggered leapfrog state update (sph_leapfrog.c) */
+    bool adaptive_dt;       /**< Eq. 3.38 every step (sph_time_scheme) */
     enum sph_iface iface;   /**< interface between bodies (sph_interface.c) */
     double iface_stiffness; /**< penalty factor eta (default 1) */
     double iface_distance;  /**< contact distance factor f: d = f (dx_i + dx_j)/2 */

@@ -397,11 +397,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     m->dim = sim->dim;
     m->alpha = sph_kernel_alpha(o.kernel, sim->dim);
     m->qmax = sph_kernel_support(o.kernel);
-    /* seed 004 Eqs. 3.35-3.38: predictor-corrector and adaptive dt with
-     * c_s = 0.3 (run.dt_factor, parsed after the model, still wins) */
-    sim->integrator = o.leapfrog ? INTEGRATOR_LEAPFROG : INTEGRATOR_PREDICTOR_CORRECTOR;
-    sim->adaptive_dt = adaptive;
-    sim->dt_factor = 0.3;
+    m->opt.adaptive_dt = adaptive;
     *out = m;
     return SPALL_OK;
 }
@@ -591,6 +587,15 @@ static double sph_stable_dt(const struct model *m, const struct sim *sim)
     if (m->opt.iface != SPH_IFACE_NONE)
         best = fmin(best, sph_interface_stable_dt(m));
     return best;
+}
+
+/* seed 004 Eqs. 3.35-3.38: predictor-corrector (or the leapfrog) and
+ * adaptive dt with c_s = 0.3 (run.dt_factor, parsed after the model, wins) */
+static void sph_time_scheme(const struct model *m, struct time_scheme *ts)
+{
+    ts->integrator = m->opt.leapfrog ? INTEGRATOR_LEAPFROG : INTEGRATOR_PREDICTOR_CORRECTOR;
+    ts->adaptive_dt = m->opt.adaptive_dt;
+    ts->dt_factor = 0.3;
 }
 
 static int sph_end_step(struct model *m, struct sim *sim, struct spall_error *err)
@@ -790,5 +795,6 @@ const struct model_ops sph_model_ops = {
     .advance_state = sph_advance_state,
     .compute_forces_kick = sph_forces_kick,
     .drift_velocity = sph_drift_velocity,
+    .time_scheme = sph_time_scheme,
     .interactions = sph_interactions,
 };
