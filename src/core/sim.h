@@ -135,8 +135,10 @@ struct sim {
     long n_steps;
 
     double energy_blowup; /**< stop if total energy exceeds this factor x reference */
-    long energy_check_every; /**< sim_step checks the energy blow-up every this many
-                                  steps and at the last (0: n_steps / 2000, at least 1) */
+    long energy_check_every; /**< sim_step checks the full energy account for a
+                                  blow-up every this many steps and at the last (0:
+                                  never; the kinetic energy alone is checked every
+                                  step; the run driver: its history interval) */
     struct energy_account energy;
     double *v_half[3];    /**< predictor-corrector scratch (owned) */
     uint8_t *no_drift_velocity; /**< 1: a BC prescribes the particle's velocity, the
@@ -178,11 +180,11 @@ int sim_prepare(struct sim *s, struct spall_error *err);
 int sim_initial_forces(struct sim *s, struct spall_error *err);
 
 /** Advance one step with s->integrator (the sequence is in models/model.h).
- *  Detects non-finite positions or velocities (every step) and an energy
- *  blow-up (mechanical energy above energy_blowup times the energy put in,
- *  every energy_check_every steps and at the last, after which the energy
- *  account is current) and returns SPALL_ERR_UNSTABLE naming step, time
- *  and particle. */
+ *  Detects non-finite positions or velocities and an energy blow-up
+ *  (mechanical energy above energy_blowup times the energy put in: the
+ *  kinetic part every step, the full account every energy_check_every
+ *  steps and at the last, after which the account is current) and returns
+ *  SPALL_ERR_UNSTABLE naming step, time and particle. */
 int sim_step(struct sim *s, struct spall_error *err);
 
 /** True when the run has reached its end (steps, or end_time with an
