@@ -10,7 +10,8 @@
  * src/models/ and one line in the registry; no other model changes.
  *
  * Life cycle (see docs/architecture.md):
- *   create -> parse_material (per material) -> [core builds particles, masses]
+ *   create -> time_scheme -> parse_material (per material) -> [core builds
+ *   particles, masses]
  *   -> init (bonds / neighbour lists / state) -> precrack (per pre-crack)
  *   -> register_fields -> loop { sim_step } -> destroy.
  *
