@@ -61,6 +61,22 @@ struct model_energy {
 /** Stages of model_ops.advance_state (predictor-corrector integrator). */
 enum model_stage { MODEL_STAGE_PREDICT = 0, MODEL_STAGE_CORRECT = 1 };
 
+/** A small elastic free body of one model/formulation for the model
+ *  contract test (tests/test_model_contract.c), defined in the model's own
+ *  folder (*_fixture.c).  The test places the body (a disc or sphere of
+ *  material `m` on the lattice, translated and rotated) and runs it.
+ *  Allowances are for properties of the method only, each stated in `why`
+ *  with its measured value. */
+struct model_fixture {
+    const char *label;   /**< e.g. "sph-total"; NULL ends the list */
+    const char *deck;    /**< the deck's `model:` and `materials:` sections */
+    const char *lattice; /**< lattice type (sets the dimension) */
+    double spacing;      /**< lattice spacing [m] */
+    double rotation_deg; /**< 2D rotation of the frame check; 0: a generic angle */
+    double torque;       /**< allowed |sum r x f| / sum |r||f|; 0: round-off */
+    const char *why;     /**< cause and measured value of any allowance */
+};
+
 struct model_ops {
     const char *name;    /**< deck `model.type` */
     const char *summary; /**< one line for `spall --help` */
@@ -137,6 +153,9 @@ struct model_ops {
      *  used for fragments (core/fragments.h); NULL hook or NULL result for
      *  unbonded models. */
     const struct bond_list *(*bonds)(const struct model *m);
+    /** Contract-test fixtures, ended by a NULL label: every formulation of
+     *  the model, each must pass tests/test_model_contract.c. */
+    const struct model_fixture *fixtures;
 };
 
 /** Find a model by name; NULL if unknown. */

@@ -637,6 +637,7 @@ static const struct bond_list *lattice_bonds(const struct model *m)
     return m->bl;
 }
 
+extern const struct model_fixture lattice_fixtures[]; /* lattice_fixture.c */
 const struct model_ops lattice_model_ops = {
     .name = "lattice",
     .summary = "hybrid lattice particle model (HLPM): breakable axial/angular springs",
@@ -654,4 +655,5 @@ const struct model_ops lattice_model_ops = {
     .destroy = lattice_destroy,
     .interactions = lattice_interactions,
     .bonds = lattice_bonds,
+    .fixtures = lattice_fixtures,
 };

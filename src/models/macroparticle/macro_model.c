@@ -533,6 +533,7 @@ static size_t macro_interactions(const struct model *m, const struct sim *sim)
     return m->nl ? m->nl->offset[m->nl->n] / 2 : 0;
 }
 
+extern const struct model_fixture macro_fixtures[]; /* macro_fixture.c */
 const struct model_ops macroparticle_model_ops = {
     .name = "macroparticle",
     .summary = "macro-particle model (seed 001): FCC particles, Mie pairs from cohesive energy, "
@@ -549,4 +550,5 @@ const struct model_ops macroparticle_model_ops = {
     .describe = macro_describe,
     .destroy = macro_destroy,
     .interactions = macro_interactions,
+    .fixtures = macro_fixtures,
 };

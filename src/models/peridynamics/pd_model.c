@@ -566,6 +566,7 @@ static bool pd_damping(const struct model *m, const struct sim *sim, double *c)
     return true;
 }
 
+extern const struct model_fixture pd_fixtures[]; /* pd_fixture.c */
 const struct model_ops peridynamics_model_ops = {
     .name = "peridynamics",
     .summary = "bond-based peridynamics (PMB, PDLM lattice, orthotropic laminae)",
@@ -583,6 +584,7 @@ const struct model_ops peridynamics_model_ops = {
     .destroy = pd_destroy,
     .interactions = pd_interactions,
     .damping = pd_damping,
+    .fixtures = pd_fixtures,
 };
 
 /** Damage field for validation code (same as the `damage` output field). */

@@ -776,6 +776,7 @@ static size_t sph_interactions(const struct model *m, const struct sim *sim)
     return pairs / 2;
 }
 
+extern const struct model_fixture sph_fixtures[]; /* sph_fixture.c */
 const struct model_ops sph_model_ops = {
     .name = "sph",
     .summary = "SPH for elastic-plastic solids: six kernels, CSPM, AV/AS/XSPH, JC, Mie-Grueneisen",
@@ -797,4 +798,5 @@ const struct model_ops sph_model_ops = {
     .drift_velocity = sph_drift_velocity,
     .time_scheme = sph_time_scheme,
     .interactions = sph_interactions,
+    .fixtures = sph_fixtures,
 };
