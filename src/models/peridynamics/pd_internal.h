@@ -88,6 +88,8 @@ struct model {
     double *diss;            /**< per particle: energy released by its broken bonds [J] */
     /* adaptive dynamic relaxation (Kilic & Madenci 2010) */
     double *f_prev[3];
+    double adr_damping;    /**< ADR coefficient c_n [1/s] for the engine (pd_damping) */
+    bool adr_estimated;    /**< adr_damping holds an estimate (else the engine keeps its own) */
     size_t n_half;
     /* mixed-mode matrix failure (pd_mixed.c): per particle factor on s0_m */
     double *mm_g;            /**< sqrt(G_c(beta_i) / G_Ic); 1 for isotropic particles */
@@ -148,7 +150,9 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
 double pd_stable_dt(const struct model *m, const struct sim *sim);
 /** Per-half-bond coefficients from the current c tables (beta, surface factor). */
 int pd_build_coefficients(struct model *m, struct sim *sim, struct spall_error *err);
-/** Adaptive dynamic relaxation damping update (Kilic & Madenci 2010 Eq. 19). */
-void pd_adr_update(struct model *m, struct sim *sim);
+/** Adaptive dynamic relaxation damping update (Kilic & Madenci 2010 Eq. 19):
+ *  the new estimate in m->adr_damping, which the engine takes through the
+ *  model's damping hook right after the force call. */
+void pd_adr_update(struct model *m, const struct sim *sim);
 
 #endif

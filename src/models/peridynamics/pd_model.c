@@ -555,6 +555,17 @@ static size_t pd_interactions(const struct model *m, const struct sim *sim)
     return m->bl ? bond_list_count(m->bl) : 0;
 }
 
+/* ADR: the coefficient of the last force call; none before the first
+ * estimate (the engine keeps the deck's damping) or without ADR. */
+static bool pd_damping(const struct model *m, const struct sim *sim, double *c)
+{
+    (void)sim;
+    if (m->opt.quasi != PD_QS_ADR || !m->adr_estimated)
+        return false;
+    *c = m->adr_damping;
+    return true;
+}
+
 extern const struct model_fixture pd_fixtures[]; /* pd_fixture.c */
 const struct model_ops peridynamics_model_ops = {
     .name = "peridynamics",
@@ -572,6 +583,7 @@ const struct model_ops peridynamics_model_ops = {
     .describe = pd_describe,
     .destroy = pd_destroy,
     .interactions = pd_interactions,
+    .damping = pd_damping,
     .fixtures = pd_fixtures,
 };
 

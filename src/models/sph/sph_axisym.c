@@ -126,8 +126,9 @@ void sph_axisym_init(struct model *m, struct sim *s)
     s->axisymmetric = true;
 }
 
-/* Reflect particles that crossed the axis (the mirror image of the ring is
- * the same ring), refresh the planar masses.
+/* Refresh the planar masses m / (2 pi r).  Particles that crossed the axis
+ * were reflected by the engine just before this force call (the mirror
+ * image of the ring is the same ring; s->axisymmetric, set above).
  *
  * The reflection is the core's (sim_reflect_particle, core/integrator.c):
  * it mirrors every copy of the odd quantities that outlives this call:
@@ -142,14 +143,11 @@ void sph_axisym_init(struct model *m, struct sim *s)
  * every step (measured, examples/pen_sph_deformable with `failure:
  * stress`: a failed gel ring at the axis at 9-15 km/s, energy balance
  * +218 %; tests/test_sph_axisym_axis.c). */
-static void axis_reflect(struct model *m, struct sim *s)
+static void axis_masses(struct model *m, const struct sim *s)
 {
-    struct particles *p = s->p;
-    for (size_t i = 0; i < p->n_owned; i++) {
-        if (p->x[0][i] < 0.0)
-            sim_reflect_particle(s, i, 0);
+    const struct particles *p = s->p;
+    for (size_t i = 0; i < p->n_owned; i++)
         m->m2[i] = p->mass[i] / (TWO_PI * hoop_radius(m, p->x[0], i));
-    }
 }
 
 /* Planar corrected (CSPM, Eqs. 3.10-3.11) velocity gradient with the axis
@@ -420,7 +418,7 @@ static void pass_forces_axi(struct model *m, struct sim *s)
 int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err)
 {
     const size_t n = s->p->n_owned;
-    axis_reflect(m, s);
+    axis_masses(m, s);
     int rc = sph_neighbors_update(m, s, false, err);
     if (rc)
         return rc;

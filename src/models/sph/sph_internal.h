@@ -73,6 +73,7 @@ struct sph_options {
     bool symmetry[3];       /**< mirror plane x_d = 0 (ghost particles, sph_symmetry.c) */
     double cavity_depth;    /**< axisymmetric: depth of the cavity-diameter history (0: off) */
     bool leapfrog;          /**< staggered leapfrog state update (sph_leapfrog.c) */
+    bool adaptive_dt;       /**< Eq. 3.38 every step (sph_time_scheme) */
     enum sph_iface iface;   /**< interface between bodies (sph_interface.c) */
     double iface_stiffness; /**< penalty factor eta (default 1) */
     double iface_distance;  /**< contact distance factor f: d = f (dx_i + dx_j)/2 */
@@ -123,7 +124,6 @@ struct model {
     double *P;             /**< pressure (compression positive) */
     double *ep, *T;        /**< equivalent plastic strain, temperature */
     uint8_t *failed;
-    uint8_t *pinned;       /**< velocity prescribed by a BC: no XSPH drift */
     double *c;             /**< sound speed */
     double *drho, *de, *dh, *dS[6];       /**< rates of step n+1 */
     double *rho_n, *e_n, *h_n, *S_n[6];   /**< state at step n (PC) */
@@ -134,7 +134,7 @@ struct model {
     double *R[6];          /**< artificial stress tensor R_i */
     double *Rs[6];         /**< scratch of the R smoothing (sph_as_smooth.c) */
     double *sr[6];         /**< sigma / rho^2 (fused pair loop, sph_fused.c) */
-    double *xv[3];         /**< XSPH velocity correction */
+    double *xv[3];         /**< XSPH velocity correction (the drift velocity, sph_drift_velocity) */
     double *x_build[3];    /**< positions at the last neighbour build */
     double *wp;            /**< plastic work per particle [J] */
     double *axl, *axl_s;   /**< axisymmetric: axis weight lambda and its sweep scratch (sph_axisym.c) */
@@ -152,7 +152,6 @@ struct model {
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
-    double lf_dt;          /**< leapfrog: step whose state update is pending (0: none) */
     /* interface between bodies (sph_interface.c; NULL when off) */
     size_t *if_off;        /**< n + 1: interface partners of i are if_idx[if_off[i] ..) */
     int32_t *if_idx;
@@ -209,6 +208,9 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
 double sph_max_move2(const struct model *m, const struct particles *p);
 /** All rates of the current state: drho, de, dS, accelerations into sim->p->f. */
 int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err);
+/** Leapfrog (sph_leapfrog.c): the velocity gradient of the current state,
+ *  the state advanced by @p dt with it, then the forces of the new state. */
+int sph_compute_rates_kick(struct model *m, struct sim *s, double dt, struct spall_error *err);
 
 /** Principal-axes artificial stress R_i of particle i from m->sig (Eqs. 2.25-2.27). */
 void sph_artificial_stress(struct model *m, size_t i);
@@ -249,8 +251,9 @@ void sph_clamp_destroy(struct sph_clamp **pc);
 /* sph_tlsph.c */
 /** Reference neighbour list and corrected reference gradients (B0^-1). */
 int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err);
-/** TLSPH rates: F, L, PK1 forces, energy, stress rates. */
-int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err);
+/** TLSPH rates: F, L, PK1 forces, energy, stress rates; with @p lfdt > 0
+ *  the leapfrog's state advance by lfdt between L and the forces. */
+int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_error *err);
 /** The reference list, pair constants and B0^-1 of configuration @p X with
  *  volumes m / @p rho (NULL: the materials' rho0); sph_tlsph_init passes
  *  p->x0, a re-reference the current x and rho.  F = I on @p X. */
