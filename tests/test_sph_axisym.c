@@ -7,6 +7,7 @@
  *        expanded cylinder carries the analytical radial / hoop / axial
  *        stresses; ring masses add up to the cylinder's mass.
  */
+#include "core/mathconst.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
@@ -58,7 +59,7 @@ static void test_mass_and_expansion_gradient(void **state)
     double mass = 0.0;
     for (size_t i = 0; i < s->p->n; i++)
         mass += s->p->mass[i];
-    double exact = 1000.0 * 3.141592653589793 * 0.012 * 0.012 * 0.012;
+    double exact = 1000.0 * SPALL_PI * 0.012 * 0.012 * 0.012;
     assert_true(fabs(mass - exact) < 1e-12 * exact); /* sum 2 pi r_i dx^2 is exact */
     const double a = 3.0, b = -1.0;
     for (size_t i = 0; i < s->p->n; i++) {
@@ -213,7 +214,7 @@ static void test_rod_bar_speed(void **state)
     const double v0 = 0.01;
     for (size_t i = 0; i < s->p->n; i++) {
         s->p->v[0][i] = 0.0;
-        s->p->v[1][i] = v0 * cos(3.141592653589793 * s->p->x[1][i] / L);
+        s->p->v[1][i] = v0 * cos(SPALL_PI * s->p->x[1][i] / L);
     }
     s->end_time = 1.6 * L / sqrt(E / rho);
     double tmin[1] = {NAN}, kprev2 = INFINITY, kprev = INFINITY, tprev = 0.0;

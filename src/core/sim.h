@@ -125,7 +125,6 @@ struct sim {
     double energy_blowup; /**< stop if total energy exceeds this factor x reference */
     struct energy_account energy;
     double *v_half[3];    /**< predictor-corrector scratch (owned) */
-    int threads;          /**< OpenMP threads (0 = library default) */
     uint64_t seed;        /**< random seed for stochastic features */
     struct rigid_set *rigid; /**< rigid impactors / supports (core/rigid.h), may be NULL */
     struct particle_contact *pcontact; /**< particle-particle contact (core/contact_particles.h), may be NULL */
