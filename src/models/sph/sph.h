@@ -12,9 +12,15 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 struct model;
+struct neighbor_list;
 struct sim;
+struct spall_error;
+
+/** Stress / tensor component order (symmetric): xx yy zz xy yz xz. */
+enum { SXX, SYY, SZZ, SXY, SYZ, SXZ };
 
 /* ---- material laws (sph_material.c) ------------------------------------- */
 
@@ -68,6 +74,11 @@ struct sph_stats {
     size_t tl_hgrown;      /**< TLSPH h growths (x1.2) at reference updates */
     double tl_jmin, tl_kmax; /**< TLSPH: smallest det F, largest distortion (last step) */
     size_t iface_pairs;    /**< interface pairs in contact at the last force evaluation */
+    bool total_lagrangian; /**< some (or every) body is TLSPH */
+    size_t n_total;        /**< particles on TLSPH in a run split by formulation (else 0) */
+    double nl_radius;      /**< neighbour-list radius [m] (kernel support + skin) */
+    double qmax;           /**< kernel support / h */
+    bool as_smooth;        /**< artificial stress smoothed (model.artificial_stress_smoothing) */
 };
 void sph_stats_get(const struct model *m, struct sph_stats *out);
 /** Smoothing length h [m] of particle @p i. */
@@ -79,6 +90,32 @@ double sph_spacing(const struct model *m, size_t i);
 void sph_velocity_gradient(const struct model *m, size_t i, double L[9]);
 /** F of TLSPH particle i at the last force call (tests, diagnostics). */
 void sph_tlsph_deformation(const struct model *m, size_t i, double F[9]);
+/** Rates of particle @p i at the last force call: density *drho and
+ *  deviatoric stress dS (xx yy zz xy yz xz). */
+void sph_state_rates(const struct model *m, size_t i, double *drho, double dS[6]);
+/** Plastic work of particle @p i so far [J]. */
+double sph_plastic_work(const struct model *m, size_t i);
+/** Formulation of every particle (1: TLSPH, 0: updated) in a run whose
+ *  bodies are split by formulation; NULL when the run has one formulation. */
+const uint8_t *sph_formulations(const struct model *m);
+/** The kernel neighbour list (full list over the owned particles). */
+const struct neighbor_list *sph_neighbors(const struct model *m);
+/** Interface partners of particle @p i (pairs of different bodies or
+ *  materials with model.interface): their number, and *idx their indices;
+ *  0 when the interface is off. */
+size_t sph_interface_partners(const struct model *m, size_t i, const int32_t **idx);
+/** (Re)build the neighbour list if particles moved more than half the skin. */
+int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err);
+/** Penalty forces between the groups into s->p->f; energy and pair count. */
+void sph_interface_forces(struct model *m, struct sim *s);
+/** Replace the TLSPH reference configuration by the current one now. */
+int sph_tlsph_reref(struct model *m, struct sim *s, struct spall_error *err);
+/** Component @p c (xx yy zz xy yz xz) of the artificial stress tensor R of
+ *  every particle: the input and output of sph_artificial_stress_smooth. */
+double *sph_artificial_stress_data(struct model *m, int c);
+/** Replace R_i by its kernel (Shepard) average over i and its neighbours
+ *  (model.artificial_stress_smoothing; split pair loops only). */
+void sph_artificial_stress_smooth(struct model *m, const struct sim *s);
 /** Pressure and sound speed of every particle from its density and energy
  *  by its material's EOS (failed particles carry no tension unless their
  *  material keeps it): after a caller set the density field. */

@@ -25,6 +25,48 @@ void sph_stats_get(const struct model *m, struct sph_stats *out)
     out->tl_jmin = m->tl_jmin;
     out->tl_kmax = m->tl_kmax;
     out->iface_pairs = m->iface_pairs;
+    out->total_lagrangian = m->opt.total_lagrangian;
+    out->n_total = m->form ? m->n_total : 0;
+    out->nl_radius = m->nl_radius;
+    out->qmax = m->qmax;
+    out->as_smooth = m->opt.as_smooth;
+}
+
+double *sph_artificial_stress_data(struct model *m, int c)
+{
+    return m->R[c];
+}
+
+void sph_state_rates(const struct model *m, size_t i, double *drho, double dS[6])
+{
+    *drho = m->drho[i];
+    for (int c = 0; c < 6; c++)
+        dS[c] = m->dS[c][i];
+}
+
+double sph_plastic_work(const struct model *m, size_t i)
+{
+    return m->wp[i];
+}
+
+const uint8_t *sph_formulations(const struct model *m)
+{
+    return m->form;
+}
+
+const struct neighbor_list *sph_neighbors(const struct model *m)
+{
+    return m->nl;
+}
+
+size_t sph_interface_partners(const struct model *m, size_t i, const int32_t **idx)
+{
+    if (!m->if_off) {
+        *idx = NULL;
+        return 0;
+    }
+    *idx = m->if_idx + m->if_off[i];
+    return m->if_off[i + 1] - m->if_off[i];
 }
 
 double sph_smoothing_length(const struct model *m, size_t i)

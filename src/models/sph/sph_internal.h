@@ -34,8 +34,6 @@ enum sph_iface { SPH_IFACE_NONE, SPH_IFACE_BODIES, SPH_IFACE_MATERIALS };
 #define SPH_DET_F_MAX 10.0
 #define SPH_MAX_DISTORTION 100.0
 
-/** Stress / tensor component order (symmetric): xx yy zz xy yz xz. */
-enum { SXX, SYY, SZZ, SXY, SYZ, SXZ };
 
 struct sph_options {
     enum sph_kernel kernel;
@@ -179,8 +177,6 @@ int sph_forms_init(struct model *m, struct sim *s, struct spall_error *err);
 void sph_forms_describe(const struct model *m, const struct sim *s, char *buf, size_t len);
 
 /* sph_rates.c */
-/** (Re)build the neighbour list if particles moved more than half the skin. */
-int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err);
 /** Largest squared displacement of an owned particle since the last
  *  neighbour build (x - x_build): the skin test of sph_neighbors_update and
  *  sph_symmetry_update. */
@@ -192,9 +188,6 @@ int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err);
 void sph_artificial_stress(struct model *m, size_t i);
 
 /* sph_as_smooth.c */
-/** Replace R_i by its kernel (Shepard) average over i and its neighbours
- *  (model.artificial_stress_smoothing; split pair loops only). */
-void sph_artificial_stress_smooth(struct model *m, const struct sim *s);
 
 /* sph_fused.c */
 /** One-pass rates (no CSPM, continuity density): same equations as the
@@ -241,8 +234,6 @@ void sph_tlsph_destroy(struct sph_tl **tl);
 /** Parse model.reference_update {every, distortion} into @p o (TLSPH runs only). */
 int sph_tlsph_reref_parse(const struct deck_node *params, struct sph_options *o,
                           struct spall_error *err);
-/** Replace the TLSPH reference configuration by the current one now. */
-int sph_tlsph_reref(struct model *m, struct sim *s, struct spall_error *err);
 /** End of a step: re-reference when model.reference_update says so. */
 int sph_tlsph_reref_step(struct model *m, struct sim *s, struct spall_error *err);
 
@@ -259,8 +250,6 @@ size_t sph_axisym_history(const struct model *m, const struct sim *sim, const ch
  *  kernel neighbour list into the interface list (kept within d_ij +
  *  @p skin_abs); called at each neighbour-list build. */
 int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct spall_error *err);
-/** Penalty forces between the groups into s->p->f; energy and pair count. */
-void sph_interface_forces(struct model *m, struct sim *s);
 /** Stable step of the contact springs of the last evaluation (INFINITY: none). */
 double sph_interface_stable_dt(const struct model *m);
 
