@@ -655,3 +655,40 @@ const struct model_ops lattice_model_ops = {
     .interactions = lattice_interactions,
     .bonds = lattice_bonds,
 };
+
+const struct lattice_material *lattice_material_get(const struct model *m, int k)
+{
+    return &m->mat[k];
+}
+
+const struct lattice_bond_law *lattice_pair_law(const struct model *m, int ma, int mb, int type)
+{
+    return &m->pair[((size_t)ma * m->n_mat + (size_t)mb) * LATTICE_MAX_TYPES + (size_t)type];
+}
+
+struct bond_list *lattice_bond_list(struct model *m)
+{
+    return m->bl;
+}
+
+bool lattice_has_angles(const struct model *m)
+{
+    return m->angular;
+}
+
+double lattice_area_stiffness(const struct model *m, int k)
+{
+    return m->mat_k_area[k];
+}
+
+void lattice_set_angle_limits(struct model *m, int k, double dphi_c, double dphi_t)
+{
+    m->mat_dphi_c[k] = dphi_c;
+    m->mat_dphi_t[k] = dphi_t;
+}
+
+uint8_t *lattice_angle_states(struct model *m, size_t *n)
+{
+    *n = m->n_half;
+    return m->ang_state;
+}

@@ -93,6 +93,10 @@ void sph_tlsph_deformation(const struct model *m, size_t i, double F[9]);
 /** Rates of particle @p i at the last force call: density *drho and
  *  deviatoric stress dS (xx yy zz xy yz xz). */
 void sph_state_rates(const struct model *m, size_t i, double *drho, double dS[6]);
+/** Component @p c of the deviatoric stress rate dS of every particle (the
+ *  last force call's; not a registered field, the next force call recomputes
+ *  it): for tests of what a reflection must leave alone. */
+double *sph_stress_rate_data(struct model *m, int c);
 /** Plastic work of particle @p i so far [J]. */
 double sph_plastic_work(const struct model *m, size_t i);
 /** Formulation of every particle (1: TLSPH, 0: updated) in a run whose

@@ -44,6 +44,11 @@ void sph_state_rates(const struct model *m, size_t i, double *drho, double dS[6]
         dS[c] = m->dS[c][i];
 }
 
+double *sph_stress_rate_data(struct model *m, int c)
+{
+    return m->dS[c];
+}
+
 double sph_plastic_work(const struct model *m, size_t i)
 {
     return m->wp[i];
