@@ -1,8 +1,10 @@
 /**
  * @file sph.h
  * @brief Public functions of the SPH model for callers above it (validation
- *        cases, benchmarks, tests): the material laws as pure functions, and
- *        read-only views of a built model (counters, per-particle kinematics).
+ *        cases, benchmarks, tests): the material laws as pure functions,
+ *        views of a built model (counters, per-particle kinematics), and the
+ *        few units the white-box tests drive directly (neighbour and
+ *        interface lists, TLSPH re-reference, artificial-stress smoothing).
  *        The model's state stays private (sph_internal.h); its per-particle
  *        state (density, pressure, deviatoric stress, ...) is in the field
  *        registry (core/fields.h).
@@ -61,7 +63,7 @@ double sph_rate_factor(const struct sph_material *mt, double epdot);
 /** Material @p k of a built SPH model. */
 const struct sph_material *sph_material_get(const struct model *m, int k);
 
-/* ---- a built model (sph_access.c) ----------------------------------------- */
+/* ---- a built model (views in sph_access.c) -------------------------------- */
 
 /** Counters and timers of an SPH run (benchmarks, diagnostics). */
 struct sph_stats {
