@@ -143,7 +143,6 @@ struct sim {
     double *v_half[3];    /**< predictor-corrector scratch (owned) */
     uint8_t *no_drift_velocity; /**< 1: a BC prescribes the particle's velocity, the
                                      model's drift velocity does not move it (owned) */
-    int threads;          /**< OpenMP threads (0 = library default) */
     uint64_t seed;        /**< random seed for stochastic features */
     struct rigid_set *rigid; /**< rigid impactors / supports (core/rigid.h), may be NULL */
     struct particle_contact *pcontact; /**< particle-particle contact (core/contact_particles.h), may be NULL */

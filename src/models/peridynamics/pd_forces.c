@@ -227,8 +227,8 @@ static double family_energy_bulk(int dim, double delta, double thickness)
 {
     switch (dim) {
     case 1: return 0.25 * thickness * delta * delta;                 /* A delta^2 */
-    case 2: return 0.25 * thickness * PD_PI * delta * delta * delta / 4.0;
-    default: return 0.25 * PD_PI * pow(delta, 4) / 5.0;
+    case 2: return 0.25 * thickness * SPALL_PI * delta * delta * delta / 4.0;
+    default: return 0.25 * SPALL_PI * pow(delta, 4) / 5.0;
     }
 }
 

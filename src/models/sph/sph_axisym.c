@@ -88,6 +88,7 @@
  * during contact, which otherwise creates energy (measured: +2.9 % of the
  * impact energy in the first two steps of the 2D Taylor rod, n = 16).
  */
+#include "core/mathconst.h"
 #include "models/sph/sph_internal.h"
 #include "models/sph/sph_pairs.h"
 
@@ -99,7 +100,6 @@
 #include <math.h>
 #include <string.h>
 
-#define TWO_PI 6.283185307179586
 
 static inline double hoop_radius(const struct model *m, const double *x0, size_t i)
 {
@@ -116,7 +116,7 @@ void sph_axisym_init(struct model *m, struct sim *s)
         const struct sph_material *mt = &m->mat[p->material[i]];
         double area = p->volume[i] / t;
         double r = hoop_radius(m, p->x[0], i);
-        p->volume[i] = TWO_PI * r * area;
+        p->volume[i] = SPALL_TWO_PI * r * area;
         p->mass[i] = mt->rho0 * p->volume[i];
         m->m2[i] = mt->rho0 * area;
         if (p->x[1][i] + 0.5 * m->dx[i] > ztop)
@@ -147,7 +147,7 @@ static void axis_masses(struct model *m, const struct sim *s)
 {
     const struct particles *p = s->p;
     for (size_t i = 0; i < p->n_owned; i++)
-        m->m2[i] = p->mass[i] / (TWO_PI * hoop_radius(m, p->x[0], i));
+        m->m2[i] = p->mass[i] / (SPALL_TWO_PI * hoop_radius(m, p->x[0], i));
 }
 
 /* Planar corrected (CSPM, Eqs. 3.10-3.11) velocity gradient with the axis
