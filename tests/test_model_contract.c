@@ -35,6 +35,7 @@
 #include <cmocka.h>
 
 #include "core/fields.h"
+#include "core/mathconst.h"
 #include "core/lattice_gen.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -58,7 +59,7 @@
  * in a rotated frame. */
 #define RADIUS_2D 4.3
 #define RADIUS_3D 2.9
-#define DEG (3.14159265358979323846 / 180.0)
+#define DEG (SPALL_PI / 180.0)
 
 /* A rigid motion: x -> R x + c.  2D: R is the deck's lattice angle.  3D:
  * lattices have no angle key, so R is the 120 degree rotation about

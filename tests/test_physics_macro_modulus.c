@@ -33,12 +33,13 @@
 #include <cmocka.h>
 
 #include "core/fields.h"
+#include "core/mathconst.h"
 #include "tests/test_support.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 
-#define PI 3.14159265358979323846
+
 #define AMU 1.66053906660e-27 /* kg (CODATA 2018) */
 #define EV 1.602176634e-19    /* J (exact) */
 
@@ -128,7 +129,7 @@ static void test_fcc_modulus_lattice_sum(void **state)
     const double C11 = (sp[0] - sm[0]) / (2.0 * eps), C12 = (sp[1] - sm[1]) / (2.0 * eps);
     const double E = (C11 - C12) * (C11 + 2.0 * C12) / (C11 + C12), nu = C12 / (C11 + C12);
     /* the lattice sum from the deck's inputs */
-    const double n_atom = (RHO * PI * R0 * R0 * R0 / 6.0) / (0.74 * MASS_U * AMU);
+    const double n_atom = (RHO * SPALL_PI * R0 * R0 * R0 / 6.0) / (0.74 * MASS_U * AMU);
     const double D = n_atom * E0_EV * EV / 6.0, k = D * P_EXP * Q_EXP / (R0 * R0);
     const double C11_ls = sqrt(2.0) * k / R0, C12_ls = k / (sqrt(2.0) * R0);
     const double E_ls = 4.0 * k / (3.0 * sqrt(2.0) * R0);
