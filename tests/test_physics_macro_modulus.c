@@ -39,7 +39,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-
 #define AMU 1.66053906660e-27 /* kg (CODATA 2018) */
 #define EV 1.602176634e-19    /* J (exact) */
 
