@@ -17,7 +17,7 @@
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "models/model.h"
-#include "models/sph/sph_internal.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -56,7 +56,9 @@ static int sph_bench_run(const char *name, const char *yaml, int threads,
     if (rc)
         return rc;
     double rss = bench_rss_bytes();
-    const double tn0 = s->model->t_neighbor;
+    struct sph_stats st;
+    sph_stats_get(s->model, &st);
+    const double tn0 = st.t_neighbor;
     *t_setup_nb = tn0;
     double t0 = omp_get_wtime(), c0 = sph_cpu_seconds();
     while (!sim_done(s) && !rc)
@@ -73,13 +75,14 @@ static int sph_bench_run(const char *name, const char *yaml, int threads,
     out->particle_steps_per_s = (double)out->particles * (double)out->steps / wall;
     out->bond_steps_per_s = (double)out->bonds * (double)out->steps / wall;
     out->bytes_per_particle = rss / (double)out->particles;
-    *nb_share = (s->model->t_neighbor - tn0) / wall;
-    *builds = s->model->n_builds;
+    sph_stats_get(s->model, &st);
+    *nb_share = (st.t_neighbor - tn0) / wall;
+    *builds = st.n_builds;
     if (shape) {
         /* Taylor bar: length = axial extent + dx, mushroom radius = largest
          * radius of the impact face's particles + dx/2 (as validation/sph_taylor.c) */
         const struct particles *p = s->p;
-        const double dx = s->model->dx[0];
+        const double dx = sph_spacing(s->model, 0);
         double zmax = -INFINITY, zmin = INFINITY, rmax = 0.0;
         for (size_t i = 0; i < p->n_owned; i++) {
             zmax = fmax(zmax, p->x[2][i]);
@@ -99,9 +102,9 @@ static int sph_bench_run(const char *name, const char *yaml, int threads,
         const struct model *m = s->model;
         double hmax = 0.0;
         for (size_t i = 0; i < s->p->n_owned; i++)
-            hmax = fmax(hmax, m->h[i] / (m->opt.h_factor * m->dx[i]));
-        rr[0] = (double)m->tl_rerefs;
-        rr[1] = m->t_reref;
+            hmax = fmax(hmax, sph_smoothing_length(m, i) / (st.h_factor * sph_spacing(m, i)));
+        rr[0] = (double)st.tl_rerefs;
+        rr[1] = st.t_reref;
         rr[2] = hmax;
         rr[3] = (double)sph_tlsph_pairs(m) / (double)s->p->n_owned;
     }

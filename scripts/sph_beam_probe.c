@@ -111,7 +111,7 @@ static double smooth_velocity(struct model *m, struct sim *s, double a, double *
     double ke0 = 0.0, ke1 = 0.0;
     for (size_t i = 0; i < n; i++) {
         dv[0][i] = dv[1][i] = 0.0;
-        if (m->pinned[i])
+        if (s->no_drift_velocity[i]) /* velocity prescribed by a BC */
             continue;
         const double hi = m->h[i];
         for (size_t k = m->nl->offset[i]; k < m->nl->offset[i + 1]; k++) {
@@ -129,7 +129,7 @@ static double smooth_velocity(struct model *m, struct sim *s, double a, double *
     if (m->clamp)
         sph_clamp_end(m, s);
     for (size_t i = 0; i < n; i++) {
-        if (m->pinned[i])
+        if (s->no_drift_velocity[i]) /* velocity prescribed by a BC */
             continue;
         ke0 += 0.5 * p->mass[i] * (p->v[0][i] * p->v[0][i] + p->v[1][i] * p->v[1][i]);
         p->v[0][i] += dv[0][i];

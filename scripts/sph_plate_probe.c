@@ -15,7 +15,6 @@
 
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/sph/sph_internal.h"
 #include "spall/error.h"
 
 #include <math.h>

@@ -8,7 +8,7 @@ set -e
 root=$(cd "$(dirname "$0")/.." && pwd)
 exe="$root/build/sph_plate_probe"
 # the CLI's link line after "-o spall", with the library's full path
-libs=$(sed -n "s| libspall\.a | $root/build/libspall.a |; s|.* -o spall *||p" \
+libs=$(sed -n "s| \(libspall[a-z_]*\.a\)| $root/build/\1|g; s|.* -o spall *||p" \
        "$root/build/CMakeFiles/spall.dir/link.txt")
 cc -O2 -Wall -Wextra -Wpedantic -std=c11 -fopenmp -I"$root/include" -I"$root/src" -I"$root" \
    "$root/scripts/sph_plate_probe.c" -o "$exe" $libs

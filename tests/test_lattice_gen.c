@@ -9,6 +9,7 @@
 
 #include "core/geometry.h"
 #include "core/lattice_gen.h"
+#include "core/mathconst.h"
 #include "core/particles.h"
 #include "spall/error.h"
 
@@ -117,7 +118,7 @@ static void test_rotated_triangular(void **state)
     assert_int_equal(lattice_fill(p, &s, disc, 0, &n, &err), SPALL_OK);
     assert_true(fabs(min_pair_distance(p) - R0) <= 1e-12 * R0);
     /* Site count ~ disc area / cell area (boundary effects a few %). */
-    double expect = 3.14159265358979323846 * 144.0 / (sqrt(3.0) / 2.0);
+    double expect = SPALL_PI * 144.0 / (sqrt(3.0) / 2.0);
     assert_true(fabs((double)n - expect) < 0.05 * expect);
     /* The origin is a site, and the lattice is rotated: the site at
      * r0 (cos 0.3, sin 0.3) exists. */

@@ -20,7 +20,6 @@
 #include "io/deck_build.h"
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice_honeycomb.h"
-#include "models/lattice/lattice_internal.h"
 #include "models/model.h"
 #include "spall/error.h"
 #include "validation/lattice_cases.h"
@@ -159,9 +158,8 @@ static void test_plate_families_and_fracture(void **state)
     snprintf(deck, sizeof deck, PLATE, 0.443, 5.0, 5.0);
     struct sim *s = NULL;
     assert_int_equal(vlat_build("hc_plate", deck, &s, &err), 0);
-    const struct model *m = s->model;
-    assert_true(m->honeycomb);
-    const struct bond_list *bl = m->bl;
+    assert_true(s->lattice.kind == LATTICE_TRIPLE_HONEYCOMB); /* bond type = family */
+    const struct bond_list *bl = s->ops->bonds(s->model);
     const struct particles *p = s->p;
     /* a bulk site has 6 bonds: 3 + 3 of the two families not its colour */
     size_t bulk = 0;
@@ -288,7 +286,7 @@ static void test_example_builds(void **state)
         fprintf(stderr, "%s\n", err.msg);
     assert_int_equal(rc, 0);
     assert_int_equal(s->lattice.kind, LATTICE_TRIPLE_HONEYCOMB);
-    assert_true(s->p->n > 10000 && s->model->honeycomb);
+    assert_true(s->p->n > 10000 && s->lattice.kind == LATTICE_TRIPLE_HONEYCOMB);
     sim_destroy(&s);
     deck_destroy(&d);
 }

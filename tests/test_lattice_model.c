@@ -20,7 +20,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "models/lattice/lattice_calib.h"
-#include "models/lattice/lattice_internal.h"
+#include "models/lattice/lattice.h"
 #include "models/model.h"
 #include "spall/error.h"
 
@@ -236,10 +236,10 @@ static void test_chain_breaks_at_eps_max(void **state)
     assert_true(fabs(s->p->f[0][n - 1]) == 0.0);
     struct model_energy e;
     lattice_model_ops.energy(s->model, s, &e);
-    double k = s->model->mat[0].k[0];
+    double k = lattice_material_get(s->model, 0)->k[0];
     assert_true(fabs(e.dissipated / (0.5 * k * strain_at_break * strain_at_break) - 1.0) < 1e-9);
     /* both halves broke (symmetric decision) */
-    const struct bond_list *bl = s->model->bl;
+    const struct bond_list *bl = lattice_bond_list(s->model);
     size_t nb = 0;
     for (size_t q = 0; q < bl->offset[n]; q++)
         nb += (bl->state[q] & BOND_BROKEN) != 0;
@@ -253,8 +253,8 @@ static void test_post_fracture_repulsion(void **state)
     struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
     double hi[3] = {1.0 + 1e-9, 0, 0};
     struct sim *s = make_sim(LATTICE_CHAIN, hi, 0.0, &opt, 0.01);
-    double k = s->model->mat[0].k[0];
-    struct bond_list *bl = s->model->bl;
+    double k = lattice_material_get(s->model, 0)->k[0];
+    struct bond_list *bl = lattice_bond_list(s->model);
     for (size_t q = 0; q < bl->offset[2]; q++)
         bl->state[q] |= BOND_BROKEN;
     s->p->x[0][1] = 0.9; /* compressed by 10%: repels like the intact law */
@@ -286,8 +286,8 @@ static void test_angular_gradient(void **state)
     struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, 1, 0.0};
     double hi[3] = {4.0, 4.0, 0};
     struct sim *s = make_sim(LATTICE_TRIANGULAR, hi, 0.1, &opt, INFINITY);
-    assert_true(s->model->angular);
-    double k_phi = s->model->mat[0].k_phi;
+    assert_true(lattice_has_angles(s->model));
+    double k_phi = lattice_material_get(s->model, 0)->k_phi;
     assert_true(k_phi > 0.0);
     lattice_model_override(s->model, 0.0, k_phi); /* angular springs only */
     perturb(s, 0.1, 7u);
@@ -317,11 +317,12 @@ static void test_angular_gradient(void **state)
     printf("  angular springs: max |F + dE/dx| / max|F| = %.2e over %zu particles\n", worst, n);
     assert_true(worst < 1e-6);
     /* an angle breaks beyond its limit and releases its energy */
-    s->model->mat_dphi_c[0] = s->model->mat_dphi_t[0] = 1e-3;
+    lattice_set_angle_limits(s->model, 0, 1e-3, 1e-3);
     forces(s);
-    size_t nbroken = 0;
-    for (size_t q = 0; q < s->model->n_half; q++)
-        nbroken += s->model->ang_state[q] != 0;
+    size_t nbroken = 0, n_ang;
+    const uint8_t *ang_state = lattice_angle_states(s->model, &n_ang);
+    for (size_t q = 0; q < n_ang; q++)
+        nbroken += ang_state[q] != 0;
     struct model_energy e;
     lattice_model_ops.energy(s->model, s, &e);
     assert_true(nbroken > 0);
@@ -350,7 +351,7 @@ static void test_alpha_beta_gamma(void **state)
     struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
     double hi[3] = {4.0, 4.0, 0};
     struct sim *s = make_sim(LATTICE_TRIANGULAR, hi, 0.45, &opt, INFINITY);
-    assert_true(s->model->angular && s->model->mat_k_area[0] > 0.0);
+    assert_true(lattice_has_angles(s->model) && lattice_area_stiffness(s->model, 0) > 0.0);
     lattice_model_override(s->model, 0.0, 0.0);
     perturb(s, 0.1, 11u);
     forces(s);
@@ -422,7 +423,7 @@ static void test_lennard_jones(void **state)
     struct lattice_options opt = {LATTICE_LAW_LJ, 0, -1, 0.0};
     double hi[3] = {1.0 + 1e-9, 0, 0};
     struct sim *s = make_sim(LATTICE_CHAIN, hi, 0.0, &opt, INFINITY);
-    double k = s->model->mat[0].k[0];
+    double k = lattice_material_get(s->model, 0)->k[0];
     forces(s);
     assert_true(fabs(s->p->f[0][1]) < 1e-14 * k); /* F(r0) = 0 */
     const double h = 1e-6;
@@ -438,10 +439,10 @@ static void test_lennard_jones(void **state)
     s->p->x[0][1] = sd * (1.0 - 1e-9);
     forces(s);
     assert_true(s->p->f[0][1] < 0.0);
-    assert_int_equal(bond_list_count_broken(s->model->bl), 0);
+    assert_int_equal(bond_list_count_broken(lattice_bond_list(s->model)), 0);
     s->p->x[0][1] = sd * (1.0 + 1e-9);
     forces(s);
-    assert_int_equal(bond_list_count_broken(s->model->bl), 1);
+    assert_int_equal(bond_list_count_broken(lattice_bond_list(s->model)), 1);
     assert_true(s->p->f[0][1] == 0.0);
     s->p->x[0][1] = 0.8; /* repulsion of the broken bond = intact law */
     forces(s);
@@ -477,7 +478,7 @@ static void test_piecewise_linear_and_deck(void **state)
     if (rc)
         fprintf(stderr, "%s\n", err.msg);
     assert_int_equal(rc, 0);
-    assert_true(fabs(m->mat[0].E - 1e9) < 1.0);
+    assert_true(fabs(lattice_material_get(m, 0)->E - 1e9) < 1.0);
     double pos[3] = {0, 0, 0};
     assert_int_equal(particles_append(s->p, pos, 0, NULL, &err), 0);
     pos[0] = 1.0;
@@ -487,13 +488,13 @@ static void test_piecewise_linear_and_deck(void **state)
         s->p->mass[i] = 1000.0;
     }
     assert_int_equal(lattice_model_ops.init(m, s, &err), 0);
-    double k = m->mat[0].k[0]; /* E A / r0 = 1e9 */
+    double k = lattice_material_get(m, 0)->k[0]; /* E A / r0 = 1e9 */
     s->p->x[0][1] = 1.02;      /* on the second segment: sigma = 1.25e7 */
     forces(s);
     assert_true(fabs(-s->p->f[0][1] / (k * 1.25e7 / 1e9) - 1.0) < 1e-12);
     s->p->x[0][1] = 1.0301; /* beyond the last strain: broken */
     forces(s);
-    assert_int_equal(bond_list_count_broken(m->bl), 1);
+    assert_int_equal(bond_list_count_broken(lattice_bond_list(m)), 1);
     char buf[2048];
     lattice_model_ops.describe(m, s, buf, sizeof buf);
     assert_non_null(strstr(buf, "piecewise_linear"));
@@ -584,8 +585,8 @@ static void thread_check(double nu)
     struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
     double hi[3] = {30.0, 30.0, 0};
     struct sim *s = make_sim(LATTICE_TRIANGULAR, hi, nu, &opt, 0.03);
-    assert_true(s->model->angular);
-    struct bond_list *bl = s->model->bl;
+    assert_true(lattice_has_angles(s->model));
+    struct bond_list *bl = lattice_bond_list(s->model);
     /* a line of pre-cut bonds and random displacements that break more */
     struct precrack c;
     memset(&c, 0, sizeof c);
@@ -607,7 +608,8 @@ static void thread_check(double nu)
     for (int pass = 0; pass < 2; pass++) {
         omp_set_num_threads(pass == 0 ? 1 : 2);
         memcpy(bl->state, st0, bl->offset[n]);
-        memset(s->model->ang_state, 0, bl->offset[n]);
+        size_t n_ang;
+        memset(lattice_angle_states(s->model, &n_ang), 0, bl->offset[n]);
         forces(s);
         if (pass == 0) {
             memcpy(f1, s->p->f[0], n * sizeof *f1);
@@ -662,7 +664,7 @@ static void test_stable_dt_chain(void **state)
     struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
     double hi[3] = {10.0 + 1e-9, 0, 0};
     struct sim *s = make_sim(LATTICE_CHAIN, hi, 0.0, &opt, INFINITY);
-    double k = s->model->mat[0].k[0], m = s->p->mass[0];
+    double k = lattice_material_get(s->model, 0)->k[0], m = s->p->mass[0];
     double dt = lattice_model_ops.stable_dt(s->model, s);
     /* chain: omega_max = 2 sqrt(k/m), dt = 2/omega_max */
     assert_true(fabs(dt / sqrt(m / k) - 1.0) < 1e-12);

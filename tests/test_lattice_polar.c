@@ -13,6 +13,7 @@
 #include "core/geometry.h"
 #include "core/lattice_gen.h"
 #include "core/lattice_polar.h"
+#include "core/mathconst.h"
 #include "core/particles.h"
 #include "spall/error.h"
 
@@ -20,7 +21,6 @@
 #include <string.h>
 
 static const double DX = 0.5e-6; /* the deformable sphere's spacing, SI */
-static const double PI = 3.14159265358979323846;
 
 static struct particles *fill(enum lattice_kind kind, int dim, const double origin[3],
                               struct geom *region)
@@ -79,7 +79,7 @@ static void test_rings_disc(void **state)
     struct particles *p = fill(LATTICE_RINGS, 2, c, geom_sphere(c, R));
     long expect = 0;
     for (long k = 0; k < 8; k++) {
-        long n = 2 * lround(PI * ((double)k + 0.5));
+        long n = 2 * lround(SPALL_PI * ((double)k + 0.5));
         expect += n < 4 ? 4 : n;
     }
     assert_int_equal(p->n, (size_t)expect); /* 4 + 10 + 16 + 22 + 28 + 34 + 40 + 48 */
@@ -99,7 +99,7 @@ static void test_rings_disc(void **state)
         }
         assert_true(mirror_x && mirror_y);
     }
-    assert_true(fabs(area - PI * R * R) <= 1e-12 * PI * R * R);
+    assert_true(fabs(area - SPALL_PI * R * R) <= 1e-12 * SPALL_PI * R * R);
     double q = min_pair_over_dx(p);
     assert_true(q > 0.7 && q < 1.0); /* 0.707: the innermost ring of 4 */
     particles_destroy(&p);
@@ -119,16 +119,16 @@ static void test_rings_half_disc(void **state)
     struct particles *p = fill(LATTICE_RINGS, 2, c, geom_combine(GEOM_INTERSECTION, parts, 2));
     size_t full = 0;
     for (long k = 0; k < 7; k++) {
-        long n = 2 * lround(PI * ((double)k + 0.5));
+        long n = 2 * lround(SPALL_PI * ((double)k + 0.5));
         full += (size_t)(n < 4 ? 4 : n);
     }
     assert_int_equal(2 * p->n, full);
     double vol = 0.0;
     for (size_t i = 0; i < p->n; i++) {
         assert_true(p->x[0][i] > 0.1 * DX);
-        vol += 2.0 * PI * p->x[0][i] * site_volume(LATTICE_RINGS, c, p, i);
+        vol += 2.0 * SPALL_PI * p->x[0][i] * site_volume(LATTICE_RINGS, c, p, i);
     }
-    double ball = 4.0 / 3.0 * PI * R * R * R;
+    double ball = 4.0 / 3.0 * SPALL_PI * R * R * R;
     assert_true(fabs(vol - ball) < 0.01 * ball);
     particles_destroy(&p);
 }
@@ -144,7 +144,7 @@ static void test_shells_ball(void **state)
     long expect = 0;
     for (long k = 0; k < 6; k++) {
         double m = (double)k + 0.5;
-        expect += lround(4.0 * PI * m * m + PI / 3.0);
+        expect += lround(4.0 * SPALL_PI * m * m + SPALL_PI / 3.0);
     }
     assert_int_equal(p->n, (size_t)expect);
     double vol = 0.0, sum[3] = {0, 0, 0};
@@ -155,7 +155,7 @@ static void test_shells_ball(void **state)
         for (int d = 0; d < 3; d++)
             sum[d] += p->x[d][i] - c[d];
     }
-    double ball = 4.0 / 3.0 * PI * R * R * R;
+    double ball = 4.0 / 3.0 * SPALL_PI * R * R * R;
     assert_true(fabs(vol - ball) <= 1e-12 * ball);
     /* The ball's sites are nearly centred (a spiral is not exactly symmetric). */
     for (int d = 0; d < 3; d++)

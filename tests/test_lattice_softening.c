@@ -23,7 +23,7 @@
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "models/lattice/lattice_calib.h"
-#include "models/lattice/lattice_internal.h"
+#include "models/lattice/lattice.h"
 #include "models/model.h"
 #include "spall/error.h"
 
@@ -95,7 +95,7 @@ static void test_single_bond_path(void **state)
     double hi[3] = {1.0 + 1e-9, 0, 0};
     struct sim *s = make_soft(LATTICE_CHAIN, hi, 0, e0, ef, 0.0);
     assert_int_equal(s->p->n, 2);
-    const double k = s->model->mat[0].k[0];
+    const double k = lattice_material_get(s->model, 0)->k[0];
     /* path of strains: load into softening, unload, compress, reload past
      * the old maximum, separate, come back in compression */
     const double path[] = {0.0, 0.02, 0.01, -0.01, 0.02, 0.025, 0.0, 0.035, 0.01, -0.005};
@@ -141,7 +141,7 @@ static void test_single_bond_path(void **state)
     /* full separation: the bond's whole share of G_f, k r0^2 e0 ef / 2 */
     lattice_model_ops.energy(s->model, s, &en);
     assert_true(fabs(en.dissipated / (0.5 * k * e0 * ef) - 1.0) < 1e-12);
-    assert_int_equal(bond_list_count_broken(s->model->bl), 1);
+    assert_int_equal(bond_list_count_broken(lattice_bond_list(s->model)), 1);
     sim_destroy(&s);
 }
 
@@ -154,8 +154,8 @@ static void test_triangular_fracture_energy(void **state)
     double hi[3] = {60.0, 12.0, 0};
     struct sim *s = make_soft(LATTICE_TRIANGULAR, hi, 2, e0, 0.0, gf);
     struct model *m = s->model;
-    double ef = m->pair[0].t_lim - 1.0;
-    double k1 = m->mat[0].k[0], k2 = m->mat[0].k[1];
+    double ef = lattice_pair_law(m, 0, 0, 0)->t_lim - 1.0;
+    double k1 = lattice_material_get(m, 0)->k[0], k2 = lattice_material_get(m, 0)->k[1];
     assert_true(fabs(ef - 2.0 * gf / (e0 * (2.0 * k1 + 12.0 * k2))) < 1e-15);
     const double row = 0.5 * sqrt(3.0), ycut = 7.0 * row - 0.5 * row;
     for (size_t i = 0; i < s->p->n; i++)
@@ -169,7 +169,7 @@ static void test_triangular_fracture_energy(void **state)
     double width = 60.0;
     double g = en.dissipated / width;
     printf("  G measured %.5g vs G_f %.5g (ef = %.4g, %zu bonds broken)\n", g, gf, ef,
-           bond_list_count_broken(m->bl));
+           bond_list_count_broken(lattice_bond_list(m)));
     assert_true(fabs(g / gf - 1.0) < 0.03);
     sim_destroy(&s);
 }
@@ -279,7 +279,7 @@ static void test_dynamic_energy_balance(void **state)
     while (!sim_done(s))
         assert_int_equal(sim_step(s, &err), 0);
     sim_update_energy(s);
-    size_t nb = bond_list_count_broken(s->model->bl);
+    size_t nb = bond_list_count_broken(lattice_bond_list(s->model));
     printf("  tear: %ld steps, broken %zu, dissipated %.4g J of %.4g J, balance %.3g\n",
            s->step, nb, s->energy.model_dissipated, s->energy.initial_total,
            s->energy.balance / s->energy.initial_total);

@@ -14,7 +14,7 @@
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "models/macroparticle/macro_calib.h"
-#include "models/macroparticle/macro_internal.h"
+#include "models/macroparticle/macro_pair.h"
 #include "models/model.h"
 #include "spall/error.h"
 

@@ -12,12 +12,13 @@
 #include <cmocka.h>
 
 #include "core/bond_list.h"
+#include "core/mathconst.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "models/model.h"
-#include "models/peridynamics/pd_internal.h"
+#include "models/peridynamics/pd.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -69,47 +70,65 @@ static void deform(struct sim *s, double theta, double e22, double g12, double r
     }
 }
 
+/* The mixed-mode state of particle i through the model's public view. */
+static bool mixed_on(const struct model *m)
+{
+    double beta, g;
+    return pd_mixed_state(m, 0, &beta, &g);
+}
+static double mixed_beta(const struct model *m, size_t i)
+{
+    double beta, g;
+    (void)pd_mixed_state(m, i, &beta, &g);
+    return beta;
+}
+static double mixed_g(const struct model *m, size_t i)
+{
+    double beta, g;
+    (void)pd_mixed_state(m, i, &beta, &g);
+    return g;
+}
+
 static void test_mixed_mode_factor(void **state)
 {
     (void)state;
-    const double th = 45.0 * 3.14159265358979323846 / 180.0;
+    const double th = 45.0 * SPALL_PI / 180.0;
     struct sim *s = build_ok("", 45.0);
     struct model *m = s->model;
-    assert_true(m->mixed);
+    assert_true(mixed_on(m));
     size_t i = pd_patch_particle(m, s, 0);
     const double gmax = sqrt(800.0 / 300.0);
     /* transverse tension: pure mode I */
     deform(s, th, 1e-3, 0.0, 0.0);
     pd_mixed_update(m, s);
-    assert_true(m->mm_beta[i] < 1e-9);
-    assert_true(fabs(m->mm_g[i] - 1.0) < 1e-9);
+    assert_true(mixed_beta(m, i) < 1e-9);
+    assert_true(fabs(mixed_g(m, i) - 1.0) < 1e-9);
     /* in-plane shear: pure mode II, s0 x sqrt(G_IIc / G_Ic) (simple shear has
      * E22 = g^2/2: beta = 1 - O(1e-6)) */
     deform(s, th, 0.0, 2e-3, 0.0);
     pd_mixed_update(m, s);
-    assert_true(m->mm_beta[i] > 1.0 - 1e-4);
-    assert_true(fabs(m->mm_g[i] - gmax) < 1e-4);
+    assert_true(mixed_beta(m, i) > 1.0 - 1e-4);
+    assert_true(fabs(mixed_g(m, i) - gmax) < 1e-4);
     /* transverse compression + shear: compression does not open, mode II */
     deform(s, th, -1e-3, 1e-3, 0.0);
     pd_mixed_update(m, s);
-    assert_true(m->mm_beta[i] > 1.0 - 1e-4);
+    assert_true(mixed_beta(m, i) > 1.0 - 1e-4);
     /* equal energies: beta = 1/2, G_c = G_Ic + (G_IIc - G_Ic)/4 (eta = 2) */
     double e22 = 1e-3, q22 = 8.5e9 / (1.0 - 0.09 * 8.5 / 130.0);
     double g = e22 * sqrt(q22 / 4.5e9); /* w_II = G12 g^2 / 2 = Q22 e22^2 / 2 */
     deform(s, th, e22, g, 0.0);
     pd_mixed_update(m, s);
-    printf("  mixed mode: beta %.4f (small-strain 0.5), g %.4f\n", m->mm_beta[i], m->mm_g[i]);
-    assert_true(fabs(m->mm_beta[i] - 0.5) < 0.01);
+    printf("  mixed mode: beta %.4f (small-strain 0.5), g %.4f\n", mixed_beta(m, i), mixed_g(m, i));
+    assert_true(fabs(mixed_beta(m, i) - 0.5) < 0.01);
     /* a rigid rotation of 30 deg changes nothing (Green strain) */
-    double b0 = m->mm_beta[i];
+    double b0 = mixed_beta(m, i);
     deform(s, th, e22, g, 0.5236);
     pd_mixed_update(m, s);
-    assert_true(fabs(m->mm_beta[i] - b0) < 1e-9);
+    assert_true(fabs(mixed_beta(m, i) - b0) < 1e-9);
     sim_destroy(&s);
     /* off: no factors */
     s = build_ok(", mixed_mode: off", 45.0);
-    assert_false(s->model->mixed);
-    assert_null(s->model->mm_g);
+    assert_false(mixed_on(s->model)); /* and no per-particle factors */
     sim_destroy(&s);
 }
 
@@ -132,9 +151,9 @@ static void test_fiber_plane(void **state)
                 p->f[d][q] = 0.0;
             }
         p->x[1][i] -= 0.1e-3; /* 10 % of the spacing: far past s0_m, fiber bonds intact */
-        assert_int_equal(pd_compute_forces(m, s, &err), 0);
+        assert_int_equal(s->ops->compute_forces(m, s, &err), 0);
         assert_int_equal(s->ops->end_step(m, s, &err), 0);
-        broken[fp] = bond_list_count_broken(m->bl);
+        broken[fp] = bond_list_count_broken(pd_bonds(m));
         sim_destroy(&s);
     }
     /* refused outside the PDLM lattice, with the deck position */
@@ -186,7 +205,7 @@ static double ex_of(const char *yaml)
     assert_int_equal(pd_calibrate_ortho(m, s, 0, a, &err), 0);
     pd_patch_stiffness(m, s, pd_patch_particle(m, s, 0), 0.0, C);
     assert_int_equal(pd_invert3(C, S), 0);
-    const struct pd_material *mt = &m->mat[0];
+    const struct pd_material *mt = pd_material_get(m, 0);
     double c = cos(mt->fiber_angle), sn = sin(mt->fiber_angle);
     double cls = 1.0 / (pow(c, 4) / a[0] + pow(sn, 4) / a[1] +
                         (1.0 / a[2] - 2.0 * a[3] / a[0]) * c * c * sn * sn);
@@ -270,7 +289,7 @@ static void test_lamina_threads(void **state)
         assert_non_null(xs[t - 1]);
         memcpy(xs[t - 1], s->p->x[0], n * sizeof(double));
         memcpy(xs[t - 1] + n, s->p->x[1], n * sizeof(double));
-        nb[t - 1] = bond_list_count_broken(s->model->bl);
+        nb[t - 1] = bond_list_count_broken(pd_bonds(s->model));
         sim_destroy(&s);
     }
     printf("  lamina threads: %zu bonds broken\n", nb[0]);

@@ -20,7 +20,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
-#include "models/sph/sph_internal.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 #include "validation/lattice_cases.h"
 #include "validation/pen_cases.h"
@@ -303,9 +303,10 @@ static void test_convergence_grids(void **state)
         const struct model *m = sim->model;
         double area = 0.0, rmax = 0.0, zmax = 0.0;
         for (size_t i = 0; i < sim->p->n; i++) {
-            area += m->dx[i] * m->dx[i];
-            rmax = fmax(rmax, sim->p->x[0][i] + 0.5 * m->dx[i]);
-            zmax = fmax(zmax, -sim->p->x[1][i] + 0.5 * m->dx[i]);
+            const double dxi = sph_spacing(m, i);
+            area += dxi * dxi;
+            rmax = fmax(rmax, sim->p->x[0][i] + 0.5 * dxi);
+            zmax = fmax(zmax, -sim->p->x[1][i] + 0.5 * dxi);
         }
         assert_true(fabs(area / (rmax * zmax) - 1.0) < 1e-9);
         assert_true(fabs(rmax - 144e-6 * width[k]) < 1e-3 * dx[k]);

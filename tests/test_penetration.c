@@ -11,6 +11,7 @@
 
 #include <cmocka.h>
 
+#include "core/mathconst.h"
 #include "spall/error.h"
 #include "spall/penetration.h"
 
@@ -19,7 +20,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
 
 static struct pen_params gel(void)
 {
@@ -45,7 +45,7 @@ static void test_poncelet_limits(void **state)
     assert_true(fabs(P[1] - r.p_max) < 1e-12 * r.p_max);
     const double v0 = 0.1;
     assert_int_equal(pen_poncelet(&p, v0, 0, NULL, NULL, NULL, &r, &e), SPALL_OK);
-    const double C = p.R * PI * p.d * p.d / 4.0;
+    const double C = p.R * SPALL_PI * p.d * p.d / 4.0;
     const double lim = pen_mass(&p) * v0 * v0 / (2.0 * C);
     assert_true(fabs(r.p_max / lim - 1.0) < 1e-6);
 }
@@ -86,7 +86,7 @@ static void test_liu_fallback(void **state)
     const double v0 = 300.0;
     assert_int_equal(pen_solve(&l, v0, 0, NULL, NULL, NULL, 0, &r, &e), SPALL_OK);
     assert_false(r.closed_form);
-    const double A = PI * l.d * l.d / 4.0, M = pen_mass(&l);
+    const double A = SPALL_PI * l.d * l.d / 4.0, M = pen_mass(&l);
     const double a = 0.5 * l.cd * l.rho_t * A + A * l.sigma0 / (l.d * l.d * l.edot0 * l.edot0);
     const double b = l.cv * A, c = l.sigma0 * A, sd = sqrt(b * b - 4.0 * a * c);
     const double dl = log((2 * a * v0 + b - sd) / (2 * a * v0 + b + sd)) - log((b - sd) / (b + sd));
@@ -108,7 +108,7 @@ static void test_clift_gauvin(void **state)
     p.eta = 0.045;
     p.R = 25e6;
     /* F(0) is the resistance alone */
-    assert_true(fabs(pen_force(&p, 0.0) / (p.R * PI * p.d * p.d / 4.0) - 1.0) < 1e-14);
+    assert_true(fabs(pen_force(&p, 0.0) / (p.R * SPALL_PI * p.d * p.d / 4.0) - 1.0) < 1e-14);
     struct spall_error e = {0, ""};
     struct pen_result r;
     assert_int_equal(pen_solve(&p, 500.0, 0, NULL, NULL, NULL, 0, &r, &e), SPALL_OK);

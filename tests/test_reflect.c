@@ -10,7 +10,7 @@
 #include "core/fields.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/sph/sph_internal.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -93,6 +93,12 @@ static void test_parity_refused(void **state)
 static size_t arrays(struct sim *s, double *a[N_ARR])
 {
     struct model *m = s->model;
+    double *S[6], *S_n[6], *dS_n[6];
+    for (int c = 0; c < 6; c++) {
+        S[c] = field_stored_data(s->fields, "deviatoric_stress", c);
+        S_n[c] = field_stored_data(s->fields, "deviatoric_stress_n", c);
+        dS_n[c] = field_stored_data(s->fields, "deviatoric_stress_rate_n", c);
+    }
     size_t k = 0;
     for (int d = 0; d < 3; d++) {
         a[k++] = s->p->x[d];
@@ -102,13 +108,13 @@ static size_t arrays(struct sim *s, double *a[N_ARR])
         a[k++] = s->v_half[d];
     }
     for (int c = 0; c < 6; c++) {
-        a[k++] = m->S[c];
-        a[k++] = m->S_n[c];
-        a[k++] = m->dS_n[c];
-        a[k++] = m->dS[c];
+        a[k++] = S[c];
+        a[k++] = S_n[c];
+        a[k++] = dS_n[c];
+        a[k++] = sph_stress_rate_data(m, c);
     }
-    a[k++] = m->rho;
-    a[k++] = m->e;
+    a[k++] = field_stored_data(s->fields, "density", 0);
+    a[k++] = field_stored_data(s->fields, "internal_energy", 0);
     return k;
 }
 

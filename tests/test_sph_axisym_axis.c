@@ -12,9 +12,9 @@
  * failed gel ring oscillated at the axis at 9-15 km/s and the energy
  * balance reached +218 % of E0 (docs/penetration.md).
  */
+#include "core/fields.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/sph/sph_internal.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -48,9 +48,10 @@ static double ring_onto_axis(int failed, double V, double *rmin)
              "run: {end_time: 4.0e-4}\n",
              -V);
     struct sim *s = test_build_ok(yaml);
-    struct model *m = s->model;
+    uint8_t *fail = field_stored_data(s->fields, "failed", 0);
+    assert_non_null(fail);
     for (size_t i = 0; i < s->p->n; i++)
-        m->failed[i] = (uint8_t)failed;
+        fail[i] = (uint8_t)failed;
     s->energy.initial_total = 0.0;
     sim_update_energy(s);
     s->energy.initial_total = s->energy.balance;

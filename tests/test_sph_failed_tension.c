@@ -6,8 +6,9 @@
  *        (the hydrodynamic behaviour without a pressure cut-off); intact
  *        particles keep their tension either way; the key must be a bool.
  */
+#include "core/fields.h"
 #include "core/sim.h"
-#include "models/sph/sph_internal.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -42,13 +43,16 @@ static void pressures(const char *extra, double *p_failed, double *p_intact)
 {
     struct sim *s = NULL;
     assert_int_equal(build_rc(extra, &s), SPALL_OK);
-    struct model *m = s->model;
-    m->rho[0] = m->rho[1] = 0.99 * m->mat[0].rho0;
-    m->failed[0] = 1;
-    m->failed[1] = 0;
-    sph_update_pressure(m, s, SPH_FORM_ALL);
-    *p_failed = m->P[0];
-    *p_intact = m->P[1];
+    double *rho = field_stored_data(s->fields, "density", 0);
+    const double *P = field_stored_data(s->fields, "pressure", 0);
+    uint8_t *failed = field_stored_data(s->fields, "failed", 0);
+    assert_true(rho && P && failed);
+    rho[0] = rho[1] = 0.99 * sph_material_get(s->model, 0)->rho0;
+    failed[0] = 1;
+    failed[1] = 0;
+    sph_refresh_pressure(s->model, s);
+    *p_failed = P[0];
+    *p_intact = P[1];
     sim_destroy(&s);
 }
 

@@ -11,7 +11,8 @@
 #include "core/neighbor.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/sph/sph_internal.h"
+#include "core/fields.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -27,6 +28,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The model's counters (interface pairs, det F range, TLSPH particles). */
+static struct sph_stats stats(const struct model *m)
+{
+    struct sph_stats st;
+    sph_stats_get(m, &st);
+    return st;
+}
+
 /* Head-on run of two_bodies with @p model_extra; @p n_tl_expect TLSPH
  * particles.  Momentum to round-off, energy balance within 1 %, no
  * interpenetration, the top block stopped and compressed. */
@@ -35,10 +44,11 @@ static void run_head_on(const char *label, const char *model_extra, size_t n_tl_
     struct sim *s = test_two_bodies(model_extra, 10.0, 0.0);
     assert_non_null(s);
     const struct model *m = s->model;
-    assert_non_null(m->form);
+    const uint8_t *form = sph_formulations(m);
+    assert_non_null(form);
     size_t n_tl = 0;
     for (size_t i = 0; i < s->p->n; i++)
-        n_tl += m->form[i];
+        n_tl += form[i];
     assert_int_equal(n_tl, n_tl_expect);
     struct spall_error err = {0};
     double P0[2], P[2], dp = 0.0, dmin = INFINITY;
@@ -51,8 +61,8 @@ static void run_head_on(const char *label, const char *model_extra, size_t n_tl_
         for (int d = 0; d < 2; d++)
             dp = fmax(dp, fabs(P[d] - P0[d]) / fabs(P0[1]));
         dmin = fmin(dmin, test_min_cross_distance(s));
-        if (m->iface_pairs > maxpairs)
-            maxpairs = m->iface_pairs;
+        if (stats(m).iface_pairs > maxpairs)
+            maxpairs = stats(m).iface_pairs;
     }
     sim_update_energy(s);
     const double de = s->energy.balance / ke0;
@@ -62,7 +72,7 @@ static void run_head_on(const char *label, const char *model_extra, size_t n_tl_
             mv += s->p->mass[i] * s->p->v[1][i];
             mt += s->p->mass[i];
         }
-    jmin = m->tl_jmin; /* smallest det F of the TLSPH block, last step */
+    jmin = stats(m).tl_jmin; /* smallest det F of the TLSPH block, last step */
     print_message("%s: |dP|/P0 %.3g, energy %.4g of KE0, min cross distance %.4g dx, "
                   "TLSPH block v_y %.4g m/s, min det F %.4f, max pairs %zu, %ld steps\n",
                   label, dp, de, dmin / 1e-3, mv / mt, jmin, maxpairs, s->step);
@@ -122,8 +132,8 @@ static void test_all_total_is_run_total(void **state)
     struct sim *b = test_two_bodies(", body_formulation: {proj: total, target: total}", 0.0, -1.5e-3);
     assert_non_null(a);
     assert_non_null(b);
-    assert_null(b->model->form);
-    assert_true(b->model->opt.total_lagrangian);
+    assert_null(sph_formulations(b->model));
+    assert_true(stats(b->model).total_lagrangian);
     const size_t n = a->p->n * 4;
     double *xa = calloc(n, sizeof *xa), *xb = calloc(n, sizeof *xb);
     final_state(a, xa, n);
@@ -134,8 +144,8 @@ static void test_all_total_is_run_total(void **state)
     b = test_two_bodies(", formulation: total, interface: bodies, "
                    "body_formulation: {target: updated}", 0.0, 0.0);
     assert_non_null(b);
-    assert_non_null(b->model->form);
-    assert_int_equal(b->model->n_total, 36);
+    assert_non_null(sph_formulations(b->model));
+    assert_int_equal(stats(b->model).n_total, 36);
     free(xa);
     free(xb);
     sim_destroy(&a);
@@ -163,20 +173,23 @@ static void test_tlsph_body_unchanged(void **state)
              "  - {name: far, geometry: {box: {min: [0.05, 0], max: [0.06, 0.01]}}, "
              "material: a,\n     lattice: {spacing: 1.0e-3, origin: [0.0505, 0.0005]}}\n");
     struct sim *a = test_build_ok(ya), *b = test_build_ok(yb);
-    assert_non_null(b->model->form);
+    assert_non_null(sph_formulations(b->model));
     struct spall_error err = {0};
     while (!sim_done(a))
         assert_int_equal(sim_step(a, &err), 0);
     while (!sim_done(b))
         assert_int_equal(sim_step(b, &err), 0);
     assert_int_equal(a->step, b->step);
+    const double *ea = field_stored_data(a->fields, "internal_energy", 0);
+    const double *eb = field_stored_data(b->fields, "internal_energy", 0);
+    assert_true(ea && eb);
     for (size_t i = 0; i < a->p->n; i++) {
         assert_int_equal(b->p->body[i], 0);
         for (int d = 0; d < 2; d++) {
             assert_true(a->p->x[d][i] == b->p->x[d][i]);
             assert_true(a->p->v[d][i] == b->p->v[d][i]);
         }
-        assert_true(a->model->e[i] == b->model->e[i]);
+        assert_true(ea[i] == eb[i]);
     }
     sim_destroy(&a);
     sim_destroy(&b);
@@ -206,19 +219,23 @@ static void test_materials_split(void **state)
         "run: {steps: 1}\n";
     struct sim *s = test_build_ok(yaml);
     struct model *m = s->model;
-    assert_non_null(m->form);
+    const uint8_t *form = sph_formulations(m);
+    assert_non_null(form);
     struct spall_error err = {0};
     assert_int_equal(sph_neighbors_update(m, s, true, &err), 0);
+    const struct neighbor_list *nl = sph_neighbors(m);
     size_t across = 0, with_tl = 0, iface_tl = 0, iface_other = 0;
     for (size_t i = 0; i < s->p->n; i++) {
-        for (size_t k = m->nl->offset[i]; k < m->nl->offset[i + 1]; k++) {
-            size_t j = (size_t)m->nl->idx[k];
+        for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++) {
+            size_t j = (size_t)nl->idx[k];
             across += s->p->body[i] != s->p->body[j];
-            with_tl += m->form[i] || m->form[j];
+            with_tl += form[i] || form[j];
         }
-        for (size_t k = m->if_off[i]; k < m->if_off[i + 1]; k++) {
-            size_t j = (size_t)m->if_idx[k];
-            if (m->form[i] != m->form[j])
+        const int32_t *idx;
+        size_t np = sph_interface_partners(m, i, &idx);
+        for (size_t k = 0; k < np; k++) {
+            size_t j = (size_t)idx[k];
+            if (form[i] != form[j])
                 iface_tl++;
             else
                 iface_other++;

@@ -70,7 +70,7 @@ static void test_normalisation(void **state)
                     if (k == SPH_KERNEL_GAUSSIAN && p == q) {
                         /* the jump W(3h) at the cut adds the surface term
                          * W(3) * 3 * |S_d(3)| / d to -integral(x dW) */
-                        double area = dim == 1 ? 2.0 : dim == 2 ? 6.0 * SPH_PI : 36.0 * SPH_PI;
+                        double area = dim == 1 ? 2.0 : dim == 2 ? 6.0 * SPALL_PI : 36.0 * SPALL_PI;
                         ref -= sph_kernel_alpha(SPH_KERNEL_GAUSSIAN, dim) * exp(-9.0) * 3.0 *
                                area / dim;
                     }

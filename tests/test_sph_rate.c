@@ -7,7 +7,7 @@
  *        combination with Johnson-Cook.
  */
 #include "core/sim.h"
-#include "models/sph/sph_internal.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -75,10 +75,10 @@ static void test_deck(void **state)
                               &s),
                      SPALL_OK);
     assert_non_null(s);
-    const struct model *m = s->model;
-    assert_int_equal(m->mat[0].rate, SPH_RATE_COWPER_SYMONDS);
-    assert_float_equal(m->mat[0].cs_d, 1.0e4, 0.0);
-    assert_float_equal(m->mat[0].cs_q, 2.0, 0.0);
+    const struct sph_material *mt0 = sph_material_get(s->model, 0);
+    assert_int_equal(mt0->rate, SPH_RATE_COWPER_SYMONDS);
+    assert_float_equal(mt0->cs_d, 1.0e4, 0.0);
+    assert_float_equal(mt0->cs_q, 2.0, 0.0);
     sim_destroy(&s);
     static const char *const bad[] = {
         "yield: perfect, yield_stress: 1e6, rate_model: cowper_symonds, cs_d: 0, cs_q: 2",

@@ -12,6 +12,7 @@
 
 #include <cmocka.h>
 
+#include "core/mathconst.h"
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
@@ -22,7 +23,6 @@
 #include <math.h>
 #include <stdio.h>
 
-static const double PI = 3.14159265358979323846;
 static const double DX = 0.5e-3; /* the sphere's spacing [m]: radius 6 (3D: 4) layers */
 static const double V0 = 10.0;   /* impact speed [m/s] */
 
@@ -126,7 +126,7 @@ static void impact(bool axisym, int layers, double mass_tol, double p_tol, doubl
     struct sim *s = build(axisym, R, c);
     struct spall_error err = {0, ""};
     struct ball_state b0 = measure(s, axis, c, r_outer);
-    const double m_ball = 2000.0 * 4.0 / 3.0 * PI * R * R * R, ke0 = 0.5 * b0.mass * V0 * V0;
+    const double m_ball = 2000.0 * 4.0 / 3.0 * SPALL_PI * R * R * R, ke0 = 0.5 * b0.mass * V0 * V0;
     double worst_e = 0.0, worst_round = 0.0, worst_p = 0.0;
     while (!sim_done(s)) {
         assert_int_equal(sim_step(s, &err), SPALL_OK);

@@ -14,7 +14,8 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "models/model.h"
-#include "models/sph/sph_internal.h"
+#include "core/fields.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -39,11 +40,31 @@ static void run_to_end(struct sim *s)
         assert_int_equal(sim_step(s, &err), 0);
 }
 
+/* The model's counters (reference updates, det F range, h growths, ...). */
+static struct sph_stats stats(const struct model *m)
+{
+    struct sph_stats st;
+    sph_stats_get(m, &st);
+    return st;
+}
+
+/* Component c of the run's stored field @p name (the model's own array). */
+static const double *field(const struct sim *s, const char *name, int c)
+{
+    const double *a = field_stored_data(s->fields, name, c);
+    assert_non_null(a);
+    return a;
+}
+
 /* Everything an update must not change, packed per particle. */
 enum { NSTATE = 17 };
 static void snapshot(const struct sim *s, double *out)
 {
     const struct model *m = s->model;
+    const double *S[6], *P = field(s, "pressure", 0), *rho = field(s, "density", 0);
+    const double *e = field(s, "internal_energy", 0), *ep = field(s, "plastic_strain", 0);
+    for (int c = 0; c < 6; c++)
+        S[c] = field(s, "deviatoric_stress", c);
     for (size_t i = 0; i < s->p->n; i++) {
         double *q = out + NSTATE * i;
         for (int d = 0; d < 3; d++) {
@@ -51,12 +72,12 @@ static void snapshot(const struct sim *s, double *out)
             q[3 + d] = s->p->v[d][i];
         }
         for (int c = 0; c < 6; c++)
-            q[6 + c] = m->S[c][i];
-        q[12] = m->P[i];
-        q[13] = m->rho[i];
-        q[14] = m->e[i];
-        q[15] = m->ep[i];
-        q[16] = m->wp[i];
+            q[6 + c] = S[c][i];
+        q[12] = P[i];
+        q[13] = rho[i];
+        q[14] = e[i];
+        q[15] = ep[i];
+        q[16] = sph_plastic_work(m, i);
     }
 }
 
@@ -83,12 +104,13 @@ static void test_update_keeps_state(void **state)
         for (int d = 0; d < 3; d++)
             f0[3 * i + d] = s->p->f[d][i];
     double epmax = 0.0;
+    const double *ep = field(s, "plastic_strain", 0);
     for (size_t i = 0; i < n; i++)
-        epmax = fmax(epmax, m->ep[i]);
-    const double kmax0 = m->tl_kmax, jmin0 = m->tl_jmin;
+        epmax = fmax(epmax, ep[i]);
+    const double kmax0 = stats(m).tl_kmax, jmin0 = stats(m).tl_jmin;
     const size_t pairs0 = sph_tlsph_pairs(m);
     assert_int_equal(sph_tlsph_reref(m, s, &err), 0);
-    assert_int_equal(m->tl_rerefs, 1);
+    assert_int_equal(stats(m).tl_rerefs, 1);
     snapshot(s, b);
     assert_memory_equal(a, b, NSTATE * n * sizeof *a);
     /* the force call at the same positions: F = I (B0 B0^-1 to round-off) */
@@ -108,11 +130,11 @@ static void test_update_keeps_state(void **state)
     print_message("before: max ep %.3f, det F >= %.4f, distortion <= %.4f, %zu pairs; after "
                   "the update: max |F - I| = %.3g, det F >= %.15g, distortion <= %.15g, %zu "
                   "pairs; forces differ by %.3g (L1, relative)\n",
-                  epmax, jmin0, kmax0, pairs0, dev, m->tl_jmin, m->tl_kmax,
+                  epmax, jmin0, kmax0, pairs0, dev, stats(m).tl_jmin, stats(m).tl_kmax,
                   sph_tlsph_pairs(m), fd / fs);
     assert_true(epmax > 0.05 && kmax0 > 1.001); /* the update had something to reset */
     assert_true(dev < 1e-12);
-    assert_true(fabs(m->tl_jmin - 1.0) < 1e-12 && fabs(m->tl_kmax - 1.0) < 1e-12);
+    assert_true(fabs(stats(m).tl_jmin - 1.0) < 1e-12 && fabs(stats(m).tl_kmax - 1.0) < 1e-12);
     /* the predictor-corrector's force call only computes rates: the
      * carried state (S, P from the same rho and e, ...) is still the same */
     snapshot(s, b);
@@ -153,7 +175,7 @@ static double free_block(const char *extra)
     for (int d = 0; d < 3; d++)
         assert_true(fabs(p1[d] - p0[d]) < 1e-12 * pscale);
     print_message("%s: %zu updates, energy %.9g -> %.9g\n", extra[0] ? extra : "no updates",
-                  s->model->tl_rerefs, e0, e1);
+                  stats(s->model).tl_rerefs, e0, e1);
     sim_destroy(&s);
     return (e1 - e0) / e0;
 }
@@ -173,7 +195,7 @@ static void bar_state(int threads, const char *extra, double *xs, size_t nx)
     omp_set_num_threads(threads);
     struct sim *s = test_tlsph_bar(extra, 150);
     run_to_end(s);
-    assert_int_equal(s->model->tl_rerefs, 7);
+    assert_int_equal(stats(s->model).tl_rerefs, 7);
     test_pack_xv(s, xs, nx);
     sim_destroy(&s);
 }
@@ -224,9 +246,9 @@ static int mapped_block(const char *extra, int map, long steps, double *jmin, do
     int rc = 0;
     while (!rc && !sim_done(s))
         rc = sim_step(s, &err);
-    *jmin = s->model->tl_jmin;
-    *kmax = s->model->tl_kmax;
-    *updates = s->model->tl_rerefs;
+    *jmin = stats(s->model).tl_jmin;
+    *kmax = stats(s->model).tl_kmax;
+    *updates = stats(s->model).tl_rerefs;
     snprintf(msg, len, "%s", err.msg);
     sim_destroy(&s);
     return rc;
@@ -303,11 +325,11 @@ static int stretched_block(const char *upd, size_t *grown, double *hmax, double 
     int rc = 0;
     while (!rc && !sim_done(s))
         rc = sim_step(s, &err);
-    *grown = s->model->tl_hgrown;
+    *grown = stats(s->model).tl_hgrown;
     *hmax = 0.0;
     for (size_t i = 0; i < s->p->n; i++)
-        *hmax = fmax(*hmax, s->model->h[i] / (1.005 * s->model->dx[i]));
-    *jmin = s->model->tl_jmin;
+        *hmax = fmax(*hmax, sph_smoothing_length(s->model, i) / (1.005 * sph_spacing(s->model, i)));
+    *jmin = stats(s->model).tl_jmin;
     snprintf(msg, len, "%s", err.msg);
     sim_destroy(&s);
     return rc;
@@ -356,16 +378,17 @@ static void test_mixed_bodies(void **state)
         test_momentum_2d(s, P);
         for (int d = 0; d < 2; d++)
             dp = fmax(dp, fabs(P[d] - P0[d]) / fabs(P0[1]));
-        contact = m->iface_pairs > contact ? m->iface_pairs : contact;
+        const struct sph_stats st = stats(m);
+        contact = st.iface_pairs > contact ? st.iface_pairs : contact;
         double hmax = 0.0;
         for (size_t i = 0; i < s->p->n; i++)
-            hmax = fmax(hmax, m->h[i]);
-        assert_true(m->nl_radius > 1.1 * m->qmax * hmax); /* skin 0.2 kept */
+            hmax = fmax(hmax, sph_smoothing_length(m, i));
+        assert_true(st.nl_radius > 1.1 * st.qmax * hmax); /* skin 0.2 kept */
     }
     sim_update_energy(s);
     print_message("mixed: %zu updates, %ld steps, |dP|/P0 %.3g, energy %.4g of KE0\n",
-                  m->tl_rerefs, s->step, dp, s->energy.balance / ke0);
-    assert_true(m->tl_rerefs >= 2 && contact > 0);
+                  stats(m).tl_rerefs, s->step, dp, s->energy.balance / ke0);
+    assert_true(stats(m).tl_rerefs >= 2 && contact > 0);
     assert_true(dp < 1e-12);
     assert_true(fabs(s->energy.balance / ke0) < 1e-2);
     sim_destroy(&s);

@@ -20,6 +20,7 @@
 #include "validation/lattice_cases.h"
 #include "validation/validation.h"
 
+#include "core/mathconst.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -28,7 +29,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#define ENERGY_PI 3.14159265358979323846
 
 struct energy_result {
     double dt;
@@ -69,7 +69,7 @@ static int energy_run(double dt_scale, long steps, struct energy_result *res,
     const double V = 1.0;
     for (size_t i = 0; i < p->n; i++)
         for (int d = 0; d < 2; d++)
-            p->v[d][i] = V * cos(ENERGY_PI * (p->x0[d][i] - lo[d]) / (hi[d] - lo[d]));
+            p->v[d][i] = V * cos(SPALL_PI * (p->x0[d][i] - lo[d]) / (hi[d] - lo[d]));
     s->dt *= dt_scale;
     /* forces of the (undeformed) start and the energy account with the new
      * velocities: E(0) is all kinetic */

@@ -27,18 +27,18 @@
 #include "validation/pd_cases.h"
 #include "validation/validation.h"
 
+#include "core/fields.h"
+#include "core/mathconst.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "models/model.h"
 #include "spall/error.h"
 
-void pd_validation_damage(const struct model *m, size_t n, double *out);
-
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-/* damage field through the registered compute function (same as output) */
+/* the registered damage field (the same values as the output) */
 static int damage_field(struct sim *s, double **out, struct spall_error *err)
 {
     const size_t n = s->p->n;
@@ -46,7 +46,10 @@ static int damage_field(struct sim *s, double **out, struct spall_error *err)
     if (!d)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for damage");
     *out = d;
-    pd_validation_damage(s->model, n, d);
+    const struct field_desc *f = field_registry_find(s->fields, "damage");
+    if (!f)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "the model has no damage field");
+    field_gather_f64(f, n, d);
     return SPALL_OK;
 }
 
@@ -177,7 +180,7 @@ int pd_case_kalthoff(struct vreport *r, struct spall_error *err)
             double d = hypot(dxx, dyy);
             if (d > far) {
                 far = d;
-                ang = atan2(dyy, dxx) * 180.0 / 3.14159265358979323846;
+                ang = atan2(dyy, dxx) * 180.0 / SPALL_PI;
             }
         }
     }

@@ -19,7 +19,6 @@
 
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/peridynamics/pd_internal.h"
 #include "spall/error.h"
 
 #include <math.h>

@@ -43,18 +43,18 @@
 #include "validation/validation.h"
 
 #include "core/bond_list.h"
+#include "core/fields.h"
+#include "core/mathconst.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "models/model.h"
-#include "models/peridynamics/pd_internal.h"
+#include "models/peridynamics/pd.h"
 #include "spall/error.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-void pd_validation_damage_kind(const struct model *m, size_t n, double *out, int which);
 
 #define LAM_L 0.076
 #define LAM_W 0.036
@@ -95,7 +95,7 @@ static void lam_deck(const struct lam_spec *c, char *deck, size_t len)
                  LAM_L, LAM_W, LAM_XC, LAM_YC, LAM_R);
     } else {
         /* crack through the centre, shifted a quarter spacing off the sites */
-        double a = c->alpha * PD_PI / 180.0, nx = -sin(a), ny = cos(a);
+        double a = c->alpha * SPALL_PI / 180.0, nx = -sin(a), ny = cos(a);
         double cx = LAM_XC + 0.25 * LAM_DX * nx, cy = LAM_YC + 0.25 * LAM_DX * ny;
         snprintf(defect, sizeof defect,
                  "geometry:\n  p: {box: {min: [0, 0], max: [%g, %g]}}\n"
@@ -138,11 +138,10 @@ static int lam_run(const struct lam_spec *c, struct lam_result *res, struct spal
         return rc;
     memset(res, 0, sizeof *res);
     res->t_start = res->start = res->kin_ratio = res->angle = NAN;
-    const struct model *m = s->model;
-    const struct bond_list *bl = m->bl;
+    const struct bond_list *bl = pd_bonds(s->model);
     struct particles *p = s->p;
     const bool hole = isnan(c->alpha);
-    const double a = hole ? 0.0 : c->alpha * PD_PI / 180.0;
+    const double a = hole ? 0.0 : c->alpha * SPALL_PI / 180.0;
     const double tip[2][2] = {{LAM_XC - LAM_R * cos(a), LAM_YC - LAM_R * sin(a)},
                               {LAM_XC + LAM_R * cos(a), LAM_YC + LAM_R * sin(a)}};
     /* BC 1 = the moving right grip (deck order) */
@@ -192,8 +191,11 @@ static int lam_run(const struct lam_spec *c, struct lam_result *res, struct spal
     double *dm = malloc((p->n ? p->n : 1) * sizeof *dm);
     if (!rc && !dm)
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for damage");
+    const struct field_desc *fdm = field_registry_find(s->fields, "damage_matrix");
+    if (!rc && !fdm)
+        rc = spall_error_set(err, SPALL_ERR_INTERNAL, "the lamina has no damage_matrix field");
     if (!rc && !isnan(res->t_start)) {
-        pd_validation_damage_kind(s->model, p->n, dm, 2);
+        field_gather_f64(fdm, p->n, dm);
         /* crack direction: pairs of matrix-damaged particles 0.75-2 mm apart
          * (beyond the lattice-neighbour distance, so every direction is
          * possible; two parallel cracks farther apart do not pair), outside
@@ -225,7 +227,7 @@ static int lam_run(const struct lam_spec *c, struct lam_result *res, struct spal
                 double ddy = p->x0[1][idx[w]] - p->x0[1][idx[u]], d = hypot(ddx, ddy);
                 if (d < 0.75e-3 || d > 2.0e-3)
                     continue;
-                double f = fold_deg(atan2(ddy, ddx) * 180.0 / PD_PI - c->theta);
+                double f = fold_deg(atan2(ddy, ddx) * 180.0 / SPALL_PI - c->theta);
                 int bin = (int)(f / 5.0);
                 bin = bin > 17 ? 17 : bin;
                 hist[bin] += 1.0;
@@ -234,7 +236,7 @@ static int lam_run(const struct lam_spec *c, struct lam_result *res, struct spal
         /* median fiber-normal offset of the crack particles from the centre */
         double *ov = malloc((ni ? ni : 1) * sizeof *ov);
         if (ov) {
-            double tn = c->theta * PD_PI / 180.0;
+            double tn = c->theta * SPALL_PI / 180.0;
             for (size_t u = 0; u < ni; u++) {
                 double x = p->x0[0][idx[u]] - LAM_XC, y = p->x0[1][idx[u]] - LAM_YC;
                 double v = fabs(-sin(tn) * x + cos(tn) * y);

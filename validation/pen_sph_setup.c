@@ -12,9 +12,10 @@
  * only).  The gelatin deck (d = 7.38 um) is the reference geometry, so the
  * builder at d = 7.38 um, dx1 = 0.75 um, depth 1 writes the gelatin deck.
  */
-#include "validation/pen_sph_setup.h"
 #include "validation/lattice_cases.h"
+#include "validation/pen_sph_setup.h"
 
+#include "core/mathconst.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -125,7 +126,7 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
         r[k] = round_up(setup_r_ref[k] * scale * (k >= 2 ? g->width : 1.0), q);
         z[k] = round_up(setup_z_ref[k] * scale * g->depth, q);
     }
-    const double R = 0.5 * s->d, M = s->rho_p * 3.141592653589793 * s->d * s->d * s->d / 6.0;
+    const double R = 0.5 * s->d, M = s->rho_p * SPALL_PI * s->d * s->d * s->d / 6.0;
     const double cav = g->cavity_depth > 0.0 ? g->cavity_depth : SETUP_CAVITY_REF * scale;
     size_t off = 0;
     /* fail <= 0: no failure (the RADIOSS LAW3 reading of seed 004 sec. 4.3.2,

@@ -36,7 +36,7 @@ double sph_plate_theory_period(enum sph_plate_clamp clamp)
     const double k = (clamp == SPH_PLATE_FREE ? KL_FREE : KL_CANT) / PLATE_L;
     /* plane strain: D = E H^3 / (12 (1 - nu^2)) per unit width, m = rho H */
     double w = sqrt(E * PLATE_H * PLATE_H * k * k * k * k / (12.0 * rho * (1.0 - nu * nu)));
-    return 2.0 * SPH_PI / w;
+    return 2.0 * SPALL_PI / w;
 }
 
 /* First-mode shape at x (0 <= x <= L). */

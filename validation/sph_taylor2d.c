@@ -45,11 +45,11 @@
 #include "validation/sph_cases.h"
 #include "validation/validation.h"
 
+#include "core/fields.h"
 #include "core/particles.h"
 #include "core/profile.h"
 #include "core/sim.h"
 #include "models/model.h"
-#include "models/sph/sph_internal.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -100,7 +100,6 @@ int sph_taylor2d_run(int n, int axisymmetric, const char *av, double t1, double 
     if (rc)
         return rc;
     const struct particles *p = s->p;
-    const struct model *m = s->model;
     sim_update_energy(s);
     const double e0 = s->energy.kinetic;
     double t0 = omp_get_wtime();
@@ -113,13 +112,19 @@ int sph_taylor2d_run(int n, int axisymmetric, const char *av, double t1, double 
                 ymax = fmax(ymax, p->x[1][i]);
                 ymin = fmin(ymin, p->x[1][i]);
             }
+            /* the model's plastic strain, read in place from the field registry */
+            const double *ep = field_stored_data(s->fields, "plastic_strain", 0);
+            if (!ep) {
+                rc = spall_error_set(err, SPALL_ERR_INTERNAL, "sph_taylor2d: no plastic_strain field");
+                break;
+            }
             for (size_t i = 0; i < p->n; i++) {
                 if (p->x0[1][i] < 1.5 * dx)
                     rmax = fmax(rmax, p->x[0][i]);
                 /* the undeformed part: particles of the axis column that
                  * stayed below 0.2 % plastic strain (the engineering offset
                  * yield); X runs from the lowest one to the end */
-                if (p->x0[0][i] < dx && m->ep[i] < 2e-3)
+                if (p->x0[0][i] < dx && ep[i] < 2e-3)
                     ylow = fmin(ylow, p->x[1][i]);
             }
             out->len[stage] = ymax - ymin + dx;

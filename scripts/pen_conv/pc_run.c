@@ -5,10 +5,11 @@
  *       gap (in m) tend (s) width out (csv path) */
 #include "validation/pen_sph_setup.h"
 #include "validation/lattice_cases.h"
-#include "models/sph/sph_internal.h"
+#include "core/fields.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 #include <math.h>
 #include <omp.h>
@@ -131,17 +132,26 @@ int main(int argc, char **argv)
     /* partition of the energy among the gel */
     const struct model *m = sim->model;
     const struct particles *p = sim->p;
+    /* the model's per-particle state from the field registry */
+    const double *e = field_stored_data(sim->fields, "internal_energy", 0);
+    const double *rho = field_stored_data(sim->fields, "density", 0);
+    const double *P = field_stored_data(sim->fields, "pressure", 0);
+    const double *ep = field_stored_data(sim->fields, "plastic_strain", 0);
+    const uint8_t *failed = field_stored_data(sim->fields, "failed", 0);
+    const double *S[6];
+    for (int c = 0; c < 6; c++)
+        S[c] = field_stored_data(sim->fields, "deviatoric_stress", c);
     double Ei = 0, Ek = 0, Wp = 0, Edev = 0, Evol = 0;
     for (size_t i = 0; i < p->n_owned; i++) {
-        const struct sph_material *mt = &m->mat[p->material[i]];
-        Ei += p->mass[i] * m->e[i];
+        const struct sph_material *mt = sph_material_get(m, p->material[i]);
+        Ei += p->mass[i] * e[i];
         Ek += 0.5 * p->mass[i] * (p->v[0][i] * p->v[0][i] + p->v[1][i] * p->v[1][i]);
-        Wp += m->wp[i];
+        Wp += sph_plastic_work(m, i);
         double S2 = 0;
-        for (int c = 0; c < 3; c++) S2 += m->S[c][i] * m->S[c][i];
-        S2 += 2 * m->S[3][i] * m->S[3][i];
-        Edev += p->mass[i] / m->rho[i] * S2 / (4 * mt->G);
-        Evol += p->mass[i] / m->rho[i] * m->P[i] * m->P[i] / (2 * mt->K);
+        for (int c = 0; c < 3; c++) S2 += S[c][i] * S[c][i];
+        S2 += 2 * S[3][i] * S[3][i];
+        Edev += p->mass[i] / rho[i] * S2 / (4 * mt->G);
+        Evol += p->mass[i] / rho[i] * P[i] * P[i] / (2 * mt->K);
     }
     /* plastic zone at rest (pen-conv3): the gelatin deck has no failure, so
      * the zone where the gel yielded (ep > 1 %) stands in for a "failed
@@ -150,17 +160,17 @@ int main(int argc, char **argv)
     double vpl = 0, rpl = 0, d1end = vlat_history(sim, "cavity_D1 [m]");
     size_t npl = 0;
     for (size_t i = 0; i < p->n_owned; i++) {
-        if (!(m->ep[i] > 0.01)) continue;
+        if (!(ep[i] > 0.01)) continue;
         npl++;
-        vpl += p->mass[i] / m->rho[i];
+        vpl += p->mass[i] / rho[i];
         if (fabs(p->x[1][i] + 15e-6) < 0.5e-6 && p->x[0][i] > rpl) rpl = p->x[0][i];
     }
     size_t nfail = 0;
     double vfail = 0;
     for (size_t i = 0; i < p->n_owned; i++)
-        if (m->failed && m->failed[i]) {
+        if (failed && failed[i]) {
             nfail++;
-            vfail += p->mass[i] / m->rho[i];
+            vfail += p->mass[i] / rho[i];
         }
     printf("plastic(ep>0.01): n=%zu vol=%.4g r_reach(15um)=%.2f um D1end/2=%.2f um width=%.2f um | "
            "failed: n=%zu vol=%.4g\n",

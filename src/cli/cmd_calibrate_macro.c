@@ -5,6 +5,7 @@
  */
 #include "cli/cli.h"
 
+#include "core/mathconst.h"
 #include "models/macroparticle/macro_calib.h"
 #include "spall/error.h"
 
@@ -152,6 +153,6 @@ int cli_calibrate_macroparticle(int argc, char **argv)
     printf("  model.calibration: lattice scales D by %.6g (D = %.6g J) so that E_[100] = Eq. 15\n",
            c.E / c.E_fcc100, c.D * c.E / c.E_fcc100);
     printf("  omega_D = k_B theta_D / hbar = %.6g 1/s; default gamma = mu = m (pi/6) omega_D "
-           "= %.6g kg/s (times zeta_CG)\n", wd, c.atom_mass * 3.14159265358979 / 6.0 * wd);
+           "= %.6g kg/s (times zeta_CG)\n", wd, c.atom_mass * SPALL_PI / 6.0 * wd);
     return 0;
 }

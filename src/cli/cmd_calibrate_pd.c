@@ -8,11 +8,12 @@
 #include "cli/cli.h"
 
 #include "core/bond_list.h"
+#include "core/mathconst.h"
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "models/model.h"
-#include "models/peridynamics/pd_internal.h"
+#include "models/peridynamics/pd.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -126,7 +127,8 @@ int cli_calibrate_peridynamics(int argc, char **argv)
     struct model *m = s->model;
     size_t i = pd_patch_particle(m, s, 0);
     double C[3][3], S[3][3];
-    double th = lamina ? m->mat[0].fiber_angle : 0.0;
+    const struct pd_material *mt = pd_material_get(m, 0);
+    double th = lamina ? mt->fiber_angle : 0.0;
     pd_patch_stiffness(m, s, i, th, C);
     if (pd_invert3(C, S)) {
         fprintf(stderr, "spall calibrate peridynamics: singular patch stiffness\n");
@@ -134,7 +136,7 @@ int cli_calibrate_peridynamics(int argc, char **argv)
         return 1;
     }
     double a[4] = {1.0 / S[0][0], 1.0 / S[1][1], 1.0 / S[2][2], -S[0][1] / S[0][0]};
-    double nu_fix = m->mat[0].nu;
+    double nu_fix = mt->nu;
     double tg[4];
     if (lamina) {
         tg[0] = E1, tg[1] = E2, tg[2] = G12, tg[3] = nu12;
@@ -143,7 +145,7 @@ int cli_calibrate_peridynamics(int argc, char **argv)
     }
     static const char *const names[4] = {"E1", "E2", "G12", "nu12"};
     printf("patch test (particle %zu, %zu bonds, material axes at %g deg):\n", i,
-           m->bl->offset[i + 1] - m->bl->offset[i], th * 180.0 / PD_PI);
+           pd_bonds(m)->offset[i + 1] - pd_bonds(m)->offset[i], th * 180.0 / SPALL_PI);
     for (int k = 0; k < 4; k++)
         printf("  %-5s achieved %-12.6g target %-12.6g (%+.2f %%)\n", names[k], a[k], tg[k],
                100.0 * (a[k] / tg[k] - 1.0));

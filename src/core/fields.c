@@ -103,6 +103,14 @@ const struct field_desc *field_registry_find(const struct field_registry *reg, c
     return NULL;
 }
 
+void *field_stored_data(const struct field_registry *reg, const char *name, int c)
+{
+    const struct field_desc *f = field_registry_find(reg, name);
+    if (!f || f->compute || c < 0 || c >= f->ncomp || !f->comp[c])
+        return NULL;
+    return *f->comp[c];
+}
+
 unsigned field_parity_planes(enum field_parity par, int c)
 {
     /* symmetric storage xx yy zz xy yz xz: the two indices of component c */

@@ -45,6 +45,13 @@ enum field_parity {
                           planes a and b when a != b */
 };
 
+/** Components of a symmetric tensor field (stress, strain) in @p dim
+ *  dimensions: 1 (xx), 3 in 2D, 6 in 3D (the FIELD_SYMTENSOR order). */
+static inline int field_symtensor_ncomp(int dim)
+{
+    return dim == 1 ? 1 : dim == 2 ? 3 : 6;
+}
+
 /** Fills out[i*ncomp + c] for i in [0, n). */
 typedef void (*field_compute_fn)(const void *ctx, size_t n, double *out);
 
@@ -91,6 +98,13 @@ int field_registry_add_computed(struct field_registry *reg, const char *name, co
 
 /** Look a field up by name; NULL if absent. */
 const struct field_desc *field_registry_find(const struct field_registry *reg, const char *name);
+
+/** The owner's array of component @p c of the stored field @p name (cast it
+ *  to the field's type: double * for FIELD_F64, uint8_t * for FIELD_U8, ...),
+ *  for callers that read or set per-particle state in place; NULL when the
+ *  field is absent or computed, or @p c out of range.  Valid until the owner
+ *  reallocates (look it up again after particles are added). */
+void *field_stored_data(const struct field_registry *reg, const char *name, int c);
 
 /** Copy the values of particles [0, n) into @p out as doubles, interleaved
  *  (out[i*ncomp + c]); works for stored and computed fields of any type. */

@@ -1,17 +1,21 @@
 /**
  * @file integrator.c
- * @brief Velocity-Verlet time step (equivalent to the leapfrog of seed 000
- *        Eqs. 22-24: the half-step velocities are the leapfrog velocities),
- *        boundary conditions, gravity, damping and the energy account.
+ * @brief The time step: velocity Verlet (equivalent to the leapfrog of seed
+ *        000 Eqs. 22-24: the half-step velocities are the leapfrog
+ *        velocities), the predictor-corrector and the state leapfrog;
+ *        boundary conditions, gravity, damping, the energy account and the
+ *        instability checks.
  *
- * One step, t -> t + dt:
+ * One step, t -> t + dt (the model hooks and where they are called:
+ * models/model.h):
  *   1. v(t+dt/2) = v(t) + dt/2 f(t)/m; prescribed components overwritten
- *   2. x(t+dt)   = x(t) + dt v(t+dt/2)
+ *   2. x(t+dt)   = x(t) + dt v(t+dt/2) (+ dt u, the model's drift velocity)
  *   3. f(t+dt)   = model forces + loads + gravity + damping(v(t+dt/2))
  *   4. v(t+dt)   = v(t+dt/2) + dt/2 f(t+dt)/m; prescribed components set and
  *      the force that took (the reaction) recorded per BC
- *   5. model end_step (bond breaking), NaN check.
- * The integrator knows nothing of the model; it sees only f.
+ *   5. model end_step (bond breaking), adaptive dt, NaN and energy checks.
+ * This file alone moves x, changes v, t, dt and the damping coefficient;
+ * the model sees only its hooks.
  * sim_reflect_particle mirrors one particle through the field registry's
  * parities plus the integrator's own velocity copies (v_half).
  */
@@ -183,6 +187,24 @@ static void drift(struct sim *s, double dt)
     }
 }
 
+/* The model's drift velocity u (XSPH): x += dt u after x += dt v (two
+ * roundings, as when the model moved x itself), except where a BC
+ * prescribes the velocity (s->no_drift_velocity, sim_prepare). */
+static void drift_extra(struct sim *s, double dt)
+{
+    const double *u[3] = {NULL, NULL, NULL};
+    if (!s->ops->drift_velocity || !s->ops->drift_velocity(s->model, s, u))
+        return;
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const uint8_t *fixed = s->no_drift_velocity;
+#pragma omp parallel for schedule(static) if (n > SPALL_OMP_MIN_PARTICLES)
+    for (size_t i = 0; i < n; i++)
+        if (!fixed[i])
+            for (int d = 0; d < s->dim; d++)
+                p->x[d][i] += dt * u[d][i];
+}
+
 /* Work of the loads over the drift: sum over loaded particles of F . dx. */
 static void account_load_work(struct sim *s, double dt)
 {
@@ -207,12 +229,31 @@ static void account_load_work(struct sim *s, double dt)
     }
 }
 
-static int compute_all_forces(struct sim *s, struct spall_error *err)
+/* Axisymmetric runs (x = r): a particle that crossed the axis goes on as
+ * the mirror image of its ring (the same ring), r -> -r with every odd
+ * quantity (sim_reflect_particle), before the force call sees it. */
+static void reflect_axis(struct sim *s)
+{
+    const struct particles *p = s->p;
+    for (size_t i = 0; i < p->n_owned; i++)
+        if (p->x[0][i] < 0.0)
+            sim_reflect_particle(s, i, 0);
+}
+
+/* All forces at the current state.  @p state_dt > 0: the leapfrog's force
+ * call, which also advances the model's state by state_dt (compute_forces_kick). */
+static int compute_all_forces(struct sim *s, double state_dt, struct spall_error *err)
 {
     particles_zero_forces(s->p);
-    int rc = s->ops->compute_forces(s->model, s, err);
+    if (s->axisymmetric)
+        reflect_axis(s);
+    int rc = state_dt > 0.0 ? s->ops->compute_forces_kick(s->model, s, state_dt, err)
+                            : s->ops->compute_forces(s->model, s, err);
     if (rc)
         return rc;
+    double c;
+    if (s->ops->damping && s->ops->damping(s->model, s, &c))
+        s->damping = c; /* adaptive dynamic relaxation */
     rigid_contact_forces(s); /* impactor contact (issue 3) */
     if ((rc = particle_contact_forces(s, err))) /* body-body contact (issue 3) */
         return rc;
@@ -249,7 +290,7 @@ void sim_update_energy(struct sim *s)
 
 int sim_initial_forces(struct sim *s, struct spall_error *err)
 {
-    int rc = compute_all_forces(s, err);
+    int rc = compute_all_forces(s, 0.0, err);
     if (rc)
         return rc;
     impose_velocities(s, 0.0, 0.5 * s->dt, 1);
@@ -266,15 +307,18 @@ int sim_initial_forces(struct sim *s, struct spall_error *err)
 
 /* Find the first particle with a non-finite velocity (a non-finite position
  * makes the forces and hence the velocity non-finite in the same step). */
-static int check_finite(const struct sim *s, size_t *bad)
+static int check_finite(const struct sim *s, size_t *bad, double *kinetic)
 {
     const struct particles *p = s->p;
+    const double *m = p->mass;
+    *kinetic = 0.0;
     for (int d = 0; d < s->dim; d++) {
         const double *v = p->v[d];
         double acc = 0.0;
         for (size_t i = 0; i < p->n_owned; i++)
-            acc += v[i] * 0.0; /* a NaN or Inf turns acc into NaN */
-        if (acc != 0.0) {
+            acc += m[i] * v[i] * v[i]; /* a NaN or Inf in v makes acc non-finite */
+        *kinetic += 0.5 * acc;
+        if (!isfinite(acc)) {
             for (size_t i = 0; i < p->n_owned; i++)
                 if (!isfinite(v[i]) || !isfinite(p->x[d][i])) {
                     *bad = i;
@@ -305,6 +349,61 @@ static int unstable_or(const struct sim *s, int rc, struct spall_error *err)
     return rc;
 }
 
+/* Energy blow-up: mechanical energy far above everything ever put in. */
+static int energy_blew_up(const struct sim *s, double *ratio)
+{
+    double input = fabs(s->energy.initial_total) + fabs(s->energy.external);
+    double now = s->energy.kinetic + fabs(s->energy.strain);
+    if (!(input > 0.0)) {
+        *ratio = 0.0;
+        return 0;
+    }
+    *ratio = now / input;
+    return !isfinite(now) || *ratio > s->energy_blowup;
+}
+
+static size_t fastest_particle(const struct sim *s)
+{
+    size_t best = 0;
+    double vmax = -1.0;
+    for (size_t i = 0; i < s->p->n_owned; i++) {
+        double v2 = 0;
+        for (int d = 0; d < s->dim; d++)
+            v2 += s->p->v[d][i] * s->p->v[d][i];
+        if (!(v2 <= vmax)) {
+            vmax = v2;
+            best = i;
+            if (isnan(v2))
+                break;
+        }
+    }
+    return best;
+}
+
+/* The energy blow-up check.  The full account (kinetic + |strain|) costs
+ * about one force call, so it runs every energy_check_every steps and at
+ * the last (0: never); every step the kinetic energy alone (from the NaN
+ * pass, nearly free) screens: kinetic > limit x input is a blow-up by the
+ * same criterion (the mechanical energy is at least the kinetic). */
+static int check_energy(struct sim *s, double kinetic, struct spall_error *err)
+{
+    const long every = s->energy_check_every;
+    const double input = fabs(s->energy.initial_total) + fabs(s->energy.external);
+    const bool due = every > 0 && (s->step % every == 0 || sim_done(s));
+    if (!due && !(input > 0.0 && !(kinetic <= s->energy_blowup * input)))
+        return SPALL_OK;
+    sim_update_energy(s);
+    double ratio = 0.0;
+    if (!energy_blew_up(s, &ratio))
+        return SPALL_OK;
+    size_t i = fastest_particle(s);
+    return spall_error_set(err, SPALL_ERR_UNSTABLE,
+                           "run went unstable at step %ld, t = %.6g s: mechanical energy "
+                           "is %.3g times the energy put in (limit run.energy_blowup = "
+                           "%g); fastest particle %zu (id %lld)",
+                           s->step, s->t, ratio, s->energy_blowup, i, (long long)s->p->gid[i]);
+}
+
 int sim_step(struct sim *s, struct spall_error *err)
 {
     const double dt = s->dt;
@@ -314,6 +413,7 @@ int sim_step(struct sim *s, struct spall_error *err)
     rigid_kick(s, half, s->t + half);
     impose_velocities(s, s->t + half, half, 0);
     drift(s, dt);
+    drift_extra(s, dt);
     rigid_drift(s, dt);
     account_body_work(s, dt);
     account_load_work(s, dt);
@@ -327,9 +427,11 @@ int sim_step(struct sim *s, struct spall_error *err)
         kick(s, half);
         impose_velocities_silent(s, s->t);
     }
-    if (s->ops->advance_state && (rc = s->ops->advance_state(s->model, s, dt, 0, err)))
+    if (pc && s->ops->advance_state &&
+        (rc = s->ops->advance_state(s->model, s, dt, MODEL_STAGE_PREDICT, err)))
         return unstable_or(s, rc, err);
-    if ((rc = compute_all_forces(s, err)))
+    const double state_dt = s->integrator == INTEGRATOR_LEAPFROG ? dt : 0.0;
+    if ((rc = compute_all_forces(s, state_dt, err)))
         return unstable_or(s, rc, err);
     if (pc)
         for (int d = 0; d < s->dim; d++)
@@ -338,7 +440,8 @@ int sim_step(struct sim *s, struct spall_error *err)
     rigid_kick(s, half, s->t);
     impose_velocities(s, s->t, half, 1);
     rigid_no_slip(s, dt);
-    if (s->ops->advance_state && (rc = s->ops->advance_state(s->model, s, dt, 1, err)))
+    if (pc && s->ops->advance_state &&
+        (rc = s->ops->advance_state(s->model, s, dt, MODEL_STAGE_CORRECT, err)))
         return unstable_or(s, rc, err);
     rc = s->ops->end_step(s->model, s, err);
     if (rc)
@@ -354,9 +457,10 @@ int sim_step(struct sim *s, struct spall_error *err)
             s->dt = dt_new;
     }
     size_t bad = 0;
-    if (check_finite(s, &bad))
+    double kinetic = 0.0;
+    if (check_finite(s, &bad, &kinetic))
         return unstable_error(s, bad, err);
-    return SPALL_OK;
+    return check_energy(s, kinetic, err);
 }
 
 bool sim_done(const struct sim *s)

@@ -27,8 +27,10 @@
 /** Largest lattice index from the origin (the (long) conversion must be defined). */
 #define LATTICE_MAX_INDEX 1.0e15
 
+/* The deck's names of the lattice kinds, in the order of enum lattice_kind. */
 static const char *const lattice_names[] = {"chain", "triangular", "square", "sc", "fcc",
-                                            "triple_honeycomb", "rings", "shells"};
+                                            "triple_honeycomb", "rings", "shells", NULL};
+#define N_LATTICE_KINDS ((int)(sizeof lattice_names / sizeof lattice_names[0]) - 1)
 
 /** The triple honeycomb has the triangular lattice's sites and shells. */
 static enum lattice_kind geometry_kind(enum lattice_kind kind)
@@ -40,7 +42,7 @@ int lattice_kind_from_name(const char *name)
 {
     if (!name)
         return -1;
-    for (int k = 0; k < (int)(sizeof lattice_names / sizeof lattice_names[0]); k++)
+    for (int k = 0; k < N_LATTICE_KINDS; k++)
         if (strcmp(name, lattice_names[k]) == 0)
             return k;
     return -1;
@@ -48,9 +50,14 @@ int lattice_kind_from_name(const char *name)
 
 const char *lattice_kind_name(enum lattice_kind kind)
 {
-    if ((int)kind < 0 || (int)kind >= (int)(sizeof lattice_names / sizeof lattice_names[0]))
+    if ((int)kind < 0 || (int)kind >= N_LATTICE_KINDS)
         return "unknown";
     return lattice_names[kind];
+}
+
+const char *const *lattice_kind_names(void)
+{
+    return lattice_names;
 }
 
 int lattice_kind_dim(enum lattice_kind kind)

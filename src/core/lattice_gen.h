@@ -51,6 +51,9 @@ struct lattice_spec {
  *  returns -1 if unknown. */
 int lattice_kind_from_name(const char *name);
 const char *lattice_kind_name(enum lattice_kind kind);
+/** NULL-terminated names of every lattice kind, in the order of enum
+ *  lattice_kind (the deck's lattice.type values). */
+const char *const *lattice_kind_names(void);
 /** Spatial dimension of a lattice kind (1, 2 or 3). */
 int lattice_kind_dim(enum lattice_kind kind);
 

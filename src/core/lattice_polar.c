@@ -31,12 +31,12 @@
 
 #include "core/geometry.h"
 #include "core/lattice_gen.h"
+#include "core/mathconst.h"
 #include "core/particles.h"
 #include "spall/error.h"
 
 #include <math.h>
 
-#define POLAR_PI 3.14159265358979323846
 /** The golden angle pi (3 - sqrt 5) [rad]: successive spiral sites never line up. */
 #define POLAR_GOLDEN_ANGLE 2.39996322972865332
 
@@ -50,10 +50,10 @@ static long layer_sites(enum lattice_kind kind, long k)
 {
     double m = (double)k + 0.5;
     if (kind == LATTICE_RINGS) {
-        long n = 2 * lround(POLAR_PI * m);
+        long n = 2 * lround(SPALL_PI * m);
         return n < 4 ? 4 : n;
     }
-    long n = lround(4.0 * POLAR_PI * m * m + POLAR_PI / 3.0);
+    long n = lround(4.0 * SPALL_PI * m * m + SPALL_PI / 3.0);
     return n < 1 ? 1 : n;
 }
 
@@ -62,7 +62,7 @@ static void layer_site(const struct lattice_spec *s, long k, long j, long n, dou
 {
     double rho = ((double)k + 0.5) * s->spacing;
     if (s->kind == LATTICE_RINGS) {
-        double phi = s->angle + ((double)j + 0.5) * 2.0 * POLAR_PI / (double)n;
+        double phi = s->angle + ((double)j + 0.5) * 2.0 * SPALL_PI / (double)n;
         rel[0] = rho * sin(phi);
         rel[1] = rho * cos(phi);
         rel[2] = 0.0;
@@ -86,8 +86,8 @@ double lattice_polar_site_volume(const struct lattice_spec *s, const double pos[
     long k = (long)floor(sqrt(r2) / dx); /* sites sit mid-layer: rho = (k + 1/2) dx */
     double rho = ((double)k + 0.5) * dx, n = (double)layer_sites(s->kind, k);
     if (s->kind == LATTICE_RINGS)
-        return 2.0 * POLAR_PI * rho * dx / n * thickness;
-    return (4.0 * POLAR_PI * rho * rho * dx + POLAR_PI * dx * dx * dx / 3.0) / n;
+        return 2.0 * SPALL_PI * rho * dx / n * thickness;
+    return (4.0 * SPALL_PI * rho * rho * dx + SPALL_PI * dx * dx * dx / 3.0) / n;
 }
 
 int lattice_polar_fill(struct particles *p, const struct lattice_spec *s, const struct geom *region,
@@ -110,7 +110,7 @@ int lattice_polar_fill(struct particles *p, const struct lattice_spec *s, const 
         k0 = 0;
     /* candidates: the disc's or ball's area / volume in dx^2 / dx^3 */
     double K = kmax + 1.0;
-    double candidates = ldim == 2 ? POLAR_PI * K * K : 4.0 / 3.0 * POLAR_PI * K * K * K;
+    double candidates = ldim == 2 ? SPALL_PI * K * K : 4.0 / 3.0 * SPALL_PI * K * K * K;
     if (!(candidates < LATTICE_MAX_CANDIDATES))
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "region reaches %.3g %s from the lattice origin at spacing %g m; "

@@ -60,6 +60,7 @@ void sim_destroy(struct sim **sp)
     free(s->precracks);
     for (int d = 0; d < 3; d++)
         free(s->v_half[d]);
+    free(s->no_drift_velocity);
     free(s->materials);
     rigid_set_destroy(&s->rigid);
     particle_contact_destroy(&s->pcontact);
@@ -199,7 +200,15 @@ int sim_set_model(struct sim *s, const char *name, const struct deck_node *param
                                name, list);
     }
     s->ops = ops;
-    return ops->create(&s->model, s, params, err);
+    int rc = ops->create(&s->model, s, params, err);
+    if (rc || !ops->time_scheme)
+        return rc;
+    struct time_scheme ts = {s->integrator, s->adaptive_dt, s->dt_factor};
+    ops->time_scheme(s->model, &ts);
+    s->integrator = ts.integrator;
+    s->adaptive_dt = ts.adaptive_dt;
+    s->dt_factor = ts.dt_factor;
+    return SPALL_OK;
 }
 
 /* ---- computed core fields ------------------------------------------------ */
@@ -354,6 +363,25 @@ int sim_prepare(struct sim *s, struct spall_error *err)
             if (!s->v_half[d])
                 return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (integrator)");
         }
+    if (s->integrator == INTEGRATOR_LEAPFROG && !s->ops->compute_forces_kick)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "model '%s' has no state to integrate by the leapfrog",
+                               s->ops->name);
+    if (s->ops->drift_velocity) {
+        /* a prescribed velocity is the particle's whole motion: the model's
+         * drift velocity (XSPH) does not move it */
+        s->no_drift_velocity = calloc(s->p->cap ? s->p->cap : 1, 1);
+        if (!s->no_drift_velocity)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (integrator)");
+        for (size_t k = 0; k < s->n_bcs; k++) {
+            const struct bc *b = &s->bcs[k];
+            if (b->kind != BC_FIXED && b->kind != BC_VELOCITY)
+                continue;
+            const struct group *g = &s->groups[b->group];
+            for (size_t q = 0; q < g->n; q++)
+                s->no_drift_velocity[g->idx[q]] = 1;
+        }
+    }
     s->t = 0.0;
     s->step = 0;
     return sim_initial_forces(s, err);

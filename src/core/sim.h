@@ -76,12 +76,24 @@ struct energy_account {
     double balance;      /**< kinetic + strain + dissipated + damping - external - initial */
 };
 
-/** Time integrators (both second order, same positions):
+/** Time integrators (all second order, same positions):
  *  verlet: forces of step n+1 see the half-step velocities;
  *  predictor_corrector: they see the predicted v_n + dt a_n (seed 004
  *  Eqs. 3.35-3.37), which velocity-dependent forces (artificial viscosity)
- *  expect. */
-enum integrator_kind { INTEGRATOR_VERLET, INTEGRATOR_PREDICTOR_CORRECTOR };
+ *  expect; the model's state is predicted and corrected around the force
+ *  call (model_ops.advance_state);
+ *  leapfrog: velocity Verlet with the model's state staggered on the
+ *  velocities, advanced by dt inside the force call of each step
+ *  (model_ops.compute_forces_kick; sph_leapfrog.c). */
+enum integrator_kind { INTEGRATOR_VERLET, INTEGRATOR_PREDICTOR_CORRECTOR, INTEGRATOR_LEAPFROG };
+
+/** The time integration a model asks for (model_ops.time_scheme); the
+ *  engine's default is velocity Verlet, fixed dt, dt_factor 0.5. */
+struct time_scheme {
+    enum integrator_kind integrator;
+    bool adaptive_dt; /**< dt = dt_factor * stable_dt every step */
+    double dt_factor; /**< default factor on the stable step (run.dt_factor wins) */
+};
 
 struct sim {
     int dim;
@@ -123,9 +135,14 @@ struct sim {
     long n_steps;
 
     double energy_blowup; /**< stop if total energy exceeds this factor x reference */
+    long energy_check_every; /**< sim_step checks the full energy account for a
+                                  blow-up every this many steps and at the last (0:
+                                  never; the kinetic energy alone is checked every
+                                  step; the run driver: its history interval) */
     struct energy_account energy;
     double *v_half[3];    /**< predictor-corrector scratch (owned) */
-    int threads;          /**< OpenMP threads (0 = library default) */
+    uint8_t *no_drift_velocity; /**< 1: a BC prescribes the particle's velocity, the
+                                     model's drift velocity does not move it (owned) */
     uint64_t seed;        /**< random seed for stochastic features */
     struct rigid_set *rigid; /**< rigid impactors / supports (core/rigid.h), may be NULL */
     struct particle_contact *pcontact; /**< particle-particle contact (core/contact_particles.h), may be NULL */
@@ -147,7 +164,8 @@ int sim_add_bc(struct sim *s, const struct bc *bc, struct spall_error *err);
 int sim_add_precrack(struct sim *s, const struct precrack *c, struct spall_error *err);
 int sim_add_probe(struct sim *s, const char *name, const double pos[3], struct spall_error *err);
 
-/** Select a model by name and create it with the deck's params (may be NULL). */
+/** Select a model by name and create it with the deck's params (may be NULL);
+ *  then take the model's time scheme (integrator, adaptive dt, dt factor). */
 int sim_set_model(struct sim *s, const char *name, const struct deck_node *params,
                   struct spall_error *err);
 
@@ -160,8 +178,12 @@ int sim_prepare(struct sim *s, struct spall_error *err);
  *  the initial energy account. */
 int sim_initial_forces(struct sim *s, struct spall_error *err);
 
-/** Advance one step (velocity Verlet). Detects NaN / energy blow-up and
- *  returns SPALL_ERR_UNSTABLE naming step, time and particle. */
+/** Advance one step with s->integrator (the sequence is in models/model.h).
+ *  Detects non-finite positions or velocities and an energy blow-up
+ *  (mechanical energy above energy_blowup times the energy put in: the
+ *  kinetic part every step, the full account every energy_check_every
+ *  steps and at the last, after which the account is current) and returns
+ *  SPALL_ERR_UNSTABLE naming step, time and particle. */
 int sim_step(struct sim *s, struct spall_error *err);
 
 /** True when the run has reached its end (steps, or end_time with an

@@ -5,6 +5,7 @@
  *        pre-cracks, loads, probes, run, output); every mapping is checked
  *        for unknown keys; every error names file:line:column.
  */
+#include "core/mathconst.h"
 #include "io/deck_build.h"
 #include "io/deck_shapes.h"
 
@@ -27,7 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define DEG_TO_RAD (3.14159265358979323846 / 180.0)
+#define DEG_TO_RAD (SPALL_PI / 180.0)
 
 static const char *const top_keys[] = {"title", "description", "model", "materials", "geometry",
                                        "lattice", "body", "bodies", "regions", "precracks", "groups",
@@ -84,10 +85,6 @@ static int select_particles(const struct sim *s, const struct geom *g, size_t **
 
 /* ---- sections ------------------------------------------------------------ */
 
-/* The deck's lattice types, in the order of enum lattice_kind. */
-static const char *const lattice_type_names[] = {"chain", "triangular", "square", "sc", "fcc",
-                                                 "triple_honeycomb", "rings", "shells", NULL};
-
 static int parse_lattice(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
 {
     static const char *const keys[] = {"type", "spacing", "origin", "angle", "thickness", NULL};
@@ -99,14 +96,14 @@ static int parse_lattice(struct build_ctx *c, const struct deck_node *root, stru
         return rc;
     int kind = 0;
     double spacing = 0, origin[3] = {0, 0, 0}, angle_deg = 0, thickness = 0;
-    if ((rc = deck_enum(lat, "type", true, lattice_type_names, &kind, err)) ||
+    if ((rc = deck_enum(lat, "type", true, lattice_kind_names(), &kind, err)) ||
         (rc = deck_double_pos(lat, "spacing", true, &spacing, err)) ||
         (rc = deck_vector(lat, "origin", false, 1, 3, origin, err)) ||
         (rc = deck_double(lat, "angle", false, -360.0, 360.0, &angle_deg, err)) ||
         (rc = deck_double_pos(lat, "thickness", false, &thickness, err)) ||
         (rc = deck_check_unused(lat, "lattice", keys, err)))
         return rc;
-    enum lattice_kind lk = (enum lattice_kind)lattice_kind_from_name(lattice_type_names[kind]);
+    enum lattice_kind lk = (enum lattice_kind)kind; /* deck_enum index = enum order */
     c->dim = lattice_kind_dim(lk);
     rc = sim_create(&c->sim, c->dim, err);
     if (rc)
@@ -274,7 +271,7 @@ static int parse_body(struct build_ctx *c, const struct deck_node *root, struct 
             int kind = (int)spec.kind;
             (void)deck_get(b, "lattice");
             if ((rc = deck_expect_map(ln, "a mapping with type, spacing, origin, angle", err)) ||
-                (rc = deck_enum(ln, "type", false, lattice_type_names, &kind, err)) ||
+                (rc = deck_enum(ln, "type", false, lattice_kind_names(), &kind, err)) ||
                 (rc = deck_double_pos(ln, "spacing", false, &spec.spacing, err)) ||
                 (rc = deck_vector(ln, "origin", false, 1, 3, spec.origin, err)) ||
                 (rc = deck_double(ln, "angle", false, -360.0, 360.0, &angle_deg, err)) ||
@@ -645,7 +642,6 @@ static int parse_run(struct build_ctx *c, const struct deck_node *root, struct r
         return deck_error(err, r, "run needs 'end_time' (s) or 'steps'");
     if (deck_peek(r, "end_time") && deck_peek(r, "steps"))
         return deck_error(err, r, "give either 'end_time' or 'steps' in run, not both");
-    s->threads = (int)threads;
     s->seed = (uint64_t)seed;
     ro->threads = (int)threads;
     return SPALL_OK;

@@ -3,6 +3,7 @@
  * @brief x-y line plots with cairo (see plot.h).  Drawing only: no file
  *        format parsing, no global state; every call builds its own surface.
  */
+#include "core/mathconst.h"
 #include "io/plot.h"
 
 #include "spall/error.h"
@@ -12,7 +13,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#define PLOT_PI 3.14159265358979323846
 
 size_t plot_nice_ticks(double lo, double hi, int target, double *ticks, size_t max)
 {
@@ -166,7 +166,7 @@ static void draw_axes(cairo_t *cr, const struct plot_spec *s, const struct plot_
     if (s->ylabel) {
         cairo_save(cr);
         cairo_translate(cr, 16, b->y0 + 0.5 * b->h);
-        cairo_rotate(cr, -PLOT_PI / 2.0);
+        cairo_rotate(cr, -SPALL_PI / 2.0);
         text_at(cr, 0, 0, s->ylabel, 0.5, 0.5);
         cairo_restore(cr);
     }
@@ -184,7 +184,7 @@ static void draw_series(cairo_t *cr, const struct plot_series *ser, const struct
         for (size_t i = 0; i < ser->n; i++) {
             if (!isfinite(ser->x[i]) || !isfinite(ser->y[i]))
                 continue;
-            cairo_arc(cr, px(b, ser->x[i]), py(b, ser->y[i]), 3.5, 0, 2 * PLOT_PI);
+            cairo_arc(cr, px(b, ser->x[i]), py(b, ser->y[i]), 3.5, 0, 2 * SPALL_PI);
             cairo_fill(cr);
         }
         return;
@@ -228,7 +228,7 @@ static void draw_refs(cairo_t *cr, const struct plot_spec *s, const struct plot_
             if (r->label) {
                 cairo_save(cr);
                 cairo_translate(cr, x + 3, b->y0 + 4 + 0.0 * (double)k);
-                cairo_rotate(cr, PLOT_PI / 2.0);
+                cairo_rotate(cr, SPALL_PI / 2.0);
                 text_at(cr, 0, 0, r->label, 0.0, 1.0);
                 cairo_restore(cr);
             }

@@ -4,6 +4,7 @@
  *        particle -> discs on a cairo surface, with colour bar, length scale
  *        and time.
  */
+#include "core/mathconst.h"
 #include "io/render.h"
 
 #include "io/output.h"
@@ -17,7 +18,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RENDER_PI 3.14159265358979323846
 
 void render_options_default(struct render_options *o, const char *field)
 {
@@ -259,7 +259,7 @@ int render_points_png(const char *png_path, const struct render_points *d,
         if (rad < 2.0)
             cairo_rectangle(cr, X - rad, Y - rad, 2 * rad, 2 * rad);
         else
-            cairo_arc(cr, X, Y, rad, 0.0, 2.0 * RENDER_PI);
+            cairo_arc(cr, X, Y, rad, 0.0, 2.0 * SPALL_PI);
         cairo_fill(cr);
     }
     /* header: title / label and time */

@@ -10,12 +10,30 @@
  * src/models/ and one line in the registry; no other model changes.
  *
  * Life cycle (see docs/architecture.md):
- *   create -> parse_material (per material) -> [core builds particles, masses]
+ *   create -> time_scheme -> parse_material (per material) -> [core builds
+ *   particles, masses]
  *   -> init (bonds / neighbour lists / state) -> precrack (per pre-crack)
- *   -> register_fields -> loop { compute_forces ; end_step } -> destroy.
- * Per step (velocity Verlet, integrator.c):
- *   half kick, drift, [advance_state] , zero f, compute_forces, boundary
- *   forces, half kick, velocity BCs, end_step, diagnostics.
+ *   -> register_fields -> loop { sim_step } -> destroy.
+ *
+ * Who owns what in a step: the engine's integrator (core/integrator.c) alone
+ * moves x, changes v, t and dt and writes the engine's fields (damping,
+ * energy account); a model computes forces and rates and changes its own
+ * per-particle state only inside the hooks below, at these points of
+ * sim_step (t -> t + dt):
+ *   1. kick:   v += dt/2 f/m; prescribed velocities set
+ *   2. drift:  x += dt v, then x += dt u for u = drift_velocity (XSPH) on
+ *              particles whose velocity no BC prescribes
+ *   3. predictor-corrector only: v_pred = v + dt/2 f/m;
+ *              advance_state(MODEL_STAGE_PREDICT)
+ *   4. f = 0; compute_forces (leapfrog: compute_forces_kick, which advances
+ *      the state by dt at the drifted state before forming the forces);
+ *      damping (the engine takes the coefficient); contact, loads, gravity,
+ *      mass-proportional damping
+ *   5. kick:   v += dt/2 f/m (predictor-corrector: from the unpredicted v);
+ *      prescribed velocities set, reactions recorded
+ *   6. predictor-corrector only: advance_state(MODEL_STAGE_CORRECT)
+ *   7. end_step (bond breaking, damage); adaptive dt from stable_dt;
+ *      instability checks (non-finite x or v; energy blow-up)
  */
 #ifndef SPALL_MODEL_H
 #define SPALL_MODEL_H
@@ -29,6 +47,7 @@ struct field_registry;
 struct precrack;
 struct sim;
 struct spall_error;
+struct time_scheme;
 struct model; /* opaque, defined by each model */
 
 /** Energies summed over owned particles [J]. */
@@ -38,6 +57,25 @@ struct model_energy {
 };
 
 #define MODEL_HISTORY_MAX 16
+
+/** Stages of model_ops.advance_state (predictor-corrector integrator). */
+enum model_stage { MODEL_STAGE_PREDICT = 0, MODEL_STAGE_CORRECT = 1 };
+
+/** A small elastic free body of one model/formulation for the model
+ *  contract test (tests/test_model_contract.c), defined in the model's own
+ *  folder (*_fixture.c).  The test places the body (a disc or sphere of
+ *  material `m` on the lattice, translated and rotated) and runs it.
+ *  Allowances are for properties of the method only, each stated in `why`
+ *  with its measured value. */
+struct model_fixture {
+    const char *label;   /**< e.g. "sph-total"; NULL ends the list */
+    const char *deck;    /**< the deck's `model:` and `materials:` sections */
+    const char *lattice; /**< lattice type (sets the dimension) */
+    double spacing;      /**< lattice spacing [m] */
+    double rotation_deg; /**< 2D rotation of the frame check; 0: a generic angle */
+    double torque;       /**< allowed |sum r x f| / sum |r||f|; 0: round-off */
+    const char *why;     /**< cause and measured value of any allowance */
+};
 
 struct model_ops {
     const char *name;    /**< deck `model.type` */
@@ -77,15 +115,37 @@ struct model_ops {
     /** Print derived constants (for the run log / calibrate); optional. */
     void (*describe)(const struct model *m, const struct sim *sim, char *buf, size_t len);
     void (*destroy)(struct model **m);
-    /** Optional: integrate the model's own per-particle state (density,
-     *  internal energy, deviatoric stress, ...).  Stage 0 (predictor) is
-     *  called after the drift, before compute_forces of the new step; stage
-     *  1 (corrector) after compute_forces and the second kick.  With the
-     *  predictor-corrector integrator (seed 004 Eqs. 3.35-3.37) a model
-     *  predicts state_n + dt rate_n at stage 0 and corrects to
-     *  state_n + dt/2 (rate_n + rate_n+1) at stage 1. */
+    /** Optional, called by the predictor-corrector integrator only (seed
+     *  004 Eqs. 3.35-3.37): integrate the model's own per-particle state
+     *  (density, internal energy, deviatoric stress, ...).  Stage
+     *  MODEL_STAGE_PREDICT, after the drift and before compute_forces of
+     *  the new step: state_n + dt rate_n; stage MODEL_STAGE_CORRECT, after
+     *  the second kick: state_n + dt/2 (rate_n + rate_n+1). */
     int (*advance_state)(struct model *m, struct sim *sim, double dt, int stage,
                          struct spall_error *err);
+    /** Optional, the leapfrog integrator's force call (state staggered on
+     *  the velocities): from the drifted x_n+1 and v_n+1/2 form the rates,
+     *  advance the per-particle state by @p dt with them (the "kick" of the
+     *  state), then add the forces of the new state into sim->p->f.  The
+     *  integrator calls it in place of compute_forces in every step; the
+     *  initial force call (no step taken) is compute_forces.  One hook, not
+     *  three, because the model fuses the three per particle. */
+    int (*compute_forces_kick)(struct model *m, struct sim *sim, double dt,
+                               struct spall_error *err);
+    /** Optional: a velocity u [m/s] added to v in the drift, x += dt (v + u)
+     *  (XSPH), for particles whose velocity no BC prescribes.  Returns false
+     *  when there is none; else points u[d] at per-particle arrays (d < dim)
+     *  that stay valid until the next force call. */
+    bool (*drift_velocity)(const struct model *m, const struct sim *sim, const double *u[3]);
+    /** Optional: the mass-proportional damping coefficient c [1/s] the model
+     *  asks for (adaptive dynamic relaxation), read by the engine right
+     *  after compute_forces and applied as F = -c m v.  Returns false to
+     *  keep the engine's current coefficient. */
+    bool (*damping)(const struct model *m, const struct sim *sim, double *c);
+    /** Optional: the integrator, adaptive dt and default dt factor the model
+     *  needs (@p ts holds the engine's defaults), read once by sim_set_model
+     *  right after create; the deck's run keys, parsed later, still win. */
+    void (*time_scheme)(const struct model *m, struct time_scheme *ts);
     /** Number of pair interactions (bonds counted once) for throughput
      *  reports; optional (NULL: 0). */
     size_t (*interactions)(const struct model *m, const struct sim *sim);
@@ -93,6 +153,9 @@ struct model_ops {
      *  used for fragments (core/fragments.h); NULL hook or NULL result for
      *  unbonded models. */
     const struct bond_list *(*bonds)(const struct model *m);
+    /** Contract-test fixtures, ended by a NULL label: every formulation of
+     *  the model, each must pass tests/test_model_contract.c. */
+    const struct model_fixture *fixtures;
 };
 
 /** Find a model by name; NULL if unknown. */

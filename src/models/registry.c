@@ -1,34 +1,24 @@
 /**
  * @file registry.c
  * @brief The table of particle models known to the engine.  Adding a model:
- *        one extern declaration and one table entry here, nothing else.
+ *        one line in SPALL_MODELS, nothing else.
  */
 #include "models/model.h"
 
 #include <string.h>
 
-extern const struct model_ops lattice_model_ops;
-/* peridynamics extern */
-extern const struct model_ops peridynamics_model_ops;
+/* Every model, by the name of its model_ops (<name>_model_ops, whose .name
+ * is "<name>").  The extern declarations, the table and the name list below
+ * are all derived from this one list, so they cannot disagree. */
+#define SPALL_MODELS(X) X(lattice) X(peridynamics) X(macroparticle) X(sph)
 
-/* macro-particle extern */
-extern const struct model_ops macroparticle_model_ops;
+#define SPALL_MODEL_EXTERN(n) extern const struct model_ops n##_model_ops;
+SPALL_MODELS(SPALL_MODEL_EXTERN)
+#undef SPALL_MODEL_EXTERN
 
-/* sph extern */
-extern const struct model_ops sph_model_ops;
-
-static const struct model_ops *const model_table[] = {
-    &lattice_model_ops,
-    /* peridynamics entry */
-    &peridynamics_model_ops,
-
-    /* macro-particle entry */
-    &macroparticle_model_ops,
-
-    /* sph entry */
-    &sph_model_ops,
-
-};
+#define SPALL_MODEL_ENTRY(n) &n##_model_ops,
+static const struct model_ops *const model_table[] = {SPALL_MODELS(SPALL_MODEL_ENTRY)};
+#undef SPALL_MODEL_ENTRY
 
 #define N_MODELS (sizeof model_table / sizeof model_table[0])
 
@@ -40,19 +30,11 @@ const struct model_ops *model_find(const char *name)
     return NULL;
 }
 
-/* Names in table order (kept beside the table: constant data, no state). */
-static const char *const model_name_list[] = {
-    "lattice",
-    /* peridynamics name */
-    "peridynamics",
-
-    /* macro-particle name */
-    "macroparticle",
-
-    /* sph name */
-    "sph",
-
-    NULL};
+/* Names in table order (constant data, no state); a test checks that each
+ * is its model_ops' name. */
+#define SPALL_MODEL_NAME(n) #n,
+static const char *const model_name_list[] = {SPALL_MODELS(SPALL_MODEL_NAME) NULL};
+#undef SPALL_MODEL_NAME
 
 const char *const *model_names(void)
 {

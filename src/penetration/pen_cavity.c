@@ -7,6 +7,7 @@
  *        positions, particle spacings and a failed flag, so the SPH runs of
  *        issue 7 (item 3, 4d) can call it on every frame.
  */
+#include "core/mathconst.h"
 #include "spall/penetration.h"
 
 #include "spall/error.h"
@@ -14,7 +15,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-#define PEN_PI 3.14159265358979323846
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -56,7 +56,7 @@ int pen_cavity_diameters(size_t n, const double *x, const double *y, const doubl
         double r = sqrt(ax * ax + ay * ay) - (dx ? 0.5 * dx[i] : 0.0);
         if (r < 0.0)
             r = 0.0;
-        int s = (int)floor((atan2(ay, ax) + PEN_PI) / (2.0 * PEN_PI) * ns);
+        int s = (int)floor((atan2(ay, ax) + SPALL_PI) / (2.0 * SPALL_PI) * ns);
         s = s < 0 ? 0 : s >= ns ? ns - 1 : s;
         if (r < r_all[s])
             r_all[s] = r;

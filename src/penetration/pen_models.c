@@ -15,6 +15,7 @@
  * is integrated with gsl_odeiv2 (rk8pd) up to T_f, which comes from the
  * quadrature T_f = M int_0^v0 dv / F(v) (gsl_integration_qag), F >= F(0) > 0.
  */
+#include "core/mathconst.h"
 #include "spall/penetration.h"
 
 #include "spall/error.h"
@@ -26,7 +27,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PEN_PI 3.14159265358979323846
 
 const char *pen_model_name(enum pen_model m)
 {
@@ -101,7 +101,7 @@ int pen_params_check(const struct pen_params *p, struct spall_error *err)
 
 double pen_mass(const struct pen_params *p)
 {
-    return p->rho_p * PEN_PI * p->d * p->d * p->d / 6.0;
+    return p->rho_p * SPALL_PI * p->d * p->d * p->d / 6.0;
 }
 
 double pen_cd_clift_gauvin(double re)
@@ -113,9 +113,9 @@ double pen_cd_clift_gauvin(double re)
 /* Coefficients of F = a V^2 + b V + c for the quadratic models. */
 static void pen_quadratic(const struct pen_params *p, double *a, double *b, double *c)
 {
-    const double area = 0.25 * PEN_PI * p->d * p->d;
+    const double area = 0.25 * SPALL_PI * p->d * p->d;
     if (p->model == PEN_PONCELET) {
-        *a = p->rho_t * PEN_PI * p->d * p->d * p->cd / 8.0; /* Eq. 4.4 */
+        *a = p->rho_t * SPALL_PI * p->d * p->d * p->cd / 8.0; /* Eq. 4.4 */
         *b = 0.0;
         *c = p->R * area;                                     /* Eq. 4.5 */
     } else {                                                  /* Liu, Eq. 4.9, edot = V/d */
@@ -131,7 +131,7 @@ double pen_force(const struct pen_params *p, double v)
     if (v < 0.0)
         v = 0.0;
     if (p->model == PEN_MCG) {
-        const double area = 0.25 * PEN_PI * p->d * p->d;
+        const double area = 0.25 * SPALL_PI * p->d * p->d;
         double drag = 0.0;
         if (v > 0.0) {
             const double re = p->rho_t * v * p->d / p->eta;
@@ -163,8 +163,8 @@ int pen_poncelet(const struct pen_params *p, double v0, size_t n, const double *
         (rc = check_times(n, t, err)))
         return rc;
     const double M = pen_mass(p);
-    const double B = p->rho_t * PEN_PI * p->d * p->d * p->cd / 8.0; /* Eq. 4.4 */
-    const double C = p->R * PEN_PI * p->d * p->d / 4.0;             /* Eq. 4.5 */
+    const double B = p->rho_t * SPALL_PI * p->d * p->d * p->cd / 8.0; /* Eq. 4.4 */
+    const double C = p->R * SPALL_PI * p->d * p->d / 4.0;             /* Eq. 4.5 */
     const double w = sqrt(B * C) / M;
     const double t_f = atan(v0 * sqrt(B / C)) / w;                  /* Eq. 4.3 */
     const double lc0 = log(cos(w * t_f));

@@ -72,6 +72,7 @@
  * convention): (1/r_a + 1/r_b)^2 k_phi at the centre and
  * k_phi (1/r_a+1/r_b)/r_arm at each arm; a bulk site gets 48 k_phi / r0^2.
  */
+#include "core/fields.h"
 #include "models/lattice/lattice_calib.h"
 
 #include "core/bond_list.h"
@@ -293,7 +294,7 @@ static int patch_state(struct model *m, struct sim *s, double eps[3][3], const b
     particles_zero_forces(p);
     if ((rc = lattice_compute_forces(m, s, err)))
         return rc;
-    int nc = dim == 1 ? 1 : dim == 2 ? 3 : 6;
+    int nc = field_symtensor_ncomp(dim);
     /* mean per sublattice, then over the sublattices (the triple honeycomb's
      * sites differ by colour and the block holds unequal numbers of each) */
     double sum[3][6];

@@ -27,6 +27,7 @@
  * several materials (pair table) and the non-linear laws with the law a
  * compile-time constant inside each specialisation.
  */
+#include "core/fields.h"
 #include "models/lattice/lattice_internal.h"
 #include "models/lattice/lattice_softening.h"
 
@@ -209,10 +210,10 @@ LATTICE_INLINE void row_general(struct model *m, const struct lattice_view *v, s
 /** Wrap an angle difference into (-pi, pi]. */
 static inline double wrap_angle(double a)
 {
-    if (a > LATTICE_PI)
-        a -= 2.0 * LATTICE_PI;
-    else if (a <= -LATTICE_PI)
-        a += 2.0 * LATTICE_PI;
+    if (a > SPALL_PI)
+        a -= 2.0 * SPALL_PI;
+    else if (a <= -SPALL_PI)
+        a += 2.0 * SPALL_PI;
     return a;
 }
 
@@ -534,7 +535,7 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
     if (energy)
         *energy = e;
     if (stress) {
-        const int nc = dim == 1 ? 1 : dim == 2 ? 3 : 6;
+        const int nc = field_symtensor_ncomp(dim);
         const double v = p->volume[i];
         for (int c = 0; c < nc; c++)
             stress[c] = sig[c] / v;

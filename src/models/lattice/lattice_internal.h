@@ -7,6 +7,7 @@
 #ifndef SPALL_LATTICE_INTERNAL_H
 #define SPALL_LATTICE_INTERNAL_H
 
+#include "models/lattice/lattice.h"
 #include "models/lattice/lattice_laws.h"
 
 #include <stdbool.h>
@@ -18,36 +19,7 @@ struct lattice_thermal;
 struct sim;
 struct spall_error;
 
-#define LATTICE_MAX_TYPES 3 /* two shells, or three honeycomb families */
 #define LATTICE_NO_ANGLE 0xFFu
-
-/** Model options (deck `model:` section). */
-struct lattice_options {
-    enum lattice_law law;
-    int layers;                /**< 0: lattice default */
-    int angular;               /**< -1 auto, 0 off, 1 on */
-    double second_layer_ratio; /**< 0: default 1/sqrt3 */
-};
-
-/** Per-material input and derived constants. */
-struct lattice_material {
-    bool parsed;
-    double E, nu;
-    bool nu_given;
-    double eps_t;          /**< tensile failure strain; INFINITY: never (LJ: the peak) */
-    bool eps_t_given;
-    double eps_c;          /**< compressive failure strain; INFINITY: never */
-    double eps_0;          /**< softening law: onset strain sigma_TS / E */
-    double gf;             /**< softening law: fracture energy [J/m^2]; 0: eps_t given */
-    bool ang_fail;         /**< angular_failure given */
-    double dphi_c, dphi_t; /**< angular failure limits [rad] */
-    double lj_p, lj_q;     /**< LJ exponents */
-    struct lattice_curve curve; /**< PWL curve (owned) */
-    /* derived in init */
-    double k[LATTICE_MAX_TYPES]; /**< per bond type: shell, or honeycomb family */
-    double k_phi;
-    double k_area;         /**< triangle-area stiffness [J] (area springs, nu > 1/3) */
-};
 
 struct model {
     struct sim *sim; /**< borrowed */
@@ -82,17 +54,6 @@ struct model {
     bool initialised;
 };
 
-/* lattice_model.c */
-/** Allocate a model with @p opt (no deck). */
-int lattice_model_new(struct model **out, struct sim *sim, const struct lattice_options *opt,
-                      struct spall_error *err);
-/** Set material @p index from a filled struct (takes ownership of its curve). */
-int lattice_model_set_material(struct model *m, int index, struct lattice_material *mt,
-                               struct spall_error *err);
-/** Overwrite the axial and angular constants of material 0 after init
- *  (patch test with the paper's constants). */
-void lattice_model_override(struct model *m, double k1, double k_phi);
-
 /* lattice_forces.c */
 int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);
 /** Energy [J] (half of each bond + the angles centred at i) and virial
@@ -102,17 +63,11 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
                            double *energy, double *stress);
 
 /* lattice_softening.c */
-struct lattice_calib;
 struct deck_node;
 /** Softening-law material keys (tensile_strength | onset_strain,
  *  fracture_energy | failure_strain = @p eps, already read) into @p mt. */
 int lattice_soft_parse(const struct deck_node *node, const char *what, double eps,
                        struct lattice_material *mt, struct spall_error *err);
-/** Full-separation strain *ef of the softening law from the fracture energy
- *  @p gf [J/m^2] and onset strain @p e0, for the calibrated lattice @p c
- *  (bonds cut per unit area of a crack between rows; see the file). */
-int lattice_soft_final_strain(const struct lattice_calib *c, double e0, double gf, double *ef,
-                              struct spall_error *err);
 
 /* lattice_material.c */
 /** Free the arrays of a piecewise-linear curve and zero it. */

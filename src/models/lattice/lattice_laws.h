@@ -29,6 +29,8 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "core/mathconst.h"
+
 #if defined(__GNUC__)
 #define LATTICE_UNLIKELY(x) __builtin_expect(!!(x), 0)
 #define LATTICE_INLINE static inline __attribute__((always_inline))
@@ -36,8 +38,6 @@
 #define LATTICE_UNLIKELY(x) (x)
 #define LATTICE_INLINE static inline
 #endif
-
-#define LATTICE_PI 3.14159265358979323846
 
 /** Axial law of the whole model (deck `model.law`). */
 enum lattice_law {

@@ -304,8 +304,8 @@ static int build_angles(struct model *m, const struct particles *p, struct spall
             size_t b = (a + 1) % cnt;
             double gap = th[b] - th[a];
             if (gap <= 0.0)
-                gap += 2.0 * LATTICE_PI;
-            if (!(gap < 0.5 * LATTICE_PI) || loc[b] > 254)
+                gap += 2.0 * SPALL_PI;
+            if (!(gap < 0.5 * SPALL_PI) || loc[b] > 254)
                 continue;
             size_t sa = s0 + loc[a], sb = s0 + loc[b];
             size_t ja = (size_t)bl->partner[sa], jb = (size_t)bl->partner[sb];
@@ -464,7 +464,7 @@ static void field_strain_energy(const void *ctx, size_t n, double *out)
 static void field_stress(const void *ctx, size_t n, double *out)
 {
     const struct model *m = ctx;
-    const size_t nc = m->dim == 1 ? 1 : m->dim == 2 ? 3 : 6;
+    const size_t nc = (size_t)field_symtensor_ncomp(m->dim);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++)
         lattice_particle_eval(m, m->sim, i, NULL, &out[i * nc]);
@@ -473,7 +473,7 @@ static void field_stress(const void *ctx, size_t n, double *out)
 static int lattice_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
                                    struct spall_error *err)
 {
-    int nc = sim->dim == 1 ? 1 : sim->dim == 2 ? 3 : 6;
+    int nc = field_symtensor_ncomp(sim->dim);
     int rc;
     if ((rc = field_registry_add_computed(reg, "fracture_density", "1", 1, FIELD_OUTPUT | FIELD_DEFAULT,
                            field_fracture_density, m, err)) ||
@@ -637,6 +637,7 @@ static const struct bond_list *lattice_bonds(const struct model *m)
     return m->bl;
 }
 
+extern const struct model_fixture lattice_fixtures[]; /* lattice_fixture.c */
 const struct model_ops lattice_model_ops = {
     .name = "lattice",
     .summary = "hybrid lattice particle model (HLPM): breakable axial/angular springs",
@@ -654,4 +655,42 @@ const struct model_ops lattice_model_ops = {
     .destroy = lattice_destroy,
     .interactions = lattice_interactions,
     .bonds = lattice_bonds,
+    .fixtures = lattice_fixtures,
 };
+
+const struct lattice_material *lattice_material_get(const struct model *m, int k)
+{
+    return &m->mat[k];
+}
+
+const struct lattice_bond_law *lattice_pair_law(const struct model *m, int ma, int mb, int type)
+{
+    return &m->pair[((size_t)ma * m->n_mat + (size_t)mb) * LATTICE_MAX_TYPES + (size_t)type];
+}
+
+struct bond_list *lattice_bond_list(struct model *m)
+{
+    return m->bl;
+}
+
+bool lattice_has_angles(const struct model *m)
+{
+    return m->angular;
+}
+
+double lattice_area_stiffness(const struct model *m, int k)
+{
+    return m->mat_k_area[k];
+}
+
+void lattice_set_angle_limits(struct model *m, int k, double dphi_c, double dphi_t)
+{
+    m->mat_dphi_c[k] = dphi_c;
+    m->mat_dphi_t[k] = dphi_t;
+}
+
+uint8_t *lattice_angle_states(struct model *m, size_t *n)
+{
+    *n = m->n_half;
+    return m->ang_state;
+}

@@ -2,6 +2,7 @@
  * @file macro_calib.c
  * @brief Macro-particle calibration (seed 001 Eqs. 10, 11, 13-15).
  */
+#include "core/mathconst.h"
 #include "models/macroparticle/macro_calib.h"
 #include "models/macroparticle/macro_internal.h"
 
@@ -10,11 +11,10 @@
 #include <math.h>
 #include <string.h>
 
-#define MACRO_PI 3.14159265358979323846
 
 double macro_eq15_modulus(double rho, double atom_mass, double e0, double p, double q)
 {
-    return MACRO_PI * rho * p * q * e0 / (MACRO_PACKING * 72.0 * atom_mass);
+    return SPALL_PI * rho * p * q * e0 / (MACRO_PACKING * 72.0 * atom_mass);
 }
 
 double macro_debye_omega(double theta_d)
@@ -49,7 +49,7 @@ int macro_calibrate(struct macro_calib *c, struct spall_error *err)
         return spall_error_set(err, SPALL_ERR_PHYSICS, "macro-particle: target Young's modulus "
                                "%g Pa; expected > 0", c->e_target);
     const double r0 = c->r0;
-    c->n_atom = (c->rho * MACRO_PI * r0 * r0 * r0 / 6.0) / (c->atom_mass * MACRO_PACKING);
+    c->n_atom = (c->rho * SPALL_PI * r0 * r0 * r0 / 6.0) / (c->atom_mass * MACRO_PACKING);
     c->p_atom = c->n_atom * c->e0;
     c->mass = c->rho * r0 * r0 * r0 / sqrt(2.0);
     /* Eq. 15 from the seed's depth P_atom/6, whatever the mode */

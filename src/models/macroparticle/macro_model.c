@@ -58,6 +58,7 @@
  * stress_xx, stress_yy, stress_zz (specimen virial average, Pa),
  * kinetic_temperature [K], plastic_pairs, neighbor_builds.
  */
+#include "core/mathconst.h"
 #include "models/macroparticle/macro_internal.h"
 #include "models/macroparticle/macro_slip.h"
 
@@ -73,7 +74,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MACRO_PI 3.14159265358979323846
 
 static void macro_destroy(struct model **pm)
 {
@@ -306,7 +306,7 @@ static int macro_init(struct model *m, struct sim *sim, struct spall_error *err)
     if (m->damping != MACRO_DAMP_NONE) {
         double def = 0.0;
         if (mt->theta_d > 0.0)
-            def = m->zeta_cg * mt->atom_mass * (MACRO_PI / 6.0) * macro_debye_omega(mt->theta_d);
+            def = m->zeta_cg * mt->atom_mass * (SPALL_PI / 6.0) * macro_debye_omega(mt->theta_d);
         double given = m->damping == MACRO_DAMP_ABSOLUTE ? m->gamma : m->mu;
         if (!(given > 0.0) && !(def > 0.0))
             return spall_error_set(err, SPALL_ERR_INPUT, "macro-particle model: damping %s needs "
@@ -533,6 +533,7 @@ static size_t macro_interactions(const struct model *m, const struct sim *sim)
     return m->nl ? m->nl->offset[m->nl->n] / 2 : 0;
 }
 
+extern const struct model_fixture macro_fixtures[]; /* macro_fixture.c */
 const struct model_ops macroparticle_model_ops = {
     .name = "macroparticle",
     .summary = "macro-particle model (seed 001): FCC particles, Mie pairs from cohesive energy, "
@@ -549,4 +550,5 @@ const struct model_ops macroparticle_model_ops = {
     .describe = macro_describe,
     .destroy = macro_destroy,
     .interactions = macro_interactions,
+    .fixtures = macro_fixtures,
 };

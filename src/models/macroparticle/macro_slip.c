@@ -3,6 +3,7 @@
  * @brief Centro-symmetry, slip vectors and slip-plane normals of the FCC
  *        macro-particle lattice (definitions in macro_slip.h).
  */
+#include "core/mathconst.h"
 #include "models/macroparticle/macro_slip.h"
 
 #include "core/neighbor.h"
@@ -134,7 +135,7 @@ int macro_slip_analyse(size_t n, double *const x[3], double *const x0[3], double
     static const double fam100[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     static const double fam110[6][3] = {{1, 1, 0}, {1, -1, 0}, {1, 0, 1},
                                         {1, 0, -1}, {0, 1, 1}, {0, 1, -1}};
-    const double ct = cos(tol_deg * 3.14159265358979323846 / 180.0);
+    const double ct = cos(tol_deg * SPALL_PI / 180.0);
     double cs = 0.0;
     size_t nfull = 0;
     for (size_t i = 0; i < n; i++) {

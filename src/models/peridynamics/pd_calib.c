@@ -23,6 +23,7 @@
  *    along a lattice row cuts 2 bonds per dx: G t = (2/dx) k s0^2 dx^2 / 2,
  *    s0 = sqrt(G t / (k dx)) = sqrt(2 G / (sqrt3 E dx)).
  */
+#include "core/fields.h"
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
@@ -40,9 +41,9 @@ double pd_micromodulus(int dim, enum pd_plane plane, double E, double K, double 
     switch (dim) {
     case 1: return 2.0 * E / (thickness * delta * delta);
     case 2:
-        return plane == PD_PLANE_STRESS ? 9.0 * E / (PD_PI * thickness * pow(delta, 3))
-                                        : 48.0 * E / (5.0 * PD_PI * thickness * pow(delta, 3));
-    default: return 18.0 * K / (PD_PI * pow(delta, 4));
+        return plane == PD_PLANE_STRESS ? 9.0 * E / (SPALL_PI * thickness * pow(delta, 3))
+                                        : 48.0 * E / (5.0 * SPALL_PI * thickness * pow(delta, 3));
+    default: return 18.0 * K / (SPALL_PI * pow(delta, 4));
     }
 }
 
@@ -53,7 +54,7 @@ double pd_critical_stretch(int dim, double c, double G0, double delta, double th
     switch (dim) {
     case 1: return sqrt(6.0 * G0 / (thickness * c * pow(delta, 3)));
     case 2: return sqrt(4.0 * G0 / (c * thickness * pow(delta, 4)));
-    default: return sqrt(10.0 * G0 / (PD_PI * c * pow(delta, 5)));
+    default: return sqrt(10.0 * G0 / (SPALL_PI * c * pow(delta, 5)));
     }
 }
 
@@ -110,7 +111,7 @@ void pd_particle_eval(const struct model *m, const struct sim *sim, size_t i, do
     if (energy)
         *energy = e;
     if (stress) {
-        int nc = dim == 1 ? 1 : dim == 2 ? 3 : 6;
+        int nc = field_symtensor_ncomp(dim);
         for (int c = 0; c < nc; c++)
             stress[c] = sg[c] / p->volume[i];
     }
@@ -293,7 +294,7 @@ int pd_calibrate_ortho(struct model *m, struct sim *sim, int k, double achieved[
      * must absorb G_Ic; across the fibers the fiber bonds absorb G_f. */
     double L = 2.0 * m->delta + 2.0 * m->dx;
     double em = crossing_energy(m, sim, i, mt->fiber_angle, 0, L);
-    double ef = crossing_energy(m, sim, i, mt->fiber_angle + 0.5 * PD_PI, 1, L);
+    double ef = crossing_energy(m, sim, i, mt->fiber_angle + 0.5 * SPALL_PI, 1, L);
     double t = sim->thickness;
     mt->s0_m = (mt->GIc > 0.0 && em > 0.0) ? sqrt(mt->GIc * t / em) : INFINITY;
     mt->s0_f = (mt->Gf > 0.0 && ef > 0.0) ? sqrt(mt->Gf * t / ef) : INFINITY;

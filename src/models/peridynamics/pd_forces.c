@@ -121,12 +121,13 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
 /* Kilic & Madenci 2010 (Eqs. 17-19) with the physical masses as the
  * (diagonal) density matrix: local stiffness
  *   K_ii = -(F_i^n - F_i^{n-1}) / (m_i dt v_i^{n-1/2}),
- * damping coefficient c_n = 2 sqrt(u^T K u / u^T u) (1/s), given to the
- * engine's mass-proportional damping F = -c m v.  Model forces only (loads
+ * damping coefficient c_n = 2 sqrt(u^T K u / u^T u) (1/s), which the engine
+ * takes (pd_damping, model_ops.damping) for its mass-proportional damping
+ * F = -c m v.  Model forces only (loads
  * and grips are not part of the stiffness). */
-void pd_adr_update(struct model *m, struct sim *sim)
+void pd_adr_update(struct model *m, const struct sim *sim)
 {
-    struct particles *p = sim->p;
+    const struct particles *p = sim->p;
     const size_t n = p->n_owned;
     double num = 0.0, den = 0.0;
     for (int d = 0; d < p->dim; d++) {
@@ -153,7 +154,8 @@ void pd_adr_update(struct model *m, struct sim *sim)
     double c = 2.0 * sqrt(num / den);
     if (sim->dt > 0.0 && c > 0.2 / sim->dt)
         c = 0.2 / sim->dt;
-    sim->damping = c;
+    m->adr_damping = c;
+    m->adr_estimated = true;
 }
 
 /* Silling & Askari 2005 Eq. 15 with the particle's row sum of bond
@@ -225,8 +227,8 @@ static double family_energy_bulk(int dim, double delta, double thickness)
 {
     switch (dim) {
     case 1: return 0.25 * thickness * delta * delta;                 /* A delta^2 */
-    case 2: return 0.25 * thickness * PD_PI * delta * delta * delta / 4.0;
-    default: return 0.25 * PD_PI * pow(delta, 4) / 5.0;
+    case 2: return 0.25 * thickness * SPALL_PI * delta * delta * delta / 4.0;
+    default: return 0.25 * SPALL_PI * pow(delta, 4) / 5.0;
     }
 }
 

@@ -227,7 +227,7 @@ static int pd_parse_material(struct model *m, struct sim *sim, int index,
                               "is %dD", dim);
         if (m->opt.plane == PD_PLANE_STRAIN)
             return deck_error(err, node, "orthotropic laminae are plane stress");
-        mt.fiber_angle = isnan(ang) ? sim->lattice.angle : ang * PD_PI / 180.0;
+        mt.fiber_angle = isnan(ang) ? sim->lattice.angle : ang * SPALL_PI / 180.0;
         mt.E = mt.E2;
         mt.Q22 = mt.E2 / (1.0 - mt.nu12 * mt.nu12 * mt.E2 / mt.E1);
     } else {
@@ -435,7 +435,7 @@ static void field_energy(const void *ctx, size_t n, double *out)
 static void field_stress(const void *ctx, size_t n, double *out)
 {
     const struct model *m = ctx;
-    const size_t nc = m->dim == 1 ? 1 : m->dim == 2 ? 3 : 6;
+    const size_t nc = (size_t)field_symtensor_ncomp(m->dim);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++)
         pd_particle_eval(m, m->sim, i, NULL, &out[i * nc]);
@@ -444,7 +444,7 @@ static void field_stress(const void *ctx, size_t n, double *out)
 static int pd_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
                               struct spall_error *err)
 {
-    int nc = sim->dim == 1 ? 1 : sim->dim == 2 ? 3 : 6;
+    int nc = field_symtensor_ncomp(sim->dim);
     int rc;
     const unsigned od = FIELD_OUTPUT | FIELD_DEFAULT;
     if ((rc = field_registry_add_computed(reg, "damage", "1", 1, od, field_damage, m, err)) ||
@@ -535,7 +535,7 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
         if (mt->ortho)
             PUT("  material '%s': lamina E1 = %g, E2 = %g, G12 = %g Pa, nu12 = %g, fiber %g deg: "
                 "c_f = %g, c_m = %g, s0_f = %g, s0_m = %g\n", sim->materials[k].name, mt->E1,
-                mt->E2, mt->G12, mt->nu12, mt->fiber_angle * 180.0 / PD_PI, mt->c_f, mt->c_m,
+                mt->E2, mt->G12, mt->nu12, mt->fiber_angle * 180.0 / SPALL_PI, mt->c_f, mt->c_m,
                 mt->s0_f, mt->s0_m);
         else
             PUT("  material '%s': E = %g Pa, nu = %g (fixed), c = %g, s0 = %g\n",
@@ -555,6 +555,18 @@ static size_t pd_interactions(const struct model *m, const struct sim *sim)
     return m->bl ? bond_list_count(m->bl) : 0;
 }
 
+/* ADR: the coefficient of the last force call; none before the first
+ * estimate (the engine keeps the deck's damping) or without ADR. */
+static bool pd_damping(const struct model *m, const struct sim *sim, double *c)
+{
+    (void)sim;
+    if (m->opt.quasi != PD_QS_ADR || !m->adr_estimated)
+        return false;
+    *c = m->adr_damping;
+    return true;
+}
+
+extern const struct model_fixture pd_fixtures[]; /* pd_fixture.c */
 const struct model_ops peridynamics_model_ops = {
     .name = "peridynamics",
     .summary = "bond-based peridynamics (PMB, PDLM lattice, orthotropic laminae)",
@@ -571,19 +583,24 @@ const struct model_ops peridynamics_model_ops = {
     .describe = pd_describe,
     .destroy = pd_destroy,
     .interactions = pd_interactions,
+    .damping = pd_damping,
+    .fixtures = pd_fixtures,
 };
 
-/** Damage field for validation code (same as the `damage` output field). */
-void pd_validation_damage(const struct model *m, size_t n, double *out);
-void pd_validation_damage(const struct model *m, size_t n, double *out)
+const struct bond_list *pd_bonds(const struct model *m)
 {
-    damage_of(m, n, out, 0);
+    return m->bl;
 }
 
-/** Fiber (which = 1) or matrix (which = 2) damage for validation code (same as
- *  the `damage_fiber` / `damage_matrix` output fields). */
-void pd_validation_damage_kind(const struct model *m, size_t n, double *out, int which);
-void pd_validation_damage_kind(const struct model *m, size_t n, double *out, int which)
+const struct pd_material *pd_material_get(const struct model *m, int k)
 {
-    damage_of(m, n, out, which);
+    return &m->mat[k];
+}
+
+bool pd_mixed_state(const struct model *m, size_t i, double *beta, double *g)
+{
+    const bool on = m->mixed && m->mm_g && m->mm_beta;
+    *beta = on ? m->mm_beta[i] : 0.0;
+    *g = on ? m->mm_g[i] : 1.0;
+    return on;
 }

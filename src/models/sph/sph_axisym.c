@@ -88,6 +88,7 @@
  * during contact, which otherwise creates energy (measured: +2.9 % of the
  * impact energy in the first two steps of the 2D Taylor rod, n = 16).
  */
+#include "core/mathconst.h"
 #include "models/sph/sph_internal.h"
 #include "models/sph/sph_pairs.h"
 
@@ -99,7 +100,6 @@
 #include <math.h>
 #include <string.h>
 
-#define TWO_PI 6.283185307179586
 
 static inline double hoop_radius(const struct model *m, const double *x0, size_t i)
 {
@@ -116,7 +116,7 @@ void sph_axisym_init(struct model *m, struct sim *s)
         const struct sph_material *mt = &m->mat[p->material[i]];
         double area = p->volume[i] / t;
         double r = hoop_radius(m, p->x[0], i);
-        p->volume[i] = TWO_PI * r * area;
+        p->volume[i] = SPALL_TWO_PI * r * area;
         p->mass[i] = mt->rho0 * p->volume[i];
         m->m2[i] = mt->rho0 * area;
         if (p->x[1][i] + 0.5 * m->dx[i] > ztop)
@@ -126,8 +126,9 @@ void sph_axisym_init(struct model *m, struct sim *s)
     s->axisymmetric = true;
 }
 
-/* Reflect particles that crossed the axis (the mirror image of the ring is
- * the same ring), refresh the planar masses.
+/* Refresh the planar masses m / (2 pi r).  Particles that crossed the axis
+ * were reflected by the engine just before this force call (the mirror
+ * image of the ring is the same ring; s->axisymmetric, set above).
  *
  * The reflection is the core's (sim_reflect_particle, core/integrator.c):
  * it mirrors every copy of the odd quantities that outlives this call:
@@ -142,14 +143,11 @@ void sph_axisym_init(struct model *m, struct sim *s)
  * every step (measured, examples/pen_sph_deformable with `failure:
  * stress`: a failed gel ring at the axis at 9-15 km/s, energy balance
  * +218 %; tests/test_sph_axisym_axis.c). */
-static void axis_reflect(struct model *m, struct sim *s)
+static void axis_masses(struct model *m, const struct sim *s)
 {
-    struct particles *p = s->p;
-    for (size_t i = 0; i < p->n_owned; i++) {
-        if (p->x[0][i] < 0.0)
-            sim_reflect_particle(s, i, 0);
-        m->m2[i] = p->mass[i] / (TWO_PI * hoop_radius(m, p->x[0], i));
-    }
+    const struct particles *p = s->p;
+    for (size_t i = 0; i < p->n_owned; i++)
+        m->m2[i] = p->mass[i] / (SPALL_TWO_PI * hoop_radius(m, p->x[0], i));
 }
 
 /* Planar corrected (CSPM, Eqs. 3.10-3.11) velocity gradient with the axis
@@ -420,7 +418,7 @@ static void pass_forces_axi(struct model *m, struct sim *s)
 int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err)
 {
     const size_t n = s->p->n_owned;
-    axis_reflect(m, s);
+    axis_masses(m, s);
     int rc = sph_neighbors_update(m, s, false, err);
     if (rc)
         return rc;

@@ -75,6 +75,7 @@
  * sphere's energy in 100 ns: f is refused below 0.5; only f = 1 is
  * validated.
  */
+#include "core/mathconst.h"
 #include "models/sph/sph_internal.h"
 #include "models/sph/sph_pairs.h"
 
@@ -87,7 +88,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.141592653589793
 
 static inline int32_t iface_group(const struct model *m, const struct particles *p, size_t i)
 {
@@ -192,7 +192,7 @@ void sph_interface_forces(struct model *m, struct sim *s)
         const double mui = mu0(m, p, i), ci = m->if_c0[p->material[i]];
         const double Ri = axi ? hoop_r(m, p->x[0], i) : 0.0;
         /* the radial derivative of the ring weight vanishes on the floor */
-        const double dwdr = axi && p->x[0][i] > 0.25 * m->dx[i] ? PI : 0.0;
+        const double dwdr = axi && p->x[0][i] > 0.25 * m->dx[i] ? SPALL_PI : 0.0;
         for (size_t q = m->if_off[i]; q < m->if_off[i + 1]; q++) {
             const size_t j = (size_t)m->if_idx[q];
             double dxv[3] = {0, 0, 0}, r2 = 0.0;
@@ -207,7 +207,7 @@ void sph_interface_forces(struct model *m, struct sim *s)
             const double muj = mu0(m, p, j), cj = m->if_c0[p->material[j]];
             const double cm = ci > cj ? ci : cj;
             const double k = eta * (mui < muj ? mui : muj) * cm * cm / (dc * dc);
-            const double wgt = axi ? PI * (Ri + hoop_r(m, p->x[0], j)) : t;
+            const double wgt = axi ? SPALL_PI * (Ri + hoop_r(m, p->x[0], j)) : t;
             const double F = k * wgt * delta;
             for (int d = 0; d < dim; d++)
                 fi[d] += F * dxv[d] / r;

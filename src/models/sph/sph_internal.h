@@ -8,6 +8,7 @@
 #ifndef SPALL_SPH_INTERNAL_H
 #define SPALL_SPH_INTERNAL_H
 
+#include "models/sph/sph.h"
 #include "models/sph/sph_kernels.h"
 
 #include <stdbool.h>
@@ -22,11 +23,6 @@ struct spall_error;
 /** 2D stress state (seed 004 sec. 3.3; the beam is plane stress). */
 enum sph_plane { SPH_PLANE_STRESS, SPH_PLANE_STRAIN, SPH_PLANE_AXISYMMETRIC /* sph_axisym.c */ };
 enum sph_density { SPH_DENSITY_CONTINUITY, SPH_DENSITY_SUMMATION };
-enum sph_eos { SPH_EOS_LINEAR, SPH_EOS_MIE_GRUNEISEN, SPH_EOS_MIE_GRUNEISEN_CK };
-enum sph_yield { SPH_YIELD_ELASTIC, SPH_YIELD_PERFECT, SPH_YIELD_POWER, SPH_YIELD_JOHNSON_COOK };
-/** Strain-rate scaling of the yield stress (not with Johnson-Cook, which has its own). */
-enum sph_rate { SPH_RATE_NONE, SPH_RATE_COWPER_SYMONDS };
-enum sph_failure { SPH_FAIL_NONE, SPH_FAIL_STRESS, SPH_FAIL_PLASTIC_STRAIN };
 /** Coupling of bodies (sph_interface.c): kernel sums across them (none), or
  *  sums inside each body / material and a penalty between them. */
 enum sph_iface { SPH_IFACE_NONE, SPH_IFACE_BODIES, SPH_IFACE_MATERIALS };
@@ -38,8 +34,6 @@ enum sph_iface { SPH_IFACE_NONE, SPH_IFACE_BODIES, SPH_IFACE_MATERIALS };
 #define SPH_DET_F_MAX 10.0
 #define SPH_MAX_DISTORTION 100.0
 
-/** Stress / tensor component order (symmetric): xx yy zz xy yz xz. */
-enum { SXX, SYY, SZZ, SXY, SYZ, SXZ };
 
 struct sph_options {
     enum sph_kernel kernel;
@@ -73,6 +67,7 @@ struct sph_options {
     bool symmetry[3];       /**< mirror plane x_d = 0 (ghost particles, sph_symmetry.c) */
     double cavity_depth;    /**< axisymmetric: depth of the cavity-diameter history (0: off) */
     bool leapfrog;          /**< staggered leapfrog state update (sph_leapfrog.c) */
+    bool adaptive_dt;       /**< Eq. 3.38 every step (sph_time_scheme) */
     enum sph_iface iface;   /**< interface between bodies (sph_interface.c) */
     double iface_stiffness; /**< penalty factor eta (default 1) */
     double iface_distance;  /**< contact distance factor f: d = f (dx_i + dx_j)/2 */
@@ -89,22 +84,6 @@ struct sph_tl;
 struct sph_clamp;
 struct deck_node;
 
-struct sph_material {
-    bool parsed;
-    double rho0, E, nu, K, G;
-    enum sph_eos eos;
-    double mg_c, mg_s, mg_gamma, mg_p0; /**< Mie-Grueneisen C, S, Gamma, P0 */
-    enum sph_yield yield;
-    double sy;                          /**< perfect plasticity */
-    double A, B, n;                     /**< A + B ep^n (also JC a, b, n) */
-    double jc_c, jc_m, Tm, Troom, eps0; /**< Johnson-Cook */
-    enum sph_rate rate;                 /**< rate_model */
-    double cs_d, cs_q;                  /**< Cowper-Symonds D [1/s], q */
-    double cp, beta_tq;                 /**< heat capacity, Taylor-Quinney */
-    enum sph_failure failure;
-    double fail_value;                  /**< stress [Pa] or plastic strain */
-    bool failed_tension;                /**< failed particles keep the EOS tension */
-};
 
 struct model {
     struct sim *sim; /**< borrowed */
@@ -123,7 +102,6 @@ struct model {
     double *P;             /**< pressure (compression positive) */
     double *ep, *T;        /**< equivalent plastic strain, temperature */
     uint8_t *failed;
-    uint8_t *pinned;       /**< velocity prescribed by a BC: no XSPH drift */
     double *c;             /**< sound speed */
     double *drho, *de, *dh, *dS[6];       /**< rates of step n+1 */
     double *rho_n, *e_n, *h_n, *S_n[6];   /**< state at step n (PC) */
@@ -134,7 +112,7 @@ struct model {
     double *R[6];          /**< artificial stress tensor R_i */
     double *Rs[6];         /**< scratch of the R smoothing (sph_as_smooth.c) */
     double *sr[6];         /**< sigma / rho^2 (fused pair loop, sph_fused.c) */
-    double *xv[3];         /**< XSPH velocity correction */
+    double *xv[3];         /**< XSPH velocity correction (the drift velocity, sph_drift_velocity) */
     double *x_build[3];    /**< positions at the last neighbour build */
     double *wp;            /**< plastic work per particle [J] */
     double *axl, *axl_s;   /**< axisymmetric: axis weight lambda and its sweep scratch (sph_axisym.c) */
@@ -152,7 +130,6 @@ struct model {
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
-    double lf_dt;          /**< leapfrog: step whose state update is pending (0: none) */
     /* interface between bodies (sph_interface.c; NULL when off) */
     size_t *if_off;        /**< n + 1: interface partners of i are if_idx[if_off[i] ..) */
     int32_t *if_idx;
@@ -197,26 +174,22 @@ int sph_forms_parse(const struct deck_node *params, int run_form, uint8_t **body
 int sph_forms_init(struct model *m, struct sim *s, struct spall_error *err);
 /** One run-log line: the formulation of every body and the particle counts. */
 void sph_forms_describe(const struct model *m, const struct sim *s, char *buf, size_t len);
-/** Pairs in the TLSPH reference list (0: none). */
-size_t sph_tlsph_pairs(const struct model *m);
 
 /* sph_rates.c */
-/** (Re)build the neighbour list if particles moved more than half the skin. */
-int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spall_error *err);
 /** Largest squared displacement of an owned particle since the last
  *  neighbour build (x - x_build): the skin test of sph_neighbors_update and
  *  sph_symmetry_update. */
 double sph_max_move2(const struct model *m, const struct particles *p);
 /** All rates of the current state: drho, de, dS, accelerations into sim->p->f. */
 int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err);
+/** Leapfrog (sph_leapfrog.c): the velocity gradient of the current state,
+ *  the state advanced by @p dt with it, then the forces of the new state. */
+int sph_compute_rates_kick(struct model *m, struct sim *s, double dt, struct spall_error *err);
 
 /** Principal-axes artificial stress R_i of particle i from m->sig (Eqs. 2.25-2.27). */
 void sph_artificial_stress(struct model *m, size_t i);
 
 /* sph_as_smooth.c */
-/** Replace R_i by its kernel (Shepard) average over i and its neighbours
- *  (model.artificial_stress_smoothing; split pair loops only). */
-void sph_artificial_stress_smooth(struct model *m, const struct sim *s);
 
 /* sph_fused.c */
 /** One-pass rates (no CSPM, continuity density): same equations as the
@@ -249,8 +222,9 @@ void sph_clamp_destroy(struct sph_clamp **pc);
 /* sph_tlsph.c */
 /** Reference neighbour list and corrected reference gradients (B0^-1). */
 int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err);
-/** TLSPH rates: F, L, PK1 forces, energy, stress rates. */
-int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err);
+/** TLSPH rates: F, L, PK1 forces, energy, stress rates; with @p lfdt > 0
+ *  the leapfrog's state advance by lfdt between L and the forces. */
+int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_error *err);
 /** The reference list, pair constants and B0^-1 of configuration @p X with
  *  volumes m / @p rho (NULL: the materials' rho0); sph_tlsph_init passes
  *  p->x0, a re-reference the current x and rho.  F = I on @p X. */
@@ -258,15 +232,11 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const X[3], cons
                         struct spall_error *err);
 /** Free the TLSPH pair constants; sets *tl to NULL. */
 void sph_tlsph_destroy(struct sph_tl **tl);
-/** F of TLSPH particle i at the last force call (tests, diagnostics). */
-void sph_tlsph_deformation(const struct model *m, size_t i, double F[9]);
 
 /* sph_tlsph_reref.c */
 /** Parse model.reference_update {every, distortion} into @p o (TLSPH runs only). */
 int sph_tlsph_reref_parse(const struct deck_node *params, struct sph_options *o,
                           struct spall_error *err);
-/** Replace the TLSPH reference configuration by the current one now. */
-int sph_tlsph_reref(struct model *m, struct sim *s, struct spall_error *err);
 /** End of a step: re-reference when model.reference_update says so. */
 int sph_tlsph_reref_step(struct model *m, struct sim *s, struct spall_error *err);
 
@@ -283,8 +253,6 @@ size_t sph_axisym_history(const struct model *m, const struct sim *sim, const ch
  *  kernel neighbour list into the interface list (kept within d_ij +
  *  @p skin_abs); called at each neighbour-list build. */
 int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct spall_error *err);
-/** Penalty forces between the groups into s->p->f; energy and pair count. */
-void sph_interface_forces(struct model *m, struct sim *s);
 /** Stable step of the contact springs of the last evaluation (INFINITY: none). */
 double sph_interface_stable_dt(const struct model *m);
 
@@ -297,8 +265,6 @@ void sph_leapfrog_advance(struct model *m, struct sim *s, double dt, int mine);
 void sph_leapfrog_advance_one(struct model *m, size_t i, double dt);
 
 /* sph_material.c */
-/** Pressure from the EOS (compression positive). */
-double sph_eos_pressure(const struct sph_material *mt, double rho, double e);
 /** The pressure a particle carries: a failed one no tension (P >= 0)
  *  unless its material has failed_tension (one rule for every update). */
 static inline double sph_carried_pressure(const struct sph_material *mt, bool failed, double P)
@@ -326,13 +292,6 @@ static inline double sph_balsara_cartesian(const struct model *m, size_t i, int 
     const double cz = m->L[3][i] - m->L[1][i];
     return sph_balsara_factor(fabs(div), sqrt(cx * cx + cy * cy + cz * cz), m->c[i], m->h[i]);
 }
-/** Longitudinal sound speed at the given state. */
-double sph_sound_speed(const struct sph_material *mt, double rho, double e);
-/** Current yield stress (INFINITY: elastic). */
-double sph_yield_stress(const struct sph_material *mt, double ep, double epdot, double T);
-/** Rate factor of the yield (and stress-failure) stress: 1 + (epdot / D)^(1/q)
- *  with Cowper-Symonds, else 1. */
-double sph_rate_factor(const struct sph_material *mt, double epdot);
 /** Pressure of every particle of formulation @p mine (SPH_FORM_*); failed
  *  particles carry no tension. */
 void sph_update_pressure(struct model *m, struct sim *s, int mine);

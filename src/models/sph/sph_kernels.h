@@ -27,6 +27,8 @@
 
 #include <math.h>
 
+#include "core/mathconst.h"
+
 enum sph_kernel {
     SPH_KERNEL_CUBIC = 1,
     SPH_KERNEL_GAUSSIAN = 2,
@@ -36,7 +38,6 @@ enum sph_kernel {
     SPH_KERNEL_HYPERBOLIC = 6
 };
 
-#define SPH_PI 3.14159265358979323846
 
 /** Support radius in units of h. */
 static inline double sph_kernel_support(enum sph_kernel k)
@@ -47,7 +48,7 @@ static inline double sph_kernel_support(enum sph_kernel k)
 /** Normalisation alpha_d (multiply by h^-d). */
 static inline double sph_kernel_alpha(enum sph_kernel k, int dim)
 {
-    const double pi = SPH_PI;
+    const double pi = SPALL_PI;
     const double e9 = exp(-9.0), erf3 = erf(3.0);
     switch (k) {
     case SPH_KERNEL_CUBIC:
@@ -132,7 +133,7 @@ static inline void sph_kernel_shape(enum sph_kernel k, double q, double *K, doub
         return;
     case SPH_KERNEL_DOUBLE_COSINE:
         if (q < 2.0) {
-            const double w = 0.5 * SPH_PI;
+            const double w = 0.5 * SPALL_PI;
             *K = 4.0 * cos(w * q) + cos(2.0 * w * q) + 3.0;
             *dK = -4.0 * w * sin(w * q) - 2.0 * w * sin(2.0 * w * q);
         } else {

@@ -15,8 +15,8 @@
  * cubic-spline cantilever, energy 1e-7 J -> 1e3 J between 0.25 and
  * 0.55 ms, in the interior of the beam, stable at dt_factor 0.25).
  *
- * The leapfrog here is the engine's velocity Verlet (INTEGRATOR_VERLET)
- * with the state staggered on the velocities:
+ * The leapfrog here is the engine's velocity Verlet with the state
+ * staggered on the velocities (INTEGRATOR_LEAPFROG):
  *   v_{n+1/2} = v_n + dt/2 a_n,  x_{n+1} = x_n + dt v_{n+1/2}
  *   L = grad v_{n+1/2} at x_{n+1}        (the model's force call)
  *   S_{n+1} = S_n + dt dS/dt(S_n, L), rho_{n+1} = rho_n (1 - dt tr D), radial return
@@ -26,9 +26,10 @@
  * of the old and new stress (sigma_n + sigma_{n+1})/2 : D, which for a
  * linear elastic step is the exact elastic energy increment; the artificial
  * viscosity / stress heating is added after the force pass (sph_rates.c).
- * Stage 0 of advance_state records dt (m->lf_dt) and applies the XSPH
- * drift; the force call consumes lf_dt.  A force call with lf_dt = 0 (the
- * initial forces) leaves the state alone.
+ * The engine calls the force call of each step as compute_forces_kick
+ * with dt (the state advance in the middle of it); the initial forces are
+ * the plain compute_forces, which leaves the state alone.  The XSPH drift
+ * is the engine's (sph_drift_velocity).
  */
 #include "models/sph/sph_internal.h"
 

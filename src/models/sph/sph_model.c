@@ -143,7 +143,6 @@ static void sph_destroy(struct model **pm)
     for (size_t k = 0; k < na; k++)
         free(*a[k]);
     free(m->failed);
-    free(m->pinned);
     free(m->if_off);
     free(m->if_idx);
     free(m->if_c0);
@@ -398,11 +397,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     m->dim = sim->dim;
     m->alpha = sph_kernel_alpha(o.kernel, sim->dim);
     m->qmax = sph_kernel_support(o.kernel);
-    /* seed 004 Eqs. 3.35-3.38: predictor-corrector and adaptive dt with
-     * c_s = 0.3 (run.dt_factor, parsed after the model, still wins) */
-    sim->integrator = o.leapfrog ? INTEGRATOR_VERLET : INTEGRATOR_PREDICTOR_CORRECTOR;
-    sim->adaptive_dt = adaptive;
-    sim->dt_factor = 0.3;
+    m->opt.adaptive_dt = adaptive;
     *out = m;
     return SPALL_OK;
 }
@@ -423,17 +418,8 @@ static int sph_init(struct model *m, struct sim *s, struct spall_error *err)
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph state)");
     }
     m->failed = calloc(cap ? cap : 1, 1);
-    m->pinned = calloc(cap ? cap : 1, 1);
-    if (!m->failed || !m->pinned)
+    if (!m->failed)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph state)");
-    for (size_t k = 0; k < s->n_bcs; k++) {
-        const struct bc *b = &s->bcs[k];
-        if (b->kind != BC_FIXED && b->kind != BC_VELOCITY)
-            continue;
-        const struct group *g = &s->groups[b->group];
-        for (size_t q = 0; q < g->n; q++)
-            m->pinned[g->idx[q]] = 1;
-    }
     const double t = s->dim == 2 ? s->thickness : 1.0;
     for (size_t i = 0; i < n; i++) {
         const struct sph_material *mt = &m->mat[p->material[i]];
@@ -511,16 +497,38 @@ static int sph_register_fields(struct model *m, struct sim *sim, struct field_re
     return field_registry_add(reg, &d, err);
 }
 
-static int sph_forces(struct model *m, struct sim *sim, struct spall_error *err)
+/* The force call; @p lfdt > 0: the leapfrog's, which advances the state by
+ * lfdt between the velocity gradient and the forces (sph_leapfrog.c). */
+static int forces(struct model *m, struct sim *sim, double lfdt, struct spall_error *err)
 {
     if (m->clamp)
         sph_clamp_begin(m, sim); /* sph_clamp.c: mirrored clamp around the force call */
-    int rc = sph_compute_rates(m, sim, err);
+    int rc = lfdt > 0.0 ? sph_compute_rates_kick(m, sim, lfdt, err) : sph_compute_rates(m, sim, err);
     if (m->clamp)
         sph_clamp_end(m, sim);
     if (!rc && m->opt.iface != SPH_IFACE_NONE)
         sph_interface_forces(m, sim);
     return rc;
+}
+
+static int sph_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    return forces(m, sim, 0.0, err);
+}
+
+static int sph_forces_kick(struct model *m, struct sim *sim, double dt, struct spall_error *err)
+{
+    return forces(m, sim, dt, err);
+}
+
+/* XSPH: particles drift with v + xv (xv of the last force call). */
+static bool sph_drift_velocity(const struct model *m, const struct sim *sim, const double *u[3])
+{
+    if (!(m->opt.xsph > 0.0))
+        return false; /* xv = 0 * sum: no stream to add */
+    for (int d = 0; d < sim->dim; d++)
+        u[d] = m->xv[d];
+    return true;
 }
 
 /* viscosity_length L: an AV that does not shrink with h, so Eq. 3.38
@@ -581,6 +589,15 @@ static double sph_stable_dt(const struct model *m, const struct sim *sim)
     return best;
 }
 
+/* seed 004 Eqs. 3.35-3.38: predictor-corrector (or the leapfrog) and
+ * adaptive dt with c_s = 0.3 (run.dt_factor, parsed after the model, wins) */
+static void sph_time_scheme(const struct model *m, struct time_scheme *ts)
+{
+    ts->integrator = m->opt.leapfrog ? INTEGRATOR_LEAPFROG : INTEGRATOR_PREDICTOR_CORRECTOR;
+    ts->adaptive_dt = m->opt.adaptive_dt;
+    ts->dt_factor = 0.3;
+}
+
 static int sph_end_step(struct model *m, struct sim *sim, struct spall_error *err)
 {
     /* TLSPH re-referencing (model.reference_update): the step's state is complete */
@@ -588,37 +605,24 @@ static int sph_end_step(struct model *m, struct sim *sim, struct spall_error *er
 }
 
 /* Predictor-corrector for rho, e, S, h (Eqs. 3.35-3.37 applied to the
- * state): stage 0 saves state_n and rate_n and predicts state_n + dt rate_n
- * (and moves particles by the XSPH correction); stage 1 corrects to
- * state_n + dt/2 (rate_n + rate_n+1), then the radial return. */
+ * state): stage 0 saves state_n and rate_n and predicts state_n + dt rate_n;
+ * stage 1 corrects to state_n + dt/2 (rate_n + rate_n+1), then the radial
+ * return.  (The leapfrog advances the state in its force call instead.) */
 static int sph_advance_state(struct model *m, struct sim *sim, double dt, int stage,
                              struct spall_error *err)
 {
     (void)err;
-    struct particles *p = sim->p;
-    const size_t n = p->n_owned;
+    const size_t n = sim->p->n_owned;
     const bool integ_rho = m->opt.density == SPH_DENSITY_CONTINUITY;
     /* Streams that hold exact zeros are skipped (the state loops are bound
      * by memory traffic once the state outgrows the cache): without
-     * variable_h every rate path sets dh = 0, so h_n = h and h stays put;
-     * without XSPH (xsph = 0) the drift xv is 0 * sum = 0. */
-    const bool vh = m->opt.variable_h, xsph = m->opt.xsph > 0.0;
-    if (m->opt.leapfrog) {
-        /* sph_leapfrog.c: the force call advances the state with this dt */
-        if (stage == 0) {
-            m->lf_dt = dt;
-            for (size_t i = 0; i < n && xsph; i++)
-                if (!m->pinned[i])
-                    for (int d = 0; d < sim->dim; d++)
-                        p->x[d][i] += dt * m->xv[d][i]; /* XSPH */
-        }
-        return SPALL_OK;
-    }
+     * variable_h every rate path sets dh = 0, so h_n = h and h stays put. */
+    const bool vh = m->opt.variable_h;
     /* One loop per group of a few arrays instead of one loop over all ~40:
      * the hardware prefetchers follow a handful of streams, not forty (the
      * loops were 6x slower per particle once the state left the cache).
      * Each value gets the same operations as before: bitwise the same. */
-    if (stage == 0) {
+    if (stage == MODEL_STAGE_PREDICT) {
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; i++) {
             m->rho_n[i] = m->rho[i];
@@ -650,12 +654,8 @@ static int sph_advance_state(struct model *m, struct sim *sim, double dt, int st
             }
         }
 #pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; i++) {
+        for (size_t i = 0; i < n; i++)
             sph_plastic_return(m, i, dt, false);
-            if (xsph && !m->pinned[i])
-                for (int d = 0; d < sim->dim; d++)
-                    p->x[d][i] += dt * m->xv[d][i]; /* XSPH: particles move with v + xv */
-        }
         return SPALL_OK;
     }
     const double hdt = 0.5 * dt;
@@ -776,6 +776,7 @@ static size_t sph_interactions(const struct model *m, const struct sim *sim)
     return pairs / 2;
 }
 
+extern const struct model_fixture sph_fixtures[]; /* sph_fixture.c */
 const struct model_ops sph_model_ops = {
     .name = "sph",
     .summary = "SPH for elastic-plastic solids: six kernels, CSPM, AV/AS/XSPH, JC, Mie-Grueneisen",
@@ -793,5 +794,9 @@ const struct model_ops sph_model_ops = {
     .describe = sph_describe,
     .destroy = sph_destroy,
     .advance_state = sph_advance_state,
+    .compute_forces_kick = sph_forces_kick,
+    .drift_velocity = sph_drift_velocity,
+    .time_scheme = sph_time_scheme,
     .interactions = sph_interactions,
+    .fixtures = sph_fixtures,
 };

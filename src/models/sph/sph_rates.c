@@ -281,7 +281,7 @@ void sph_artificial_stress(struct model *m, size_t i)
 }
 
 /* Pass C: momentum, energy, XSPH. */
-static inline void pass_forces(struct model *m, struct sim *s, const int dim)
+static inline void pass_forces(struct model *m, struct sim *s, double lfdt, const int dim)
 {
     struct particles *p = s->p;
     const size_t n = p->n_owned;
@@ -295,7 +295,7 @@ static inline void pass_forces(struct model *m, struct sim *s, const int dim)
     const double xs = m->opt.xsph;
     const bool cm = m->opt.cspm, bal = m->opt.av_balsara;
     /* leapfrog step: the stress power is booked by sph_leapfrog_advance */
-    const double wstress = m->lf_dt > 0.0 ? 0.0 : 1.0;
+    const double wstress = lfdt > 0.0 ? 0.0 : 1.0;
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
 #pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
@@ -435,7 +435,7 @@ static void wall_forces(struct model *m, struct sim *s)
 }
 
 /* The updated form (fused or two-pass loops) on its particles. */
-static int updated_rates(struct model *m, struct sim *s, struct spall_error *err)
+static int updated_rates(struct model *m, struct sim *s, double lfdt, struct spall_error *err)
 {
     const size_t n = s->p->n_owned;
     /* no CSPM, continuity density: one fused pair loop (sph_fused.c) */
@@ -448,8 +448,7 @@ static int updated_rates(struct model *m, struct sim *s, struct spall_error *err
     m->n_pairs = m->nl->offset[n];
     size_t fb = m->dim == 2 ? pass_gradient(m, s, 2) : pass_gradient(m, s, 3);
     m->cspm_fallbacks += fb;
-    const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L */
-    if (lfdt > 0.0)
+    if (lfdt > 0.0) /* leapfrog: advance the state with this L */
         sph_leapfrog_advance(m, s, lfdt, SPH_FORM_UPDATED);
     sph_update_pressure(m, s, SPH_FORM_UPDATED);
     const bool summ = m->opt.density == SPH_DENSITY_SUMMATION;
@@ -472,9 +471,9 @@ static int updated_rates(struct model *m, struct sim *s, struct spall_error *err
     if (m->opt.as_smooth && m->opt.as_zeta > 0.0)
         sph_artificial_stress_smooth(m, s); /* sph_as_smooth.c */
     if (m->dim == 2)
-        pass_forces(m, s, 2);
+        pass_forces(m, s, lfdt, 2);
     else
-        pass_forces(m, s, 3);
+        pass_forces(m, s, lfdt, 3);
     if (lfdt > 0.0) {
         /* leapfrog: AV / AS heating of this step (the stress power is in) */
         for (size_t i = 0; i < n; i++)
@@ -484,28 +483,38 @@ static int updated_rates(struct model *m, struct sim *s, struct spall_error *err
     return SPALL_OK;
 }
 
-int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
+/* The rates; with lfdt > 0 the leapfrog's state advance in between. */
+static int compute_rates(struct model *m, struct sim *s, double lfdt, struct spall_error *err)
 {
     int rc;
     if (m->form) {
         /* bodies split by formulation (sph_forms.c): TLSPH on its bodies,
          * the updated form on the others (or only the current list, which
          * also feeds the interface between the bodies) */
-        rc = sph_tlsph_rates(m, s, err);
+        rc = sph_tlsph_rates(m, s, lfdt, err);
         if (!rc)
-            rc = m->n_total < s->p->n_owned ? updated_rates(m, s, err)
+            rc = m->n_total < s->p->n_owned ? updated_rates(m, s, lfdt, err)
                                             : sph_neighbors_update(m, s, false, err);
         m->n_pairs = m->nl->offset[s->p->n_owned] + sph_tlsph_pairs(m);
     } else if (m->opt.total_lagrangian) {
-        rc = sph_tlsph_rates(m, s, err);
+        rc = sph_tlsph_rates(m, s, lfdt, err);
     } else if (m->opt.plane == SPH_PLANE_AXISYMMETRIC) {
         /* the wall's k is per ring mass and its force axial: as in 2D */
         rc = sph_axisym_rates(m, s, err);
     } else {
-        rc = updated_rates(m, s, err);
+        rc = updated_rates(m, s, lfdt, err);
     }
-    m->lf_dt = 0.0; /* leapfrog: the state update of this step is done */
     if (!rc && m->opt.wall)
         wall_forces(m, s);
     return rc;
+}
+
+int sph_compute_rates(struct model *m, struct sim *s, struct spall_error *err)
+{
+    return compute_rates(m, s, 0.0, err);
+}
+
+int sph_compute_rates_kick(struct model *m, struct sim *s, double dt, struct spall_error *err)
+{
+    return compute_rates(m, s, dt, err);
 }

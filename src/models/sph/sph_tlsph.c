@@ -600,14 +600,12 @@ TL_CLONES static void tl_sweep2(struct model *m, struct particles *p, size_t n, 
     tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 2, lim, w);
 }
 
-int sph_tlsph_rates(struct model *m, struct sim *s, struct spall_error *err)
+int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_error *err)
 {
     struct particles *p = s->p;
     const size_t n = p->n_owned;
     const int dim = m->dim;
     m->n_pairs = m->tl->nl->offset[n];
-    const double lfdt = m->lf_dt; /* leapfrog: advance the state with this L
-                                   * (reset by the caller, sph_compute_rates) */
     const bool pipelined = !m->opt.tl_split;
     /* det F guard limits; the distortion limit as tl_distortion_pow */
     const double md = m->opt.max_distortion;
