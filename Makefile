@@ -25,6 +25,8 @@ check: build
 	@cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
 	@$(MAKE) --no-print-directory asan
 
+# Tests labelled no_asan in CMakeLists.txt (the heavy validation-gate groups
+# validation_pd-fracture and validation_sph-rings) run in the optimised build only.
 asan: deps
 	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPALL_SANITIZE=ON >/dev/null
 	@cmake --build $(ASAN_BUILD) -j$(JOBS)

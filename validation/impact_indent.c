@@ -50,6 +50,8 @@ struct indent_material {
     double rho, E, sigma, v0;
     double t_ref, d_ref, e_ref;       /* experiment */
     double t_hlpm, d_hlpm, e_hlpm;    /* the paper's HLPM */
+    /* note of the deflection check when an input was calibrated on it (NULL: none) */
+    const char *d_calibrated;
 };
 
 int impact_indent_deck(char *buf, size_t len, double rho, double E, double sigma, double v0,
@@ -156,7 +158,7 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
              m->d_hlpm * 1e3);
     snprintf(q, sizeof q, "%sdeflection at peak load", m->tag);
     if ((rc = vreport_check(r, q, "m", m->d_ref, d_peak, 0.10, true, src,
-                            "10 %: as above", err)))
+                            m->d_calibrated ? m->d_calibrated : "10 %: as above", err)))
         goto done;
     if (fabs(d_peak - m->d_ref) > 0.10 * m->d_ref)
         vreport_mark_gap(r, "see docs/validation.md: beam theory puts the first bending crack "
@@ -193,7 +195,7 @@ done:
 int impact_case_nylon(struct vreport *r, struct spall_error *err)
 {
     const struct indent_material m = {"impact-nylon", "linear", "", "", 1140.0, 3.0e9, 60.0e6,
-                                      1.87, 1.70e-3, 3.03e-3, 1.2, 1.66e-3, 3.0e-3, 1.2};
+                                      1.87, 1.70e-3, 3.03e-3, 1.2, 1.66e-3, 3.0e-3, 1.2, NULL};
     int rc = run_indent(r, &m, err);
     if (rc)
         return rc;
@@ -204,7 +206,7 @@ int impact_case_nylon(struct vreport *r, struct spall_error *err)
     const struct indent_material ms = {"impact-nylon (softening)", "softening",
                                        ", fracture_energy: 3.0e3", "softening G_f 3 kJ/m^2: ",
                                        1140.0, 3.0e9, 60.0e6, 1.87, 1.70e-3, 3.03e-3, 1.2,
-                                       1.66e-3, 3.0e-3, 1.2};
+                                       1.66e-3, 3.0e-3, 1.2, NULL};
     return run_indent(r, &ms, err);
 }
 
@@ -216,7 +218,11 @@ int impact_case_vinylester(struct vreport *r, struct spall_error *err)
      * those two runs) so that the first crack falls near the measured
      * deflection: the deflection check is therefore a calibration, the time
      * of the peak and the absorbed energy stay independent checks. */
-    const struct indent_material m = {"impact-vinylester", "linear", "", "", 1050.0, 2.56e9, 43.5e6, 1.91,
-                                      1.38e-3, 2.60e-3, 0.7, 1.42e-3, 2.66e-3, 0.76};
+    const struct indent_material m = {
+        "impact-vinylester", "linear", "", "", 1050.0, 2.56e9, 43.5e6, 1.91,
+        1.38e-3, 2.60e-3, 0.7, 1.42e-3, 2.66e-3, 0.76,
+        "10 %; a calibrated input: sigma_TS = 43.5 MPa was chosen inside the seed's 25.6-51.2 "
+        "MPa so that the first crack lands at the measured deflection (38.4 MPa: -21 %), so "
+        "this check is a calibration; peak time and absorbed energy stay independent"};
     return run_indent(r, &m, err);
 }

@@ -182,15 +182,23 @@ int macro_case_rod_elastic(struct vreport *r, struct spall_error *err)
             return rc;
     }
     for (int k = r->quick ? n_eq - 1 : 0; k < n_eq; k++) {
-        snprintf(q, sizeof q, "rod n_phi = %d: Poisson's ratio (0.28-0.35)", nphi[k]);
-        if ((rc = vreport_check(r, q, "1", 0.315, nu[k], 0.035, false, SRC_26,
-                                "the paper's band 0.30-0.33 widened to the brief's 0.28-0.35 "
-                                "(centre 0.315 +- 0.035)", err)))
+        /* the source's band, 0.30-0.33 (seed 001 sec. 3.1, Fig. 5), centre 0.315 +- 0.015 */
+        snprintf(q, sizeof q, "rod n_phi = %d: Poisson's ratio (0.30-0.33)", nphi[k]);
+        if ((rc = vreport_check(r, q, "1", 0.315, nu[k], 0.015, false,
+                                "seed 001 sec. 3.1, Fig. 5: nu of the sec. 2.6 rod 0.30-0.33 "
+                                "(printed '3.0 to 3.3')",
+                                "the source's band 0.30-0.33; not a fitted input", err)))
             return rc;
-        if (!r->checks[r->n - 1].pass)
-            vreport_mark_gap(r, "coarse rod: a third of the particles are surface particles, "
-                             "whose missing bonds let the section contract more; the bulk "
-                             "[100] value of these pairs is 1/3 and the finer rods approach it");
+        if (!r->checks[r->n - 1].pass) {
+            char note[320];
+            snprintf(note, sizeof note,
+                     "nu = %.4f, above the band; the bulk [100] nu of this FCC pair lattice is 1/3 "
+                     "by construction (C11 = 2 C12: nu = C12 / (C11 + C12)), 0.0033 above the "
+                     "band; coarse rods lie above 1/3 (surface particles miss bonds) and approach "
+                     "it with n_phi",
+                     nu[k]);
+            vreport_mark_gap(r, note);
+        }
     }
     if (r->quick)
         return SPALL_OK;

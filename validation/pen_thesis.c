@@ -161,6 +161,8 @@ int pen_case_thesis_refs(struct vreport *r, struct spall_error *err)
                             "model gives 65.8 um (-1.8 %)",
                             err)))
         return rc;
+    /* the one check of this regression case against an experiment */
+    vreport_set_kind(r, VKIND_VALIDATION);
     /* Poncelet (b) vs MCG (b) on the SEBS cases */
     if ((rc = read_data("sebs_steel_cases.csv", &c, err)))
         return rc;

@@ -32,6 +32,17 @@ static void md(FILE *f, const char *s)
         fputs(*s == '|' ? "\\|" : (char[2]){*s, 0}, f);
 }
 
+/* the registry's maturity note of a case (NULL if none or not a registered case) */
+static const char *case_status(const char *name)
+{
+    size_t n = 0;
+    const struct vcase *cases = validation_cases(&n);
+    for (size_t k = 0; k < n; k++)
+        if (strcmp(cases[k].name, name) == 0)
+            return cases[k].status;
+    return NULL;
+}
+
 static int write_plot(const struct vreport *r, size_t first, const char *png,
                       struct spall_error *err)
 {
@@ -97,8 +108,9 @@ int vreport_write_report(const struct vreport *r, const char *dir, struct spall_
         pass += r->checks[k].pass;
     fprintf(f, "# spall validation report\n\n%zu checks: %zu passed, %zu failed.\n\n", r->n, pass,
             r->n - pass);
-    fprintf(f, "| case | quantity | unit | reference | measured | error | tolerance | result |\n"
-               "|---|---|---|---|---|---|---|---|\n");
+    fprintf(f, "| case | quantity | unit | reference | measured | error | tolerance | result | "
+               "kind |\n"
+               "|---|---|---|---|---|---|---|---|---|\n");
     for (size_t k = 0; k < r->n; k++) {
         const struct vcheck *c = &r->checks[k];
         fprintf(f, "| %s | ", c->case_name);
@@ -108,7 +120,8 @@ int vreport_write_report(const struct vreport *r, const char *dir, struct spall_
             fprintf(f, "%.3g %% | %.3g %% | ", 100.0 * check_err(c), 100.0 * c->tolerance);
         else
             fprintf(f, "%.3g | %.3g | ", check_err(c), c->tolerance);
-        fprintf(f, "%s |\n", c->pass ? "PASS" : c->known_gap ? "FAIL (known gap)" : "**FAIL**");
+        fprintf(f, "%s | %s |\n", c->pass ? "PASS" : c->known_gap ? "FAIL (known gap)" : "**FAIL**",
+                vkind_name(c->kind));
     }
     int rc = SPALL_OK;
     const char *last_case = NULL;
@@ -119,10 +132,17 @@ int vreport_write_report(const struct vreport *r, const char *dir, struct spall_
             continue;
         last_case = c->case_name;
         fprintf(f, "\n## %s\n\n", c->case_name);
+        const char *status = case_status(c->case_name);
+        if (status) {
+            fprintf(f, "Status: ");
+            md(f, status);
+            fprintf(f, "\n\n");
+        }
         for (size_t j = k; j < r->n && strcmp(r->checks[j].case_name, c->case_name) == 0; j++) {
             fprintf(f, "- ");
             md(f, r->checks[j].quantity);
-            fprintf(f, ": %s. Source: ", r->checks[j].pass ? "PASS" : "FAIL");
+            fprintf(f, " (%s): %s. Source: ", vkind_name(r->checks[j].kind),
+                    r->checks[j].pass ? "PASS" : "FAIL");
             md(f, r->checks[j].source);
             if (r->checks[j].note[0]) {
                 fprintf(f, ". Note: ");

@@ -30,6 +30,7 @@ int vreport_check(struct vreport *r, const char *quantity, const char *unit, dou
     c->measured = measured;
     c->tolerance = tolerance;
     c->relative = relative;
+    c->kind = r->current_kind;
     double e = fabs(measured - reference);
     if (relative)
         e = reference != 0.0 ? e / fabs(reference) : e;
@@ -41,6 +42,33 @@ int vreport_check_true(struct vreport *r, const char *quantity, bool ok, const c
                        const char *note, struct spall_error *err)
 {
     return vreport_check(r, quantity, "yes=1", 1.0, ok ? 1.0 : 0.0, 0.0, false, source, note, err);
+}
+
+const char *vkind_name(enum vkind kind)
+{
+    switch (kind) {
+    case VKIND_VERIFICATION:
+        return "verification";
+    case VKIND_REGRESSION:
+        return "regression";
+    case VKIND_VALIDATION:
+        break;
+    }
+    return "validation";
+}
+
+void vreport_set_kind(struct vreport *r, enum vkind kind)
+{
+    if (r->n > 0)
+        r->checks[r->n - 1].kind = kind;
+}
+
+void vreport_begin_case(struct vreport *r, const struct vcase *c, bool gate_run)
+{
+    r->current_case = c->name;
+    r->current_kind = c->kind;
+    if (gate_run)
+        r->quick = c->gate == VGATE_QUICK;
 }
 
 void vreport_mark_gap(struct vreport *r, const char *note)

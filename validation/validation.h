@@ -17,6 +17,18 @@
 
 struct spall_error;
 
+/** What a case (or one of its checks) is compared against, so that the
+ *  summary does not count a regression number as evidence of physics. */
+enum vkind {
+    VKIND_VALIDATION = 0,   /**< an experiment, or an independent published / FE result */
+    VKIND_VERIFICATION = 1, /**< an exact or analytical solution of the model's own equations */
+    VKIND_REGRESSION = 2    /**< numbers of our own library (reference tables, digest check
+                                 values computed from the same formulas) */
+};
+
+/** "validation", "verification" or "regression". */
+const char *vkind_name(enum vkind kind);
+
 struct vcheck {
     char case_name[48];
     char quantity[96];
@@ -29,6 +41,7 @@ struct vcheck {
     char note[320];    /**< why this tolerance; explanation of a gap */
     bool known_gap;
     bool pass;
+    enum vkind kind;   /**< the case's kind unless the case overrides it (vreport_set_kind) */
 };
 
 /** How a recorded series is drawn in the report's plots. */
@@ -61,6 +74,7 @@ struct vreport {
     FILE *log;         /**< extra lines printed by cases (may be NULL) */
     int quick;         /**< reduced sizes for the test suite */
     const char *current_case;
+    enum vkind current_kind; /**< kind given to the checks recorded next */
 };
 
 /** Record a check; error = |measured - reference| (/|reference| if relative);
@@ -71,6 +85,9 @@ int vreport_check(struct vreport *r, const char *quantity, const char *unit, dou
 /** Record a yes/no check (reference 1, measured 1 or 0). */
 int vreport_check_true(struct vreport *r, const char *quantity, bool ok, const char *source,
                        const char *note, struct spall_error *err);
+/** Set the kind of the last recorded check (a check of a kind other than its
+ *  case's, e.g. one experiment check in a regression case). */
+void vreport_set_kind(struct vreport *r, enum vkind kind);
 /** Mark the last recorded check as a known, documented gap. */
 void vreport_mark_gap(struct vreport *r, const char *note);
 /** Informational line (printed under the table). */
@@ -93,14 +110,29 @@ int vreport_marker(struct vreport *r, const char *plot, const char *label, enum 
 int vreport_write_report(const struct vreport *r, const char *dir, struct spall_error *err);
 void vreport_free(struct vreport *r);
 
+/** How `spall validate --quick` and the ctest gate (tests/test_validation_quick.c)
+ *  run a case. */
+enum vgate {
+    VGATE_OFF = 0,   /**< too slow for the gate: full runs only */
+    VGATE_QUICK = 1, /**< the reduced configuration, r->quick = 1 (the case says what it cuts) */
+    VGATE_FULL = 2   /**< fast enough as it is: the full configuration, r->quick = 0 */
+};
+
 struct vcase {
     const char *name;   /**< e.g. "lattice-patch" */
     const char *title;  /**< one line */
-    bool in_quick;      /**< part of `--quick` */
+    enum vkind kind;    /**< default kind of its checks */
+    enum vgate gate;    /**< configuration in `--quick` and the ctest gate */
+    /** Maturity where the PASS/FAIL of the checks alone would mislead (e.g. a
+     *  pass that holds at one resolution only); NULL if none. */
+    const char *status;
     int (*run)(struct vreport *r, struct spall_error *err);
 };
 
 /** All built-in cases (registry in validation/cases.c). */
 const struct vcase *validation_cases(size_t *n);
+/** Start recording the checks of case @p c (sets current_case, current_kind
+ *  and quick from the case's gate when @p gate_run is set). */
+void vreport_begin_case(struct vreport *r, const struct vcase *c, bool gate_run);
 
 #endif

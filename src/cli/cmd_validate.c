@@ -16,7 +16,9 @@ static void validate_usage(FILE *out)
                  "reference, measured, error, tolerance and PASS/FAIL (GAP marks a documented,\n"
                  "known gap, which also counts as a failure).  Exit status 1 on any failure.\n"
                  "  --list        list the cases\n"
-                 "  --quick       the reduced subset used by the test suite\n"
+                 "  --quick       the gate of the test suite: every case with a fast\n"
+                 "                configuration, in that configuration (named cases: their\n"
+                 "                reduced configuration)\n"
                  "  --json FILE   also write the results as JSON\n"
                  "  --report DIR  also write DIR/report.md with the table and PNG plots of\n"
                  "                each case's time histories against the references\n");
@@ -74,6 +76,7 @@ static int write_json(const char *path, const struct vreport *r)
         json_number(f, check_error(c));
         fprintf(f, ", \"tolerance\": ");
         json_number(f, c->tolerance);
+        fprintf(f, ", \"kind\": \"%s\"", vkind_name(c->kind));
         fprintf(f, ", \"relative\": %s, \"pass\": %s, \"known_gap\": %s, \"source\": ",
                 c->relative ? "true" : "false", c->pass ? "true" : "false",
                 c->known_gap ? "true" : "false");
@@ -98,8 +101,8 @@ static void print_check(const struct vcheck *c)
         snprintf(errs, sizeof errs, "%.3g %%", 100.0 * check_error(c));
     else
         snprintf(errs, sizeof errs, "%.3g", check_error(c));
-    printf("  %-44s %-9s ref %-12.6g meas %-12.6g err %-10s tol %-10s %s\n", c->quantity, c->unit,
-           c->reference, c->measured, errs, tol,
+    printf("  %-44s %-9s ref %-12.6g meas %-12.6g err %-10s tol %-10s %-12s %s\n", c->quantity,
+           c->unit, c->reference, c->measured, errs, tol, vkind_name(c->kind),
            c->pass ? "PASS" : (c->known_gap ? "FAIL (known gap)" : "FAIL"));
     if (c->source[0])
         printf("      source: %s\n", c->source);
@@ -153,9 +156,13 @@ int cli_validate(int argc, char **argv)
         }
     }
     if (list) {
-        for (size_t c = 0; c < n_cases; c++)
-            printf("%-24s %s%s\n", cases[c].name, cases[c].title,
-                   cases[c].in_quick ? "  [quick]" : "");
+        static const char *const gate[] = {"", "  [quick]", "  [quick: full]"};
+        for (size_t c = 0; c < n_cases; c++) {
+            printf("%-28s %-12s %s%s\n", cases[c].name, vkind_name(cases[c].kind),
+                   cases[c].title, gate[cases[c].gate]);
+            if (cases[c].status)
+                printf("%-28s %-12s status: %s\n", "", "", cases[c].status);
+        }
         return 0;
     }
     struct vreport rep = {0};
@@ -164,14 +171,17 @@ int cli_validate(int argc, char **argv)
     rep.keep_series = report != NULL;
     int failed_to_run = 0;
     for (size_t c = 0; c < n_cases; c++) {
-        int selected = n_wanted == 0 ? (!quick || cases[c].in_quick) : 0;
+        int selected = n_wanted == 0 ? (!quick || cases[c].gate != VGATE_OFF) : 0;
         for (size_t w = 0; w < n_wanted; w++)
             selected |= strcmp(wanted[w], cases[c].name) == 0;
         if (!selected)
             continue;
-        printf("== %s: %s%s\n", cases[c].name, cases[c].title, quick ? " (quick)" : "");
+        vreport_begin_case(&rep, &cases[c], quick && n_wanted == 0);
+        printf("== %s: %s (%s)%s\n", cases[c].name, cases[c].title, vkind_name(cases[c].kind),
+               rep.quick ? " (quick)" : "");
+        if (cases[c].status)
+            printf("  status: %s\n", cases[c].status);
         fflush(stdout);
-        rep.current_case = cases[c].name;
         size_t first = rep.n;
         struct spall_error err = {0, ""};
         int rc = cases[c].run(&rep, &err);
