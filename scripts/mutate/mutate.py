@@ -399,8 +399,8 @@ def run_all(args, repo, entries):
         if interrupted:
             break
 
-    # Leave the scratch build matching the unmutated tree.
-    run(["cmake", "--build", build, "-j%d" % args.jobs], args.scratch, log)
+    if not interrupted:  # leave the scratch build matching the unmutated tree
+        run(["cmake", "--build", build, "-j%d" % args.jobs], args.scratch, log)
 
     summary = summarise(repo, rev, entries, results, stale, interrupted, passed, t_base, timeout,
                         t_start, shared)
