@@ -206,7 +206,8 @@ def select(entries, only):
     unknown = [w for w in want if w not in ids]
     if unknown:
         raise CatalogueError("unknown id(s): %s" % ", ".join(unknown))
-    return [e for e in entries if e["id"] in want]
+    by_id = {e["id"]: e for e in entries}
+    return [by_id[w] for w in dict.fromkeys(want)]  # in the order given
 
 
 def write_reports(out, summary):
@@ -254,6 +255,8 @@ def main(argv=None):
     ap.add_argument("--check", action="store_true",
                     help="only verify that every entry applies to the checkout (no build)")
     ap.add_argument("--jobs", type=int, default=2, help="build and ctest parallelism (default 2)")
+    ap.add_argument("--resume", default=None, metavar="JSON",
+                    help="keep the results of an earlier (interrupted) run's JSON and run the rest")
     ap.add_argument("--static-lib", action="store_true",
                     help="build libspall static as in the project (every mutant relinks all tests)")
     args = ap.parse_args(argv)
@@ -354,8 +357,19 @@ def run_all(args, repo, entries):
     signal.signal(signal.SIGTERM, on_signal)
 
     results, stale = [], []
+    if args.resume:  # results of an earlier run of the same entries are kept
+        with open(args.resume, encoding="utf-8") as fh:
+            old = json.load(fh)
+        same = {(e["id"], e["file"], e["search"], e["replace"]) for e in entries}
+        results = [r for r in old["results"] if r["result"] in ("killed", "survived", "invalid")
+                   and (r["id"], r["file"], r["search"], r["replace"]) in same]
+        t_start -= old.get("wall_s", 0.0)  # wall time of both parts
+        print("mutate: %d results kept from %s" % (len(results), args.resume), flush=True)
+    done = {r["id"] for r in results}
     interrupted = False
     for k, e in enumerate(entries, 1):
+        if e["id"] in done:
+            continue
         r = {"id": e["id"], "file": e["file"], "area": e["area"], "planted": e["planted"],
              "desc": e["desc"], "search": e["search"], "replace": e["replace"]}
         why = check_entry(src, e)
