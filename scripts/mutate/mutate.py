@@ -119,7 +119,15 @@ def sync_tree(repo, scratch, shared):
     dst_root = os.path.join(scratch, "src")
     copied = 0
     is_shared = False
-    for rel in git_tracked(repo):
+    tracked = git_tracked(repo)
+    keep = set(tracked)
+    for top, _, files in os.walk(dst_root):  # files the checkout no longer has
+        for name in files:
+            path = os.path.join(top, name)
+            if os.path.relpath(path, dst_root) not in keep:
+                os.remove(path)
+                copied += 1
+    for rel in tracked:
         src = os.path.join(repo, rel)
         if not os.path.isfile(src) or os.path.islink(src):
             continue
