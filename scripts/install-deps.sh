@@ -2,7 +2,8 @@
 # Install the Debian packages spall needs, only those that are missing.
 # Safe to run repeatedly; needs root (or sudo) only when something is missing.
 set -euo pipefail
-pkgs=(build-essential cmake pkg-config git libyaml-dev libhdf5-dev libcairo2-dev libcmocka-dev libgsl-dev)
+pkgs=(build-essential cmake pkg-config git libyaml-dev libhdf5-dev libcairo2-dev libcmocka-dev libgsl-dev
+      python3)  # python3: scripts/mutate (ctest mutate_catalogue, make mutate)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
