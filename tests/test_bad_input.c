@@ -119,7 +119,7 @@ static void run_case(const struct bad_case *c)
     struct deck *d = NULL;
     struct sim *s = NULL;
     struct run_output ro;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = deck_load_string(&d, "bad.yaml", c->yaml, &err);
     if (rc == 0)
         rc = deck_build_sim(d, &s, &ro, &err);
@@ -160,7 +160,7 @@ static void test_valid_base_builds(void **state)
     struct deck *d = NULL;
     struct sim *s = NULL;
     struct run_output ro;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     const char *yaml = BASE_MODEL BASE_MAT BASE_LAT BASE_GEO BASE_BODY BASE_RUN;
     assert_int_equal(deck_load_string(&d, "good.yaml", yaml, &err), 0);
     int rc = deck_build_sim(d, &s, &ro, &err);

@@ -34,7 +34,7 @@
 static int build_fails(const char *yaml, const char *needle)
 {
     struct deck *d = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct sim *s = NULL;
     struct run_output ro;
     int rc = deck_load_string(&d, "bad.yaml", yaml, &err);
@@ -100,7 +100,7 @@ static void run_blocks(double width, int threads, double **xout, size_t *nout, d
     char deck[2048];
     blocks_deck(deck, sizeof deck, width, "contact: {distance: 1.0e-3, stiffness: 1.0e6}\n");
     struct sim *s = test_build_ok(deck);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     const struct particles *p = s->p;
     int gb = sim_find_group(s, "b");
     assert_true(gb >= 0);
@@ -200,7 +200,7 @@ static void test_same_body_unbonded(void **state)
              "run: {end_time: 6.0e-5, dt_factor: 0.25}\n",
              9.5 * row, 10.5 * row, 20.5 * row);
     struct sim *s = test_build_ok(deck);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     const struct particles *p = s->p;
     double gmin = INFINITY;
     size_t touched = 0;

@@ -31,7 +31,7 @@ static int has_suffix(const char *s, const char *suffix)
 /* Load and build one deck; 0 on success, the message printed otherwise. */
 static int build_one(const char *path, size_t *particles)
 {
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     struct deck *d = NULL;
     struct sim *s = NULL;
     struct run_output ro;

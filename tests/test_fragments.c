@@ -44,7 +44,7 @@ static void test_plate_cut_in_two(void **state)
     struct sim *s = test_build_ok(plate_deck);
     const struct particles *p = s->p;
     struct fragments *f = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(fragments_create(&f, p->n_owned, &err), SPALL_OK);
     assert_int_equal(fragments_of_sim(f, s, &err), SPALL_OK);
     assert_int_equal(fragments_count(f), 2);
@@ -127,7 +127,7 @@ static void test_thread_independence(void **state)
     int saved = omp_get_max_threads();
     int64_t *labels[2] = {NULL, NULL};
     size_t nf[2] = {0, 0}, n = 0;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     for (int pass = 0; pass < 2; pass++) {
         omp_set_num_threads(pass == 0 ? 1 : 2);
         struct sim *s = test_build_ok(burst_deck);

@@ -46,7 +46,7 @@ static int build(const char *incl, struct sim **s, struct spall_error *err)
 static int32_t *materials_of(const char *incl, size_t *n)
 {
     struct sim *s = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = build(incl, &s, &err);
     if (rc)
         fprintf(stderr, "%s\n", err.msg);
@@ -96,7 +96,7 @@ static void test_count_nonoverlap(void **state)
 {
     (void)state;
     struct sim *s = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(build(ENTRY(3), &s, &err), SPALL_OK);
     const struct particles *p = s->p;
     const size_t n = p->n;
@@ -138,7 +138,7 @@ static void test_refusals(void **state)
 {
     (void)state;
     struct sim *s = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     /* impossible packing: named entry and counts */
     assert_int_equal(build("  - {material: inc, count: 500, radius: 0.01, within: plate}\n", &s,
                            &err),
@@ -193,7 +193,7 @@ static int build_pair(const char *extra, double T0, struct sim **s, struct spall
 static double pair_force(const char *extra, double T0)
 {
     struct sim *s = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = build_pair(extra, T0, &s, &err);
     if (rc)
         fprintf(stderr, "%s\n", err.msg);
@@ -224,7 +224,7 @@ static void test_etable_refusals(void **state)
 {
     (void)state;
     struct sim *s = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     static const char *const bad[][2] = {
         {", youngs_modulus_table: [[300, 1.0e9], [300, 0.5e9]]", "strictly increasing"},
         {", youngs_modulus_table: [[300, 1.0e9], [900, 0]]", "expected > 0"},

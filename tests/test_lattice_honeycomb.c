@@ -84,7 +84,7 @@ static void test_sublattice_colouring(void **state)
 static void test_constants_and_moduli(void **state)
 {
     (void)state;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     const double E = 3e9, t = 1e-3;
     const double nus[] = {1.0 / 3.0, 0.35, 0.4, 0.443, 0.6, 0.9, 0.99};
     for (size_t q = 0; q < sizeof nus / sizeof nus[0]; q++) {
@@ -109,7 +109,7 @@ static void test_constants_and_moduli(void **state)
 static void test_patch_relaxed(void **state)
 {
     (void)state;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     const double nus[] = {0.4, 0.443, 0.7};
     for (size_t q = 0; q < 3; q++) {
         struct lattice_calib c = hc_calib(nus[q]);
@@ -153,7 +153,7 @@ static const char *const PLATE =
 static void test_plate_families_and_fracture(void **state)
 {
     (void)state;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     char deck[2048];
     snprintf(deck, sizeof deck, PLATE, 0.443, 5.0, 5.0);
     struct sim *s = NULL;
@@ -211,7 +211,7 @@ static double hc_energy(struct sim *s)
 static void test_stable_step(void **state)
 {
     (void)state;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     char deck[2048];
     snprintf(deck, sizeof deck, PLATE, 0.7, 0.0, 0.0);
     struct sim *s = NULL;
@@ -276,7 +276,7 @@ static void test_example_builds(void **state)
     const char *src = getenv("SPALL_SOURCE_DIR");
     char path[1024];
     snprintf(path, sizeof path, "%s/examples/abg_plate/abg_plate.yaml", src ? src : "..");
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct deck *d = NULL;
     assert_int_equal(deck_load_file(&d, path, &err), 0);
     struct sim *s = NULL;

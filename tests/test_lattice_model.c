@@ -57,7 +57,7 @@ static void check_patch(enum lattice_kind kind, int layers, double nu, double to
 {
     struct lattice_calib c = calib(kind, layers, nu);
     struct lattice_patch_result r;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = lattice_patch_test_full(&c, 1e-6, 0, &r, &err);
     if (rc)
         fprintf(stderr, "%s\n", err.msg);
@@ -79,7 +79,7 @@ static void check_patch(enum lattice_kind kind, int layers, double nu, double to
 static struct sim *make_sim(enum lattice_kind kind, const double hi[3], double nu,
                             const struct lattice_options *opt, double eps_t)
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int dim = lattice_kind_dim(kind);
     struct sim *s = NULL;
     assert_int_equal(sim_create(&s, dim, &err), 0);
@@ -130,7 +130,7 @@ static double total_energy(struct sim *s)
 
 static void forces(struct sim *s)
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     particles_zero_forces(s->p);
     assert_int_equal(lattice_model_ops.compute_forces(s->model, s, &err), 0);
 }
@@ -165,7 +165,7 @@ static void test_patch_fcc(void **state)
     (void)state;
     struct lattice_calib c = calib(LATTICE_FCC, 1, 0.25);
     struct lattice_patch_result r;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(lattice_patch_test_full(&c, 1e-6, 0, &r, &err), 0);
     printf("  patch fcc: Voigt E = %.6g (rel %.2e), nu_V = %.6f; E_100 = %.6g (= %.4f E), "
            "nu_100 = %.5f; Zener 2C44/(C11-C12) = %.4f\n", r.E, r.E / c.E - 1.0, r.nu, r.E_100,
@@ -186,7 +186,7 @@ static void test_patch_paper_constants(void **state)
         struct lattice_calib c = calib(LATTICE_TRIANGULAR, 1, nus[k]);
         c.thickness = 2.0 * c.r0 / SQ3; /* the paper's plate */
         double E, nu, Ep, nup;
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         assert_int_equal(lattice_patch_test(&c, 1e-6, 0, &E, &nu, &err), 0);
         assert_int_equal(lattice_patch_test(&c, 1e-6, 1, &Ep, &nup, &err), 0);
         assert_int_equal(lattice_calibrate(&c, &err), 0);
@@ -339,7 +339,7 @@ static void test_alpha_beta_gamma(void **state)
     check_patch(LATTICE_TRIANGULAR, 1, 0.443, 1e-3);
     check_patch(LATTICE_TRIANGULAR, 1, 0.9, 1e-3);
     struct lattice_calib c = calib(LATTICE_TRIANGULAR, 1, 0.4);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(lattice_calibrate(&c, &err), 0);
     assert_true(c.area_used && c.k_area > 0.0 && c.k_phi == 0.0);
     c = calib(LATTICE_TRIANGULAR, 1, 0.4);
@@ -458,7 +458,7 @@ static void test_piecewise_linear_and_deck(void **state)
                        "mat: {density: 1000, poisson_ratio: 0.0,\n"
                        "      curve: [[0, 0], [0.01, 1.0e7], [0.03, 1.5e7]]}\n";
     struct deck *dk = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(deck_load_string(&dk, "t.yaml", yaml, &err), 0);
     struct sim *s = NULL;
     assert_int_equal(sim_create(&s, 1, &err), 0);
@@ -532,7 +532,7 @@ static int try_deck(enum lattice_kind kind, const char *yaml, struct spall_error
 static void test_deck_refusals(void **state)
 {
     (void)state;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(try_deck(LATTICE_TRIANGULAR,
                               "model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
                               "poisson_ratio: 0.2, tensile_strength: 1e6}\n", &err), 0);
@@ -596,7 +596,7 @@ static void thread_check(double nu)
     c.b[0] = 20.1;
     c.b[1] = 15.7;
     size_t cut = 0;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(lattice_model_ops.precrack(s->model, s, &c, &cut, &err), 0);
     assert_true(cut > 0);
     perturb(s, 0.08, 3u);
@@ -673,7 +673,7 @@ static void test_stable_dt_chain(void **state)
     c.thickness = 1.0;
     c.E = 1.0;
     c.rho = 1000.0;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(lattice_calibrate(&c, &err), 0);
     assert_true(fabs(c.dt / dt - 1.0) < 1e-12);
     sim_destroy(&s);

@@ -38,7 +38,7 @@ extern const struct model_ops lattice_model_ops;
 static struct sim *make_soft(enum lattice_kind kind, const double hi[3], int layers, double e0,
                              double ef, double gf)
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int dim = lattice_kind_dim(kind);
     struct sim *s = NULL;
     assert_int_equal(sim_create(&s, dim, &err), 0);
@@ -83,7 +83,7 @@ static struct sim *make_soft(enum lattice_kind kind, const double hi[3], int lay
 
 static void forces(struct sim *s)
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     particles_zero_forces(s->p);
     assert_int_equal(lattice_model_ops.compute_forces(s->model, s, &err), 0);
 }
@@ -203,7 +203,7 @@ static int try_deck(const char *yaml, struct spall_error *err)
 static void test_deck_and_refusals(void **state)
 {
     (void)state;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     const char *head = "model: {type: lattice, law: softening}\nmat: {density: 1, "
                        "youngs_modulus: 1e9, poisson_ratio: 0.3333333333333333, ";
     char y[512];
@@ -266,7 +266,7 @@ static void test_dynamic_energy_balance(void **state)
         "         bottom: {box: {min: [-1, -1], max: [1, 0.0041]}}}\n"
         "initial_velocity: [{group: top, value: [0, 8.0]}, {group: bottom, value: [0, -8.0]}]\n"
         "run: {end_time: 6.0e-5, dt_factor: 0.125}\n";
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct deck *d = NULL;
     assert_int_equal(deck_load_string(&d, "tear.yaml", yaml, &err), 0);
     struct sim *s = NULL;

@@ -40,7 +40,7 @@ static struct macro_calib al(double r0)
 static void test_calibration(void **state)
 {
     (void)state;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct macro_calib a = al(1e-3), b = al(3e-3);
     assert_int_equal(macro_calibrate(&a, &err), SPALL_OK);
     assert_int_equal(macro_calibrate(&b, &err), SPALL_OK);
@@ -135,7 +135,7 @@ static const char *const BLOCK =
 static void run_block(int threads, double **xout, size_t *n, double *builds, double *plastic)
 {
     omp_set_num_threads(threads);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct deck *d = NULL;
     struct sim *s = NULL;
     struct run_output ro;
@@ -205,7 +205,7 @@ static void test_deck_errors(void **state)
     const char *want[] = {"atomic_mass_u", "exponents", "damping", "youngs_modulus",
                           "calibration"};
     for (int k = 0; k < 5; k++) {
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         struct deck *d = NULL;
         struct sim *s = NULL;
         struct run_output ro;

@@ -33,7 +33,7 @@ static struct macro_calib al(void)
 static void test_lattice_constants(void **state)
 {
     (void)state;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct macro_calib c = al();
     assert_int_equal(macro_calibrate(&c, &err), SPALL_OK);
     /* nearest shell only: C11 = 2 C12 = 2 C44 = sqrt2 phi''/r0, no residual
@@ -102,7 +102,7 @@ static void test_slip_111(void **state)
     }
     size_t n = fcc_block(nc, x0);
     const double a = sqrt(2.0), cut = 3.3 * a; /* between two (111) layers */
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct macro_slip_stats st;
     /* undeformed: nothing slipped, interior perfectly centro-symmetric */
     for (int d = 0; d < 3; d++)

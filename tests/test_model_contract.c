@@ -178,7 +178,7 @@ static struct sim *build(const struct model_fixture *fx, const struct frame *fr,
     struct deck *d = NULL;
     struct sim *s = NULL;
     struct run_output ro;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = deck_load_string(&d, fx->label, text, &err);
     if (!rc)
         rc = deck_build_sim(d, &s, &ro, &err);
@@ -234,7 +234,7 @@ static void set_state(struct sim *s, const struct sim *base, const struct frame 
             p->v[d][j] = rv[d];
         }
     }
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     if (sim_initial_forces(s, &err)) {
         print_error("%s\n", err.msg);
         fail();
@@ -243,7 +243,7 @@ static void set_state(struct sim *s, const struct sim *base, const struct frame 
 
 static void run_steps(struct sim *s, long n, const char *label)
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     for (long k = 0; k < n; k++)
         if (sim_step(s, &err)) {
             print_error("%s: step %ld: %s\n", label, k, err.msg);
@@ -469,7 +469,7 @@ static double energy_error(const struct model_fixture *fx, double dt_scale, long
                 v += A[d][e] * p->x[e][i] / R;
             p->v[d][i] = 10.0 * vs * v;
         }
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(sim_initial_forces(s, &err), 0);
     s->dt *= dt_scale;
     double worst = 0.0, scale = s->energy.kinetic;

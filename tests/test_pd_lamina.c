@@ -40,7 +40,7 @@ static struct sim *build_ok(const char *opts, double theta)
              "body: {geometry: p, material: t700}\nrun: {steps: 1}\n",
              opts, theta, theta);
     struct deck *d = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct sim *s = NULL;
     int rc = deck_load_string(&d, "test", yaml, &err);
     if (!rc) {
@@ -143,7 +143,7 @@ static void test_fiber_plane(void **state)
                                     : ", mixed_mode: off", 0.0);
         struct model *m = s->model;
         struct particles *p = s->p;
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         size_t i = pd_patch_particle(m, s, 0);
         for (size_t q = 0; q < p->n; q++)
             for (int d = 0; d < 2; d++) {
@@ -159,7 +159,7 @@ static void test_fiber_plane(void **state)
     /* refused outside the PDLM lattice, with the deck position */
     {
         struct deck *d = NULL;
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         struct sim *s = NULL;
         const char *yaml = "model: {type: peridynamics, matrix_crack: fiber_plane}\n"
                            "materials:\n  m: {density: 1000, youngs_modulus: 1e9}\n"
@@ -189,7 +189,7 @@ static void test_fiber_plane(void **state)
 static double ex_of(const char *yaml)
 {
     struct deck *d = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct sim *s = NULL;
     int rc = deck_load_string(&d, "test", yaml, &err);
     if (!rc) {
@@ -271,7 +271,7 @@ static void test_lamina_threads(void **state)
                  "  - {group: t, type: velocity, value: [0, 40]}\n"
                  "run: {steps: 120, threads: %d}\n", t);
         struct deck *d = NULL;
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         struct sim *s = NULL;
         int rc = deck_load_string(&d, "test", yaml, &err);
         if (!rc) {

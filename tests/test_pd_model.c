@@ -41,7 +41,7 @@ static int build(const char *yaml, struct sim **s, struct spall_error *err)
 
 static struct sim *build_ok(const char *yaml)
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct sim *s = NULL;
     int rc = build(yaml, &s, &err);
     if (rc)
@@ -124,7 +124,7 @@ static void test_breaking_and_damage(void **state)
                              "body: {geometry: b, material: m}\n"
                              "run: {steps: 1}\n");
     struct particles *p = s->p;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     /* open a gap of 0.05 mm at x = 10.5 mm: bonds crossing it stretch >= 1.25 % */
     for (size_t i = 0; i < p->n; i++)
         if (p->x0[0][i] > 0.0105)
@@ -147,7 +147,7 @@ static void test_breaking_and_damage(void **state)
 static void test_refusals(void **state)
 {
     (void)state;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct sim *s = NULL;
     char buf[1024];
     int rc = build("model: {type: peridynamics}\n"
@@ -183,7 +183,7 @@ static void test_ortho_calibration(void **state)
                  "body: {geometry: p, material: t700}\nrun: {steps: 1}\n",
                  fm ? "pmb" : "pdlm", fm ? "angular" : "lattice");
         struct sim *s = build_ok(buf);
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         double a[4];
         assert_int_equal(pd_calibrate_ortho(s->model, s, 0, a, &err), 0);
         const struct pd_material *mt = pd_material_get(s->model, 0);
@@ -219,7 +219,7 @@ static void test_threads(void **state)
                  "  - {group: r, type: velocity, components: [x], value: 20}\n"
                  "run: {steps: 150, threads: %d}\n", t);
         struct sim *s = build_ok(buf);
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         while (!sim_done(s))
             assert_int_equal(sim_step(s, &err), 0);
         n = s->p->n;

@@ -41,7 +41,7 @@ static struct pen_sph_grid sebs_grid(void)
 
 static struct sim *build_file(const char *path)
 {
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     struct deck *d = NULL;
     int rc = deck_load_file(&d, path, &e);
     if (rc)
@@ -83,7 +83,7 @@ static void test_scale_invariance(void **state)
 {
     (void)state;
     static const double ds[5] = {20e-6, 16e-6, 13e-6, 12e-6, 22e-6};
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     char buf[4096];
     struct pen_sph_target t = pen_sph_target_sebs(40e6);
     struct pen_sph_grid g = sebs_grid();
@@ -107,7 +107,7 @@ static void test_scale_invariance(void **state)
 static void test_bad_input(void **state)
 {
     (void)state;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     char buf[4096];
     struct pen_sph_target t = pen_sph_target_sebs(40e6);
     struct pen_sph_grid g = sebs_grid();
@@ -132,7 +132,7 @@ static void test_bad_input(void **state)
 static void test_gelatin_special_case(void **state)
 {
     (void)state;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     char buf[4096], ref[4096];
     pen_sph_deck(ref, sizeof ref, 1290.0, 20e6, 0.75e-6, 1.0, 260e-9);
     struct pen_sph_target t = pen_sph_target_gelatin(20e6);
@@ -154,7 +154,7 @@ static void test_examples_match(void **state)
     static const double shots[5][2] = {
         {20e-6, 215.0}, {16e-6, 440.0}, {13e-6, 630.0}, {12e-6, 735.0}, {22e-6, 300.0}};
     const char *src = getenv("SPALL_SOURCE_DIR");
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     char buf[4096], path[1024];
     struct pen_sph_target t = pen_sph_target_sebs(40e6);
     struct pen_sph_grid g = sebs_grid();
@@ -178,7 +178,7 @@ static void test_examples_match(void **state)
 static void test_run_short(void **state)
 {
     (void)state;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     struct pen_sph_target t = pen_sph_target_sebs(40e6);
     struct pen_sph_shot s = {20e-6, 7800.0, 215.0};
     struct pen_sph_grid g = {.dx1_d = 0.34, .width = 1.0, .depth = 1.0, .t_end = 30e-9,
@@ -201,7 +201,7 @@ static void test_run_short(void **state)
 static void test_run_rebound(void **state)
 {
     (void)state;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     struct pen_sph_target t = pen_sph_target_gelatin(20e6);
     struct pen_sph_shot s = {7.38e-6, 1850.0, 200.0};
     struct pen_sph_grid g = {.dx1_d = 0.34, .width = 1.0, .depth = 1.0, .t_end = 400e-9,
@@ -229,7 +229,7 @@ static void test_run_rebound(void **state)
 static void test_av_options_in_deck(void **state)
 {
     (void)state;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     char buf[4096];
     struct pen_sph_target t = pen_sph_target_gelatin(20e6);
     struct pen_sph_shot s = {7.38e-6, 1850.0, 1290.0};
@@ -255,7 +255,7 @@ static void test_av_options_in_deck(void **state)
 static void test_richardson(void **state)
 {
     (void)state;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     const double h[3] = {0.75, 0.5, 0.375};
     double f[3], p = 0.0, fi = 0.0;
     for (int k = 0; k < 3; k++)
@@ -295,7 +295,7 @@ static void test_convergence_grids(void **state)
                                  .t_end = 300e-9, .cavity_depth = 15e-6,
                                  .k_first_contact = 1, .surface_contact = 1};
         static char deck[4096];
-        struct spall_error e = {0, ""};
+        struct spall_error e = {0};
         assert_int_equal(pen_sph_setup_deck(deck, sizeof deck, &t, &s, &g, &e), SPALL_OK);
         assert_non_null(strstr(deck, "viscosity_length: 6.5e-07"));
         struct sim *sim = NULL;

@@ -35,7 +35,7 @@ static void test_poncelet_limits(void **state)
 {
     (void)state;
     struct pen_params p = gel();
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     struct pen_result r;
     double t[2] = {0.0, 1.0}, P[2], V[2];
     assert_int_equal(pen_poncelet(&p, 1290.0, 2, t, P, V, &r, &e), SPALL_OK);
@@ -59,7 +59,7 @@ static void test_liu_reduces_to_poncelet(void **state)
     l.cv = 0.0;
     l.sigma0 = p.R;
     l.edot0 = 1e30;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     struct pen_result rp, rl;
     assert_int_equal(pen_solve(&p, 800.0, 0, NULL, NULL, NULL, 0, &rp, &e), SPALL_OK);
     assert_int_equal(pen_solve(&l, 800.0, 0, NULL, NULL, NULL, 0, &rl, &e), SPALL_OK);
@@ -81,7 +81,7 @@ static void test_liu_fallback(void **state)
     l.cd = 0.4;
     l.cv = 1.0e6; /* b^2 >> 4ac */
     l.sigma0 = 1.0e5;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     struct pen_result r;
     const double v0 = 300.0;
     assert_int_equal(pen_solve(&l, v0, 0, NULL, NULL, NULL, 0, &r, &e), SPALL_OK);
@@ -109,7 +109,7 @@ static void test_clift_gauvin(void **state)
     p.R = 25e6;
     /* F(0) is the resistance alone */
     assert_true(fabs(pen_force(&p, 0.0) / (p.R * SPALL_PI * p.d * p.d / 4.0) - 1.0) < 1e-14);
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     struct pen_result r;
     assert_int_equal(pen_solve(&p, 500.0, 0, NULL, NULL, NULL, 0, &r, &e), SPALL_OK);
     assert_false(r.closed_form);
@@ -119,7 +119,7 @@ static void test_clift_gauvin(void **state)
 static void test_bad_params(void **state)
 {
     (void)state;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     struct pen_result r;
     struct pen_params p = gel();
     p.R = -1.0;
@@ -150,7 +150,7 @@ static void test_csv(void **state)
     (void)state;
     const char *path = "test_penetration_tmp.csv";
     struct pen_csv c;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     write_file(path, "# comment\n\n t , P \n1e-9, 2e-6\n2e-9,3e-6\n");
     assert_int_equal(pen_csv_read(path, &c, &e), SPALL_OK);
     assert_int_equal(c.n_rows, 2);
@@ -183,7 +183,7 @@ static void test_fit_input(void **state)
     double t[2] = {1e-9, 2e-9}, P[2] = {1e-6, 2e-6};
     in.t = t, in.P = P, in.n = 2; /* 2 rows for 2 coefficients: too few */
     struct pen_fit_result f;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     assert_int_equal(pen_fit(&in, &f, NULL, &e), SPALL_ERR_INPUT);
     assert_non_null(strstr(e.msg, "at least 3"));
     /* a Poncelet trajectory fit recovers its own coefficients */
@@ -235,7 +235,7 @@ static void test_cavity(void **state)
     n++;
     struct pen_cavity_opts o = {0.0, 0.0, 15e-6, 0.0, 2.0 * a, 0};
     double d1 = 0, d2 = 0;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     assert_int_equal(pen_cavity_diameters(n, x, y, z, dxs, failed, &o, &d1, &d2, &e), SPALL_OK);
     assert_true(fabs(d1 - 10e-6) < 2.0 * a);
     assert_true(fabs(d2 - 14e-6) < 2.0 * a);

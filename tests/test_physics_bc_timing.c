@@ -62,7 +62,7 @@ static void test_velocity_ramp_displacement(void **state)
         assert_int_equal(s->groups[g].n, 1);
         const size_t i = s->groups[g].idx[0];
         const double x0 = s->p->x[0][i];
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         for (int n = 0; n < N; n++)
             assert_int_equal(sim_step(s, &err), SPALL_OK);
         const double t = s->t;

@@ -60,7 +60,7 @@ static void pull_until_broken(const char *model, const char *material, double s_
              model, material, V, dt, max_steps);
     struct sim *s = test_build_ok(yaml);
     assert_int_equal(s->p->n, 2);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     double s_prev = 0.0, s_now = 0.0;
     int broke = 0;
     for (int n = 0; n < max_steps && !broke; n++) {
@@ -173,7 +173,7 @@ static void test_pd_notch_tip(void **state)
                 pb[np++] = b;
             }
         }
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     double hold = 0.0, brk = 0.0;
     size_t at = 0;
     int broke = 0;

@@ -57,7 +57,7 @@ static size_t strained_stress(struct sim *s, const double *x0, double eps, doubl
             p->x[d][i] = x0[3 * i + d] * (d == 0 ? 1.0 + eps : 1.0);
             p->v[d][i] = 0.0;
         }
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(sim_initial_forces(s, &err), SPALL_OK);
     const struct field_desc *f = field_registry_find(s->fields, "stress");
     assert_non_null(f);

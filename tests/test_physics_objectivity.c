@@ -91,7 +91,7 @@ static double spin_error(const char *model_line, double margin, size_t *n_checke
     for (size_t i = 0; i < n; i++)
         for (int d = 0; d < 2; d++)
             x0[2 * i + d] = p->x[d][i] - c[d];
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     while (!sim_done(s)) {
         const double th = omega * s->t, cs = cos(th), sn = sin(th);
         for (size_t i = 0; i < n; i++) {

@@ -60,7 +60,7 @@ static void test_cspm_linear_fields(void **state)
     for (size_t i = 0; i < n; i++)
         for (int a = 0; a < 2; a++)
             p->v[a][i] = L_GRAD[a][0] * p->x[0][i] + L_GRAD[a][1] * p->x[1][i];
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(sim_initial_forces(s, &err), SPALL_OK);
     double *P = malloc(n * sizeof *P), *rho = malloc(n * sizeof *rho);
     assert_non_null(P);

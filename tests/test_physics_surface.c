@@ -81,7 +81,7 @@ static void test_surface_correction_patch(void **state)
     const double eps = 1.0e-4, h = 1.0e-3 * eps;
     const double delta = 3.015 * DX; /* default horizon */
     for (int dir = 0; dir < 2; dir++) {
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         strain_plate(p, dir, eps);
         assert_int_equal(sim_initial_forces(s, &err), SPALL_OK);
         fe->compute(fe->ctx, n, e);

@@ -50,7 +50,7 @@ static void test_half_space_erfc(void **state)
              "run: {dt: %g, end_time: %.17g}\n",
              T1, rho, C, k, T0, dx, 5.0 * L + 0.5 * dx, dt, t_end);
     struct sim *s = test_build_ok(yaml);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     while (!sim_done(s))
         assert_int_equal(sim_step(s, &err), SPALL_OK);
     const double t = s->t;

@@ -23,7 +23,7 @@ static double cone_r(double z) { return CA - CB * z; }
 static struct particles *cone(size_t layers)
 {
     struct particles *p = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(particles_create(&p, 3, 3 * layers, &err), SPALL_OK);
     for (size_t k = 0; k < layers; k++) {
         const double z = (double)k * CDZ, r = cone_r(z), phi = 0.3 * (double)k;
@@ -45,7 +45,7 @@ static void test_cone_exact(void **state)
 {
     (void)state;
     struct particles *p = cone(20);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     const double off = 0.2e-3;
     const double z0s[4] = {0.5e-3, 1.0e-3, 0.9e-3, 2.45e-3}, ws[3] = {0.35e-3, 0.5e-3, 1.0e-3};
     for (int a = 0; a < 4; a++)
@@ -67,7 +67,7 @@ static void test_one_sided_and_owned(void **state)
 {
     (void)state;
     struct particles *p = cone(10);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     double r = 0.0;
     /* z0 = -0.1 mm: only the layer z = 0 lies in [z0, z0 + w) */
     assert_int_equal(profile_radius(p, -0.1e-3, 0.25e-3, 0.0, &r, &err), SPALL_OK);
@@ -94,7 +94,7 @@ static void test_axisymmetric_2d(void **state)
 {
     (void)state;
     struct particles *p = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(particles_create(&p, 2, 60, &err), SPALL_OK);
     for (size_t k = 0; k < 20; k++) {
         const double z = (double)k * CDZ, r = cone_r(z);
@@ -128,7 +128,7 @@ static void test_errors(void **state)
 {
     (void)state;
     struct particles *p = cone(5);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     double r = -1.0;
     assert_int_equal(profile_radius(p, 0.05, 1e-3, 0.0, &r, &err), SPALL_ERR_INPUT);
     assert_non_null(strstr(err.msg, "0.05"));

@@ -65,7 +65,7 @@ static void test_parity_refused(void **state)
 {
     (void)state;
     struct field_registry *r = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(field_registry_create(&r, &err), SPALL_OK);
     double *a[6] = {0};
     double **pa[6] = {&a[0], &a[1], &a[2], &a[3], &a[4], &a[5]};

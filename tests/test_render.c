@@ -106,7 +106,7 @@ static void test_render_points(void **state)
     struct render_points d = {NX * NY, pos, NULL, val, 1.5e-3, "fracture density (1)"};
     char png[64];
     snprintf(png, sizeof png, "render_test_%d.png", (int)getpid());
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(render_points_png(png, &d, &o, &err), SPALL_OK);
     check_halves(png);
     /* bad width refused */
@@ -154,7 +154,7 @@ static void test_render_frame(void **state)
     struct render_options o;
     render_options_default(&o, "velocity");
     o.component = 0;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(render_frame_png(h5, png, &o, &err), SPALL_OK);
     check_halves(png);
     /* magnitude gives the same picture here */
@@ -185,7 +185,7 @@ static void test_plot(void **state)
     struct plot_spec spec = {"test plot", "t [s]", "u [m]", 640, 400, ser, 2, &ref, 1};
     char png[64];
     snprintf(png, sizeof png, "plot_test_%d.png", (int)getpid());
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(plot_png(png, &spec, &err), SPALL_OK);
     cairo_surface_t *s = cairo_image_surface_create_from_png(png);
     assert_int_equal(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
@@ -213,7 +213,7 @@ static void test_report(void **state)
     struct vreport r = {0};
     r.keep_series = 1;
     r.current_case = "demo-case";
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     double x[3] = {0, 1, 2}, y[3] = {0, 1, 4};
     assert_int_equal(vreport_check(&r, "q", "m", 1.0, 1.001, 0.01, true, "src", "note", &err), 0);
     assert_int_equal(vreport_series(&r, "p", "x", "y", "meas", VSERIES_LINE, x, y, 3, &err), 0);

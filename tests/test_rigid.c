@@ -32,7 +32,7 @@
 static int build_fails(const char *yaml, const char *needle)
 {
     struct deck *d = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct sim *s = NULL;
     struct run_output ro;
     int rc = deck_load_string(&d, "bad.yaml", yaml, &err);
@@ -47,7 +47,7 @@ static int build_fails(const char *yaml, const char *needle)
 
 static void run_steps(struct sim *s, long n)
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     for (long k = 0; k < n; k++) {
         int rc = sim_step(s, &err);
         if (rc)

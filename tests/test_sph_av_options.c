@@ -53,7 +53,7 @@ enum flow { FLOW_COMPRESSION, FLOW_SHEAR };
  * exact); returns the velocity change of every particle in dv[2][n]. */
 static void one_step(struct sim *s, enum flow f, double *dv[2])
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     /* 1/s; compression strong enough that Balsara's floor 1e-4 c / h
      * (~9 /s here) is 0.3 % of |div v| = 3 g */
     const double g = f == FLOW_COMPRESSION ? 1000.0 : 100.0;
@@ -268,7 +268,7 @@ static double collision_energy(struct sim *s)
 {
     sim_update_energy(s);
     const double e0 = s->energy.kinetic;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     double worst = 0.0;
     while (!sim_done(s)) {
         assert_int_equal(sim_step(s, &err), SPALL_OK);

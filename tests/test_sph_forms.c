@@ -267,7 +267,7 @@ static void expect_refused(const char *model_extra, const char *what)
              "     material: m, lattice: {spacing: 1.0e-3, origin: [0.0005, 0.0065]}}\n"
              "run: {steps: 1}\n",
              model_extra);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = vlat_build("t", yaml, &s, &err);
     print_message("refused: %s\n", err.msg);
     assert_int_not_equal(rc, 0);

@@ -32,7 +32,7 @@ static int build_rc(const char *mat_extra, struct sim **out)
              "body: {geometry: {box: {min: [0, 0], max: [0.004, 0.004]}}, material: m}\n"
              "run: {steps: 1}\n",
              mat_extra);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     return vlat_build("t", yaml, out, &err);
 }
 

@@ -124,7 +124,7 @@ static void impact(bool axisym, int layers, double mass_tol, double p_tol, doubl
     const int axis = axisym ? 1 : 2;
     const double r_outer = (layers - 0.5) * DX;
     struct sim *s = build(axisym, R, c);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct ball_state b0 = measure(s, axis, c, r_outer);
     const double m_ball = 2000.0 * 4.0 / 3.0 * SPALL_PI * R * R * R, ke0 = 0.5 * b0.mass * V0 * V0;
     double worst_e = 0.0, worst_round = 0.0, worst_p = 0.0;

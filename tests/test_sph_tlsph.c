@@ -132,7 +132,7 @@ static void guard_case(const char *extra, int map, const char *who, const char *
              "run: {steps: 5}\n",
              extra);
     struct sim *s = test_build_ok(yaml);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     for (size_t i = 0; i < s->p->n; i++) {
         double *x = &s->p->x[0][i], *y = &s->p->x[1][i];
         if (map == 0) /* uniform compression to 30 % in x: det F = 0.3 */
@@ -174,7 +174,7 @@ static void test_det_f_guard(void **state)
             else
                 s->p->x[0][i] += 10.0 * s->p->x[1][i];
         }
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         assert_int_equal(sim_step(s, &err), 0);
         sim_destroy(&s);
     }

@@ -35,7 +35,7 @@
 
 static void run_to_end(struct sim *s)
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     while (!sim_done(s))
         assert_int_equal(sim_step(s, &err), 0);
 }
@@ -94,7 +94,7 @@ static void test_update_keeps_state(void **state)
     assert_non_null(a);
     assert_non_null(b);
     assert_non_null(f0);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     /* a force call on the step's final state first (P from the corrected
      * rho, e): the forces to compare with after the update */
     particles_zero_forces(s->p);
@@ -242,7 +242,7 @@ static int mapped_block(const char *extra, int map, long steps, double *jmin, do
         else
             s->p->x[0][i] += (map == 1 ? 10.0 : 2.0) * s->p->x[1][i];
     }
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = 0;
     while (!rc && !sim_done(s))
         rc = sim_step(s, &err);
@@ -260,7 +260,7 @@ static void test_guard(void **state)
     omp_set_num_threads(1);
     double j, k;
     size_t nu;
-    char msg[512];
+    char msg[SPALL_ERROR_MSG_LEN];
     /* the guard acts in the force call, before the step's update */
     assert_int_equal(mapped_block(", det_f_range: [0.5, 2], reference_update: {every: 1}", 0, 3,
                                   &j, &k, &nu, msg, sizeof msg),
@@ -321,7 +321,7 @@ static int stretched_block(const char *upd, size_t *grown, double *hmax, double 
     struct sim *s = test_build_ok(yaml);
     for (size_t i = 0; i < s->p->n; i++)
         s->p->x[0][i] *= 2.2;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = 0;
     while (!rc && !sim_done(s))
         rc = sim_step(s, &err);
@@ -341,7 +341,7 @@ static void test_isotropy(void **state)
     omp_set_num_threads(1);
     size_t grown;
     double hmax, jmin;
-    char msg[512];
+    char msg[SPALL_ERROR_MSG_LEN];
     assert_int_equal(stretched_block(", isotropy: 0", &grown, &hmax, &jmin, msg, sizeof msg),
                      SPALL_ERR_UNSTABLE);
     print_message("isotropy 0: %s\n", msg);
@@ -371,7 +371,7 @@ static void test_mixed_bodies(void **state)
     double P0[2], P[2], dp = 0.0;
     test_momentum_2d(s, P0);
     const double ke0 = s->energy.kinetic;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     size_t contact = 0;
     while (!sim_done(s)) {
         assert_int_equal(sim_step(s, &err), 0);

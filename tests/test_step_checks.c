@@ -35,7 +35,7 @@ static void test_energy_blowup_in_sim_step(void **state)
         "groups: {left: {box: {min: [-1, -1], max: [0.0006, 1]}}}\n"
         "boundary_conditions: [{group: left, type: velocity, components: [x], value: 1.0}]\n"
         "run: {steps: 400, dt: 2.0e-6, dt_override: true}\n");
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = SPALL_OK;
     while (!sim_done(s) && !(rc = sim_step(s, &err)))
         ;
@@ -71,7 +71,7 @@ static void test_drift_velocity_skips_prescribed(void **state)
     const struct particles *p = s->p;
     const struct group *clamp = &s->groups[sim_find_group(s, "clamp")];
     assert_true(clamp->n > 0);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     double xsph_move = 0.0; /* largest |x_n+1 - x_n - dt v_n+1/2| of a free particle */
     for (int k = 0; k < 5; k++) {
         const size_t n = p->n_owned;

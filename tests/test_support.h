@@ -22,7 +22,7 @@
 static inline struct sim *test_build(const char *yaml)
 {
     struct sim *s = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     if (vlat_build("test", yaml, &s, &err)) {
         print_error("%s\n", err.msg);
         return NULL;
@@ -46,7 +46,7 @@ static inline void test_deck_refused(const char *yaml, const char *needle)
     struct deck *d = NULL;
     struct sim *s = NULL;
     struct run_output ro;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(deck_load_string(&d, "bad", yaml, &err), 0);
     assert_int_equal(deck_build_sim(d, &s, &ro, &err), SPALL_ERR_INPUT);
     print_message("refused: %s\n", err.msg);

@@ -47,7 +47,7 @@ static void test_refusals(void **state)
 {
     (void)state;
     struct sim *s = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     assert_int_equal(build(", conductivity: 3", "", &s, &err), SPALL_ERR_INPUT);
     assert_non_null(strstr(err.msg, "specific_heat"));
     assert_null(s);
@@ -70,7 +70,7 @@ static void test_field_and_history(void **state)
 {
     (void)state;
     struct sim *s = NULL;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = build(", specific_heat: 800, initial_temperature: 350",
                    ", thermal: {boundary: [{group: end, temperature: 400}]}", &s, &err);
     if (rc)

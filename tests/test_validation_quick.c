@@ -186,7 +186,7 @@ static void test_case(void **state)
     memset(&r, 0, sizeof r);
     r.log = stdout;
     vreport_begin_case(&r, vc, true);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = vc->run(&r, &err);
     if (rc)
         print_message("case %s failed to run: %s\n", vc->name, err.msg);

@@ -108,7 +108,7 @@ static int patch_paper(struct vreport *r, double nu, struct spall_error *err)
         spall_error_prefix(err, "patch test with the paper's constants, nu = %g: ", nu);
         return rc;
     }
-    struct spall_error e2 = {0, ""};
+    struct spall_error e2 = {0};
     if ((rc = lattice_calibrate(&c, &e2)))
         return spall_error_set(err, rc, "%s", e2.msg);
     double kp_paper = lattice_paper_k_phi(c.E, nu, c.r0, c.thickness);

@@ -70,7 +70,7 @@ void pen_sph_deck(char *buf, size_t len, double v0, double E, double dx1, double
     const struct pen_sph_target t = pen_sph_target_gelatin(E);
     const struct pen_sph_shot s = {PEN_D, PEN_RHO_P, v0};
     const struct pen_sph_grid g = gelatin_grid(dx1, width, t_end);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     if (pen_sph_setup_deck(buf, len, &t, &s, &g, &err) && len > 0)
         buf[0] = '\0'; /* an empty deck then fails to build, naming the deck */
 }
@@ -298,7 +298,7 @@ static int sequence_info(struct vreport *r, const char *form, const struct pen_s
     for (int s = n - 3; s >= 0; s--) {
         const double f[3] = {o[s].pmax, o[s + 1].pmax, o[s + 2].pmax};
         double p = 0.0, finf = 0.0;
-        struct spall_error e = {0, ""};
+        struct spall_error e = {0};
         const int rich = pen_richardson(&conv_dx[s], f, &p, &finf, &e) == SPALL_OK;
         if (rich)
             vreport_info(r,

@@ -194,7 +194,7 @@ int pen_case_sph_sebs_convergence(struct vreport *r, struct spall_error *err)
             return rc;
         gap_if_failed(r, CONV_GAP);
         double p = 0.0, finf = 0.0;
-        struct spall_error e = {0, ""};
+        struct spall_error e = {0};
         const int rich = pen_richardson(h, f, &p, &finf, &e) == SPALL_OK;
         if (rich)
             vreport_info(r, "%.0f um at %.0f m/s: Richardson P_max(dx -> 0) = %.2f um (order "

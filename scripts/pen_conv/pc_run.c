@@ -55,7 +55,7 @@ int main(int argc, char **argv)
         else if (!strcmp(k, "sub")) subs[ns++] = (char *)v;
         else { fprintf(stderr, "unknown key %s\n", k); return 2; }
     }
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     static char deck[16384];
     if (pen_sph_setup_deck(deck, sizeof deck, &t, &s, &g, &err)) { fprintf(stderr, "%s\n", err.msg); return 1; }
     char tmp[128];

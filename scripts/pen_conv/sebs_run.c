@@ -20,7 +20,7 @@ int main(int argc, char **argv)
     struct pen_sph_grid g = {.dx1_d = 1.0 / N, .width = 1.0, .depth = 1.5, .t_end = 1.6e-6,
                              .cavity_depth = 0.0};
     struct pen_sph_outcome o;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     if (pen_sph_setup_run(&t, &s, &g, &o, &err)) {
         fprintf(stderr, "sebs_run: %s\n", err.msg);
         return 1;

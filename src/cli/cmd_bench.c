@@ -92,7 +92,7 @@ int cli_bench(int argc, char **argv)
         for (int t = 0; t < n_threads; t++) {
             struct bench_result r;
             memset(&r, 0, sizeof r);
-            struct spall_error err = {0, ""};
+            struct spall_error err = {0};
             int rc = bench_case_at(c)->run(threads[t], scale, &r, &err);
             if (rc) {
                 fprintf(stderr, "spall bench: %s: %s\n", bench_case_at(c)->name, err.msg);

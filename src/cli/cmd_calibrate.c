@@ -133,7 +133,7 @@ int cli_calibrate(int argc, char **argv)
         else
             c.thickness = c.r0;
     }
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = lattice_calibrate(&c, &err);
     if (rc) {
         fprintf(stderr, "spall: error: %s\n", err.msg);

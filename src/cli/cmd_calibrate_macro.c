@@ -131,7 +131,7 @@ int cli_calibrate_macroparticle(int argc, char **argv)
     c.p = p;
     c.q = q;
     c.r0 = r0;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     if (macro_calibrate(&c, &err)) {
         fprintf(stderr, "spall calibrate macroparticle: %s\n", err.msg);
         return 2;

@@ -108,7 +108,7 @@ int cli_calibrate_peridynamics(int argc, char **argv)
              "geometry:\n  p: {box: {min: [0, 0], max: [%.17g, %.17g]}}\n"
              "body: {geometry: p, material: m}\nrun: {steps: 1}\n",
              variant, hf, fm, mat, lat, dx, t, ang, 20.5 * dx, 20.5 * dx);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct deck *d = NULL;
     struct sim *s = NULL;
     struct run_output ro;

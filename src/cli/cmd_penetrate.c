@@ -171,7 +171,7 @@ static int write_open(const char *path, FILE **f)
 
 static int cmd_model(struct pen_opts *o)
 {
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     if (!o->have_d || !o->have_v0)
         return bad("%s needs --d and --v0 (single numbers)%s", pen_model_name(o->p.model), "");
     struct pen_result r;
@@ -274,7 +274,7 @@ static int plot_fit(const struct pen_opts *o, const struct pen_fit_input *in, co
                              ser, 2, NULL, 0};
     char path[1024];
     png_path(o->csv, path, sizeof path);
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     int rc = plot_png(path, &spec, &e);
     free(buf);
     if (rc)
@@ -289,7 +289,7 @@ static int plot_fit(const struct pen_opts *o, const struct pen_fit_input *in, co
 static int write_curve(const struct pen_opts *o, const struct pen_fit_input *in,
                        const struct pen_params *fitted, const double *d_sorted)
 {
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     FILE *f = NULL;
     int rc = write_open(o->curve, &f);
     if (rc)
@@ -337,7 +337,7 @@ static int write_curve(const struct pen_opts *o, const struct pen_fit_input *in,
 
 static int cmd_fit(struct pen_opts *o)
 {
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     if (!o->model)
         return bad("fit needs --model poncelet|liu|mcg%s%s", "", "");
     if ((o->traj != NULL) == (o->points != NULL))
@@ -444,7 +444,7 @@ done:
 
 static int cmd_sweep(struct pen_opts *o)
 {
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     if (!o->model || !o->vrange || !o->dlist || !o->csv)
         return bad("sweep needs --model, --v0 FROM:TO:STEP, --d D1[,D2,...] and --csv%s%s", "",
                    "");
@@ -548,7 +548,7 @@ int cli_penetrate(int argc, char **argv)
     memset(&o, 0, sizeof o);
     o.p.edot0 = 1.0e7;
     const char *mode = argv[1];
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     int is_fit = strcmp(mode, "fit") == 0, is_sweep = strcmp(mode, "sweep") == 0;
     if (!is_fit && !is_sweep && pen_model_from_name(mode, &o.p.model, &e))
         return bad("unknown mode '%s'; expected poncelet, liu, mcg, fit or sweep%s", mode, "");

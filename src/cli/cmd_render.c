@@ -141,7 +141,7 @@ int cli_render(int argc, char **argv)
             return 2;
         }
     }
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     struct stat st;
     if (stat(input, &st) != 0) {
         fprintf(stderr, "spall: error: cannot open '%s'\n", input);

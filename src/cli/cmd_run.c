@@ -61,7 +61,7 @@ int cli_run(int argc, char **argv)
         return 2;
     }
     struct spall_run_result res;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     int rc = spall_run(&opt, &res, &err);
     if (rc) {
         fprintf(stderr, "spall: error: %s\n", err.msg);

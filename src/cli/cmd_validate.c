@@ -183,7 +183,7 @@ int cli_validate(int argc, char **argv)
             printf("  status: %s\n", cases[c].status);
         fflush(stdout);
         size_t first = rep.n;
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         int rc = cases[c].run(&rep, &err);
         if (rc) {
             printf("  ERROR: %s\n", err.msg);
@@ -204,7 +204,7 @@ int cli_validate(int argc, char **argv)
         return 4;
     }
     if (report) {
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         int rc = vreport_write_report(&rep, report, &err);
         if (rc) {
             fprintf(stderr, "spall: error: %s\n", err.msg);

@@ -45,16 +45,16 @@ int particle_contact_create(struct particle_contact **out,
 {
     *out = NULL;
     if (!(prm->distance > 0.0) || !isfinite(prm->distance))
-        return spall_error_set(err, SPALL_ERR_PHYSICS,
-                               "contact: distance must be positive and finite (got %g m)",
-                               prm->distance);
+        return spall_error_set_key(err, SPALL_ERR_PHYSICS, "contact.distance",
+                                   "contact: distance must be positive and finite (got %g m)",
+                                   prm->distance);
     if (!(prm->stiffness > 0.0) || !isfinite(prm->stiffness))
-        return spall_error_set(err, SPALL_ERR_PHYSICS,
-                               "contact: stiffness must be positive and finite (got %g N/m)",
-                               prm->stiffness);
+        return spall_error_set_key(err, SPALL_ERR_PHYSICS, "contact.stiffness",
+                                   "contact: stiffness must be positive and finite (got %g N/m)",
+                                   prm->stiffness);
     if (!(prm->exponent >= 1.0 && prm->exponent <= 2.0))
-        return spall_error_set(err, SPALL_ERR_PHYSICS,
-                               "contact: exponent must lie in [1, 2] (got %g)", prm->exponent);
+        return spall_error_set_key(err, SPALL_ERR_PHYSICS, "contact.exponent",
+                                   "contact: exponent must lie in [1, 2] (got %g)", prm->exponent);
     struct particle_contact *c = calloc(1, sizeof *c);
     if (!c)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating the contact");

@@ -343,10 +343,11 @@ int sim_prepare(struct sim *s, struct spall_error *err)
                                s->ops->name, s->dt_limit);
     if (s->dt > 0.0) {
         if (s->dt > s->dt_limit && !s->dt_override)
-            return spall_error_set(err, SPALL_ERR_PHYSICS,
-                                   "time step %g s is above the stability limit %g s "
-                                   "(seed 000 Eq. 25); lower run.dt or set run.dt_override: true",
-                                   s->dt, s->dt_limit);
+            return spall_error_set_key(err, SPALL_ERR_PHYSICS, "run.dt",
+                                       "time step %g s is above the stability limit %g s "
+                                       "(seed 000 Eq. 25); lower run.dt or set "
+                                       "run.dt_override: true",
+                                       s->dt, s->dt_limit);
     } else {
         s->dt = s->dt_factor * s->dt_limit;
     }

@@ -100,9 +100,12 @@ int deck_vector(const struct deck_node *map, const char *key, bool required, siz
  *  SPALL_ERR_PHYSICS when its magnitude is not below the speed of light. */
 int deck_velocity(const struct deck_node *map, const char *key, bool required, size_t len,
                   double *out, struct spall_error *err);
-/** The node that the leading "a.b[2].c: " of @p msg names below @p root
- *  (messages of the models and of sim_prepare), or NULL. */
-const struct deck_node *deck_node_at_prefix(const struct deck_node *root, const char *msg);
+/** Point an error raised below the deck at the key it names (err->key, a key
+ *  path such as "run.dt" or "bodies[2].lattice.type", see spall/error.h):
+ *  the message becomes "file:line:col: message" at that key of the deck under
+ *  @p root, code and key kept.  False, @p err untouched, when it names no key
+ *  or the deck has no such key. */
+bool deck_locate_error(const struct deck_node *root, struct spall_error *err);
 
 /** Scalar node -> double, with the node's position in errors. */
 int deck_node_double(const struct deck_node *node, double *out, struct spall_error *err);

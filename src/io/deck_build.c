@@ -726,21 +726,18 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
         goto fail;
     memcpy(c.sim->gravity, gravity, sizeof gravity);
     if ((rc = sim_prepare(c.sim, err))) {
-        /* point at the key the refusal is about when there is one */
-        const struct deck_node *run = deck_peek(root, "run");
-        int at_dt = rc == SPALL_ERR_PHYSICS && run && deck_peek(run, "dt") &&
-                    strstr(err->msg, "time step") != NULL;
-        char msg[SPALL_ERROR_MSG_LEN];
-        snprintf(msg, sizeof msg, "%s", err->msg);
-        const struct deck_node *at = deck_node_at_prefix(root, msg); /* "model.clamp: ..." */
-        if (at_dt)
-            deck_error_key(err, run, "dt", "%s", msg);
-        else if (at)
-            deck_error(err, at, "%s", msg);
-        else if (deck_peek(root, "model")) /* the model's set-up refused it */
-            deck_error_key(err, root, "model", "%s", msg);
-        else
-            spall_error_set(err, rc, "%s: %s", d->path, msg);
+        /* point at the key the refusal names (err->key), else at 'model':
+         * the model's set-up refused it */
+        if (!deck_locate_error(root, err)) {
+            char msg[SPALL_ERROR_MSG_LEN], key[SPALL_ERROR_KEY_LEN];
+            snprintf(msg, sizeof msg, "%s", err->msg);
+            memcpy(key, err->key, sizeof key);
+            if (deck_peek(root, "model"))
+                deck_error_key(err, root, "model", "%s", msg);
+            else
+                spall_error_set(err, rc, "%s: %s", d->path, msg);
+            memcpy(err->key, key, sizeof key); /* kept for the caller */
+        }
         err->code = rc;
         goto fail;
     }

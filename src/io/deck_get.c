@@ -529,33 +529,56 @@ int deck_velocity(const struct deck_node *map, const char *key, bool required, s
     return SPALL_OK;
 }
 
-const struct deck_node *deck_node_at_prefix(const struct deck_node *root, const char *msg)
+/* Position of the key path @p path below @p root (syntax in spall/error.h):
+ * the last key's own position, or a sequence item's.  False when the deck
+ * has no such key. */
+static bool key_path_position(const struct deck_node *root, const char *path, int *line,
+                              int *col)
 {
-    size_t len = strcspn(msg, ": ");
-    if (!root || len == 0 || msg[len] != ':' || len >= 256)
-        return NULL;
-    char path[256];
-    memcpy(path, msg, len);
-    path[len] = '\0';
     const struct deck_node *n = root;
-    for (char *s = path; n && *s;) {
+    bool found = false;
+    for (const char *s = path; n && *s;) {
         if (*s == '[') { /* "[k]": a sequence item */
             char *end;
             unsigned long k = strtoul(s + 1, &end, 10);
             if (end == s + 1 || *end != ']' || n->kind != DECK_SEQUENCE || k >= n->n)
-                return NULL;
+                return false;
             n = n->items[k];
+            *line = n->line;
+            *col = n->col;
             s = end + 1;
         } else {
             size_t w = strcspn(s, ".[");
-            char c = s[w];
-            s[w] = '\0';
-            n = deck_peek(n, s);
-            s[w] = c;
+            long i = -1;
+            for (size_t j = 0; n->kind == DECK_MAPPING && j < n->n && i < 0; ++j)
+                if (strncmp(n->keys[j], s, w) == 0 && n->keys[j][w] == '\0')
+                    i = (long)j;
+            if (w == 0 || i < 0)
+                return false;
+            *line = n->key_line[i];
+            *col = n->key_col[i];
+            n = n->items[i];
             s += w;
         }
+        found = true;
         if (*s == '.')
             ++s;
     }
-    return n == root ? NULL : n;
+    return found && n;
+}
+
+bool deck_locate_error(const struct deck_node *root, struct spall_error *err)
+{
+    int line = 0, col = 0;
+    if (!root || !err || !memchr(err->key, '\0', sizeof err->key) || !err->key[0] ||
+        !key_path_position(root, err->key, &line, &col))
+        return false;
+    const int code = err->code;
+    char msg[SPALL_ERROR_MSG_LEN], key[SPALL_ERROR_KEY_LEN];
+    memcpy(msg, err->msg, sizeof msg);
+    msg[sizeof msg - 1] = '\0';
+    memcpy(key, err->key, sizeof key);
+    deck_one_line(msg);
+    spall_error_set_key(err, code, key, "%s:%d:%d: %s", deck_name(root), line, col, msg);
+    return true;
 }

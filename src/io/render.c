@@ -378,7 +378,7 @@ int render_frame_png(const char *h5_path, const char *png_path, const struct ren
         goto done;
     if (o->reference) {
         size_t nr = 0, nrc = 0;
-        struct spall_error e2 = {0, ""};
+        struct spall_error e2 = {0};
         if (field_frame_read(h5_path, "reference_position", &ref_raw, &nr, &nrc, NULL, &e2) == 0 &&
             nr == n) {
             if ((rc = to_xyz(ref_raw, n, nrc ? nrc : 1, &ref, err)))

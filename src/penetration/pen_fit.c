@@ -72,7 +72,7 @@ static int fit_residual(const gsl_vector *x, void *data, gsl_vector *f)
     const struct pen_fit_input *in = c->in;
     set_coefs(c, x);
     struct pen_result res;
-    struct spall_error e = {0, ""};
+    struct spall_error e = {0};
     if (in->kind == PEN_FIT_TRAJECTORY) {
         if (pen_solve(&c->work, in->v0, in->n, in->t, c->P, NULL, 0, &res, &e))
             goto fail;

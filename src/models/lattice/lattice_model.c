@@ -374,6 +374,7 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
         int rc = lattice_calibrate(&c, err);
         if (rc) {
             spall_error_prefix(err, "material '%s': ", sim->materials[k].name);
+            spall_error_default_key(err, "materials.%s", sim->materials[k].name);
             return rc;
         }
         mt->k[0] = c.honeycomb_used ? c.k_family[0] : c.k1;
@@ -391,6 +392,7 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
         if (m->opt.law == LATTICE_LAW_SOFT && mt->gf > 0.0 &&
             (rc = lattice_soft_final_strain(&c, mt->eps_0, mt->gf, &mt->eps_t, err))) {
             spall_error_prefix(err, "material '%s': ", sim->materials[k].name);
+            spall_error_default_key(err, "materials.%s", sim->materials[k].name);
             return rc;
         }
     }

@@ -221,16 +221,20 @@ int lattice_thermal_init(struct model *m, struct sim *sim, struct spall_error *e
         return SPALL_OK;
     if (!th->any) {
         if (th->n_bc)
-            return spall_error_set(err, SPALL_ERR_INPUT, "model.thermal: boundary temperatures "
-                                   "given but no material has specific_heat");
+            return spall_error_set_key(err, SPALL_ERR_INPUT, "model.thermal",
+                                       "model.thermal: boundary temperatures "
+                                       "given but no material has specific_heat");
         return SPALL_OK;
     }
     for (size_t k = 0; k < sim->n_materials; k++)
-        if (k >= th->n_mat || !th->mat[k].given)
-            return spall_error_set(err, SPALL_ERR_INPUT,
-                                   "thermal lattice: material '%s' has no specific_heat (every "
-                                   "material needs the thermal keys once one has them)",
-                                   sim->materials[k].name);
+        if (k >= th->n_mat || !th->mat[k].given) {
+            spall_error_set(err, SPALL_ERR_INPUT,
+                            "thermal lattice: material '%s' has no specific_heat (every "
+                            "material needs the thermal keys once one has them)",
+                            sim->materials[k].name);
+            spall_error_default_key(err, "materials.%s", sim->materials[k].name);
+            return SPALL_ERR_INPUT;
+        }
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
     const size_t n = p->n, nh = bl->offset[bl->n];
@@ -303,9 +307,12 @@ int lattice_thermal_init(struct model *m, struct sim *sim, struct spall_error *e
     }
     for (size_t k = 0; k < th->n_bc; k++) {
         th->bc[k].g = sim_find_group(sim, th->bc[k].group);
-        if (th->bc[k].g < 0)
-            return spall_error_set(err, SPALL_ERR_INPUT,
-                                   "model.thermal.boundary: no group named '%s'", th->bc[k].group);
+        if (th->bc[k].g < 0) { /* bc[k] is item k of the deck's list */
+            spall_error_set(err, SPALL_ERR_INPUT, "model.thermal.boundary: no group named '%s'",
+                            th->bc[k].group);
+            spall_error_default_key(err, "model.thermal.boundary[%zu].group", k);
+            return SPALL_ERR_INPUT;
+        }
         const struct group *g = &sim->groups[th->bc[k].g];
         for (size_t q = 0; q < g->n; q++)
             th->T[g->idx[q]] = th->bc[k].T;

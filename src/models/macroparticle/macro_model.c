@@ -309,10 +309,11 @@ static int macro_init(struct model *m, struct sim *sim, struct spall_error *err)
             def = m->zeta_cg * mt->atom_mass * (SPALL_PI / 6.0) * macro_debye_omega(mt->theta_d);
         double given = m->damping == MACRO_DAMP_ABSOLUTE ? m->gamma : m->mu;
         if (!(given > 0.0) && !(def > 0.0))
-            return spall_error_set(err, SPALL_ERR_INPUT, "macro-particle model: damping %s needs "
-                                   "%s [kg/s] or the material's debye_temperature",
-                                   m->damping == MACRO_DAMP_ABSOLUTE ? "absolute" : "pairwise",
-                                   m->damping == MACRO_DAMP_ABSOLUTE ? "gamma" : "mu");
+            return spall_error_set_key(err, SPALL_ERR_INPUT, "model.damping",
+                                       "macro-particle model: damping %s needs "
+                                       "%s [kg/s] or the material's debye_temperature",
+                                       m->damping == MACRO_DAMP_ABSOLUTE ? "absolute" : "pairwise",
+                                       m->damping == MACRO_DAMP_ABSOLUTE ? "gamma" : "mu");
         m->gamma_used = m->gamma > 0.0 ? m->gamma : def;
         m->mu_used = m->mu > 0.0 ? m->mu : def;
     }

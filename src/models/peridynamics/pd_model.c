@@ -300,9 +300,10 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
                                "parameters");
     m->n_mat = nm;
     if (m->opt.variant == PD_PDLM && sim->lattice.kind != LATTICE_TRIANGULAR)
-        return spall_error_set(err, SPALL_ERR_INPUT, "peridynamics variant pdlm needs the "
-                               "triangular lattice (got %s)",
-                               lattice_kind_name(sim->lattice.kind));
+        return spall_error_set_key(err, SPALL_ERR_INPUT, "model.variant",
+                                   "peridynamics variant pdlm needs the "
+                                   "triangular lattice (got %s)",
+                                   lattice_kind_name(sim->lattice.kind));
     double radius;
     if (m->opt.variant == PD_PDLM) {
         m->delta = m->dx;
@@ -360,6 +361,7 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
             double ach[4];
             if ((rc = pd_calibrate_ortho(m, sim, (int)k, ach, err))) {
                 spall_error_prefix(err, "material '%s': ", sim->materials[k].name);
+                spall_error_default_key(err, "materials.%s", sim->materials[k].name);
                 return rc;
             }
         }

@@ -45,8 +45,9 @@ int pd_plane_init(struct model *m, struct sim *sim, struct spall_error *err)
     if (!m->opt.fiber_plane)
         return SPALL_OK;
     if (m->opt.variant != PD_PDLM || m->opt.fiber_model != PD_FIBER_LATTICE || !m->ortho)
-        return spall_error_set(err, SPALL_ERR_INPUT, "matrix_crack: fiber_plane needs variant "
-                               "pdlm, fiber_model lattice and an orthotropic lamina");
+        return spall_error_set_key(err, SPALL_ERR_INPUT, "model.matrix_crack",
+                                   "matrix_crack: fiber_plane needs variant "
+                                   "pdlm, fiber_model lattice and an orthotropic lamina");
     int rc = bl->reverse ? SPALL_OK : bond_list_build_reverse(bl, err);
     if (rc)
         return rc;

@@ -112,17 +112,18 @@ int sph_clamp_init(struct model *m, struct sim *s, struct spall_error *err)
     const int dim = m->dim;
     int gi = sim_find_group(s, c->group);
     if (gi < 0)
-        return spall_error_set(err, SPALL_ERR_INPUT, "model.clamp: no group '%s'", c->group);
+        return spall_error_set_key(err, SPALL_ERR_INPUT, "model.clamp",
+                                   "model.clamp: no group '%s'", c->group);
     bool fixed = false;
     for (size_t k = 0; k < s->n_bcs; k++)
         if (s->bcs[k].group == gi && s->bcs[k].kind == BC_FIXED &&
             (s->bcs[k].comp_mask & ((1u << dim) - 1u)) == ((1u << dim) - 1u))
             fixed = true;
     if (!fixed)
-        return spall_error_set(err, SPALL_ERR_INPUT,
-                               "model.clamp: group '%s' needs a fixed boundary condition on "
-                               "every component (the clamp particles rest between force calls)",
-                               c->group);
+        return spall_error_set_key(err, SPALL_ERR_INPUT, "model.clamp",
+                                   "model.clamp: group '%s' needs a fixed boundary condition on "
+                                   "every component (the clamp particles rest between force calls)",
+                                   c->group);
     const struct group *g = &s->groups[gi];
     c->n_all = g->n;
     c->all = g->idx;
@@ -180,11 +181,11 @@ int sph_clamp_init(struct model *m, struct sim *s, struct spall_error *err)
             }
         }
         if (best == (size_t)-1 || sqrt(b2) > 0.25 * m->dx[i])
-            rc = spall_error_set(err, SPALL_ERR_INPUT,
-                                 "model.clamp: clamp particle id %lld (depth %.4g m) has no "
-                                 "free particle at its mirror image (nearest %.3g m away); the "
-                                 "lattice must be symmetric about the clamp plane",
-                                 (long long)p->gid[i], -d, sqrt(b2));
+            rc = spall_error_set_key(err, SPALL_ERR_INPUT, "model.clamp",
+                                     "model.clamp: clamp particle id %lld (depth %.4g m) has no "
+                                     "free particle at its mirror image (nearest %.3g m away); the "
+                                     "lattice must be symmetric about the clamp plane",
+                                     (long long)p->gid[i], -d, sqrt(b2));
         c->ghost[c->n] = i;
         c->mirror[c->n] = best;
         c->n++;
