@@ -13,7 +13,9 @@
  *    to the work booked, and that work is the chain's kinetic + strain energy;
  *  - penalty contact of a rigid sphere: the force on the sphere is minus the
  *    gradient of the booked contact energy (central difference), and the
- *    particles receive the opposite force (Newton's third law).
+ *    particles receive the opposite force (Newton's third law);
+ *  - body-body contact (Hertz-like exponent): the contact force on a body is
+ *    minus the gradient of the booked contact energy.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -23,6 +25,7 @@
 
 #include "tests/test_support.h"
 
+#include "core/contact_particles.h"
 #include "core/rigid.h"
 
 #include <float.h>
@@ -292,6 +295,80 @@ static void test_penalty_force_is_energy_gradient(void **state)
     sim_destroy(&s);
 }
 
+/* Contact energy of the run after shifting body 1 by @p dy along y; the
+ * contact forces land in p->f, zeroed first. */
+static double contact_energy_at(struct sim *s, double dy, double F1[2])
+{
+    struct particles *p = s->p;
+    struct spall_error err = {0, ""};
+    for (size_t i = 0; i < p->n_owned; i++)
+        if (p->body[i] == 1)
+            p->x[1][i] += dy;
+    for (int d = 0; d < 2; d++)
+        memset(p->f[d], 0, p->n_owned * sizeof(double));
+    assert_int_equal(particle_contact_forces(s, &err), SPALL_OK);
+    const double E = particle_contact_energy(s);
+    F1[0] = F1[1] = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        if (p->body[i] == 1)
+            for (int d = 0; d < 2; d++)
+                F1[d] += p->f[d][i];
+    for (size_t i = 0; i < p->n_owned; i++)
+        if (p->body[i] == 1)
+            p->x[1][i] -= dy;
+    return E;
+}
+
+/* Two lattice blocks, the upper one pushed 0.1 r0 into the lower: the
+ * contact force on the upper block is -dE/dY of the booked energy (the sum
+ * over pairs of k d^2 u^(n+1) / (n+1), n = 1.5), by a central difference
+ * with h = 1e-5 of the overlap (truncation ~ (h/overlap)^2 ~ 1e-10), and the
+ * lower block gets the opposite force. */
+static void test_contact_force_is_energy_gradient(void **state)
+{
+    (void)state;
+    const double r0 = 1.0e-3, row = 0.5 * sqrt(3.0) * r0;
+    char yaml[2048];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: lattice, law: linear}\n"
+             "materials:\n"
+             "  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3333333333333333,\n"
+             "      failure_strain: 10}\n"
+             "lattice: {type: triangular, spacing: 1.0e-3}\n"
+             "geometry:\n"
+             "  a: {box: {min: [-1e-5, -1e-5], max: [0.006, %.17g]}}\n"
+             "  b: {box: {min: [-1e-5, %.17g], max: [0.006, %.17g]}}\n"
+             "bodies: [{geometry: a, material: m}, {geometry: b, material: m}]\n"
+             "contact: {distance: 1.0e-3, stiffness: 1.0e6, exponent: 1.5}\n"
+             "run: {steps: 1}\n",
+             3.5 * row, 3.5 * row, 7.5 * row);
+    struct sim *s = test_build_ok(yaml);
+    struct particles *p = s->p;
+    assert_non_null(p->body);
+    const double push = -0.1 * r0, h = 1.0e-5 * 0.1 * r0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        if (p->body[i] == 1)
+            p->x[1][i] += push;
+    double F1[2], Fp[2], Fm[2];
+    const double E = contact_energy_at(s, 0.0, F1);
+    double F0[2] = {0, 0}, scale = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++)
+        if (p->body[i] == 0)
+            for (int d = 0; d < 2; d++) {
+                F0[d] += p->f[d][i];
+                scale += fabs(p->f[d][i]);
+            }
+    print_message("%zu contact pairs, E = %.6e J, F on the upper block = (%.6e, %.6e) N\n",
+                  particle_contact_pairs(s), E, F1[0], F1[1]);
+    assert_true(particle_contact_pairs(s) >= 4 && F1[1] > 0.0);
+    assert_near(F0[0] + F1[0], 0.0, 1e-13 * scale);
+    assert_near(F0[1] + F1[1], 0.0, 1e-13 * scale);
+    const double dEdy = (contact_energy_at(s, h, Fp) - contact_energy_at(s, -h, Fm)) / (2.0 * h);
+    print_message("-dE/dY = %.10e, F_y = %.10e (rel. %.2e)\n", -dEdy, F1[1], -dEdy / F1[1] - 1.0);
+    assert_near(-dEdy, F1[1], 1.0e-7 * F1[1]);
+    sim_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -299,6 +376,7 @@ int main(void)
         cmocka_unit_test(test_free_fall),
         cmocka_unit_test(test_pulled_chain_reactions),
         cmocka_unit_test(test_penalty_force_is_energy_gradient),
+        cmocka_unit_test(test_contact_force_is_energy_gradient),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
