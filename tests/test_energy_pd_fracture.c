@@ -1,0 +1,58 @@
+/**
+ * @file test_energy_pd_fracture.c
+ * @brief Energy account of a breaking peridynamic chain
+ *        (src/models/peridynamics/pd_forces.c, PMB [SillingAskari2005]):
+ *        a chain held at one end and pulled at the other until its bonds
+ *        pass the critical stretch; the work of the pull equals kinetic +
+ *        strain energy + the energy the broken bonds held when they broke
+ *        (booked as dissipated, each bond once).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "tests/test_support.h"
+
+#include <stdio.h>
+
+static void test_pulled_chain_breaks_with_balanced_energy(void **state)
+{
+    (void)state;
+    struct sim *s = test_build_ok(
+        "model: {type: peridynamics}\n"
+        "materials: {m: {density: 1000, youngs_modulus: 1.0e9, critical_stretch: 0.005}}\n"
+        "lattice: {type: chain, spacing: 1.0e-3, thickness: 1.0e-6}\n"
+        "body: {geometry: {box: {min: [-0.0005], max: [0.0105]}}, material: m}\n"
+        "groups:\n"
+        "  l: {box: {min: [-0.001], max: [0.0005]}}\n"
+        "  r: {box: {min: [0.0095], max: [0.011]}}\n"
+        "boundary_conditions:\n"
+        "  - {group: l, type: fixed}\n"
+        "  - {group: r, type: velocity, value: 5.0}\n"
+        "run: {dt: 2.0e-8, steps: 1000}\n");
+    struct spall_error err = {0, ""};
+    sim_update_energy(s);
+    while (!sim_done(s))
+        assert_int_equal(sim_step(s, &err), SPALL_OK);
+    sim_update_energy(s);
+    const struct energy_account *a = &s->energy;
+    print_message("W = %.6e, KE = %.6e, strain = %.6e, dissipated = %.6e, balance = %.3e\n",
+                  a->external, a->kinetic, a->strain, a->model_dissipated, a->balance);
+    assert_true(a->model_dissipated > 0.0);
+    /* a bond that breaks drops its energy within one step, so the account
+     * balances only to O(dt) while bonds break: measured 0.9 % of the
+     * dissipated energy (tolerance 2 %); a breaking bond booked twice leaves
+     * it off by 100 % */
+    assert_true(fabs(a->balance) < 2.0e-2 * a->model_dissipated);
+    sim_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pulled_chain_breaks_with_balanced_energy),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
