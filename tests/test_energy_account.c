@@ -23,6 +23,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "tests/test_assert.h"
+
 #include "tests/test_support.h"
 
 #include "core/contact_particles.h"
@@ -31,17 +33,6 @@
 #include <float.h>
 #include <stdio.h>
 
-/* |a - b| <= tol in double precision (cmocka's assert_float_equal compares
- * floats, too coarse for round-off tolerances) */
-#define assert_near(a, b, tol)                                                                     \
-    do {                                                                                           \
-        const double a_ = (a), b_ = (b), tol_ = (tol);                                             \
-        if (!(fabs(a_ - b_) <= tol_)) {                                                            \
-            print_error("%s = %.15e, %s = %.15e: |difference| %.3e > %.3e\n", #a, a_, #b, b_,       \
-                        fabs(a_ - b_), tol_);                                                      \
-            fail();                                                                                \
-        }                                                                                          \
-    } while (0)
 
 /* 1D lattice chain of 11 particles, 1 mm apart (c = sqrt(E/rho) = 1000 m/s,
  * stable step ~ 1e-6 s) followed by @p extra deck lines. */
@@ -60,7 +51,7 @@ static struct sim *build_chain(const char *extra)
 
 static void steps(struct sim *s, int n)
 {
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     for (int k = 0; k < n; k++) {
         int rc = sim_step(s, &err);
         if (rc)
@@ -300,7 +291,7 @@ static void test_penalty_force_is_energy_gradient(void **state)
 static double contact_energy_at(struct sim *s, double dy, double F1[2])
 {
     struct particles *p = s->p;
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     for (size_t i = 0; i < p->n_owned; i++)
         if (p->body[i] == 1)
             p->x[1][i] += dy;

@@ -32,7 +32,7 @@ static void test_pulled_chain_breaks_with_balanced_energy(void **state)
         "  - {group: l, type: fixed}\n"
         "  - {group: r, type: velocity, value: 5.0}\n"
         "run: {dt: 2.0e-8, steps: 1000}\n");
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     sim_update_energy(s);
     while (!sim_done(s))
         assert_int_equal(sim_step(s, &err), SPALL_OK);

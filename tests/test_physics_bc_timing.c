@@ -20,6 +20,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "tests/test_assert.h"
+
 #include "tests/test_support.h"
 
 #include <stdio.h>
@@ -66,16 +68,16 @@ static void test_velocity_ramp_displacement(void **state)
         for (int n = 0; n < N; n++)
             assert_int_equal(sim_step(s, &err), SPALL_OK);
         const double t = s->t;
-        assert_float_equal(t, N * dt, 1e-12 * t);
+        assert_near(t, N * dt, 1e-12 * t);
         const double u = s->p->x[0][i] - x0, u_exact = 0.5 * a * t * t;
         print_message("N = %d: u = %.15e, a t^2/2 = %.15e, rel. error %.2e "
                       "(late kick would give %.2e)\n",
                       N, u, u_exact, (u - u_exact) / u_exact, -1.0 / N);
         /* exact to round-off (the driven particle starts at x = 0, so the
          * N drifts add ~N eps u; measured ~1e-15 relative) */
-        assert_float_equal(u, u_exact, 1e-12 * u_exact);
+        assert_near(u, u_exact, 1e-12 * u_exact);
         /* end of step: v(t) = a t imposed by the second kick */
-        assert_float_equal(s->p->v[0][i], a * t, 1e-12 * a * t);
+        assert_near(s->p->v[0][i], a * t, 1e-12 * a * t);
         sim_destroy(&s);
     }
 }

@@ -34,7 +34,7 @@ static void test_pair_noise_keeps_momentum(void **state)
     struct sim *s = test_build_ok(
         "model: {type: macroparticle, damping: pairwise, mu: 2.0e-3, temperature: 1.0e12}\n" MATERIAL
         "run: {steps: 100, seed: 7}\n");
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     const int N = 100;
     for (int k = 0; k < N; k++)
         assert_int_equal(sim_step(s, &err), SPALL_OK);
@@ -64,7 +64,7 @@ static void test_plastic_squeeze_energy(void **state)
         "  - {group: top, type: velocity, components: [z], value: -40.0}\n"
         "  - {group: bottom, type: fixed}\n"
         "run: {steps: 400}\n");
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     sim_update_energy(s);
     const double e0 = s->energy.kinetic + s->energy.strain;
     while (!sim_done(s))

@@ -59,7 +59,7 @@ static void test_uniform_heating(void **state)
              "run: {dt: %g, steps: %d}\n",
              rho, C, T0, P, dt, N);
     struct sim *s = test_build_ok(yaml);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     for (int k = 0; k < N; k++)
         assert_int_equal(sim_step(s, &err), SPALL_OK);
     const double t = s->t, T_exact = T0 + P * t / (rho * C); /* a 5 K rise */
@@ -99,7 +99,7 @@ static void test_melting_either_end(void **state)
     struct sim *s = test_build_ok(yaml);
     struct bond_list *bl = lattice_bond_list(s->model);
     assert_non_null(bl);
-    struct spall_error err = {0, ""};
+    struct spall_error err = {0};
     for (int pass = 0; pass < 2; pass++) {
         if (pass == 1)
             for (int k = 0; k < 40; k++) /* alpha t / dx^2 = 10: heat would spread */
