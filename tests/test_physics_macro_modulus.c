@@ -34,6 +34,7 @@
 
 #include "core/fields.h"
 #include "core/mathconst.h"
+#include "tests/test_assert.h"
 #include "tests/test_support.h"
 
 #include <stdio.h>
@@ -144,10 +145,69 @@ static void test_fcc_modulus_lattice_sum(void **state)
     sim_destroy(&s);
 }
 
+/* Pair plasticity ([Saitoh] Eq. 16 in the form of docs/decks.md): beyond
+ * the yield surface |e| = e_y + h kappa the plastic route has the tangent
+ * t = hardening of the elastic stiffness, the slip d = excess / (1 + h) with
+ * h = t / (1 - t).  The block is pulled in one jump to a uniaxial strain that
+ * takes every pair with a component along x past yield, then probed by
+ * +-delta: unloading follows the elastic branch (tangent C11 of the pairs at
+ * their current elastic stretch), reloading back to the yield surface stays
+ * elastic, and a further +delta is plastic, so C11_plastic / C11_elastic = t.
+ * Both tangents are taken at the same elastic stretch, so the Mie pair's
+ * anharmonicity cancels to O(delta); what does not scale with t is the
+ * geometric (initial-stress) stiffness of the pairs' finite force turning
+ * with the strain, of the order of the stress itself: c_pl / c_el = t +
+ * (1 - t) c_geo / c_el with |c_geo| <~ 2 |sigma_xx| (measured 3.8e-4 against
+ * the bound 2 |sigma_xx| / c_el).  A return without the hardening factor
+ * leaves the pair inside its new surface (ratio ~1). */
+static void test_fcc_plastic_tangent(void **state)
+{
+    (void)state;
+    const double t = 0.1, yield = 1.0e-4;
+    char yaml[1024];
+    snprintf(yaml, sizeof yaml,
+             "model: {type: macroparticle}\n"
+             "materials:\n"
+             "  al: {density: %g, atomic_mass_u: %g, cohesive_energy_ev: %g, exponents: [%g, %g],\n"
+             "       yield_strain: %g, hardening: %g}\n"
+             "lattice: {type: fcc, spacing: %g}\n"
+             "body: {geometry: {box: {min: [0, 0, 0], max: [%g, %g, %g]}}, material: al}\n"
+             "run: {steps: 1}\n",
+             RHO, MASS_U, E0_EV, P_EXP, Q_EXP, yield, t, R0, BOX, BOX, BOX);
+    struct sim *s = test_build_ok(yaml);
+    const size_t n = s->p->n_owned;
+    double *x0 = malloc(3 * n * sizeof *x0);
+    assert_non_null(x0);
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 3; d++)
+            x0[3 * i + d] = s->p->x[d][i];
+    /* pairs along (1, +-1, 0) and (1, 0, +-1) stretch by ~eps/2: 5 x yield */
+    const double eps = 1.0e-3, delta = 1.0e-6;
+    double s0[2], sm[2], sr[2], sp[2];
+    strained_stress(s, x0, 0.0, s0); /* the pairs engage at rest */
+    strained_stress(s, x0, eps, s0); /* the jump: every stretched pair yields */
+    strained_stress(s, x0, eps - delta, sm);
+    strained_stress(s, x0, eps, sr);
+    strained_stress(s, x0, eps + delta, sp);
+    const double c_el = (s0[0] - sm[0]) / delta, c_re = (sr[0] - sm[0]) / delta;
+    const double c_pl = (sp[0] - sr[0]) / delta;
+    print_message("elastic unloading C11 %.6e, reloading %.6e, plastic %.6e: ratio %.6f (t = %g)\n",
+                  c_el, c_re, c_pl, c_pl / c_el, t);
+    assert_true(c_el > 0.0);
+    assert_near(c_re / c_el, 1.0, 1.0e-6); /* reloading retraces the elastic branch */
+    const double geo = 2.0 * fabs(s0[0]) / c_el; /* initial-stress stiffness bound */
+    print_message("sigma_xx %.4e Pa: geometric bound %.3e\n", s0[0], geo);
+    assert_true(geo < 0.1 * t);
+    assert_near(c_pl / c_el, t, geo);
+    free(x0);
+    sim_destroy(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fcc_modulus_lattice_sum),
+        cmocka_unit_test(test_fcc_plastic_tangent),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
