@@ -221,40 +221,33 @@ int cli_validate(int argc, char **argv)
         rep.checks[k].pass ? pass++ : fail++;
     fail += (size_t)failed_to_run;
     printf("%zu passed, %zu failed\n", pass, fail);
+    int status = fail ? 1 : 0;
+    struct spall_error err = {0};
+    int rc = SPALL_OK;
     if (json && write_json(json, &rep) != 0) {
         fprintf(stderr, "spall validate: cannot write '%s'\n", json);
-        vreport_free(&rep);
-        free(md);
-        return 4;
+        status = 4;
     }
-    if (markdown) {
+    if (status != 4 && markdown) {
         char command[512] = "spall validate";
         for (int k = 1; k < argc; k++) {
             size_t len = strlen(command);
             snprintf(command + len, sizeof command - len, " %s", argv[k]);
         }
-        struct spall_error err = {0, ""};
-        int rc = vreport_write_markdown(&rep, md, n_cases, markdown, command, &err);
-        if (rc) {
-            fprintf(stderr, "spall: error: %s\n", err.msg);
-            vreport_free(&rep);
-            free(md);
-            return cli_exit_status(rc);
-        }
-        printf("markdown: %s\n", markdown);
+        rc = vreport_write_markdown(&rep, md, n_cases, markdown, command, &err);
+        if (rc == SPALL_OK)
+            printf("markdown: %s\n", markdown);
     }
-    if (report) {
-        struct spall_error err = {0, ""};
-        int rc = vreport_write_report(&rep, report, &err);
-        if (rc) {
-            fprintf(stderr, "spall: error: %s\n", err.msg);
-            vreport_free(&rep);
-            free(md);
-            return cli_exit_status(rc);
-        }
-        printf("report: %s/report.md\n", report);
+    if (status != 4 && rc == SPALL_OK && report) {
+        rc = vreport_write_report(&rep, report, &err);
+        if (rc == SPALL_OK)
+            printf("report: %s/report.md\n", report);
+    }
+    if (rc) {
+        fprintf(stderr, "spall: error: %s\n", err.msg);
+        status = cli_exit_status(rc);
     }
     vreport_free(&rep);
     free(md);
-    return fail ? 1 : 0;
+    return status;
 }
