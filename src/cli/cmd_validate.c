@@ -205,7 +205,7 @@ int cli_validate(int argc, char **argv)
             printf("  status: %s\n", cases[c].status);
         fflush(stdout);
         size_t first = rep.n;
-        struct spall_error err = {0, ""};
+        struct spall_error err = {0};
         int rc = cases[c].run(&rep, &err);
         if (rc) {
             printf("  ERROR: %s\n", err.msg);
