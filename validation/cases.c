@@ -27,7 +27,7 @@
 
 /* Passes that hold at one resolution only: the checks pass at d/10, the
  * converged answer is elsewhere (pen-sph-gelatin-convergence,
- * pen-sph-sebs-convergence; docs/validation.md). */
+ * pen-sph-sebs-convergence; docs/notes/validation-log.md). */
 #define STATUS_PEN_SPH_GELATIN                                                                   \
     "PASS at d/10 only: the converged depth with the same material data is about 80 um "        \
     "(73-86 um, +19 % against the 67 um experiment; pen-sph-gelatin-convergence)"

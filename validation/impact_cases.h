@@ -2,7 +2,7 @@
  * @file impact_cases.h
  * @brief Validation cases of the rigid impactors with the lattice model
  *        (issue 3, seed 000 sec. 3.2-4.2), registered in validation/cases.c;
- *        numbers tabulated in docs/validation.md.
+ *        numbers tabulated in docs/notes/validation-log.md.
  */
 #ifndef SPALL_VALIDATION_IMPACT_CASES_H
 #define SPALL_VALIDATION_IMPACT_CASES_H

@@ -5,7 +5,7 @@
  *        rigid round-nose tup coupled to the lattice (no-slip push-out,
  *        M a = R_F - M g).  Decks: examples/impact_nylon, impact_vinylester.
  *
- * Set-up (choices where the seed is silent; see docs/validation.md):
+ * Set-up (choices where the seed is silent; see docs/notes/validation-log.md):
  *  - beam 12.7 cm long, 1.27 cm deep, 0.993 cm wide (the seed's "12.7 x 12.7
  *    x 0.993 cm" read with a 1.27 cm height: a 12.7 cm deep block cannot
  *    deflect 3 mm with 1.2 J), 2D plane-stress triangular lattice in the
@@ -152,7 +152,8 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
                             err)))
         goto done;
     if (fabs(t_peak - m->t_ref) > 0.10 * m->t_ref)
-        vreport_mark_gap(r, "see docs/validation.md: the peak comes with the first bending "
+        vreport_mark_gap(r, "see docs/notes/validation-log.md: the peak comes with the first "
+                            "bending "
                             "crack, whose deflection is set by eps_max and the chosen span");
     snprintf(src, sizeof src, "seed 000 sec. 3.2 (experiment; paper's HLPM %.2f mm)",
              m->d_hlpm * 1e3);
@@ -161,7 +162,8 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
                             m->d_calibrated ? m->d_calibrated : "10 %: as above", err)))
         goto done;
     if (fabs(d_peak - m->d_ref) > 0.10 * m->d_ref)
-        vreport_mark_gap(r, "see docs/validation.md: beam theory puts the first bending crack "
+        vreport_mark_gap(r, "see docs/notes/validation-log.md: beam theory puts the first bending "
+                            "crack "
                             "at eps_max S^2 / (6 h); the elastic-brittle lattice follows it");
     snprintf(src, sizeof src, "seed 000 sec. 3.2 (experiment; paper's HLPM %.2f J)", m->e_hlpm);
     snprintf(q, sizeof q, "%sabsorbed energy", m->tag);
@@ -170,7 +172,8 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
         goto done;
     if (fabs(absorbed - m->e_ref) > 0.10 * m->e_ref && soft)
         vreport_mark_gap(r, "cohesive softening with G_f = 3 kJ/m^2 still lets the beam snap "
-                            "through the depth and lose contact; see docs/validation.md for the "
+                            "through the depth and lose contact; see docs/notes/validation-log.md "
+                            "for the "
                             "G_f scan (energy vs peak time trade-off)");
     else if (fabs(absorbed - m->e_ref) > 0.10 * m->e_ref)
         vreport_mark_gap(r, "an elastic-brittle beam absorbs about its strain energy at "
@@ -202,7 +205,7 @@ int impact_case_nylon(struct vreport *r, struct spall_error *err)
     /* variant: cohesive softening law (lattice_softening.h), onset at
      * sigma_TS / E as above, fracture energy G_f = K_IC^2 / E with K_IC ~
      * 3 MPa m^0.5 for dry nylon-6,6 (a handbook-range value, our choice, not
-     * fitted to this test; docs/validation.md) */
+     * fitted to this test; docs/notes/validation-log.md) */
     const struct indent_material ms = {"impact-nylon (softening)", "softening",
                                        ", fracture_energy: 3.0e3", "softening G_f 3 kJ/m^2: ",
                                        1140.0, 3.0e9, 60.0e6, 1.87, 1.70e-3, 3.03e-3, 1.2,

@@ -6,7 +6,7 @@
  *        3.55 m/s.  Experiment: peak 10 000 N at 2.1 mm (paper's HLPM:
  *        12 800 N at 1.6 mm).  Deck: examples/impact_punch.
  *
- * Choices (docs/validation.md): FCC lattice with central springs (the
+ * Choices (docs/notes/validation-log.md): FCC lattice with central springs (the
  * natural 3D lattice; nu = 1/4 is its Cauchy value), r0 = 2.5 mm (about six
  * particle layers through the thickness, ~10 000 particles, a minute per
  * run); sigma_TS = 43.5 MPa as in impact-vinylester; flat-ended plunger of
@@ -154,7 +154,7 @@ int impact_case_punch(struct vreport *r, struct spall_error *err)
     if (fabs(F - 1e4) > 1e3)
         vreport_mark_gap(r, "not stiffness: the unbroken plate reaches 10 kN at 1.76 mm; bending "
                             "cracks on the tension face from 4.8 kN (0.92 mm) soften it and the "
-                            "peak comes late; see docs/validation.md");
+                            "peak comes late; see docs/notes/validation-log.md");
     if ((rc = vreport_check(r, "deflection at peak load (no-slip)", "m", 2.1e-3, d, 0.10, true,
                             src, "10 %", err)))
         return rc;

@@ -5,7 +5,7 @@
  *        at 260 m/s; E = 163.24 GPa, sigma_TS = 478.25 MPa, rho = 8900 kg/m^3,
  *        every boundary free.  Deck: examples/impact_spall.
  *
- * Choices (docs/validation.md):
+ * Choices (docs/notes/validation-log.md):
  *  - failure criterion: bond failure strain 0.02 (SPALL_EPS_MAX).  The seed
  *    lists sigma_TS = 478.25 MPa and eps_max = 0.10, which disagree
  *    (sigma_TS / E = 0.0029).  With 0.10 nothing breaks (the whole pulse is a
@@ -43,20 +43,20 @@
 #define SPALL_R0 0.2e-3
 #define SPALL_H_TARGET 0.0068
 #define SPALL_H_FLYER 0.0020
-/* bond failure strain: the spall criterion (docs/validation.md): between the
+/* bond failure strain: the spall criterion (docs/notes/validation-log.md): between the
  * lattice's spurious tensions (ringing, corner releases) and the bond strain
  * 0.75 v / (2 c_p) = 0.0214 of the full reflected tension at the spall plane */
 #define SPALL_EPS_MAX 0.020
 /* softening variant: full separation at 1.5 eps_max (a modest tail; our
  * choice, not fitted; 0.04 and the seed's sigma_TS/E -> 0.10 were tried,
- * docs/validation.md) */
+ * docs/notes/validation-log.md) */
 #define SPALL_SOFT_EF 0.030
 #define SPALL_EDGE_ZONE 0.003
 #define SPALL_OPEN 1.0e-4
 #define SPALL_GAP                                                                                 \
     "gap: besides the spall plane, the corners break: the target's free sides (long flyer) and "   \
     "the impact face under the flyer's edges (short flyer; the spall crack also runs on ~0.3 cm "  \
-    "past each flyer edge); see docs/validation.md"
+    "past each flyer edge); see docs/notes/validation-log.md"
 
 int impact_spall_deck(char *buf, size_t len, double flyer_width, double r0, double end_time,
                       double eps_max)
@@ -364,7 +364,7 @@ int impact_case_spall(struct vreport *r, struct spall_error *err)
     if (!rc)
         rc = run_spall(r, 0.026, "short flyer", "linear", keys, err);
     /* variant: cohesive softening (lattice_softening.h) from the same onset
-     * eps_0 = 0.02 to full separation at SPALL_SOFT_EF (docs/validation.md) */
+     * eps_0 = 0.02 to full separation at SPALL_SOFT_EF (docs/notes/validation-log.md) */
     snprintf(keys, sizeof keys, "onset_strain: %.17g, failure_strain: %.17g", SPALL_EPS_MAX,
              SPALL_SOFT_EF);
     if (!rc)

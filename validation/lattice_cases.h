@@ -6,7 +6,7 @@
  *
  * Every case records checks with reference, measured value, tolerance, the
  * source of the reference and the reason for the tolerance; the numbers are
- * tabulated in docs/validation.md.
+ * tabulated in docs/notes/validation-log.md.
  */
 #ifndef SPALL_VALIDATION_LATTICE_CASES_H
 #define SPALL_VALIDATION_LATTICE_CASES_H

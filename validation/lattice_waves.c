@@ -25,7 +25,7 @@
  * sqrt((K + 4G/3)/rho); an infinitely wide plate (plane stress) carries
  * P waves at sqrt(E / (rho (1 - nu^2))) = 1720 m/s; a strip 15 rows wide
  * is a bar once the lateral contraction has developed (a few widths behind
- * the front), so its front moves at the bar speed.  docs/validation.md.
+ * the front), so its front moves at the bar speed.  docs/notes/validation-log.md.
  *
  * Arrival time: the first time the probe's velocity reaches half the particle
  * velocity behind the front, linearly interpolated between steps.  That

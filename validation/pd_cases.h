@@ -2,7 +2,7 @@
  * @file pd_cases.h
  * @brief Validation cases of the peridynamics model (issue 4), run by
  *        `spall validate` through validation/cases.c.  Numbers are
- *        tabulated in docs/validation.md (peridynamics section).
+ *        tabulated in docs/notes/validation-log.md (peridynamics section).
  */
 #ifndef SPALL_VALIDATION_PD_CASES_H
 #define SPALL_VALIDATION_PD_CASES_H

@@ -24,7 +24,7 @@
  * = 32 us).  Quasi-static enough means small kinetic energy against strain
  * energy when the first bond breaks: reported (K/U) for every specimen.
  * (ADR, quasi_static: adr, is not used: its mass-proportional damping drags
- * the body behind a moving grip; see docs/validation.md.)
+ * the body behind a moving grip; see docs/notes/validation-log.md.)
  *
  * Measured per specimen:
  *  - crack start: the broken bonds (not pre-cut) of the first step with any
@@ -300,7 +300,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
         return rc;
     if (q->angle > 10.0)
         vreport_mark_gap(r, "the damage runs along a matrix-bond lattice row (a hinge band of "
-                            "one broken bond family), see docs/validation.md");
+                            "one broken bond family), see docs/notes/validation-log.md");
     if (!isnan(c->ref_start)) {
         snprintf(what, sizeof what, "%s: crack start, distance from the hole's centre line",
                  c->name);
@@ -310,7 +310,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
             return rc;
         if (fabs(q->start - c->ref_start) > LAM_DX)
             vreport_mark_gap(r, "the first bonds break where the PDLM stress concentration "
-                                "peaks; see docs/validation.md");
+                                "peaks; see docs/notes/validation-log.md");
     } else if (!isnan(c->alpha)) {
         snprintf(what, sizeof what, "%s: crack start, distance from the pre-crack tip",
                  c->name);
@@ -320,7 +320,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
             return rc;
         if (fabs(q->start) > 2.0 * LAM_DX)
             vreport_mark_gap(r, "the first bonds break away from the tips; see "
-                                "docs/validation.md");
+                                "docs/notes/validation-log.md");
     } else {
         snprintf(what, sizeof what, "%s: crack start, distance from the hole's centre line",
                  c->name);
@@ -331,7 +331,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
             return rc;
         if (fabs(q->start) > 2.0 * LAM_DX)
             vreport_mark_gap(r, "first bonds break at a corner of the stepped hole edge (the "
-                                "6 mm hole is 12 spacings wide); see docs/validation.md");
+                                "6 mm hole is 12 spacings wide); see docs/notes/validation-log.md");
     }
     snprintf(what, sizeof what, "%s: crack reaches a free edge or a grip (split)", c->name);
     if ((rc = vreport_check_true(r, what, q->split, "seed 003 sec. 4.2, 5.3-5.4",

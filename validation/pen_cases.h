@@ -3,7 +3,7 @@
  * @brief Validation cases of the analytical penetration models (seed 004
  *        sec. 4.2, include/spall/penetration.h), registered under the
  *        penetration marker of validation/cases.c; numbers in
- *        docs/validation.md.
+ *        docs/notes/validation-log.md.
  */
 #ifndef SPALL_VALIDATION_PEN_CASES_H
 #define SPALL_VALIDATION_PEN_CASES_H

@@ -18,7 +18,7 @@
  * "predominantly elastic-plastic": failure at sigma_vm = A (the former
  * default, kept as a deck option) removes every intact particle around the
  * sphere, makes E irrelevant and P_max 10 % deep and 70 ns late
- * (docs/validation.md, pen-sph-gelatin).
+ * (docs/notes/validation-log.md, pen-sph-gelatin).
  * Graded spacing: dx1 for r <= 8 um (L_sph ~ 2 d) and z >= -100 um, then
  * 2, 4, 8 dx1 out to r = 144 um (x width) and z = -250 um; every level's
  * edges are multiples of the next level's spacing.  The sphere starts
@@ -31,7 +31,7 @@
  * and the rebound after P_max: the run goes on to 320 ns after contact;
  * d/10 to keep the full suite affordable: d/15 (8166 particles, ~4x the
  * CPU) is 12.9 % deeper and d/20 (14844, ~14x) 22.3 %, not converged,
- * docs/validation.md),
+ * docs/notes/validation-log.md),
  * "pen-sph-gelatin-sweep" (200-1420 m/s at d/10 vs Poncelet + d/2),
  * "pen-sph-gelatin-modulus" (E = 1, 10, 20, 40 MPa at d/10: trend),
  * "pen-sph-gelatin-convergence" (d/10, d/15, d/20, d/25 and 1.5x width at d/15,
@@ -140,20 +140,20 @@ int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err)
                             err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin)");
     if ((rc = vreport_check(r, "time of P_max after contact", "s", 225.0e-9, o.t_pmax, 25.0e-9,
                             false, "experiment: P_max reached 200-250 ns after impact",
                             "the experimental window", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin)");
     if ((rc = vreport_check(r, "P_max/d vs Poncelet + d/2, 1290 m/s", "1", pn / PEN_D,
                             o.pmax / PEN_D, 0.10, true,
                             "Poncelet C_d = 0.375, R = 21 MPa, Eq. 4.6 + d/2 (Eq. 4.7)",
                             "10 %: issue 7", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin)");
     /* the speed and recovery have no measured reference (the thesis shows
      * none): a sign test, the numbers go to the info line above */
     if ((rc = vreport_check_true(r, "sphere rebounds after P_max (V turns upward, tip recovers)",
@@ -190,7 +190,7 @@ int pen_case_sph_sweep(struct vreport *r, struct spall_error *err)
                                 "10 %: issue 7", err)))
             return rc;
         if (!r->checks[r->n - 1].pass)
-            vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-sweep)");
+            vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-sweep)");
     }
     return SPALL_OK;
 }
@@ -216,7 +216,7 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
                                 "stops the projectile more quickly)",
                                 "the thesis' trend", err);
     if (!rc && !mono)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-modulus)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-modulus)");
     if (rc)
         return rc;
     /* Fig. 4.13 (b): case 2 (E = 20 MPa) has the smallest error vs ~67 um */
@@ -227,7 +227,7 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
     rc = vreport_check_true(r, "E = 20 MPa closest to the experiment's 67 um", closest,
                             "seed 004 Fig. 4.13 (b)", "the thesis' choice of E", err);
     if (!rc && !closest)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-modulus)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-modulus)");
     return rc;
 }
 
@@ -325,7 +325,7 @@ static int sequence_info(struct vreport *r, const char *form, const struct pen_s
  * every refinement changes the equations (the AV's h) and the sphere's
  * effective radius (d/2 - dx1/2); the other gelatin cases keep it because
  * their numbers are compared with the thesis at the thesis' resolution
- * (docs/validation.md, pen-sph-gelatin, "The rest: the entry").
+ * (docs/notes/validation-log.md, pen-sph-gelatin, "The rest: the entry").
  * Levels d/10, d/15, d/20, d/25 (d/25: 23 133 particles, about half of
  * the case's time) and d/15 with the target 1.5x wider.
  * Tolerances: 3 % for the change of P_max between the two finest levels (a
@@ -367,34 +367,34 @@ int pen_case_sph_convergence(struct vreport *r, struct spall_error *err)
                             "3 %: a third of the 10 % against the experiment", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-convergence)");
     if ((rc = vreport_check(r, "max |P(t) d/20 - P(t) d/25| / P_max(d/25)", "1", 0.0,
                             history_gap(&o[2], &o[3]), 0.03, false,
                             "this model at d/25 (converging form)",
                             "3 %: the whole P(t), not only its maximum", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-convergence)");
     if ((rc = vreport_check_true(r,
                                  "P_max converges d/15 -> d/20 -> d/25 (Richardson order >= 0.5)",
                                  conv, "this model at d/15, d/20, d/25 (converging form)",
                                  "a converging sequence with a usable limit", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-convergence)");
     if ((rc = vreport_check(r, "P_max 1.5x vs full width (d/15)", "m", o[1].pmax, w.pmax, 0.02,
                             true, "this model, full width (converging form)",
                             "2 %: the far field must not matter", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-convergence)");
     if ((rc = vreport_check(r, "max |P(t) 1.5x - P(t) full width| / P_max (d/15)", "1", 0.0,
                             history_gap(&w, &o[1]), 0.02, false,
                             "this model, full width (converging form)",
                             "2 %: the far field must not matter", err)))
         goto out;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-convergence)");
+        vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-convergence)");
 out:
     for (int k = 0; k < 4; k++)
         pen_sph_outcome_free(&o[k]);
@@ -432,7 +432,7 @@ int pen_case_sph_av_forms(struct vreport *r, struct spall_error *err)
             rc = vreport_check_true(r, q, shrink, "this model at d/10, d/15, d/20",
                                     "a converging sequence", err);
             if (!rc && !r->checks[r->n - 1].pass)
-                vreport_mark_gap(r, "GAP: docs/validation.md (pen-sph-gelatin-av)");
+                vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-av)");
         }
         for (int k = 0; k < 3; k++)
             pen_sph_outcome_free(&o[k]);

@@ -134,7 +134,7 @@ int pen_case_sph_sebs(struct vreport *r, struct spall_error *err)
                                     "convention with the nose",
                                     err)))
                 return rc;
-            gap_if_failed(r, "GAP: docs/validation.md (pen-sph-sebs)");
+            gap_if_failed(r, "GAP: docs/notes/validation-log.md (pen-sph-sebs)");
         }
     }
     return SPALL_OK;
@@ -152,7 +152,7 @@ int pen_case_sph_sebs(struct vreport *r, struct spall_error *err)
  * d/20.  Checks: the change d/15 -> d/20 within 3 % and a Richardson order
  * >= 0.5 (the gelatin convergence case's criteria), and the d/20 depth
  * against Modified-CG + d/2 within 15 % (item 4c). */
-#define CONV_GAP "GAP: docs/validation.md (pen-sph-sebs-convergence)"
+#define CONV_GAP "GAP: docs/notes/validation-log.md (pen-sph-sebs-convergence)"
 int pen_case_sph_sebs_convergence(struct vreport *r, struct spall_error *err)
 {
     static const double N[3] = {10.0, 15.0, 20.0};

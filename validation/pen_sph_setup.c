@@ -170,7 +170,7 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
     }
     /* surface_contact: the gel particles' surfaces (dx1/2 ahead of their
      * centres) meet the sphere, whose effective radius is otherwise d/2 -
-     * dx1/2 and grows with refinement (docs/validation.md, pen-sph-gelatin,
+     * dx1/2 and grows with refinement (docs/notes/validation-log.md, pen-sph-gelatin,
      * "The rest: the entry") */
     char offset[64] = "";
     if (g->surface_contact)

@@ -2,7 +2,9 @@
  * @file report.c
  * @brief `spall validate --report DIR`: a Markdown page with the table of
  *        checks and, per case, PNG plots of the series the cases attached
- *        (measured time histories against references, see vreport_series).
+ *        (measured time histories against references, see vreport_series);
+ *        `spall validate --markdown FILE`: the validation reference page
+ *        (docs/validation.md), one section per registered case.
  */
 #define _POSIX_C_SOURCE 200809L
 #include "validation/validation.h"
@@ -171,4 +173,185 @@ int vreport_write_report(const struct vreport *r, const char *dir, struct spall_
     if (fclose(f) != 0 && rc == SPALL_OK)
         rc = spall_error_set(err, SPALL_ERR_IO, "cannot write '%s'", path);
     return rc;
+}
+
+/* ---- `spall validate --markdown FILE`: the validation reference ---- */
+
+static const char *const gate_text[] = {"full runs only", "reduced (`--quick`)", "full"};
+
+/* the checks [*first, *end) the case @p name recorded (the checks of a case are contiguous) */
+static void case_checks(const struct vreport *r, const char *name, size_t *first, size_t *end)
+{
+    size_t k = 0;
+    while (k < r->n && strcmp(r->checks[k].case_name, name) != 0)
+        k++;
+    *first = k;
+    while (k < r->n && strcmp(r->checks[k].case_name, name) == 0)
+        k++;
+    *end = k;
+}
+
+/* one word for a case's outcome: PASS, FAIL (known gaps), FAIL, ERROR, not run */
+static const char *case_result(const struct vmd_case *m, const struct vreport *r, size_t first,
+                               size_t end)
+{
+    if (!m->ran)
+        return "not run";
+    if (m->error[0])
+        return "**ERROR**";
+    int fail = 0, unknown = 0;
+    for (size_t k = first; k < end; k++) {
+        fail |= !r->checks[k].pass;
+        unknown |= !r->checks[k].pass && !r->checks[k].known_gap;
+    }
+    return unknown ? "**FAIL**" : fail ? "PASS except known gaps" : "PASS";
+}
+
+static void md_value(FILE *f, const struct vcheck *c, double v)
+{
+    if (strcmp(c->unit, "yes=1") == 0)
+        fputs(v == 1.0 ? "yes" : v == 0.0 ? "no" : "?", f);
+    else
+        fprintf(f, "%.6g", v);
+}
+
+static void md_case_table(FILE *f, const struct vreport *r, size_t first, size_t end)
+{
+    fprintf(f, "| quantity | unit | reference | measured | error | tolerance | result | source |\n"
+               "|---|---|---|---|---|---|---|---|\n");
+    for (size_t k = first; k < end; k++) {
+        const struct vcheck *c = &r->checks[k];
+        bool yes_no = strcmp(c->unit, "yes=1") == 0;
+        fputs("| ", f);
+        md(f, c->quantity);
+        fprintf(f, " | %s | ", yes_no ? "" : c->unit);
+        md_value(f, c, c->reference);
+        fputs(" | ", f);
+        md_value(f, c, c->measured);
+        if (yes_no)
+            fputs(" | | | ", f);
+        else if (c->relative)
+            fprintf(f, " | %.3g %% | %.3g %% | ", 100.0 * check_err(c), 100.0 * c->tolerance);
+        else
+            fprintf(f, " | %.3g | %.3g | ", check_err(c), c->tolerance);
+        fprintf(f, "%s | ", c->pass ? "PASS" : c->known_gap ? "known gap" : "**FAIL**");
+        md(f, c->source);
+        fputs(" |\n", f);
+    }
+}
+
+/* the notes (why this tolerance, cause of a gap), each distinct note once
+ * with the quantities it belongs to */
+static void md_case_notes(FILE *f, const struct vreport *r, size_t first, size_t end)
+{
+    int any = 0;
+    for (size_t k = first; k < end; k++) {
+        const struct vcheck *c = &r->checks[k];
+        int seen = 0;
+        for (size_t j = first; j < k && !seen; j++)
+            seen = strcmp(r->checks[j].note, c->note) == 0;
+        if (!c->note[0] || seen)
+            continue;
+        fputs(any++ ? "" : "\nNotes:\n\n", f);
+        fputs("- ", f);
+        int gap = 0, n_q = 0;
+        for (size_t j = k; j < end; j++) {
+            if (strcmp(r->checks[j].note, c->note) != 0)
+                continue;
+            gap |= r->checks[j].known_gap;
+            fputs(n_q++ ? ", " : "", f);
+            md(f, r->checks[j].quantity);
+        }
+        fputs(gap ? " (**known gap**): " : ": ", f);
+        md(f, c->note);
+        fputs("\n", f);
+    }
+}
+
+static void md_case(FILE *f, const struct vreport *r, const struct vcase *c,
+                    const struct vmd_case *m)
+{
+    size_t first, end;
+    case_checks(r, c->name, &first, &end);
+    fprintf(f, "\n### %s\n\n", c->name);
+    md(f, c->title);
+    fprintf(f, ".\n\nKind: %s. Gate: %s. ", vkind_name(c->kind), gate_text[c->gate]);
+    if (m->ran)
+        fprintf(f, "Measured here in the %s configuration: %s (%zu checks).\n",
+                m->quick ? "reduced" : "full", case_result(m, r, first, end), end - first);
+    else
+        fprintf(f, "Not run for this page (%s): run it with `spall validate %s` (Release build); "
+                   "its last recorded measurements are in "
+                   "[notes/validation-log.md](notes/validation-log.md).\n",
+                c->gate == VGATE_OFF ? "too slow for the gate" : "not selected", c->name);
+    if (c->status) {
+        fputs("\nStatus: ", f);
+        md(f, c->status);
+        fputs("\n", f);
+    }
+    if (m->error[0]) {
+        fputs("\nThe case stopped with an error: ", f);
+        md(f, m->error);
+        fputs("\n", f);
+    }
+    if (end > first) {
+        fputs("\n", f);
+        md_case_table(f, r, first, end);
+        md_case_notes(f, r, first, end);
+    }
+}
+
+int vreport_write_markdown(const struct vreport *r, const struct vmd_case *md_cases, size_t n,
+                           const char *path, const char *command, struct spall_error *err)
+{
+    size_t n_reg = 0;
+    const struct vcase *cases = validation_cases(&n_reg);
+    if (n != n_reg)
+        return spall_error_set(err, SPALL_ERR_INTERNAL,
+                               "markdown: %zu case descriptions for %zu registered cases", n,
+                               n_reg);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return spall_error_set(err, SPALL_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
+    size_t n_ran = 0, pass = 0;
+    for (size_t k = 0; k < n; k++)
+        n_ran += md_cases[k].ran != 0;
+    for (size_t k = 0; k < r->n; k++)
+        pass += r->checks[k].pass;
+    fprintf(f,
+            "# Validation reference\n\n"
+            "> Generated by `%s` (spall %s, git %s) from the case registry "
+            "(validation/cases.c) and the checks the cases record. Do not edit this file: "
+            "change the case and regenerate it with a Release build.\n\n",
+            command, SPALL_VERSION, SPALL_GIT_REV);
+    fprintf(f,
+            "Every built-in case of `spall validate` has a section below: what it checks, its "
+            "kind (validation: an experiment or an independent published / FE result; "
+            "verification: an exact or analytical solution of the model's own equations; "
+            "regression: numbers of our own library), and each check's reference, measured "
+            "value, error, tolerance, result and source, with the reason for the tolerance or "
+            "the cause of a known gap. A known gap counts as a failure of `spall validate`; the "
+            "gate (`spall validate --quick`, ctest `validation_*`) accepts it by name only. "
+            "Cases in the reduced configuration measure a smaller problem than the full run "
+            "(`spall validate NAME`); the dated investigations behind the cases are in "
+            "[notes/validation-log.md](notes/validation-log.md).\n\n"
+            "%zu of %zu cases measured here, %zu checks: %zu pass, %zu fail.\n\n",
+            n_ran, n, r->n, pass, r->n - pass);
+    fprintf(f, "| case | kind | gate | checks | result |\n|---|---|---|---|---|\n");
+    for (size_t k = 0; k < n; k++) {
+        size_t first, end;
+        case_checks(r, cases[k].name, &first, &end);
+        char n_checks[24] = "-";
+        if (md_cases[k].ran)
+            snprintf(n_checks, sizeof n_checks, "%zu", end - first);
+        fprintf(f, "| [%s](#%s) | %s | %s | %s | %s%s |\n", cases[k].name, cases[k].name,
+                vkind_name(cases[k].kind), gate_text[cases[k].gate], n_checks,
+                case_result(&md_cases[k], r, first, end), cases[k].status ? " (see status)" : "");
+    }
+    fprintf(f, "\n## Cases\n");
+    for (size_t k = 0; k < n; k++)
+        md_case(f, r, &cases[k], &md_cases[k]);
+    if (fclose(f) != 0)
+        return spall_error_set(err, SPALL_ERR_IO, "cannot write '%s'", path);
+    return SPALL_OK;
 }

@@ -17,7 +17,7 @@
  *   averaged AS with the edge clamp (one fixed column: the thesis' "left
  *   edge fixed" read literally), six kernels, the Wendland checked: the
  *   deeper clamps tear the tension-side corner pair apart (the tensile
- *   instability of the pair across the clamp plane, docs/validation.md).
+ *   instability of the pair across the clamp plane, docs/notes/validation-log.md).
  * sph-leapfrog: plain-SPH cubic-spline plate (6 rows, no artificial
  *   viscosity / stress / XSPH), cantilever mode, 0.1 s: the leapfrog must
  *   keep kinetic + internal energy to 1e-3 of the input; the
@@ -68,9 +68,10 @@ static int wendland_check(struct vreport *r, const char *q, const struct sph_bea
         return rc;
     char gap[400];
     if (!isfinite(res->mean) || res->final > 0.2)
-        snprintf(gap, sizeof gap, "GAP: %s; see docs/validation.md", gap_unstable);
+        snprintf(gap, sizeof gap, "GAP: %s; see docs/notes/validation-log.md", gap_unstable);
     else
-        snprintf(gap, sizeof gap, "GAP: measured %.2f mm (%+.1f %%); see docs/validation.md",
+        snprintf(gap, sizeof gap, "GAP: measured %.2f mm (%+.1f %%); see "
+                                  "docs/notes/validation-log.md",
                  res->mean * 1e3, (res->mean - ref) / ref * 100.0);
     vreport_mark_gap(r, gap);
     return SPALL_OK;
@@ -150,7 +151,8 @@ int sph_case_beam_large(struct vreport *r, struct spall_error *err)
                 return rc;
             torn[k] = !isfinite(res.mean) || res.final > 0.2;
             if (k == 3 && (rc = wendland_check(r, q, &res,
-                                               "torn at the clamp (see docs/validation.md)", err)))
+                                               "torn at the clamp (see "
+                                               "docs/notes/validation-log.md)", err)))
                 return rc;
         }
         char list[64];

@@ -289,11 +289,11 @@ int sph_case_beam(struct vreport *r, struct spall_error *err)
                          "with either clamp; cause: the pointwise artificial stress R_i follows "
                          "particle-scale stress noise, a linear instability from t = 0 that "
                          "AV + XSPH damp for the other kernels; the averaged-AS row runs); see "
-                         "docs/validation.md");
+                         "docs/notes/validation-log.md");
             else
                 snprintf(gap, sizeof gap,
                          "GAP: measured %.2f mm (%+.2f %%, tolerance %.2f %%): stable, smooth "
-                         "run; %s; see docs/validation.md",
+                         "run; %s; see docs/notes/validation-log.md",
                          res.mean * 1e3, (res.mean - ref) / ref * 100.0, tol,
                          w->clamp == SPH_BEAM_FIXED
                              ? "the fixed clamp's soft root (measured: 2.5-4 % more "

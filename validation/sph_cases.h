@@ -2,7 +2,7 @@
  * @file sph_cases.h
  * @brief Validation cases of the SPH model (seed 004 chapter 3), run by
  *        `spall validate` through validation/cases.c.  Numbers are
- *        tabulated in docs/validation.md.
+ *        tabulated in docs/notes/validation-log.md.
  */
 #ifndef SPALL_VALIDATION_SPH_CASES_H
 #define SPALL_VALIDATION_SPH_CASES_H

@@ -206,13 +206,15 @@ int sph_case_debris(struct vreport *r, struct spall_error *err)
                                 "5 %: a cloud edge resolved to ~1 dx of d/40", err)))
             return rc;
         if (!r->checks[r->n - 1].pass)
-            vreport_mark_gap(r, "GAP: cloud length not converged in dx; see docs/validation.md");
+            vreport_mark_gap(r, "GAP: cloud length not converged in dx; see "
+                                "docs/notes/validation-log.md");
         if ((rc = vreport_check(r, "cloud width (99 % mass) change, d/40 -> d/60", "1", 0.0, dw,
                                 0.05, false, "convergence",
                                 "5 %: a cloud edge resolved to ~1 dx of d/40", err)))
             return rc;
         if (!r->checks[r->n - 1].pass)
-            vreport_mark_gap(r, "GAP: cloud width not converged in dx; see docs/validation.md");
+            vreport_mark_gap(r, "GAP: cloud width not converged in dx; see "
+                                "docs/notes/validation-log.md");
     }
     static const char src[] = "Hiermaier et al. 1997 (seed 004 ref. [73]) experiment, "
                               "second-hand (course-project README citing it)";
@@ -223,7 +225,7 @@ int sph_case_debris(struct vreport *r, struct spall_error *err)
         return rc;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: hole diameter outside 10 % of the second-hand experimental "
-                            "value; see docs/validation.md");
+                            "value; see docs/notes/validation-log.md");
     if ((rc = vreport_check(r, "cloud length / width (99 % mass) at 20 us", "1", DEB_LW_REF,
                             f->length_q / f->width_q, 0.10, true, src,
                             "10 %: unverified value, radiograph time unknown (L/W still "
@@ -232,7 +234,7 @@ int sph_case_debris(struct vreport *r, struct spall_error *err)
         return rc;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: cloud L/W outside 10 % of the second-hand experimental value "
-                            "(ref. [73]'s own 2D SPH: 1.11); see docs/validation.md");
+                            "(ref. [73]'s own 2D SPH: 1.11); see docs/notes/validation-log.md");
     if ((rc = vreport_check(r, "cloud length / width (99 % mass) at 20 us vs ref. [73]'s SPH",
                             "1", DEB_LW_SPH, f->length_q / f->width_q, 0.10, true,
                             "Hiermaier et al. 1997 2D SPH, second-hand (same README)",
@@ -241,6 +243,6 @@ int sph_case_debris(struct vreport *r, struct spall_error *err)
         return rc;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: cloud L/W outside 10 % of ref. [73]'s SPH value; see "
-                            "docs/validation.md");
+                            "docs/notes/validation-log.md");
     return SPALL_OK;
 }

@@ -136,7 +136,7 @@ int sph_plate_run(int rows, const char *model, enum sph_plate_clamp clamp, bool 
  * Total-Lagrangian (sph_tlsph.c) with the clamp as plain fixed particles:
  * the reference kernel never changes neighbours, so no pairing instability
  * can start at the clamp corners, and its period converges with dx
- * (docs/validation.md, sph-plate: +19.6 / +8.1 / +3.9 / +2.9 / +2.3 % at
+ * (docs/notes/validation-log.md, sph-plate: +19.6 / +8.1 / +3.9 / +2.9 / +2.3 % at
  * 6 / 10 / 16 / 20 / 24 rows; insensitive to the hourglass coefficient,
  * the AV, the amplitude and the time integrator).  CSPM is built into its
  * corrected reference gradient. */
@@ -194,7 +194,7 @@ int sph_case_plate(struct vreport *r, struct spall_error *err)
     }
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: TLSPH converges as (dx/H)^2 towards Timoshenko (+0.94 %) "
-                            "but this resolution is too coarse; see docs/validation.md");
+                            "but this resolution is too coarse; see docs/notes/validation-log.md");
     /* the thesis-style updated form, kept as a row */
     const int rows_up = r->quick ? 6 : 10;
     if ((rc = plate_check(r, "updated SPH (CSPM), mirrored clamp", rows_up, PLATE_UPDATED,
@@ -204,6 +204,7 @@ int sph_case_plate(struct vreport *r, struct spall_error *err)
         vreport_mark_gap(r, "GAP (updated form): +17 / +7 % at 6 / 10 rows, but +15 / +28 % at "
                             "16 / 20 rows: particles pair on the compressed side of the clamp "
                             "corner (cubic spline h = 1.5 dx: nearest neighbours at W'' = 0, "
-                            "q = 2/3); the TLSPH row is the founded one; docs/validation.md");
+                            "q = 2/3); the TLSPH row is the founded one; "
+                            "docs/notes/validation-log.md");
     return rc;
 }

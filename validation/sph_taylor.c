@@ -137,7 +137,8 @@ int sph_case_taylor3d(struct vreport *r, struct spall_error *err)
     if (rc)
         return rc;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "GAP: see docs/validation.md (frictionless penalty wall, linear EOS)");
+        vreport_mark_gap(r, "GAP: see docs/notes/validation-log.md (frictionless penalty wall, "
+                            "linear EOS)");
     if (last > first &&
         (rc = vreport_check(r, "final length change, two finest dx", "1", 0.0,
                             fabs(len[last] - len[last - 1]) / len[last], 0.005, false,

@@ -38,7 +38,7 @@
  * scatter by ~10-20 % in the literature); (3) the missing published value,
  * recorded as a gap.  The full case also runs two AV forms without the h
  * in the AV's length (issue 6 item 7c): a fixed `viscosity_length` and
- * Balsara's switch, each with check (1) (docs/validation.md).
+ * Balsara's switch, each with check (1) (docs/notes/validation-log.md).
  */
 #include "validation/lattice_cases.h"
 #include "validation/pen_sph_setup.h"
@@ -277,9 +277,9 @@ static int t2d_form(struct vreport *r, const char *label, const char *av,
         return rc;
     if (!r->checks[r->n - 1].pass)
         vreport_mark_gap(r, "GAP: this AV form does not converge the length either; see "
-                            "docs/validation.md");
+                            "docs/notes/validation-log.md");
     if (fe_checks)
-        return t2d_fe_checks(r, label, &res[2], "see docs/validation.md", err);
+        return t2d_fe_checks(r, label, &res[2], "see docs/notes/validation-log.md", err);
     return SPALL_OK;
 }
 
@@ -332,7 +332,7 @@ int sph_case_taylor2d(struct vreport *r, struct spall_error *err)
             return rc;
         if (!r->checks[r->n - 1].pass)
             vreport_mark_gap(r, "GAP: the length is not converged to 1 % at n = 48; see "
-                                "docs/validation.md");
+                                "docs/notes/validation-log.md");
         /* against the FE reference (the issue's 3D-bar tolerance, item 7d) */
         vreport_info(r, "FE reference (CalculiX, validation/fe/taylor_iron): L = %.2f mm, outer "
                      "radius %.2f / %.2f mm 0.5 / 1 mm above the face; Richardson L_inf above: "
@@ -340,7 +340,7 @@ int sph_case_taylor2d(struct vreport *r, struct spall_error *err)
                      100.0 * (Linf / T2D_FE_L - 1.0));
         if ((rc = t2d_fe_checks(r, "thesis AV (length h)", f,
                                 "the AV (length h) holds the rod long and its foot narrow at "
-                                "n = 48; see docs/validation.md",
+                                "n = 48; see docs/notes/validation-log.md",
                                 err)))
             return rc;
         /* The convergence gap was put down to the AV (its viscous stress
@@ -372,6 +372,6 @@ int sph_case_taylor2d(struct vreport *r, struct spall_error *err)
                                  "not retrievable here: measured values reported only", err)))
         return rc;
     vreport_mark_gap(r, "GAP: no published final length / radius to compare with (references "
-                        "not found); see docs/validation.md");
+                        "not found); see docs/notes/validation-log.md");
     return SPALL_OK;
 }

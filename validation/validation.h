@@ -129,6 +129,21 @@ struct vcase {
     int (*run)(struct vreport *r, struct spall_error *err);
 };
 
+/** What the Markdown reference (vreport_write_markdown) knows about one
+ *  registered case besides the checks it recorded. */
+struct vmd_case {
+    int ran;        /**< 0: not run, the reference gives its registry entry only */
+    int quick;      /**< it ran in its reduced configuration (r->quick) */
+    char error[160];/**< the case stopped with this error ("" if none) */
+};
+
+/** Write @p path, the validation reference (docs/notes/validation-log.md): a header
+ *  naming @p command and the git revision, a summary table and one section
+ *  per registered case (@p md[k] describes validation_cases()[k], @p n of
+ *  them) with its checks: reference, measured, tolerance, source, note. */
+int vreport_write_markdown(const struct vreport *r, const struct vmd_case *md, size_t n,
+                           const char *path, const char *command, struct spall_error *err);
+
 /** All built-in cases (registry in validation/cases.c). */
 const struct vcase *validation_cases(size_t *n);
 /** Start recording the checks of case @p c (sets current_case, current_kind

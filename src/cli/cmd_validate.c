@@ -11,6 +11,7 @@
 static void validate_usage(FILE *out)
 {
     fprintf(out, "usage: spall validate [CASE ...] [--list] [--quick] [--json FILE] [--report DIR]\n"
+                 "                      [--markdown FILE]\n"
                  "\n"
                  "Runs the built-in validation cases and prints, per case and quantity:\n"
                  "reference, measured, error, tolerance and PASS/FAIL (GAP marks a documented,\n"
@@ -21,7 +22,12 @@ static void validate_usage(FILE *out)
                  "                reduced configuration)\n"
                  "  --json FILE   also write the results as JSON\n"
                  "  --report DIR  also write DIR/report.md with the table and PNG plots of\n"
-                 "                each case's time histories against the references\n");
+                 "                each case's time histories against the references\n"
+                 "  --markdown FILE\n"
+                 "                also write FILE, the validation reference (docs/validation.md):\n"
+                 "                one section per registered case with its checks; without\n"
+                 "                named cases it runs the gate (as --quick), and the cases\n"
+                 "                outside it get their registry entry only\n");
 }
 
 static void json_string(FILE *f, const char *s)
@@ -115,7 +121,7 @@ int cli_validate(int argc, char **argv)
     size_t n_cases = 0;
     const struct vcase *cases = validation_cases(&n_cases);
     int list = 0, quick = 0;
-    const char *json = NULL, *report = NULL;
+    const char *json = NULL, *report = NULL, *markdown = NULL;
     const char *wanted[64];
     size_t n_wanted = 0;
     for (int k = 1; k < argc; k++) {
@@ -139,6 +145,12 @@ int cli_validate(int argc, char **argv)
                 return 2;
             }
             report = argv[k];
+        } else if (strcmp(a, "--markdown") == 0) {
+            if (++k >= argc) {
+                fprintf(stderr, "spall validate: --markdown needs a file name\n");
+                return 2;
+            }
+            markdown = argv[k];
         } else if (a[0] == '-') {
             fprintf(stderr, "spall validate: unknown option '%s' (see --help)\n", a);
             return 2;
@@ -165,6 +177,14 @@ int cli_validate(int argc, char **argv)
         }
         return 0;
     }
+    if (markdown && n_wanted == 0)
+        quick = 1; /* the reference lists the gate's measurements */
+    /* what the Markdown reference says about each registered case */
+    struct vmd_case *md = calloc(n_cases, sizeof *md);
+    if (!md) {
+        fprintf(stderr, "spall validate: out of memory\n");
+        return 4;
+    }
     struct vreport rep = {0};
     rep.log = stdout;
     rep.quick = quick;
@@ -177,6 +197,8 @@ int cli_validate(int argc, char **argv)
         if (!selected)
             continue;
         vreport_begin_case(&rep, &cases[c], quick && n_wanted == 0);
+        md[c].ran = 1;
+        md[c].quick = rep.quick;
         printf("== %s: %s (%s)%s\n", cases[c].name, cases[c].title, vkind_name(cases[c].kind),
                rep.quick ? " (quick)" : "");
         if (cases[c].status)
@@ -187,6 +209,7 @@ int cli_validate(int argc, char **argv)
         int rc = cases[c].run(&rep, &err);
         if (rc) {
             printf("  ERROR: %s\n", err.msg);
+            snprintf(md[c].error, sizeof md[c].error, "%s", err.msg);
             failed_to_run++;
         }
         for (size_t k = first; k < rep.n; k++)
@@ -198,21 +221,33 @@ int cli_validate(int argc, char **argv)
         rep.checks[k].pass ? pass++ : fail++;
     fail += (size_t)failed_to_run;
     printf("%zu passed, %zu failed\n", pass, fail);
+    int status = fail ? 1 : 0;
+    struct spall_error err = {0};
+    int rc = SPALL_OK;
     if (json && write_json(json, &rep) != 0) {
         fprintf(stderr, "spall validate: cannot write '%s'\n", json);
-        vreport_free(&rep);
-        return 4;
+        status = 4;
     }
-    if (report) {
-        struct spall_error err = {0};
-        int rc = vreport_write_report(&rep, report, &err);
-        if (rc) {
-            fprintf(stderr, "spall: error: %s\n", err.msg);
-            vreport_free(&rep);
-            return cli_exit_status(rc);
+    if (status != 4 && markdown) {
+        char command[512] = "spall validate";
+        for (int k = 1; k < argc; k++) {
+            size_t len = strlen(command);
+            snprintf(command + len, sizeof command - len, " %s", argv[k]);
         }
-        printf("report: %s/report.md\n", report);
+        rc = vreport_write_markdown(&rep, md, n_cases, markdown, command, &err);
+        if (rc == SPALL_OK)
+            printf("markdown: %s\n", markdown);
+    }
+    if (status != 4 && rc == SPALL_OK && report) {
+        rc = vreport_write_report(&rep, report, &err);
+        if (rc == SPALL_OK)
+            printf("report: %s/report.md\n", report);
+    }
+    if (rc) {
+        fprintf(stderr, "spall: error: %s\n", err.msg);
+        status = cli_exit_status(rc);
     }
     vreport_free(&rep);
-    return fail ? 1 : 0;
+    free(md);
+    return status;
 }
