@@ -15,6 +15,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "spall/error.h"
+
 struct spall_error;
 
 /** What a case (or one of its checks) is compared against, so that the
@@ -134,7 +136,7 @@ struct vcase {
 struct vmd_case {
     int ran;        /**< 0: not run, the reference gives its registry entry only */
     int quick;      /**< it ran in its reduced configuration (r->quick) */
-    char error[160];/**< the case stopped with this error ("" if none) */
+    char error[SPALL_ERROR_MSG_LEN]; /**< the case stopped with this error ("" if none) */
 };
 
 /** Write @p path, the validation reference (docs/notes/validation-log.md): a header
