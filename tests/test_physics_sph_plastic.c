@@ -21,7 +21,8 @@
  * pre-stress move the particles by ~1e-4 m/s^2 x dt, so the stress rate
  * adds ~1e-20 of tau to the trial within the step and every particle
  * returns the homogeneous trial stress.  Everything is then exact to
- * round-off (tolerances 1e-12 relative).  A radial return by
+ * round-off (measured: 0 difference in sigma_eq, S_xy and eps_p at every
+ * particle; tolerances 1e-12 relative).  A radial return by
  * sqrt(sigma_y / sigma_eq*) leaves sigma_eq = 1.32 sigma_y; an equivalent
  * stress sqrt(S:S) (no 3/2) returns to 1.22 sigma_y; a plastic strain with
  * 2G instead of 3G is 1.5 times too large.
