@@ -11,7 +11,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 #include "validation/impact_cases.h"
 
@@ -76,9 +76,9 @@ static int bench_spall_nocontact(int threads, double scale, struct bench_result 
 }
 
 const struct bench_case bench_impact_cases[] = {
-    {"impact-punch", "punch-shear plate (seed 000 sec. 3.2.3), 3D FCC, rigid plunger",
+    {"impact-punch", "punch-shear plate ([Wang2010] sec. 3.2.3), 3D FCC, rigid plunger",
      bench_punch},
-    {"impact-spall", "flyer-plate spall (seed 000 sec. 4.2), two bodies + particle contact",
+    {"impact-spall", "flyer-plate spall ([Wang2010] sec. 4.2), two bodies + particle contact",
      bench_spall},
     {"impact-spall-nocontact", "the impact-spall deck without contact (prices the contact)",
      bench_spall_nocontact},

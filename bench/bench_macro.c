@@ -1,6 +1,6 @@
 /**
  * @file bench_macro.c
- * @brief Macro-particle throughput: the rod of seed 001 section 2.6 at
+ * @brief Macro-particle throughput: the rod of [Saitoh] section 2.6 at
  *        n_phi = 16, n_h/n_phi = 4 (51 413 particles, the paper's count),
  *        tension, 500 steps, no output.
  */
@@ -10,7 +10,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -48,7 +48,7 @@ static int bench_macro_rod(int threads, double scale, struct bench_result *out,
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
-             "seed 001 sec. 2.6 rod n_phi 16, n_h %g (paper: 51 413 particles at n_h/n_phi 4); "
+             "[Saitoh] sec. 2.6 rod n_phi 16, n_h %g (paper: 51 413 particles at n_h/n_phi 4); "
              "list pairs r < 1.45 r0", n_h);
     return rc;
 }

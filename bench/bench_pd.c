@@ -10,7 +10,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Where the rigid sphere's energy goes in an axisymmetric SPH penetration
 run (history.csv of examples/pen_sph_gelatin or a scripts/pen_decks.sh
-variant), against the Poncelet law of seed 004 (Eq. 4.1, C_d = 0.375,
+variant), against the Poncelet law of [Meng2021] (Eq. 4.1, C_d = 0.375,
 R = 21 MPa, silica 7.38 um into 10 wt% gelatin).
 
     scripts/pen_force_phases.py HISTORY.csv V0 [GAP]

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerate the analytical reference tables of data/penetration (issue 7):
 # the predictions the SPH validation cases will be checked against.
-#   gelatin_poncelet_reference.csv  Poncelet, C_d = 0.375, R = 21 MPa (seed 004 sec. 4.4.2,
+#   gelatin_poncelet_reference.csv  Poncelet, C_d = 0.375, R = 21 MPa ([Meng2021] sec. 4.4.2,
 #                                   Fig. 4.14), silica 7.38 um into 10 wt% gelatin
 #   sebs_mcg_reference.csv          Modified-CG, eta = 4.5e-2 Pa s, R = 25 MPa (fit (b),
 #                                   sec. 4.2.2.2 and Fig. 4.28), steel into 40 vol% SEBS

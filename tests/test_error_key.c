@@ -17,7 +17,8 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
-#include "models/model.h"
+#include "core/model.h"
+#include "models/registry.h"
 #include "spall/error.h"
 
 #include <stdio.h>
@@ -180,7 +181,7 @@ static void test_library_caller(void **state)
         s->p->volume[i] = vol;
         s->p->mass[i] = 1000.0 * vol;
     }
-    assert_int_equal(sim_set_model(s, "lattice", NULL, &err), SPALL_OK);
+    assert_int_equal(sim_set_model(s, model_find("lattice"), NULL, &err), SPALL_OK);
     /* the model reads a material's constants from an option node */
     struct deck *d = NULL;
     assert_int_equal(deck_load_string(&d, "m", "{youngs_modulus: 1.0e9, poisson_ratio: "

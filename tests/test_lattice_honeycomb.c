@@ -20,7 +20,7 @@
 #include "io/deck_build.h"
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice_honeycomb.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 #include "validation/lattice_cases.h"
 

@@ -1,6 +1,6 @@
 /*
  * Tests of the lattice (HLPM) model: patch tests of the calibrated constants
- * (seed 000 Eqs. 16, 18 and the corrected angular constant), breaking of a
+ * ([Wang2010] Eqs. 16, 18 and the corrected angular constant), breaking of a
  * pulled chain at eps_max (Eq. 26), post-fracture repulsion, the angular
  * spring force against the numerical gradient of its energy, the LJ and
  * piecewise-linear laws, thread independence and deck refusals.
@@ -21,7 +21,7 @@
 #include "io/deck.h"
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>

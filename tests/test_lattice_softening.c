@@ -24,7 +24,7 @@
 #include "io/deck_build.h"
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>

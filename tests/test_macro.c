@@ -15,7 +15,7 @@
 #include "io/deck_build.h"
 #include "models/macroparticle/macro_calib.h"
 #include "models/macroparticle/macro_pair.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>

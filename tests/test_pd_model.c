@@ -17,7 +17,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "models/peridynamics/pd.h"
 #include "spall/error.h"
 

@@ -195,7 +195,7 @@ static void test_run_short(void **state)
 }
 
 /* The rebound option: gelatin at 200 m/s on a coarse grid; with
- * t_rebound the runner goes on past P_max (seed 004 sec. 5: the spheres
+ * t_rebound the runner goes on past P_max ([Meng2021] sec. 5: the spheres
  * rebound in the experiments), sees V turn upward after P_max and the tip
  * come back; without it the run stops at rest, as before. */
 static void test_run_rebound(void **state)

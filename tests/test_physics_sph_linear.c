@@ -24,7 +24,7 @@
 #include <cmocka.h>
 
 #include "core/fields.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "tests/test_support.h"
 
 #include <stdio.h>

@@ -8,7 +8,8 @@
 #include <cmocka.h>
 
 #include "core/lattice_gen.h"
-#include "models/model.h"
+#include "core/model.h"
+#include "models/registry.h"
 
 #include <string.h>
 

@@ -13,7 +13,7 @@
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "core/fields.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "models/sph/sph.h"
 #include "spall/error.h"
 

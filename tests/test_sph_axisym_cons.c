@@ -10,7 +10,7 @@
 #include "core/mathconst.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "models/sph/sph.h"
 #include "spall/error.h"
 

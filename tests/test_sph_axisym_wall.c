@@ -1,7 +1,7 @@
 /**
  * @file test_sph_axisym_wall.c
  * @brief The SPH model's rigid wall with `plane: axisymmetric` (a ring meets
- *        a plane normal to the axis): a short iron Taylor rod (seed 004
+ *        a plane normal to the axis): a short iron Taylor rod ([Meng2021]
  *        Table 3.5 material, 8 rings across, 221 m/s) stays above the wall
  *        and keeps its energy balance within 1.5 % of the impact energy
  *        (measured +0.65 % at 5 us, +1.13 % before the adjoint form of

@@ -3,7 +3,7 @@
  * @brief The clamp forms of the SPH cantilever driver (validation/sph_beam.h,
  *        sph-beam and sph-beam-large): the edge clamp is one column of
  *        fixed particles behind x = 0 (the thesis' "left edge of the beam is
- *        fixed", seed 004 sec. 3.4.1), the fixed clamp three, the mirrored
+ *        fixed", [Meng2021] sec. 3.4.1), the fixed clamp three, the mirrored
  *        clamp five; the beam itself is the same 100 x 10 particles.  Then
  *        100 steps of the 17.5 kN edge-clamp deck (sph-beam-large, averaged
  *        AS): the clamp column stays at rest and the tension-side corner

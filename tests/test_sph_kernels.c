@@ -1,6 +1,6 @@
 /**
  * @file test_sph_kernels.c
- * @brief The six SPH kernels (seed 004 Fig. 3.1): normalisation and the
+ * @brief The six SPH kernels ([Meng2021] Fig. 3.1): normalisation and the
  *        first moment of the gradient by lattice sums in 1D, 2D and 3D,
  *        and dK/dq against a finite difference.
  *

@@ -13,7 +13,7 @@
  */
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "core/fields.h"
 #include "models/sph/sph.h"
 #include "spall/error.h"

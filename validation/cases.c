@@ -41,7 +41,7 @@
 static const struct vcase cases[] = {
     {"lattice-patch", "lattice patch test: E and nu of every calibrated lattice",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, lattice_case_patch},
-    {"lattice-waves", "seed 000 sec. 4.1 wave speeds, 1D chain and 2D strip",
+    {"lattice-waves", "[Wang2010] sec. 4.1 wave speeds, 1D chain and 2D strip",
      VKIND_VERIFICATION, VGATE_FULL, NULL, lattice_case_waves},
     {"lattice-energy", "energy conservation of an elastic alpha-beta plate (Verlet, dt^2)",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, lattice_case_energy},
@@ -52,15 +52,15 @@ static const struct vcase cases[] = {
     {"abg-patch", "triple honeycomb (alpha-beta-gamma), nu > 1/3: patch, clamped block, P wave",
      VKIND_VERIFICATION, VGATE_FULL, NULL, lattice_case_abg},
     /* impact, fragments, thermal lattice (issue 3) */
-    {"impact-nylon", "seed 000 sec. 3.2.1 nylon-6,6 drop-weight indentation, no-slip tup",
+    {"impact-nylon", "[Wang2010] sec. 3.2.1 nylon-6,6 drop-weight indentation, no-slip tup",
      VKIND_VALIDATION, VGATE_FULL, NULL, impact_case_nylon},
-    {"impact-vinylester", "seed 000 sec. 3.2.2 vinyl ester drop-weight indentation",
+    {"impact-vinylester", "[Wang2010] sec. 3.2.2 vinyl ester drop-weight indentation",
      VKIND_VALIDATION, VGATE_FULL, NULL, impact_case_vinylester},
-    {"impact-spall", "seed 000 sec. 4.2 flyer-plate spall at 260 m/s, long and short flyer",
+    {"impact-spall", "[Wang2010] sec. 4.2 flyer-plate spall at 260 m/s, long and short flyer",
      VKIND_VALIDATION, VGATE_FULL, NULL, impact_case_spall},
-    {"impact-epoxy", "seed 000 sec. 3.1 epoxy plate with holes in tension: cracks link holes",
+    {"impact-epoxy", "[Wang2010] sec. 3.1 epoxy plate with holes in tension: cracks link holes",
      VKIND_VALIDATION, VGATE_FULL, NULL, impact_case_epoxy},
-    {"impact-punch", "seed 000 sec. 3.2.3 3D vinyl ester punch-shear, no-slip and friction",
+    {"impact-punch", "[Wang2010] sec. 3.2.3 3D vinyl ester punch-shear, no-slip and friction",
      VKIND_VALIDATION, VGATE_OFF, NULL, impact_case_punch},
     {"thermal-conduction", "thermal lattice: 1D conduction from a fixed-temperature end vs erfc",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, thermal_case_conduction},
@@ -82,15 +82,15 @@ static const struct vcase cases[] = {
      VKIND_VALIDATION, VGATE_QUICK, NULL, pd_case_lamina_b},
 
     /* macro-particle (issue 5) */
-    {"macro-calibration", "seed 001 Table 1: E from Eq. 15 for Al and Cu",
+    {"macro-calibration", "[Saitoh] Table 1: E from Eq. 15 for Al and Cu",
      VKIND_VERIFICATION, VGATE_FULL, NULL, macro_case_calibration},
-    {"macro-rod-elastic", "seed 001 sec. 2.6 rod: E and nu vs n_phi and n_h/n_phi",
+    {"macro-rod-elastic", "[Saitoh] sec. 2.6 rod: E and nu vs n_phi and n_h/n_phi",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, macro_case_rod_elastic},
-    {"macro-thermostat", "seed 001 Langevin forces: free block settles to T (absolute, pairwise)",
+    {"macro-thermostat", "[Saitoh] Langevin forces: free block settles to T (absolute, pairwise)",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, macro_case_thermostat},
-    {"macro-rod-large", "seed 001 sec. 2.6 rod: tension vs compression, compressive collapse",
+    {"macro-rod-large", "[Saitoh] sec. 2.6 rod: tension vs compression, compressive collapse",
      VKIND_VALIDATION, VGATE_QUICK, NULL, macro_case_rod_large},
-    {"macro-rod-plastic", "seed 001 sec. 2.6 rod with Eq. 16 plasticity: yield, hardening, loop",
+    {"macro-rod-plastic", "[Saitoh] sec. 2.6 rod with Eq. 16 plasticity: yield, hardening, loop",
      VKIND_VALIDATION, VGATE_QUICK, NULL, macro_case_rod_plastic},
 
     /* SPH (issue 6) */
@@ -98,16 +98,16 @@ static const struct vcase cases[] = {
      VKIND_VERIFICATION, VGATE_QUICK, NULL, sph_case_gradient},
     {"sph-plate", "SPH: oscillating plate period vs thin-plate theory (Gray et al. 2001)",
      VKIND_VALIDATION, VGATE_OFF, NULL, sph_case_plate},
-    {"sph-beam", "SPH: cantilever beam 1.75 kN, six kernels vs 33.59 mm (seed 004 Table 3.4)",
+    {"sph-beam", "SPH: cantilever beam 1.75 kN, six kernels vs 33.59 mm ([Meng2021] Table 3.4)",
      VKIND_VALIDATION, VGATE_OFF, NULL, sph_case_beam},
     {"sph-beam-large", "SPH: cantilever 17.5 kN, six kernels + TLSPH vs 81.1 mm, cracking",
      VKIND_VALIDATION, VGATE_OFF, NULL, sph_case_beam_large},
     {"sph-leapfrog", "SPH: leapfrog keeps an undamped plate's energy (PC does not)",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, sph_case_leapfrog},
-    {"sph-taylor-3d", "SPH: 4340 steel Taylor bar 181 m/s, Johnson-Cook (seed 004 Table 3.6); "
+    {"sph-taylor-3d", "SPH: 4340 steel Taylor bar 181 m/s, Johnson-Cook ([Meng2021] Table 3.6); "
      "power-law bar against FE",
      VKIND_VALIDATION, VGATE_QUICK, NULL, sph_case_taylor3d},
-    {"sph-taylor-2d", "SPH: iron rod on a wall, Mie-Grueneisen, perfectly plastic (seed 004 "
+    {"sph-taylor-2d", "SPH: iron rod on a wall, Mie-Grueneisen, perfectly plastic ([Meng2021] "
      "Table 3.5), axisymmetric, against FE",
      VKIND_VALIDATION, VGATE_QUICK, NULL, sph_case_taylor2d},
     {"sph-rings", "SPH: two rubber rings collide and rebound, energy balance (Gray et al. 2001)",
@@ -122,7 +122,7 @@ static const struct vcase cases[] = {
     {"pen-sph-sebs-convergence", "axisymmetric SPH: two SEBS shots at d/10-d/20 (fixed AV "
      "length, contact offset) vs Modified-CG",
      VKIND_VALIDATION, VGATE_OFF, NULL, pen_case_sph_sebs_convergence},
-    {"pen-check-value", "seed 004 Eq. 4.6/4.7: silica 7.38 um into gelatin at 1290 m/s",
+    {"pen-check-value", "[Meng2021] Eq. 4.6/4.7: silica 7.38 um into gelatin at 1290 m/s",
      VKIND_REGRESSION, VGATE_QUICK, NULL, pen_case_check_value},
     {"pen-ode", "GSL-integrated P(t) vs closed forms (Poncelet, Liu) and quadrature (MCG)",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, pen_case_ode},

@@ -1,7 +1,7 @@
 /**
  * @file impact_cases.h
  * @brief Validation cases of the rigid impactors with the lattice model
- *        (issue 3, seed 000 sec. 3.2-4.2), registered in validation/cases.c;
+ *        (issue 3, [Wang2010] sec. 3.2-4.2), registered in validation/cases.c;
  *        numbers tabulated in docs/notes/validation-log.md.
  */
 #ifndef SPALL_VALIDATION_IMPACT_CASES_H
@@ -12,9 +12,9 @@
 struct spall_error;
 struct vreport;
 
-/** "impact-nylon": seed 000 sec. 3.2.1 drop-weight indentation of nylon-6,6. */
+/** "impact-nylon": [Wang2010] sec. 3.2.1 drop-weight indentation of nylon-6,6. */
 int impact_case_nylon(struct vreport *r, struct spall_error *err);
-/** "impact-vinylester": seed 000 sec. 3.2.2, vinyl ester at 1.91 m/s. */
+/** "impact-vinylester": [Wang2010] sec. 3.2.2, vinyl ester at 1.91 m/s. */
 int impact_case_vinylester(struct vreport *r, struct spall_error *err);
 /** Deck text of the indentation rig (also behind examples/impact_*). */
 int impact_indent_deck(char *buf, size_t len, double rho, double E, double sigma, double v0,
@@ -25,7 +25,7 @@ int impact_indent_deck(char *buf, size_t len, double rho, double E, double sigma
 int impact_indent_deck_law(char *buf, size_t len, const char *law, const char *extra, double rho,
                            double E, double sigma, double v0, double r0, double end_time);
 
-/** "impact-spall": seed 000 sec. 4.2 flyer-plate spall, both flyer widths. */
+/** "impact-spall": [Wang2010] sec. 4.2 flyer-plate spall, both flyer widths. */
 int impact_case_spall(struct vreport *r, struct spall_error *err);
 /** Deck text of the spall case (flyer + target, interface pre-cut). */
 int impact_spall_deck(char *buf, size_t len, double flyer_width, double r0, double end_time,
@@ -35,10 +35,10 @@ int impact_spall_deck(char *buf, size_t len, double flyer_width, double r0, doub
 int impact_spall_deck_law(char *buf, size_t len, double flyer_width, double r0, double end_time,
                           const char *law, const char *fail_keys);
 
-/** "impact-epoxy": seed 000 sec. 3.1 epoxy plate with holes, cracks link holes. */
+/** "impact-epoxy": [Wang2010] sec. 3.1 epoxy plate with holes, cracks link holes. */
 int impact_case_epoxy(struct vreport *r, struct spall_error *err);
 
-/** "impact-punch": seed 000 sec. 3.2.3 3D vinyl ester punch-shear. */
+/** "impact-punch": [Wang2010] sec. 3.2.3 3D vinyl ester punch-shear. */
 int impact_case_punch(struct vreport *r, struct spall_error *err);
 /** Deck text of the punch-shear case (also used by bench/bench_impact.c). */
 int impact_punch_deck(char *buf, size_t len, double r0, const char *contact, double end_time);

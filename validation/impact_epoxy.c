@@ -1,6 +1,6 @@
 /**
  * @file impact_epoxy.c
- * @brief Validation case "impact-epoxy": seed 000 sec. 3.1, epoxy plate
+ * @brief Validation case "impact-epoxy": [Wang2010] sec. 3.1, epoxy plate
  *        8.25 x 33.02 cm with circular holes pulled in tension (deck
  *        examples/epoxy_holes, here on a coarser lattice, r0 = 2 mm, so that
  *        the case runs in about a minute).
@@ -49,7 +49,7 @@ int impact_case_epoxy(struct vreport *r, struct spall_error *err)
 {
     char deck[3072];
     int n = snprintf(deck, sizeof deck,
-                     "title: epoxy plate with holes in tension (seed 000 sec. 3.1)\n"
+                     "title: epoxy plate with holes in tension ([Wang2010] sec. 3.1)\n"
                      "model: {type: lattice, law: linear}\n"
                      "materials:\n"
                      "  epoxy: {density: 1100, youngs_modulus: 3.26e9,\n"
@@ -149,7 +149,7 @@ int impact_case_epoxy(struct vreport *r, struct spall_error *err)
             best_links = touched;
     }
     if ((rc = vreport_check_true(r, "a crack links at least two holes", best_links >= 2,
-                                 "seed 000 sec. 3.1, Fig. 7 (experiment and FEM: cracks run "
+                                 "[Wang2010] sec. 3.1, Fig. 7 (experiment and FEM: cracks run "
                                  "from hole to hole)",
                                  "qualitative, as in the seed; clusters of damaged particles "
                                  "touching two hole edges",

@@ -1,6 +1,6 @@
 /**
  * @file impact_indent.c
- * @brief Validation cases "impact-nylon" and "impact-vinylester": seed 000
+ * @brief Validation cases "impact-nylon" and "impact-vinylester": [Wang2010]
  *        sec. 3.2 drop-weight indentation of a simply supported beam by a
  *        rigid round-nose tup coupled to the lattice (no-slip push-out,
  *        M a = R_F - M g).  Decks: examples/impact_nylon, impact_vinylester.
@@ -69,7 +69,7 @@ int impact_indent_deck_law(char *buf, size_t len, const char *law, const char *e
     double y_top = kmax * row;
     double xl = 0.5 * (0.127 - INDENT_SPAN), xr = xl + INDENT_SPAN;
     int n = snprintf(buf, len,
-                     "title: drop-weight indentation (seed 000 sec. 3.2)\n"
+                     "title: drop-weight indentation ([Wang2010] sec. 3.2)\n"
                      "model: {type: lattice, law: %s, layers: 2}\n"
                      "materials:\n"
                      "  beam: {density: %.17g, youngs_modulus: %.17g,\n"
@@ -143,7 +143,7 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
     double broken = vlat_history(s, "bonds_broken");
     char src[160], q[160];
     const int soft = m->tag[0] != '\0';
-    snprintf(src, sizeof src, "seed 000 sec. 3.2 (experiment; paper's HLPM %.2f ms)",
+    snprintf(src, sizeof src, "[Wang2010] sec. 3.2 (experiment; paper's HLPM %.2f ms)",
              m->t_hlpm * 1e3);
     snprintf(q, sizeof q, "%stime of peak load", m->tag);
     if ((rc = vreport_check(r, q, "s", m->t_ref, t_peak, 0.10, true, src,
@@ -155,7 +155,7 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
         vreport_mark_gap(r, "see docs/notes/validation-log.md: the peak comes with the first "
                             "bending "
                             "crack, whose deflection is set by eps_max and the chosen span");
-    snprintf(src, sizeof src, "seed 000 sec. 3.2 (experiment; paper's HLPM %.2f mm)",
+    snprintf(src, sizeof src, "[Wang2010] sec. 3.2 (experiment; paper's HLPM %.2f mm)",
              m->d_hlpm * 1e3);
     snprintf(q, sizeof q, "%sdeflection at peak load", m->tag);
     if ((rc = vreport_check(r, q, "m", m->d_ref, d_peak, 0.10, true, src,
@@ -165,7 +165,7 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
         vreport_mark_gap(r, "see docs/notes/validation-log.md: beam theory puts the first bending "
                             "crack "
                             "at eps_max S^2 / (6 h); the elastic-brittle lattice follows it");
-    snprintf(src, sizeof src, "seed 000 sec. 3.2 (experiment; paper's HLPM %.2f J)", m->e_hlpm);
+    snprintf(src, sizeof src, "[Wang2010] sec. 3.2 (experiment; paper's HLPM %.2f J)", m->e_hlpm);
     snprintf(q, sizeof q, "%sabsorbed energy", m->tag);
     if ((rc = vreport_check(r, q, "J", m->e_ref, absorbed, 0.10, true, src,
                             "10 %: as above", err)))

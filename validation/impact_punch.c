@@ -1,6 +1,6 @@
 /**
  * @file impact_punch.c
- * @brief Validation case "impact-punch": seed 000 sec. 3.2.3, 3D punch-shear
+ * @brief Validation case "impact-punch": [Wang2010] sec. 3.2.3, 3D punch-shear
  *        of a vinyl ester plate 10.16 x 10.16 x 1.0 cm clamped top and bottom
  *        outside a central opening of radius 3.81 cm; plunger + 5.95 kg at
  *        3.55 m/s.  Experiment: peak 10 000 N at 2.1 mm (paper's HLPM:
@@ -40,7 +40,7 @@ int impact_punch_deck(char *buf, size_t len, double r0, const char *contact, dou
     double top = kz * half;
     int n = snprintf(
         buf, len,
-        "title: vinyl ester punch-shear (seed 000 sec. 3.2.3)\n"
+        "title: vinyl ester punch-shear ([Wang2010] sec. 3.2.3)\n"
         "model: {type: lattice, law: linear}\n"
         "materials:\n"
         "  ve: {density: 1050, youngs_modulus: 2.56e9, poisson_ratio: 0.25,\n"
@@ -147,7 +147,7 @@ int impact_case_punch(struct vreport *r, struct spall_error *err)
         rc = run_punch(r, "no_slip", "elastic (no breaking, to 0.6 ms)", 1, &Fe, &de, err);
     if (rc)
         return rc;
-    const char *src = "seed 000 sec. 3.2.3 (experiment; paper's HLPM 12 800 N at 1.6 mm)";
+    const char *src = "[Wang2010] sec. 3.2.3 (experiment; paper's HLPM 12 800 N at 1.6 mm)";
     if ((rc = vreport_check(r, "peak load (no-slip)", "N", 10000.0, F, 0.10, true, src,
                             "10 %: as the indentation cases", err)))
         return rc;

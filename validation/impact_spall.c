@@ -1,6 +1,6 @@
 /**
  * @file impact_spall.c
- * @brief Validation case "impact-spall": seed 000 sec. 4.2 flyer-plate spall.
+ * @brief Validation case "impact-spall": [Wang2010] sec. 4.2 flyer-plate spall.
  *        Target 5.2 x 0.68 cm hit by a flyer 5.2 x 0.20 cm or 2.6 x 0.20 cm
  *        at 260 m/s; E = 163.24 GPa, sigma_TS = 478.25 MPa, rho = 8900 kg/m^3,
  *        every boundary free.  Deck: examples/impact_spall.
@@ -79,7 +79,7 @@ int impact_spall_deck_law(char *buf, size_t len, double flyer_width, double r0, 
      * triangular lattice (thickness 2 r0 / sqrt 3): the interface is as
      * stiff in compression as the lattice; distance r0: no force at t = 0 */
     int n = snprintf(buf, len,
-                     "title: flyer-plate spall (seed 000 sec. 4.2)\n"
+                     "title: flyer-plate spall ([Wang2010] sec. 4.2)\n"
                      "model: {type: lattice, law: %s}\n"
                      "materials:\n"
                      "  metal: {density: 8900, youngs_modulus: 163.24e9,\n"
@@ -275,7 +275,7 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
     double length = near ? xmax - xmin : 0.0;
     double spread = INFINITY;
     double open_len = open_crack(p, fd, r0, row, kc, &spread);
-    /* 1D wave theory (seed 000 sec. 4.2): the flyer's release reaches the
+    /* 1D wave theory ([Wang2010] sec. 4.2): the flyer's release reaches the
      * interface, which cannot pull, at 2 h_f / c; the release from the far
      * face meets the flyer's at h_f from it at (h_t + h_f) / c.  h = rows x
      * row height as discretised, c = sqrt(E / (rho (1 - nu^2))) the
@@ -297,7 +297,7 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
         vreport_mark_gap(r, "the spall plane breaks at another time than the 1D waves predict");
     snprintf(q, sizeof q, "%s: spalled layer thickness", label);
     if ((rc = vreport_check(r, q, "m", SPALL_H_FLYER, thick, r0, false,
-                            "seed 000 sec. 4.2: the spalled layer is as thick as the flyer",
+                            "[Wang2010] sec. 4.2: the spalled layer is as thick as the flyer",
                             "one lattice spacing (the brief's tolerance); the crack sits where "
                             "the release waves from the flyer's back and the target's far face "
                             "meet",
@@ -307,7 +307,7 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
         vreport_mark_gap(r, SPALL_GAP);
     snprintf(q, sizeof q, "%s: opened crack parallel to the far face", label);
     bool parallel = open_len > 0.0 && spread <= 2.0;
-    if ((rc = vreport_check_true(r, q, parallel, "seed 000 sec. 4.2, Fig. 17",
+    if ((rc = vreport_check_true(r, q, parallel, "[Wang2010] sec. 4.2, Fig. 17",
                                  "along the opened crack the columns' crack row stays within "
                                  "+-1 row (spread <= 2 rows)",
                                  err)))
@@ -316,7 +316,7 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
         vreport_mark_gap(r, SPALL_GAP);
     snprintf(q, sizeof q, "%s: damage concentrated on the spall plane", label);
     if ((rc = vreport_check_true(r, q, total > 0 && share >= 0.8,
-                                 "seed 000 sec. 4.2, Fig. 17",
+                                 "[Wang2010] sec. 4.2, Fig. 17",
                                  ">= 80 % of the target's damage (away from the impact face) "
                                  "within +-2 rows of one row",
                                  err)))
@@ -326,7 +326,7 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
     if (flyer_width < 0.05) {
         snprintf(q, sizeof q, "%s: opened crack shorter than the flyer", label);
         if ((rc = vreport_check_true(r, q, open_len > 0.0 && open_len < flyer_width,
-                                     "seed 000 sec. 4.2 (vs MD of Krivtsov)",
+                                     "[Wang2010] sec. 4.2 (vs MD of Krivtsov)",
                                      "qualitative: the edge release waves of the short flyer "
                                      "shorten the tensile zone; opened = separation > 0.1 mm",
                                      err)))

@@ -1,14 +1,14 @@
 /**
  * @file lattice_abg.c
  * @brief Validation case "abg-patch": the triple honeycomb (alpha-beta-gamma)
- *        lattice of seed 000 Fig. 3d for nu > 1/3.
+ *        lattice of [Wang2010] Fig. 3d for nu > 1/3.
  *
  * Three checks per nu, all against the plane-stress E and nu the springs were
  * calibrated for (lattice_honeycomb.c: kappa t = (a+b+g)/(2 sqrt3), mu t =
  * 3 sqrt3 / (4 (1/a+1/b+1/g))):
  *  1. patch test: uniform strain 1e-6 plus the sublattice shifts that make
  *     every interior site force-free (Cauchy-Born with internal relaxation),
- *     nu = 0.4, 0.443 (seed 000 Fig. 4) and 0.7;
+ *     nu = 0.4, 0.443 ([Wang2010] Fig. 4) and 0.7;
  *  2. a finite block clamped at its edges to the affine displacement, the
  *     interior solved for equilibrium by conjugate gradients with the
  *     model's own force code (no assumption about the shifts): E and nu from
@@ -29,7 +29,7 @@
 #include "core/sim.h"
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice_honeycomb.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>

@@ -1,6 +1,6 @@
 /**
  * @file lattice_break.c
- * @brief Validation case "lattice-chain-break": a chain (seed 000 sec. 4.1
+ * @brief Validation case "lattice-chain-break": a chain ([Wang2010] sec. 4.1
  *        material: E = 3 GPa, sigma_TS = 60 MPa, rho = 1140 kg/m^3, r0 = 1 mm,
  *        L = 12.7 cm) held at the left end and pulled at the right end must
  *        break when its overall strain reaches eps_max = sigma_TS / E (Eq. 26).
@@ -84,7 +84,7 @@ int lattice_case_chain_break(struct vreport *r, struct spall_error *err)
         eps_prev = eps;
     }
     rc = vreport_check(r, "overall strain at the first bond break", "1", eps_max, eps_break, 0.01,
-                       true, "seed 000 Eq. 26: eps_max = sigma_TS / E = 60 MPa / 3 GPa",
+                       true, "[Wang2010] Eq. 26: eps_max = sigma_TS / E = 60 MPa / 3 GPa",
                        "1 %: quasi-static ramped pull; the residual wave in the chain is ~0.2 % "
                        "of eps_max and the strain added per step 0.006 %",
                        err);

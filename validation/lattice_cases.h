@@ -19,7 +19,7 @@ struct vreport;
 
 /** "lattice-patch": uniform strain -> E, nu of every calibrated lattice. */
 int lattice_case_patch(struct vreport *r, struct spall_error *err);
-/** "lattice-waves": seed 000 section 4.1 wave speeds, 1D chain and 2D strip. */
+/** "lattice-waves": [Wang2010] section 4.1 wave speeds, 1D chain and 2D strip. */
 int lattice_case_waves(struct vreport *r, struct spall_error *err);
 /** "lattice-energy": energy conservation of an elastic alpha-beta plate. */
 int lattice_case_energy(struct vreport *r, struct spall_error *err);

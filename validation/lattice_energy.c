@@ -4,11 +4,11 @@
  *        (triangular lattice, nu = 0.2, axial + angular springs) set in motion
  *        by a smooth velocity field must conserve kinetic + strain energy.
  *
- * Velocity Verlet (the seed 000 leapfrog, Eqs. 22-24) is symplectic: for a
+ * Velocity Verlet (the [Wang2010] leapfrog, Eqs. 22-24) is symplectic: for a
  * conservative system the energy error stays bounded, oscillating with an
  * amplitude proportional to dt^2, with no secular drift.  Three checks:
  *   1. max |E(t) - E(0)| / E(0) <= 1e-3 over 10 000 steps at the default dt
- *      (0.5 x the stability limit of seed 000 Eq. 25);
+ *      (0.5 x the stability limit of [Wang2010] Eq. 25);
  *   2. drift: the least-squares slope of E(t) times the run time, relative
  *      to E(0), <= 1e-4;
  *   3. order: the max error at dt over that at dt/2 (same physical time) is

@@ -4,7 +4,7 @@
  *        uniform strain (lattice_patch_test, which runs the model's own force
  *        code) must return the E and nu the springs were calibrated for.
  *
- * Cases: triangular alpha-beta lattice (seed 000 Fig. 3c) with nu = 0, 0.2
+ * Cases: triangular alpha-beta lattice ([Wang2010] Fig. 3c) with nu = 0, 0.2
  * and 1/3 (no angular springs), the triangular lattice with area springs
  * (nu = 0.4, 0.443; spall's own construction, see lattice_calib.c; the
  * paper's alpha-beta-gamma triple honeycomb is the case abg-patch), the
@@ -26,13 +26,13 @@
 #include <stdio.h>
 #include <string.h>
 
-static const double PATCH_E = 3.0e9;   /* Pa, seed 000 section 4.1 */
+static const double PATCH_E = 3.0e9;   /* Pa, [Wang2010] section 4.1 */
 static const double PATCH_R0 = 1.0e-3; /* m */
 static const double PATCH_STRAIN = 1e-6;
 static const double PATCH_TOL = 0.01;  /* 1 % (the brief); the derivation is exact */
 
 static const char *const SRC_CALIB =
-    "uniform strain, Cauchy-Born: constants of lattice_calib.c (seed 000 Eq. 16, corrected "
+    "uniform strain, Cauchy-Born: constants of lattice_calib.c ([Wang2010] Eq. 16, corrected "
     "Eq. 18)";
 static const char *const NOTE_TOL =
     "the calibration is exact for a Bravais lattice under uniform strain; 1 % leaves room only "
@@ -142,7 +142,7 @@ int lattice_case_patch(struct vreport *r, struct spall_error *err)
                  "(3 nu - 1) / (8 (1 - nu^2)); spall's own construction, the paper's "
                  "alpha-beta-gamma triple honeycomb is checked by abg-patch");
     vreport_info(r, "corrected angular constant: k_phi = r0^2 E t (1 - 3 nu) / (6 sqrt3 "
-                 "(1 - nu^2)) = E r0^3 (1 - 3 nu) / (9 (1 - nu^2)) at t = 2 r0/sqrt3; seed 000 "
+                 "(1 - nu^2)) = E r0^3 (1 - 3 nu) / (9 (1 - nu^2)) at t = 2 r0/sqrt3; [Wang2010] "
                  "Eq. 18 (S_phi r0) is sqrt3/2 of it, so shear is too soft and nu too high");
     return SPALL_OK;
 }

@@ -1,11 +1,11 @@
 /**
  * @file lattice_waves.c
  * @brief Validation case "lattice-waves": the wave-propagation benchmark of
- *        seed 000 section 4.1 (1D chain and 2D strip of 15 rows, traction and
+ *        [Wang2010] section 4.1 (1D chain and 2D strip of 15 rows, traction and
  *        velocity loading), measured against the exact long-wavelength speed
  *        of the discrete lattice.
  *
- * Set-up (seed 000 sec. 4.1): L = 12.7 cm, r0 = 1 mm, E = 3 GPa,
+ * Set-up ([Wang2010] sec. 4.1): L = 12.7 cm, r0 = 1 mm, E = 3 GPa,
  * rho = 1140 kg/m^3, nu = 1/3 (no angular springs), left end loaded by a step
  * traction of 97.8 MPa or a step velocity (0.6 m/s, see
  * examples/wave_1d_velocity), right end fixed, other edges free.  The chain
@@ -64,7 +64,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define WAVE_L 0.127         /* m, seed 000 sec. 4.1 */
+#define WAVE_L 0.127         /* m, [Wang2010] sec. 4.1 */
 #define WAVE_R0 1.0e-3       /* m */
 #define WAVE_E 3.0e9         /* Pa */
 #define WAVE_RHO 1140.0      /* kg/m^3 */
@@ -109,7 +109,7 @@ static void wave_deck(char *buf, size_t len, int dim, int rows, int traction)
      * the box starts at -0.4 mm so that the loaded group holds exactly one
      * particle per row (the traction's default area counts particles). */
     snprintf(buf, len,
-             "title: seed 000 sec. 4.1 wave, %dD (%d rows), %s loading\n"
+             "title: wave ([Wang2010] sec. 4.1), %dD (%d rows), %s loading\n"
              "model: {type: lattice, law: linear}\n"
              "materials:\n"
              "  polymer: {density: %.17g, youngs_modulus: %.17g, poisson_ratio: "
@@ -302,7 +302,7 @@ done:
 int lattice_case_waves(struct vreport *r, struct spall_error *err)
 {
     static const char *const src_1d =
-        "exact long-wave speed of the chain, r0 sqrt(k/m) = sqrt(E/rho) (seed 000 Eq. 28; Eq. 16 "
+        "exact long-wave speed of the chain, r0 sqrt(k/m) = sqrt(E/rho) ([Wang2010] Eq. 28; Eq. 16 "
         "constants give the same)";
     static const char *const src_2d =
         "exact bar speed of the free-edged nu=1/3 strip (inclined bonds unstretched): "
@@ -376,7 +376,7 @@ int lattice_case_waves(struct vreport *r, struct spall_error *err)
                  "/ plane-strain medium, not of a free-edged strip); sqrt(E/(rho(1-nu^2))) = %.1f "
                  "m/s (P wave of a plane-stress plate, the fastest signal of this lattice)",
                  sqrt(E / rho), sqrt((K + 4.0 * G / 3.0) / rho), sqrt(E / (rho * (1.0 - nu * nu))));
-    vreport_info(r, "paper (seed 000 sec. 4.1.1/4.1.2) measured 1455 m/s (1D) and 2133 m/s (2D), "
+    vreport_info(r, "paper ([Wang2010] sec. 4.1.1/4.1.2) measured 1455 m/s (1D) and 2133 m/s (2D), "
                  "%+.1f %% and %+.1f %% off the lattice's exact 1622 m/s (2133 also exceeds the "
                  "lattice's fastest signal, 1720 m/s); here: 1D %.1f / %.1f, 2D strip %.1f / %.1f "
                  "m/s (traction / velocity)",

@@ -1,7 +1,7 @@
 /**
  * @file macro_cases.c
  * @brief Validation cases of the macro-particle model: Table 1, the rod of
- *        seed 001 section 2.6 (elastic, large strain, plastic) and the
+ *        [Saitoh] section 2.6 (elastic, large strain, plastic) and the
  *        Langevin thermostat.
  */
 #include "validation/macro_cases.h"
@@ -18,8 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const SRC_T1 = "seed 001 Table 1 (E from Eq. 15)";
-static const char *const SRC_26 = "seed 001 section 2.6 (rod of 14 mm, Al, p = 4, q = 9)";
+static const char *const SRC_T1 = "[Saitoh] Table 1 (E from Eq. 15)";
+static const char *const SRC_26 = "[Saitoh] section 2.6 (rod of 14 mm, Al, p = 4, q = 9)";
 
 /* ---- Table 1 -------------------------------------------------------------------- */
 
@@ -182,10 +182,10 @@ int macro_case_rod_elastic(struct vreport *r, struct spall_error *err)
             return rc;
     }
     for (int k = r->quick ? n_eq - 1 : 0; k < n_eq; k++) {
-        /* the source's band, 0.30-0.33 (seed 001 sec. 3.1, Fig. 5), centre 0.315 +- 0.015 */
+        /* the source's band, 0.30-0.33 ([Saitoh] sec. 3.1, Fig. 5), centre 0.315 +- 0.015 */
         snprintf(q, sizeof q, "rod n_phi = %d: Poisson's ratio (0.30-0.33)", nphi[k]);
         if ((rc = vreport_check(r, q, "1", 0.315, nu[k], 0.015, false,
-                                "seed 001 sec. 3.1, Fig. 5: nu of the sec. 2.6 rod 0.30-0.33 "
+                                "[Saitoh] sec. 3.1, Fig. 5: nu of the sec. 2.6 rod 0.30-0.33 "
                                 "(printed '3.0 to 3.3')",
                                 "the source's band 0.30-0.33; not a fitted input", err)))
             return rc;

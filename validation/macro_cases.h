@@ -1,6 +1,6 @@
 /**
  * @file macro_cases.h
- * @brief Validation cases of the macro-particle model (seed 001, issue 5).
+ * @brief Validation cases of the macro-particle model ([Saitoh], issue 5).
  */
 #ifndef SPALL_VALIDATION_MACRO_CASES_H
 #define SPALL_VALIDATION_MACRO_CASES_H
@@ -14,7 +14,7 @@
 struct spall_error;
 struct vreport;
 
-/** "macro-calibration": Eq. 15 against Table 1 of seed 001. */
+/** "macro-calibration": Eq. 15 against Table 1 of [Saitoh]. */
 int macro_case_calibration(struct vreport *r, struct spall_error *err);
 /** "macro-rod-elastic": E and nu of the 14 mm rod over n_phi and n_h/n_phi. */
 int macro_case_rod_elastic(struct vreport *r, struct spall_error *err);
@@ -25,7 +25,7 @@ int macro_case_rod_plastic(struct vreport *r, struct spall_error *err);
 /** "macro-thermostat": a free block held at T by Langevin forces. */
 int macro_case_thermostat(struct vreport *r, struct spall_error *err);
 
-/** One rod run of seed 001 section 2.6 (see macro_rod.c). */
+/** One rod run of [Saitoh] section 2.6 (see macro_rod.c). */
 struct macro_rod {
     int n_phi;          /**< cubic cells across the 14 mm diameter */
     double n_h;         /**< cubic cells along the length (multiple of 1/2) */

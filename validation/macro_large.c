@@ -1,6 +1,6 @@
 /**
  * @file macro_large.c
- * @brief Large-strain rod cases of seed 001 section 2.6: tension against
+ * @brief Large-strain rod cases of [Saitoh] section 2.6: tension against
  *        compression, the compressive collapse, and tension with pair
  *        plasticity (monotonic and loading-unloading-reloading).
  */
@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const SRC_26 = "seed 001 section 2.6 (rod of 14 mm, Al, p = 4, q = 9)";
+static const char *const SRC_26 = "[Saitoh] section 2.6 (rod of 14 mm, Al, p = 4, q = 9)";
 
 /** Stress interpolated at |strain| = e on the loading part (first crossing). */
 static double stress_at(const struct macro_rod *rod, double e)
@@ -330,13 +330,13 @@ int macro_case_rod_plastic(struct vreport *r, struct spall_error *err)
                  "%.4g MPa), unloading modulus %.4g GPa", 100.0 * l.strain[kmax], smax / 1e6,
                  100.0 * l.strain[kmin], l.stress[kmin] / 1e6, Eu / 1e9);
     if ((rc = vreport_check(r, "loop: unloading modulus / initial modulus", "1", 1.0, Eu / E0,
-                            0.1, true, "seed 001 Eq. 16 (shifted elastic unloading branch)",
+                            0.1, true, "[Saitoh] Eq. 16 (shifted elastic unloading branch)",
                             "unloading follows the elastic branch; 10 % for the dynamic "
                             "overshoot at the velocity reversal", err)))
         goto done;
     double res = l.strain[kmin] - l.stress[kmin] / E0;
     if ((rc = vreport_check_true(r, "loop: permanent strain after unloading > 0.2 %",
-                                 res > 0.002, "seed 001 Eq. 16 / Fig. 2",
+                                 res > 0.002, "[Saitoh] Eq. 16 / Fig. 2",
                                  "pairs keep their plastic offset dr0", err)))
         goto done;
     /* reloading reaches the earlier maximum stress near the earlier maximum strain */
@@ -348,7 +348,7 @@ int macro_case_rod_plastic(struct vreport *r, struct spall_error *err)
         }
     if ((rc = vreport_check(r, "loop: reloading meets the earlier curve at the unloading point",
                             "MPa", smax / 1e6, s_re / 1e6, 0.05, true,
-                            "seed 001 Fig. 2 (elastic reloading up to the earlier yield)",
+                            "[Saitoh] Fig. 2 (elastic reloading up to the earlier yield)",
                             "5 % for the dynamic response at the reversals", err)))
         goto done;
 done:

@@ -1,6 +1,6 @@
 /**
  * @file macro_rod.c
- * @brief The aluminium rod of seed 001 section 2.6: a 14 mm cylinder cut from
+ * @brief The aluminium rod of [Saitoh] section 2.6: a 14 mm cylinder cut from
  *        an FCC lattice (cube axes along x, y, z; the rod axis is [001]),
  *        its top and bottom particle layers moved apart (tension) or together
  *        (compression) at a velocity reached over a linear ramp.

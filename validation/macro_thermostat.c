@@ -1,7 +1,7 @@
 /**
  * @file macro_thermostat.c
  * @brief "macro-thermostat": a free FCC block of macro-particles held at
- *        T = 300 K by Langevin forces (seed 001 Eqs. 6-9, 17-22) must settle
+ *        T = 300 K by Langevin forces ([Saitoh] Eqs. 6-9, 17-22) must settle
  *        to the kinetic temperature T within 2 %, for the absolute (-gamma v)
  *        and the pairwise (mu (v_j - v_i)) forms.
  *
@@ -80,7 +80,7 @@ static int thermo_one(struct vreport *r, const char *kind, int cells, long steps
     char q[96];
     snprintf(q, sizeof q, "%s Langevin, %zu particles: mean kinetic temperature", kind, n);
     return vreport_check(r, q, "K", Tref, Tm, tol, true,
-                         "fluctuation-dissipation, seed 001 Eq. 9 (sigma = sqrt(2 alpha k_B T/dt))",
+                         "fluctuation-dissipation, [Saitoh] Eq. 9 (sigma = sqrt(2 alpha k_B T/dt))",
                          why, err);
 }
 

@@ -18,7 +18,7 @@ int pd_case_lamina_elastic(struct vreport *r, struct spall_error *err);
 /** "pd-calibrate": PMB / PDLM / lamina patch tests (achieved moduli). */
 int pd_case_patch(struct vreport *r, struct spall_error *err);
 
-/** "pd-lamina-a": open-hole T700 laminae, A-90 (seed 003 sec. 5.3). */
+/** "pd-lamina-a": open-hole T700 laminae, A-90 ([PDLM2019] sec. 5.3). */
 int pd_case_lamina_a(struct vreport *r, struct spall_error *err);
 /** "pd-lamina-b": line-crack laminae B-theta-alpha incl. mixed mode (sec. 5.3-5.4). */
 int pd_case_lamina_b(struct vreport *r, struct spall_error *err);

@@ -2,11 +2,11 @@
  * @file pd_lamina_frac.c
  * @brief Validation cases "pd-lamina-a" (open-hole T700 laminae A-0, A-45,
  *        A-90) and "pd-lamina-b" (line-crack laminae B-theta-alpha, incl. the
- *        mixed-mode inclined cracks) of seed 003 sec. 4-5 (issue 4 item 5c).
+ *        mixed-mode inclined cracks) of [PDLM2019] sec. 4-5 (issue 4 item 5c).
  *        About 10-40 s per specimen; quick (the ctest gate): one 0 deg
  *        specimen per case (A-0, B-0-45), run as in the full case.
  *
- * Specimen (seed 003's dimensions were lost; ASTM D5766 open-hole tension
+ * Specimen ([PDLM2019]'s dimensions were lost; ASTM D5766 open-hole tension
  * proportions, shortened): 76 x 36 mm T700 lamina (validation/pd_t700.h),
  * thickness 0.1 mm (one ply; 2D results do not depend on it), grips = the
  * 2 mm at each end (left held, right pulled along x, both clamped in y).
@@ -14,10 +14,10 @@
  * crack of length 6 mm at angle alpha to the load (x) axis: alpha = 90 is
  * the transverse (mode I) crack, 30/45/60 the inclined mixed-mode cracks.
  * Fiber angle theta from the x axis; PDLM triangular lattice rotated so that
- * one lattice direction is the fiber (seed 003), spacing 0.5 mm, a site at
+ * one lattice direction is the fiber ([PDLM2019]), spacing 0.5 mm, a site at
  * the specimen centre.
  *
- * Loading: seed 003 pulls at 1 mm/min (0.1 mm/min off-axis).  At that speed
+ * Loading: [PDLM2019] pulls at 1 mm/min (0.1 mm/min off-axis).  At that speed
  * the run would need ~1e9 explicit steps, so the grip speed is scaled: the
  * right grip reaches v (2 m/s, 5 m/s for the stiff 0 deg specimens) over a
  * linear ramp of 100 us, several transverse wave transits (76 mm / 2340 m/s
@@ -29,12 +29,12 @@
  * Measured per specimen:
  *  - crack start: the broken bonds (not pre-cut) of the first step with any
  *    breaking within 8 mm of the defect; A: mean distance of their
- *    midpoints from the hole's vertical centre line (seed 003: A-45 ~2 mm,
+ *    midpoints from the hole's vertical centre line ([PDLM2019]: A-45 ~2 mm,
  *    A-90 ~1.1 mm); B: distance from the nearer pre-crack tip;
  *  - crack angle to the fibers: direction histogram of pairs of particles
  *    with matrix damage >= 0.25, 0.75-2 mm apart, more than 1 mm from the
  *    defect's edge and within 12 mm of the centre (lam_run); reference 0
- *    (seed 003: cracks run along the fibers);
+ *    ([PDLM2019]: cracks run along the fibers);
  *  - whether the crack reaches a free edge or a grip (specimen split).
  */
 #include "validation/lattice_cases.h"
@@ -47,7 +47,7 @@
 #include "core/mathconst.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "models/peridynamics/pd.h"
 #include "spall/error.h"
 
@@ -286,7 +286,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
     int rc;
     if (isnan(q->t_start)) {
         snprintf(what, sizeof what, "%s: a crack starts at the defect", c->name);
-        rc = vreport_check_true(r, what, false, "seed 003 sec. 4.2, 5.3-5.4",
+        rc = vreport_check_true(r, what, false, "[PDLM2019] sec. 4.2, 5.3-5.4",
                                 "no bond broke near the defect within the run", err);
         if (!rc)
             vreport_mark_gap(r, "no crack at the defect in the simulated time");
@@ -294,7 +294,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
     }
     snprintf(what, sizeof what, "%s: crack angle to the fibers (within 12 mm of the centre)", c->name);
     if ((rc = vreport_check(r, what, "deg", 0.0, q->angle, 10.0, false,
-                            "seed 003 sec. 4.2, 5.3-5.4: cracks run along the fibers",
+                            "[PDLM2019] sec. 4.2, 5.3-5.4: cracks run along the fibers",
                             "10 deg: the other lattice rows are at 60 deg to the fibers; a "
                             "staircase of fiber-parallel steps stays within a few deg", err)))
         return rc;
@@ -305,7 +305,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
         snprintf(what, sizeof what, "%s: crack start, distance from the hole's centre line",
                  c->name);
         if ((rc = vreport_check(r, what, "m", c->ref_start, q->start, LAM_DX, false,
-                                "seed 003 sec. 4.2 (experiment; PDLM sec. 5.3 'about 2 mm')",
+                                "[PDLM2019] sec. 4.2 (experiment; PDLM sec. 5.3 'about 2 mm')",
                                 "one lattice spacing (0.5 mm); the paper gives 'about'", err)))
             return rc;
         if (fabs(q->start - c->ref_start) > LAM_DX)
@@ -315,7 +315,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
         snprintf(what, sizeof what, "%s: crack start, distance from the pre-crack tip",
                  c->name);
         if ((rc = vreport_check(r, what, "m", 0.0, q->start, 2.0 * LAM_DX, false,
-                                "seed 003 sec. 4.2, 5.3: cracks begin at the pre-crack tips",
+                                "[PDLM2019] sec. 4.2, 5.3: cracks begin at the pre-crack tips",
                                 "two lattice spacings (the tip's bond neighbourhood)", err)))
             return rc;
         if (fabs(q->start) > 2.0 * LAM_DX)
@@ -325,7 +325,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
         snprintf(what, sizeof what, "%s: crack start, distance from the hole's centre line",
                  c->name);
         if ((rc = vreport_check(r, what, "m", 0.0, q->start, 2.0 * LAM_DX, false,
-                                "seed 003 sec. 5.3: A-0 splits start at the top and bottom of "
+                                "[PDLM2019] sec. 5.3: A-0 splits start at the top and bottom of "
                                 "the hole", "two lattice spacings (the hole edge is stepped)",
                                 err)))
             return rc;
@@ -334,7 +334,7 @@ static int lam_report(struct vreport *r, const struct lam_spec *c, const struct 
                                 "6 mm hole is 12 spacings wide); see docs/notes/validation-log.md");
     }
     snprintf(what, sizeof what, "%s: crack reaches a free edge or a grip (split)", c->name);
-    if ((rc = vreport_check_true(r, what, q->split, "seed 003 sec. 4.2, 5.3-5.4",
+    if ((rc = vreport_check_true(r, what, q->split, "[PDLM2019] sec. 4.2, 5.3-5.4",
                                  "the specimens fail by matrix cracks across the specimen",
                                  err)))
         return rc;

@@ -1,12 +1,12 @@
 /**
  * @file pd_t700.h
  * @brief The one place holding the T700/epoxy UD lamina data used by the
- *        peridynamic lamina cases and examples (seed 003's Table 1 was lost
+ *        peridynamic lamina cases and examples ([PDLM2019]'s Table 1 was lost
  *        in extraction; these are typical values, digest "Benchmarks").
  *
  * Sources: Toray T700S data sheet and typical T700/epoxy UD prepreg values
  * (E1 = 125-135 GPa, E2 = 8-9 GPa, G12 = 4-5 GPa, nu12 = 0.3, rho = 1550,
- * digest of seed 003); G_Ic, G_IIc of epoxy-matrix CFRP (0.2-0.4 and
+ * digest of [PDLM2019]); G_Ic, G_IIc of epoxy-matrix CFRP (0.2-0.4 and
  * 0.6-1.0 kJ/m^2, same digest); translaminar (fiber) fracture toughness of
  * UD CFRP ~ 50-100 kJ/m^2 (Laffan, Pinho et al., Compos. Sci. Technol. 2012)
  * - we take 60 kJ/m^2.  The same numbers appear in examples/pd_lamina_*.

@@ -1,8 +1,8 @@
 /**
  * @file pen_analytic.c
- * @brief Validation cases "pen-check-value" and "pen-ode" (seed 004 sec. 4.2).
+ * @brief Validation cases "pen-check-value" and "pen-ode" ([Meng2021] sec. 4.2).
  *
- * Check value (digest of seed 004 chapter 4): silica d = 7.38 um into 10 wt%
+ * Check value (digest of [Meng2021] chapter 4): silica d = 7.38 um into 10 wt%
  * gelatin at 1290 m/s, C_d = 0.375, R = 21 MPa -> P_max = 65.8 um (Eq. 4.6),
  * 69.5 um with the nose d/2 (Eq. 4.7).  Densities: the thesis' Tab. 4.4
  * (silica 1850 kg/m^3) and Tab. 4.3 (10 wt% gelatin 1030 kg/m^3); with
@@ -25,7 +25,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#define CV_SRC "digest of seed 004 ch. 4 (check value); Eq. 4.6/4.7, rho from Tab. 4.3/4.4"
+#define CV_SRC "digest of [Meng2021] ch. 4 (check value); Eq. 4.6/4.7, rho from Tab. 4.3/4.4"
 
 static struct pen_params gelatin_silica(void)
 {

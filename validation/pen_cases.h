@@ -1,6 +1,6 @@
 /**
  * @file pen_cases.h
- * @brief Validation cases of the analytical penetration models (seed 004
+ * @brief Validation cases of the analytical penetration models ([Meng2021]
  *        sec. 4.2, include/spall/penetration.h), registered under the
  *        penetration marker of validation/cases.c; numbers in
  *        docs/notes/validation-log.md.

@@ -3,13 +3,13 @@
  * @brief Validation cases of the SPH penetration model (issue 7 item 3):
  *        a rigid silica sphere (d = 7.38 um, 1850 kg/m^3) into 10 wt %
  *        gelatin, axisymmetric SPH (src/models/sph/sph_axisym.c) with the
- *        core penalty impactor (src/core/rigid.c), seed 004 sec. 4.3-4.4.
+ *        core penalty impactor (src/core/rigid.c), [Meng2021] sec. 4.3-4.4.
  *
  * Deck (pen_sph_deck, identical to examples/pen_sph_gelatin at dx1 =
  * 0.75 um): gelatin E (20 MPa), nu = 0.499, A + B ep^n (21 MPa, 0.01 MPa,
  * 0.1), Mie-Grueneisen C_k form (1520 m/s, S = 1.8, no Gamma), no failure
  * (failure: none); AV (0.5, 0.2), XSPH 0.015, Wendland, h = 1.3 dx.
- * Why no failure: seed 004 sec. 4.3.2 calls the law "elastic-plastic
+ * Why no failure: [Meng2021] sec. 4.3.2 calls the law "elastic-plastic
  * hydrodynamic" (RADIOSS, the polynomial EOS of Eq. 4.13) and lists only
  * E, nu, A, B, n, c0, S (Tab. 4.3); in that family of laws (/MAT/LAW3) the
  * "maximum stress" caps the flow stress and the only failure is a plastic
@@ -24,7 +24,7 @@
  * edges are multiples of the next level's spacing.  The sphere starts
  * 0.25 um above the surface; P(t) is the depth of its tip below the
  * initial surface (the experimental convention, P_Exp = P_Poncelet + d/2,
- * seed 004 Eq. 4.7) and time is counted from first contact.  A run stops
+ * [Meng2021] Eq. 4.7) and time is counted from first contact.  A run stops
  * when the sphere has stopped (V <= 0: P_max reached) or at its end time.
  *
  * Cases: "pen-sph-gelatin" (1290 m/s at d/10: P_max, its time, cavity,
@@ -135,7 +135,7 @@ int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err)
     if ((rc = poncelet_nose(1290.0, &pn, err)))
         goto out;
     if ((rc = vreport_check(r, "P_max, 1290 m/s", "m", 67.0e-6, o.pmax, 0.10, true,
-                            "experiment ~67 um (Veysset et al., seed 004 sec. 4.4.2.1)",
+                            "experiment ~67 um (Veysset et al., [Meng2021] sec. 4.4.2.1)",
                             "10 %: the thesis' SPH matched the experiment within its scatter",
                             err)))
         goto out;
@@ -158,7 +158,7 @@ int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err)
      * none): a sign test, the numbers go to the info line above */
     if ((rc = vreport_check_true(r, "sphere rebounds after P_max (V turns upward, tip recovers)",
                                  o.rebounded && o.t_rev >= o.t_pmax && o.recovery > 0.0,
-                                 "seed 004 sec. 5: micro-particles rebound after reaching "
+                                 "[Meng2021] sec. 5: micro-particles rebound after reaching "
                                  "P_max in the experiments (its ref. 188)",
                                  "sign test; run on to 320 ns (bottom reflection at 331 ns)",
                                  err)))
@@ -212,7 +212,7 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
     }
     bool mono = pm[0] > pm[1] && pm[1] > pm[2] && pm[2] > pm[3];
     int rc = vreport_check_true(r, "P_max decreases as E grows (1, 10, 20, 40 MPa)", mono,
-                                "seed 004 Fig. 4.13 / Table 4.5; sec. 4.6.1 (a stiffer target "
+                                "[Meng2021] Fig. 4.13 / Table 4.5; sec. 4.6.1 (a stiffer target "
                                 "stops the projectile more quickly)",
                                 "the thesis' trend", err);
     if (!rc && !mono)
@@ -225,7 +225,7 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
         if (k != 2 && fabs(pm[k] - 67.0e-6) < fabs(pm[2] - 67.0e-6))
             closest = false;
     rc = vreport_check_true(r, "E = 20 MPa closest to the experiment's 67 um", closest,
-                            "seed 004 Fig. 4.13 (b)", "the thesis' choice of E", err);
+                            "[Meng2021] Fig. 4.13 (b)", "the thesis' choice of E", err);
     if (!rc && !closest)
         vreport_mark_gap(r, "GAP: docs/notes/validation-log.md (pen-sph-gelatin-modulus)");
     return rc;

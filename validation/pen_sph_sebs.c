@@ -4,9 +4,9 @@
  *        spheres into 40 vol% SEBS gel, axisymmetric SPH
  *        (validation/pen_sph_setup.c), against the Modified Clift-Gauvin
  *        model with the thesis' fit (b): R = 25 MPa, eta = 4.5e-2 Pa s
- *        (seed 004 sec. 4.2.2.2, Fig. 4.5; compared with SPH in Fig. 4.28).
+ *        ([Meng2021] sec. 4.2.2.2, Fig. 4.5; compared with SPH in Fig. 4.28).
  *
- * Cases (data/penetration/sebs_steel_cases.csv, seed 004 sec. 4.5): 20 um
+ * Cases (data/penetration/sebs_steel_cases.csv, [Meng2021] sec. 4.5): 20 um
  * at 215 m/s, 16 um at 440, 13 um at 630, 12 um at 735, 22 um at 300, each
  * at E = 40 and 50 MPa (the thesis' range, sec. 4.5.1).  Target: SEBS of
  * Tab. 4.3 (pen_sph_target_sebs: AV (2, 1), XSPH 0.08); steel 7800 kg/m^3
@@ -33,7 +33,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#define SEBS_RHO_P 7800.0 /* steel, seed 004 Tab. 4.4 */
+#define SEBS_RHO_P 7800.0 /* steel, [Meng2021] Tab. 4.4 */
 #define SEBS_RHO_T 875.0  /* 40 vol% SEBS, Tab. 4.3 */
 #define SEBS_TOL 0.15     /* issue 7 item 4c */
 

@@ -36,7 +36,7 @@ static const double setup_z_ref[4] = {100e-6, 130e-6, 170e-6, 250e-6};
 
 struct pen_sph_target pen_sph_target_gelatin(double E)
 {
-    /* seed 004 Tab. 4.3; AV and XSPH of sec. 4.4.1; no failure, as
+    /* [Meng2021] Tab. 4.3; AV and XSPH of sec. 4.4.1; no failure, as
      * pen_sph_deck (validation/pen_sph.c explains why) */
     struct pen_sph_target t = {.name = "gelatin", .rho = 1030.0, .E = E, .nu = 0.499,
                                .A = 21.0e6, .B = 1.0e4, .n = 0.1, .fail = 0.0,
@@ -47,7 +47,7 @@ struct pen_sph_target pen_sph_target_gelatin(double E)
 
 struct pen_sph_target pen_sph_target_sebs(double E)
 {
-    /* seed 004 Tab. 4.3 (B = 0.01 MPa); AV (2, 1) and XSPH 0.08 of sec. 4.5.1:
+    /* [Meng2021] Tab. 4.3 (B = 0.01 MPa); AV (2, 1) and XSPH 0.08 of sec. 4.5.1:
      * alpha_cs = 0.08 chosen from Fig. 4.21, (q_a, q_b) = (2, 1) "does not
      * lead to much difference" (Fig. 4.22); failure at sigma_vm = A as for
      * gelatin ("SEBS gel breaks after reaching maximum stress which is close
@@ -129,7 +129,7 @@ int pen_sph_setup_deck(char *buf, size_t len, const struct pen_sph_target *t,
     const double R = 0.5 * s->d, M = s->rho_p * SPALL_PI * s->d * s->d * s->d / 6.0;
     const double cav = g->cavity_depth > 0.0 ? g->cavity_depth : SETUP_CAVITY_REF * scale;
     size_t off = 0;
-    /* fail <= 0: no failure (the RADIOSS LAW3 reading of seed 004 sec. 4.3.2,
+    /* fail <= 0: no failure (the RADIOSS LAW3 reading of [Meng2021] sec. 4.3.2,
      * see validation/pen_sph.c); > 0: von Mises failure stress */
     char failure[64];
     if (t->fail > 0.0)
@@ -301,7 +301,7 @@ int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot 
                 break;
         }
         if (o->at_rest && g->t_rebound > 0.0) {
-            /* rebound (seed 004 sec. 5: observed after P_max, never
+            /* rebound ([Meng2021] sec. 5: observed after P_max, never
              * modelled there): V > 0 is upward, the sphere leaving */
             if (!o->rebounded && im->v[1] > 0.0) {
                 o->rebounded = 1;

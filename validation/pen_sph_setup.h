@@ -3,7 +3,7 @@
  * @brief General deck builder and runner of the axisymmetric SPH
  *        penetration model (issue 7 items 3-4): a rigid sphere of any
  *        diameter, density and speed into a soft elastic-plastic-
- *        hydrodynamic target (seed 004 sec. 4.3-4.5), and the validation
+ *        hydrodynamic target ([Meng2021] sec. 4.3-4.5), and the validation
  *        case "pen-sph-sebs" (steel into 40 vol% SEBS, item 4c).
  *
  * At d = 7.38 um with the gelatin target this is the gelatin deck of
@@ -62,10 +62,10 @@ struct pen_sph_grid {
                           *   centres (effective radius d/2 - dx1/2, the cases' decks) */
 };
 
-/** 10 wt% gelatin of seed 004 Tab. 4.3 with modulus @p E; AV (0.5, 0.2),
+/** 10 wt% gelatin of [Meng2021] Tab. 4.3 with modulus @p E; AV (0.5, 0.2),
  *  XSPH 0.015 (sec. 4.4.1). */
 struct pen_sph_target pen_sph_target_gelatin(double E);
-/** 40 vol% SEBS of seed 004 Tab. 4.3 with modulus @p E (40-50 MPa);
+/** 40 vol% SEBS of [Meng2021] Tab. 4.3 with modulus @p E (40-50 MPa);
  *  AV (2, 1), XSPH 0.08 (sec. 4.5.1, Fig. 4.21-4.22). */
 struct pen_sph_target pen_sph_target_sebs(double E);
 
@@ -117,7 +117,7 @@ void pen_sph_outcome_free(struct pen_sph_outcome *o);
 int pen_richardson(const double h[3], const double f[3], double *p, double *f_inf,
                    struct spall_error *err);
 
-/** "pen-sph-sebs": the five steel-into-SEBS cases of seed 004 sec. 4.5 at
+/** "pen-sph-sebs": the five steel-into-SEBS cases of [Meng2021] sec. 4.5 at
  *  E = 40 and 50 MPa against the Modified-CG model (R = 25 MPa,
  *  eta = 4.5e-2 Pa s) with the d/2 nose, 15 % (validation/pen_sph_sebs.c). */
 int pen_case_sph_sebs(struct vreport *r, struct spall_error *err);

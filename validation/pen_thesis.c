@@ -2,7 +2,7 @@
  * @file pen_thesis.c
  * @brief Validation cases "pen-thesis-refs" and "pen-gelatin-time": the
  *        thesis' experiments (data/penetration) against the analytical
- *        models with the thesis' coefficients (seed 004 sec. 4.2, 4.4, 4.5).
+ *        models with the thesis' coefficients ([Meng2021] sec. 4.2, 4.4, 4.5).
  *
  * pen-thesis-refs:
  *  - the recorded reference tables (gelatin_poncelet_reference.csv,
@@ -133,7 +133,7 @@ int pen_case_thesis_refs(struct vreport *r, struct spall_error *err)
                             "(sec. 4.2.2.2, Fig. 4.28)",
                             ref_note, err)) ||
         (rc = vreport_check_true(r, "SEBS cases: Re = rho_t v0 d / eta < 1e5 (max printed below)",
-                                 re_max < PEN_MCG_RE_MAX, "seed 004 sec. 4.2.2.1 (Eq. 4.11 range)",
+                                 re_max < PEN_MCG_RE_MAX, "[Meng2021] sec. 4.2.2.1 (Eq. 4.11 range)",
                                  "the Clift-Gauvin law holds for Re < 1e5 only", err)))
         return rc;
     vreport_info(r, "largest Reynolds number of the SEBS cases: %.4g", re_max);
@@ -155,7 +155,7 @@ int pen_case_thesis_refs(struct vreport *r, struct spall_error *err)
     if ((rc = pen_solve(&p, v0, 0, NULL, NULL, NULL, 0, &res, err)) ||
         (rc = vreport_check(r, "gelatin 1290 m/s: Poncelet P_max + d/2 vs experiment", "um",
                             pexp * 1e6, (res.p_max + 0.5 * p.d) * 1e6, 0.05, true,
-                            "Veysset et al. via seed 004 sec. 4.4.2.1 ('around 67 um')",
+                            "Veysset et al. via [Meng2021] sec. 4.4.2.1 ('around 67 um')",
                             "5 %: the experiment is quoted as 'around 67 um' and the thesis "
                             "calls this curve in agreement (Fig. 4.1); without the nose the "
                             "model gives 65.8 um (-1.8 %)",
@@ -184,7 +184,7 @@ int pen_case_thesis_refs(struct vreport *r, struct spall_error *err)
         return rc;
     return vreport_check(r, "SEBS: Poncelet(b) vs Modified-CG(b) P_max, max rel. diff.", "1", 0.0,
                          worst_pm, 0.15, false,
-                         "seed 004 Fig. 4.5: both fitted to the same P_max points (approach b)",
+                         "[Meng2021] Fig. 4.5: both fitted to the same P_max points (approach b)",
                          "15 % (issue 7 item 4c's tolerance for SEBS): the fitted curves cross "
                          "(sec. 4.2.2.2); a larger gap would mean a wrong unit for eta or rho "
                          "in Eq. 4.10",
@@ -212,7 +212,7 @@ int pen_case_gelatin_time(struct vreport *r, struct spall_error *err)
         }
     rc = vreport_check(r, "gelatin 1290 m/s: Poncelet T_f (Eq. 4.3) vs 200-250 ns", "ns", 225.0,
                        res.t_f * 1e9, 25.0, false,
-                       "Veysset et al. via seed 004 Fig. 4.8 / sec. 4.4.2.1",
+                       "Veysset et al. via [Meng2021] Fig. 4.8 / sec. 4.4.2.1",
                        "the band 200-250 ns is the experiment's", err);
     if (!rc) {
         char note[320];

@@ -1,7 +1,7 @@
 /**
  * @file sph_beam.h
  * @brief Shared driver of the SPH cantilever cases (validation/sph_beam_plate.c,
- *        validation/sph_beam_large.c): seed 004 sec. 3.4.1 beam, dx = 1 mm,
+ *        validation/sph_beam_large.c): [Meng2021] sec. 3.4.1 beam, dx = 1 mm,
  *        plane stress, quadratic 1.5 ms load ramp; clamp = 3 fixed columns
  *        behind x = 0 (the thesis' form), 1 fixed column (the thesis' "left
  *        edge fixed" read literally) or the mirrored clamp
@@ -15,7 +15,7 @@
 struct vreport;
 struct spall_error;
 
-/** Kernel names of seed 004 Fig. 3.1, types 1-6. */
+/** Kernel names of [Meng2021] Fig. 3.1, types 1-6. */
 extern const char *const SPH_BEAM_KERNELS[6];
 
 /** Outcome of one beam run (deflections downwards positive) [m]. */
@@ -30,7 +30,7 @@ struct sph_beam_result {
 
 /** Clamp forms of the beam. */
 enum sph_beam_clamp {
-    SPH_BEAM_FIXED = 0, /**< 3 columns of fixed particles behind x = 0 (seed 004) */
+    SPH_BEAM_FIXED = 0, /**< 3 columns of fixed particles behind x = 0 ([Meng2021]) */
     SPH_BEAM_MIRROR = 1, /**< model.clamp on 5 fixed columns: ghosts mirror the beam */
     SPH_BEAM_EDGE = 2    /**< 1 column of fixed particles behind x = 0 (the edge only) */
 };

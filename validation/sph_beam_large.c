@@ -1,6 +1,6 @@
 /**
  * @file sph_beam_large.c
- * @brief SPH validation cases "sph-beam-large" (seed 004 sec. 3.4.1, the
+ * @brief SPH validation cases "sph-beam-large" ([Meng2021] sec. 3.4.1, the
  *        cantilever under 17.5 kN) and "sph-leapfrog" (quick: the time
  *        integration keeps an undamped elastic plate's energy).
  *
@@ -62,7 +62,7 @@ static int wendland_check(struct vreport *r, const char *q, const struct sph_bea
              "tolerance = the thesis' Wendland error; max pair stretch %.3f (crack > %.1f)",
              res->stretch, CRACK_STRETCH);
     int rc = vreport_check(r, what, "m", ref, isfinite(res->mean) ? res->mean : NAN, tol, true,
-                           "seed 004 sec. 3.4.1 (nonlinear deflection 81.1 mm, Wendland 4.89 %)",
+                           "[Meng2021] sec. 3.4.1 (nonlinear deflection 81.1 mm, Wendland 4.89 %)",
                            note, err);
     if (rc || r->checks[r->n - 1].pass)
         return rc;
@@ -168,7 +168,7 @@ int sph_case_beam_large(struct vreport *r, struct spall_error *err)
         return rc;
     int tl_cracked = !isfinite(res.mean) || !(res.stretch < CRACK_STRETCH);
     return vreport_check_true(r, "TLSPH at 17.5 kN: no crack (pair stretch < 1.5)", !tl_cracked,
-                              "seed 004 conclusions: TLSPH is the remedy for the tensile "
+                              "[Meng2021] conclusions: TLSPH is the remedy for the tensile "
                               "instability",
                               "the total-Lagrangian kernel never changes neighbours", err);
 }

@@ -3,10 +3,10 @@
  * @brief SPH validation cases "sph-gradient" and "sph-beam".
  *
  * sph-gradient: a linear velocity field v = A x + b on a free 2D block and
- *   a free 3D block; CSPM (seed 004 Eqs. 3.10-3.11) must return A at every
+ *   a free 3D block; CSPM ([Meng2021] Eqs. 3.10-3.11) must return A at every
  *   particle, surfaces and corners included (the plain SPH gradient of
  *   Eq. 3.31 loses up to half of it there: reported, not checked).
- * sph-beam: seed 004 sec. 3.4.1 / Table 3.4, the cantilever under an end
+ * sph-beam: [Meng2021] sec. 3.4.1 / Table 3.4, the cantilever under an end
  *   load ramped quadratically to 1.75 kN over 1.5 ms and held to 3 ms; the
  *   time mean of the tip deflection over 1.5-3.0 ms against the static
  *   FL^3/3EI + 6FL/5GA = 33.59 mm, for each of the six kernels; tolerance =
@@ -26,7 +26,7 @@
 
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "models/sph/sph.h"
 #include "spall/error.h"
 
@@ -87,7 +87,7 @@ static int gradient_block(struct vreport *r, int dim, struct spall_error *err)
         char q[96];
         snprintf(q, sizeof q, "%dD CSPM velocity gradient, max error / |A|", dim);
         rc = vreport_check(r, q, "1", 0.0, errmax[0], 1e-10, false,
-                           "exact for linear fields by construction (seed 004 Eq. 3.11)",
+                           "exact for linear fields by construction ([Meng2021] Eq. 3.11)",
                            "round-off only; includes the free surfaces and corners", err);
         vreport_info(r, "%dD: plain SPH gradient (Eq. 3.31) max error / |A| = %.3f (surface "
                      "deficiency CSPM removes); CSPM fallbacks = %zu",
@@ -109,7 +109,7 @@ int sph_case_gradient(struct vreport *r, struct spall_error *err)
 
 const char *const SPH_BEAM_KERNELS[6] = {"cubic_spline",  "gaussian",      "quintic_spline",
                                          "wendland",      "double_cosine", "hyperbolic"};
-/* seed 004 Table 3.4: mean error over 1.5-3.0 ms [%] */
+/* [Meng2021] Table 3.4: mean error over 1.5-3.0 ms [%] */
 static const double BEAM_THESIS_ERR[6] = {2.55, 8.11, 7.96, 9.58, 17.62, 8.86};
 
 /* Largest stretch |x_i - x_j| / |X_i - X_j| over initially adjacent pairs
@@ -139,7 +139,7 @@ void sph_beam_deck(const char *kernel, double force, double hfac, const char *ex
     const bool mirror = clamp == SPH_BEAM_MIRROR;
     const char *ckey = mirror ? ", clamp: {group: clamp, point: [0, 0], normal: [1, 0]}" : "";
     /* the edge clamp: one fixed column, the thesis' "left edge of the beam
-     * is fixed" (seed 004 sec. 3.4.1, Fig. 3.5) read literally */
+     * is fixed" ([Meng2021] sec. 3.4.1, Fig. 3.5) read literally */
     const double xmin = mirror ? -0.005 : clamp == SPH_BEAM_EDGE ? -0.001 : -0.003;
     /* leapfrog: the predictor-corrector is unstable for these undamped
      * elastic beams at dt_factor 0.5 (sph_leapfrog.c) */
@@ -278,7 +278,7 @@ int sph_case_beam(struct vreport *r, struct spall_error *err)
                  w->variant == 0 ? "this kernel" : w->variant == 1 ? "Wendland" : "the quintic",
                  tol, res.final * 1e3);
         if ((rc = vreport_check(r, q, "m", ref, isfinite(res.mean) ? res.mean : NAN, tol / 100.0,
-                                true, "seed 004 Table 3.4 (static FL^3/3EI + 6FL/5GA)", note,
+                                true, "[Meng2021] Table 3.4 (static FL^3/3EI + 6FL/5GA)", note,
                                 err)))
             return rc;
         if (!r->checks[r->n - 1].pass) {

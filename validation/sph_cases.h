@@ -1,6 +1,6 @@
 /**
  * @file sph_cases.h
- * @brief Validation cases of the SPH model (seed 004 chapter 3), run by
+ * @brief Validation cases of the SPH model ([Meng2021] chapter 3), run by
  *        `spall validate` through validation/cases.c.  Numbers are
  *        tabulated in docs/notes/validation-log.md.
  */
@@ -19,7 +19,7 @@ int sph_case_gradient(struct vreport *r, struct spall_error *err);
 /** "sph-beam": cantilever, 1.75 kN, six kernels vs 33.59 mm (Table 3.4). */
 int sph_case_beam(struct vreport *r, struct spall_error *err);
 /** "sph-beam-large": cantilever, 17.5 kN, six kernels and TLSPH vs 81.1 mm,
- *  which kernels crack (seed 004 sec. 3.4.1). */
+ *  which kernels crack ([Meng2021] sec. 3.4.1). */
 int sph_case_beam_large(struct vreport *r, struct spall_error *err);
 /** "sph-leapfrog": the leapfrog keeps an undamped plate's energy (quick). */
 int sph_case_leapfrog(struct vreport *r, struct spall_error *err);
@@ -45,7 +45,7 @@ struct sph_taylor2d_result {
     size_t particles;
     double seconds;
 };
-/** "sph-taylor-2d": iron rod of seed 004 Table 3.5 (Libersky & Petschek). */
+/** "sph-taylor-2d": iron rod of [Meng2021] Table 3.5 (Libersky & Petschek). */
 int sph_case_taylor2d(struct vreport *r, struct spall_error *err);
 /** One 2D rod run with @p n particles across the diameter, sampled at t1 and
  *  t2; @p axisymmetric: 1 = axisymmetric rod (r, z), 0 = plane strain;
@@ -82,7 +82,7 @@ struct sph_debris_result {
     double seconds;
 };
 /** "sph-debris-cloud": Al sphere 10 mm on a 4 mm Al plate at 6.18 km/s
- *  (seed 004 chapter 2, Hiermaier et al. 1997), axisymmetric. */
+ *  ([Meng2021] chapter 2, Hiermaier et al. 1997), axisymmetric. */
 int sph_case_debris(struct vreport *r, struct spall_error *err);
 /** One debris-cloud run with @p n particles across the sphere's diameter, a
  *  plate of thickness @p plate [m], measured at @p time after contact [s]. */

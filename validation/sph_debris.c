@@ -2,10 +2,10 @@
  * @file sph_debris.c
  * @brief SPH validation case "sph-debris-cloud": hypervelocity impact of an
  *        aluminium sphere (d = 10 mm) on a 4 mm aluminium plate at
- *        6.18 km/s, axisymmetric -- the debris-cloud problem of seed 004
+ *        6.18 km/s, axisymmetric -- the debris-cloud problem of [Meng2021]
  *        chapter 2 (Hiermaier et al., IJIE 20 (1997) 363, ref. [73]).
  *
- * The shot: seed 004 sec. 2 describes the Al-Al shot that Zhang & Liu
+ * The shot: [Meng2021] sec. 2 describes the Al-Al shot that Zhang & Liu
  * (EABE 83 (2017) 141, ref. [86]) reproduce from ref. [73] as a 1.0 cm Al
  * projectile on a 0.4 cm Al plate at 6180 m/s (ref. [73] itself: 0.15 to
  * 0.4 cm plates at 5.75 to 6.85 km/s).  Until this change the case used a
@@ -216,7 +216,7 @@ int sph_case_debris(struct vreport *r, struct spall_error *err)
             vreport_mark_gap(r, "GAP: cloud width not converged in dx; see "
                                 "docs/notes/validation-log.md");
     }
-    static const char src[] = "Hiermaier et al. 1997 (seed 004 ref. [73]) experiment, "
+    static const char src[] = "Hiermaier et al. 1997 ([Meng2021] ref. [73]) experiment, "
                               "second-hand (course-project README citing it)";
     if ((rc = vreport_check(r, "hole diameter in the plate", "m", DEB_HOLE_REF,
                             f->hole_diameter, 0.10, true, src,

@@ -30,7 +30,7 @@
 #include "core/neighbor.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>

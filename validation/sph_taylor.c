@@ -1,7 +1,7 @@
 /**
  * @file sph_taylor.c
  * @brief SPH validation case "sph-taylor-3d": the 4340 steel Taylor bar of
- *        seed 004 sec. 3.4.3 (Table 3.6): L0 = 37.97 mm, D0 = 7.595 mm,
+ *        [Meng2021] sec. 3.4.3 (Table 3.6): L0 = 37.97 mm, D0 = 7.595 mm,
  *        181 m/s onto a rigid frictionless wall, Johnson-Cook yield with
  *        plastic-work heating; final length against 34.5 mm (LS-DYNA, the
  *        issue's 2 % target), with the thesis SPH (34.3 mm) and MSPH
@@ -29,7 +29,7 @@
 #include "core/particles.h"
 #include "core/profile.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -132,7 +132,7 @@ int sph_case_taylor3d(struct vreport *r, struct spall_error *err)
     }
     const double L = len[last], R = rad[last];
     int rc = vreport_check(r, "final length (finest dx)", "m", 34.5e-3, L, 0.02, true,
-                           "LS-DYNA 34.5 mm (seed 004 Table 3.6); thesis SPH 34.3, MSPH 34.7",
+                           "LS-DYNA 34.5 mm ([Meng2021] Table 3.6); thesis SPH 34.3, MSPH 34.7",
                            "2 %: the issue's target", err);
     if (rc)
         return rc;

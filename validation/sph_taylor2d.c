@@ -1,6 +1,6 @@
 /**
  * @file sph_taylor2d.c
- * @brief SPH validation case "sph-taylor-2d": the iron rod of seed 004
+ * @brief SPH validation case "sph-taylor-2d": the iron rod of [Meng2021]
  *        sec. 3.4.2 (Table 3.5, after Libersky & Petschek 1991) on a rigid
  *        wall, elastic-perfectly plastic with the Mie-Grueneisen EOS.
  *
@@ -49,7 +49,7 @@
 #include "core/particles.h"
 #include "core/profile.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -362,7 +362,7 @@ int sph_case_taylor2d(struct vreport *r, struct spall_error *err)
     /* Taylor (1948), uniaxial: the axisymmetric rod's flow stress is sigma_y */
     double sT = taylor_stress(f->len[1], f->undeformed[1]);
     if ((rc = vreport_check(r, "Taylor (1948) flow stress from L and X", "Pa", T2D_SY, sT, 0.25,
-                            true, "sigma_y 600 MPa (seed 004 Table 3.5; uniaxial: axisymmetric)",
+                            true, "sigma_y 600 MPa ([Meng2021] Table 3.5; uniaxial: axisymmetric)",
                             "25 %: 1D rigid-plastic theory, no elasticity, no mushroom", err)))
         return rc;
     if ((rc = vreport_check_true(r, "published final length / radius for this set-up found",

@@ -5,9 +5,9 @@
 struct vreport;
 struct spall_error;
 
-/** 1D conduction from a fixed-temperature end against erfc (seed 000 sec. 2.2). */
+/** 1D conduction from a fixed-temperature end against erfc ([Wang2010] sec. 2.2). */
 int thermal_case_conduction(struct vreport *r, struct spall_error *err);
-/** Free thermal expansion of a uniformly heated plate: strain alpha dT (seed 000 Eq. 21). */
+/** Free thermal expansion of a uniformly heated plate: strain alpha dT ([Wang2010] Eq. 21). */
 int thermal_case_expansion(struct vreport *r, struct spall_error *err);
 
 #endif

@@ -1,7 +1,7 @@
 /**
  * @file thermal_validation.c
  * @brief Validation cases "thermal-conduction" and "thermal-expansion" of the
- *        thermal lattice (seed 000 sec. 2.2, Eqs. 19-21; lattice_thermal.h).
+ *        thermal lattice ([Wang2010] sec. 2.2, Eqs. 19-21; lattice_thermal.h).
  *
  * thermal-conduction: a chain of 101 particles (r0 = 1 mm) at T0 = 300 K whose
  * first particle is held at T1 = 400 K.  A semi-infinite bar with a fixed end
@@ -211,7 +211,7 @@ int thermal_case_expansion(struct vreport *r, struct spall_error *err)
     tm /= (double)s->p->n_owned;
     const double ref = EXP_ALPHA * (tm - EXP_T_REF);
     const char *src = "alpha (T_mean - T_ref): stress-free state of a free body whose bond rest "
-                      "lengths all scale by 1 + alpha dT (seed 000 Eq. 21)";
+                      "lengths all scale by 1 + alpha dT ([Wang2010] Eq. 21)";
     const char *note = "1 % (issue 3); dynamic lag of the slow heating ramp ~0.3 %";
     if ((rc = vreport_check(r, "free thermal strain eps_xx", "1", ref, strain_fit(s->p, 0), 0.01,
                             true, src, note, err)) ||

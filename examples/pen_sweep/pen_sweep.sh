@@ -2,7 +2,7 @@
 # Issue 7 item 7: P_max/d vs v0 tables and plots, velocity x diameter, from
 # the analytical models with the thesis' coefficients:
 #   gelatin.csv  silica into 10 wt% gelatin, Poncelet C_d = 0.375, R = 21 MPa
-#                (seed 004 Fig. 4.14), d = 5, 7.38, 10 um, v0 = 100-1500 m/s
+#                ([Meng2021] Fig. 4.14), d = 5, 7.38, 10 um, v0 = 100-1500 m/s
 #   sebs.csv     steel into 40 vol% SEBS, Modified-CG eta = 4.5e-2 Pa s,
 #                R = 25 MPa (fit (b), Fig. 4.5), d = 11-22 um, v0 = 50-900 m/s
 #   sebs_poncelet.csv  the same grid with Poncelet fit (b), C_d = 0.8, R = 33.7 MPa

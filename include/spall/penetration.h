@@ -1,7 +1,7 @@
 /**
  * @file penetration.h
  * @brief Analytical models of a rigid sphere penetrating a soft target
- *        (seed 004 chapter 4.2): Poncelet, Liu, Modified Clift-Gauvin;
+ *        ([Meng2021] chapter 4.2): Poncelet, Liu, Modified Clift-Gauvin;
  *        closed forms, ODE integration (GSL odeiv2) and coefficient fitting
  *        (GSL multifit_nlinear) by the thesis' two approaches.
  *
@@ -161,7 +161,7 @@ int pen_csv_read(const char *path, struct pen_csv *csv, struct spall_error *err)
 int pen_csv_column(const struct pen_csv *csv, const char *name);
 void pen_csv_free(struct pen_csv *csv);
 
-/** Settings of the cavity measurement (seed 004 sec. 4.4.2.2, Fig. 4.17-4.18). */
+/** Settings of the cavity measurement ([Meng2021] sec. 4.4.2.2, Fig. 4.17-4.18). */
 struct pen_cavity_opts {
     double axis_x, axis_y; /**< shot line: x = axis_x, y = axis_y, along z */
     double depth;          /**< slab centre, below the surface z = surface [m] (15 um in Fig. 4.17) */

@@ -20,7 +20,7 @@ static void calibrate_usage(FILE *out)
             "\n"
             "Prints the lattice model's constants from continuum data: axial stiffness S0\n"
             "(k1, k2), angular stiffness S_phi, failure strain eps_max = sigma_TS / E\n"
-            "(seed 000 Eq. 26), the particle mass, the stable time step (Eq. 25), the\n"
+            "([Wang2010] Eq. 26), the particle mass, the stable time step (Eq. 25), the\n"
             "paper's Eq. 16/18 values for comparison, and a numerical patch test of the\n"
             "constants (measured E and nu under uniform strain).  triple_honeycomb: the\n"
             "alpha-beta-gamma model for nu in [1/3, 1) (three honeycomb bond families).\n"
@@ -165,8 +165,8 @@ int cli_calibrate(int argc, char **argv)
     printf("  particle mass                     %.6g kg\n", c.mass);
     printf("  stable time step (Eq. 25)         %.6g s\n", c.dt);
     if (c.kind == LATTICE_TRIANGULAR && !c.area_used) {
-        printf("  seed 000 Eq. 16 S0                %.6g N/m (for t = 2 r0/sqrt3)\n", c.paper_S0);
-        printf("  seed 000 Eq. 18 S_phi             %.6g N (x r0 = %.6g N m/rad^2)\n",
+        printf("  [Wang2010] Eq. 16 S0                %.6g N/m (for t = 2 r0/sqrt3)\n", c.paper_S0);
+        printf("  [Wang2010] Eq. 18 S_phi             %.6g N (x r0 = %.6g N m/rad^2)\n",
                c.paper_S_phi, c.paper_S_phi * c.r0);
     }
     double Em = 0, num = 0;

@@ -1,7 +1,7 @@
 /**
  * @file cmd_calibrate_macro.c
  * @brief `spall calibrate macroparticle`: the macro-particle constants of
- *        seed 001 (Eqs. 10, 11, 13-15) and its Table 1.
+ *        [Saitoh] (Eqs. 10, 11, 13-15) and its Table 1.
  */
 #include "cli/cli.h"
 
@@ -21,7 +21,7 @@ static void usage(FILE *out)
             "              [--mass-u U] [--e0-ev EV] [--p P] [--q Q] [--spacing M]\n"
             "              [--theta-d K] [--table]\n"
             "\n"
-            "Prints N_atom (seed 001 Eq. 11), P_atom (Eq. 10), the Mie well depth\n"
+            "Prints N_atom ([Saitoh] Eq. 11), P_atom (Eq. 10), the Mie well depth\n"
             "D = P_atom/6, phi''(r0), the particle mass and the predicted Young's modulus\n"
             "E = pi rho p q e0 / (0.74 * 72 m) (Eq. 15), plus the modulus of the same\n"
             "potential on a nearest-neighbour FCC crystal along [100] (what a [100] rod\n"
@@ -40,7 +40,7 @@ static int num(const char *opt, const char *s, double *out)
     return 0;
 }
 
-/* Table 1 of seed 001 (E in GPa) and the e0 its rows imply. */
+/* Table 1 of [Saitoh] (E in GPa) and the e0 its rows imply. */
 static void print_table(void)
 {
     static const double pq[5][2] = {{3, 9}, {4, 8}, {4, 9}, {4, 10}, {5, 9}};
@@ -48,7 +48,7 @@ static void print_table(void)
                                        {76.4, 112.9}, {95.5, 117.2}};
     const double rho[2] = {2700.0, 8960.0}, mu[2] = {26.98, 63.55};
     const double e0_fit[2] = {3.36, 3.52}, e0_book[2] = {3.39, 3.49};
-    printf("Table 1 of seed 001 vs Eq. 15 (E in GPa)\n");
+    printf("Table 1 of [Saitoh] vs Eq. 15 (E in GPa)\n");
     printf("  p  q | Al paper  Al e0=3.36  Al e0=3.39 | Cu paper  Cu e0=3.52  Cu e0=3.49\n");
     for (int k = 0; k < 5; k++) {
         double e[2][2];
@@ -137,7 +137,7 @@ int cli_calibrate_macroparticle(int argc, char **argv)
         return 2;
     }
     double wd = macro_debye_omega(th);
-    printf("macro-particle calibration (seed 001)\n");
+    printf("macro-particle calibration ([Saitoh])\n");
     printf("  input: rho = %g kg/m^3, m = %g u, e0 = %g eV, p = %g, q = %g, r0 = %g m, "
            "theta_D = %g K\n", rho, mu, e0, p, q, r0, th);
     printf("  N_atom (Eq. 11)          = %.6g atoms per particle\n", c.n_atom);

@@ -1,6 +1,6 @@
 /**
  * @file cmd_penetrate.c
- * @brief `spall penetrate`: the analytical penetration models of seed 004
+ * @brief `spall penetrate`: the analytical penetration models of [Meng2021]
  *        sec. 4.2 (Poncelet, Liu, Modified Clift-Gauvin), their fits to data
  *        (approaches a and b) and velocity sweeps, writing CSV tables.
  */
@@ -29,7 +29,7 @@ static void pen_usage(FILE *out)
             "       spall penetrate sweep --model poncelet|liu|mcg --v0 FROM:TO:STEP --d D1[,D2,...]\n"
             "                       [densities] [coefficients] --csv TABLE.csv\n"
             "\n"
-            "Rigid sphere into a soft target, -M dV/dt = F(V) (seed 004 sec. 4.2):\n"
+            "Rigid sphere into a soft target, -M dV/dt = F(V) ([Meng2021] sec. 4.2):\n"
             "  poncelet  F = B V^2 + C, B = rho_t pi d^2 C_d / 8, C = R pi d^2 / 4 (Eq. 4.1-4.6),\n"
             "            closed form;\n"
             "  liu       F = A (C_d rho_t V^2 / 2 + C_v V + sigma0 [1 + (V / (d edot0))^2])\n"

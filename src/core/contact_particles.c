@@ -11,7 +11,7 @@
 #include "core/bond_list.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>

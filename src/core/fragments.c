@@ -8,7 +8,7 @@
 #include "core/fields.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <errno.h>

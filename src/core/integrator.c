@@ -7,7 +7,7 @@
  *        instability checks.
  *
  * One step, t -> t + dt (the model hooks and where they are called:
- * models/model.h):
+ * core/model.h):
  *   1. v(t+dt/2) = v(t) + dt/2 f(t)/m; prescribed components overwritten
  *   2. x(t+dt)   = x(t) + dt v(t+dt/2) (+ dt u, the model's drift velocity)
  *   3. f(t+dt)   = model forces + loads + gravity + damping(v(t+dt/2))
@@ -24,7 +24,7 @@
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>

@@ -362,7 +362,7 @@ double lattice_site_volume(const struct lattice_spec *spec, double thickness_or_
         return r0 * thickness_or_area;
     case LATTICE_TRIANGULAR:
         /* Area of the hexagonal Voronoi cell, sqrt(3)/2 r0^2, times t; with
-         * t = 2 r0/sqrt(3) this is r0^3, the paper's choice (seed 000). */
+         * t = 2 r0/sqrt(3) this is r0^3, the paper's choice ([Wang2010]). */
         return sqrt(3.0) / 2.0 * r0 * r0 * thickness_or_area;
     case LATTICE_SQUARE:
     case LATTICE_RINGS:

@@ -341,7 +341,7 @@ void rigid_no_slip(struct sim *s, double dt)
                 continue;
             double m = p->mass[i];
             for (int d = 0; d < dim; d++) {
-                /* back onto the surface along the normal (seed 000 Fig. 9);
+                /* back onto the surface along the normal ([Wang2010] Fig. 9);
                  * the work against the particle's current force is the
                  * energy the correction puts in */
                 double dx = -phi * nrm[d];

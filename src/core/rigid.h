@@ -2,10 +2,10 @@
  * @file rigid.h
  * @brief Rigid impactors and supports usable by every particle model: sphere,
  *        cylinder / flat punch (optionally rounded edge), round-nose indenter
- *        and plane wall, with free dynamics M a = R_F + M g (seed 000 sec. 3.2)
+ *        and plane wall, with free dynamics M a = R_F + M g ([Wang2010] sec. 3.2)
  *        or prescribed motion, and two contact laws:
  *
- *  - no_slip (seed 000 sec. 3.2, Fig. 9): at the end of each step every
+ *  - no_slip ([Wang2010] sec. 3.2, Fig. 9): at the end of each step every
  *    particle inside the impactor is put back on its surface along the
  *    surface normal and takes the impactor's velocity; the momentum this
  *    imposes, sum of M_p dv_p, is taken from the impactor (so momentum is

@@ -12,7 +12,7 @@
 #include "core/fragments.h"
 #include "core/geometry.h"
 #include "core/particles.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -185,20 +185,11 @@ int sim_add_probe(struct sim *s, const char *name, const double pos[3], struct s
     return SPALL_OK;
 }
 
-int sim_set_model(struct sim *s, const char *name, const struct deck_node *params,
+int sim_set_model(struct sim *s, const struct model_ops *ops, const struct deck_node *params,
                   struct spall_error *err)
 {
-    const struct model_ops *ops = model_find(name);
-    if (!ops) {
-        char list[256] = "";
-        for (const char *const *n = model_names(); *n; n++) {
-            strncat(list, *n, sizeof list - strlen(list) - 3);
-            if (n[1])
-                strncat(list, ", ", sizeof list - strlen(list) - 1);
-        }
-        return spall_error_set(err, SPALL_ERR_INPUT, "unknown model '%s'; expected one of: %s",
-                               name, list);
-    }
+    if (!ops)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "sim_set_model: no model given");
     s->ops = ops;
     int rc = ops->create(&s->model, s, params, err);
     if (rc || !ops->time_scheme)
@@ -345,7 +336,7 @@ int sim_prepare(struct sim *s, struct spall_error *err)
         if (s->dt > s->dt_limit && !s->dt_override)
             return spall_error_set_key(err, SPALL_ERR_PHYSICS, "run.dt",
                                        "time step %g s is above the stability limit %g s "
-                                       "(seed 000 Eq. 25); lower run.dt or set "
+                                       "([Wang2010] Eq. 25); lower run.dt or set "
                                        "run.dt_override: true",
                                        s->dt, s->dt_limit);
     } else {

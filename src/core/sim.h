@@ -78,7 +78,7 @@ struct energy_account {
 
 /** Time integrators (all second order, same positions):
  *  verlet: forces of step n+1 see the half-step velocities;
- *  predictor_corrector: they see the predicted v_n + dt a_n (seed 004
+ *  predictor_corrector: they see the predicted v_n + dt a_n ([Meng2021]
  *  Eqs. 3.35-3.37), which velocity-dependent forces (artificial viscosity)
  *  expect; the model's state is predicted and corrected around the force
  *  call (model_ops.advance_state);
@@ -164,9 +164,11 @@ int sim_add_bc(struct sim *s, const struct bc *bc, struct spall_error *err);
 int sim_add_precrack(struct sim *s, const struct precrack *c, struct spall_error *err);
 int sim_add_probe(struct sim *s, const char *name, const double pos[3], struct spall_error *err);
 
-/** Select a model by name and create it with the deck's params (may be NULL);
- *  then take the model's time scheme (integrator, adaptive dt, dt factor). */
-int sim_set_model(struct sim *s, const char *name, const struct deck_node *params,
+/** Create the model @p ops (from the registry: model_find in
+ *  models/registry.c, which the core does not call) with the deck's params
+ *  (may be NULL); then take the model's time scheme (integrator, adaptive
+ *  dt, dt factor). */
+int sim_set_model(struct sim *s, const struct model_ops *ops, const struct deck_node *params,
                   struct spall_error *err);
 
 /** After particles, masses and materials exist: init the model, register
@@ -178,7 +180,7 @@ int sim_prepare(struct sim *s, struct spall_error *err);
  *  the initial energy account. */
 int sim_initial_forces(struct sim *s, struct spall_error *err);
 
-/** Advance one step with s->integrator (the sequence is in models/model.h).
+/** Advance one step with s->integrator (the sequence is in core/model.h).
  *  Detects non-finite positions or velocities and an energy blow-up
  *  (mechanical energy above energy_blowup times the energy put in: the
  *  kinetic part every step, the full account every energy_check_every

@@ -20,7 +20,8 @@
 #include "io/deck_inclusions.h"
 #include "io/deck_time_function.h"
 #include "io/output.h"
-#include "models/model.h"
+#include "core/model.h"
+#include "models/registry.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -117,7 +118,7 @@ static int parse_lattice(struct build_ctx *c, const struct deck_node *root, stru
     if (s->thickness_given) {
         s->thickness = thickness;
     } else if (lk == LATTICE_TRIANGULAR || lk == LATTICE_TRIPLE_HONEYCOMB) {
-        /* seed 000: the constants of Eqs. 16/18 correspond to a volume r0^3 per
+        /* [Wang2010]: the constants of Eqs. 16/18 correspond to a volume r0^3 per
          * particle, i.e. a plate 2 r0 / sqrt(3) thick */
         s->thickness = 2.0 * spacing / sqrt(3.0);
     } else if (lk == LATTICE_CHAIN) {
@@ -145,7 +146,7 @@ static int parse_model(struct build_ctx *c, const struct deck_node *root, struct
                               "lattice type '%s' needs a model that takes each particle's own "
                               "volume (sph); the %s model needs a regular lattice",
                               lattice_kind_name(c->sim->lattice.kind), ops->name);
-    return sim_set_model(c->sim, model_names()[idx], m, err);
+    return sim_set_model(c->sim, ops, m, err);
 }
 
 static int parse_materials(struct build_ctx *c, const struct deck_node *root,

@@ -84,7 +84,7 @@ static int parse_one(struct sim *s, const struct deck_node *n, struct spall_erro
     if (im.contact == RIGID_NO_SLIP && deck_peek(n, "friction"))
         return deck_error_key(err, n, "friction",
                               "friction applies to contact: penalty; no_slip has no tangential "
-                              "motion at all (seed 000 sec. 3.2)");
+                              "motion at all ([Wang2010] sec. 3.2)");
     if (im.shape == RIGID_WALL) {
         if (deck_peek(n, "axis"))
             return deck_error_key(err, n, "axis", "a wall takes 'normal', not 'axis'");

@@ -21,7 +21,7 @@
 #include "io/deck_build.h"
 #include "io/output.h"
 #include "io/run_util.h"
-#include "models/model.h"
+#include "core/model.h"
 
 #include <errno.h>
 #include <math.h>

@@ -3,7 +3,8 @@
  * @brief The table of particle models known to the engine.  Adding a model:
  *        one line in SPALL_MODELS, nothing else.
  */
-#include "models/model.h"
+#include "core/model.h"
+#include "models/registry.h"
 
 #include <string.h>
 

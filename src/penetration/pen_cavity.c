@@ -1,6 +1,6 @@
 /**
  * @file pen_cavity.c
- * @brief Temporary-cavity diameters from particle positions (seed 004 sec.
+ * @brief Temporary-cavity diameters from particle positions ([Meng2021] sec.
  *        4.4.2.2, Fig. 4.17-4.19): D1 (empty cavity) and D2 (cavity
  *        including failed particles, which carry no stress) in a slab at a
  *        given depth around the shot line.  Model-independent: it reads

@@ -1,6 +1,6 @@
 /**
  * @file pen_fit.c
- * @brief Fitting the analytical models' coefficients (seed 004 sec. 4.2.2.2)
+ * @brief Fitting the analytical models' coefficients ([Meng2021] sec. 4.2.2.2)
  *        with GSL's nonlinear least squares (gsl_multifit_nlinear, trust
  *        region with Levenberg-Marquardt steps, finite-difference Jacobian).
  *

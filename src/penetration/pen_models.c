@@ -1,7 +1,7 @@
 /**
  * @file pen_models.c
  * @brief Force laws, closed forms and GSL ODE integration of the analytical
- *        penetration models (seed 004 sec. 4.2; see include/spall/penetration.h).
+ *        penetration models ([Meng2021] sec. 4.2; see include/spall/penetration.h).
  *
  * Closed forms.  Poncelet and Liu have a force quadratic in V,
  * F = a V^2 + b V + c (Liu: the strain-rate term with edot = V/d adds
@@ -106,7 +106,7 @@ double pen_mass(const struct pen_params *p)
 
 double pen_cd_clift_gauvin(double re)
 {
-    /* seed 004 Eq. 4.11 (Clift & Gauvin); "4.25e^4" in the thesis is 4.25e4 */
+    /* [Meng2021] Eq. 4.11 (Clift & Gauvin); "4.25e^4" in the thesis is 4.25e4 */
     return 24.0 / re * (1.0 + 0.15 * pow(re, 0.687)) + 0.42 / (1.0 + 4.25e4 * pow(re, -1.16));
 }
 

@@ -20,7 +20,7 @@
  *   Matching plane-stress E t = 2 K2 (1 - nu) and mu2 = E t / (2 (1 + nu)):
  *     k     = E t / (sqrt3 (1 - nu))
  *     k_phi = r0^2 E t (1 - 3 nu) / (6 sqrt3 (1 - nu^2))
- *   With the paper's t = 2 r0 / sqrt3 the first is seed 000 Eq. 16,
+ *   With the paper's t = 2 r0 / sqrt3 the first is [Wang2010] Eq. 16,
  *   S0 = 2 E r0 / (3 (1 - nu)); the second is E r0^3 (1 - 3nu) / (9 (1 - nu^2)),
  *   while Eq. 18 read as a moment per radian (k_phi = S_phi r0) gives
  *   sqrt3/18 instead of 1/9: a factor sqrt3/2 too small (the patch test shows
@@ -61,7 +61,7 @@
  *   E r0 / sqrt2.  Along [100]: E_100 = 4k/(3a) = (2/3) E_V, nu_100 = 1/3.
  * Chain (area A): k = E A / r0.
  *
- * Stable time step (seed 000 Eq. 25, Omega dt < 2 applied to the highest
+ * Stable time step ([Wang2010] Eq. 25, Omega dt < 2 applied to the highest
  * mode): Gershgorin on M^-1 H gives omega_max^2 <= max_i (row sum)/m_i, and
  * for a spring the off-diagonal block equals the diagonal one, so
  * omega_max^2 <= 2 Omega_i^2 with Omega_i^2 = sum_b |dF/dr|_b / m_i; hence
@@ -82,7 +82,7 @@
 #include "core/sim.h"
 #include "models/lattice/lattice_honeycomb.h"
 #include "models/lattice/lattice_internal.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -204,7 +204,7 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
         break;
     }
     case LATTICE_TRIPLE_HONEYCOMB: {
-        /* alpha-beta-gamma (seed 000 Fig. 3d): central springs in three
+        /* alpha-beta-gamma ([Wang2010] Fig. 3d): central springs in three
          * honeycomb families, nu in [1/3, 1) (lattice_honeycomb.c) */
         if (layers == 2)
             return refuse(err, "the %s lattice has nearest-neighbour springs only (its three "
@@ -252,7 +252,7 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err)
     }
     c->layers_used = layers;
     if (c->sigma_ts > 0.0)
-        c->eps_max = c->sigma_ts / E; /* seed 000 Eq. 26 */
+        c->eps_max = c->sigma_ts / E; /* [Wang2010] Eq. 26 */
 
     struct lattice_spec spec;
     memset(&spec, 0, sizeof spec);
@@ -343,7 +343,7 @@ int lattice_patch_test_full(const struct lattice_calib *cin, double strain,
         return rc;
     if (use_paper_constants && c.kind != LATTICE_TRIANGULAR)
         return spall_error_set(err, SPALL_ERR_INPUT,
-                               "the paper's constants (seed 000 Eqs. 16, 18) are for the "
+                               "the paper's constants ([Wang2010] Eqs. 16, 18) are for the "
                                "triangular lattice");
     const int dim = lattice_kind_dim(c.kind);
     struct sim s;

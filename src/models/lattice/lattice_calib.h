@@ -14,7 +14,7 @@
  *               nu > 1/3, area springs (spall's own construction, not the
  *               paper's alpha-beta-gamma): k = 2 E t / (sqrt3 (1 + nu)),
  *               k_area = sqrt3 r0^2 E t (3 nu - 1) / (8 (1 - nu^2))
- *   triple honeycomb (alpha-beta-gamma, seed 000 Fig. 3d), nu in [1/3, 1):
+ *   triple honeycomb (alpha-beta-gamma, [Wang2010] Fig. 3d), nu in [1/3, 1):
  *               families alpha <= beta = gamma with kappa t = (a+b+g)/(2 sqrt3),
  *               mu t = 3 sqrt3 / (4 (1/a + 1/b + 1/g))  (lattice_honeycomb.c)
  *   square      k1 = 3 E t / 4 (axes), k2 = 3 E t / 8 (diagonals), nu = 1/3
@@ -59,9 +59,9 @@ struct lattice_calib {
                                     family f joins the two sublattices other than f) */
     double site_volume;        /**< volume per particle [m^3] */
     double mass;               /**< rho * site_volume [kg] */
-    double dt;                 /**< stable time step of a bulk site [s] (seed 000 Eq. 25) */
-    double paper_S0;           /**< seed 000 Eq. 16, 2 E r0 / (3 (1 - nu)) [N/m] */
-    double paper_S_phi;        /**< seed 000 Eq. 18, sqrt3 (1-3nu) E r0^2 / (18 (1-nu^2)) [N] */
+    double dt;                 /**< stable time step of a bulk site [s] ([Wang2010] Eq. 25) */
+    double paper_S0;           /**< [Wang2010] Eq. 16, 2 E r0 / (3 (1 - nu)) [N/m] */
+    double paper_S_phi;        /**< [Wang2010] Eq. 18, sqrt3 (1-3nu) E r0^2 / (18 (1-nu^2)) [N] */
 };
 
 /** Patch-test result: moduli from uniform strain states. */
@@ -82,7 +82,7 @@ int lattice_calibrate(struct lattice_calib *c, struct spall_error *err);
 
 /** Patch test: fill a block, impose uniform strains of size @p strain, call
  *  the lattice model's compute_forces and read the virial stress of the
- *  interior particles.  @p use_paper_constants: use seed 000 Eqs. 16/18
+ *  interior particles.  @p use_paper_constants: use [Wang2010] Eqs. 16/18
  *  (scaled to the thickness t, k_phi = S_phi r0) instead of the calibrated
  *  constants (triangular lattice only).  Returns E and nu measured (see
  *  struct lattice_patch_result for which). */

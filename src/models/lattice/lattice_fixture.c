@@ -6,7 +6,7 @@
  *        Eq. 17) act besides the axial springs; unbreakable at the test's
  *        strains (~1e-3).
  */
-#include "models/model.h"
+#include "core/model.h"
 
 const struct model_fixture lattice_fixtures[] = {
     {.label = "lattice-triangular-angular",

@@ -1,6 +1,6 @@
 /**
  * @file lattice_forces.c
- * @brief Force loops of the lattice model (seed 000 Eqs. 1, 15, 17).
+ * @brief Force loops of the lattice model ([Wang2010] Eqs. 1, 15, 17).
  *
  * Race-free gather: every bond i-j is stored in both rows (half-bonds), and
  * each particle sums its own row, so each bond is evaluated twice and no two

@@ -3,7 +3,7 @@
  * @brief Triple honeycomb (alpha-beta-gamma) lattice: calibration, bond
  *        families and the sublattice relaxation of the patch test.
  *
- * Geometry (seed 000 Fig. 3d, Ostoja-Starzewski 2002 sec. 2): colour the
+ * Geometry ([Wang2010] Fig. 3d, Ostoja-Starzewski 2002 sec. 2): colour the
  * sites of a triangular lattice (spacing r0) with the three sublattices A, B,
  * C of spacing sqrt3 r0 (lattice_sublattice).  The bonds A-B with their sites
  * form a honeycomb lattice, and so do B-C and C-A; the three honeycombs
@@ -36,7 +36,7 @@
  *    the three families on a sublattice cancel), as for the triangular
  *    lattice.  mu / kappa = 3 h / (2 S) with h = 3 / H the harmonic mean:
  *    between 0 (one family soft: nu -> 1) and 1/2 (equal: nu = 1/3).  So the
- *    model covers nu in [1/3, 1) (seed 000 sec. 2.2) because the unequal
+ *    model covers nu in [1/3, 1) ([Wang2010] sec. 2.2) because the unequal
  *    families let the sublattices shift and soften shear, never bulk.
  * Calibration (plane stress, thickness t): kappa t = E t / (2 (1 - nu)) and
  * mu t = E t / (2 (1 + nu)) fix S and H; the third parameter is free.  We

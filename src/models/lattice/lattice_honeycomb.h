@@ -1,6 +1,6 @@
 /**
  * @file lattice_honeycomb.h
- * @brief Triple honeycomb lattice (alpha-beta-gamma model, seed 000 Fig. 3d;
+ * @brief Triple honeycomb lattice (alpha-beta-gamma model, [Wang2010] Fig. 3d;
  *        Ostoja-Starzewski, Appl. Mech. Rev. 55 (2002) 35): the sites of the
  *        triangular lattice, central springs only, but the nearest-neighbour
  *        bonds split into three honeycomb families of stiffness alpha, beta,

@@ -4,13 +4,13 @@
  *        written as static inline kernels for the force loops.
  *
  * Every law is written in dimensionless form in the stretch s = r / r_rest:
- *   F(r) = k r_rest phi(s)        (positive = repulsive, seed 000 convention)
+ *   F(r) = k r_rest phi(s)        (positive = repulsive, [Wang2010] convention)
  *   U(r) = k r_rest^2 u(s)        (u(1) = 0, U = -int F dr)
  * so a bond needs only its stiffness k = |dF/dr| at rest and its rest length.
  * The force on particle i from partner j (dx = x_j - x_i, r = |dx|) is
  *   f_i = -F dx / r = -(k phi(s) / s) dx  =: c dx.
  *
- *  - linear (seed 000 Eq. 15): phi = 1 - s, u = (s - 1)^2 / 2.
+ *  - linear ([Wang2010] Eq. 15): phi = 1 - s, u = (s - 1)^2 / 2.
  *  - Lennard-Jones type (Eq. 1) F = -G/r^p + H/r^q with F(r0) = 0, i.e.
  *    G = H r0^(p-q), and dF/dr(r0) = -k (stiffness matched to the calibrated
  *    spring so that E is honoured):  H = k r0^(q+1)/(q-p), G = k r0^(p+1)/(q-p),
@@ -159,7 +159,7 @@ LATTICE_INLINE double lattice_energy(const struct lattice_law_params *lp, int cu
     return k * rest * rest * lattice_u(lp, curve, s);
 }
 
-/** Stretch of the LJ force peak (seed 000 Eq. 4: dF/dr(r_d) = 0). */
+/** Stretch of the LJ force peak ([Wang2010] Eq. 4: dF/dr(r_d) = 0). */
 static inline double lattice_lj_peak_stretch(double p, double q)
 {
     return pow(q / p, 1.0 / (q - p));

@@ -15,7 +15,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -129,7 +129,7 @@ int lattice_parse_material(struct model *m, struct sim *sim, int index,
             goto fail;
         if ((sts > 0.0) == (eps > 0.0)) {
             rc = deck_error(err, node, "%s: give exactly one of tensile_strength [Pa] and "
-                            "failure_strain (seed 000 Eq. 26)", what);
+                            "failure_strain ([Wang2010] Eq. 26)", what);
             goto fail;
         }
         mt.eps_t = eps > 0.0 ? eps : sts / mt.E;
@@ -144,7 +144,7 @@ int lattice_parse_material(struct model *m, struct sim *sim, int index,
             goto fail;
         if (!(pq[0] >= 1.0) || !(pq[1] > pq[0])) {
             rc = deck_error_key(err, node, "exponents", "exponents [%g, %g]; expected [p, q] "
-                                "with q > p >= 1 (seed 000 Eq. 1)", pq[0], pq[1]);
+                                "with q > p >= 1 ([Wang2010] Eq. 1)", pq[0], pq[1]);
             goto fail;
         }
         mt.lj_p = pq[0];

@@ -1,6 +1,6 @@
 /**
  * @file lattice_model.c
- * @brief Hybrid lattice particle model (HLPM, seed 000): quasi-particles on a
+ * @brief Hybrid lattice particle model (HLPM, [Wang2010]): quasi-particles on a
  *        lattice joined by breakable axial springs (Eqs. 1, 15) and, on the
  *        triangular lattice, angular springs (alpha-beta model, Eq. 17).
  *
@@ -12,7 +12,7 @@
  *           (softening: bilinear cohesive law with per-bond damage,
  *           lattice_softening.h; material keys tensile_strength | onset_strain
  *           and fracture_energy | failure_strain)
- *           axial law (default linear; seed 000 Eq. 15, Eq. 1, "polynomial")
+ *           axial law (default linear; [Wang2010] Eq. 15, Eq. 1, "polynomial")
  *     layers: 1 | 2
  *           axial neighbour shells (seed Fig. 3a/3b).  Default: 1 for chain,
  *           triangular and fcc; 2 for square and sc, which need their diagonals
@@ -79,7 +79,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -451,7 +451,7 @@ static void field_fracture_density(const void *ctx, size_t n, double *out)
         size_t nb = 0, len = bl->offset[i + 1] - bl->offset[i];
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
             nb += (bl->state[s] & BOND_BROKEN) != 0;
-        out[i] = len ? (double)nb / (double)len : 0.0; /* seed 000 Eq. 27 */
+        out[i] = len ? (double)nb / (double)len : 0.0; /* [Wang2010] Eq. 27 */
     }
 }
 
@@ -494,7 +494,7 @@ static int lattice_forces(struct model *m, struct sim *sim, struct spall_error *
     return lattice_compute_forces(m, sim, err);
 }
 
-/** Stable dt: see lattice_calib.c for the bound (seed 000 Eq. 25). */
+/** Stable dt: see lattice_calib.c for the bound ([Wang2010] Eq. 25). */
 static double lattice_stable_dt(const struct model *m, const struct sim *sim)
 {
     const struct particles *p = sim->p;
@@ -621,7 +621,7 @@ static void lattice_describe(const struct model *m, const struct sim *sim, char 
                 p, q, G, H, sd * r0, sd - 1.0, Fd, Fd / (r0 * r0), mt->E * Fd / (k1 * r0));
         }
     }
-    PUT("  stable dt = %g s (sqrt2 / max Omega, seed 000 Eq. 25)\n", lattice_stable_dt(m, sim));
+    PUT("  stable dt = %g s (sqrt2 / max Omega, [Wang2010] Eq. 25)\n", lattice_stable_dt(m, sim));
 #undef PUT
 }
 

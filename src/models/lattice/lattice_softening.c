@@ -59,7 +59,7 @@ int lattice_soft_final_strain(const struct lattice_calib *c, double e0, double g
 int lattice_soft_parse(const struct deck_node *node, const char *what, double eps,
                        struct lattice_material *mt, struct spall_error *err)
 {
-    /* onset e0 = sigma_TS / E (seed 000 Eq. 26) or given; full separation
+    /* onset e0 = sigma_TS / E ([Wang2010] Eq. 26) or given; full separation
      * ef given (eps, already read as failure_strain) or from the fracture
      * energy (converted in init, where the spring constants are known) */
     double sts = 0.0, e0 = 0.0, gf = 0.0;
@@ -70,7 +70,7 @@ int lattice_soft_parse(const struct deck_node *node, const char *what, double ep
         return rc;
     if ((sts > 0.0) == (e0 > 0.0))
         return deck_error(err, node, "%s: law softening: give exactly one of tensile_strength "
-                          "[Pa] and onset_strain (seed 000 Eq. 26)", what);
+                          "[Pa] and onset_strain ([Wang2010] Eq. 26)", what);
     if ((gf > 0.0) == (eps > 0.0))
         return deck_error(err, node, "%s: law softening: give exactly one of fracture_energy "
                           "[J/m^2] and failure_strain (strain of full separation)", what);

@@ -7,7 +7,7 @@
  *   sigma_hat = e                               0 <= e <= e0   (elastic)
  *   sigma_hat = e0 (ef - e) / (ef - e0)         e0 < e < ef    (softening)
  *   sigma_hat = 0                               e >= ef        (broken)
- * with e0 = sigma_TS / E (seed 000 Eq. 26, the brittle law's eps_max) and ef
+ * with e0 = sigma_TS / E ([Wang2010] Eq. 26, the brittle law's eps_max) and ef
  * the strain of full separation.  The history variable kappa = the largest
  * tensile strain reached beyond e0; damage d(kappa) = 1 - sigma_hat(kappa) /
  * kappa, and below kappa the bond unloads and reloads along the secant

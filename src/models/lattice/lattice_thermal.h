@@ -1,6 +1,6 @@
 /**
  * @file lattice_thermal.h
- * @brief Thermal lattice (seed 000 sec. 2.2, Eqs. 19-21): particle
+ * @brief Thermal lattice ([Wang2010] sec. 2.2, Eqs. 19-21): particle
  *        temperatures, conduction along intact bonds, volumetric heating per
  *        material (microwave power density), thermal expansion of the bonds'
  *        rest lengths and bond removal above a melting temperature.

@@ -1,6 +1,6 @@
 /**
  * @file macro_calib.c
- * @brief Macro-particle calibration (seed 001 Eqs. 10, 11, 13-15).
+ * @brief Macro-particle calibration ([Saitoh] Eqs. 10, 11, 13-15).
  */
 #include "core/mathconst.h"
 #include "models/macroparticle/macro_calib.h"

@@ -1,10 +1,10 @@
 /**
  * @file macro_calib.h
- * @brief Calibration of the macro-particle model (seed 001, digest
+ * @brief Calibration of the macro-particle model ([Saitoh], digest
  *        spec/macroparticle.md): atoms per particle, particle energy, Mie well
  *        depth, particle mass and the predicted Young's modulus.
  *
- * Equations (seed 001):
+ * Equations ([Saitoh]):
  *   N_atom = (rho pi r0^3 / 6) / (m 0.74)            Eq. 11
  *   P_atom = N_atom e0                               Eq. 10
  *   D      = P_atom / 6     (12 bonds, 6 per particle, Eq. 13)
@@ -32,12 +32,12 @@ struct spall_error;
 /** Atomic mass unit [kg] and electron-volt [J] (CODATA 2018). */
 #define MACRO_AMU 1.66053906660e-27
 #define MACRO_EV 1.602176634e-19
-/** FCC packing fraction used by seed 001 Eq. 11. */
+/** FCC packing fraction used by [Saitoh] Eq. 11. */
 #define MACRO_PACKING 0.74
 
 /** How the well depth D is set. */
 enum macro_calibration {
-    MACRO_CAL_EQ15 = 0,  /**< seed 001: D = P_atom / 6 (Eq. 13) */
+    MACRO_CAL_EQ15 = 0,  /**< [Saitoh]: D = P_atom / 6 (Eq. 13) */
     MACRO_CAL_LATTICE    /**< D so that the lattice's E_[100] equals the target */
 };
 

@@ -5,7 +5,7 @@
  *        no Langevin bath (a free elastic body: random forces would break the
  *        energy and frame checks by design).
  */
-#include "models/model.h"
+#include "core/model.h"
 
 const struct model_fixture macro_fixtures[] = {
     {.label = "macroparticle-fcc",

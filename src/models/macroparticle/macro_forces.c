@@ -1,6 +1,6 @@
 /**
  * @file macro_forces.c
- * @brief Macro-particle forces: Mie pairs over a cut-off (seed 001 Eqs. 2-5,
+ * @brief Macro-particle forces: Mie pairs over a cut-off ([Saitoh] Eqs. 2-5,
  *        13, written in the consistent form of spec/macroparticle.md), pair
  *        plasticity (Eq. 16), Langevin dissipation and random forces
  *        (Eqs. 6-9, 17-22), and the Verlet neighbour list with a skin.

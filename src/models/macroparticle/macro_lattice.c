@@ -4,7 +4,7 @@
  *        direct summation over every site inside the cut-off (Cauchy-Born),
  *        and the "lattice" calibration that sets the well depth from them.
  *
- * Why: seed 001 Eq. 14 (E = phi''(r0) / 2 r0) treats one pair as a chain
+ * Why: [Saitoh] Eq. 14 (E = phi''(r0) / 2 r0) treats one pair as a chain
  * link; the FCC crystal of the same pairs is stiffer.  With nearest pairs
  * only, C11 = 2 C12 = 2 C44 = sqrt2 phi''/r0 and E_[100] = (2 sqrt2/3)
  * phi''/r0 = 1.886 x Eq. 15, so a rod of the seed's calibration converges to

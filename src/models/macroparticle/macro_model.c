@@ -1,6 +1,6 @@
 /**
  * @file macro_model.c
- * @brief Macro-particle model (seed 001 "MPM", spec/macroparticle.md): FCC
+ * @brief Macro-particle model ([Saitoh] "MPM", spec/macroparticle.md): FCC
  *        macro-particles each standing for N_atom atoms, joined by a Mie pair
  *        potential whose depth comes from the cohesive energy (Eqs. 10-15),
  *        with optional Langevin forces (Eqs. 6-9, 17-22) and pair plasticity
@@ -36,7 +36,7 @@
  *       density: [kg/m^3]
  *       atomic_mass_u: atomic mass [u] (> 0, required)
  *       cohesive_energy_ev: cohesive energy per atom [eV] (> 0, required)
- *       exponents: [p, q], q > p > 0 (required; seed 001 uses [4, 9] for Al)
+ *       exponents: [p, q], q > p > 0 (required; [Saitoh] uses [4, 9] for Al)
  *       debye_temperature: [K] (> 0; required only for Langevin defaults)
  *       yield_strain: pair elastic stretch at yield / r0 (> 0; optional,
  *                     turns plasticity on)
@@ -67,7 +67,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <stdio.h>
@@ -144,7 +144,7 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
         }
         if (m->temperature > 0.0 && damp == 0) {
             rc = deck_error_key(err, params, "temperature", "temperature %g K needs damping: "
-                                "absolute or pairwise (fluctuation-dissipation, seed 001 "
+                                "absolute or pairwise (fluctuation-dissipation, [Saitoh] "
                                 "Eq. 9)", m->temperature);
             macro_destroy(&m);
             return rc;
@@ -269,7 +269,7 @@ static int macro_init(struct model *m, struct sim *sim, struct spall_error *err)
     struct particles *p = sim->p;
     if (sim->dim != 3 || sim->lattice.kind != LATTICE_FCC)
         return spall_error_set(err, SPALL_ERR_INPUT, "macro-particle model: needs a 3D fcc "
-                               "lattice (seed 001 packs macro-particles FCC), got %s in %dD",
+                               "lattice ([Saitoh] packs macro-particles FCC), got %s in %dD",
                                lattice_kind_name(sim->lattice.kind), sim->dim);
     if (sim->n_materials != 1 || m->n_mat < 1 || !m->mat[0].parsed)
         return spall_error_set(err, SPALL_ERR_INPUT,
@@ -512,7 +512,7 @@ static void macro_describe(const struct model *m, const struct sim *sim, char *b
     const struct macro_calib *c = &m->cal;
     (void)sim;
     snprintf(buf, len,
-             "macro-particle model (seed 001): fcc r0 = %g m, p = %g, q = %g; N_atom = %.6g "
+             "macro-particle model ([Saitoh]): fcc r0 = %g m, p = %g, q = %g; N_atom = %.6g "
              "(Eq. 11), P_atom = %.6g J (Eq. 10), D = %.6g J, phi''(r0) = %.6g N/m, "
              "particle mass %.6g kg, E (Eq. 15) = %.6g Pa; calibration %s: D = %.6g x P_atom/6, "
              "lattice E_[100] = %.6g Pa, nu_[100] = %.4g, residual pressure %.3g Pa; cut-off %g r0 "
@@ -537,7 +537,7 @@ static size_t macro_interactions(const struct model *m, const struct sim *sim)
 extern const struct model_fixture macro_fixtures[]; /* macro_fixture.c */
 const struct model_ops macroparticle_model_ops = {
     .name = "macroparticle",
-    .summary = "macro-particle model (seed 001): FCC particles, Mie pairs from cohesive energy, "
+    .summary = "macro-particle model ([Saitoh]): FCC particles, Mie pairs from cohesive energy, "
                "Langevin forces, pair plasticity",
     .create = macro_create,
     .parse_material = macro_parse_material,

@@ -4,7 +4,7 @@
  *        parameter, the slip vector and the normal of the plane a particle
  *        slipped on, and a count of those normals by crystal plane family.
  *
- * Why: seed 001 section 3.2 reports that a compressed rod collapses by slip
+ * Why: [Saitoh] section 3.2 reports that a compressed rod collapses by slip
  * on FCC (111) planes; these fields say where and on which planes particles
  * slipped (docs/validation.md, macro-rod-large).
  *

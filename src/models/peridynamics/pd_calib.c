@@ -1,7 +1,7 @@
 /**
  * @file pd_calib.c
  * @brief Peridynamic constants: PMB micromodulus and critical stretch
- *        (digest table of seed 003), the PDLM lattice constants, the virial
+ *        (digest table of [PDLM2019]), the PDLM lattice constants, the virial
  *        stress of a particle, and the orthotropic-lamina calibration by a
  *        patch test through the model's own bond coefficients.
  *
@@ -263,7 +263,7 @@ int pd_calibrate_ortho(struct model *m, struct sim *sim, int k, double achieved[
     if ((rc = pd_build_coefficients(m, sim, err)))
         return rc;
     pd_patch_stiffness(m, sim, i, mt->fiber_angle, B);
-    /* targets: plane-stress reduced stiffnesses Q11, Q22 (seed 003: c_f, c_m from
+    /* targets: plane-stress reduced stiffnesses Q11, Q22 ([PDLM2019]: c_f, c_m from
      * the energies of the uniaxial strain states eps11 and eps22) */
     double nu21 = mt->nu12 * mt->E2 / mt->E1, den = 1.0 - mt->nu12 * nu21;
     double Q11 = mt->E1 / den, Q22 = mt->E2 / den;

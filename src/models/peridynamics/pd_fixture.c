@@ -6,7 +6,7 @@
  *        factors, is then part of what Newton's third law checks);
  *        unbreakable at the test's strains (~1e-3).
  */
-#include "models/model.h"
+#include "core/model.h"
 
 const struct model_fixture pd_fixtures[] = {
     {.label = "peridynamics-pmb",

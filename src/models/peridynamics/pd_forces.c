@@ -5,7 +5,7 @@
  *        coefficients (partial volume, surface correction) and the adaptive
  *        dynamic relaxation damping.
  *
- * Force on particle i (seed 003 digest; Silling & Askari 2005 Eq. 2):
+ * Force on particle i ([PDLM2019] digest; Silling & Askari 2005 Eq. 2):
  *   F_i = V_i sum_j c_ij s_ij mu_ij beta_ij G_ij V_j e_ij,  s = (l - xi)/xi,
  * stored per half-bond as coef = c V_i V_j beta G / xi so that
  * F = coef (l - xi) e.  Each half-bond is decided (s > s0 -> broken, forever)

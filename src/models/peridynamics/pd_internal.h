@@ -24,12 +24,12 @@ struct spall_error;
 /** Variants (deck `model.variant`). */
 enum pd_variant {
     PD_PMB, /**< continuum PMB with a horizon delta = m dx (Silling & Askari 2005) */
-    PD_PDLM /**< lattice variant of seed 003: triangular lattice, nearest neighbours */
+    PD_PDLM /**< lattice variant of [PDLM2019]: triangular lattice, nearest neighbours */
 };
 
 /** How fiber bonds are chosen in an orthotropic lamina. */
 enum pd_fiber_model {
-    PD_FIBER_LATTICE, /**< bonds parallel to the fiber (rotated lattice, seed 003) */
+    PD_FIBER_LATTICE, /**< bonds parallel to the fiber (rotated lattice, [PDLM2019]) */
     PD_FIBER_ANGULAR  /**< c(phi) = c_m + c_f cos^2n(phi): arbitrary fiber angles */
 };
 

@@ -1,7 +1,7 @@
 /**
  * @file pd_model.c
  * @brief Bond-based peridynamics (PMB, Silling & Askari 2005) and the
- *        peridynamic lattice model PDLM of seed 003, with orthotropic
+ *        peridynamic lattice model PDLM of [PDLM2019], with orthotropic
  *        laminae (fiber and matrix bonds): life cycle, deck, fields.
  *
  * Deck keys (copied to docs/decks.md, peridynamics section):
@@ -11,7 +11,7 @@
  *     variant: pmb | pdlm       pmb (default): family = every site within the
  *                               horizon delta = horizon_factor * spacing;
  *                               pdlm: triangular lattice, the 6 nearest
- *                               neighbours only (seed 003)
+ *                               neighbours only ([PDLM2019])
  *     horizon_factor: m > 0     pmb only, default 3.015
  *     plane: plane_stress | plane_strain   2D only (default plane_stress)
  *     partial_volume: bool      pmb: beta_ij for sites cut by the horizon
@@ -31,7 +31,7 @@
  *                               (Kilic & Madenci 2010) on the real masses
  *     fiber_model: lattice | angular   orthotropic laminae: fiber bonds are
  *                               the bonds parallel to fiber_angle (lattice,
- *                               rotate the lattice: seed 003), or every bond
+ *                               rotate the lattice: [PDLM2019]), or every bond
  *                               with c = c_m + c_f cos^2n(phi) (angular)
  *     fiber_power: n >= 1       angular model exponent (default 32)
  *     mixed_mode: bk | off      laminae: matrix bonds break at s0_m sqrt(G_c /
@@ -67,7 +67,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>

@@ -4,7 +4,7 @@
  *        R_i replaced by sum_j V_j R_j W_ij / sum_j V_j W_ij over i and its
  *        neighbours before the force pass.
  *
- * Why: the Monaghan-Gray artificial stress (seed 004 Eqs. 2.23-2.26) takes
+ * Why: the Monaghan-Gray artificial stress ([Meng2021] Eqs. 2.23-2.26) takes
  * R_i from particle i's own stress.  Monaghan's stability analysis treats
  * R as the constant stress of a pre-stressed state; but R_i, recomputed
  * every step, also follows the particle-scale stress of the near-zero-energy
@@ -14,7 +14,7 @@
  * narrow f^n grad W kernel.  Where S_in nearly vanishes and S_f does not,
  * the product is negative: exponential growth at a rate independent of the
  * load (R is homogeneous of degree one in the stress) and of the time step.
- * Measured on the seed 004 cantilever (docs/validation.md, sph-beam): with
+ * Measured on the [Meng2021] cantilever (docs/validation.md, sph-beam): with
  * AS 0.5 and no AV every kernel grows from t = 0 (identical growth at 17.5 N
  * and 1.75 kN, and at dt_factor 0.5 and 0.2), none does without AS, and
  * neither the quintic nor the Wendland does with R smoothed here (the
@@ -25,7 +25,7 @@
  *
  * Shepard normalisation: a uniform R stays exact at surfaces.  Gather over
  * the full neighbour list of i in list order: bitwise independent of the
- * thread count.  Not in seed 004 (an option, default off).
+ * thread count.  Not in [Meng2021] (an option, default off).
  */
 #include "models/sph/sph_internal.h"
 #include "models/sph/sph_pairs.h"

@@ -222,7 +222,7 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
 }
 
 /* Balsara's switch (Balsara, J. Comput. Phys. 121 (1995) 357, cited from
- * memory; seed 004 Tab. 2.2 "BAL"): f = |div v| / (|div v| + |curl v| +
+ * memory; [Meng2021] Tab. 2.2 "BAL"): f = |div v| / (|div v| + |curl v| +
  * 1e-4 c / h), from the corrected velocity gradient of pass_gradient_axi
  * (L[0] = dv_r/dr, L[1] = dv_r/dz, L[3] = dv_z/dr, L[4] = dv_z/dz, L[8] =
  * v_r / r).  f -> 1 in compression, -> 0 in shear, so the AV stays on the

@@ -10,7 +10,7 @@
  *        undamped elastic motion) the energy error ratio dt : dt/2 is 5.65,
  *        not 4.
  */
-#include "models/model.h"
+#include "core/model.h"
 
 #define SPH_FIXTURE_MATERIAL \
     "materials:\n  m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"

@@ -1,6 +1,6 @@
 /**
  * @file sph_internal.h
- * @brief State of the SPH model (seed 004 chapter 3) shared by its files:
+ * @brief State of the SPH model ([Meng2021] chapter 3) shared by its files:
  *        sph_model.c (life cycle, deck), sph_rates.c (pair loops),
  *        sph_material.c (EOS, Jaumann rate, yield, failure),
  *        sph_tlsph.c (total-Lagrangian variant).  Not a public interface.
@@ -20,7 +20,7 @@ struct particles;
 struct sim;
 struct spall_error;
 
-/** 2D stress state (seed 004 sec. 3.3; the beam is plane stress). */
+/** 2D stress state ([Meng2021] sec. 3.3; the beam is plane stress). */
 enum sph_plane { SPH_PLANE_STRESS, SPH_PLANE_STRAIN, SPH_PLANE_AXISYMMETRIC /* sph_axisym.c */ };
 enum sph_density { SPH_DENSITY_CONTINUITY, SPH_DENSITY_SUMMATION };
 /** Coupling of bodies (sph_interface.c): kernel sums across them (none), or
@@ -271,7 +271,7 @@ static inline double sph_carried_pressure(const struct sph_material *mt, bool fa
 {
     return failed && P < 0.0 && !mt->failed_tension ? 0.0 : P;
 }
-/** Balsara's switch (seed 004 Tab. 2.2 "BAL"): f = |div v| / (|div v| +
+/** Balsara's switch ([Meng2021] Tab. 2.2 "BAL"): f = |div v| / (|div v| +
  *  |curl v| + 1e-4 c / h), -> 1 in compression, -> 0 in shear; the AV of a
  *  pair is scaled by (f_i + f_j) / 2.  @p div, @p curl are the magnitudes
  *  from the caller's velocity gradient (axisymmetric or Cartesian). */

@@ -1,6 +1,6 @@
 /**
  * @file sph_kernels.h
- * @brief The six SPH smoothing kernels of seed 004 Fig. 3.1, W = alpha_d K(q),
+ * @brief The six SPH smoothing kernels of [Meng2021] Fig. 3.1, W = alpha_d K(q),
  *        q = r/h, with their radial derivatives and normalisation constants.
  *
  * alpha_d (in units of 1/h^d) makes the integral of W over R^d equal one:

@@ -3,7 +3,7 @@
  * @brief Staggered (kick-drift-kick) leapfrog for the SPH state:
  *        model.time_integration: leapfrog.
  *
- * Why: the predictor-corrector of seed 004 Eqs. 3.35-3.37 as run by the
+ * Why: the predictor-corrector of [Meng2021] Eqs. 3.35-3.37 as run by the
  * engine (positions by leapfrog; rho, e, S by the trapezoid of the rate of
  * step n and the rate at the predicted state; forces of step n+1 from the
  * PREDICTED stress S_n + dt dS_n) is unstable for an undamped elastic

@@ -1,6 +1,6 @@
 /**
  * @file sph_material.c
- * @brief Constitutive models of the SPH solid (seed 004 sec. 3.3):
+ * @brief Constitutive models of the SPH solid ([Meng2021] sec. 3.3):
  *        linear EOS, Mie-Grueneisen (Eqs. 3.24-3.27) and its C_k form
  *        (Eqs. 4.13-4.15), Jaumann-rate deviatoric stress (Eqs. 3.28-3.30),
  *        elastic / perfectly plastic / A + B ep^n (Eq. 4.12) / Johnson-Cook
@@ -189,7 +189,7 @@ void sph_plastic_return(struct model *m, size_t i, double dt, bool commit)
         epdot = sqrt(2.0 / 3.0 * dd);
     }
     /* with a rate law the failure stress scales like the yield stress (the
-     * gels "break at maximum stress ~ yield", seed 004 sec. 4.3.2) */
+     * gels "break at maximum stress ~ yield", [Meng2021] sec. 4.3.2) */
     if (commit && mt->failure == SPH_FAIL_STRESS &&
         seq >= mt->fail_value * sph_rate_factor(mt, epdot)) {
         m->failed[i] = 1;

@@ -1,6 +1,6 @@
 /**
  * @file sph_model.c
- * @brief SPH for elastic-plastic solids (seed 004 chapter 3): deck, life
+ * @brief SPH for elastic-plastic solids ([Meng2021] chapter 3): deck, life
  *        cycle, predictor-corrector state update, diagnostics.
  *
  * Deck keys (copied to docs/decks.md):
@@ -47,10 +47,8 @@
  *     clamp: {group: g, point: [...], normal: [...]}
  *           mirrored clamp (sph_clamp.c): the fixed group g behind the plane
  *           takes -v and the stress of its mirror images during force calls
- *     wall: {point: [...], normal: [...], stiffness: 1}
- *           rigid frictionless half-space; normal points from the wall into
- *           the body.  Penalty k = stiffness m (c0/dx)^2 on particles closer
- *           than dx/2.
+ *     wall: {point: [...], normal: [...], stiffness: 1}  rigid frictionless half-space, normal
+ *           into the body; penalty k = stiffness m (c0/dx)^2 closer than dx/2
  *     interface: none | bodies | materials    (sph_interface.c; default none) kernel sums
  *                                             inside each body (material) only, bodies
  *                                             (materials) touch through a frictionless
@@ -77,7 +75,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
-#include "models/model.h"
+#include "core/model.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -589,7 +587,7 @@ static double sph_stable_dt(const struct model *m, const struct sim *sim)
     return best;
 }
 
-/* seed 004 Eqs. 3.35-3.38: predictor-corrector (or the leapfrog) and
+/* [Meng2021] Eqs. 3.35-3.38: predictor-corrector (or the leapfrog) and
  * adaptive dt with c_s = 0.3 (run.dt_factor, parsed after the model, wins) */
 static void sph_time_scheme(const struct model *m, struct time_scheme *ts)
 {

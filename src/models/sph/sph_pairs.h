@@ -4,7 +4,7 @@
  *        pass repeats (summation density, CSPM gradient, forces, smoothed
  *        artificial stress, the three axisymmetric passes): separation
  *        x_ij and r^2, mean smoothing length h_ij = (h_i + h_j)/2, the
- *        support test r < qmax h_ij and the kernel W, F (seed 004
+ *        support test r < qmax h_ij and the kernel W, F ([Meng2021]
  *        Eqs. 3.8-3.9; grad_i W = F x_ij).
  *
  * One definition instead of eight copies, so that no pass can disagree

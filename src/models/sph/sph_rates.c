@@ -1,6 +1,6 @@
 /**
  * @file sph_rates.c
- * @brief The SPH pair loops (seed 004 Eqs. 3.10-3.21, 2.21-2.27): neighbour
+ * @brief The SPH pair loops ([Meng2021] Eqs. 3.10-3.21, 2.21-2.27): neighbour
  *        list with a skin, CSPM matrix, summation density, velocity gradient,
  *        continuity, momentum and energy with Monaghan artificial viscosity,
  *        Monaghan-Gray artificial stress and XSPH, and the rigid wall.

@@ -1,6 +1,6 @@
 /**
  * @file sph_tlsph.c
- * @brief Total-Lagrangian SPH (the remedy named in seed 004's conclusions
+ * @brief Total-Lagrangian SPH (the remedy named in [Meng2021]'s conclusions
  *        for the tensile instability): kernel and neighbours on the
  *        reference configuration, corrected reference gradients, the
  *        deformation gradient, first Piola-Kirchhoff stress forces and a
@@ -251,7 +251,7 @@ TL_INLINE int tl_stage_deform(struct model *m, size_t i, double lfdt, const int 
     double *si = t->self + i * TL_SELF;
     si[TL_PW] = pw;
     if (m->opt.av_balsara) {
-        /* Balsara's switch (seed 004 Tab. 2.2 "BAL", as sph_axisym.c):
+        /* Balsara's switch ([Meng2021] Tab. 2.2 "BAL", as sph_axisym.c):
          * f = |div v| / (|div v| + |curl v| + 1e-4 c/h) from this L; the
          * AV of pair ij is scaled by (f_i + f_j)/2 in stage 2 */
         const double cx = m->L[7][i] - m->L[5][i], cy = m->L[2][i] - m->L[6][i];

@@ -158,9 +158,4 @@ struct model_ops {
     const struct model_fixture *fixtures;
 };
 
-/** Find a model by name; NULL if unknown. */
-const struct model_ops *model_find(const char *name);
-/** NULL-terminated list of registered model names (for messages). */
-const char *const *model_names(void);
-
 #endif
