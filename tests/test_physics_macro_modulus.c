@@ -103,25 +103,35 @@ static size_t strained_stress(struct sim *s, const double *x0, double eps, doubl
     return m;
 }
 
-static void test_fcc_modulus_lattice_sum(void **state)
+/* The FCC aluminium block of the tests, with @p extra material keys (""
+ * or ", yield_strain: ..."); its rest positions into *x0 (owned). */
+static struct sim *fcc_block(const char *extra, double **x0)
 {
-    (void)state;
     char yaml[1024];
     snprintf(yaml, sizeof yaml,
              "model: {type: macroparticle}\n"
              "materials:\n"
-             "  al: {density: %g, atomic_mass_u: %g, cohesive_energy_ev: %g, exponents: [%g, %g]}\n"
+             "  al: {density: %g, atomic_mass_u: %g, cohesive_energy_ev: %g, exponents: [%g, %g]%s}\n"
              "lattice: {type: fcc, spacing: %g}\n"
              "body: {geometry: {box: {min: [0, 0, 0], max: [%g, %g, %g]}}, material: al}\n"
              "run: {steps: 1}\n",
-             RHO, MASS_U, E0_EV, P_EXP, Q_EXP, R0, BOX, BOX, BOX);
+             RHO, MASS_U, E0_EV, P_EXP, Q_EXP, extra, R0, BOX, BOX, BOX);
     struct sim *s = test_build_ok(yaml);
     const size_t n = s->p->n_owned;
-    double *x0 = malloc(3 * n * sizeof *x0);
-    assert_non_null(x0);
+    *x0 = malloc(3 * n * sizeof **x0);
+    assert_non_null(*x0);
     for (size_t i = 0; i < n; i++)
         for (int d = 0; d < 3; d++)
-            x0[3 * i + d] = s->p->x[d][i];
+            (*x0)[3 * i + d] = s->p->x[d][i];
+    return s;
+}
+
+static void test_fcc_modulus_lattice_sum(void **state)
+{
+    (void)state;
+    double *x0 = NULL;
+    struct sim *s = fcc_block("", &x0);
+    const size_t n = s->p->n_owned;
     const double eps = 1.0e-5;
     double sp[2], sm[2];
     const size_t m = strained_stress(s, x0, eps, sp);
@@ -164,23 +174,10 @@ static void test_fcc_plastic_tangent(void **state)
 {
     (void)state;
     const double t = 0.1, yield = 1.0e-4;
-    char yaml[1024];
-    snprintf(yaml, sizeof yaml,
-             "model: {type: macroparticle}\n"
-             "materials:\n"
-             "  al: {density: %g, atomic_mass_u: %g, cohesive_energy_ev: %g, exponents: [%g, %g],\n"
-             "       yield_strain: %g, hardening: %g}\n"
-             "lattice: {type: fcc, spacing: %g}\n"
-             "body: {geometry: {box: {min: [0, 0, 0], max: [%g, %g, %g]}}, material: al}\n"
-             "run: {steps: 1}\n",
-             RHO, MASS_U, E0_EV, P_EXP, Q_EXP, yield, t, R0, BOX, BOX, BOX);
-    struct sim *s = test_build_ok(yaml);
-    const size_t n = s->p->n_owned;
-    double *x0 = malloc(3 * n * sizeof *x0);
-    assert_non_null(x0);
-    for (size_t i = 0; i < n; i++)
-        for (int d = 0; d < 3; d++)
-            x0[3 * i + d] = s->p->x[d][i];
+    char extra[96];
+    snprintf(extra, sizeof extra, ", yield_strain: %g, hardening: %g", yield, t);
+    double *x0 = NULL;
+    struct sim *s = fcc_block(extra, &x0);
     /* pairs along (1, +-1, 0) and (1, 0, +-1) stretch by ~eps/2: 5 x yield */
     const double eps = 1.0e-3, delta = 1.0e-6;
     double s0[2], sm[2], sr[2], sp[2];
