@@ -179,39 +179,43 @@ static void test_threads_bitwise(void **state)
     free(x2);
 }
 
+/* The small aluminium block every deck-error case starts from; each case
+ * changes only the model keys or the material keys it is about. */
+static void macro_block_deck(char *buf, size_t cap, const char *model_keys,
+                             const char *material_keys)
+{
+    snprintf(buf, cap,
+             "model: {type: macroparticle%s}\nmaterials:\n  al: {density: 2700, %s}\n"
+             "lattice: {type: fcc, spacing: 1e-3}\n"
+             "geometry:\n  b: {box: {min: [0,0,0], max: [3e-3,3e-3,3e-3]}}\n"
+             "body: {geometry: b, material: al}\nrun: {steps: 1}\n",
+             model_keys, material_keys);
+}
+
 static void test_deck_errors(void **state)
 {
     (void)state;
-    const char *bad[] = {
-        "model: {type: macroparticle}\nmaterials:\n  al: {density: 2700, cohesive_energy_ev: 3.39, "
-        "exponents: [4, 9]}\nlattice: {type: fcc, spacing: 1e-3}\ngeometry:\n  b: {box: {min: "
-        "[0,0,0], max: [3e-3,3e-3,3e-3]}}\nbody: {geometry: b, material: al}\nrun: {steps: 1}\n",
-        "model: {type: macroparticle}\nmaterials:\n  al: {density: 2700, atomic_mass_u: 27, "
-        "cohesive_energy_ev: 3.39, exponents: [9, 4]}\nlattice: {type: fcc, spacing: 1e-3}\n"
-        "geometry:\n  b: {box: {min: [0,0,0], max: [3e-3,3e-3,3e-3]}}\nbody: {geometry: b, "
-        "material: al}\nrun: {steps: 1}\n",
-        "model: {type: macroparticle, temperature: 300}\nmaterials:\n  al: {density: 2700, "
-        "atomic_mass_u: 27, cohesive_energy_ev: 3.39, exponents: [4, 9]}\nlattice: {type: fcc, "
-        "spacing: 1e-3}\ngeometry:\n  b: {box: {min: [0,0,0], max: [3e-3,3e-3,3e-3]}}\nbody: "
-        "{geometry: b, material: al}\nrun: {steps: 1}\n",
-        "model: {type: macroparticle}\nmaterials:\n  al: {density: 2700, "
-        "atomic_mass_u: 27, cohesive_energy_ev: 3.39, exponents: [4, 9], youngs_modulus: 7e10}\n"
-        "lattice: {type: fcc, spacing: 1e-3}\ngeometry:\n  b: {box: {min: [0,0,0], max: "
-        "[3e-3,3e-3,3e-3]}}\nbody: {geometry: b, material: al}\nrun: {steps: 1}\n",
-        "model: {type: macroparticle, calibration: chain}\nmaterials:\n  al: {density: 2700, "
-        "atomic_mass_u: 27, cohesive_energy_ev: 3.39, exponents: [4, 9]}\n"
-        "lattice: {type: fcc, spacing: 1e-3}\ngeometry:\n  b: {box: {min: [0,0,0], max: "
-        "[3e-3,3e-3,3e-3]}}\nbody: {geometry: b, material: al}\nrun: {steps: 1}\n"};
-    const char *want[] = {"atomic_mass_u", "exponents", "damping", "youngs_modulus",
-                          "calibration"};
-    for (int k = 0; k < 5; k++) {
+    static const char ok_material[] = "atomic_mass_u: 27, cohesive_energy_ev: 3.39, exponents: [4, 9]";
+    const struct {
+        const char *model_keys, *material_keys, *want;
+    } bad[] = {
+        {"", "cohesive_energy_ev: 3.39, exponents: [4, 9]", "atomic_mass_u"},
+        {"", "atomic_mass_u: 27, cohesive_energy_ev: 3.39, exponents: [9, 4]", "exponents"},
+        {", temperature: 300", ok_material, "damping"},
+        {"", "atomic_mass_u: 27, cohesive_energy_ev: 3.39, exponents: [4, 9], youngs_modulus: 7e10",
+         "youngs_modulus"},
+        {", calibration: chain", ok_material, "calibration"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        char text[512];
+        macro_block_deck(text, sizeof text, bad[k].model_keys, bad[k].material_keys);
         struct spall_error err = {0};
         struct deck *d = NULL;
         struct sim *s = NULL;
         struct run_output ro;
-        assert_int_equal(deck_load_string(&d, "bad", bad[k], &err), SPALL_OK);
+        assert_int_equal(deck_load_string(&d, "bad", text, &err), SPALL_OK);
         assert_int_not_equal(deck_build_sim(d, &s, &ro, &err), SPALL_OK);
-        assert_non_null(strstr(err.msg, want[k]));
+        assert_non_null(strstr(err.msg, bad[k].want));
         sim_destroy(&s);
         deck_destroy(&d);
     }

@@ -20,7 +20,6 @@
  *    the library never calls setlocale.
  */
 #include "io/deck.h"
-#include "io/deck_internal.h"
 
 #include "spall/error.h"
 

@@ -298,11 +298,9 @@ static int parse_body(struct build_ctx *c, const struct deck_node *root, struct 
 static int parse_regions(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
 {
     static const char *const keys[] = {"geometry", "material", NULL};
-    const struct deck_node *regs = deck_get(root, "regions");
-    if (!regs)
-        return SPALL_OK;
-    int rc = deck_expect_seq(regs, "a list of {geometry, material}", err);
-    if (rc)
+    const struct deck_node *regs = NULL;
+    int rc = deck_list(root, "regions", "a list of {geometry, material}", &regs, err);
+    if (rc || !regs)
         return rc;
     for (size_t k = 0; k < regs->n; k++) {
         const struct deck_node *r = regs->items[k];
@@ -408,11 +406,9 @@ static int group_at_key(struct build_ctx *c, const struct deck_node *map, const 
 static int parse_precracks(struct build_ctx *c, const struct deck_node *root,
                            struct spall_error *err)
 {
-    const struct deck_node *pcs = deck_get(root, "precracks");
-    if (!pcs)
-        return SPALL_OK;
-    int rc = deck_expect_seq(pcs, "a list of pre-cracks", err);
-    if (rc)
+    const struct deck_node *pcs = NULL;
+    int rc = deck_list(root, "precracks", "a list of pre-cracks", &pcs, err);
+    if (rc || !pcs)
         return rc;
     for (size_t k = 0; k < pcs->n; k++) {
         const struct deck_node *n = pcs->items[k];
@@ -508,11 +504,9 @@ static int parse_bcs(struct build_ctx *c, const struct deck_node *root, struct s
     static const char *const kinds[] = {"fixed", "velocity", "force", "traction", NULL};
     static const char *const keys[] = {"group", "type", "components", "value", "area", "function",
                                        NULL};
-    const struct deck_node *bcs = deck_get(root, "boundary_conditions");
-    if (!bcs)
-        return SPALL_OK;
-    int rc = deck_expect_seq(bcs, "a list of boundary conditions", err);
-    if (rc)
+    const struct deck_node *bcs = NULL;
+    int rc = deck_list(root, "boundary_conditions", "a list of boundary conditions", &bcs, err);
+    if (rc || !bcs)
         return rc;
     for (size_t k = 0; k < bcs->n; k++) {
         const struct deck_node *n = bcs->items[k];
@@ -551,11 +545,9 @@ static int parse_initial_velocity(struct build_ctx *c, const struct deck_node *r
                                   struct spall_error *err)
 {
     static const char *const keys[] = {"group", "value", NULL};
-    const struct deck_node *ivs = deck_get(root, "initial_velocity");
-    if (!ivs)
-        return SPALL_OK;
-    int rc = deck_expect_seq(ivs, "a list of {group, value}", err);
-    if (rc)
+    const struct deck_node *ivs = NULL;
+    int rc = deck_list(root, "initial_velocity", "a list of {group, value}", &ivs, err);
+    if (rc || !ivs)
         return rc;
     for (size_t k = 0; k < ivs->n; k++) {
         const struct deck_node *n = ivs->items[k];
@@ -577,11 +569,9 @@ static int parse_initial_velocity(struct build_ctx *c, const struct deck_node *r
 static int parse_probes(struct build_ctx *c, const struct deck_node *root, struct spall_error *err)
 {
     static const char *const keys[] = {"name", "position", NULL};
-    const struct deck_node *ps = deck_get(root, "probes");
-    if (!ps)
-        return SPALL_OK;
-    int rc = deck_expect_seq(ps, "a list of {name, position}", err);
-    if (rc)
+    const struct deck_node *ps = NULL;
+    int rc = deck_list(root, "probes", "a list of {name, position}", &ps, err);
+    if (rc || !ps)
         return rc;
     for (size_t k = 0; k < ps->n; k++) {
         const struct deck_node *n = ps->items[k];
@@ -664,10 +654,10 @@ static int parse_output(struct build_ctx *c, const struct deck_node *root, struc
         (rc = deck_long(o, "field_every", false, 0, 2000000000L, &ro->field_every, err)) ||
         (rc = deck_long(o, "history_every", false, 1, 2000000000L, &ro->history_every, err)))
         return rc;
-    const struct deck_node *f = deck_get(o, "fields");
+    const struct deck_node *f = NULL;
+    if ((rc = deck_list(o, "fields", "a list of field names", &f, err)))
+        return rc;
     if (f) {
-        if ((rc = deck_expect_seq(f, "a list of field names", err)))
-            return rc;
         if (f->n > RUN_MAX_FIELDS)
             return deck_error(err, f, "at most %d output fields", RUN_MAX_FIELDS);
         for (size_t k = 0; k < f->n; k++) {

@@ -148,11 +148,9 @@ static int parse_one(struct sim *s, const struct deck_node *n, struct spall_erro
 
 int deck_parse_impactors(struct sim *s, const struct deck_node *root, struct spall_error *err)
 {
-    const struct deck_node *list = deck_get(root, "impactors");
-    if (!list)
-        return SPALL_OK;
-    int rc = deck_expect_seq(list, "a list of impactors", err);
-    if (rc)
+    const struct deck_node *list = NULL;
+    int rc = deck_list(root, "impactors", "a list of impactors", &list, err);
+    if (rc || !list)
         return rc;
     for (size_t k = 0; k < list->n; k++)
         if ((rc = parse_one(s, list->items[k], err)))

@@ -163,11 +163,9 @@ static int incl_entry(struct sim *s, const struct deck_node *e, size_t entry,
 int deck_parse_inclusions(struct sim *s, const struct deck_node *root,
                           const struct deck_node *geometry, int dim, struct spall_error *err)
 {
-    const struct deck_node *list = deck_get(root, "inclusions");
-    if (!list)
-        return SPALL_OK;
-    int rc = deck_expect_seq(list, "a list of {material, count, radius, within, seed}", err);
-    if (rc)
+    const struct deck_node *list = NULL;
+    int rc = deck_list(root, "inclusions", "a list of {material, count, radius, within, seed}", &list, err);
+    if (rc || !list)
         return rc;
     const struct deck_shape_ctx sc = {geometry, dim};
     struct incl_ball *balls = NULL;

@@ -22,7 +22,7 @@
  */
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice_internal.h"
-#include "io/deck.h"
+#include "core/options.h"
 #include "spall/error.h"
 
 #include <math.h>

@@ -9,7 +9,7 @@
 #include "core/fields.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "io/deck.h"
+#include "core/options.h"
 #include "models/lattice/lattice_internal.h"
 #include "spall/error.h"
 
@@ -89,11 +89,9 @@ static int th_get(struct model *m, size_t n_mat, struct spall_error *err)
 static int th_parse_table(struct th_material *t, const struct deck_node *node,
                           struct spall_error *err)
 {
-    const struct deck_node *tab = deck_get(node, "youngs_modulus_table");
-    if (!tab)
-        return SPALL_OK;
-    int rc = deck_expect_seq(tab, "a list of [temperature K, youngs_modulus Pa] pairs", err);
-    if (rc)
+    const struct deck_node *tab = NULL;
+    int rc = deck_list(node, "youngs_modulus_table", "a list of [temperature K, youngs_modulus Pa] pairs", &tab, err);
+    if (rc || !tab)
         return rc;
     if (tab->n < 1 || tab->n > TH_MAX_ETAB)
         return deck_error(err, tab, "youngs_modulus_table has %zu points; expected 1 to %d",
@@ -191,10 +189,10 @@ int lattice_thermal_parse_options(struct model *m, const struct deck_node *node,
     int rc = deck_expect_map(node, "model.thermal", err);
     if (rc || (rc = th_get(m, 0, err)))
         return rc;
-    const struct deck_node *b = deck_get(node, "boundary");
+    const struct deck_node *b = NULL;
+    if ((rc = deck_list(node, "boundary", "a list of {group, temperature}", &b, err)))
+        return rc;
     if (b) {
-        if ((rc = deck_expect_seq(b, "a list of {group, temperature}", err)))
-            return rc;
         if (b->n > TH_MAX_BC)
             return deck_error(err, b, "%zu thermal boundary conditions; at most %d", b->n,
                               TH_MAX_BC);

@@ -10,7 +10,7 @@
 
 #include "core/particles.h"
 #include "core/sim.h"
-#include "io/deck.h"
+#include "core/options.h"
 #include "spall/error.h"
 
 #include <math.h>

@@ -74,7 +74,7 @@
 #include "core/neighbor.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "io/deck.h"
+#include "core/options.h"
 #include "core/model.h"
 #include "spall/error.h"
 

@@ -50,7 +50,7 @@
 #include "core/neighbor.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "io/deck.h"
+#include "core/options.h"
 #include "spall/error.h"
 
 #include <limits.h>

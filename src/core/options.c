@@ -1,10 +1,10 @@
 /**
- * @file deck_get.c
- * @brief Deck lookups, positioned error messages and the typed getters
- *        ("FILE:LINE:COL: ...; expected ...").  The parser is in deck.c.
+ * @file options.c
+ * @brief Option-tree lookups, positioned error messages and the typed
+ *        getters ("FILE:LINE:COL: ...; expected ...").  The YAML parser that
+ *        builds the tree is io/deck.c.
  */
-#include "io/deck.h"
-#include "io/deck_internal.h"
+#include "core/options.h"
 
 #include "spall/error.h"
 
@@ -196,6 +196,13 @@ int deck_expect_map(const struct deck_node *node, const char *what, struct spall
 int deck_expect_seq(const struct deck_node *node, const char *what, struct spall_error *err)
 {
     return expect_kind(node, DECK_SEQUENCE, what, err);
+}
+
+int deck_list(const struct deck_node *map, const char *key, const char *what,
+              const struct deck_node **out, struct spall_error *err)
+{
+    *out = deck_get(map, key);
+    return *out ? deck_expect_seq(*out, what, err) : SPALL_OK;
 }
 
 /* Common front of every typed getter: find (and mark) @p key and fill @p who
