@@ -40,7 +40,7 @@ static double sph_cpu_seconds(void)
 /* Build @p yaml, time its steps, fill @p out like bench_run_deck (memory:
  * resident set after the build / particles) and report the share of the
  * loop's wall time spent building neighbour lists and how many builds. */
-static int sph_bench_run(const char *name, const char *yaml, int threads,
+static int sph_bench_run(const char *name, const char *yaml, int threads, bool split,
                          struct bench_result *out, double *nb_share, size_t *builds,
                          double *t_setup_nb, double shape[4], double *cpu, double *rr,
                          struct spall_error *err)
@@ -55,6 +55,8 @@ static int sph_bench_run(const char *name, const char *yaml, int threads,
     deck_destroy(&d);
     if (rc)
         return rc;
+    if (split)
+        sph_set_split_loops(s->model);
     double rss = bench_rss_bytes();
     struct sph_stats st;
     sph_stats_get(s->model, &st);
@@ -139,17 +141,18 @@ static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *f
              run);
 }
 
-static int sph_taylor_case(const char *name, const char *form, double hf, double qa, double qb,
-                           const char *extra, int threads, double scale, struct bench_result *out,
-                           struct spall_error *err)
+/* @p split: the verification loops (sph_set_split_loops) */
+static int sph_taylor_loops(const char *name, const char *form, double hf, double qa, double qb,
+                            const char *extra, bool split, int threads, double scale,
+                            struct bench_result *out, struct spall_error *err)
 {
     char yaml[2048];
     sph_taylor_deck(yaml, sizeof yaml, scale, form, hf, qa, qb, 200, extra);
     double nb_share = 0.0;
     size_t builds = 0;
     double t_setup = 0.0, cpu = 0.0;
-    int rc = sph_bench_run(name, yaml, threads, out, &nb_share, &builds, &t_setup, NULL, &cpu,
-                           NULL, err);
+    int rc = sph_bench_run(name, yaml, threads, split, out, &nb_share, &builds, &t_setup, NULL,
+                           &cpu, NULL, err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
@@ -159,6 +162,13 @@ static int sph_taylor_case(const char *name, const char *form, double hf, double
              2.0 * (double)out->bonds / (double)out->particles, 100.0 * nb_share, builds,
              t_setup, cpu, (double)out->particles * (double)out->steps / cpu);
     return rc;
+}
+
+static int sph_taylor_case(const char *name, const char *form, double hf, double qa, double qb,
+                           const char *extra, int threads, double scale, struct bench_result *out,
+                           struct spall_error *err)
+{
+    return sph_taylor_loops(name, form, hf, qa, qb, extra, false, threads, scale, out, err);
 }
 
 /* updated form, h = 1.5 dx (Wendland support 3 dx: ~ 110 neighbours) */
@@ -182,14 +192,14 @@ static int bench_sph_taylor_tl(int threads, double scale, struct bench_result *o
 }
 
 /* the same with the TLSPH stages run one after the other over all
- * particles (pair_loop: split) instead of pipelined in one sweep
+ * particles (sph_set_split_loops) instead of pipelined in one sweep
  * (sph_tlsph.c): same arithmetic, bitwise the same result; what the
  * pipeline's cache reuse is worth */
 static int bench_sph_taylor_tl_split(int threads, double scale, struct bench_result *out,
                                      struct spall_error *err)
 {
-    return sph_taylor_case("sph_taylor_cu_tl_split", "total", 1.005, 1.0, 1.0,
-                           " pair_loop: split,", threads, scale, out, err);
+    return sph_taylor_loops("sph_taylor_cu_tl_split", "total", 1.005, 1.0, 1.0, "", true,
+                            threads, scale, out, err);
 }
 
 /* The race's accuracy half: the bar run to rest (80 us, adaptive dt),
@@ -203,8 +213,8 @@ static int sph_taylor_rest(const char *name, const char *form, double hf, const 
     double nb_share = 0.0, t_setup = 0.0, shape[4] = {0, 0, 0, 0}, cpu = 0.0;
     size_t builds = 0;
     double rr[4] = {0, 0, 0, 0};
-    int rc = sph_bench_run(name, yaml, threads, out, &nb_share, &builds, &t_setup, shape, &cpu,
-                           rr, err);
+    int rc = sph_bench_run(name, yaml, threads, false, out, &nb_share, &builds, &t_setup,
+                           shape, &cpu, rr, err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
@@ -351,8 +361,8 @@ static int bench_sph_rings(int threads, double scale, struct bench_result *out,
     double nb_share = 0.0;
     size_t builds = 0;
     double t_setup = 0.0, cpu = 0.0;
-    int rc = sph_bench_run("sph_rings_2d", yaml, threads, out, &nb_share, &builds, &t_setup,
-                           NULL, &cpu, NULL, err);
+    int rc = sph_bench_run("sph_rings_2d", yaml, threads, false, out, &nb_share, &builds,
+                           &t_setup, NULL, &cpu, NULL, err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
@@ -369,7 +379,7 @@ const struct bench_case bench_sph_cases[] = {
     {"sph_taylor_cu_tl", "3D copper Taylor bar, total-Lagrangian, support 2.01 dx (32 neighbours, "
      "the MACHDYN count), 200 steps", bench_sph_taylor_tl},
     {"sph_taylor_cu_tl_split", "sph_taylor_cu_tl with the TLSPH stages one after the other "
-     "(pair_loop: split), not pipelined", bench_sph_taylor_tl_split},
+     "(sph_set_split_loops), not pipelined", bench_sph_taylor_tl_split},
     {"sph_taylor_cu_rest", "the sph_taylor_cu_tl bar run to rest (80 us): final length and "
      "radius", bench_sph_taylor_rest},
     {"sph_taylor_cu_rest_lf", "the sph_taylor_cu_rest bar, leapfrog (plain dt limit), hourglass 1",

@@ -286,7 +286,8 @@ static void test_refused(void **state)
     /* TLSPH is not axisymmetric (sph_axisym.c has its own loops) */
     expect_refused(", interface: bodies, body_formulation: {two: total}, plane: axisymmetric",
                    "axisymmetric");
-
+    /* the old verification switch: refused, saying what to do */
+    expect_refused(", pair_loop: split", "pair_loop is no longer a deck key");
 }
 
 int main(void)

@@ -10,6 +10,7 @@
  */
 #include "core/particles.h"
 #include "core/sim.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -48,7 +49,7 @@ static double max_diff(const struct sim *a, const struct sim *b)
 
 static const char *BLOCK2D =
     "model: {type: sph, kernel: cubic_spline, h_factor: 1.3, viscosity: [0.5, 0.5],\n"
-    "        artificial_stress: 0.3, xsph: 0.5, plane: strain, pair_loop: %s}\n"
+    "        artificial_stress: 0.3, xsph: 0.5, plane: strain}\n"
     "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
     "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
     "body: {geometry: {box: {min: [0, 0], max: [0.012, 0.008]}}, material: m}\n"
@@ -59,13 +60,11 @@ static const char *BLOCK2D =
 static void test_fused_vs_split_2d(void **state)
 {
     (void)state;
-    char y[2048];
-    snprintf(y, sizeof y, BLOCK2D, "fused");
-    struct sim *a = test_build(y);
-    snprintf(y, sizeof y, BLOCK2D, "split");
-    struct sim *b = test_build(y);
+    struct sim *a = test_build(BLOCK2D);
+    struct sim *b = test_build(BLOCK2D);
     assert_non_null(a);
     assert_non_null(b);
+    sph_set_split_loops(b->model);
     run(a);
     run(b);
     double d = max_diff(a, b);
@@ -79,7 +78,7 @@ static void test_fused_vs_split_2d(void **state)
 
 static const char *BAR3D =
     "model: {type: sph, kernel: wendland, h_factor: 1.5, viscosity: [1.5, 1.5], xsph: 0.1,\n"
-    "        wall: {point: [0, 0, 0], normal: [0, 0, 1]}, pair_loop: %s, symmetry: %s}\n"
+    "        wall: {point: [0, 0, 0], normal: [0, 0, 1]}, symmetry: %s}\n"
     "materials:\n"
     "  s: {density: 7830, bulk_modulus: 169.1e9, shear_modulus: 89.2e9, yield: johnson_cook,\n"
     "      yield_a: 792.0e6, yield_b: 510.0e6, yield_n: 0.26, jc_c: 0.014, jc_m: 1.03,\n"
@@ -97,12 +96,12 @@ static void test_fused_vs_split_3d(void **state)
 {
     (void)state;
     char y[2048];
-    snprintf(y, sizeof y, BAR3D, "fused", "none", FULL);
+    snprintf(y, sizeof y, BAR3D, "none", FULL);
     struct sim *a = test_build(y);
-    snprintf(y, sizeof y, BAR3D, "split", "none", FULL);
     struct sim *b = test_build(y);
     assert_non_null(a);
     assert_non_null(b);
+    sph_set_split_loops(b->model);
     run(a);
     run(b);
     print_message("3D fused vs split: max |dx| = %.3g m\n", max_diff(a, b));
@@ -115,9 +114,9 @@ static void test_quarter_symmetry(void **state)
 {
     (void)state;
     char y[2048];
-    snprintf(y, sizeof y, BAR3D, "fused", "none", FULL);
+    snprintf(y, sizeof y, BAR3D, "none", FULL);
     struct sim *full = test_build(y);
-    snprintf(y, sizeof y, BAR3D, "fused", "xy", QUARTER);
+    snprintf(y, sizeof y, BAR3D, "xy", QUARTER);
     struct sim *q = test_build(y);
     assert_non_null(full);
     assert_non_null(q);
@@ -154,7 +153,7 @@ static void test_symmetry_threads(void **state)
 {
     (void)state;
     char y[2048];
-    snprintf(y, sizeof y, BAR3D, "fused", "xy", QUARTER);
+    snprintf(y, sizeof y, BAR3D, "xy", QUARTER);
     omp_set_num_threads(1);
     struct sim *a = test_build(y);
     assert_non_null(a);

@@ -7,10 +7,11 @@
  *        sum: a wrong pairing shows up as an energy drift), and a 3D
  *        Taylor bar gives bitwise the same positions on 1 and 2 threads,
  *        and with the pipelined sweep as with the stages run one after the
- *        other (pair_loop: split).
+ *        other (sph_set_split_loops).
  */
 #include "core/particles.h"
 #include "core/sim.h"
+#include "models/sph/sph.h"
 #include "spall/error.h"
 
 #include <setjmp.h>
@@ -61,10 +62,12 @@ static void test_free_block_conservation(void **state)
 /* The copper bar (about 280 particles, the list's band b ~ 60) run for 150
  * steps on @p threads with @p extra model keys; x and v of every particle
  * into @p xs (2 * 3 * n values, zero-padded to @p nx). */
-static void run_bar_keys(int threads, const char *extra, double *xs, size_t nx)
+static void run_bar_keys(int threads, const char *extra, bool split, double *xs, size_t nx)
 {
     omp_set_num_threads(threads);
     struct sim *s = test_tlsph_bar(extra, 150);
+    if (split)
+        sph_set_split_loops(s->model);
     struct spall_error err = {0};
     while (!sim_done(s))
         assert_int_equal(sim_step(s, &err), 0);
@@ -74,7 +77,7 @@ static void run_bar_keys(int threads, const char *extra, double *xs, size_t nx)
 
 static void run_bar(int threads, double *xs, size_t nx)
 {
-    run_bar_keys(threads, "", xs, nx);
+    run_bar_keys(threads, "", false, xs, nx);
 }
 
 static void test_bar_threads(void **state)
@@ -87,7 +90,7 @@ static void test_bar_threads(void **state)
 }
 
 /* The pipelined sweep (stage 2 b particles behind stage 1, sph_tlsph.c)
- * against the stages run one after the other (pair_loop: split): the same
+ * against the stages run one after the other (sph_set_split_loops): the same
  * arithmetic per particle, so every position and velocity must agree
  * bitwise -- on 1 thread, 2 threads (shares > 2b: pipelined inside, edges
  * after the barrier) and 5 threads (shares < 2b: everything after it), for
@@ -104,13 +107,11 @@ static void test_pipeline_split(void **state)
                                         " time_integration: leapfrog, hourglass: 1.0, "
                                         "viscosity_switch: balsara,"};
     for (int k = 0; k < 3; k++) {
-        char split[128];
-        snprintf(split, sizeof split, "%s pair_loop: split,", tint[k]);
-        run_bar_keys(1, split, ref, NX);
+        run_bar_keys(1, tint[k], true, ref, NX);
         assert_true(ref[6 * 250] != 0.0); /* about 280 particles filled in */
         const int threads[3] = {1, 2, 5};
         for (int t = 0; t < 3; t++) {
-            run_bar_keys(threads[t], tint[k], got, NX);
+            run_bar_keys(threads[t], tint[k], false, got, NX);
             assert_memory_equal(ref, got, sizeof ref);
         }
         if (k == 1)

@@ -131,5 +131,11 @@ size_t sph_tlsph_pairs(const struct model *m);
 /** Switch the CSPM gradient correction (model.cspm) of a built model on or
  *  off: the velocity-gradient verification compares both on one state. */
 void sph_set_cspm(struct model *m, bool on);
+/** Verification only: run the two-pass loops of the updated form and the
+ *  TLSPH stages one after the other (not pipelined), whatever the options
+ *  chose; same equations, so results must agree with the fused / pipelined
+ *  loops (tests/test_sph_fused.c, test_sph_tlsph.c, `spall bench
+ *  sph_taylor_cu_tl_split`).  Call after the simulation is built. */
+void sph_set_split_loops(struct model *m);
 
 #endif

@@ -95,6 +95,12 @@ void sph_set_cspm(struct model *m, bool on)
     m->opt.cspm = on;
 }
 
+void sph_set_split_loops(struct model *m)
+{
+    m->opt.split_pairs = true;
+    m->opt.tl_split = true;
+}
+
 void sph_refresh_pressure(struct model *m, struct sim *s)
 {
     sph_update_pressure(m, s, SPH_FORM_ALL);

@@ -166,7 +166,6 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     static const char *const dens[] = {"continuity", "summation", NULL};
     static const char *const planes[] = {"stress", "strain", "axisymmetric", NULL};
     static const char *const forms[] = {"updated", "total", NULL};
-    static const char *const loops[] = {"fused", "split", NULL};
     static const char *const syms[] = {"none", "x", "y", "xy", NULL};
     static const char *const tints[] = {"predictor_corrector", "leapfrog", NULL};
     static const char *const keys[] = {"type", "kernel", "h_factor", "density", "cspm",
@@ -175,7 +174,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
                                        "artificial_stress_smoothing",
                                        "xsph", "variable_h", "plane", "skin", "adaptive_dt",
                                        "formulation", "hourglass",
-                                       "wall", "pair_loop", "symmetry",
+                                       "wall", "symmetry",
                                        "cavity_depth", "time_integration", "interface",
                                        "interface_stiffness", "interface_distance", "clamp",
                                        "body_formulation", "det_f_range", "max_distortion",
@@ -205,8 +204,15 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
     bool adaptive = true;
     int run_form = 0; /* model.formulation, before the per-body overrides */
     if (params) {
-        int kern = 3, den = 0, pl = 1, form = 0, loop = 0, sym = 0, tint = 0, ifc = 0, avs = 0, rc;
+        int kern = 3, den = 0, pl = 1, form = 0, sym = 0, tint = 0, ifc = 0, avs = 0, rc;
         double av[2] = {o.av_a, o.av_b};
+        /* pair_loop was a verification switch; tests now set it through
+         * sph_set_split_loops (sph.h) */
+        if (deck_peek(params, "pair_loop"))
+            return deck_error_key(err, params, "pair_loop",
+                                  "pair_loop is no longer a deck key: spall picks the fused "
+                                  "or the two-pass loops from the other options (same "
+                                  "equations); remove it");
         if ((rc = deck_enum(params, "kernel", false, kernels, &kern, err)) ||
             (rc = deck_double(params, "h_factor", false, 0.5, 4.0, &o.h_factor, err)) ||
             (rc = deck_enum(params, "density", false, dens, &den, err)) ||
@@ -228,7 +234,6 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
             (rc = deck_vector(params, "det_f_range", false, 2, 2, o.det_f_range, err)) ||
             (rc = deck_double(params, "max_distortion", false, 1.0, INFINITY, &o.max_distortion,
                               err)) ||
-            (rc = deck_enum(params, "pair_loop", false, loops, &loop, err)) ||
             (rc = deck_enum(params, "symmetry", false, syms, &sym, err)) ||
             (rc = deck_double(params, "cavity_depth", false, 0.0, INFINITY, &o.cavity_depth,
                               err)) ||
@@ -281,8 +286,7 @@ static int sph_create(struct model **out, struct sim *sim, const struct deck_nod
         o.leapfrog = tint == 1;
         /* the leapfrog advances the state between the gradient and the force
          * pass (sph_leapfrog.c): it needs the two-pass loops */
-        o.split_pairs = loop == 1 || o.leapfrog;
-        o.tl_split = loop == 1;
+        o.split_pairs = o.leapfrog;
         /* the smoothing of R sits between the passes of sph_rates.c */
         if (o.as_smooth && (sym || pl == 2))
             return deck_error_key(err, params, "artificial_stress_smoothing",

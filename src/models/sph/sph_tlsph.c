@@ -545,7 +545,7 @@ static inline void tl_deform(struct model *m, size_t k, double lfdt, const int d
  * They need stage 1 of the b particles at each end of every share, which
  * runs before a barrier (stage 0 of 2b at each end before a first one).
  * Every particle does the same arithmetic in the same order as with the
- * stages run one after the other (model.pair_loop: split, b = n): bitwise
+ * stages run one after the other (sph_set_split_loops, b = n): bitwise
  * the same result on any number of threads. */
 TL_INLINE void tl_sweep(struct model *m, struct particles *p, size_t n, size_t lo, size_t hi,
                      double lfdt, bool pipelined, const int dim, const double lim[3],
