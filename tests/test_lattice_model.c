@@ -19,6 +19,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
+#include "tests/test_lattice_setup.h"
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice.h"
 #include "core/model.h"
@@ -459,25 +460,12 @@ static void test_piecewise_linear_and_deck(void **state)
                        "      curve: [[0, 0], [0.01, 1.0e7], [0.03, 1.5e7]]}\n";
     struct deck *dk = NULL;
     struct spall_error err = {0};
-    assert_int_equal(deck_load_string(&dk, "t.yaml", yaml, &err), 0);
     struct sim *s = NULL;
-    assert_int_equal(sim_create(&s, 1, &err), 0);
-    s->lattice.kind = LATTICE_CHAIN;
-    s->lattice.spacing = 1.0;
-    s->thickness = 1.0;
-    assert_int_equal(sim_add_material(s, "mat", 1000.0, NULL, &err), 0);
-    const struct deck_node *mn = deck_get(dk->root, "model");
-    (void)deck_get(mn, "type");
-    struct model *m = NULL;
-    assert_int_equal(lattice_model_ops.create(&m, s, mn, &err), 0);
-    s->ops = &lattice_model_ops;
-    s->model = m;
-    const struct deck_node *mat = deck_get(dk->root, "mat");
-    (void)deck_get(mat, "density");
-    int rc = lattice_model_ops.parse_material(m, s, 0, mat, &err);
+    int rc = test_lattice_material(LATTICE_CHAIN, 1.0, yaml, &s, &dk, &err);
     if (rc)
         fprintf(stderr, "%s\n", err.msg);
     assert_int_equal(rc, 0);
+    struct model *m = s->model;
     assert_true(fabs(lattice_material_get(m, 0)->E - 1e9) < 1.0);
     double pos[3] = {0, 0, 0};
     assert_int_equal(particles_append(s->p, pos, 0, NULL, &err), 0);
@@ -502,75 +490,48 @@ static void test_piecewise_linear_and_deck(void **state)
     deck_destroy(&dk);
 }
 
-/** create + parse one material from YAML on a given lattice; returns rc. */
-static int try_deck(enum lattice_kind kind, const char *yaml, struct spall_error *err)
-{
-    struct deck *dk = NULL;
-    assert_int_equal(deck_load_string(&dk, "t.yaml", yaml, err), 0);
-    struct sim *s = NULL;
-    assert_int_equal(sim_create(&s, lattice_kind_dim(kind), err), 0);
-    s->lattice.kind = kind;
-    s->lattice.spacing = 1e-3;
-    s->thickness = 1e-3;
-    assert_int_equal(sim_add_material(s, "mat", 1000.0, NULL, err), 0);
-    const struct deck_node *mn = deck_get(dk->root, "model");
-    (void)deck_get(mn, "type");
-    struct model *m = NULL;
-    int rc = lattice_model_ops.create(&m, s, mn, err);
-    if (!rc) {
-        s->ops = &lattice_model_ops;
-        s->model = m;
-        const struct deck_node *mat = deck_get(dk->root, "mat");
-        (void)deck_get(mat, "density");
-        rc = lattice_model_ops.parse_material(m, s, 0, mat, err);
-    }
-    sim_destroy(&s);
-    deck_destroy(&dk);
-    return rc;
-}
-
 static void test_deck_refusals(void **state)
 {
     (void)state;
     struct spall_error err = {0};
-    assert_int_equal(try_deck(LATTICE_TRIANGULAR,
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR,
                               "model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
                               "poisson_ratio: 0.2, tensile_strength: 1e6}\n", &err), 0);
-    assert_int_equal(try_deck(LATTICE_TRIANGULAR,
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR,
                               "model: {type: lattice, angular: off}\nmat: {density: 1, "
                               "youngs_modulus: 1e9, poisson_ratio: 0.2, failure_strain: 0.01}\n",
                               &err), SPALL_ERR_PHYSICS);
     assert_non_null(strstr(err.msg, "a central-force triangular lattice has nu = 1/3; use "
                                     "angular springs"));
     assert_non_null(strstr(err.msg, "t.yaml:"));
-    assert_int_equal(try_deck(LATTICE_TRIANGULAR,
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR,
                               "model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
                               "poisson_ratio: 0.4, failure_strain: 0.01}\n", &err),
                      0); /* angular: auto selects area springs */
-    assert_int_equal(try_deck(LATTICE_TRIANGULAR,
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR,
                               "model: {type: lattice, angular: off}\nmat: {density: 1, "
                               "youngs_modulus: 1e9, poisson_ratio: 0.4, failure_strain: 0.01}\n",
                               &err),
                      SPALL_ERR_PHYSICS);
     assert_non_null(strstr(err.msg, "alpha-beta-gamma"));
-    assert_int_equal(try_deck(LATTICE_FCC,
+    assert_int_equal(test_lattice_material_status(LATTICE_FCC,
                               "model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
                               "poisson_ratio: 0.3, failure_strain: 0.01}\n", &err),
                      SPALL_ERR_PHYSICS);
-    assert_int_equal(try_deck(LATTICE_SQUARE,
+    assert_int_equal(test_lattice_material_status(LATTICE_SQUARE,
                               "model: {type: lattice, layers: 1}\nmat: {density: 1}\n", &err),
                      SPALL_ERR_PHYSICS);
     assert_non_null(strstr(err.msg, "shear"));
-    assert_int_not_equal(try_deck(LATTICE_TRIANGULAR,
+    assert_int_not_equal(test_lattice_material_status(LATTICE_TRIANGULAR,
                                   "model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
                                   "poisson_ratio: 0.3333, tensile_strength: 1e6, "
                                   "failure_strain: 0.1}\n", &err), 0);
-    assert_int_equal(try_deck(LATTICE_TRIANGULAR,
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR,
                               "model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
                               "poisson_ratio: 0.3333, failure_strain: 0.1, exponents: [1, 2]}\n",
                               &err), SPALL_ERR_INPUT);
     assert_non_null(strstr(err.msg, "exponents"));
-    assert_int_equal(try_deck(LATTICE_TRIANGULAR,
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR,
                               "model: {type: lattice, law: lennard_jones}\nmat: {density: 1, "
                               "youngs_modulus: 1e9, poisson_ratio: 0.25, "
                               "exponents: [2, 1]}\n", &err), SPALL_ERR_INPUT);

@@ -22,6 +22,7 @@
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
+#include "tests/test_lattice_setup.h"
 #include "models/lattice/lattice_calib.h"
 #include "models/lattice/lattice.h"
 #include "core/model.h"
@@ -174,32 +175,6 @@ static void test_triangular_fracture_energy(void **state)
     sim_destroy(&s);
 }
 
-static int try_deck(const char *yaml, struct spall_error *err)
-{
-    struct deck *dk = NULL;
-    assert_int_equal(deck_load_string(&dk, "t.yaml", yaml, err), 0);
-    struct sim *s = NULL;
-    assert_int_equal(sim_create(&s, 2, err), 0);
-    s->lattice.kind = LATTICE_TRIANGULAR;
-    s->lattice.spacing = 1e-3;
-    s->thickness = 1e-3;
-    assert_int_equal(sim_add_material(s, "mat", 1000.0, NULL, err), 0);
-    const struct deck_node *mn = deck_get(dk->root, "model");
-    (void)deck_get(mn, "type");
-    struct model *m = NULL;
-    int rc = lattice_model_ops.create(&m, s, mn, err);
-    if (!rc) {
-        s->ops = &lattice_model_ops;
-        s->model = m;
-        const struct deck_node *mat = deck_get(dk->root, "mat");
-        (void)deck_get(mat, "density");
-        rc = lattice_model_ops.parse_material(m, s, 0, mat, err);
-    }
-    sim_destroy(&s);
-    deck_destroy(&dk);
-    return rc;
-}
-
 static void test_deck_and_refusals(void **state)
 {
     (void)state;
@@ -208,22 +183,22 @@ static void test_deck_and_refusals(void **state)
                        "youngs_modulus: 1e9, poisson_ratio: 0.3333333333333333, ";
     char y[512];
     snprintf(y, sizeof y, "%stensile_strength: 1e7, fracture_energy: 100}\n", head);
-    assert_int_equal(try_deck(y, &err), 0);
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR, y, &err), 0);
     snprintf(y, sizeof y, "%sonset_strain: 0.01, failure_strain: 0.03}\n", head);
-    assert_int_equal(try_deck(y, &err), 0);
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR, y, &err), 0);
     snprintf(y, sizeof y, "%stensile_strength: 1e7, onset_strain: 0.01, failure_strain: 0.03}\n",
              head);
-    assert_int_equal(try_deck(y, &err), SPALL_ERR_INPUT);
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR, y, &err), SPALL_ERR_INPUT);
     assert_non_null(strstr(err.msg, "exactly one of tensile_strength"));
     snprintf(y, sizeof y, "%sonset_strain: 0.01, failure_strain: 0.03, fracture_energy: 1}\n",
              head);
-    assert_int_equal(try_deck(y, &err), SPALL_ERR_INPUT);
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR, y, &err), SPALL_ERR_INPUT);
     assert_non_null(strstr(err.msg, "exactly one of fracture_energy"));
     snprintf(y, sizeof y, "%sonset_strain: 0.01, failure_strain: 0.01}\n", head);
-    assert_int_equal(try_deck(y, &err), SPALL_ERR_INPUT);
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR, y, &err), SPALL_ERR_INPUT);
     assert_non_null(strstr(err.msg, "must exceed"));
     /* the linear law does not take the softening keys */
-    assert_int_equal(try_deck("model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
+    assert_int_equal(test_lattice_material_status(LATTICE_TRIANGULAR, "model: {type: lattice}\nmat: {density: 1, youngs_modulus: 1e9, "
                               "poisson_ratio: 0.3333333333333333, tensile_strength: 1e7, "
                               "fracture_energy: 100}\n", &err), SPALL_ERR_INPUT);
     /* G_f below the lattice's brittle value; a lattice without the count */
