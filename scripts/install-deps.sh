@@ -3,6 +3,7 @@
 # Safe to run repeatedly; needs root (or sudo) only when something is missing.
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config git libyaml-dev libhdf5-dev libcairo2-dev libcmocka-dev libgsl-dev
+      librandom123-dev  # counter-based random streams (macro-particle Langevin forces)
       python3)  # python3: scripts/mutate (ctest mutate_catalogue, make mutate)
 missing=()
 for p in "${pkgs[@]}"; do

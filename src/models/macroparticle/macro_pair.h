@@ -10,6 +10,7 @@
 
 #include "core/mathconst.h"
 
+#include <Random123/philox.h>
 #include <math.h>
 #include <stdint.h>
 
@@ -64,27 +65,21 @@ static inline void macro_mie(const struct macro_pair *w, double r, double *phi, 
     *fr = f;
 }
 
-/** Counter-based generator: a stateless hash of (seed, step, a, b, k)
- *  (SplitMix64 finaliser rounds), so a stream is a pure function of its key:
- *  reproducible and independent of the thread count and visiting order. */
-static inline uint64_t macro_mix(uint64_t z)
-{
-    z += 0x9e3779b97f4a7c15ULL;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
-/** Three standard normal numbers for key (seed, step, a, b). */
+/** Three standard normal numbers for key (seed, step, a, b), from the
+ *  counter-based Philox4x64-10 generator of Random123 ([Salmon2011]):
+ *  one call maps the counter (step, a, b) under key seed to four 64-bit
+ *  words, so a stream is a pure function of its key -- reproducible and
+ *  independent of the thread count, the rank count and the visiting order,
+ *  with nothing to save on a checkpoint but the step. */
 static inline void macro_gauss3(uint64_t seed, uint64_t step, uint64_t a, uint64_t b,
                                 double out[3])
 {
-    uint64_t h = macro_mix(seed ^ macro_mix(step ^ macro_mix(a ^ macro_mix(b))));
+    philox4x64_ctr_t ctr = {{step, a, b, 0}};
+    philox4x64_key_t key = {{seed, 0x5370616c6c4d6163ULL /* "SpallMac" */}};
+    philox4x64_ctr_t w = philox4x64(ctr, key);
     double u[4];
-    for (int k = 0; k < 4; k++) {
-        h = macro_mix(h + (uint64_t)k);
-        u[k] = ((double)(h >> 11) + 0.5) * (1.0 / 9007199254740992.0); /* (0, 1) */
-    }
+    for (int k = 0; k < 4; k++)
+        u[k] = ((double)(w.v[k] >> 11) + 0.5) * (1.0 / 9007199254740992.0); /* (0, 1) */
     const double tp = SPALL_TWO_PI;
     double r1 = sqrt(-2.0 * log(u[0])), r2 = sqrt(-2.0 * log(u[2]));
     out[0] = r1 * cos(tp * u[1]);
