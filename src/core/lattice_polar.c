@@ -6,7 +6,7 @@
  * Why: a disc or sphere cut out of a square or cubic lattice has a staircase
  * surface whose steps are a whole spacing high; a projectile's nose is then a
  * flat disc (measured: the d/15 silica sphere of examples/pen_sph_deformable
- * stops 13.8 % shallower than the same sphere at d/30, docs/penetration.md).
+ * stops 13.8 % shallower than the same sphere at d/30, docs/notes/penetration-log.md).
  * On rings and shells every site of the outermost layer lies at the same
  * distance from the centre, so the surface is round at any spacing.
  *

@@ -2,7 +2,7 @@
  * @file profile.h
  * @brief Outer profile of a body of revolution about the z axis (x = y = 0):
  *        the radius at a given height of the deformed configuration, for
- *        the Taylor-bar mushroom (issue 6 item 8, docs/performance.md
+ *        the Taylor-bar mushroom (docs/notes/performance-log.md
  *        "Taylor bar accuracy: where the length error comes from").
  *
  * Why a height rather than the impact face: the face radius of the copper

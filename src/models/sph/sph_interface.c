@@ -8,7 +8,7 @@
  *
  * Why: with the plain SPH sums across a material boundary (silica
  * rho = 1850 kg/m^3, E = 72 GPa against gelatin 1030 kg/m^3, 20 MPa) the
- * stiff particles slip through the soft ones (docs/penetration.md: the
+ * stiff particles slip through the soft ones (docs/notes/penetration-log.md: the
  * silica's mean velocity at 25 ns -1123 m/s against -649 m/s for the rigid
  * sphere): the continuity equation and XSPH mix the two velocity fields,
  * and nothing keeps the particles of one material out of the other.  The

@@ -51,7 +51,7 @@
  * arrays.  docs/performance.md has the measured effect of each step
  * (the half list: "Side by side with LAMMPS MACHDYN").
  *
- * CPU versions (docs/performance.md, "TLSPH speed, 2026-12-02"): the
+ * CPU versions (docs/performance.md, "TLSPH speed: how the sweep is built"): the
  * stages are built twice (TL_CLONES, sph_tlsph_data.h), for x86-64-v3
  * (AVX2, FMA; this file is compiled with -ffp-contract=fast) and for the
  * build's baseline, picked once per run by the CPU.  The v3 version sums

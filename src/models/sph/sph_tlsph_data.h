@@ -17,8 +17,8 @@
  * (GCC function multi-versioning, an ifunc): x86-64-v3 (AVX2, FMA) and the
  * build's baseline.  Every thread runs the same version, so the results
  * stay bitwise thread independent; FMA contraction changes the rounding
- * against the baseline version (docs/performance.md, "TLSPH speed,
- * 2026-12-02").  SPALL_NO_CLONES builds the baseline only. */
+ * against the baseline version (docs/performance.md, "TLSPH speed: how
+ * the sweep is built").  SPALL_NO_CLONES builds the baseline only. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
     !defined(SPALL_NO_CLONES)
 #define TL_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
