@@ -25,6 +25,8 @@ struct spall_run_options {
     int progress;          /**< -1 auto (terminal only), 0 off, 1 on */
     int threads;           /**< > 0 overrides the deck's run.threads */
     bool quiet;            /**< no summary lines on stdout */
+    const char *restart;   /**< continue from this checkpoint file or run directory
+                                (its newest checkpoint); NULL: start at t = 0 */
 };
 
 /** What a finished (or failed) run did. */
@@ -37,7 +39,13 @@ struct spall_run_result {
     double particle_steps_per_s;
     char out_dir[1024];
     size_t frames;
+    int signal;                /**< != 0: stopped by this signal after a checkpoint */
+    char checkpoint[1200];     /**< the last checkpoint written ("" if none) */
 };
+
+/** Exit status of `spall run` stopped by SIGTERM, SIGINT or SIGUSR1 after
+ *  writing a checkpoint (EX_TEMPFAIL: "try again", i.e. restart). */
+#define SPALL_EXIT_INTERRUPTED 75
 
 /** Load, check and run a deck, writing history.csv, HDF5/XDMF frames and
  *  run.log into the output directory.  Bad input returns SPALL_ERR_INPUT

@@ -9,12 +9,18 @@
 static void run_usage(FILE *out)
 {
     fprintf(out, "usage: spall run DECK.yaml [-o DIR] [--overwrite] [--threads N]\n"
-                 "                 [--progress | --no-progress] [--quiet]\n"
+                 "                 [--progress | --no-progress] [--quiet] [--restart RUN|FILE]\n"
                  "\n"
                  "Runs the simulation of DECK.yaml and writes into DIR (default: a directory\n"
                  "named after the deck): run.log, history.csv, fields_NNNNNN.h5 and\n"
                  "fields.xdmf (open the .xdmf in ParaView).  An existing result directory is\n"
-                 "never overwritten unless --overwrite is given.\n");
+                 "never overwritten unless --overwrite is given.\n"
+                 "\n"
+                 "--restart RUN_DIR continues the run in RUN_DIR from its newest checkpoint\n"
+                 "(deck key output.checkpoint), --restart FILE from that checkpoint; with -o\n"
+                 "another directory gets a continued copy.  SIGTERM, SIGINT or SIGUSR1 end\n"
+                 "the current step, write a checkpoint and exit with status 75\n"
+                 "(docs/restart.md).\n");
 }
 
 int cli_run(int argc, char **argv)
@@ -31,6 +37,12 @@ int cli_run(int argc, char **argv)
                 return 2;
             }
             opt.out_dir = argv[k];
+        } else if (strcmp(a, "--restart") == 0) {
+            if (++k >= argc) {
+                fprintf(stderr, "spall run: --restart needs a run directory or checkpoint file\n");
+                return 2;
+            }
+            opt.restart = argv[k];
         } else if (strcmp(a, "--overwrite") == 0) {
             opt.overwrite = true;
         } else if (strcmp(a, "--threads") == 0) {
@@ -68,6 +80,13 @@ int cli_run(int argc, char **argv)
         if (rc == SPALL_ERR_UNSTABLE && res.out_dir[0])
             fprintf(stderr, "spall: the last good output is in %s\n", res.out_dir);
         return cli_exit_status(rc);
+    }
+    if (res.signal) {
+        fprintf(stderr,
+                "spall: stopped by signal %d at step %ld, t = %.6g s; checkpoint %s\n"
+                "spall: continue with: spall run %s --restart %s\n",
+                res.signal, res.steps, res.time, res.checkpoint, opt.deck_path, res.out_dir);
+        return SPALL_EXIT_INTERRUPTED;
     }
     if (!opt.quiet) {
         printf("spall: %ld steps, t = %.6g s, %zu particles, %.3g s wall, %.3g particle-steps/s\n",

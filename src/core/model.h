@@ -44,6 +44,7 @@
 struct bond_list;
 struct deck_node;
 struct field_registry;
+struct field_state;
 struct precrack;
 struct sim;
 struct spall_error;
@@ -153,6 +154,15 @@ struct model_ops {
      *  used for fragments (core/fragments.h); NULL hook or NULL result for
      *  unbonded models. */
     const struct bond_list *(*bonds)(const struct model *m);
+    /** Register the model's restart state (core/field_state.h): every array
+     *  and counter that carries information from one step to the next and
+     *  is not rebuilt from the deck by create/init/precrack (bond states,
+     *  damage and plastic history, random-stream counters, partner lists
+     *  with their set_rows callback).  Called after sim_prepare; a
+     *  checkpoint written after step n and loaded into a freshly prepared
+     *  run must continue bit for bit.  NULL: the model cannot restart. */
+    int (*register_state)(struct model *m, struct sim *sim, struct field_state *fs,
+                          struct spall_error *err);
     /** Contract-test fixtures, ended by a NULL label: every formulation of
      *  the model, each must pass tests/test_model_contract.c. */
     const struct model_fixture *fixtures;

@@ -642,7 +642,7 @@ static int parse_output(struct build_ctx *c, const struct deck_node *root, struc
                         struct spall_error *err)
 {
     static const char *const keys[] = {"fields", "field_interval", "field_every",
-                                       "history_every", NULL};
+                                       "history_every", "checkpoint", NULL};
     (void)c;
     ro->history_every = 0;
     const struct deck_node *o = deck_get(root, "output");
@@ -652,7 +652,8 @@ static int parse_output(struct build_ctx *c, const struct deck_node *root, struc
     if ((rc = deck_expect_map(o, "the output mapping", err)) ||
         (rc = deck_double_pos(o, "field_interval", false, &ro->field_interval, err)) ||
         (rc = deck_long(o, "field_every", false, 0, 2000000000L, &ro->field_every, err)) ||
-        (rc = deck_long(o, "history_every", false, 1, 2000000000L, &ro->history_every, err)))
+        (rc = deck_long(o, "history_every", false, 1, 2000000000L, &ro->history_every, err)) ||
+        (rc = checkpoint_parse_options(o, &ro->checkpoint, err)))
         return rc;
     const struct deck_node *f = NULL;
     if ((rc = deck_list(o, "fields", "a list of field names", &f, err)))

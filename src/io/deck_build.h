@@ -8,6 +8,8 @@
 
 #include <stddef.h>
 
+#include "io/checkpoint.h"
+
 struct deck;
 struct sim;
 struct spall_error;
@@ -23,6 +25,7 @@ struct run_output {
     const char *fields[RUN_MAX_FIELDS]; /**< names, pointing into the deck */
     size_t n_fields;
     int threads;            /**< run.threads (0 = default) */
+    struct checkpoint_options checkpoint; /**< output.checkpoint (io/checkpoint.h) */
 };
 
 /** Build the simulation described by @p d.  On success the model is created,

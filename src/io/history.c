@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L
 /**
  * @file history.c
  * @brief history.csv writer (see output.h).
@@ -18,6 +19,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/types.h>
+#include <unistd.h>
 
 struct history_writer {
     FILE *fp;
@@ -92,6 +95,38 @@ int history_writer_append(struct history_writer *h, const double *values, struct
         bad = fprintf(h->fp, k ? ",%.10g" : "%.10g", values[k]) < 0;
     if (bad || fputc('\n', h->fp) == EOF || fflush(h->fp) != 0)
         return spall_error_set(err, SPALL_ERR_IO, "cannot write to history file '%s'", h->path);
+    return SPALL_OK;
+}
+
+long history_writer_bytes(const struct history_writer *h)
+{
+    return ftell(h->fp);
+}
+
+int history_writer_resume(struct history_writer **out, const char *path, long bytes,
+                          size_t n_columns, struct spall_error *err)
+{
+    *out = NULL;
+    struct history_writer *h = calloc(1, sizeof *h);
+    if (!h || !(h->path = malloc(strlen(path) + 1))) {
+        free(h);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating history writer");
+    }
+    strcpy(h->path, path);
+    h->n_columns = n_columns;
+    errno = 0;
+    h->fp = fopen(path, "r+");
+    /* rows after the checkpoint were written by the run that is being
+     * continued: they are replaced, not repeated */
+    if (!h->fp || fseek(h->fp, 0, SEEK_END) != 0 || ftell(h->fp) < bytes ||
+        ftruncate(fileno(h->fp), (off_t)bytes) != 0 || fseek(h->fp, bytes, SEEK_SET) != 0) {
+        int e = errno;
+        history_writer_destroy(&h);
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "cannot continue history file '%s' at byte %ld: %s", path, bytes,
+                               e ? strerror(e) : "it is shorter than at the checkpoint");
+    }
+    *out = h;
     return SPALL_OK;
 }
 

@@ -33,6 +33,12 @@ int field_writer_check_names(const struct sim *s, const char *const *names, size
 int field_writer_write(struct field_writer *w, const struct sim *s, struct spall_error *err);
 size_t field_writer_frames(const struct field_writer *w);
 void field_writer_destroy(struct field_writer **w);
+/** The XDMF grid entries written so far (for a checkpoint). */
+const char *field_writer_grids(const struct field_writer *w, size_t *len);
+/** Continue a run's frames: the next frame is number @p frames and the
+ *  XDMF index starts with @p grids (from a checkpoint). */
+int field_writer_resume(struct field_writer *w, size_t frames, const char *grids, size_t len,
+                        struct spall_error *err);
 
 /** history.csv: a header line of column names (with units in brackets) then
  *  one row per call, written with %.10g and flushed. */
@@ -41,6 +47,12 @@ int history_writer_create(struct history_writer **out, const char *path,
                           const char *const *columns, size_t n_columns, struct spall_error *err);
 int history_writer_append(struct history_writer *h, const double *values, struct spall_error *err);
 void history_writer_destroy(struct history_writer **h);
+/** Bytes written to the file so far (header and rows). */
+long history_writer_bytes(const struct history_writer *h);
+/** Continue an existing history file: cut it to its first @p bytes (the
+ *  rows up to a checkpoint) and append from there. */
+int history_writer_resume(struct history_writer **out, const char *path, long bytes,
+                          size_t n_columns, struct spall_error *err);
 
 /** Read back a frame's dataset (for render and tests): allocates *data
  *  (n x ncomp doubles). */

@@ -572,6 +572,22 @@ done:
     return rc;
 }
 
+const char *field_writer_grids(const struct field_writer *w, size_t *len)
+{
+    *len = w->grids.len;
+    return w->grids.s ? w->grids.s : "";
+}
+
+int field_writer_resume(struct field_writer *w, size_t frames, const char *grids, size_t len,
+                        struct spall_error *err)
+{
+    w->grids.len = 0;
+    if (len && text_append(&w->grids, "%.*s", (int)len, grids))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (XDMF index)");
+    w->frames = frames;
+    return write_xdmf(w, err);
+}
+
 /* ---------------------------------------------------------------- read */
 
 int field_frame_read(const char *h5_path, const char *name, double **data, size_t *n,

@@ -20,6 +20,7 @@
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "io/output.h"
+#include "io/run_restart.h"
 #include "io/run_util.h"
 #include "core/model.h"
 
@@ -211,6 +212,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     struct history_writer *hw = NULL;
     struct fragments *frag = NULL;
     FILE *log = NULL;
+    struct run_ckpt ck;
+    memset(&ck, 0, sizeof ck);
     int rc = deck_load_file(&d, opt->deck_path, err);
     if (rc)
         return rc;
@@ -222,23 +225,31 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     if (opt->threads <= 0 && ro.threads > 0)
         omp_set_num_threads(ro.threads);
 
-    /* all checks passed: now, and only now, touch the file system */
+    /* a restart reads its checkpoint here, before any output is touched */
     char dir[1024];
-    if (opt->out_dir)
-        snprintf(dir, sizeof dir, "%s", opt->out_dir);
-    else
-        run_default_out_dir(opt->deck_path, dir, sizeof dir);
+    if ((rc = run_ckpt_begin(&ck, opt, d, &ro.checkpoint, s, dir, sizeof dir, err)))
+        goto done;
+    bool resume = ck.restarted && run_ckpt_same_dir(&ck);
+
+    /* all checks passed: now, and only now, touch the file system */
     snprintf(res->out_dir, sizeof res->out_dir, "%s", dir);
-    if ((rc = run_prepare_out_dir(dir, opt->overwrite, err)))
+    if (ck.restarted && !resume)
+        rc = run_ckpt_copy_outputs(&ck, opt->overwrite, err);
+    else if (!ck.restarted)
+        rc = run_prepare_out_dir(dir, opt->overwrite, err);
+    if (rc)
         goto done;
     char path[1200];
     snprintf(path, sizeof path, "%s/run.log", dir);
-    log = fopen(path, "w");
+    log = fopen(path, resume ? "a" : "w");
     if (!log) {
         rc = spall_error_set(err, SPALL_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
         goto done;
     }
-    write_log_header(log, opt, d, s, &ro);
+    if (!resume)
+        write_log_header(log, opt, d, s, &ro);
+    if (ck.restarted)
+        run_ckpt_log_restart(&ck, s, log);
 
     struct history_layout hl;
     if (s->ops->bonds && s->ops->bonds(s->model) &&
@@ -247,7 +258,9 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     hl.frag = frag;
     history_columns(s, &hl);
     snprintf(path, sizeof path, "%s/history.csv", dir);
-    if ((rc = history_writer_create(&hw, path, hl.names, hl.n, err)))
+    rc = ck.restarted ? history_writer_resume(&hw, path, (long)ck.meta.history_bytes, hl.n, err)
+                      : history_writer_create(&hw, path, hl.names, hl.n, err);
+    if (rc)
         goto done;
     int frames_on = ro.field_interval > 0.0 || ro.field_every > 0;
     if (!frames_on) {
@@ -261,14 +274,23 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
                                             : (s->n_steps / 2000 > 0 ? s->n_steps / 2000 : 1);
     s->energy_check_every = hist_every; /* the blow-up check of sim_step at the history rows */
     double hv[HIST_MAX];
-    history_values(s, &hl, hv);
-    if ((rc = history_writer_append(hw, hv, err)) || (rc = field_writer_write(fw, s, err)))
-        goto done;
     double next_frame_t = ro.field_interval;
+    if (ck.restarted) { /* the checkpoint's rows and frames are on disk */
+        next_frame_t = ck.meta.next_frame_t;
+        rc = field_writer_resume(fw, (size_t)ck.meta.frames, ck.meta.xdmf_grids,
+                                 ck.meta.xdmf_len, err);
+    } else {
+        history_values(s, &hl, hv);
+        if (!(rc = history_writer_append(hw, hv, err)))
+            rc = field_writer_write(fw, s, err);
+    }
+    if (rc)
+        goto done;
 
     struct progress pr;
     progress_start(&pr, opt->progress, s->n_steps, s->p->n_owned);
     double t0 = omp_get_wtime();
+    run_signals_install();
     while (!sim_done(s)) {
         rc = sim_step(s, err);
         if (rc)
@@ -294,8 +316,15 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             if ((rc = field_writer_write(fw, s, err)))
                 break;
         }
+        int sig = run_signal_pending();
+        if ((ck.opt.on || sig) &&
+            (rc = run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, err)))
+            break;
         progress_update(&pr, s->step, s->t, s->end_time);
+        if ((res->signal = sig))
+            break;
     }
+    run_signals_restore();
     double wall = omp_get_wtime() - t0;
     progress_finish(&pr);
     res->steps = s->step;
@@ -316,11 +345,17 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         if (!(rc = fragments_of_sim(hl.frag, s, err)))
             rc = fragments_write_csv(hl.frag, path, s->t, err);
     }
+    snprintf(res->checkpoint, sizeof res->checkpoint, "%s", ck.last);
     if (rc)
         fprintf(log, "status: FAILED: %s\n", err->msg);
+    else if (res->signal)
+        fprintf(log, "status: interrupted by signal %d at step %ld, t = %.6g s; checkpoint %s; "
+                     "continue with: spall run %s --restart %s\n",
+                res->signal, s->step, s->t, ck.last, opt->deck_path, dir);
     else
         fprintf(log, "status: completed\n");
 done:
+    run_ckpt_end(&ck);
     fragments_destroy(&frag);
     if (log)
         fclose(log);

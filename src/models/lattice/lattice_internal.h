@@ -54,6 +54,11 @@ struct model {
     bool initialised;
 };
 
+/* lattice_restart.c */
+struct field_state;
+int lattice_register_state(struct model *m, struct sim *sim, struct field_state *fs,
+                           struct spall_error *err);
+
 /* lattice_forces.c */
 int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);
 /** Energy [J] (half of each bond + the angles centred at i) and virial

@@ -657,6 +657,7 @@ const struct model_ops lattice_model_ops = {
     .destroy = lattice_destroy,
     .interactions = lattice_interactions,
     .bonds = lattice_bonds,
+    .register_state = lattice_register_state,
     .fixtures = lattice_fixtures,
 };
 

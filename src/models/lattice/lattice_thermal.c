@@ -6,6 +6,7 @@
 #include "models/lattice/lattice_thermal.h"
 
 #include "core/bond_list.h"
+#include "core/field_state.h"
 #include "core/fields.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -407,6 +408,30 @@ int lattice_thermal_register_fields(struct model *m, struct field_registry *reg,
     double **T[1] = {&m->th->T};
     return field_registry_add_f64(reg, "temperature", "K", 1, T, FIELD_OUTPUT | FIELD_DEFAULT,
                                   err);
+}
+
+int lattice_thermal_register_state(struct model *m, struct field_state *fs,
+                                   struct spall_error *err)
+{
+    if (!lattice_thermal_enabled(m))
+        return SPALL_OK;
+    struct lattice_thermal *th = m->th;
+    size_t nh = m->bl->offset[m->bl->n];
+    /* temperatures, and what melting and E(T) change per half-bond; the
+     * rest lengths follow T by thermal expansion */
+    int rc = field_state_add_array(fs, "lattice.T", FIELD_F64, (void **)&th->T, th->n, 1, err);
+    if (!rc)
+        rc = field_state_add_array(fs, "lattice.conductance", FIELD_F64, (void **)&th->kappa, nh,
+                                   1, err);
+    if (!rc)
+        rc = field_state_add_array(fs, "lattice.heat", FIELD_F64, (void **)&th->heat, th->n, 1,
+                                   err);
+    if (!rc && th->kscale)
+        rc = field_state_add_array(fs, "lattice.kscale", FIELD_F64, (void **)&th->kscale, nh, 1,
+                                   err);
+    if (!rc)
+        rc = field_state_add_values(fs, "lattice.melted", FIELD_I64, &th->melted, 1, err);
+    return rc;
 }
 
 size_t lattice_thermal_history(const struct model *m, const struct sim *sim, const char **names,

@@ -33,6 +33,7 @@
 
 struct deck_node;
 struct field_registry;
+struct field_state;
 struct model;
 struct sim;
 struct spall_error;
@@ -58,6 +59,9 @@ int lattice_thermal_init(struct model *m, struct sim *sim, struct spall_error *e
 /** Advance temperatures by dt, update rest lengths, melt bonds. */
 int lattice_thermal_step(struct model *m, struct sim *sim, double dt, struct spall_error *err);
 /** Register the `temperature` field. */
+/** Restart state of the thermal lattice (lattice_restart.c calls it). */
+int lattice_thermal_register_state(struct model *m, struct field_state *fs,
+                                   struct spall_error *err);
 int lattice_thermal_register_fields(struct model *m, struct field_registry *reg,
                                     struct spall_error *err);
 /** History columns (temperature_mean, temperature_max, melted bonds); returns
