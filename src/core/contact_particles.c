@@ -8,6 +8,8 @@
  */
 #include "core/contact_particles.h"
 
+#include "core/field_state.h"
+
 #include "core/bond_list.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -16,6 +18,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -375,4 +378,58 @@ double particle_contact_stable_dt(const struct sim *s)
     const double z = s->dim == 1 ? 2.0 : s->dim == 2 ? 6.0 : 12.0;
     double omega2 = 2.0 * z * c->prm.exponent * c->prm.stiffness / m_min;
     return 2.0 / sqrt(omega2);
+}
+
+/* ---- restart state (core/field_state.h) ---------------------------------- */
+
+static size_t cand_rows(const void *ctx)
+{
+    const struct particle_contact *c = ctx;
+    return c->n_built ? c->off[c->n_built] : 0;
+}
+
+static int cand_set_rows(void *ctx, size_t rows, struct spall_error *err)
+{
+    struct particle_contact *c = ctx;
+    if (rows > c->nbr_cap) {
+        int32_t *q = realloc(c->nbr, rows * sizeof *q);
+        if (!q)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (contact restart)");
+        c->nbr = q;
+        c->nbr_cap = rows;
+    }
+    return cand_rows(c) == rows ? SPALL_OK
+                                : spall_error_set(err, SPALL_ERR_INPUT,
+                                                  "contact candidate list: %zu entries, its "
+                                                  "offsets say %zu",
+                                                  rows, cand_rows(c));
+}
+
+int particle_contact_register_state(struct sim *s, struct field_state *fs, struct spall_error *err)
+{
+    struct particle_contact *c = s->pcontact;
+    if (!c)
+        return SPALL_OK;
+    /* the candidate lists with the positions they were built at: a list
+     * rebuilt at another step would order the pair sums differently */
+    if (c->n_built != s->p->n)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "contact lists not built");
+    size_t n = c->n_built;
+    int rc = field_state_add_array(fs, "contact.offset", FIELD_I64, (void **)&c->off, n + 1, 1,
+                                   err);
+    if (!rc)
+        rc = field_state_add_list(fs, "contact.candidates", FIELD_I32, (void **)&c->nbr, 1,
+                                  cand_rows, cand_set_rows, c, err);
+    char nm[FIELD_STATE_NAME_LEN];
+    for (int d = 0; d < s->dim && !rc; d++) {
+        snprintf(nm, sizeof nm, "contact.built_at.%d", d);
+        rc = field_state_add_array(fs, nm, FIELD_F64, (void **)&c->xref[d], n, 1, err);
+    }
+    if (!rc)
+        rc = field_state_add_values(fs, "contact.rebuilds", FIELD_I64, &c->rebuilds, 1, err);
+    if (!rc)
+        rc = field_state_add_values(fs, "contact.energy", FIELD_F64, &c->energy, 1, err);
+    if (!rc)
+        rc = field_state_add_values(fs, "contact.pairs", FIELD_I64, &c->pairs, 1, err);
+    return rc;
 }

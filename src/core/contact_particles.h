@@ -33,6 +33,7 @@
 
 #include <stddef.h>
 
+struct field_state;
 struct sim;
 struct spall_error;
 
@@ -64,5 +65,10 @@ double particle_contact_stable_dt(const struct sim *s);
 
 /** Number of contacting pairs (each counted once) at the last evaluation. */
 size_t particle_contact_pairs(const struct sim *s);
+
+/** Register the contact state a restart needs (candidate lists, the
+ *  positions they were built at, counters); no-op without contact. */
+int particle_contact_register_state(struct sim *s, struct field_state *fs,
+                                    struct spall_error *err);
 
 #endif

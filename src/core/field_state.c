@@ -5,6 +5,7 @@
  */
 #include "core/field_state.h"
 
+#include "core/contact_particles.h"
 #include "core/model.h"
 #include "core/particles.h"
 #include "core/rigid.h"
@@ -188,6 +189,8 @@ int sim_register_state(struct sim *s, struct field_state *fs, struct spall_error
     }
     if (!rc)
         rc = register_rigid(s, fs, err);
+    if (!rc)
+        rc = particle_contact_register_state(s, fs, err);
     if (!rc)
         rc = s->ops->register_state(s->model, s, fs, err);
     return rc;

@@ -18,7 +18,10 @@
  *    optionally a set_rows callback that resizes the owner's storage before
  *    a load (variable-length data);
  *  - values at a fixed address (scalars and small fixed arrays).
- * A row holds `width` values of the slot's type.
+ * A row holds `width` values of the slot's type.  Slots hold addresses into
+ * the owners' structures, which may be replaced during a run (a rebuilt
+ * pair list): a registry is filled right before one save or one load and
+ * then dropped.
  */
 #ifndef SPALL_FIELD_STATE_H
 #define SPALL_FIELD_STATE_H

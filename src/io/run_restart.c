@@ -174,6 +174,9 @@ int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_write
         due = true;
     if (!due)
         return SPALL_OK;
+    /* the owners may have replaced their arrays (a new pair list): the
+     * slots are registered afresh for every checkpoint */
+    field_state_destroy(&c->fs);
     int rc = collect_state(c, s, err);
     if (rc)
         return rc;

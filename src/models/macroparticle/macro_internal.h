@@ -83,6 +83,10 @@ struct macro_fcc_constants {
 int macro_fcc_elastic(const struct macro_pair *w, struct macro_fcc_constants *out,
                       struct spall_error *err);
 
+/* macro_restart.c */
+struct field_state;
+int macro_register_state(struct model *m, struct sim *sim, struct field_state *fs,
+                         struct spall_error *err);
 int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);
 int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err);
 

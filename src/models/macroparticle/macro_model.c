@@ -543,6 +543,7 @@ const struct model_ops macroparticle_model_ops = {
     .parse_material = macro_parse_material,
     .init = macro_init,
     .register_fields = macro_register_fields,
+    .register_state = macro_register_state,
     .compute_forces = macro_forces,
     .stable_dt = macro_stable_dt,
     .end_step = macro_end_step,

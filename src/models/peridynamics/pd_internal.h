@@ -84,6 +84,11 @@ struct model {
     bool initialised;
 };
 
+/* pd_restart.c */
+struct field_state;
+int pd_register_state(struct model *m, struct sim *sim, struct field_state *fs,
+                      struct spall_error *err);
+
 /* pd_calib.c */
 /** Stress of particle @p i (tension positive; 2D xx yy xy, 3D xx yy zz xy yz xz) and
  *  its strain energy [J] from the current positions (virial 1/2 sum F (x) xi / V_i). */

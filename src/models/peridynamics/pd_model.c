@@ -577,6 +577,7 @@ const struct model_ops peridynamics_model_ops = {
     .init = pd_init,
     .precrack = pd_precrack,
     .register_fields = pd_register_fields,
+    .register_state = pd_register_state,
     .compute_forces = pd_compute_forces,
     .stable_dt = pd_dt,
     .end_step = pd_end_step,

@@ -1,0 +1,47 @@
+/**
+ * @file pd_restart.c
+ * @brief Restart state of the peridynamics model: bond states and the
+ *        energy they released, the mixed-mode history, and the adaptive
+ *        dynamic relaxation's previous forces and coefficient.  Families,
+ *        reference lengths and micromodulus coefficients are rebuilt from
+ *        the deck by init.
+ */
+#include "models/peridynamics/pd_internal.h"
+
+#include "core/bond_list.h"
+#include "core/field_state.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <stdio.h>
+
+_Static_assert(sizeof(bool) == 1, "the ADR flag is saved as one byte");
+
+int pd_register_state(struct model *m, struct sim *sim, struct field_state *fs,
+                      struct spall_error *err)
+{
+    size_t n = sim->p->n_owned, nh = m->bl->offset[m->bl->n];
+    int rc = field_state_add_array(fs, "pd.bond_state", FIELD_U8, (void **)&m->bl->state, nh, 1,
+                                   err);
+    if (!rc)
+        rc = field_state_add_array(fs, "pd.dissipated", FIELD_F64, (void **)&m->diss, n, 1, err);
+    if (!rc && m->fresh)
+        rc = field_state_add_array(fs, "pd.fresh", FIELD_U8, (void **)&m->fresh, nh, 1, err);
+    if (!rc && m->mm_g)
+        rc = field_state_add_array(fs, "pd.mixed_g", FIELD_F64, (void **)&m->mm_g, n, 1, err);
+    if (!rc && m->mm_beta)
+        rc = field_state_add_array(fs, "pd.mixed_beta", FIELD_F64, (void **)&m->mm_beta, n, 1,
+                                   err);
+    char nm[FIELD_STATE_NAME_LEN];
+    for (int d = 0; d < sim->dim && !rc; d++)
+        if (m->f_prev[d]) { /* ADR: this step's and the previous step's forces */
+            snprintf(nm, sizeof nm, "pd.adr_f_prev.%d", d);
+            rc = field_state_add_array(fs, nm, FIELD_F64, (void **)&m->f_prev[d], 2 * n, 1, err);
+        }
+    if (!rc)
+        rc = field_state_add_values(fs, "pd.adr_damping", FIELD_F64, &m->adr_damping, 1, err);
+    if (!rc)
+        rc = field_state_add_values(fs, "pd.adr_estimated", FIELD_U8, &m->adr_estimated, 1, err);
+    return rc;
+}
