@@ -52,6 +52,21 @@ struct restart_case {
     "  - {group: bottom, type: velocity, components: [x, y], value: [0, -20.0]}\n"               \
     "  - {group: top, type: velocity, components: [x, y], value: [0, 20.0]}\n"
 
+#define SPH_ROD(MODEL_EXTRA, XSPH)                                                              \
+    "model:\n"                                                                                   \
+    "  type: sph\n"                                                                              \
+    "  kernel: wendland\n"                                                                       \
+    "  h_factor: 1.5\n"                                                                          \
+    "  viscosity: [1.0, 1.0]\n" XSPH MODEL_EXTRA                                                 \
+    "  wall: {point: [0, 0], normal: [0, 1]}\n"                                                  \
+    "materials:\n"                                                                               \
+    "  iron: {density: 7850, youngs_modulus: 208.0e9, poisson_ratio: 0.3,\n"                     \
+    "         eos: mie_gruneisen, sound_speed: 3630, hugoniot_slope: 1.80, gruneisen: 1.80,\n"   \
+    "         yield: perfect, yield_stress: 600.0e6}\n"                                          \
+    "lattice: {type: square, spacing: 2.38125e-4, origin: [1.190625e-4, 1.190625e-4]}\n"        \
+    "body: {geometry: {box: {min: [0, 0], max: [0.00381, 0.008]}}, material: iron}\n"           \
+    "initial_velocity: [{group: all, value: [0, -221.0]}]\n"
+
 static const struct restart_case k_cases[] = {
     {"lattice-fracture",
      "model: {type: lattice, law: linear}\n"
@@ -171,6 +186,9 @@ static const struct restart_case k_cases[] = {
      "  - {group: flyer_g, value: [0, -150]}\n"
      "contact: {distance: 1.0e-3, stiffness: 3.26e6}\n",
      400, "state/lattice.bond_state"},
+    {"sph-updated", SPH_ROD("", "  xsph: 0.1\n"), 300, NULL},
+    {"sph-total",
+     SPH_ROD("  formulation: total\n  reference_update: {every: 70}\n", ""), 300, NULL},
     /* more than SPALL_OMP_MIN_PARTICLES: the restart's one thread and the
      * first run's two threads both really run */
     {"lattice-threads",

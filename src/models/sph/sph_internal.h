@@ -164,6 +164,15 @@ static inline bool sph_skip(const struct model *m, size_t i, int mine)
     return m->form && mine != SPH_FORM_ALL && m->form[i] != mine;
 }
 
+#define SPH_N_ARRAYS 104
+/** Every per-particle double array of the model (sph_model.c): allocation,
+ *  release and the restart state (sph_restart.c) walk the same list. */
+size_t sph_state_arrays(struct model *m, double **a[SPH_N_ARRAYS]);
+/* sph_restart.c */
+struct field_state;
+int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
+                       struct spall_error *err);
+
 /* sph_forms.c */
 /** Formulation of every deck body: @p run_form (model.formulation) unless
  *  model.body_formulation names the body (bodies[].name); *body_total has

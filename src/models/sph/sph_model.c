@@ -83,10 +83,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SPH_N_ARRAYS 104
-
-/* Every per-particle double array of the model, for allocation and freeing. */
-static size_t sph_arrays(struct model *m, double **a[SPH_N_ARRAYS])
+size_t sph_state_arrays(struct model *m, double **a[SPH_N_ARRAYS])
 {
     size_t k = 0;
     a[k++] = &m->h;
@@ -137,7 +134,7 @@ static void sph_destroy(struct model **pm)
         return;
     struct model *m = *pm;
     double **a[SPH_N_ARRAYS];
-    size_t na = sph_arrays(m, a);
+    size_t na = sph_state_arrays(m, a);
     for (size_t k = 0; k < na; k++)
         free(*a[k]);
     free(m->failed);
@@ -413,7 +410,7 @@ static int sph_init(struct model *m, struct sim *s, struct spall_error *err)
             return spall_error_set(err, SPALL_ERR_INPUT, "material '%s' has no sph parameters",
                                    s->materials[k].name);
     double **a[SPH_N_ARRAYS];
-    size_t na = sph_arrays(m, a);
+    size_t na = sph_state_arrays(m, a);
     for (size_t k = 0; k < na; k++) {
         *a[k] = calloc(cap ? cap : 1, sizeof(double));
         if (!*a[k])
@@ -788,6 +785,7 @@ const struct model_ops sph_model_ops = {
     .init = sph_init,
     .precrack = NULL,
     .register_fields = sph_register_fields,
+    .register_state = sph_register_state,
     .compute_forces = sph_forces,
     .stable_dt = sph_stable_dt,
     .end_step = sph_end_step,

@@ -1,0 +1,171 @@
+/**
+ * @file sph_restart.c
+ * @brief Restart state of the SPH model (updated and total Lagrangian):
+ *        every per-particle array (state, state at step n and rates of the
+ *        predictor-corrector, stresses, CSPM matrices, XSPH velocities,
+ *        smoothing lengths), the neighbour list with the positions it was
+ *        built at, the interface pair list, and after a TLSPH re-reference
+ *        the new reference pair data ([Meng2021] ch. 3).  Without a
+ *        re-reference the reference data are rebuilt by init from the deck.
+ */
+#include "models/sph/sph_internal.h"
+
+#include "core/field_state.h"
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "models/sph/sph_tlsph_data.h"
+#include "spall/error.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+static int grow(void **a, size_t rows, size_t size, struct spall_error *err)
+{
+    void *g = realloc(*a, (rows ? rows : 1) * size);
+    if (!g)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph restart)");
+    *a = g;
+    return SPALL_OK;
+}
+
+/* ---- the updated-Lagrangian neighbour list and the interface list ------- */
+
+static size_t nl_rows(const void *ctx)
+{
+    const struct neighbor_list *nl = ((const struct model *)ctx)->nl;
+    return nl ? nl->offset[nl->n] : 0;
+}
+
+static int nl_set_rows(void *ctx, size_t rows, struct spall_error *err)
+{
+    struct neighbor_list *nl = ((struct model *)ctx)->nl;
+    return grow((void **)&nl->idx, rows, sizeof *nl->idx, err);
+}
+
+static size_t if_rows(const void *ctx)
+{
+    const struct model *m = ctx;
+    return m->if_off[m->sim->p->n_owned];
+}
+
+static int if_set_rows(void *ctx, size_t rows, struct spall_error *err)
+{
+    struct model *m = ctx;
+    if (rows > m->if_cap) {
+        int rc = grow((void **)&m->if_idx, rows, sizeof *m->if_idx, err);
+        if (rc)
+            return rc;
+        m->if_cap = rows;
+    }
+    return SPALL_OK;
+}
+
+/* ---- TLSPH reference after a re-reference -------------------------------- */
+
+static size_t tl_rows(const void *ctx)
+{
+    const struct sph_tl *t = ((const struct model *)ctx)->tl;
+    return t->nl->offset[t->nl->n];
+}
+
+static int tl_set_idx(void *ctx, size_t rows, struct spall_error *err)
+{
+    struct sph_tl *t = ((struct model *)ctx)->tl;
+    return grow((void **)&t->nl->idx, rows, sizeof *t->nl->idx, err);
+}
+
+static int tl_set_pair(void *ctx, size_t rows, struct spall_error *err)
+{
+    struct sph_tl *t = ((struct model *)ctx)->tl;
+    return grow((void **)&t->pair, rows, sizeof *t->pair, err);
+}
+
+static int register_tl(struct model *m, size_t n, struct field_state *fs, struct spall_error *err)
+{
+    struct sph_tl *t = m->tl;
+    _Static_assert(sizeof(struct tl_pair) == 2 * sizeof(double), "pair constants: 2 doubles");
+    int rc = field_state_add_array(fs, "sph.tl_offset", FIELD_I64, (void **)&t->nl->offset, n + 1,
+                                   1, err);
+    if (!rc)
+        rc = field_state_add_list(fs, "sph.tl_partner", FIELD_I32, (void **)&t->nl->idx, 1,
+                                  tl_rows, tl_set_idx, m, err);
+    if (!rc)
+        rc = field_state_add_list(fs, "sph.tl_pair", FIELD_F64, (void **)&t->pair, 2, tl_rows,
+                                  tl_set_pair, m, err);
+    if (!rc)
+        rc = field_state_add_array(fs, "sph.tl_up", FIELD_I64, (void **)&t->up, n, 1, err);
+    if (!rc)
+        rc = field_state_add_values(fs, "sph.tl_band", FIELD_I64, &t->band, 1, err);
+    if (!rc)
+        rc = field_state_add_array(fs, "sph.tl_pack", FIELD_F64, (void **)&t->pk, n, TL_STRIDE,
+                                   err);
+    if (!rc)
+        rc = field_state_add_array(fs, "sph.tl_self", FIELD_F64, (void **)&t->self, n, TL_SELF,
+                                   err);
+    return rc;
+}
+
+int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
+                       struct spall_error *err)
+{
+    _Static_assert(sizeof(size_t) == 8 && sizeof(long) == 8 && sizeof(uint32_t) == 4,
+                   "counters are saved as int64, contact counts as int32");
+    const size_t n = s->p->n_owned;
+    if (m->sym || s->p->n != n)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "sph: runs with symmetry planes (ghost particles) cannot be "
+                               "checkpointed yet");
+    double **a[SPH_N_ARRAYS];
+    size_t na = sph_state_arrays(m, a);
+    char nm[FIELD_STATE_NAME_LEN];
+    int rc = SPALL_OK;
+    for (size_t k = 0; k < na && !rc; k++) {
+        snprintf(nm, sizeof nm, "sph.array.%zu", k);
+        rc = field_state_add_array(fs, nm, FIELD_F64, (void **)a[k], n, 1, err);
+    }
+    if (!rc)
+        rc = field_state_add_array(fs, "sph.failed", FIELD_U8, (void **)&m->failed, n, 1, err);
+    if (!rc && m->nl) {
+        rc = field_state_add_array(fs, "sph.list_offset", FIELD_I64, (void **)&m->nl->offset,
+                                   m->nl->n + 1, 1, err);
+        if (!rc)
+            rc = field_state_add_list(fs, "sph.list_partner", FIELD_I32, (void **)&m->nl->idx, 1,
+                                      nl_rows, nl_set_rows, m, err);
+    }
+    if (!rc && m->if_off) {
+        rc = field_state_add_array(fs, "sph.iface_offset", FIELD_I64, (void **)&m->if_off, n + 1,
+                                   1, err);
+        if (!rc)
+            rc = field_state_add_list(fs, "sph.iface_partner", FIELD_I32, (void **)&m->if_idx, 1,
+                                      if_rows, if_set_rows, m, err);
+        if (!rc)
+            rc = field_state_add_array(fs, "sph.iface_e", FIELD_F64, (void **)&m->if_e, n, 1, err);
+        if (!rc)
+            rc = field_state_add_array(fs, "sph.iface_w", FIELD_F64, (void **)&m->if_w, n, 1, err);
+        if (!rc)
+            rc = field_state_add_array(fs, "sph.iface_np", FIELD_I32, (void **)&m->if_np, n, 1,
+                                       err);
+    }
+    double *dv[] = {&m->wall_energy, &m->surface_z, &m->iface_energy, &m->iface_omega2,
+                    &m->tl_jmin, &m->tl_kmax, &m->nl_radius};
+    const char *dn[] = {"wall_energy", "surface_z", "iface_energy", "iface_omega2",
+                        "tl_jmin", "tl_kmax", "list_radius"};
+    for (size_t k = 0; k < sizeof dv / sizeof dv[0] && !rc; k++) {
+        snprintf(nm, sizeof nm, "sph.%s", dn[k]);
+        rc = field_state_add_values(fs, nm, FIELD_F64, dv[k], 1, err);
+    }
+    if (!rc)
+        rc = field_state_add_values(fs, "sph.wall_force", FIELD_F64, m->wall_force, 3, err);
+    void *iv[] = {&m->n_builds, &m->axl_builds, &m->cspm_fallbacks, &m->n_pairs,
+                  &m->iface_pairs, &m->tl_rerefs, &m->tl_reref_step, &m->tl_hgrown};
+    const char *in[] = {"list_builds", "axis_builds", "cspm_fallbacks", "pairs",
+                        "iface_pairs", "tl_rerefs", "tl_reref_step", "tl_hgrown"};
+    for (size_t k = 0; k < sizeof iv / sizeof iv[0] && !rc; k++) {
+        snprintf(nm, sizeof nm, "sph.%s", in[k]);
+        rc = field_state_add_values(fs, nm, FIELD_I64, iv[k], 1, err);
+    }
+    if (!rc && m->tl)
+        rc = register_tl(m, n, fs, err);
+    return rc;
+}
