@@ -62,6 +62,7 @@ static void fnv(uint64_t *h, const void *data, size_t bytes)
 
 struct ck {
     hid_t file;
+    hid_t dcpl; /**< write: no modification times, so equal states give equal bytes */
     uint64_t sum;
     const char *path;
     struct spall_error *err;
@@ -72,9 +73,7 @@ static int ck_write(struct ck *c, const char *name, enum field_type t, const voi
 {
     hsize_t dim = count;
     hid_t space = H5Screate_simple(1, &dim, NULL);
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-    H5Pset_create_intermediate_group(lcpl, 1);
-    hid_t ds = space >= 0 ? H5Dcreate2(c->file, name, h5_type(t), space, lcpl, H5P_DEFAULT,
+    hid_t ds = space >= 0 ? H5Dcreate2(c->file, name, h5_type(t), space, H5P_DEFAULT, c->dcpl,
                                        H5P_DEFAULT)
                           : -1;
     int bad = ds < 0 || (count && H5Dwrite(ds, h5_type(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0);
@@ -82,7 +81,6 @@ static int ck_write(struct ck *c, const char *name, enum field_type t, const voi
         H5Dclose(ds);
     if (space >= 0)
         H5Sclose(space);
-    H5Pclose(lcpl);
     if (bad)
         return spall_error_set(c->err, SPALL_ERR_IO, "cannot write '%s' into checkpoint '%s'", name,
                                c->path);
@@ -273,12 +271,27 @@ int checkpoint_write(const char *path, const struct sim *s, const struct field_s
     H5Eget_auto2(H5E_DEFAULT, &func, &data);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     hid_t fapl = checkpoint_fapl();
-    struct ck c = {.sum = 0xcbf29ce484222325ULL, .path = path, .err = err};
+    struct ck c = {.sum = 0xcbf29ce484222325ULL, .path = path, .err = err, .dcpl = -1};
     c.file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
     H5Pclose(fapl);
     int rc = SPALL_OK;
     if (c.file < 0) {
         rc = spall_error_set(err, SPALL_ERR_IO, "cannot create checkpoint '%s'", path);
+        goto done;
+    }
+    c.dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
+    int gbad = c.dcpl < 0 || gcpl < 0 || H5Pset_obj_track_times(c.dcpl, 0) < 0 ||
+               H5Pset_obj_track_times(gcpl, 0) < 0;
+    static const char *const groups[] = {"particles", "state", "run"};
+    for (int k = 0; k < 3 && !gbad; k++) {
+        hid_t g = H5Gcreate2(c.file, groups[k], H5P_DEFAULT, gcpl, H5P_DEFAULT);
+        gbad = g < 0 || H5Gclose(g) < 0;
+    }
+    if (gcpl >= 0)
+        H5Pclose(gcpl);
+    if (gbad) {
+        rc = spall_error_set(err, SPALL_ERR_IO, "cannot write checkpoint '%s'", path);
         goto done;
     }
     int64_t version = CHECKPOINT_FORMAT_VERSION;
@@ -292,6 +305,8 @@ int checkpoint_write(const char *path, const struct sim *s, const struct field_s
     uint64_t sum = c.sum;
     rc = ck_write(&c, "checksum", FIELD_I64, &sum, 1);
 done:
+    if (c.dcpl >= 0)
+        H5Pclose(c.dcpl);
     if (c.file >= 0 && H5Fclose(c.file) < 0 && !rc)
         rc = spall_error_set(err, SPALL_ERR_IO, "cannot close checkpoint '%s'", path);
     H5Eset_auto2(H5E_DEFAULT, func, data);
@@ -394,7 +409,7 @@ int checkpoint_read(const char *path, struct sim *s, const struct field_state *f
     void *data;
     H5Eget_auto2(H5E_DEFAULT, &func, &data);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    struct ck c = {.sum = 0xcbf29ce484222325ULL, .path = path, .err = err};
+    struct ck c = {.sum = 0xcbf29ce484222325ULL, .path = path, .err = err, .dcpl = -1};
     int rc = SPALL_OK;
     hid_t fapl = checkpoint_fapl();
     c.file = H5Fis_hdf5(path) > 0 ? H5Fopen(path, H5F_ACC_RDONLY, fapl) : -1;
