@@ -411,9 +411,47 @@ static void test_restart_in_place(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* A checkpoint of a newer format is refused, naming both versions, before
+ * anything is written. */
+static void test_restart_newer_format(void **state)
+{
+    (void)state;
+    char tmp[] = "/tmp/spall_restart_XXXXXX";
+    assert_non_null(mkdtemp(tmp));
+    char deck[256], a[256], b[256], ck[320];
+    snprintf(deck, sizeof deck, "%s/deck.yaml", tmp);
+    FILE *f = fopen(deck, "w");
+    assert_non_null(f);
+    fprintf(f, "%srun: {steps: 20}\noutput: {checkpoint: {every_steps: 10}}\n", k_cases[0].deck);
+    fclose(f);
+    snprintf(a, sizeof a, "%s/a", tmp);
+    snprintf(b, sizeof b, "%s/b", tmp);
+    run_ok(deck, a, NULL, 1);
+    snprintf(ck, sizeof ck, "%s/checkpoint_%010d.h5", a, 10);
+    hid_t h = H5Fopen(ck, H5F_ACC_RDWR, H5P_DEFAULT);
+    assert_true(h >= 0);
+    hid_t d = H5Dopen2(h, "version", H5P_DEFAULT);
+    int64_t v = 2;
+    assert_true(H5Dwrite(d, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v) >= 0);
+    H5Dclose(d);
+    H5Fclose(h);
+    struct spall_run_options opt = {.deck_path = deck, .out_dir = b, .progress = 0,
+                                    .quiet = true, .restart = ck};
+    struct spall_run_result res;
+    struct spall_error err = {0};
+    assert_int_equal(spall_run(&opt, &res, &err), SPALL_ERR_INPUT);
+    print_message("refused: %s\n", err.msg);
+    assert_non_null(strstr(err.msg, "format version 2, this spall reads versions 1 to 1"));
+    assert_int_equal(access(b, F_OK), -1);
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_restart_newer_format),
         cmocka_unit_test(test_restart_in_place),
         cmocka_unit_test(test_restart_models),
     };
