@@ -75,9 +75,8 @@ int run_ckpt_begin(struct run_ckpt *c, const struct spall_run_options *opt, cons
     c->deck = d;
     c->next_t = c->opt.every_time;
     c->wall_last = omp_get_wtime();
-    if (c->opt.on && (c->opt.every_time > 0 || c->opt.every_steps > 0))
-        if (collect_state(c, s, err)) /* refuse a model that cannot restart before running */
-            return err->code;
+    if (c->opt.on && collect_state(c, s, err)) /* refused before running, not at the first */
+        return err->code;                        /* checkpoint */
     if (!opt->restart) {
         if (opt->out_dir)
             snprintf(out_dir, out_len, "%s", opt->out_dir);
