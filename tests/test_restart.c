@@ -411,6 +411,48 @@ static void test_restart_in_place(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* every_time: checkpoints at simulated times; --restart RUN_DIR continues
+ * from the newest, and the result equals a run that wrote no checkpoint. */
+static void test_restart_every_time(void **state)
+{
+    (void)state;
+    char tmp[] = "/tmp/spall_restart_XXXXXX";
+    assert_non_null(mkdtemp(tmp));
+    char plain[256], ckd[256], a[256], b[256], pa[320], pb[320];
+    snprintf(plain, sizeof plain, "%s/plain.yaml", tmp);
+    snprintf(ckd, sizeof ckd, "%s/ckpt.yaml", tmp);
+    FILE *f = fopen(plain, "w");
+    assert_non_null(f);
+    fprintf(f, "%srun: {end_time: 3.0e-5}\noutput: {field_interval: 1.0e-5, history_every: 5}\n",
+            k_cases[0].deck);
+    fclose(f);
+    f = fopen(ckd, "w");
+    assert_non_null(f);
+    fprintf(f, "%srun: {end_time: 2.0e-5}\noutput: {field_interval: 1.0e-5, history_every: 5,\n"
+               "  checkpoint: {every_time: 0.7e-5, keep: 1}}\n",
+            k_cases[0].deck);
+    fclose(f);
+    snprintf(a, sizeof a, "%s/a", tmp);
+    snprintf(b, sizeof b, "%s/b", tmp);
+    run_ok(plain, a, NULL, 2);
+    run_ok(ckd, b, NULL, 2); /* stops at 2e-5 ... */
+    /* ... and is continued to 3e-5: the checkpoint and output keys may change */
+    run_ok(plain, NULL, b, 1);
+    snprintf(pa, sizeof pa, "%s/history.csv", a);
+    snprintf(pb, sizeof pb, "%s/history.csv", b);
+    assert_same_text(pa, pb);
+    snprintf(pa, sizeof pa, "%s/fields.xdmf", a);
+    snprintf(pb, sizeof pb, "%s/fields.xdmf", b);
+    assert_same_text(pa, pb);
+    snprintf(pa, sizeof pa, "%s/fields_000003.h5", a);
+    snprintf(pb, sizeof pb, "%s/fields_000003.h5", b);
+    assert_same_field(pa, pb, "position");
+    assert_same_field(pa, pb, "velocity");
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
+    assert_int_equal(system(cmd), 0);
+}
+
 /* A checkpoint of a newer format is refused, naming both versions, before
  * anything is written. */
 static void test_restart_newer_format(void **state)
@@ -452,6 +494,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_restart_newer_format),
+        cmocka_unit_test(test_restart_every_time),
         cmocka_unit_test(test_restart_in_place),
         cmocka_unit_test(test_restart_models),
     };

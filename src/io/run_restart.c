@@ -75,8 +75,9 @@ int run_ckpt_begin(struct run_ckpt *c, const struct spall_run_options *opt, cons
     c->deck = d;
     c->next_t = c->opt.every_time;
     c->wall_last = omp_get_wtime();
-    if (c->opt.on && collect_state(c, s, err)) /* refused before running, not at the first */
-        return err->code;                        /* checkpoint */
+    /* a model that cannot be checkpointed is refused now, not mid-run */
+    if (c->opt.on && collect_state(c, s, err))
+        return err->code;
     if (!opt->restart) {
         if (opt->out_dir)
             snprintf(out_dir, out_len, "%s", opt->out_dir);
