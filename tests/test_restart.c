@@ -187,6 +187,10 @@ static const struct restart_case k_cases[] = {
      "contact: {distance: 1.0e-3, stiffness: 3.26e6}\n",
      400, "state/lattice.bond_state"},
     {"sph-updated", SPH_ROD("", "  xsph: 0.1\n"), 300, NULL},
+    {"sph-leapfrog-cspm",
+     SPH_ROD("  time_integration: leapfrog\n  cspm: true\n  artificial_stress: 0.3\n",
+             "  xsph: 0.1\n"),
+     300, NULL},
     {"sph-total",
      SPH_ROD("  formulation: total\n  reference_update: {every: 70}\n", ""), 300, NULL},
     /* more than SPALL_OMP_MIN_PARTICLES: the restart's one thread and the
