@@ -191,6 +191,25 @@ static const struct restart_case k_cases[] = {
      SPH_ROD("  time_integration: leapfrog\n  cspm: true\n  artificial_stress: 0.3\n",
              "  xsph: 0.1\n"),
      300, NULL},
+    {"sph-interface-bodies",
+     "model: {type: sph, kernel: wendland, h_factor: 1.5, viscosity: [1.0, 1.0],\n"
+     "        interface: bodies}\n"
+     "materials:\n"
+     "  iron: {density: 7850, youngs_modulus: 208.0e9, poisson_ratio: 0.3,\n"
+     "         eos: mie_gruneisen, sound_speed: 3630, hugoniot_slope: 1.80, gruneisen: 1.80,\n"
+     "         yield: perfect, yield_stress: 600.0e6}\n"
+     "lattice: {type: square, spacing: 2.5e-4, origin: [1.25e-4, 1.25e-4]}\n"
+     "geometry:\n"
+     "  target: {box: {min: [0, 0], max: [0.006, 0.002]}}\n"
+     "  rod: {box: {min: [0.002, 0.00225], max: [0.004, 0.005]}}\n"
+     "bodies:\n"
+     "  - {geometry: target, material: iron}\n"
+     "  - {geometry: rod, material: iron}\n"
+     "groups:\n"
+     "  rod_g: {box: {min: [0.0019, 0.0022], max: [0.0041, 0.0051]}}\n"
+     "initial_velocity:\n"
+     "  - {group: rod_g, value: [0, -300]}\n",
+     300, NULL},
     {"sph-total",
      SPH_ROD("  formulation: total\n  reference_update: {every: 70}\n", ""), 300, NULL},
     /* more than SPALL_OMP_MIN_PARTICLES: the restart's one thread and the
