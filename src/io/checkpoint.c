@@ -314,37 +314,72 @@ done:
     return rc;
 }
 
-/* The first line of @p a and @p b that differs, as its key (before '=')
- * and the two values. */
+/* Length of the key of the fingerprint line at @p line (before '='). */
+static size_t key_len(const char *line, size_t len)
+{
+    const char *eq = memchr(line, '=', len);
+    return eq ? (size_t)(eq - line) : len;
+}
+
+/* Does fingerprint @p text hold a line with key @p k (length @p kl)? */
+static bool has_key(const char *text, const char *k, size_t kl)
+{
+    for (const char *l = text; *l;) {
+        if (!strncmp(l, k, kl) && l[kl] == '=')
+            return true;
+        const char *e = strchr(l, '\n');
+        if (!e)
+            break;
+        l = e + 1;
+    }
+    return false;
+}
+
+/* Value of key @p k in fingerprint @p text into @p out ("(absent)" if none). */
+static void value_of(const char *text, const char *k, size_t kl, char *out, size_t len)
+{
+    snprintf(out, len, "%s", "(absent)");
+    for (const char *l = text; *l;) {
+        const char *e = strchr(l, '\n');
+        size_t ll = e ? (size_t)(e - l) : strlen(l);
+        if (ll > kl && !strncmp(l, k, kl) && l[kl] == '=') {
+            snprintf(out, len, "%.*s", (int)(ll - kl - 1), l + kl + 1);
+            return;
+        }
+        if (!e)
+            break;
+        l = e + 1;
+    }
+}
+
+/* The first key whose line differs between fingerprints @p a (checkpoint)
+ * and @p b (deck now), with both values: a changed value names its key; at
+ * an added or removed key the lines shift, so the key one side lacks is
+ * named rather than its neighbour. */
 static void first_difference(const char *a, const char *b, char *key, size_t klen, char *va,
                              char *vb, size_t vlen)
 {
+    const char *fa = a, *fb = b;
+    key[0] = '\0';
     while (*a || *b) {
         const char *ea = strchr(a, '\n'), *eb = strchr(b, '\n');
         size_t la = ea ? (size_t)(ea - a) : strlen(a), lb = eb ? (size_t)(eb - b) : strlen(b);
         if (la != lb || memcmp(a, b, la) != 0) {
-            /* name the key of whichever side is first in key order, so an
-             * added or removed key is named rather than its neighbour */
-            const char *pick = (!*a || (*b && strncmp(b, a, la < lb ? la : lb) < 0)) ? b : a;
-            size_t lp = pick == a ? la : lb;
-            const char *eq = memchr(pick, '=', lp);
-            size_t kl = eq ? (size_t)(eq - pick) : lp;
-            snprintf(key, klen, "%.*s", (int)kl, pick);
-            const char *qa = memchr(a, '=', la), *qb = memchr(b, '=', lb);
-            bool same_a = *a && qa && (size_t)(qa - a) == kl && !memcmp(a, pick, kl);
-            bool same_b = *b && qb && (size_t)(qb - b) == kl && !memcmp(b, pick, kl);
-            snprintf(va, vlen, "%s", "(absent)");
-            snprintf(vb, vlen, "%s", "(absent)");
-            if (same_a)
-                snprintf(va, vlen, "%.*s", (int)(la - kl - 1), qa + 1);
-            if (same_b)
-                snprintf(vb, vlen, "%.*s", (int)(lb - kl - 1), qb + 1);
+            size_t ka = key_len(a, la), kb = key_len(b, lb);
+            const char *k = a;
+            size_t kl = ka;
+            if (!*a || (*b && !(ka == kb && !memcmp(a, b, ka)) && !has_key(fa, b, kb))) {
+                k = b; /* b's key is new (or a has ended) */
+                kl = kb;
+            }
+            snprintf(key, klen, "%.*s", (int)kl, k);
+            value_of(fa, k, kl, va, vlen);
+            value_of(fb, k, kl, vb, vlen);
             return;
         }
         a += la + (ea ? 1 : 0);
         b += lb + (eb ? 1 : 0);
     }
-    key[0] = '\0';
 }
 
 static int check_identity(struct ck *c, const struct sim *s, const struct deck *d)

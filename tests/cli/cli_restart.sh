@@ -140,7 +140,12 @@ bad "corrupt" "corrupt" deck.yaml corrupt.h5 -o newdir
 deck 4000 500 4.0e9 > other.yaml
 bad "changed key" "deck key 'materials.m.youngs_modulus' differs" other.yaml $good
 sed 's/poisson_ratio: 0.3333333333333333,/poisson_ratio: 0.3333333333333333, compressive_failure_strain: 0.1,/' deck.yaml > added.yaml
-bad "added key" "materials.m.compressive_failure_strain" added.yaml $good -o newdir
+bad "added key" "deck key 'materials.m.compressive_failure_strain' differs from the checkpointed run ('(absent)', now '0.1')" added.yaml $good -o newdir
+# a key the checkpointed run had and the deck now lacks
+deck 200 100 > short.yaml
+sed 's/poisson_ratio: 0.3333333333333333,/poisson_ratio: 0.3333333333333333, compressive_failure_strain: 0.1,/' short.yaml > short_key.yaml
+"$spall" run short_key.yaml -o withkey --quiet 2>stderr.txt || { ko "short run"; cat stderr.txt; }
+bad "removed key" "deck key 'materials.m.compressive_failure_strain' differs from the checkpointed run ('0.1', now '(absent)')" short.yaml withkey -o newdir
 sed 's/type: lattice, law: linear/type: peridynamics/; s/tensile_strength: 30.0e6/fracture_energy: 100/; s/, poisson_ratio: 0.3333333333333333//' deck.yaml > pd.yaml
 bad "other model" "model 'lattice', the deck's model is 'peridynamics'" pd.yaml $good -o newdir
 bad "missing" "No such file" deck.yaml ref/checkpoint_0000000007.h5 -o newdir
