@@ -1,0 +1,105 @@
+/**
+ * @file test_field_state.c
+ * @brief The restart state registry (core/field_state.h): slots of every
+ *        kind report their rows and data, names are unique, a load into a
+ *        slot of another length is refused naming the slot, and a list
+ *        slot's set_rows resizes the owner's storage.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/field_state.h"
+#include "spall/error.h"
+
+struct owner {
+    int32_t *list;
+    size_t n;
+};
+
+static size_t owner_rows(const void *ctx)
+{
+    return ((const struct owner *)ctx)->n;
+}
+
+static int owner_set_rows(void *ctx, size_t rows, struct spall_error *err)
+{
+    struct owner *o = ctx;
+    int32_t *g = realloc(o->list, (rows ? rows : 1) * sizeof *g);
+    if (!g)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "oom");
+    o->list = g;
+    o->n = rows;
+    return SPALL_OK;
+}
+
+static void test_slots(void **state)
+{
+    (void)state;
+    struct field_state *fs = NULL;
+    struct spall_error err = {0};
+    assert_int_equal(field_state_create(&fs, &err), 0);
+    double *arr = calloc(10, sizeof *arr);
+    assert_non_null(arr);
+    arr[3] = 7.5;
+    double t = 1.25;
+    struct owner o = {.list = calloc(4, sizeof(int32_t)), .n = 4};
+    assert_non_null(o.list);
+    assert_int_equal(field_state_add_array(fs, "a", FIELD_F64, (void **)&arr, 5, 2, &err), 0);
+    assert_int_equal(field_state_add_values(fs, "t", FIELD_F64, &t, 1, &err), 0);
+    assert_int_equal(field_state_add_list(fs, "l", FIELD_I32, (void **)&o.list, 1, owner_rows,
+                                          owner_set_rows, &o, &err),
+                     0);
+    /* duplicate names are a bug of the owner */
+    assert_int_equal(field_state_add_values(fs, "t", FIELD_F64, &t, 1, &err), SPALL_ERR_INTERNAL);
+    assert_non_null(strstr(err.msg, "'t' registered twice"));
+    assert_int_equal(fs->n, 3);
+
+    const struct field_state_slot *sa = field_state_find(fs, "a");
+    assert_non_null(sa);
+    assert_int_equal(field_state_slot_rows(sa), 5);
+    assert_int_equal(sa->width, 2);
+    assert_true(((double *)field_state_slot_data(sa))[3] == 7.5);
+    /* the owner reallocates: the slot follows its pointer */
+    double *moved = malloc(10 * sizeof *moved);
+    assert_non_null(moved);
+    memcpy(moved, arr, 10 * sizeof *moved);
+    free(arr);
+    arr = moved;
+    assert_ptr_equal(field_state_slot_data(sa), arr);
+    const struct field_state_slot *st = field_state_find(fs, "t");
+    assert_ptr_equal(field_state_slot_data(st), &t);
+    assert_int_equal(field_state_slot_rows(st), 1);
+    assert_null(field_state_find(fs, "nope"));
+
+    /* fixed lengths cannot change; lists can */
+    assert_int_equal(field_state_slot_resize(sa, 5, &err), 0);
+    assert_int_equal(field_state_slot_resize(sa, 6, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "state 'a' holds 6 rows in the checkpoint, 5 in this run"));
+    const struct field_state_slot *sl = field_state_find(fs, "l");
+    assert_int_equal(field_state_slot_rows(sl), 4);
+    assert_int_equal(field_state_slot_resize(sl, 9, &err), 0);
+    assert_int_equal(field_state_slot_rows(sl), 9);
+    assert_ptr_equal(field_state_slot_data(sl), o.list);
+    ((int32_t *)field_state_slot_data(sl))[8] = 42; /* the new room is the owner's */
+    assert_int_equal(o.list[8], 42);
+
+    assert_int_equal(field_state_type_size(FIELD_F64), 8);
+    assert_int_equal(field_state_type_size(FIELD_I64), 8);
+    assert_int_equal(field_state_type_size(FIELD_I32), 4);
+    assert_int_equal(field_state_type_size(FIELD_U8), 1);
+    field_state_destroy(&fs);
+    assert_null(fs);
+    free(arr);
+    free(o.list);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_slots)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
