@@ -112,6 +112,40 @@ else
     kill -KILL $pid 2>/dev/null
 fi
 
+# ---- SIGUSR1 and SIGINT do the same ------------------------------------------
+for sig in USR1 INT; do
+    "$spall" run deck.yaml -o sig_$sig --threads 2 >stdout.txt 2>stderr.txt &
+    pid=$!
+    if wait_for sig_$sig/checkpoint_0000000500.h5 $pid; then
+        kill -$sig $pid
+        wait $pid
+        rc=$?
+        [ $rc -eq 75 ] || { ko "SIG$sig: exit $rc, expected 75"; cat stderr.txt; continue; }
+        grep -q "^status: interrupted by signal $(kill -l $sig)" sig_$sig/run.log ||
+            { ko "SIG$sig: run.log status"; continue; }
+        ok
+    else
+        ko "SIG$sig: no checkpoint appeared"
+        kill -KILL $pid 2>/dev/null
+    fi
+done
+
+# ---- wall-clock checkpoints: when they fall depends on the machine, what a
+# restart continues does not (and the checkpoint keys may change) ------------
+sed 's/checkpoint: {every_steps: 500, keep: 2}/checkpoint: {every_minutes: 0.0005, keep: 2}/' deck.yaml > minutes.yaml
+"$spall" run minutes.yaml -o minutes --threads 2 >/dev/null 2>stderr.txt || { ko "minutes: run"; cat stderr.txt; }
+first=$(ls minutes/checkpoint_*.h5 2>/dev/null | head -1)
+if [ -n "$first" ]; then
+    "$spall" run deck.yaml --restart "$first" -o minutes2 --threads 1 >/dev/null 2>stderr.txt ||
+        { ko "minutes: restart"; cat stderr.txt; }
+    for f in history.csv fields.xdmf checkpoint_0000004000.h5; do
+        cmp -s ref/$f minutes2/$f || ko "minutes: $f differs after restarting from $first"
+    done
+    ok
+else
+    ko "minutes: no checkpoint written (the run took under 30 ms?)"
+fi
+
 # ---- bad checkpoints ----------------------------------------------------------
 good=$(ls ref/checkpoint_*.h5 | head -1) # the older of the two kept (keep: 2)
 snapshot() { find ref -type f -exec md5sum {} + | sort; }
