@@ -189,6 +189,23 @@ mkdir empty
 bad "no checkpoint in directory" "holds no checkpoint" deck.yaml empty
 bad "in place, changed key" "differs" other.yaml ref
 
+# bad output.checkpoint keys: file:line:column, exit 2, nothing written
+deckbad() { # name sed-expression expected
+    sed "$2" deck.yaml > badck.yaml
+    "$spall" run badck.yaml -o badout >stdout.txt 2>stderr.txt
+    local rc=$?
+    if [ $rc -ne 2 ] || [ -e badout ] || [ "$(wc -l < stderr.txt)" -ne 1 ] ||
+        ! grep -q "badck\.yaml:[0-9]*:[0-9]*: .*$3" stderr.txt; then
+        ko "deck $1: exit $rc"; cat stderr.txt; rm -rf badout; return
+    fi
+    ok
+}
+deckbad "two intervals" 's/every_steps: 500,/every_steps: 500, every_time: 1.0e-6,/' "exactly one of every_time"
+deckbad "no interval" 's/every_steps: 500, //' "exactly one of every_time"
+deckbad "keep 0" 's/keep: 2/keep: 0/' "keep"
+deckbad "unknown key" 's/keep: 2/kep: 2/' "unknown key 'kep'"
+deckbad "negative time" 's/every_steps: 500/every_time: -1/' "every_time"
+
 # the safe keys may change: a longer run continues from the last checkpoint
 deck 4400 500 > longer.yaml
 "$spall" run longer.yaml --restart ref -o longer >/dev/null 2>stderr.txt ||
