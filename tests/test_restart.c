@@ -513,11 +513,39 @@ static void test_restart_newer_format(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* SPH with symmetry-plane ghosts has no restart yet: refused before the
+ * run starts, not at its first checkpoint. */
+static void test_restart_refused_sph_symmetry(void **state)
+{
+    (void)state;
+    char tmp[] = "/tmp/spall_restart_XXXXXX";
+    assert_non_null(mkdtemp(tmp));
+    char deck[256], out[256];
+    snprintf(deck, sizeof deck, "%s/deck.yaml", tmp);
+    snprintf(out, sizeof out, "%s/out", tmp);
+    FILE *f = fopen(deck, "w");
+    assert_non_null(f);
+    fprintf(f, "%srun: {steps: 20}\noutput: {checkpoint: {every_steps: 10}}\n",
+            SPH_ROD("  symmetry: x\n", "  xsph: 0.1\n"));
+    fclose(f);
+    struct spall_run_options opt = {.deck_path = deck, .out_dir = out, .progress = 0,
+                                    .quiet = true};
+    struct spall_run_result res;
+    struct spall_error err = {0};
+    assert_int_equal(spall_run(&opt, &res, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "symmetry planes (ghost particles) cannot be checkpointed"));
+    assert_int_equal(access(out, F_OK), -1);
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_restart_newer_format),
         cmocka_unit_test(test_restart_every_time),
+        cmocka_unit_test(test_restart_refused_sph_symmetry),
         cmocka_unit_test(test_restart_in_place),
         cmocka_unit_test(test_restart_models),
     };
