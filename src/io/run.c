@@ -318,7 +318,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         }
         int sig = run_signal_pending();
         if ((ck.opt.on || sig) &&
-            (rc = run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, err)))
+            (rc = run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, log, err)))
             break;
         progress_update(&pr, s->step, s->t, s->end_time);
         if ((res->signal = sig))

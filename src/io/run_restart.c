@@ -158,7 +158,7 @@ int run_ckpt_copy_outputs(struct run_ckpt *c, bool overwrite, struct spall_error
 }
 
 int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_writer *hw,
-                   const struct field_writer *fw, double next_frame_t, bool force,
+                   const struct field_writer *fw, double next_frame_t, bool force, FILE *log,
                    struct spall_error *err)
 {
     bool due = force;
@@ -187,7 +187,13 @@ int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_write
     m.xdmf_grids = field_writer_grids(fw, &m.xdmf_len);
     rc = checkpoint_save(c->dir, c->opt.keep, s, c->fs, c->deck, &m, c->last, sizeof c->last,
                          err);
-    c->wall_last = omp_get_wtime();
+    double w = omp_get_wtime();
+    if (!rc && log) {
+        fprintf(log, "checkpoint: %s (step %ld, t = %.17g s, %.3f s to write)\n", c->last,
+                s->step, s->t, w - now);
+        fflush(log);
+    }
+    c->wall_last = w;
     return rc;
 }
 

@@ -48,9 +48,10 @@ int run_ckpt_copy_outputs(struct run_ckpt *c, bool overwrite, struct spall_error
 /** Same directory: true. */
 bool run_ckpt_same_dir(const struct run_ckpt *c);
 
-/** Write a checkpoint now when one is due after this step (or @p force). */
+/** Write a checkpoint now when one is due after this step (or @p force),
+ *  with a `checkpoint:` line in @p log. */
 int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_writer *hw,
-                   const struct field_writer *fw, double next_frame_t, bool force,
+                   const struct field_writer *fw, double next_frame_t, bool force, FILE *log,
                    struct spall_error *err);
 
 /** run.log lines of a restart. */
