@@ -73,6 +73,7 @@ int run_ckpt_begin(struct run_ckpt *c, const struct spall_run_options *opt, cons
     if (c->opt.keep < 1)
         c->opt.keep = 2;
     c->deck = d;
+    c->last_step = -1;
     c->next_t = c->opt.every_time;
     c->wall_last = omp_get_wtime();
     /* a model that cannot be checkpointed is refused now, not mid-run */
@@ -172,7 +173,7 @@ int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_write
     double now = omp_get_wtime();
     if (c->opt.every_minutes > 0 && now - c->wall_last >= 60.0 * c->opt.every_minutes)
         due = true;
-    if (!due)
+    if (!due || (force && c->last_step == s->step)) /* a signal right after a checkpoint */
         return SPALL_OK;
     /* the owners may have replaced their arrays (a new pair list): the
      * slots are registered afresh for every checkpoint */
@@ -188,6 +189,8 @@ int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_write
     rc = checkpoint_save(c->dir, c->opt.keep, s, c->fs, c->deck, &m, c->last, sizeof c->last,
                          err);
     double w = omp_get_wtime();
+    if (!rc)
+        c->last_step = s->step;
     if (!rc && log) {
         fprintf(log, "checkpoint: %s (step %ld, t = %.17g s, %.3f s to write)\n", c->last,
                 s->step, s->t, w - now);

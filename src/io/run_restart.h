@@ -32,6 +32,7 @@ struct run_ckpt {
     double wall_last;           /**< omp_get_wtime() of the last checkpoint */
     double next_t;              /**< next every_time checkpoint [s] */
     char last[1200];            /**< last checkpoint written */
+    long last_step;             /**< its step (-1: none yet) */
 };
 
 /** After the sim is built: read the restart checkpoint into @p s when
