@@ -4,7 +4,7 @@ BUILD ?= build
 ASAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
 
-.PHONY: all deps build demo check test asan mutate clean
+.PHONY: all deps build demo check test asan mutate install clean
 
 all: build
 
@@ -39,6 +39,12 @@ asan: deps
 MUTATE_ARGS ?=
 mutate: deps
 	@nice -n 10 python3 scripts/mutate/mutate.py --jobs $(JOBS) $(MUTATE_ARGS)
+
+# Install the spall binary, libspall (shared and static), the public headers,
+# spall.pc and the CMake package config under PREFIX (docs/api.md).
+PREFIX ?= /usr/local
+install: build
+	@cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD)

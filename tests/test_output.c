@@ -393,6 +393,10 @@ static void test_xdmf_index(void **state)
     assert_int_equal(count_substr(x, "GridType=\"Uniform\""), 3);
     assert_int_equal(count_substr(x, "TopologyType=\"Polyvertex\" NumberOfElements=\"5\""), 3);
     assert_int_equal(count_substr(x, "GeometryType=\"XYZ\""), 3);
+    /* explicit vertex cells (issue 23: Xdmf3ReaderS shows no cells without) */
+    assert_int_equal(count_substr(x, "Dimensions=\"5 1\" NumberType=\"Int\" Precision=\"8\" "
+                                     "Format=\"HDF\">fields_000001.h5:/connectivity<"),
+                     1);
     assert_int_equal(count_substr(x, "Dimensions=\"5 3\" NumberType=\"Float\" Precision=\"8\" "
                                      "Format=\"HDF\">fields_000000.h5:/position<"),
                      1);
@@ -400,7 +404,7 @@ static void test_xdmf_index(void **state)
     for (int k = 0; k < 3; k++) {
         char needle[64];
         snprintf(needle, sizeof needle, "fields_%06d.h5:/", k);
-        assert_int_equal(count_substr(x, needle), 6); /* position + 5 default attributes */
+        assert_int_equal(count_substr(x, needle), 7); /* connectivity, position, 5 default attributes */
         /* frame times in order, exact after parsing, written short */
         tv = strstr(tv, "<Time Value=\"");
         assert_non_null(tv);

@@ -7,8 +7,10 @@
  * /time, /step and one dataset per field (n x ncomp, float64; positions are
  * written as 3 components, padded with 0 in 1D/2D, so ParaView's XDMF reader
  * can use them as XYZ geometry).  DIR/fields.xdmf is rewritten after every
- * frame as a temporal collection of Polyvertex grids, so an interrupted run
- * still leaves a readable index of its last good frame.
+ * frame as a temporal collection of Polyvertex grids (one vertex cell per
+ * particle through the frame's /connectivity dataset, which ParaView's
+ * default Xdmf3ReaderS needs to make cells), so an interrupted run still
+ * leaves a readable index of its last good frame.
  */
 #ifndef SPALL_OUTPUT_H
 #define SPALL_OUTPUT_H

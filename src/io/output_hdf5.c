@@ -5,6 +5,8 @@
  * Frame layout (DIR/fields_NNNNNN.h5, NNNNNN = frame counter from 0):
  *   /time   scalar float64, attribute unit = "s"
  *   /step   scalar int64
+ *   /connectivity  int64 0..n-1, the Polyvertex topology's explicit vertex
+ *           cells (ParaView's Xdmf3ReaderS makes no cells without it)
  *   /NAME   float64, n x ncomp (rank 1 when ncomp == 1), attribute unit,
  *           one per selected field; n = owned particles only (ghosts are
  *           copies that belong to another rank's output).
@@ -38,6 +40,11 @@
 #include <string.h>
 
 #define OUTPUT_POSITION "position"
+/* Vertex cell i of a frame is particle i: ParaView's default reader for
+ * .xdmf (Xdmf3ReaderS) makes no cells from a Polyvertex topology without an
+ * explicit connectivity array, and its default Surface representation then
+ * shows nothing (issue 23). */
+#define OUTPUT_CONNECTIVITY "connectivity"
 
 struct out_field {
     char name[FIELD_NAME_LEN];
@@ -111,7 +118,8 @@ static int text_append(struct text_buf *t, const char *fmt, ...)
  *  not shadow /time or /step. */
 static int name_is_safe(const char *name)
 {
-    if (!name[0] || strcmp(name, "time") == 0 || strcmp(name, "step") == 0)
+    if (!name[0] || strcmp(name, "time") == 0 || strcmp(name, "step") == 0 ||
+        strcmp(name, OUTPUT_CONNECTIVITY) == 0)
         return 0;
     for (const char *c = name; *c; c++) {
         int ok = (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') ||
@@ -224,6 +232,28 @@ static int h5_write_i64(hid_t file, const char *name, int64_t value)
     if (ds >= 0)
         H5Dclose(ds);
     H5Sclose(space);
+    return bad ? -1 : 0;
+}
+
+/** /connectivity: int64 0, 1, ..., n - 1 (one vertex cell per particle). */
+static int write_connectivity(hid_t file, size_t n)
+{
+    int64_t *ids = malloc((n ? n : 1) * sizeof *ids);
+    if (!ids)
+        return -1;
+    for (size_t i = 0; i < n; i++)
+        ids[i] = (int64_t)i;
+    hsize_t dims[1] = {(hsize_t)n};
+    hid_t space = H5Screate_simple(1, dims, NULL);
+    hid_t ds = space < 0 ? -1
+                         : H5Dcreate2(file, OUTPUT_CONNECTIVITY, H5T_STD_I64LE, space, H5P_DEFAULT,
+                                      H5P_DEFAULT, H5P_DEFAULT);
+    int bad = ds < 0 || (n && H5Dwrite(ds, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, ids) < 0);
+    if (ds >= 0)
+        H5Dclose(ds);
+    if (space >= 0)
+        H5Sclose(space);
+    free(ids);
     return bad ? -1 : 0;
 }
 
@@ -408,6 +438,11 @@ static int write_frame_h5(struct field_writer *w, const struct sim *s, const cha
         H5Fclose(file);
         return rc;
     }
+    if (write_connectivity(file, n) < 0) {
+        int rc = h5_fail(err, "cannot write /" OUTPUT_CONNECTIVITY " to", final);
+        H5Fclose(file);
+        return rc;
+    }
     for (size_t k = 0; k < w->n_fields; k++) {
         const struct out_field *o = &w->fields[k];
         const struct field_desc *f = field_registry_find(reg, o->name);
@@ -455,12 +490,16 @@ static int append_xdmf_grid(struct field_writer *w, const char *h5name, double t
                           "        <Time Value=\"%s\"/>\n"
                           "        <Information Name=\"step\" Value=\"%ld\"/>\n"
                           "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%zu\""
-                          " NodesPerElement=\"1\"/>\n"
+                          " NodesPerElement=\"1\">\n"
+                          "          <DataItem Dimensions=\"%zu 1\" NumberType=\"Int\""
+                          " Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem>\n"
+                          "        </Topology>\n"
                           "        <Geometry GeometryType=\"XYZ\">\n"
                           "          <DataItem Dimensions=\"%zu 3\" NumberType=\"Float\""
                           " Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem>\n"
                           "        </Geometry>\n",
-                          w->frames, tbuf, step, n, n, h5name, OUTPUT_POSITION);
+                          w->frames, tbuf, step, n, n, h5name, OUTPUT_CONNECTIVITY, n, h5name,
+                          OUTPUT_POSITION);
     for (size_t k = 1; k < w->n_fields && !bad; k++) {
         const struct out_field *o = &w->fields[k];
         char dims[48];
