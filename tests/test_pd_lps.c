@@ -13,6 +13,7 @@
 
 #include <cmocka.h>
 
+#include "core/fields.h"
 #include "core/model.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -23,6 +24,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static int build(const char *yaml, struct sim **s, struct spall_error *err)
@@ -99,6 +101,73 @@ static void test_patch_2d(void **state)
     }
 }
 
+/* 3D: the stress field of the particle nearest the centre of a cube under
+ * uniaxial strain eps_xx and under shear eps_xy, against K + 4mu/3, K - 2mu/3
+ * and mu: bulk and the isotropic mean of the two cubic shear moduli within
+ * 1 % (the cubic anisotropy as in 2D, printed). */
+static void test_patch_3d(void **state)
+{
+    (void)state;
+    const double nus[] = {0.1, 0.3, 0.45};
+    for (int k = 0; k < 3; k++) {
+        char buf[1024];
+        snprintf(buf, sizeof buf,
+                 "model: {type: peridynamics, formulation: lps}\n"
+                 "materials:\n  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: %g}\n"
+                 "lattice: {type: sc, spacing: 1.0e-3}\n"
+                 "geometry:\n  p: {box: {min: [0, 0, 0], max: [0.0105, 0.0105, 0.0105]}}\n"
+                 "body: {geometry: p, material: m}\nrun: {end_time: 1.0}\n",
+                 nus[k]);
+        struct spall_error err = {0};
+        struct sim *s = NULL;
+        int rc = build(buf, &s, &err);
+        if (rc)
+            fprintf(stderr, "%s\n", err.msg);
+        assert_int_equal(rc, 0);
+        struct particles *p = s->p;
+        size_t c = 0;
+        double best = INFINITY;
+        for (size_t i = 0; i < p->n; i++) {
+            double d2 = 0;
+            for (int a = 0; a < 3; a++)
+                d2 += pow(p->x0[a][i] - 0.005, 2);
+            if (d2 < best) {
+                best = d2;
+                c = i;
+            }
+        }
+        const struct field_desc *f = field_registry_find(s->fields, "stress");
+        assert_non_null(f);
+        double *out = malloc(p->n * 6 * sizeof *out);
+        assert_non_null(out);
+        const double eps = 1e-7;
+        double sx[6], sxy[6];
+        for (int load = 0; load < 2; load++) {
+            for (size_t i = 0; i < p->n; i++) {
+                p->x[0][i] = p->x0[0][i] * (1 + (load == 0 ? eps : 0)) +
+                             (load == 1 ? 0.5 * eps * p->x0[1][i] : 0);
+                p->x[1][i] = p->x0[1][i] + (load == 1 ? 0.5 * eps * p->x0[0][i] : 0);
+                p->x[2][i] = p->x0[2][i];
+            }
+            field_gather_f64(f, p->n, out);
+            for (int a = 0; a < 6; a++)
+                (load == 0 ? sx : sxy)[a] = out[c * 6 + (size_t)a] / eps;
+        }
+        free(out);
+        const double nu = nus[k], E = 1e9, K = E / (3 * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+        const double c11 = K + 4 * mu / 3, c12 = K - 2 * mu / 3;
+        const double bulk = (sx[0] + 2 * sx[1]) / (3 * K);
+        /* isotropic (Voigt) mean of the cubic shear moduli: (2 C' + 3 C44) / 5 */
+        const double shear = (0.5 * (sx[0] - sx[1]) * 2.0 + 3.0 * sxy[3]) / (5.0 * mu);
+        printf("  LPS 3D nu %.2f: C11 %+.3f %%, C12 %+.3f %%, C44 %+.3f %%; bulk %+.3f %%, mean "
+               "shear %+.3f %%\n", nu, 100 * (sx[0] / c11 - 1), 100 * (sx[1] / c12 - 1),
+               100 * (sxy[3] / mu - 1), 100 * (bulk - 1), 100 * (shear - 1));
+        assert_true(fabs(bulk - 1) < 0.01);
+        assert_true(fabs(shear - 1) < 0.01);
+        sim_destroy(&s);
+    }
+}
+
 static void test_critical_stretch(void **state)
 {
     (void)state;
@@ -135,6 +204,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_patch_2d),
+        cmocka_unit_test(test_patch_3d),
         cmocka_unit_test(test_critical_stretch),
         cmocka_unit_test(test_missing_nu),
     };
