@@ -42,12 +42,15 @@
  *                               stretch-broken matrix bond also breaks its two
  *                               zigzag neighbours on the same fiber-parallel
  *                               interface (pd_plane.c; default bond)
+ *     formulation: bond | lps   lps: linear peridynamic solid ([Silling2007],
+ *                               pd_lps.c), any nu; materials need poisson_ratio
+ *     influence: one | inverse  lps: omega = 1 or delta / |xi|
  *
  *   materials:
  *     <name>:   isotropic
  *       density, youngs_modulus (or bulk_modulus in 3D), poisson_ratio
  *       (optional; must be the model's fixed value: 1/4 in 3D and plane
- *       strain, 1/3 in plane stress and PDLM), fracture_energy G0 [J/m^2]
+ *       strain, 1/3 in plane stress and PDLM; required and free with lps), fracture_energy G0 [J/m^2]
  *       or critical_stretch (neither: unbreakable)
  *     <name>:   orthotropic lamina (2D plane stress)
  *       density, fiber_modulus E1, transverse_modulus E2, shear_modulus G12,
