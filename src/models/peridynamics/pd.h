@@ -35,6 +35,7 @@ struct pd_material {
     double c_f, c_m, s0_f, s0_m;
     double fa_cos, fa_sin;  /**< cos, sin of fiber_angle (pd_mixed.c) */
     double Q22;             /**< plane-stress reduced stiffness (mode-I energy weight) */
+    double mu, kd;          /**< LPS: shear modulus, bulk modulus of the dimension [Pa] */
 };
 
 /** Isotropic PMB micromodulus of material @p mt (Silling & Askari 2005; digest table). */
@@ -43,6 +44,8 @@ double pd_micromodulus(int dim, enum pd_plane plane, double E, double K, double 
 /** Critical stretch from G0 for micromodulus @p c (energy of the bonds crossing a unit
  *  crack = G0, Silling & Askari 2005 Eq. 27 generalised). */
 double pd_critical_stretch(int dim, double c, double G0, double delta, double thickness);
+/** LPS critical stretch from G0 (pd_calib.c); kd the bulk modulus of the dimension. */
+double pd_lps_critical_stretch(int dim, double kd, double mu, double G0, double delta);
 /** PDLM (triangular, nearest neighbours): c from strain-energy equivalence. */
 double pd_pdlm_micromodulus(double E, double dx, double thickness);
 /** PDLM critical stretch from G (2 bonds per dx cross a crack along a row). */

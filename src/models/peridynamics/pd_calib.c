@@ -58,6 +58,20 @@ double pd_critical_stretch(int dim, double c, double G0, double delta, double th
     }
 }
 
+/* LPS critical stretch from G0 (ordinary state-based form used with Peridigm's
+ * LPS; [MadenciOterkus2014] ch. 6): 3D G0 = (3 mu + (3/4)^4 (k - 5 mu / 3)) s0^2
+ * delta, 2D G0 = (6 mu / pi + 16 / (9 pi^2) (k - 2 mu)) s0^2 delta.  At the Cauchy
+ * ratio (3D nu = 1/4, plane stress 1/3, plane strain 1/4) the k term vanishes
+ * and both equal the PMB values above (checked in tests/test_pd_model.c). */
+double pd_lps_critical_stretch(int dim, double kd, double mu, double G0, double delta)
+{
+    if (!(G0 > 0.0))
+        return INFINITY;
+    double a = dim == 3 ? 3.0 * mu + pow(0.75, 4) * (kd - 5.0 * mu / 3.0)
+                        : 6.0 * mu / SPALL_PI + 16.0 / (9.0 * SPALL_PI * SPALL_PI) * (kd - 2.0 * mu);
+    return a > 0.0 ? sqrt(G0 / (a * delta)) : INFINITY;
+}
+
 double pd_pdlm_micromodulus(double E, double dx, double thickness)
 {
     double k = sqrt(3.0) * E * thickness / 2.0;
@@ -73,6 +87,10 @@ double pd_pdlm_critical_stretch(double E, double G, double dx)
 void pd_particle_eval(const struct model *m, const struct sim *sim, size_t i, double *energy,
                       double *stress)
 {
+    if (m->opt.lps) {
+        pd_lps_particle_eval(m, sim, i, energy, stress);
+        return;
+    }
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
     const int dim = sim->dim;

@@ -24,4 +24,16 @@ const struct model_fixture pd_fixtures[] = {
             "and y axes ([MadenciOterkus2014] Eq. 4.31), so the corrected body is invariant "
             "only under the lattice's own rotations; at 37 degrees the runs differ by 0.55 of "
             "the displacement"},
+    {.label = "peridynamics-lps",
+     .deck = "model: {type: peridynamics, formulation: lps}\n"
+             "materials:\n  m: {density: 2000, youngs_modulus: 1.0e9, poisson_ratio: 0.4, "
+             "critical_stretch: 0.5}\n",
+     .lattice = "square",
+     .spacing = 1.0e-3},
+    {.label = "peridynamics-lps-3d",
+     .deck = "model: {type: peridynamics, formulation: lps, influence: inverse}\n"
+             "materials:\n  m: {density: 2000, youngs_modulus: 1.0e9, poisson_ratio: 0.1, "
+             "critical_stretch: 0.5}\n",
+     .lattice = "sc",
+     .spacing = 1.0e-3},
     {.label = NULL}};

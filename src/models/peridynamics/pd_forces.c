@@ -92,6 +92,12 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     const double *mmg = m->mm_g;
     /* fiber-parallel matrix cracks (pd_plane.c): flag stretch-broken matrix bonds */
     uint8_t *fresh = m->fresh;
+    if (m->opt.lps) {
+        pd_lps_forces(m, sim);
+        if (m->opt.quasi == PD_QS_ADR)
+            pd_adr_update(m, sim);
+        return SPALL_OK;
+    }
     if (m->opt.quasi == PD_QS_ADR) {
         /* the engine zeroed f: keep the model's part of step n-1 for ADR */
         for (int d = 0; d < p->dim; d++)

@@ -14,6 +14,7 @@
 
 #include "core/mathconst.h"
 #include "models/peridynamics/pd.h"
+#include "models/peridynamics/pd_lps.h"
 
 struct bond_list;
 struct sim;
@@ -38,6 +39,7 @@ enum pd_quasi { PD_QS_OFF, PD_QS_ADR };
 
 struct pd_options {
     enum pd_variant variant;
+    bool lps;                /**< formulation lps: linear peridynamic solid (pd_lps.c) */
     enum pd_plane plane;
     double horizon_factor;   /**< m: delta = m dx (PMB) */
     bool partial_volume;     /**< beta_ij for bonds cut by the horizon */
@@ -81,6 +83,7 @@ struct model {
     uint8_t *fresh;          /**< per half-bond: broken by stretch this step */
     bool mixed;              /**< some bond type uses the mixed-mode threshold */
     bool ortho;              /**< some material is orthotropic */
+    struct pd_lps lps;       /**< formulation lps (pd_lps.c) */
     bool initialised;
 };
 

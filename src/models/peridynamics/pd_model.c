@@ -42,12 +42,15 @@
  *                               stretch-broken matrix bond also breaks its two
  *                               zigzag neighbours on the same fiber-parallel
  *                               interface (pd_plane.c; default bond)
+ *     formulation: bond | lps   lps: linear peridynamic solid ([Silling2007],
+ *                               pd_lps.c), any nu; materials need poisson_ratio
+ *     influence: one | inverse  lps: omega = 1 or delta / |xi|
  *
  *   materials:
  *     <name>:   isotropic
  *       density, youngs_modulus (or bulk_modulus in 3D), poisson_ratio
  *       (optional; must be the model's fixed value: 1/4 in 3D and plane
- *       strain, 1/3 in plane stress and PDLM), fracture_energy G0 [J/m^2]
+ *       strain, 1/3 in plane stress and PDLM; required and free with lps), fracture_energy G0 [J/m^2]
  *       or critical_stretch (neither: unbreakable)
  *     <name>:   orthotropic lamina (2D plane stress)
  *       density, fiber_modulus E1, transverse_modulus E2, shear_modulus G12,
@@ -90,6 +93,7 @@ static void pd_destroy(struct model **pm)
     free(m->mm_beta);
     free(m->twin);
     free(m->fresh);
+    pd_lps_free(&m->lps);
     for (int d = 0; d < 3; d++)
         free(m->f_prev[d]);
     free(m);
@@ -107,10 +111,12 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     static const char *const bo[] = {"immediate", "next_step", NULL};
     static const char *const mmo[] = {"bk", "off", NULL};
     static const char *const mco[] = {"bond", "fiber_plane", NULL};
+    static const char *const fmo[] = {"bond", "lps", NULL};
+    static const char *const inf[] = {"one", "inverse", NULL};
     static const char *const keys[] = {"type", "variant", "horizon_factor", "plane",
                                        "partial_volume", "partial_volume_rule", "break_order", "surface_correction", "quasi_static",
                                        "fiber_model", "fiber_power", "mixed_mode", "bk_exponent", "matrix_crack",
-                                       NULL};
+                                       "formulation", "influence", NULL};
     *out = NULL;
     struct model *m = calloc(1, sizeof *m);
     if (!m)
@@ -122,7 +128,7 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     m->opt.mixed_mode = true;
     m->opt.bk_exponent = 2.0;
     if (params) {
-        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, mmode = 0, mc = 0, rc;
+        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, mmode = 0, mc = 0, fo = 0, in = 0, rc;
         long pw = 32;
         if ((rc = deck_enum(params, "variant", false, variants, &v, err)) ||
             (rc = deck_double_pos(params, "horizon_factor", false, &m->opt.horizon_factor, err)) ||
@@ -139,6 +145,8 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             (rc = deck_enum(params, "matrix_crack", false, mco, &mc, err)) ||
             (rc = deck_double(params, "bk_exponent", false, 0.1, 20.0, &m->opt.bk_exponent,
                               err)) ||
+            (rc = deck_enum(params, "formulation", false, fmo, &fo, err)) ||
+            (rc = deck_enum(params, "influence", false, inf, &in, err)) ||
             (rc = deck_check_unused(params, "model", keys, err))) {
             free(m);
             return rc;
@@ -152,6 +160,16 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
         m->opt.fiber_plane = mc == 1;
         m->opt.family_at_delta = pr == 1;
         m->opt.break_late = b == 1;
+        m->opt.lps = fo == 1;
+        m->lps.influence = (enum pd_influence)in;
+        if (m->opt.lps && (sim->dim == 1 || m->opt.variant == PD_PDLM ||
+                           m->opt.surface_correction || m->opt.break_late)) {
+            free(m);
+            return deck_error_key(err, params, "formulation", "lps needs a 2D or 3D pmb run "
+                                  "without surface_correction (each particle's own weighted "
+                                  "volume normalises its dilatation) and break_order "
+                                  "immediate");
+        }
         if (m->opt.variant == PD_PDLM && sim->dim != 2) {
             free(m);
             return deck_error_key(err, params, "variant",
@@ -241,6 +259,14 @@ static int pd_parse_material(struct model *m, struct sim *sim, int index,
             (rc = deck_check_unused(node, "a peridynamic material", k_iso, err)))
             return rc;
         double fixed = pd_fixed_nu(m, dim);
+        if (m->opt.lps) {
+            if (isnan(nu))
+                return deck_error(err, node, "formulation lps needs poisson_ratio");
+            if (!(nu < 0.5) || (dim == 2 && m->opt.plane == PD_PLANE_STRESS && !(nu < 1.0)))
+                return deck_error_key(err, node, "poisson_ratio", "poisson_ratio must be "
+                                      "below 1/2");
+            fixed = nu;
+        }
         if (!isnan(nu) && dim > 1 && fabs(nu - fixed) > 1e-3) {
             deck_error_key(err, node, "poisson_ratio",
                            "bond-based peridynamics fixes nu = %.4g in %s (pair forces: Cauchy "
@@ -263,6 +289,13 @@ static int pd_parse_material(struct model *m, struct sim *sim, int index,
                 mt.E = 3.0 * mt.K * (1.0 - 2.0 * mt.nu);
             else
                 mt.K = mt.E / (3.0 * (1.0 - 2.0 * mt.nu));
+        }
+        if (dim > 1) {
+            /* LPS: shear modulus and the bulk modulus of the dimension */
+            mt.mu = mt.E / (2.0 * (1.0 + mt.nu));
+            mt.kd = dim == 3 ? mt.K
+                    : m->opt.plane == PD_PLANE_STRESS ? mt.E / (2.0 * (1.0 - mt.nu))
+                                                      : mt.E / (3.0 * (1.0 - 2.0 * mt.nu)) + mt.mu / 3.0;
         }
         if (mt.G0 > 0.0 && mt.s0_given > 0.0)
             return deck_error(err, node, "give fracture_energy or critical_stretch, not both");
@@ -335,6 +368,10 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
             return spall_error_set(err, SPALL_ERR_INPUT, "peridynamics: material '%s' has no "
                                    "parameters", sim->materials[k].name);
         m->ortho |= mt->ortho;
+        if (mt->ortho && m->opt.lps)
+            return spall_error_set_key(err, SPALL_ERR_INPUT, "model.formulation",
+                                       "formulation lps is isotropic; material '%s' is an "
+                                       "orthotropic lamina", sim->materials[k].name);
         if (mt->ortho) {
             mt->c = 1.0; /* unused */
             continue;
@@ -345,6 +382,8 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
         } else {
             mt->c = pd_micromodulus(sim->dim, m->opt.plane, mt->E, mt->K, m->delta, t);
             mt->s0 = pd_critical_stretch(sim->dim, mt->c, mt->G0, m->delta, t);
+            if (m->opt.lps)
+                mt->s0 = pd_lps_critical_stretch(sim->dim, mt->kd, mt->mu, mt->G0, m->delta);
         }
         if (mt->s0_given > 0.0)
             mt->s0 = mt->s0_given;
@@ -366,7 +405,7 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
             }
         }
     if ((rc = pd_build_coefficients(m, sim, err)) || (rc = pd_mixed_init(m, sim, err)) ||
-        (rc = pd_plane_init(m, sim, err)))
+        (rc = pd_plane_init(m, sim, err)) || (m->opt.lps && (rc = pd_lps_init(m, sim, err))))
         return rc;
     for (size_t a = 0; a < nm; a++)
         for (size_t b = 0; b < nm; b++)
@@ -391,6 +430,8 @@ static int pd_precrack(struct model *m, struct sim *sim, const struct precrack *
     if (!m->bl)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "PD pre-crack before init");
     *n_cut = bond_list_apply_precrack(m->bl, sim->p, c);
+    if (m->opt.lps)
+        pd_lps_weights(m, sim); /* a pre-cut bond leaves the family */
     return SPALL_OK;
 }
 
@@ -463,7 +504,7 @@ static int pd_register_fields(struct model *m, struct sim *sim, struct field_reg
 
 static double pd_dt(const struct model *m, const struct sim *sim)
 {
-    return pd_stable_dt(m, sim);
+    return m->opt.lps ? pd_lps_stable_dt(m, sim) : pd_stable_dt(m, sim);
 }
 
 static int pd_end_step(struct model *m, struct sim *sim, struct spall_error *err)
@@ -539,6 +580,9 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
                 "c_f = %g, c_m = %g, s0_f = %g, s0_m = %g\n", sim->materials[k].name, mt->E1,
                 mt->E2, mt->G12, mt->nu12, mt->fiber_angle * 180.0 / SPALL_PI, mt->c_f, mt->c_m,
                 mt->s0_f, mt->s0_m);
+        else if (m->opt.lps)
+            PUT("  material '%s': LPS, E = %g Pa, nu = %g, mu = %g Pa, k = %g Pa, s0 = %g\n",
+                sim->materials[k].name, mt->E, mt->nu, mt->mu, mt->kd, mt->s0);
         else
             PUT("  material '%s': E = %g Pa, nu = %g (fixed), c = %g, s0 = %g\n",
                 sim->materials[k].name, mt->E, mt->nu, mt->c, mt->s0);
@@ -547,7 +591,9 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
         PUT("  mixed-mode matrix failure: s0_m x sqrt(G_c(beta) / G_Ic), Benzeggagh-Kenane "
             "eta = %g\n", m->opt.bk_exponent);
     if (m->bl)
-        PUT("  stable dt = %g s (Silling & Askari 2005 Eq. 15)\n", pd_stable_dt(m, sim));
+        PUT("  stable dt = %g s (%s)\n", pd_dt(m, sim),
+            m->opt.lps ? "LPS: Gershgorin bound of the stiffness, pd_lps.c"
+                       : "Silling & Askari 2005 Eq. 15");
 #undef PUT
 }
 

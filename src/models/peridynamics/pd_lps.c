@@ -1,0 +1,257 @@
+/**
+ * @file pd_lps.c
+ * @brief Linear peridynamic solid (LPS, ordinary state-based PD,
+ *        [Silling2007]) in 2D and 3D, deck `model.formulation: lps`.
+ *
+ * With omega the influence function, beta the partial volume and d the
+ * dimension (in 2D the in-plane dilatation, [Le2014] uses the 3D one; both
+ * give the same energy for a homogeneous deformation):
+ *   m_i     = sum_j omega beta |xi|^2 V_j                 (weighted volume)
+ *   theta_i = (d / m_i) sum_j omega beta |xi| e_ij V_j,   e = |Y| - |xi|
+ *   W_i     = k theta^2 / 2 + alpha / 2 sum_j omega beta (e^d)^2 V_j,
+ *             e^d = e - theta |xi| / d,  alpha = d (d + 2) mu / m_i
+ *   t_ij    = dW_i / de_ij / V_j = omega (d k theta |xi| / m_i + alpha e^d)
+ *   F_i     = V_i sum_j (t_ij + t_ji) beta V_j M_ij  (M: unit deformed bond)
+ * k is the bulk modulus of the dimension: K in 3D, K + mu/3 in plane strain,
+ * E / (2 (1 - nu)) in plane stress.  The force state follows from W (the
+ * deviatoric sum of omega |xi| e^d vanishes by the definition of theta), so
+ * any nu is reproduced; m_i is each particle's own (pre-cracks excluded),
+ * which normalises a surface particle's dilatation.  A bond breaks,
+ * irreversibly, when its stretch passes s0 (pd_model.c), decided from both
+ * ends from the same length so that threads agree.
+ */
+#include "models/peridynamics/pd_internal.h"
+
+#include "core/bond_list.h"
+#include "core/fields.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Partial volume, the linear rule of pd_forces.c ([MadenciOterkus2014] sec. 2.4). */
+static double lps_beta(const struct model *m, double xi)
+{
+    if (!m->opt.partial_volume || xi <= m->delta - 0.5 * m->dx)
+        return 1.0;
+    if (xi >= m->delta + 0.5 * m->dx)
+        return 0.0;
+    return (m->delta + 0.5 * m->dx - xi) / m->dx;
+}
+
+void pd_lps_free(struct pd_lps *L)
+{
+    free(L->wvol);
+    free(L->theta);
+    free(L->alpha);
+    free(L->bcoef);
+    free(L->ob);
+}
+
+int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct pd_lps *L = &m->lps;
+    const size_t n = sim->p->n, nh = m->bl->offset[n];
+    if (!(L->wvol = calloc(n ? n : 1, sizeof(double))) ||
+        !(L->theta = calloc(n ? n : 1, sizeof(double))) ||
+        !(L->alpha = calloc(n ? n : 1, sizeof(double))) ||
+        !(L->bcoef = calloc(n ? n : 1, sizeof(double))) ||
+        !(L->ob = calloc(nh ? nh : 1, sizeof(double))))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS state");
+    for (size_t s = 0; s < nh; s++) {
+        double xi = m->bl->rest[s];
+        double om = L->influence == PD_OMEGA_INVERSE ? m->delta / xi : 1.0;
+        L->ob[s] = om * lps_beta(m, xi);
+    }
+    pd_lps_weights(m, sim);
+    return SPALL_OK;
+}
+
+void pd_lps_weights(struct model *m, const struct sim *sim)
+{
+    struct pd_lps *L = &m->lps;
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    const double d = (double)sim->dim;
+    for (size_t i = 0; i < p->n; i++) {
+        double w = 0.0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            if (!(bl->state[s] & BOND_BROKEN))
+                w += L->ob[s] * bl->rest[s] * bl->rest[s] * p->volume[bl->partner[s]];
+        const struct pd_material *mt = &m->mat[p->material[i]];
+        L->wvol[i] = w;
+        L->alpha[i] = w > 0.0 ? d * (d + 2.0) * mt->mu / w : 0.0;
+        L->bcoef[i] = w > 0.0 ? d * mt->kd / w - L->alpha[i] / d : 0.0;
+    }
+}
+
+/* Dilatation of particle i from the current positions (intact bonds). */
+static double lps_theta(const struct model *m, const struct sim *sim, size_t i)
+{
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    const int dim = sim->dim;
+    if (!(m->lps.wvol[i] > 0.0))
+        return 0.0;
+    double sum = 0.0;
+    for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+        if (bl->state[s] & BOND_BROKEN)
+            continue;
+        size_t j = (size_t)bl->partner[s];
+        double l2 = 0.0;
+        for (int c = 0; c < dim; c++) {
+            double r = p->x[c][j] - p->x[c][i];
+            l2 += r * r;
+        }
+        double xi = bl->rest[s];
+        sum += m->lps.ob[s] * xi * (sqrt(l2) - xi) * p->volume[j];
+    }
+    return (double)dim * sum / m->lps.wvol[i];
+}
+
+int pd_lps_forces(struct model *m, struct sim *sim)
+{
+    struct particles *p = sim->p;
+    struct bond_list *bl = m->bl;
+    struct pd_lps *L = &m->lps;
+    const size_t n = p->n, no = p->n_owned;
+    const int dim = p->dim;
+    const double d = (double)dim;
+    uint8_t *st = bl->state;
+    /* pass 1: breaking and dilatation; each half-bond decided by its own
+     * particle from a length that is bit-identical from both ends */
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < n; i++) {
+        double sum = 0.0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            if (st[s] & BOND_BROKEN)
+                continue;
+            size_t j = (size_t)bl->partner[s];
+            double l2 = 0.0;
+            for (int c = 0; c < dim; c++) {
+                double r = p->x[c][j] - p->x[c][i];
+                l2 += r * r;
+            }
+            const double xi = bl->rest[s], e = sqrt(l2) - xi;
+            if (e / xi > m->s0_tab[bl->type[s]]) {
+                st[s] |= BOND_BROKEN;
+                /* energy of the half-bond at the last dilatation: t e / 2 (the
+                 * state energy is homogeneous of degree 2 in e) */
+                double t = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
+                m->diss[i] += 0.5 * L->ob[s] * t * e * p->volume[i] * p->volume[j];
+                continue;
+            }
+            sum += L->ob[s] * xi * e * p->volume[j];
+        }
+        L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
+    }
+    /* pass 2: forces, t_ij from i's state and t_ji from j's */
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < no; i++) {
+        double fi[3] = {0.0, 0.0, 0.0};
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            if (st[s] & BOND_BROKEN)
+                continue;
+            size_t j = (size_t)bl->partner[s];
+            double r[3] = {0.0, 0.0, 0.0}, l2 = 0.0;
+            for (int c = 0; c < dim; c++) {
+                r[c] = p->x[c][j] - p->x[c][i];
+                l2 += r[c] * r[c];
+            }
+            const double l = sqrt(l2), xi = bl->rest[s], e = l - xi;
+            const double tij = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
+            const double tji = L->alpha[j] * e + L->bcoef[j] * xi * L->theta[j];
+            const double g = L->ob[s] * (tij + tji) * (p->volume[i] * p->volume[j]) / l;
+            for (int c = 0; c < dim; c++)
+                fi[c] += g * r[c];
+        }
+        for (int c = 0; c < dim; c++)
+            p->f[c][i] += fi[c];
+    }
+    return SPALL_OK;
+}
+
+/* Row sum of the linearised stiffness of particle i (each |n . u| <= |u|):
+ * direct terms (alpha_i + alpha_j), i's own dilatation and its neighbours'. */
+double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
+{
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    const struct pd_lps *L = &m->lps;
+    const double d = (double)sim->dim;
+    const size_t n = p->n;
+    double *S = malloc((n ? n : 1) * sizeof *S);
+    if (!S)
+        return 0.0; /* the engine refuses a non-positive step with a message */
+    for (size_t i = 0; i < n; i++) {
+        S[i] = 0.0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            if (!(bl->state[s] & BOND_BROKEN))
+                S[i] += L->ob[s] * bl->rest[s] * p->volume[bl->partner[s]];
+    }
+    double dt = INFINITY;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        double R = L->wvol[i] > 0.0 ? fabs(L->bcoef[i]) * d * S[i] * S[i] / L->wvol[i] : 0.0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            if (bl->state[s] & BOND_BROKEN)
+                continue;
+            size_t j = (size_t)bl->partner[s];
+            R += p->volume[j] * L->ob[s] * (L->alpha[i] + L->alpha[j]);
+            if (L->wvol[j] > 0.0)
+                R += p->volume[j] * L->ob[s] * bl->rest[s] * fabs(L->bcoef[j]) * d * S[j] /
+                     L->wvol[j];
+        }
+        R *= 2.0 * p->volume[i];
+        if (R > 0.0)
+            dt = fmin(dt, 2.0 * sqrt(p->mass[i] / R));
+    }
+    free(S);
+    return dt;
+}
+
+void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i,
+                          double *energy, double *stress)
+{
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    const struct pd_lps *L = &m->lps;
+    const int dim = sim->dim;
+    const double th = lps_theta(m, sim, i);
+    const struct pd_material *mt = &m->mat[p->material[i]];
+    double w = 0.5 * mt->kd * th * th, sg[6] = {0, 0, 0, 0, 0, 0};
+    for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+        if (bl->state[s] & BOND_BROKEN)
+            continue;
+        size_t j = (size_t)bl->partner[s];
+        double r[3] = {0, 0, 0}, r0[3] = {0, 0, 0}, l = 0.0;
+        for (int c = 0; c < dim; c++) {
+            r[c] = p->x[c][j] - p->x[c][i];
+            r0[c] = p->x0[c][j] - p->x0[c][i];
+            l += r[c] * r[c];
+        }
+        l = sqrt(l);
+        const double xi = bl->rest[s], e = l - xi, ed = e - th * xi / (double)dim;
+        w += 0.5 * L->alpha[i] * L->ob[s] * ed * ed * p->volume[j];
+        /* collapsed stress sum_j t_ij M (x) xi V_j ([Silling2007], homogeneous case) */
+        const double g = L->ob[s] * (L->alpha[i] * e + L->bcoef[i] * xi * th) * p->volume[j] / l;
+        if (dim == 2) {
+            sg[0] += g * r[0] * r0[0];
+            sg[1] += g * r[1] * r0[1];
+            sg[2] += 0.5 * g * (r[0] * r0[1] + r[1] * r0[0]);
+        } else {
+            sg[0] += g * r[0] * r0[0];
+            sg[1] += g * r[1] * r0[1];
+            sg[2] += g * r[2] * r0[2];
+            sg[3] += 0.5 * g * (r[0] * r0[1] + r[1] * r0[0]);
+            sg[4] += 0.5 * g * (r[1] * r0[2] + r[2] * r0[1]);
+            sg[5] += 0.5 * g * (r[0] * r0[2] + r[2] * r0[0]);
+        }
+    }
+    if (energy)
+        *energy = w * p->volume[i];
+    if (stress)
+        for (int c = 0; c < field_symtensor_ncomp(dim); c++)
+            stress[c] = sg[c];
+}

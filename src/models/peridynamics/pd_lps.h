@@ -1,0 +1,49 @@
+/**
+ * @file pd_lps.h
+ * @brief Linear peridynamic solid (LPS, ordinary state-based, [Silling2007])
+ *        inside the peridynamics model (deck `model.formulation: lps`).  Internal to
+ *        src/models/peridynamics: the shared model state is in pd_internal.h.
+ */
+#ifndef SPALL_PD_LPS_H
+#define SPALL_PD_LPS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "models/peridynamics/pd.h"
+
+struct model;
+struct sim;
+struct spall_error;
+
+/** Influence function omega(xi) (deck `model.influence`). */
+enum pd_influence {
+    PD_OMEGA_ONE,    /**< omega = 1 ([Silling2007]; Peridigm's default) */
+    PD_OMEGA_INVERSE /**< omega = delta / |xi| (LAMMPS peri/lps uses 1/|xi|) */
+};
+
+/** Per-particle constants and state of the LPS formulation. */
+struct pd_lps {
+    enum pd_influence influence;
+    double *wvol;   /**< weighted volume m_i = sum omega beta |xi|^2 V_j [m^5] */
+    double *theta;  /**< dilatation of the last force call */
+    double *alpha;  /**< deviatoric coefficient d (d + 2) mu / m_i */
+    double *bcoef;  /**< coefficient of |xi| theta in the scalar force: d k / m_i - alpha / d */
+    double *ob;     /**< per half-bond: omega(xi) beta(xi) */
+};
+
+/** Allocate and fill the LPS arrays (after the bond list and materials). */
+int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err);
+/** Weighted volumes and coefficients from the current intact family (after
+ *  pre-cracks: a pre-cut bond is not part of the family). */
+void pd_lps_weights(struct model *m, const struct sim *sim);
+void pd_lps_free(struct pd_lps *L);
+/** Forces with fused breaking (critical stretch). */
+int pd_lps_forces(struct model *m, struct sim *sim);
+/** Gershgorin bound of the linearised LPS stiffness: dt < 2 sqrt(m_i / R_i). */
+double pd_lps_stable_dt(const struct model *m, const struct sim *sim);
+/** Energy [J] and stress [Pa] of particle @p i from the current positions. */
+void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i,
+                          double *energy, double *stress);
+
+#endif
