@@ -22,6 +22,7 @@
 #include "io/output.h"
 #include "io/run_restart.h"
 #include "io/run_util.h"
+#include "io/setup_check.h"
 #include "core/model.h"
 
 #include <errno.h>
@@ -217,6 +218,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     int rc = deck_load_file(&d, opt->deck_path, err);
     if (rc)
         return rc;
+    if ((rc = setup_check_units(d, err))) /* unit slips, before anything is built */
+        goto done;
     if (opt->threads > 0)
         omp_set_num_threads(opt->threads);
     rc = deck_build_sim(d, &s, &ro, err);
