@@ -4,6 +4,7 @@
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config git libyaml-dev libhdf5-dev libcairo2-dev libcmocka-dev libgsl-dev
       librandom123-dev  # counter-based random streams (macro-particle Langevin forces)
+      libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools libtrilinos-zoltan-dev  # SPALL_MPI=ON (issue 20)
       python3)  # python3: scripts/mutate (ctest mutate_catalogue, make mutate)
 missing=()
 for p in "${pkgs[@]}"; do
