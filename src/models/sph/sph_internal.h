@@ -165,6 +165,13 @@ static inline bool sph_skip(const struct model *m, size_t i, int mine)
 }
 
 #define SPH_N_ARRAYS 104
+/* sph_report.c: the model_ops entries that only read the state */
+struct model_energy;
+void sph_energy(const struct model *m, const struct sim *sim, struct model_energy *out);
+size_t sph_history(const struct model *m, const struct sim *sim, const char **names,
+                   double *values);
+void sph_describe(const struct model *m, const struct sim *sim, char *buf, size_t len);
+size_t sph_interactions(const struct model *m, const struct sim *sim);
 /** Every per-particle double array of the model (sph_model.c): allocation,
  *  release and the restart state (sph_restart.c) walk the same list. */
 size_t sph_state_arrays(struct model *m, double **a[SPH_N_ARRAYS]);

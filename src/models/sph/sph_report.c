@@ -1,0 +1,110 @@
+/**
+ * @file sph_report.c
+ * @brief What the SPH model reports about a run: energies, history columns,
+ *        the set-up description and the interaction count used for the
+ *        pair-steps/s of `spall bench`.  Read-only over the model's state.
+ */
+#include <stdio.h>
+
+#include "models/sph/sph_internal.h"
+#include "core/model.h"
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+
+void sph_energy(const struct model *m, const struct sim *sim, struct model_energy *out)
+{
+    const struct particles *p = sim->p;
+    double ie = 0.0, wp = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        ie += p->mass[i] * m->e[i];
+        wp += m->wp[i];
+    }
+    /* internal energy (elastic + plastic + AV heat) is the model's store;
+     * the plastic work inside it is reported in history (plastic_work) */
+    out->strain = ie + m->wall_energy + m->iface_energy;
+    out->dissipated = 0.0;
+    (void)wp;
+}
+
+size_t sph_history(const struct model *m, const struct sim *sim, const char **names,
+                          double *values)
+{
+    const struct particles *p = sim->p;
+    double wp = 0.0, nf = 0.0, epmax = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        wp += m->wp[i];
+        nf += m->failed[i];
+        if (m->ep[i] > epmax)
+            epmax = m->ep[i];
+    }
+    size_t k = 0;
+    names[k] = "plastic_work";
+    values[k++] = wp;
+    names[k] = "failed_particles";
+    values[k++] = nf;
+    names[k] = "max_plastic_strain";
+    values[k++] = epmax;
+    names[k] = "cspm_fallbacks";
+    values[k++] = (double)m->cspm_fallbacks;
+    names[k] = "neighbor_builds";
+    values[k++] = (double)m->n_builds;
+    names[k] = "wall_force";
+    values[k++] = m->opt.wall ? m->wall_force[0] * m->opt.wall_normal[0] +
+                                    m->wall_force[1] * m->opt.wall_normal[1] +
+                                    m->wall_force[2] * m->opt.wall_normal[2]
+                              : 0.0;
+    if (m->opt.total_lagrangian) {
+        names[k] = "min_det_F";
+        values[k++] = m->tl_jmin;
+        names[k] = "max_F_distortion";
+        values[k++] = m->tl_kmax;
+        if (m->opt.reref_every || m->opt.reref_distortion > 0.0) {
+            names[k] = "reference_updates";
+            values[k++] = (double)m->tl_rerefs;
+        }
+    }
+    if (m->opt.iface != SPH_IFACE_NONE) {
+        names[k] = "interface_pairs";
+        values[k++] = (double)m->iface_pairs;
+        names[k] = "interface_energy [J]";
+        values[k++] = m->iface_energy;
+    }
+    if (m->opt.plane == SPH_PLANE_AXISYMMETRIC)
+        k += sph_axisym_history(m, sim, names + k, values + k);
+    return k;
+}
+
+void sph_describe(const struct model *m, const struct sim *sim, char *buf, size_t len)
+{
+    static const char *const kn[] = {"", "cubic_spline", "gaussian", "quintic_spline",
+                                     "wendland", "double_cosine", "hyperbolic"};
+    size_t off = 0;
+    off += (size_t)snprintf(buf + off, len - off,
+                            "sph: kernel %s (alpha_%d = %.10g / h^%d), h = %.3g dx, "
+                            "neighbour radius %.4g m\n",
+                            kn[m->opt.kernel], sim->dim, m->alpha, sim->dim, m->opt.h_factor,
+                            m->nl_radius);
+    for (size_t k = 0; k < m->n_mat && off < len; k++) {
+        const struct sph_material *mt = &m->mat[k];
+        off += (size_t)snprintf(buf + off, len - off,
+                                "  material %zu: E = %.4g Pa, nu = %.4g, K = %.4g Pa, G = %.4g Pa, "
+                                "c0 = %.5g m/s\n",
+                                k, mt->E, mt->nu, mt->K, mt->G,
+                                sph_sound_speed(mt, mt->rho0, 0.0));
+    }
+    if (m->form && off < len)
+        sph_forms_describe(m, sim, buf + off, len - off);
+}
+
+size_t sph_interactions(const struct model *m, const struct sim *sim)
+{
+    /* rows of real particles only (with symmetry planes the list also
+     * holds the ghosts' rows, which are never used) */
+    size_t pairs = sph_tlsph_pairs(m); /* TLSPH reference list */
+    if (m->nl) {
+        size_t n = sim->p->n_owned < m->nl->n ? sim->p->n_owned : m->nl->n;
+        pairs += m->nl->offset[n];
+    }
+    return pairs / 2;
+}
