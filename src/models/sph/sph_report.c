@@ -88,10 +88,10 @@ void sph_describe(const struct model *m, const struct sim *sim, char *buf, size_
     for (size_t k = 0; k < m->n_mat && off < len; k++) {
         const struct sph_material *mt = &m->mat[k];
         off += (size_t)snprintf(buf + off, len - off,
-                                "  material %zu: E = %.4g Pa, nu = %.4g, K = %.4g Pa, G = %.4g Pa, "
+                                "  material %s: E = %.4g Pa, nu = %.4g, K = %.4g Pa, G = %.4g Pa, "
                                 "c0 = %.5g m/s\n",
-                                k, mt->E, mt->nu, mt->K, mt->G,
-                                sph_sound_speed(mt, mt->rho0, 0.0));
+                                k < sim->n_materials ? sim->materials[k].name : "?", mt->E,
+                                mt->nu, mt->K, mt->G, sph_sound_speed(mt, mt->rho0, 0.0));
     }
     if (m->form && off < len)
         sph_forms_describe(m, sim, buf + off, len - off);
