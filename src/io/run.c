@@ -326,8 +326,12 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             wall);
     fprintf(log, "particle_steps_per_s: %.4g\nframes: %zu\n", res->particle_steps_per_s,
             res->frames);
-    fprintf(log, "energy_balance_final: %.6g J (input %.6g J)\n", s->energy.balance,
-            fabs(s->energy.initial_total) + fabs(s->energy.external));
+    const double input = fabs(s->energy.initial_total) + fabs(s->energy.external);
+    if (input > 0.0) /* the fraction is what tells a user whether to trust a run */
+        fprintf(log, "energy_balance_final: %.6g J (input %.6g J; %.3g %% of the input)\n",
+                s->energy.balance, input, 100.0 * s->energy.balance / input);
+    else
+        fprintf(log, "energy_balance_final: %.6g J (no energy put in)\n", s->energy.balance);
     if (!rc && hl.frag) { /* the fragment table of the final state */
         snprintf(path, sizeof path, "%s/fragments.csv", dir);
         if (!(rc = fragments_of_sim(hl.frag, s, err)))

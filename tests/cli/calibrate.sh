@@ -54,6 +54,11 @@ dt_form=$(grep '^dt: ' sph_form.txt | awk '{print $2}')
 dt_run=$(grep '^dt: ' block/run.log | awk '{print $2}')
 [ -n "$dt_form" ] && [ "$dt_form" = "$dt_run" ] || bad "sph form dt '$dt_form' != run dt '$dt_run'"
 grep -q 'c0 = 64.855 m/s' sph_form.txt || bad "sph form: c0"
+grep -q '^energy_balance_final: .*(no energy put in)' block/run.log || bad "run.log: balance at rest"
+"$spall" run "$src/examples/wave_1d_velocity/wave_1d_velocity.yaml" -o wave --quiet > /dev/null 2>&1 ||
+    bad "wave run exit $?"
+grep -Eq '^energy_balance_final: .* J \(input .* J; [0-9.e+-]+ % of the input\)' wave/run.log ||
+    bad "run.log: energy balance as a fraction of the input"
 
 # 3. PD form: --rho and --plane reach the built plate; dt is a run's
 "$spall" calibrate peridynamics --E 1.9e11 --rho 8000 --plane strain > pd_form.txt || bad "pd form exit $?"
