@@ -48,8 +48,15 @@
                 st[s] |= BOND_BROKEN;                                                           \
                 if (fresh && !(type[s] & 1u))                                                   \
                     fresh[s] = 1;                                                               \
+                /* book 1/4 coef e_{n+1} e_n, not 1/4 coef e_{n+1}^2: the    */              \
+                /* kicks paid the bond's force at x_n and (next_step) at     */              \
+                /* x_{n+1} only halfway, so the trapezoid leaves 1/2 k e de  */              \
+                /* unbooked (first order in dt) otherwise; x_n = x - dt u    */              \
                 const double e0 = l - r;                                                        \
-                dd += 0.25 * coef[s] * e0 * e0;                                                 \
+                const double px = ex - dt * (u[0][j] - u[0][i]);                                \
+                const double py = DIM > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;                \
+                const double pz = DIM > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;                \
+                dd += 0.25 * coef[s] * e0 * (sqrt(px * px + py * py + pz * pz) - r);            \
                 if (!late)                                                                      \
                     continue;                                                                   \
             }                                                                                   \
@@ -84,6 +91,9 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     double *diss = m->diss;
     double *const *x = p->x;
     double *const *f = p->f;
+    /* x_n = x_{n+1} - dt u for the energy of a bond that breaks in this step */
+    double *const *u = sim_drift_velocities(sim);
+    const double dt = sim->dt;
     /* break_order next_step: a bond past s0 still pulls in this step
      * (PDLAMMPS pair peri/pmb order); immediate: it is dropped at once */
     const bool late = m->opt.break_late;
