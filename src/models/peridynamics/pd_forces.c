@@ -48,15 +48,17 @@
                 st[s] |= BOND_BROKEN;                                                           \
                 if (fresh && !(type[s] & 1u))                                                   \
                     fresh[s] = 1;                                                               \
-                /* book 1/4 coef e_{n+1} e_n, not 1/4 coef e_{n+1}^2: the    */              \
-                /* kicks paid the bond's force at x_n and (next_step) at     */              \
-                /* x_{n+1} only halfway, so the trapezoid leaves 1/2 k e de  */              \
-                /* unbooked (first order in dt) otherwise; x_n = x - dt u    */              \
+                /* what the kicks left of the bond's energy, not 1/4 coef  */                \
+                /* e_{n+1}^2: immediate, its force at x_n acted half a step */               \
+                /* (1/4 coef e_{n+1} e_n, exact); next_step, its force at   */               \
+                /* x_{n+1} acts half a step more (1/4 coef e_{n+1} (e_{n+1} */               \
+                /* + de), de ~ e_{n+1} - e_n); x_n = x - dt u                */              \
                 const double e0 = l - r;                                                        \
                 const double px = ex - dt * (u[0][j] - u[0][i]);                                \
                 const double py = DIM > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;                \
                 const double pz = DIM > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;                \
-                dd += 0.25 * coef[s] * e0 * (sqrt(px * px + py * py + pz * pz) - r);            \
+                const double en = sqrt(px * px + py * py + pz * pz) - r;                        \
+                dd += 0.25 * coef[s] * e0 * (late ? 2.0 * e0 - en : en);                        \
                 if (!late)                                                                      \
                     continue;                                                                   \
             }                                                                                   \
