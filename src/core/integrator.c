@@ -187,8 +187,9 @@ static void drift(struct sim *s, double dt)
     }
 }
 
-double *const *sim_drift_velocities(const struct sim *s)
+double *const *sim_drift_velocities(const struct sim *s, double *dt)
 {
+    *dt = s->dt;
     /* the predictor-corrector copies p->v into v_half right after drift() */
     return s->integrator == INTEGRATOR_PREDICTOR_CORRECTOR ? s->v_half : s->p->v;
 }

@@ -41,20 +41,27 @@
 #include <omp.h>
 #endif
 
-/** Rare path: half-bond s of particle i breaks now (stretch st).  Books half
- *  the released energy (intact minus post-fracture energy) on i and returns
- *  the post-fracture force coefficient. */
+/** Rare path: half-bond s of particle i breaks now (length r, stretch st;
+ *  dr = r - r_n over the step).  Books half the released energy on i as the
+ *  Verlet kicks left it and returns the post-fracture force coefficient.
+ *  The intact force acted only at x_n, half a step, and the broken law's
+ *  from x_{n+1}: the energy the kicks took out differs from the intact
+ *  energy at x_{n+1} by (f_i - f_b) dr / 2, which booking U_i - U_b at the
+ *  break would leave in the account (first order in dt). */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
 static double break_half(struct model *m, size_t i, size_t s, const struct lattice_bond_law *bw,
-                         double rest, double st)
+                         double rest, double r, double dr)
 {
+    const double st = r / rest;
     m->bl->state[s] |= BOND_BROKEN;
     double ui = lattice_energy(&m->lp, bw->curve, bw->k, rest, st, 0);
     double ub = lattice_energy(&m->lp, bw->curve, bw->k, rest, st, 1);
-    m->diss[i] += 0.5 * (ui - ub);
-    return lattice_coef(&m->lp, bw->curve, bw->k, st, 1);
+    double ci = lattice_coef(&m->lp, bw->curve, bw->k, st, 0);
+    double cb = lattice_coef(&m->lp, bw->curve, bw->k, st, 1);
+    m->diss[i] += 0.5 * (ui - ub) - 0.25 * (ci - cb) * r * dr;
+    return cb;
 }
 
 /** Arrays the hot loops read, copied into locals once per call so that the
@@ -71,6 +78,8 @@ struct lattice_view {
     const int32_t *restrict mat;
     const double *restrict x0, *restrict x1, *restrict x2;
     double *restrict f0, *restrict f1, *restrict f2;
+    const double *const *u; /* drift velocities: x_n = x - dt_drift u */
+    double dt_drift;
 };
 
 static struct lattice_view make_view(const struct model *m, struct sim *sim)
@@ -93,6 +102,7 @@ static struct lattice_view make_view(const struct model *m, struct sim *sim)
     v.f0 = p->f[0];
     v.f1 = p->dim > 1 ? p->f[1] : NULL;
     v.f2 = p->dim > 2 ? p->f[2] : NULL;
+    v.u = (const double *const *)sim_drift_velocities(sim, &v.dt_drift);
     return v;
 }
 
@@ -111,6 +121,18 @@ LATTICE_INLINE double bond_vec(const struct lattice_view *v, size_t i, size_t j,
         r2 += dx[2] * dx[2];
     }
     return r2;
+}
+
+/** r - r_n: the bond's length change over this step (x_n = x - dt u). */
+static double bond_dr(const struct lattice_view *v, size_t i, size_t j, const int dim,
+                      const double dx[3], double r)
+{
+    double r2 = 0.0;
+    for (int d = 0; d < dim; d++) {
+        const double e = dx[d] - v->dt_drift * (v->u[d][j] - v->u[d][i]);
+        r2 += e * e;
+    }
+    return r - sqrt(r2);
 }
 
 LATTICE_INLINE void add_force(const struct lattice_view *v, size_t i, const int dim,
@@ -148,7 +170,8 @@ LATTICE_INLINE void row_linear(struct model *m, const struct lattice_view *v,
         if (LATTICE_UNLIKELY(v->state[s])) {
             c = c < 0.0 ? c : 0.0;
         } else if (LATTICE_UNLIKELY(r > r_rest * tl || r < r_rest * cl)) {
-            c = break_half(m, i, s, &pw[multi_type ? v->type[s] : 0], r_rest, r / r_rest);
+            c = break_half(m, i, s, &pw[multi_type ? v->type[s] : 0], r_rest, r,
+                           bond_dr(v, i, j, dim, dx, r));
         }
         for (int d = 0; d < dim; d++)
             fi[d] += c * dx[d];
@@ -192,7 +215,7 @@ LATTICE_INLINE void row_general(struct model *m, const struct lattice_view *v, s
         } else if (LATTICE_UNLIKELY(r > r_rest * bw->t_lim || r < r_rest * bw->c_lim)) {
             struct lattice_bond_law bk = *bw;
             bk.k = k;
-            c = break_half(m, i, s, &bk, r_rest, st);
+            c = break_half(m, i, s, &bk, r_rest, r, bond_dr(v, i, j, dim, dx, r));
         } else {
             c = lattice_coef(&lp, bw->curve, k, st, 0);
         }

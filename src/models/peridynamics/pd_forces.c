@@ -94,8 +94,8 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     double *const *x = p->x;
     double *const *f = p->f;
     /* x_n = x_{n+1} - dt u for the energy of a bond that breaks in this step */
-    double *const *u = sim_drift_velocities(sim);
-    const double dt = sim->dt;
+    double dt;
+    double *const *u = sim_drift_velocities(sim, &dt);
     /* break_order next_step: a bond past s0 still pulls in this step
      * (PDLAMMPS pair peri/pmb order); immediate: it is dropped at once */
     const bool late = m->opt.break_late;
