@@ -342,7 +342,7 @@ static void pass_forces_axi(struct model *m, struct sim *s)
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
     const struct sph_support sp = sph_support_of(m);
-    const double qa = m->opt.av_a, qb = m->opt.av_b, xs = m->opt.xsph, lav = m->opt.av_length;
+    const double qa = m->opt.visc.av_a, qb = m->opt.visc.av_b, xs = m->opt.visc.xsph, lav = m->opt.visc.av_length;
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
     const double *Srr = m->sig[SXX], *Szz = m->sig[SYY], *Stt = m->sig[SZZ], *Srz = m->sig[SXY];
     const double *lam = m->axl;
@@ -377,7 +377,7 @@ static void pass_forces_axi(struct model *m, struct sim *s)
                     double mu = (lav > 0.0 ? lav : hb) * vx / (r2 + 0.01 * hb * hb);
                     double cb = 0.5 * (m->c[i] + m->c[j]);
                     Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + rhoj));
-                    if (m->opt.av_balsara) /* symmetric in i, j: momentum kept */
+                    if (m->opt.visc.av_balsara) /* symmetric in i, j: momentum kept */
                         Pi *= 0.5 * (balsara(m, i) + balsara(m, j));
                 }
                 const double gr = dr * F, gz = dz * F;
@@ -437,7 +437,7 @@ int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err)
         if (m->failed[i] && m->drho[i] < 0.0 && !m->mat[s->p->material[i]].failed_tension &&
             m->rho[i] <= m->mat[s->p->material[i]].rho0)
             m->drho[i] = 0.0;
-        m->dh[i] = m->opt.variable_h ? m->h[i] * (m->L[0][i] + m->L[4][i]) / 2.0 : 0.0;
+        m->dh[i] = m->opt.kern.variable_h ? m->h[i] * (m->L[0][i] + m->L[4][i]) / 2.0 : 0.0;
         for (int c = 0; c < 6; c++)
             m->sig[c][i] = m->S[c][i] - (c < 3 ? m->P[i] : 0.0);
     }

@@ -91,7 +91,7 @@
 
 static inline int32_t iface_group(const struct model *m, const struct particles *p, size_t i)
 {
-    return m->opt.iface == SPH_IFACE_BODIES ? p->body[i] : p->material[i];
+    return m->opt.iface.kind == SPH_IFACE_BODIES ? p->body[i] : p->material[i];
 }
 
 static inline double hoop_r(const struct model *m, const double *x0, size_t i)
@@ -125,7 +125,7 @@ int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct 
         for (size_t k = 0; k < m->n_mat; k++)
             m->if_c0[k] = sph_sound_speed(&m->mat[k], m->mat[k].rho0, 0.0);
     }
-    const double fd = 0.5 * m->opt.iface_distance;
+    const double fd = 0.5 * m->opt.iface.distance;
     size_t w = 0, wi = 0, start = 0;
     m->if_off[0] = 0;
     for (size_t i = 0; i < n; i++) {
@@ -176,9 +176,9 @@ void sph_interface_forces(struct model *m, struct sim *s)
     struct particles *p = s->p;
     const size_t n = p->n_owned;
     const int dim = m->dim;
-    const bool axi = m->opt.plane == SPH_PLANE_AXISYMMETRIC;
+    const bool axi = m->opt.kern.plane == SPH_PLANE_AXISYMMETRIC;
     const double t = dim == 2 ? s->thickness : 1.0;
-    const double eta = m->opt.iface_stiffness, fd = 0.5 * m->opt.iface_distance;
+    const double eta = m->opt.iface.stiffness, fd = 0.5 * m->opt.iface.distance;
     double *ei = m->if_e, *wi = m->if_w;
     if (!m->if_off) {
         m->iface_energy = 0.0;
