@@ -26,7 +26,7 @@ void sph_stats_get(const struct model *m, struct sph_stats *out)
         out->tl_jmin = m->tl->jmin;
         out->tl_kmax = m->tl->kmax;
     }
-    out->iface_pairs = m->iface_pairs;
+    out->iface_pairs = m->ifs.pairs;
     out->total_lagrangian = m->opt.tl.total_lagrangian;
     out->n_total = m->form ? m->n_total : 0;
     out->nl_radius = m->nl_radius;
@@ -68,12 +68,12 @@ const struct neighbor_list *sph_neighbors(const struct model *m)
 
 size_t sph_interface_partners(const struct model *m, size_t i, const int32_t **idx)
 {
-    if (!m->if_off) {
+    if (!m->ifs.off) {
         *idx = NULL;
         return 0;
     }
-    *idx = m->if_idx + m->if_off[i];
-    return m->if_off[i + 1] - m->if_off[i];
+    *idx = m->ifs.idx + m->ifs.off[i];
+    return m->ifs.off[i + 1] - m->ifs.off[i];
 }
 
 double sph_smoothing_length(const struct model *m, size_t i)

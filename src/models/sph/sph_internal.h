@@ -30,6 +30,27 @@ struct sph_pair_src {
 struct sph_sym;
 struct model;
 
+/** The axisymmetric variant of the updated form (sph_axisym.c). */
+struct sph_axisym_state {
+    double *axl, *axl_s;   /**< axis weight lambda and its sweep scratch (per particle) */
+    size_t builds;         /**< n_builds when the axis weights were last solved */
+    double surface_z;      /**< initial top surface (cavity depth origin) */
+};
+
+/** The penalty interface between bodies or materials (sph_interface.c;
+ *  the arrays are NULL when model.interface is none). */
+struct sph_iface_state {
+    size_t *off;           /**< n + 1: interface partners of i are idx[off[i] ..) */
+    int32_t *idx;
+    size_t cap;
+    double *c0;            /**< per material: rest sound speed */
+    double *e, *w;         /**< per particle: half its pairs' energy, sum k (1/mu_i + 1/mu_j) */
+    uint32_t *np;          /**< per particle: pairs in contact */
+    double energy;         /**< penalty energy [J] */
+    size_t pairs;          /**< pairs in contact at the last force evaluation */
+    double omega2;         /**< largest contact omega^2 (stable step) */
+};
+
 /** One formulation of the model ([Meng2021] ch. 3 updated Lagrangian;
  *  total Lagrangian, sph_tlsph*.c): what the model's hooks call for the
  *  particles on it.  A run holds one, or both when its bodies are split by
@@ -97,10 +118,6 @@ struct model {
     double *xv[3];         /**< XSPH velocity correction (the drift velocity, sph_drift_velocity) */
     double *x_build[3];    /**< positions at the last neighbour build */
     double *wp;            /**< plastic work per particle [J] */
-    double *axl, *axl_s;   /**< axisymmetric: axis weight lambda and its sweep scratch (sph_axisym.c) */
-    double wall_energy;    /**< penalty energy [J] */
-    double wall_force[3];  /**< total wall force [N] */
-    double surface_z;      /**< axisymmetric: initial top surface (cavity depth origin) */
 
     struct sph_sym *sym;   /**< symmetry-plane ghosts (NULL: none) */
     struct sph_tlsph *tl;  /**< total-Lagrangian state (sph_tlsph*.c; NULL: no TLSPH body) */
@@ -108,20 +125,15 @@ struct model {
     struct neighbor_list *nl;
     double nl_radius;
     size_t n_builds;
-    size_t axl_builds;     /**< axisymmetric: n_builds when the axis weights were last solved */
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
-    /* interface between bodies (sph_interface.c; NULL when off) */
-    size_t *if_off;        /**< n + 1: interface partners of i are if_idx[if_off[i] ..) */
-    int32_t *if_idx;
-    size_t if_cap;
-    double *if_c0;         /**< per material: rest sound speed */
-    double *if_e, *if_w;   /**< per particle: half its pairs' energy, sum k (1/mu_i + 1/mu_j) */
-    uint32_t *if_np;       /**< per particle: pairs in contact */
-    double iface_energy;   /**< penalty energy [J] */
-    size_t iface_pairs;    /**< pairs in contact at the last force evaluation */
-    double iface_omega2;   /**< largest contact omega^2 (stable step) */
+    struct sph_iface_state ifs; /**< interface between bodies (sph_interface.c) */
+    struct sph_axisym_state ax; /**< plane: axisymmetric (sph_axisym.c) */
+    struct {
+        double energy;     /**< penalty energy [J] */
+        double force[3];   /**< total force [N] */
+    } wall;                /**< the rigid wall (model.wall; sph_rates.c) */
     /* formulation per body (sph_forms.c) */
     uint8_t *body_total;   /**< per deck body: 1 = TLSPH */
     size_t n_bodies;

@@ -57,8 +57,8 @@ size_t sph_state_arrays(struct model *m, double **a[SPH_N_ARRAYS])
         a[k++] = &m->L[c];
         a[k++] = &m->Bi[c];
     }
-    a[k++] = &m->axl;
-    a[k++] = &m->axl_s;
+    a[k++] = &m->ax.axl;
+    a[k++] = &m->ax.axl_s;
     for (int c = 0; c < 3; c++) {
         a[k++] = &m->xv[c];
         a[k++] = &m->x_build[c];
@@ -76,12 +76,12 @@ static void sph_destroy(struct model **pm)
     for (size_t k = 0; k < na; k++)
         free(*a[k]);
     free(m->failed);
-    free(m->if_off);
-    free(m->if_idx);
-    free(m->if_c0);
-    free(m->if_e);
-    free(m->if_w);
-    free(m->if_np);
+    free(m->ifs.off);
+    free(m->ifs.idx);
+    free(m->ifs.c0);
+    free(m->ifs.e);
+    free(m->ifs.w);
+    free(m->ifs.np);
     free(m->body_total);
     free(m->form);
     free(m->mat);

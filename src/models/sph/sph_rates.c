@@ -430,8 +430,8 @@ static void wall_forces(struct model *m, struct sim *s)
         }
         energy += 0.5 * k * g * g;
     }
-    m->wall_energy = energy;
-    memcpy(m->wall_force, ft, sizeof ft);
+    m->wall.energy = energy;
+    memcpy(m->wall.force, ft, sizeof ft);
 }
 
 /* The updated form (fused or two-pass loops) on its particles. */

@@ -22,7 +22,7 @@ void sph_energy(const struct model *m, const struct sim *sim, struct model_energ
     }
     /* internal energy (elastic + plastic + AV heat) is the model's store;
      * the plastic work inside it is reported in history (plastic_work) */
-    out->strain = ie + m->wall_energy + m->iface_energy;
+    out->strain = ie + m->wall.energy + m->ifs.energy;
     out->dissipated = 0.0;
     (void)wp;
 }
@@ -50,9 +50,9 @@ size_t sph_history(const struct model *m, const struct sim *sim, const char **na
     names[k] = "neighbor_builds";
     values[k++] = (double)m->n_builds;
     names[k] = "wall_force";
-    values[k++] = m->opt.bound.wall ? m->wall_force[0] * m->opt.bound.wall_normal[0] +
-                                    m->wall_force[1] * m->opt.bound.wall_normal[1] +
-                                    m->wall_force[2] * m->opt.bound.wall_normal[2]
+    values[k++] = m->opt.bound.wall ? m->wall.force[0] * m->opt.bound.wall_normal[0] +
+                                    m->wall.force[1] * m->opt.bound.wall_normal[1] +
+                                    m->wall.force[2] * m->opt.bound.wall_normal[2]
                               : 0.0;
     if (m->opt.tl.total_lagrangian) {
         names[k] = "min_det_F";
@@ -66,9 +66,9 @@ size_t sph_history(const struct model *m, const struct sim *sim, const char **na
     }
     if (m->opt.iface.kind != SPH_IFACE_NONE) {
         names[k] = "interface_pairs";
-        values[k++] = (double)m->iface_pairs;
+        values[k++] = (double)m->ifs.pairs;
         names[k] = "interface_energy [J]";
-        values[k++] = m->iface_energy;
+        values[k++] = m->ifs.energy;
     }
     if (m->opt.kern.plane == SPH_PLANE_AXISYMMETRIC)
         k += sph_axisym_history(m, sim, names + k, values + k);

@@ -46,17 +46,17 @@ static int nl_set_rows(void *ctx, size_t rows, struct spall_error *err)
 static size_t if_rows(const void *ctx)
 {
     const struct model *m = ctx;
-    return m->if_off[m->sim->p->n_owned];
+    return m->ifs.off[m->sim->p->n_owned];
 }
 
 static int if_set_rows(void *ctx, size_t rows, struct spall_error *err)
 {
     struct model *m = ctx;
-    if (rows > m->if_cap) {
-        int rc = grow((void **)&m->if_idx, rows, sizeof *m->if_idx, err);
+    if (rows > m->ifs.cap) {
+        int rc = grow((void **)&m->ifs.idx, rows, sizeof *m->ifs.idx, err);
         if (rc)
             return rc;
-        m->if_cap = rows;
+        m->ifs.cap = rows;
     }
     return SPALL_OK;
 }
@@ -145,21 +145,21 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
             rc = field_state_add_list(fs, "sph.list_partner", FIELD_I32, (void **)&m->nl->idx, 1,
                                       nl_rows, nl_set_rows, m, err);
     }
-    if (!rc && m->if_off) {
-        rc = field_state_add_array(fs, "sph.iface_offset", FIELD_I64, (void **)&m->if_off, n + 1,
+    if (!rc && m->ifs.off) {
+        rc = field_state_add_array(fs, "sph.iface_offset", FIELD_I64, (void **)&m->ifs.off, n + 1,
                                    1, err);
         if (!rc)
-            rc = field_state_add_list(fs, "sph.iface_partner", FIELD_I32, (void **)&m->if_idx, 1,
+            rc = field_state_add_list(fs, "sph.iface_partner", FIELD_I32, (void **)&m->ifs.idx, 1,
                                       if_rows, if_set_rows, m, err);
         if (!rc)
-            rc = field_state_add_array(fs, "sph.iface_e", FIELD_F64, (void **)&m->if_e, n, 1, err);
+            rc = field_state_add_array(fs, "sph.iface_e", FIELD_F64, (void **)&m->ifs.e, n, 1, err);
         if (!rc)
-            rc = field_state_add_array(fs, "sph.iface_w", FIELD_F64, (void **)&m->if_w, n, 1, err);
+            rc = field_state_add_array(fs, "sph.iface_w", FIELD_F64, (void **)&m->ifs.w, n, 1, err);
         if (!rc)
-            rc = field_state_add_array(fs, "sph.iface_np", FIELD_I32, (void **)&m->if_np, n, 1,
+            rc = field_state_add_array(fs, "sph.iface_np", FIELD_I32, (void **)&m->ifs.np, n, 1,
                                        err);
     }
-    double *dv[] = {&m->wall_energy, &m->surface_z, &m->iface_energy, &m->iface_omega2,
+    double *dv[] = {&m->wall.energy, &m->ax.surface_z, &m->ifs.energy, &m->ifs.omega2,
                     &m->nl_radius};
     const char *dn[] = {"wall_energy", "surface_z", "iface_energy", "iface_omega2",
                         "list_radius"};
@@ -168,9 +168,9 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
         rc = field_state_add_values(fs, nm, FIELD_F64, dv[k], 1, err);
     }
     if (!rc)
-        rc = field_state_add_values(fs, "sph.wall_force", FIELD_F64, m->wall_force, 3, err);
-    void *iv[] = {&m->n_builds, &m->axl_builds, &m->cspm_fallbacks, &m->n_pairs,
-                  &m->iface_pairs};
+        rc = field_state_add_values(fs, "sph.wall_force", FIELD_F64, m->wall.force, 3, err);
+    void *iv[] = {&m->n_builds, &m->ax.builds, &m->cspm_fallbacks, &m->n_pairs,
+                  &m->ifs.pairs};
     const char *in[] = {"list_builds", "axis_builds", "cspm_fallbacks", "pairs",
                         "iface_pairs"};
     for (size_t k = 0; k < sizeof iv / sizeof iv[0] && !rc; k++) {
