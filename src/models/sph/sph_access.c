@@ -18,18 +18,20 @@ void sph_stats_get(const struct model *m, struct sph_stats *out)
     out->n_builds = m->n_builds;
     out->t_neighbor = m->t_neighbor;
     out->cspm_fallbacks = m->cspm_fallbacks;
-    out->h_factor = m->opt.h_factor;
-    out->tl_rerefs = m->tl_rerefs;
-    out->t_reref = m->t_reref;
-    out->tl_hgrown = m->tl_hgrown;
-    out->tl_jmin = m->tl_jmin;
-    out->tl_kmax = m->tl_kmax;
-    out->iface_pairs = m->iface_pairs;
-    out->total_lagrangian = m->opt.total_lagrangian;
+    out->h_factor = m->opt.kern.h_factor;
+    if (m->tl) {
+        out->tl_rerefs = m->tl->rerefs;
+        out->t_reref = m->tl->t_reref;
+        out->tl_hgrown = m->tl->hgrown;
+        out->tl_jmin = m->tl->jmin;
+        out->tl_kmax = m->tl->kmax;
+    }
+    out->iface_pairs = m->ifs.pairs;
+    out->total_lagrangian = m->opt.tl.total_lagrangian;
     out->n_total = m->form ? m->n_total : 0;
     out->nl_radius = m->nl_radius;
     out->qmax = m->qmax;
-    out->as_smooth = m->opt.as_smooth;
+    out->as_smooth = m->opt.visc.as_smooth;
 }
 
 double *sph_artificial_stress_data(struct model *m, int c)
@@ -66,12 +68,12 @@ const struct neighbor_list *sph_neighbors(const struct model *m)
 
 size_t sph_interface_partners(const struct model *m, size_t i, const int32_t **idx)
 {
-    if (!m->if_off) {
+    if (!m->ifs.off) {
         *idx = NULL;
         return 0;
     }
-    *idx = m->if_idx + m->if_off[i];
-    return m->if_off[i + 1] - m->if_off[i];
+    *idx = m->ifs.idx + m->ifs.off[i];
+    return m->ifs.off[i + 1] - m->ifs.off[i];
 }
 
 double sph_smoothing_length(const struct model *m, size_t i)
@@ -92,13 +94,13 @@ void sph_velocity_gradient(const struct model *m, size_t i, double L[9])
 
 void sph_set_cspm(struct model *m, bool on)
 {
-    m->opt.cspm = on;
+    m->opt.kern.cspm = on;
 }
 
 void sph_set_split_loops(struct model *m)
 {
-    m->opt.split_pairs = true;
-    m->opt.tl_split = true;
+    m->loops.split_pairs = true;
+    m->loops.tl_split = true;
 }
 
 void sph_refresh_pressure(struct model *m, struct sim *s)

@@ -43,7 +43,7 @@ void sph_artificial_stress_smooth(struct model *m, const struct sim *s)
     const size_t n = p->n_owned;
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
-    const enum sph_kernel kern = m->opt.kernel;
+    const enum sph_kernel kern = m->opt.kern.kernel;
     const struct sph_support sp = sph_support_of(m);
     const int dim = m->dim;
     const double alpha = m->alpha;

@@ -122,7 +122,7 @@ void sph_axisym_init(struct model *m, struct sim *s)
         if (p->x[1][i] + 0.5 * m->dx[i] > ztop)
             ztop = p->x[1][i] + 0.5 * m->dx[i];
     }
-    m->surface_z = ztop;
+    m->ax.surface_z = ztop;
     s->axisymmetric = true;
 }
 
@@ -315,21 +315,21 @@ static void axis_weight_sweep(struct model *m, struct sim *s, const double *lin,
 static void pass_axis_weights(struct model *m, struct sim *s)
 {
     const size_t n = s->p->n_owned;
-    if (m->axl_builds != m->n_builds) {
-        memset(m->axl, 0, n * sizeof *m->axl);
+    if (m->ax.builds != m->n_builds) {
+        memset(m->ax.axl, 0, n * sizeof *m->ax.axl);
         for (int it = 0; it < AXIS_SWEEPS; it++) {
-            double *in = (it % 2) ? m->axl_s : m->axl, *out = (it % 2) ? m->axl : m->axl_s;
+            double *in = (it % 2) ? m->ax.axl_s : m->ax.axl, *out = (it % 2) ? m->ax.axl : m->ax.axl_s;
             axis_weight_sweep(m, s, in, out);
         }
         /* AXIS_SWEEPS is odd: the last iterate is in axl_s, the one before in axl */
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; i++)
-            m->axl[i] = fabs(m->axl_s[i] - m->axl[i]) < AXIS_TOL ? m->axl_s[i] : 0.0;
-        m->axl_builds = m->n_builds;
+            m->ax.axl[i] = fabs(m->ax.axl_s[i] - m->ax.axl[i]) < AXIS_TOL ? m->ax.axl_s[i] : 0.0;
+        m->ax.builds = m->n_builds;
     }
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++)
-        m->L[0][i] = (1.0 - m->axl[i]) * m->L[0][i] + m->axl[i] * m->L[8][i];
+        m->L[0][i] = (1.0 - m->ax.axl[i]) * m->L[0][i] + m->ax.axl[i] * m->L[8][i];
 }
 
 /* Momentum, energy, XSPH: the adjoint of the velocity gradient (file
@@ -342,10 +342,10 @@ static void pass_forces_axi(struct model *m, struct sim *s)
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
     const struct sph_support sp = sph_support_of(m);
-    const double qa = m->opt.av_a, qb = m->opt.av_b, xs = m->opt.xsph, lav = m->opt.av_length;
+    const double qa = m->opt.visc.av_a, qb = m->opt.visc.av_b, xs = m->opt.visc.xsph, lav = m->opt.visc.av_length;
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
     const double *Srr = m->sig[SXX], *Szz = m->sig[SYY], *Stt = m->sig[SZZ], *Srz = m->sig[SXY];
-    const double *lam = m->axl;
+    const double *lam = m->ax.axl;
 #pragma omp parallel for schedule(static) firstprivate(sp)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i], rhoi = m->rho[i];
@@ -377,7 +377,7 @@ static void pass_forces_axi(struct model *m, struct sim *s)
                     double mu = (lav > 0.0 ? lav : hb) * vx / (r2 + 0.01 * hb * hb);
                     double cb = 0.5 * (m->c[i] + m->c[j]);
                     Pi = (-qa * cb * mu + qb * mu * mu) / (0.5 * (rhoi + rhoj));
-                    if (m->opt.av_balsara) /* symmetric in i, j: momentum kept */
+                    if (m->opt.visc.av_balsara) /* symmetric in i, j: momentum kept */
                         Pi *= 0.5 * (balsara(m, i) + balsara(m, j));
                 }
                 const double gr = dr * F, gz = dz * F;
@@ -437,7 +437,7 @@ int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err)
         if (m->failed[i] && m->drho[i] < 0.0 && !m->mat[s->p->material[i]].failed_tension &&
             m->rho[i] <= m->mat[s->p->material[i]].rho0)
             m->drho[i] = 0.0;
-        m->dh[i] = m->opt.variable_h ? m->h[i] * (m->L[0][i] + m->L[4][i]) / 2.0 : 0.0;
+        m->dh[i] = m->opt.kern.variable_h ? m->h[i] * (m->L[0][i] + m->L[4][i]) / 2.0 : 0.0;
         for (int c = 0; c < 6; c++)
             m->sig[c][i] = m->S[c][i] - (c < 3 ? m->P[i] : 0.0);
     }
@@ -456,7 +456,7 @@ size_t sph_axisym_history(const struct model *m, const struct sim *sim, const ch
     if (!(m->opt.cavity_depth > 0.0))
         return 0;
     const struct particles *p = sim->p;
-    const double zc = m->surface_z - m->opt.cavity_depth;
+    const double zc = m->ax.surface_z - m->opt.cavity_depth;
     double r1 = INFINITY, r2 = INFINITY;
     for (size_t i = 0; i < p->n_owned; i++) {
         if (fabs(p->x[1][i] - zc) > 0.5 * m->dx[i])

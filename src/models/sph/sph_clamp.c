@@ -139,7 +139,7 @@ int sph_clamp_init(struct model *m, struct sim *s, struct spall_error *err)
     double hmax = 0.0;
     for (size_t i = 0; i < p->n_owned; i++)
         hmax = fmax(hmax, m->h[i]);
-    const double reach = 2.0 * m->qmax * hmax * (1.0 + m->opt.skin);
+    const double reach = 2.0 * m->qmax * hmax * (1.0 + m->opt.kern.skin);
     /* candidate images: free particles within reach (+ a spacing) of the plane */
     size_t *cand = malloc((p->n_owned ? p->n_owned : 1) * sizeof(size_t)), nc = 0;
     if (!cand) {

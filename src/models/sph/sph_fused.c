@@ -42,13 +42,13 @@ static inline void fused_pass(struct model *m, struct sim *s, const struct sph_p
     const size_t n = p->n_owned;
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
-    const enum sph_kernel kern = m->opt.kernel;
+    const enum sph_kernel kern = m->opt.kern.kernel;
     const double alpha = m->alpha, q2max = m->qmax * m->qmax;
-    const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
-    const double lav = m->opt.av_length;
+    const double qa = m->opt.visc.av_a, qb = m->opt.visc.av_b, zeta = m->opt.visc.as_zeta, asn = m->opt.visc.as_n;
+    const double lav = m->opt.visc.av_length;
     const bool av = qa > 0.0 || qb > 0.0, as = zeta > 0.0;
-    const double xs = m->opt.xsph;
-    const bool summ = m->opt.density == SPH_DENSITY_SUMMATION;
+    const double xs = m->opt.visc.xsph;
+    const bool summ = m->opt.kern.density == SPH_DENSITY_SUMMATION;
     const double *const X0 = src->x[0], *const X1 = src->x[1], *const X2 = src->x[2];
     const double *const V0 = src->v[0], *const V1 = src->v[1], *const V2 = src->v[2];
     const double *const Hs = src->h, *const Rho = src->rho, *const Cs = src->c,
@@ -193,7 +193,7 @@ static inline void fused_pass(struct model *m, struct sim *s, const struct sph_p
         sph_stress_rate(m, i, &trD);
         m->drho[i] = summ ? 0.0 : -m->rho[i] * trD; /* Eq. 3.18 */
         double trp = m->L[0][i] + m->L[4][i] + (dim == 3 ? m->L[8][i] : 0.0);
-        m->dh[i] = m->opt.variable_h ? m->h[i] * trp / dim : 0.0;
+        m->dh[i] = m->opt.kern.variable_h ? m->h[i] * trp / dim : 0.0;
     }
 }
 
@@ -202,7 +202,7 @@ static inline void fused_pass(struct model *m, struct sim *s, const struct sph_p
 static void fused_prepare(struct model *m, struct sim *s)
 {
     const size_t n = s->p->n_owned;
-    const bool as = m->opt.as_zeta > 0.0;
+    const bool as = m->opt.visc.as_zeta > 0.0;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         if (sph_skip(m, i, SPH_FORM_UPDATED))
@@ -224,7 +224,7 @@ int sph_rates_fused(struct model *m, struct sim *s, struct spall_error *err)
     fused_prepare(m, s);
     struct sph_pair_src src;
     int rc;
-    if (m->opt.symmetry[0] || m->opt.symmetry[1]) {
+    if (m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1]) {
         if ((rc = sph_symmetry_update(m, s, &src, err)))
             return rc;
     } else {
@@ -247,7 +247,7 @@ int sph_rates_fused(struct model *m, struct sim *s, struct spall_error *err)
         }
     }
     m->n_pairs = m->nl->offset[p->n_owned];
-    const bool wend = m->opt.kernel == SPH_KERNEL_WENDLAND;
+    const bool wend = m->opt.kern.kernel == SPH_KERNEL_WENDLAND;
     if (m->dim == 2) {
         if (wend)
             fused_pass(m, s, &src, 2, 1);

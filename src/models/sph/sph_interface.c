@@ -91,7 +91,7 @@
 
 static inline int32_t iface_group(const struct model *m, const struct particles *p, size_t i)
 {
-    return m->opt.iface == SPH_IFACE_BODIES ? p->body[i] : p->material[i];
+    return m->opt.iface.kind == SPH_IFACE_BODIES ? p->body[i] : p->material[i];
 }
 
 static inline double hoop_r(const struct model *m, const double *x0, size_t i)
@@ -114,20 +114,20 @@ int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct 
     struct neighbor_list *nl = m->nl;
     const size_t n = nl->n;
     const int dim = m->dim;
-    if (!m->if_off) {
-        m->if_off = calloc(n + 1, sizeof *m->if_off);
-        m->if_c0 = calloc(m->n_mat ? m->n_mat : 1, sizeof *m->if_c0);
-        m->if_e = calloc(n ? n : 1, sizeof *m->if_e);
-        m->if_w = calloc(n ? n : 1, sizeof *m->if_w);
-        m->if_np = calloc(n ? n : 1, sizeof *m->if_np);
-        if (!m->if_off || !m->if_c0 || !m->if_e || !m->if_w || !m->if_np)
+    if (!m->ifs.off) {
+        m->ifs.off = calloc(n + 1, sizeof *m->ifs.off);
+        m->ifs.c0 = calloc(m->n_mat ? m->n_mat : 1, sizeof *m->ifs.c0);
+        m->ifs.e = calloc(n ? n : 1, sizeof *m->ifs.e);
+        m->ifs.w = calloc(n ? n : 1, sizeof *m->ifs.w);
+        m->ifs.np = calloc(n ? n : 1, sizeof *m->ifs.np);
+        if (!m->ifs.off || !m->ifs.c0 || !m->ifs.e || !m->ifs.w || !m->ifs.np)
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph interface)");
         for (size_t k = 0; k < m->n_mat; k++)
-            m->if_c0[k] = sph_sound_speed(&m->mat[k], m->mat[k].rho0, 0.0);
+            m->ifs.c0[k] = sph_sound_speed(&m->mat[k], m->mat[k].rho0, 0.0);
     }
-    const double fd = 0.5 * m->opt.iface_distance;
+    const double fd = 0.5 * m->opt.iface.distance;
     size_t w = 0, wi = 0, start = 0;
-    m->if_off[0] = 0;
+    m->ifs.off[0] = 0;
     for (size_t i = 0; i < n; i++) {
         const size_t end = nl->offset[i + 1];
         const int32_t gi = iface_group(m, p, i);
@@ -153,20 +153,20 @@ int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct 
             const double reach = fd * (m->dx[i] + m->dx[j]) + skin_abs;
             if (r2 > reach * reach)
                 continue;
-            if (wi == m->if_cap) {
-                size_t cap = m->if_cap ? 2 * m->if_cap : 1024;
-                int32_t *q = realloc(m->if_idx, cap * sizeof *q);
+            if (wi == m->ifs.cap) {
+                size_t cap = m->ifs.cap ? 2 * m->ifs.cap : 1024;
+                int32_t *q = realloc(m->ifs.idx, cap * sizeof *q);
                 if (!q)
                     return spall_error_set(err, SPALL_ERR_NOMEM,
                                            "out of memory (sph interface, %zu pairs)", cap);
-                m->if_idx = q;
-                m->if_cap = cap;
+                m->ifs.idx = q;
+                m->ifs.cap = cap;
             }
-            m->if_idx[wi++] = (int32_t)j;
+            m->ifs.idx[wi++] = (int32_t)j;
         }
         start = end;
         nl->offset[i + 1] = w;
-        m->if_off[i + 1] = wi;
+        m->ifs.off[i + 1] = wi;
     }
     return SPALL_OK;
 }
@@ -176,25 +176,25 @@ void sph_interface_forces(struct model *m, struct sim *s)
     struct particles *p = s->p;
     const size_t n = p->n_owned;
     const int dim = m->dim;
-    const bool axi = m->opt.plane == SPH_PLANE_AXISYMMETRIC;
+    const bool axi = m->opt.kern.plane == SPH_PLANE_AXISYMMETRIC;
     const double t = dim == 2 ? s->thickness : 1.0;
-    const double eta = m->opt.iface_stiffness, fd = 0.5 * m->opt.iface_distance;
-    double *ei = m->if_e, *wi = m->if_w;
-    if (!m->if_off) {
-        m->iface_energy = 0.0;
-        m->iface_pairs = 0;
+    const double eta = m->opt.iface.stiffness, fd = 0.5 * m->opt.iface.distance;
+    double *ei = m->ifs.e, *wi = m->ifs.w;
+    if (!m->ifs.off) {
+        m->ifs.energy = 0.0;
+        m->ifs.pairs = 0;
         return;
     }
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         double fi[3] = {0, 0, 0}, e = 0.0, om2 = 0.0;
         size_t np = 0;
-        const double mui = mu0(m, p, i), ci = m->if_c0[p->material[i]];
+        const double mui = mu0(m, p, i), ci = m->ifs.c0[p->material[i]];
         const double Ri = axi ? hoop_r(m, p->x[0], i) : 0.0;
         /* the radial derivative of the ring weight vanishes on the floor */
         const double dwdr = axi && p->x[0][i] > 0.25 * m->dx[i] ? SPALL_PI : 0.0;
-        for (size_t q = m->if_off[i]; q < m->if_off[i + 1]; q++) {
-            const size_t j = (size_t)m->if_idx[q];
+        for (size_t q = m->ifs.off[i]; q < m->ifs.off[i + 1]; q++) {
+            const size_t j = (size_t)m->ifs.idx[q];
             double dxv[3] = {0, 0, 0}, r2 = 0.0;
             for (int d = 0; d < dim; d++) {
                 dxv[d] = p->x[d][i] - p->x[d][j];
@@ -204,7 +204,7 @@ void sph_interface_forces(struct model *m, struct sim *s)
             if (!(r2 < dc * dc) || r2 == 0.0)
                 continue;
             const double r = sqrt(r2), delta = dc - r;
-            const double muj = mu0(m, p, j), cj = m->if_c0[p->material[j]];
+            const double muj = mu0(m, p, j), cj = m->ifs.c0[p->material[j]];
             const double cm = ci > cj ? ci : cj;
             const double k = eta * (mui < muj ? mui : muj) * cm * cm / (dc * dc);
             const double wgt = axi ? SPALL_PI * (Ri + hoop_r(m, p->x[0], j)) : t;
@@ -221,20 +221,20 @@ void sph_interface_forces(struct model *m, struct sim *s)
             p->f[d][i] += fi[d];
         ei[i] = e;
         wi[i] = om2;
-        m->if_np[i] = (uint32_t)np;
+        m->ifs.np[i] = (uint32_t)np;
     }
     /* fixed-order sums: diagnostics identical for any thread count */
     double etot = 0.0, om2max = 0.0;
     size_t npairs = 0;
     for (size_t i = 0; i < n; i++) {
         etot += ei[i];
-        npairs += m->if_np[i];
+        npairs += m->ifs.np[i];
         if (wi[i] > om2max)
             om2max = wi[i];
     }
-    m->iface_energy = etot;
-    m->iface_pairs = npairs / 2;
-    m->iface_omega2 = om2max;
+    m->ifs.energy = etot;
+    m->ifs.pairs = npairs / 2;
+    m->ifs.omega2 = om2max;
 }
 
 double sph_interface_stable_dt(const struct model *m)
@@ -244,5 +244,5 @@ double sph_interface_stable_dt(const struct model *m)
      * scales by c_s (0.3): omega dt = 0.6 at most.  With eta = 1 this
      * rarely binds (omega ~ 1.8 c_max / d for two contacts, against the SPH
      * step 0.39 d / c) */
-    return m->iface_omega2 > 0.0 ? 2.0 / sqrt(m->iface_omega2) : INFINITY;
+    return m->ifs.omega2 > 0.0 ? 2.0 / sqrt(m->ifs.omega2) : INFINITY;
 }

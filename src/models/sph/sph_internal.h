@@ -1,7 +1,7 @@
 /**
  * @file sph_internal.h
  * @brief State of the SPH model ([Meng2021] chapter 3) shared by its files:
- *        sph_model.c (life cycle, deck), sph_rates.c (pair loops),
+ *        sph_options.c (deck), sph_model.c (life cycle), sph_rates.c (pair loops),
  *        sph_material.c (EOS, Jaumann rate, yield, failure),
  *        sph_tlsph.c (total-Lagrangian variant).  Not a public interface.
  */
@@ -10,6 +10,7 @@
 
 #include "models/sph/sph.h"
 #include "models/sph/sph_kernels.h"
+#include "models/sph/sph_options.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -20,59 +21,6 @@ struct particles;
 struct sim;
 struct spall_error;
 
-/** 2D stress state ([Meng2021] sec. 3.3; the beam is plane stress). */
-enum sph_plane { SPH_PLANE_STRESS, SPH_PLANE_STRAIN, SPH_PLANE_AXISYMMETRIC /* sph_axisym.c */ };
-enum sph_density { SPH_DENSITY_CONTINUITY, SPH_DENSITY_SUMMATION };
-/** Coupling of bodies (sph_interface.c): kernel sums across them (none), or
- *  sums inside each body / material and a penalty between them. */
-enum sph_iface { SPH_IFACE_NONE, SPH_IFACE_BODIES, SPH_IFACE_MATERIALS };
-
-/** Defaults of the TLSPH det F guard (model.det_f_range, max_distortion;
- *  sph_tlsph.c).  MACHDYN deletes particles outside 0.2 < det F < 2; these
- *  only stop a run whose reference configuration is no longer usable. */
-#define SPH_DET_F_MIN 0.1
-#define SPH_DET_F_MAX 10.0
-#define SPH_MAX_DISTORTION 100.0
-
-
-struct sph_options {
-    enum sph_kernel kernel;
-    double h_factor;        /**< h = h_factor * dx */
-    enum sph_density density;
-    bool cspm;              /**< corrected velocity gradient (Eqs. 3.10-3.11) */
-    double av_a, av_b;      /**< Monaghan AV q_a, q_b */
-    double av_length;       /**< AV length in mu_ij [m] (0: h_ij, Eq. 2.21) */
-    bool av_balsara;        /**< AV times the Balsara shear switch (not with symmetry planes) */
-    double as_zeta;         /**< artificial stress zeta (0: off) */
-    double as_n;            /**< exponent n (4) */
-    bool as_smooth;         /**< R_i kernel-averaged over i's neighbours (sph_as_smooth.c) */
-    double xsph;            /**< XSPH alpha_cs (0: off) */
-    bool variable_h;
-    enum sph_plane plane;
-    double skin;            /**< neighbour skin / h */
-    bool total_lagrangian;  /**< some (or every) body is TLSPH (sph_tlsph.c) */
-    bool split_forms;       /**< TLSPH bodies with interface: bodies: particles split
-                                 by formulation (m->form, sph_forms.c) */
-    double hourglass;       /**< TLSPH hourglass coefficient kappa */
-    double det_f_range[2];  /**< TLSPH guard: det F outside stops the run */
-    double max_distortion;  /**< TLSPH guard: (|F|^2/dim)/J^(2/dim) above stops the run */
-    long reref_every;       /**< TLSPH: re-reference every N steps (0: off; sph_tlsph_reref.c) */
-    double reref_distortion; /**< TLSPH: re-reference when the distortion exceeds it (0: off) */
-    double reref_isotropy;  /**< TLSPH update: grow h where the neighbourhood's isotropy is below */
-    bool wall;              /**< rigid half-space wall (penalty) */
-    double wall_point[3], wall_normal[3]; /**< normal points into the body side */
-    double wall_stiffness;  /**< penalty k = factor m (c/dx)^2 */
-    bool split_pairs;       /**< force the two-pass loops of sph_rates.c (verification) */
-    bool tl_split;          /**< TLSPH: stages one after the other, not pipelined (verification) */
-    bool symmetry[3];       /**< mirror plane x_d = 0 (ghost particles, sph_symmetry.c) */
-    double cavity_depth;    /**< axisymmetric: depth of the cavity-diameter history (0: off) */
-    bool leapfrog;          /**< staggered leapfrog state update (sph_leapfrog.c) */
-    bool adaptive_dt;       /**< Eq. 3.38 every step (sph_time_scheme) */
-    enum sph_iface iface;   /**< interface between bodies (sph_interface.c) */
-    double iface_stiffness; /**< penalty factor eta (default 1) */
-    double iface_distance;  /**< contact distance factor f: d = f (dx_i + dx_j)/2 */
-};
-
 /** Read-only per-particle data the fused pair loop gathers over j: the
  *  model's own arrays, or real + mirrored ghost particles (symmetry). */
 struct sph_pair_src {
@@ -80,14 +28,69 @@ struct sph_pair_src {
     const double *x[3], *v[3], *h, *rho, *c, *m2, *dx, *sr[6], *R[6];
 };
 struct sph_sym;
+struct model;
+
+/** The axisymmetric variant of the updated form (sph_axisym.c). */
+struct sph_axisym_state {
+    double *axl, *axl_s;   /**< axis weight lambda and its sweep scratch (per particle) */
+    size_t builds;         /**< n_builds when the axis weights were last solved */
+    double surface_z;      /**< initial top surface (cavity depth origin) */
+};
+
+/** The penalty interface between bodies or materials (sph_interface.c;
+ *  the arrays are NULL when model.interface is none). */
+struct sph_iface_state {
+    size_t *off;           /**< n + 1: interface partners of i are idx[off[i] ..) */
+    int32_t *idx;
+    size_t cap;
+    double *c0;            /**< per material: rest sound speed */
+    double *e, *w;         /**< per particle: half its pairs' energy, sum k (1/mu_i + 1/mu_j) */
+    uint32_t *np;          /**< per particle: pairs in contact */
+    double energy;         /**< penalty energy [J] */
+    size_t pairs;          /**< pairs in contact at the last force evaluation */
+    double omega2;         /**< largest contact omega^2 (stable step) */
+};
+
+/** One formulation of the model ([Meng2021] ch. 3 updated Lagrangian;
+ *  total Lagrangian, sph_tlsph*.c): what the model's hooks call for the
+ *  particles on it.  A run holds one, or both when its bodies are split by
+ *  formulation (sph_forms.c; TLSPH first: its stage writes the reference
+ *  forces before the updated form and the interface add theirs). */
+struct sph_formulation {
+    const char *name;      /**< its model.formulation value */
+    /** Lists at set-up: the current list with skin, or the reference list. */
+    int (*init)(struct model *m, struct sim *s, struct spall_error *err);
+    /** Rates and forces of its particles; @p lfdt > 0: the leapfrog's
+     *  state advance by lfdt between the velocity gradient and the forces. */
+    int (*rates)(struct model *m, struct sim *s, double lfdt, struct spall_error *err);
+    /** End of a step (NULL: nothing). */
+    int (*end_step)(struct model *m, struct sim *s, struct spall_error *err);
+};
+extern const struct sph_formulation sph_form_updated; /* sph_rates.c */
+extern const struct sph_formulation sph_form_total;   /* sph_tlsph_ref.c */
 struct sph_tl;
+/** What the total-Lagrangian formulation keeps between steps (sph_tlsph*.c):
+ *  m->tl, NULL in a run without TLSPH bodies, so that the updated form's
+ *  model carries none of it. */
+struct sph_tlsph {
+    struct sph_tl *ref;    /**< reference list, pair constants, B0^-1 and the packed
+                                blocks (sph_tlsph_data.h; rebuilt by a re-reference) */
+    double jmin, kmax;     /**< smallest det F, largest distortion (last step) */
+    size_t rerefs;         /**< reference updates so far (sph_tlsph_reref.c) */
+    long reref_step;       /**< step of the last reference update (0: none) */
+    double t_reref;        /**< wall seconds spent in reference updates */
+    size_t hgrown;         /**< h growths (x1.2) at reference updates */
+};
 struct sph_clamp;
 struct deck_node;
 
 
 struct model {
     struct sim *sim; /**< borrowed */
-    struct sph_options opt;
+    struct sph_options opt; /**< deck options (sph_options.h) */
+    const struct sph_formulation *forms[2]; /**< the run's formulations, in call order */
+    int n_forms;
+    struct sph_loops loops; /**< pair loops the options (or a test) chose */
     int dim;
     double alpha;          /**< kernel alpha_d */
     double qmax;           /**< kernel support / h */
@@ -115,42 +118,28 @@ struct model {
     double *xv[3];         /**< XSPH velocity correction (the drift velocity, sph_drift_velocity) */
     double *x_build[3];    /**< positions at the last neighbour build */
     double *wp;            /**< plastic work per particle [J] */
-    double *axl, *axl_s;   /**< axisymmetric: axis weight lambda and its sweep scratch (sph_axisym.c) */
-    double wall_energy;    /**< penalty energy [J] */
-    double wall_force[3];  /**< total wall force [N] */
-    double surface_z;      /**< axisymmetric: initial top surface (cavity depth origin) */
 
     struct sph_sym *sym;   /**< symmetry-plane ghosts (NULL: none) */
-    struct sph_tl *tl;     /**< TLSPH reference pair constants (sph_tlsph.c; NULL: none) */
+    struct sph_tlsph *tl;  /**< total-Lagrangian state (sph_tlsph*.c; NULL: no TLSPH body) */
     struct sph_clamp *clamp; /**< mirrored clamp (sph_clamp.c; NULL: none) */
     struct neighbor_list *nl;
     double nl_radius;
     size_t n_builds;
-    size_t axl_builds;     /**< axisymmetric: n_builds when the axis weights were last solved */
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
     size_t n_pairs;
-    /* interface between bodies (sph_interface.c; NULL when off) */
-    size_t *if_off;        /**< n + 1: interface partners of i are if_idx[if_off[i] ..) */
-    int32_t *if_idx;
-    size_t if_cap;
-    double *if_c0;         /**< per material: rest sound speed */
-    double *if_e, *if_w;   /**< per particle: half its pairs' energy, sum k (1/mu_i + 1/mu_j) */
-    uint32_t *if_np;       /**< per particle: pairs in contact */
-    double iface_energy;   /**< penalty energy [J] */
-    size_t iface_pairs;    /**< pairs in contact at the last force evaluation */
-    double iface_omega2;   /**< largest contact omega^2 (stable step) */
+    struct sph_iface_state ifs; /**< interface between bodies (sph_interface.c) */
+    struct sph_axisym_state ax; /**< plane: axisymmetric (sph_axisym.c) */
+    struct {
+        double energy;     /**< penalty energy [J] */
+        double force[3];   /**< total force [N] */
+    } wall;                /**< the rigid wall (model.wall; sph_rates.c) */
     /* formulation per body (sph_forms.c) */
     uint8_t *body_total;   /**< per deck body: 1 = TLSPH */
     size_t n_bodies;
     uint8_t *form;         /**< per particle SPH_FORM_*: a run whose bodies are split
                                 by formulation (NULL: one formulation, no split) */
     size_t n_total;        /**< particles on TLSPH when form is set */
-    double tl_jmin, tl_kmax; /**< TLSPH: smallest det F, largest distortion (last step) */
-    size_t tl_rerefs;      /**< TLSPH: reference updates so far (sph_tlsph_reref.c) */
-    long tl_reref_step;    /**< TLSPH: step of the last reference update (0: none) */
-    double t_reref;        /**< TLSPH: wall seconds spent in reference updates */
-    size_t tl_hgrown;      /**< TLSPH: h growths (x1.2) at reference updates */
 };
 
 /** Formulation of a particle (m->form), and SPH_FORM_ALL for loops that
@@ -246,13 +235,10 @@ int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_er
  *  p->x0, a re-reference the current x and rho.  F = I on @p X. */
 int sph_tlsph_reference(struct model *m, struct sim *s, double *const X[3], const double *rho,
                         struct spall_error *err);
-/** Free the TLSPH pair constants; sets *tl to NULL. */
-void sph_tlsph_destroy(struct sph_tl **tl);
+/** Free the TLSPH state; sets *tl to NULL. */
+void sph_tlsph_destroy(struct sph_tlsph **tl);
 
 /* sph_tlsph_reref.c */
-/** Parse model.reference_update {every, distortion} into @p o (TLSPH runs only). */
-int sph_tlsph_reref_parse(const struct deck_node *params, struct sph_options *o,
-                          struct spall_error *err);
 /** End of a step: re-reference when model.reference_update says so. */
 int sph_tlsph_reref_step(struct model *m, struct sim *s, struct spall_error *err);
 

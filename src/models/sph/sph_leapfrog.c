@@ -55,14 +55,14 @@ static inline double stress_power(const struct model *m, size_t i, double P)
 void sph_leapfrog_advance_one(struct model *m, size_t i, double dt)
 {
     const struct sph_material *mt = &m->mat[m->sim->p->material[i]];
-    const bool integ_rho = m->opt.density == SPH_DENSITY_CONTINUITY;
+    const bool integ_rho = m->opt.kern.density == SPH_DENSITY_CONTINUITY;
     double trD;
     sph_stress_rate(m, i, &trD); /* dS (Jaumann) and D_zz from L */
     const double rho0 = m->rho[i];
     const double pw0 = stress_power(m, i, m->P[i]);
     if (integ_rho)
         m->rho[i] = rho0 * (1.0 - dt * trD); /* Eq. 3.18 */
-    if (m->opt.variable_h) {
+    if (m->opt.kern.variable_h) {
         double trp = m->L[0][i] + m->L[4][i] + (m->dim == 3 ? m->L[8][i] : 0.0);
         m->h[i] += dt * m->h[i] * trp / m->dim;
     }

@@ -122,8 +122,8 @@ void sph_stress_rate(const struct model *m, size_t i, double *trD)
             W[a][b] = 0.5 * (L[a][b] - L[b][a]);
         }
     const double G = mt->G;
-    if (m->dim == 2 && m->opt.plane != SPH_PLANE_AXISYMMETRIC) { /* axisym: L[8] = v_r/r */
-        if (m->opt.plane == SPH_PLANE_STRESS && !m->failed[i]) {
+    if (m->dim == 2 && m->opt.kern.plane != SPH_PLANE_AXISYMMETRIC) { /* axisym: L[8] = v_r/r */
+        if (m->opt.kern.plane == SPH_PLANE_STRESS && !m->failed[i]) {
             /* sigma_zz stays 0: (K - 2G/3)(D_xx + D_yy + D_zz) + 2G D_zz = 0 */
             double lam = mt->K - 2.0 * G / 3.0;
             D[2][2] = -lam * (D[0][0] + D[1][1]) / (lam + 2.0 * G);

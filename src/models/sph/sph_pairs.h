@@ -34,7 +34,7 @@ struct sph_support {
 
 static inline struct sph_support sph_support_of(const struct model *m)
 {
-    struct sph_support sp = {m->opt.kernel, m->alpha, m->qmax * m->qmax};
+    struct sph_support sp = {m->opt.kern.kernel, m->alpha, m->qmax * m->qmax};
     return sp;
 }
 

@@ -96,14 +96,14 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
     }
     double t0 = omp_get_wtime();
     neighbor_list_destroy(&m->nl);
-    m->nl_radius = m->qmax * hmax * (1.0 + m->opt.skin);
+    m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
     int rc = neighbor_list_build(&m->nl, dim, n, p->x, m->nl_radius, err);
     if (rc)
         return rc;
-    if (!m->opt.variable_h)
+    if (!m->opt.kern.variable_h)
         sph_neighbors_trim(m, p, m->nl_radius - m->qmax * hmax);
     /* interface between bodies: their pairs leave the kernel list */
-    if (m->opt.iface != SPH_IFACE_NONE &&
+    if (m->opt.iface.kind != SPH_IFACE_NONE &&
         (rc = sph_interface_split(m, s, m->nl_radius - m->qmax * hmax, err)))
         return rc;
     for (int d = 0; d < dim; d++)
@@ -137,10 +137,10 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
     const size_t n = p->n_owned;
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
-    const enum sph_kernel kern = m->opt.kernel;
+    const enum sph_kernel kern = m->opt.kern.kernel;
     const struct sph_support sp = sph_support_of(m);
     const double alpha = m->alpha;
-    const bool cspm = m->opt.cspm, summ = m->opt.density == SPH_DENSITY_SUMMATION;
+    const bool cspm = m->opt.kern.cspm, summ = m->opt.kern.density == SPH_DENSITY_SUMMATION;
     size_t fallbacks = 0;
     if (summ) {
 #pragma omp parallel for schedule(static) firstprivate(sp)
@@ -217,7 +217,7 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
 /* Principal-axes artificial stress R_i (Monaghan-Gray, Eqs. 2.25-2.27). */
 void sph_artificial_stress(struct model *m, size_t i)
 {
-    const double zeta = m->opt.as_zeta;
+    const double zeta = m->opt.visc.as_zeta;
     const double r2 = m->rho[i] * m->rho[i];
     for (int c = 0; c < 6; c++)
         m->R[c][i] = 0.0;
@@ -287,13 +287,13 @@ static inline void pass_forces(struct model *m, struct sim *s, double lfdt, cons
     const size_t n = p->n_owned;
     const size_t *off = m->nl->offset;
     const int32_t *nb = m->nl->idx;
-    const enum sph_kernel kern = m->opt.kernel;
+    const enum sph_kernel kern = m->opt.kern.kernel;
     const struct sph_support sp = sph_support_of(m);
     const double alpha = m->alpha;
-    const double qa = m->opt.av_a, qb = m->opt.av_b, zeta = m->opt.as_zeta, asn = m->opt.as_n;
-    const double lav = m->opt.av_length;
-    const double xs = m->opt.xsph;
-    const bool cm = m->opt.cspm, bal = m->opt.av_balsara;
+    const double qa = m->opt.visc.av_a, qb = m->opt.visc.av_b, zeta = m->opt.visc.as_zeta, asn = m->opt.visc.as_n;
+    const double lav = m->opt.visc.av_length;
+    const double xs = m->opt.visc.xsph;
+    const bool cm = m->opt.kern.cspm, bal = m->opt.visc.av_balsara;
     /* leapfrog step: the stress power is booked by sph_leapfrog_advance */
     const double wstress = lfdt > 0.0 ? 0.0 : 1.0;
     static const int tix[3][3] = {{SXX, SXY, SXZ}, {SXY, SYY, SYZ}, {SXZ, SYZ, SZZ}};
@@ -412,7 +412,7 @@ static inline void pass_forces(struct model *m, struct sim *s, double lfdt, cons
 static void wall_forces(struct model *m, struct sim *s)
 {
     struct particles *p = s->p;
-    const double *n = m->opt.wall_normal, *x0 = m->opt.wall_point;
+    const double *n = m->opt.bound.wall_normal, *x0 = m->opt.bound.wall_point;
     double energy = 0.0, ft[3] = {0, 0, 0};
     for (size_t i = 0; i < p->n_owned; i++) {
         double d = 0.0;
@@ -423,15 +423,15 @@ static void wall_forces(struct model *m, struct sim *s)
             continue;
         const struct sph_material *mt = &m->mat[p->material[i]];
         double c0 = sph_sound_speed(mt, mt->rho0, 0.0);
-        double k = m->opt.wall_stiffness * p->mass[i] * c0 * c0 / (m->dx[i] * m->dx[i]);
+        double k = m->opt.bound.wall_stiffness * p->mass[i] * c0 * c0 / (m->dx[i] * m->dx[i]);
         for (int a = 0; a < m->dim; a++) {
             p->f[a][i] += -k * g * n[a];
             ft[a] += -k * g * n[a];
         }
         energy += 0.5 * k * g * g;
     }
-    m->wall_energy = energy;
-    memcpy(m->wall_force, ft, sizeof ft);
+    m->wall.energy = energy;
+    memcpy(m->wall.force, ft, sizeof ft);
 }
 
 /* The updated form (fused or two-pass loops) on its particles. */
@@ -439,8 +439,9 @@ static int updated_rates(struct model *m, struct sim *s, double lfdt, struct spa
 {
     const size_t n = s->p->n_owned;
     /* no CSPM, continuity density: one fused pair loop (sph_fused.c) */
-    if (m->opt.symmetry[0] || m->opt.symmetry[1] ||
-        (!m->opt.cspm && m->opt.density == SPH_DENSITY_CONTINUITY && !m->opt.split_pairs))
+    if (m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1] ||
+        (!m->opt.kern.cspm && m->opt.kern.density == SPH_DENSITY_CONTINUITY &&
+         !m->loops.split_pairs))
         return sph_rates_fused(m, s, err);
     int rc = sph_neighbors_update(m, s, false, err);
     if (rc)
@@ -451,7 +452,7 @@ static int updated_rates(struct model *m, struct sim *s, double lfdt, struct spa
     if (lfdt > 0.0) /* leapfrog: advance the state with this L */
         sph_leapfrog_advance(m, s, lfdt, SPH_FORM_UPDATED);
     sph_update_pressure(m, s, SPH_FORM_UPDATED);
-    const bool summ = m->opt.density == SPH_DENSITY_SUMMATION;
+    const bool summ = m->opt.kern.density == SPH_DENSITY_SUMMATION;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         if (sph_skip(m, i, SPH_FORM_UPDATED))
@@ -460,15 +461,15 @@ static int updated_rates(struct model *m, struct sim *s, double lfdt, struct spa
         sph_stress_rate(m, i, &trD);
         m->drho[i] = summ ? 0.0 : -m->rho[i] * trD; /* Eq. 3.18 */
         double trp = m->L[0][i] + m->L[4][i] + (m->dim == 3 ? m->L[8][i] : 0.0);
-        m->dh[i] = m->opt.variable_h ? m->h[i] * trp / m->dim : 0.0;
+        m->dh[i] = m->opt.kern.variable_h ? m->h[i] * trp / m->dim : 0.0;
         for (int c = 0; c < 6; c++)
             m->sig[c][i] = m->S[c][i] - (c < 3 ? m->P[i] : 0.0);
-        if (m->opt.as_zeta > 0.0)
+        if (m->opt.visc.as_zeta > 0.0)
             sph_artificial_stress(m, i);
     }
     if (m->clamp)
         sph_clamp_stress(m); /* sph_clamp.c */
-    if (m->opt.as_smooth && m->opt.as_zeta > 0.0)
+    if (m->opt.visc.as_smooth && m->opt.visc.as_zeta > 0.0)
         sph_artificial_stress_smooth(m, s); /* sph_as_smooth.c */
     if (m->dim == 2)
         pass_forces(m, s, lfdt, 2);
@@ -483,28 +484,42 @@ static int updated_rates(struct model *m, struct sim *s, double lfdt, struct spa
     return SPALL_OK;
 }
 
-/* The rates; with lfdt > 0 the leapfrog's state advance in between. */
+/* The updated formulation's rates (sph_form_updated). */
+static int updated_form_rates(struct model *m, struct sim *s, double lfdt,
+                              struct spall_error *err)
+{
+    /* bodies split by formulation with every particle on TLSPH: only the
+     * current list, which feeds the interface between the bodies */
+    if (m->form && m->n_total == s->p->n_owned)
+        return sph_neighbors_update(m, s, false, err);
+    /* the wall's k is per ring mass and its force axial: as in 2D */
+    if (m->opt.kern.plane == SPH_PLANE_AXISYMMETRIC)
+        return sph_axisym_rates(m, s, err);
+    return updated_rates(m, s, lfdt, err);
+}
+
+static int updated_form_init(struct model *m, struct sim *s, struct spall_error *err)
+{
+    return sph_neighbors_update(m, s, true, err);
+}
+
+const struct sph_formulation sph_form_updated = {
+    .name = "updated",
+    .init = updated_form_init,
+    .rates = updated_form_rates,
+    .end_step = NULL,
+};
+
+/* The rates of every formulation of the run; with lfdt > 0 the leapfrog's
+ * state advance in between. */
 static int compute_rates(struct model *m, struct sim *s, double lfdt, struct spall_error *err)
 {
-    int rc;
-    if (m->form) {
-        /* bodies split by formulation (sph_forms.c): TLSPH on its bodies,
-         * the updated form on the others (or only the current list, which
-         * also feeds the interface between the bodies) */
-        rc = sph_tlsph_rates(m, s, lfdt, err);
-        if (!rc)
-            rc = m->n_total < s->p->n_owned ? updated_rates(m, s, lfdt, err)
-                                            : sph_neighbors_update(m, s, false, err);
+    int rc = SPALL_OK;
+    for (int k = 0; k < m->n_forms && !rc; k++)
+        rc = m->forms[k]->rates(m, s, lfdt, err);
+    if (m->form) /* split by formulation (sph_forms.c): both lists' pairs */
         m->n_pairs = m->nl->offset[s->p->n_owned] + sph_tlsph_pairs(m);
-    } else if (m->opt.total_lagrangian) {
-        rc = sph_tlsph_rates(m, s, lfdt, err);
-    } else if (m->opt.plane == SPH_PLANE_AXISYMMETRIC) {
-        /* the wall's k is per ring mass and its force axial: as in 2D */
-        rc = sph_axisym_rates(m, s, err);
-    } else {
-        rc = updated_rates(m, s, lfdt, err);
-    }
-    if (!rc && m->opt.wall)
+    if (!rc && m->opt.bound.wall)
         wall_forces(m, s);
     return rc;
 }

@@ -22,7 +22,7 @@ void sph_energy(const struct model *m, const struct sim *sim, struct model_energ
     }
     /* internal energy (elastic + plastic + AV heat) is the model's store;
      * the plastic work inside it is reported in history (plastic_work) */
-    out->strain = ie + m->wall_energy + m->iface_energy;
+    out->strain = ie + m->wall.energy + m->ifs.energy;
     out->dissipated = 0.0;
     (void)wp;
 }
@@ -50,27 +50,27 @@ size_t sph_history(const struct model *m, const struct sim *sim, const char **na
     names[k] = "neighbor_builds";
     values[k++] = (double)m->n_builds;
     names[k] = "wall_force";
-    values[k++] = m->opt.wall ? m->wall_force[0] * m->opt.wall_normal[0] +
-                                    m->wall_force[1] * m->opt.wall_normal[1] +
-                                    m->wall_force[2] * m->opt.wall_normal[2]
+    values[k++] = m->opt.bound.wall ? m->wall.force[0] * m->opt.bound.wall_normal[0] +
+                                    m->wall.force[1] * m->opt.bound.wall_normal[1] +
+                                    m->wall.force[2] * m->opt.bound.wall_normal[2]
                               : 0.0;
-    if (m->opt.total_lagrangian) {
+    if (m->opt.tl.total_lagrangian) {
         names[k] = "min_det_F";
-        values[k++] = m->tl_jmin;
+        values[k++] = m->tl ? m->tl->jmin : 0.0;
         names[k] = "max_F_distortion";
-        values[k++] = m->tl_kmax;
-        if (m->opt.reref_every || m->opt.reref_distortion > 0.0) {
+        values[k++] = m->tl ? m->tl->kmax : 0.0;
+        if (m->opt.tl.reref_every || m->opt.tl.reref_distortion > 0.0) {
             names[k] = "reference_updates";
-            values[k++] = (double)m->tl_rerefs;
+            values[k++] = m->tl ? (double)m->tl->rerefs : 0.0;
         }
     }
-    if (m->opt.iface != SPH_IFACE_NONE) {
+    if (m->opt.iface.kind != SPH_IFACE_NONE) {
         names[k] = "interface_pairs";
-        values[k++] = (double)m->iface_pairs;
+        values[k++] = (double)m->ifs.pairs;
         names[k] = "interface_energy [J]";
-        values[k++] = m->iface_energy;
+        values[k++] = m->ifs.energy;
     }
-    if (m->opt.plane == SPH_PLANE_AXISYMMETRIC)
+    if (m->opt.kern.plane == SPH_PLANE_AXISYMMETRIC)
         k += sph_axisym_history(m, sim, names + k, values + k);
     return k;
 }
@@ -130,8 +130,8 @@ void sph_describe(const struct model *m, const struct sim *sim, char *buf, size_
     off += (size_t)snprintf(buf + off, len - off,
                             "sph: kernel %s (alpha_%d = %.10g / h^%d), h = %.3g dx, "
                             "neighbour radius %.4g m\n",
-                            kn[m->opt.kernel], sim->dim, m->alpha, sim->dim, m->opt.h_factor,
-                            m->nl_radius);
+                            kn[m->opt.kern.kernel], sim->dim, m->alpha, sim->dim,
+                            m->opt.kern.h_factor, m->nl_radius);
     for (size_t k = 0; k < m->n_mat && off < len; k++) {
         const struct sph_material *mt = &m->mat[k];
         off += (size_t)snprintf(buf + off, len - off,

@@ -46,17 +46,17 @@ static int nl_set_rows(void *ctx, size_t rows, struct spall_error *err)
 static size_t if_rows(const void *ctx)
 {
     const struct model *m = ctx;
-    return m->if_off[m->sim->p->n_owned];
+    return m->ifs.off[m->sim->p->n_owned];
 }
 
 static int if_set_rows(void *ctx, size_t rows, struct spall_error *err)
 {
     struct model *m = ctx;
-    if (rows > m->if_cap) {
-        int rc = grow((void **)&m->if_idx, rows, sizeof *m->if_idx, err);
+    if (rows > m->ifs.cap) {
+        int rc = grow((void **)&m->ifs.idx, rows, sizeof *m->ifs.idx, err);
         if (rc)
             return rc;
-        m->if_cap = rows;
+        m->ifs.cap = rows;
     }
     return SPALL_OK;
 }
@@ -65,27 +65,39 @@ static int if_set_rows(void *ctx, size_t rows, struct spall_error *err)
 
 static size_t tl_rows(const void *ctx)
 {
-    const struct sph_tl *t = ((const struct model *)ctx)->tl;
+    const struct sph_tl *t = ((const struct model *)ctx)->tl->ref;
     return t->nl->offset[t->nl->n];
 }
 
 static int tl_set_idx(void *ctx, size_t rows, struct spall_error *err)
 {
-    struct sph_tl *t = ((struct model *)ctx)->tl;
+    struct sph_tl *t = ((struct model *)ctx)->tl->ref;
     return grow((void **)&t->nl->idx, rows, sizeof *t->nl->idx, err);
 }
 
 static int tl_set_pair(void *ctx, size_t rows, struct spall_error *err)
 {
-    struct sph_tl *t = ((struct model *)ctx)->tl;
+    struct sph_tl *t = ((struct model *)ctx)->tl->ref;
     return grow((void **)&t->pair, rows, sizeof *t->pair, err);
 }
 
 static int register_tl(struct model *m, size_t n, struct field_state *fs, struct spall_error *err)
 {
-    struct sph_tl *t = m->tl;
+    struct sph_tl *t = m->tl->ref;
     _Static_assert(sizeof(struct tl_pair) == 2 * sizeof(double), "pair constants: 2 doubles");
-    int rc = field_state_add_array(fs, "sph.tl_offset", FIELD_I64, (void **)&t->nl->offset, n + 1,
+    /* the formulation's counters and guard values (a run without TLSPH
+     * bodies has none) */
+    double *dv[] = {&m->tl->jmin, &m->tl->kmax};
+    const char *dn[] = {"sph.tl_jmin", "sph.tl_kmax"};
+    void *iv[] = {&m->tl->rerefs, &m->tl->reref_step, &m->tl->hgrown};
+    const char *in[] = {"sph.tl_rerefs", "sph.tl_reref_step", "sph.tl_hgrown"};
+    int rc = SPALL_OK;
+    for (size_t k = 0; k < 2 && !rc; k++)
+        rc = field_state_add_values(fs, dn[k], FIELD_F64, dv[k], 1, err);
+    for (size_t k = 0; k < 3 && !rc; k++)
+        rc = field_state_add_values(fs, in[k], FIELD_I64, iv[k], 1, err);
+    if (!rc)
+        rc = field_state_add_array(fs, "sph.tl_offset", FIELD_I64, (void **)&t->nl->offset, n + 1,
                                    1, err);
     if (!rc)
         rc = field_state_add_list(fs, "sph.tl_partner", FIELD_I32, (void **)&t->nl->idx, 1,
@@ -133,34 +145,34 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
             rc = field_state_add_list(fs, "sph.list_partner", FIELD_I32, (void **)&m->nl->idx, 1,
                                       nl_rows, nl_set_rows, m, err);
     }
-    if (!rc && m->if_off) {
-        rc = field_state_add_array(fs, "sph.iface_offset", FIELD_I64, (void **)&m->if_off, n + 1,
+    if (!rc && m->ifs.off) {
+        rc = field_state_add_array(fs, "sph.iface_offset", FIELD_I64, (void **)&m->ifs.off, n + 1,
                                    1, err);
         if (!rc)
-            rc = field_state_add_list(fs, "sph.iface_partner", FIELD_I32, (void **)&m->if_idx, 1,
+            rc = field_state_add_list(fs, "sph.iface_partner", FIELD_I32, (void **)&m->ifs.idx, 1,
                                       if_rows, if_set_rows, m, err);
         if (!rc)
-            rc = field_state_add_array(fs, "sph.iface_e", FIELD_F64, (void **)&m->if_e, n, 1, err);
+            rc = field_state_add_array(fs, "sph.iface_e", FIELD_F64, (void **)&m->ifs.e, n, 1, err);
         if (!rc)
-            rc = field_state_add_array(fs, "sph.iface_w", FIELD_F64, (void **)&m->if_w, n, 1, err);
+            rc = field_state_add_array(fs, "sph.iface_w", FIELD_F64, (void **)&m->ifs.w, n, 1, err);
         if (!rc)
-            rc = field_state_add_array(fs, "sph.iface_np", FIELD_I32, (void **)&m->if_np, n, 1,
+            rc = field_state_add_array(fs, "sph.iface_np", FIELD_I32, (void **)&m->ifs.np, n, 1,
                                        err);
     }
-    double *dv[] = {&m->wall_energy, &m->surface_z, &m->iface_energy, &m->iface_omega2,
-                    &m->tl_jmin, &m->tl_kmax, &m->nl_radius};
+    double *dv[] = {&m->wall.energy, &m->ax.surface_z, &m->ifs.energy, &m->ifs.omega2,
+                    &m->nl_radius};
     const char *dn[] = {"wall_energy", "surface_z", "iface_energy", "iface_omega2",
-                        "tl_jmin", "tl_kmax", "list_radius"};
+                        "list_radius"};
     for (size_t k = 0; k < sizeof dv / sizeof dv[0] && !rc; k++) {
         snprintf(nm, sizeof nm, "sph.%s", dn[k]);
         rc = field_state_add_values(fs, nm, FIELD_F64, dv[k], 1, err);
     }
     if (!rc)
-        rc = field_state_add_values(fs, "sph.wall_force", FIELD_F64, m->wall_force, 3, err);
-    void *iv[] = {&m->n_builds, &m->axl_builds, &m->cspm_fallbacks, &m->n_pairs,
-                  &m->iface_pairs, &m->tl_rerefs, &m->tl_reref_step, &m->tl_hgrown};
+        rc = field_state_add_values(fs, "sph.wall_force", FIELD_F64, m->wall.force, 3, err);
+    void *iv[] = {&m->n_builds, &m->ax.builds, &m->cspm_fallbacks, &m->n_pairs,
+                  &m->ifs.pairs};
     const char *in[] = {"list_builds", "axis_builds", "cspm_fallbacks", "pairs",
-                        "iface_pairs", "tl_rerefs", "tl_reref_step", "tl_hgrown"};
+                        "iface_pairs"};
     for (size_t k = 0; k < sizeof iv / sizeof iv[0] && !rc; k++) {
         snprintf(nm, sizeof nm, "sph.%s", in[k]);
         rc = field_state_add_values(fs, nm, FIELD_I64, iv[k], 1, err);

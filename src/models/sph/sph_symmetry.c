@@ -93,7 +93,7 @@ static int sym_find_ghosts(struct model *m, struct sim *s, double radius, struct
     struct sph_sym *g = m->sym;
     const struct particles *p = s->p;
     const size_t n = p->n_owned;
-    const bool sx = m->opt.symmetry[0], sy = m->opt.symmetry[1];
+    const bool sx = m->opt.bound.symmetry[0], sy = m->opt.bound.symmetry[1];
     size_t ng = 0;
     for (int pass = 0; pass < 2; pass++) {
         ng = 0;
@@ -187,7 +187,7 @@ int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src
         rebuild = m->qmax * hmax + 2.0 * sqrt(sph_max_move2(m, p)) > m->nl_radius;
     int rc;
     if (rebuild) {
-        m->nl_radius = m->qmax * hmax * (1.0 + m->opt.skin);
+        m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
         if ((rc = sym_find_ghosts(m, s, m->nl_radius, err)))
             return rc;
     }

@@ -97,7 +97,7 @@ static inline double tl_distortion_pow(const double F[9], double J, int dim)
 TL_INLINE void tl_deformation(const struct model *m, size_t i, const int dim, double Fd[9],
                                   double Fdot[9])
 {
-    const struct sph_tl *t = m->tl;
+    const struct sph_tl *t = m->tl->ref;
     const size_t *off = t->nl->offset;
     const int32_t *nb = t->nl->idx;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
@@ -181,7 +181,7 @@ TL_INLINE void tl_deformation(const struct model *m, size_t i, const int dim, do
 TL_INLINE int tl_stage_deform(struct model *m, size_t i, double lfdt, const int dim,
                                   double *Jout, double *kout)
 {
-    struct sph_tl *t = m->tl;
+    struct sph_tl *t = m->tl->ref;
     double *qi = t->pk + i * TL_STRIDE;
     double Bi[9];
     for (int c = 0; c < 9; c++)
@@ -250,7 +250,7 @@ TL_INLINE int tl_stage_deform(struct model *m, size_t i, double lfdt, const int 
             pw += PK[a * 3 + b] * Fdot[a * 3 + b];
     double *si = t->self + i * TL_SELF;
     si[TL_PW] = pw;
-    if (m->opt.av_balsara) {
+    if (m->opt.visc.av_balsara) {
         /* Balsara's switch ([Meng2021] Tab. 2.2 "BAL", as sph_axisym.c):
          * f = |div v| / (|div v| + |curl v| + 1e-4 c/h) from this L; the
          * AV of pair ij is scaled by (f_i + f_j)/2 in stage 2 */
@@ -286,12 +286,12 @@ static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, 
     char why[160];
     if (inv)
         snprintf(why, sizeof why, "is inverted or singular (det F = %.4g <= 0)", J);
-    else if (J < m->opt.det_f_range[0] || J > m->opt.det_f_range[1])
+    else if (J < m->opt.tl.det_f_range[0] || J > m->opt.tl.det_f_range[1])
         snprintf(why, sizeof why, "has det F = %.4g outside det_f_range [%g, %g]", J,
-                 m->opt.det_f_range[0], m->opt.det_f_range[1]);
+                 m->opt.tl.det_f_range[0], m->opt.tl.det_f_range[1]);
     else
         snprintf(why, sizeof why, "has distortion %.4g above max_distortion %g (det F = %.4g)",
-                 kap, m->opt.max_distortion, J);
+                 kap, m->opt.tl.max_distortion, J);
     char xs[128];
     if (dim == 3)
         snprintf(xs, sizeof xs, "(%.6g, %.6g, %.6g) m, now at (%.6g, %.6g, %.6g) m", p->x0[0][i],
@@ -442,11 +442,11 @@ static inline void tl_row(struct sph_tl *t, size_t i, size_t lo, size_t hi, cons
 TL_INLINE void tl_stage_forces(struct model *m, struct particles *p, size_t i, size_t lo,
                                    size_t hi, double lfdt, const int dim)
 {
-    struct sph_tl *t = m->tl;
+    struct sph_tl *t = m->tl->ref;
     const double *si = t->self + i * TL_SELF, *qi = t->pk + i * TL_STRIDE;
     double acc[4] = {si[TL_ACC], si[TL_ACC + 1], si[TL_ACC + 2], si[TL_FV]};
-    const double av[3] = {m->opt.av_a, m->opt.av_b, m->opt.av_length};
-    tl_row(t, i, lo, hi, dim, m->opt.av_balsara, av, acc);
+    const double av[3] = {m->opt.visc.av_a, m->opt.visc.av_b, m->opt.visc.av_length};
+    tl_row(t, i, lo, hi, dim, m->opt.visc.av_balsara, av, acc);
     if (sph_skip(m, i, SPH_FORM_TOTAL))
         return; /* an updated-form particle: empty row, no accumulator */
     const double Vi = qi[TL_VOL], mi = qi[TL_M];
@@ -551,7 +551,7 @@ TL_INLINE void tl_sweep(struct model *m, struct particles *p, size_t n, size_t l
                      double lfdt, bool pipelined, const int dim, const double lim[3],
                      struct tl_watch *w)
 {
-    struct sph_tl *t = m->tl;
+    struct sph_tl *t = m->tl->ref;
     const size_t b = pipelined ? t->band : n;
     /* stage 0 before the barriers for [lo, pa) and [pb, hi), in the sweep between */
     const size_t pa = hi - lo > 2 * b ? lo + 2 * b : hi, pb = hi - pa > 2 * b ? hi - 2 * b : pa;
@@ -567,10 +567,10 @@ TL_INLINE void tl_sweep(struct model *m, struct particles *p, size_t n, size_t l
     for (size_t k = e2; k < hi; k++)
         tl_deform(m, k, lfdt, dim, lim, w);
 #pragma omp barrier
-    const double av[3] = {m->opt.av_a, m->opt.av_b, m->opt.av_length};
+    const double av[3] = {m->opt.visc.av_a, m->opt.visc.av_b, m->opt.visc.av_length};
     for (size_t i = lo > b ? lo - b : 0; i < lo; i++) {
         double ghost[4] = {0, 0, 0, 0}; /* row i's own sums: its owner's */
-        tl_row(t, i, lo, hi, dim, m->opt.av_balsara, av, ghost);
+        tl_row(t, i, lo, hi, dim, m->opt.visc.av_balsara, av, ghost);
     }
     size_t r = lo; /* next row of stage 2 */
     for (size_t k = e1; k < e2; k++) {
@@ -605,11 +605,11 @@ int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_er
     struct particles *p = s->p;
     const size_t n = p->n_owned;
     const int dim = m->dim;
-    m->n_pairs = m->tl->nl->offset[n];
-    const bool pipelined = !m->opt.tl_split;
+    m->n_pairs = m->tl->ref->nl->offset[n];
+    const bool pipelined = !m->loops.tl_split;
     /* det F guard limits; the distortion limit as tl_distortion_pow */
-    const double md = m->opt.max_distortion;
-    const double lim[3] = {m->opt.det_f_range[0], m->opt.det_f_range[1],
+    const double md = m->opt.tl.max_distortion;
+    const double lim[3] = {m->opt.tl.det_f_range[0], m->opt.tl.det_f_range[1],
                            dim == 3 ? md * md * md : md};
     size_t first = SIZE_MAX;
     double jmin = INFINITY, kmax = 1.0;
@@ -627,8 +627,8 @@ int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_er
         jmin = w.jmin;
         kmax = w.kmax;
     }
-    m->tl_jmin = jmin;
-    m->tl_kmax = dim == 3 ? cbrt(kmax) : kmax;
+    m->tl->jmin = jmin;
+    m->tl->kmax = dim == 3 ? cbrt(kmax) : kmax;
     if (first != SIZE_MAX)
         return tl_guard_error(m, s, first, dim, err);
     return SPALL_OK;

@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-void sph_tlsph_destroy(struct sph_tl **tl)
+static void sph_tl_destroy(struct sph_tl **tl)
 {
     if (!tl || !*tl)
         return;
@@ -29,6 +29,15 @@ void sph_tlsph_destroy(struct sph_tl **tl)
     free(t->self);
     free(t->up);
     free(t);
+    *tl = NULL;
+}
+
+void sph_tlsph_destroy(struct sph_tlsph **tl)
+{
+    if (!tl || !*tl)
+        return;
+    sph_tl_destroy(&(*tl)->ref);
+    free(*tl);
     *tl = NULL;
 }
 
@@ -45,7 +54,7 @@ static int sph_tl_alloc(struct sph_tl **out, size_t n, size_t np, struct spall_e
     }
     *out = t;
     if (bad) {
-        sph_tlsph_destroy(out);
+        sph_tl_destroy(out);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH pair constants)");
     }
     return SPALL_OK;
@@ -63,7 +72,9 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
     double hmax = 0.0;
     for (size_t i = 0; i < n; i++)
         hmax = fmax(hmax, m->h[i]);
-    sph_tlsph_destroy(&m->tl);
+    if (!m->tl && !(m->tl = calloc(1, sizeof *m->tl)))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH state)");
+    sph_tl_destroy(&m->tl->ref);
     const double radius = m->qmax * hmax;
     if (!m->nl) /* a mixed run's updated list keeps its own radius (with skin) */
         m->nl_radius = radius;
@@ -98,11 +109,11 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
     m->n_builds++;
     const size_t *off = nl->offset;
     const int32_t *nb = nl->idx;
-    if ((rc = sph_tl_alloc(&m->tl, n, off[n], err))) {
+    if ((rc = sph_tl_alloc(&m->tl->ref, n, off[n], err))) {
         neighbor_list_destroy(&nl);
         return rc;
     }
-    struct sph_tl *t = m->tl;
+    struct sph_tl *t = m->tl->ref;
     t->nl = nl;
     t->band = 0;
 #ifdef TL_CLONED
@@ -128,7 +139,7 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
         for (int d = 0; d < 3; d++)
             q[TL_X0 + d] = d < dim ? Xr[d][i] : 0.0;
     }
-    const double kappa = m->opt.hourglass;
+    const double kappa = m->opt.tl.hourglass;
     size_t fallbacks = 0;
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks)
     for (size_t i = 0; i < n; i++) {
@@ -144,7 +155,7 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
                 r2 += X[d] * X[d];
             }
             double W, F;
-            sph_kernel_eval(m->opt.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
+            sph_kernel_eval(m->opt.kern.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
             const double Vi = t->pk[i * TL_STRIDE + TL_VOL], V = t->pk[j * TL_STRIDE + TL_VOL];
             struct tl_pair *pr = &t->pair[k];
             pr->F = F;
@@ -170,14 +181,22 @@ int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)
     return sph_tlsph_reference(m, s, s->p->x0, NULL, err);
 }
 
+const struct sph_formulation sph_form_total = {
+    .name = "total",
+    .init = sph_tlsph_init,
+    .rates = sph_tlsph_rates,
+    .end_step = sph_tlsph_reref_step, /* model.reference_update */
+};
+
 size_t sph_tlsph_pairs(const struct model *m)
 {
-    return m->tl && m->tl->nl ? m->tl->nl->offset[m->tl->nl->n] : 0;
+    const struct sph_tl *t = m->tl ? m->tl->ref : NULL;
+    return t && t->nl ? t->nl->offset[t->nl->n] : 0;
 }
 
 void sph_tlsph_deformation(const struct model *m, size_t i, double F[9])
 {
-    const double *fd = m->tl->pk + i * TL_STRIDE + TL_FD; /* stored by columns */
+    const double *fd = m->tl->ref->pk + i * TL_STRIDE + TL_FD; /* stored by columns */
     for (int c = 0; c < 9; c++)
         F[c] = fd[c % 3 * 3 + c / 3];
 }

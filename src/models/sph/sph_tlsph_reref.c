@@ -60,48 +60,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-int sph_tlsph_reref_parse(const struct deck_node *params, struct sph_options *o,
-                          struct spall_error *err)
-{
-    static const char *const keys[] = {"every", "distortion", "isotropy", NULL};
-    const struct deck_node *r = deck_get(params, "reference_update");
-    if (!r)
-        return SPALL_OK;
-    int rc = deck_expect_map(r, "a mapping with every: N and/or distortion: k", err);
-    if (rc)
-        return rc;
-    if (!o->total_lagrangian)
-        return deck_error_key(err, params, "reference_update",
-                              "reference_update re-references total-Lagrangian bodies; this "
-                              "run has none (formulation: total or body_formulation)");
-    long every = 0;
-    double k = 0.0, iso = 0.2;
-    if ((rc = deck_long(r, "every", false, 1, LONG_MAX, &every, err)) ||
-        (rc = deck_double(r, "distortion", false, 1.0, INFINITY, &k, err)) ||
-        (rc = deck_double(r, "isotropy", false, 0.0, 1.0, &iso, err)) ||
-        (rc = deck_check_unused(r, "model.reference_update", keys, err)))
-        return rc;
-    const bool has_k = deck_peek(r, "distortion") != NULL;
-    if (!every && !has_k)
-        return deck_error_key(err, params, "reference_update",
-                              "reference_update names no trigger; expected every: N (steps) "
-                              "and/or distortion: k (> 1)");
-    if (has_k && !(k > 1.0))
-        return deck_error_key(err, r, "distortion",
-                              "distortion %g; expected k > 1 (1 is an undistorted F: it would "
-                              "re-reference every step)",
-                              k);
-    if (has_k && !(k < o->max_distortion))
-        return deck_error_key(err, r, "distortion",
-                              "distortion %g; expected k < max_distortion (%g): the det F guard "
-                              "would stop the run before the update",
-                              k, o->max_distortion);
-    o->reref_every = every;
-    o->reref_isotropy = iso;
-    o->reref_distortion = has_k ? k : 0.0;
-    return SPALL_OK;
-}
-
 /* Isotropy of particle i's kernel neighbourhood on the current positions:
  * M = sum_j V_j |dW/dr / r| x_ij (x) x_ij (the uncorrected B0, = I inside a
  * regular lattice, I/2 at a flat surface), s = dim^dim det M / (tr M)^dim in
@@ -129,7 +87,7 @@ static int reref_isotropy_pass(struct model *m, const struct sim *s, double smin
     size_t count = 0;
 #pragma omp parallel for schedule(static) reduction(+ : count)
     for (size_t i = 0; i < n; i++) {
-        if (sph_skip(m, i, SPH_FORM_TOTAL) || !(m->h[i] < 2.0 * m->opt.h_factor * m->dx[i]))
+        if (sph_skip(m, i, SPH_FORM_TOTAL) || !(m->h[i] < 2.0 * m->opt.kern.h_factor * m->dx[i]))
             continue;
         double M[9] = {0};
         for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++) {
@@ -145,7 +103,7 @@ static int reref_isotropy_pass(struct model *m, const struct sim *s, double smin
             if (!(r2 > 0.0) || r2 >= m->qmax * m->qmax * hb * hb)
                 continue;
             double W, F;
-            sph_kernel_eval(m->opt.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
+            sph_kernel_eval(m->opt.kern.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
             const double w = fabs(F) * m->m2[j] / m->rho[j];
             for (int a = 0; a < dim; a++)
                 for (int b = 0; b < dim; b++)
@@ -165,7 +123,7 @@ static int reref_isotropy_pass(struct model *m, const struct sim *s, double smin
     }
     for (size_t i = 0; i < n; i++)
         if (grow[i])
-            m->h[i] = fmin(1.2 * m->h[i], 2.0 * m->opt.h_factor * m->dx[i]);
+            m->h[i] = fmin(1.2 * m->h[i], 2.0 * m->opt.kern.h_factor * m->dx[i]);
     free(grow);
     neighbor_list_destroy(&nl);
     *grown = count;
@@ -181,11 +139,11 @@ int sph_tlsph_reref(struct model *m, struct sim *s, struct spall_error *err)
      * initial h the in-plane partners leave the support and B0 turns
      * singular); a few passes of 1.2x, as MACHDYN grows the radius of
      * particles with too few partners */
-    for (int round = 0; round < 4 && m->opt.reref_isotropy > 0.0; round++) {
+    for (int round = 0; round < 4 && m->opt.tl.reref_isotropy > 0.0; round++) {
         size_t grown = 0;
-        if ((rc = reref_isotropy_pass(m, s, m->opt.reref_isotropy, &grown, err)))
+        if ((rc = reref_isotropy_pass(m, s, m->opt.tl.reref_isotropy, &grown, err)))
             return rc;
-        m->tl_hgrown += grown;
+        m->tl->hgrown += grown;
         if (!grown)
             break;
     }
@@ -194,18 +152,18 @@ int sph_tlsph_reref(struct model *m, struct sim *s, struct spall_error *err)
     rc = sph_tlsph_reference(m, s, s->p->x, m->rho, err);
     if (rc)
         return rc;
-    m->tl_rerefs++;
-    m->tl_reref_step = s->step;
-    m->t_reref += omp_get_wtime() - t0;
+    m->tl->rerefs++;
+    m->tl->reref_step = s->step;
+    m->tl->t_reref += omp_get_wtime() - t0;
     return SPALL_OK;
 }
 
 int sph_tlsph_reref_step(struct model *m, struct sim *s, struct spall_error *err)
 {
     const struct sph_options *o = &m->opt;
-    if (!m->tl || (!o->reref_every && !(o->reref_distortion > 0.0)))
+    if (!m->tl || (!o->tl.reref_every && !(o->tl.reref_distortion > 0.0)))
         return SPALL_OK;
-    const bool due = (o->reref_every > 0 && s->step - m->tl_reref_step >= o->reref_every) ||
-                     (o->reref_distortion > 0.0 && m->tl_kmax > o->reref_distortion);
+    const bool due = (o->tl.reref_every > 0 && s->step - m->tl->reref_step >= o->tl.reref_every) ||
+                     (o->tl.reref_distortion > 0.0 && m->tl->kmax > o->tl.reref_distortion);
     return due ? sph_tlsph_reref(m, s, err) : SPALL_OK;
 }
