@@ -39,7 +39,8 @@ enum pd_quasi { PD_QS_OFF, PD_QS_ADR };
 
 struct pd_options {
     enum pd_variant variant;
-    bool lps;                /**< formulation lps: linear peridynamic solid (pd_lps.c) */
+    bool lps;                /**< formulation lps or eps: linear peridynamic solid (pd_lps.c) */
+    bool eps;                /**< formulation eps: with deviatoric plasticity (pd_eps.c) */
     enum pd_plane plane;
     double horizon_factor;   /**< m: delta = m dx (PMB) */
     bool partial_volume;     /**< beta_ij for bonds cut by the horizon */

@@ -48,6 +48,8 @@ void pd_lps_free(struct pd_lps *L)
     free(L->alpha);
     free(L->bcoef);
     free(L->ob);
+    free(L->ep);
+    free(L->tb);
 }
 
 int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
@@ -120,6 +122,8 @@ int pd_lps_forces(struct model *m, struct sim *sim)
     const int dim = p->dim;
     const double d = (double)dim;
     uint8_t *st = bl->state;
+    if (L->ep)
+        return pd_eps_forces(m, sim); /* formulation eps: plastic return map (pd_eps.c) */
     /* pass 1: breaking and dilatation; each half-bond decided by its own
      * particle from a length that is bit-identical from both ends */
 #pragma omp parallel for schedule(dynamic, 256)
@@ -232,10 +236,13 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
             l += r[c] * r[c];
         }
         l = sqrt(l);
-        const double xi = bl->rest[s], e = l - xi, ed = e - th * xi / (double)dim;
+        /* formulation eps: only the elastic part e^d - e^dp stores energy (pd_eps.c) */
+        const double ep = L->ep ? L->ep[s] : 0.0;
+        const double xi = bl->rest[s], e = l - xi, ed = e - th * xi / (double)dim - ep;
         w += 0.5 * L->alpha[i] * L->ob[s] * ed * ed * p->volume[j];
         /* collapsed stress sum_j t_ij M (x) xi V_j ([Silling2007], homogeneous case) */
-        const double g = L->ob[s] * (L->alpha[i] * e + L->bcoef[i] * xi * th) * p->volume[j] / l;
+        const double g = L->ob[s] * (L->alpha[i] * (e - ep) + L->bcoef[i] * xi * th) *
+                         p->volume[j] / l;
         if (dim == 2) {
             sg[0] += g * r[0] * r0[0];
             sg[1] += g * r[1] * r0[1];
