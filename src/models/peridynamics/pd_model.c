@@ -48,6 +48,9 @@
  *                               plasticity (pd_eps.c), materials need
  *                               yield_stress
  *     influence: one | inverse  lps: omega = 1 or delta / |xi|
+ *     interfaces: [{materials: [a, b], critical_stretch | fracture_energy,
+ *                  stiffness_factor}]   bonds between two materials
+ *                               (pd_interface.c); default: the smaller s0
  *
  *   materials:
  *     <name>:   isotropic
@@ -87,6 +90,7 @@ static void pd_destroy(struct model **pm)
         return;
     struct model *m = *pm;
     free(m->mat);
+    free(m->ifc);
     bond_list_destroy(&m->bl);
     free(m->coef);
     free(m->n_init);
@@ -119,7 +123,7 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     static const char *const keys[] = {"type", "variant", "horizon_factor", "plane",
                                        "partial_volume", "partial_volume_rule", "break_order", "surface_correction", "quasi_static",
                                        "fiber_model", "fiber_power", "mixed_mode", "bk_exponent", "matrix_crack",
-                                       "formulation", "influence", NULL};
+                                       "formulation", "influence", "interfaces", NULL};
     *out = NULL;
     struct model *m = calloc(1, sizeof *m);
     if (!m)
@@ -149,8 +153,7 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             (rc = deck_double(params, "bk_exponent", false, 0.1, 20.0, &m->opt.bk_exponent,
                               err)) ||
             (rc = deck_enum(params, "formulation", false, fmo, &fo, err)) ||
-            (rc = deck_enum(params, "influence", false, inf, &in, err)) ||
-            (rc = deck_check_unused(params, "model", keys, err))) {
+            (rc = deck_enum(params, "influence", false, inf, &in, err))) {
             free(m);
             return rc;
         }
@@ -190,6 +193,12 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
         if (pl == 1 && (sim->dim != 2 || m->opt.variant == PD_PDLM)) {
             free(m);
             return deck_error_key(err, params, "plane", "plane_strain needs a 2D pmb run");
+        }
+        if ((rc = pd_interfaces_parse(m, params, err)) ||
+            (rc = deck_check_unused(params, "model", keys, err))) {
+            free(m->ifc);
+            free(m);
+            return rc;
         }
     }
     *out = m;
@@ -429,6 +438,8 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
                 double sb = B->ortho ? (f ? B->s0_f : B->s0_m) : B->s0;
                 m->s0_tab[(a * nm + b) * 2 + (size_t)f] = fmin(sa, sb);
             }
+    if ((rc = pd_interfaces_apply(m, sim, err))) /* model.interfaces (pd_interface.c) */
+        return rc;
     for (size_t i = 0; i < n; i++) {
         m->n_init[i] = bl->offset[i + 1] - bl->offset[i];
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
