@@ -25,6 +25,8 @@ enum pd_influence {
 /** Per-particle constants and state of the LPS formulation. */
 struct pd_lps {
     enum pd_influence influence;
+    bool cubic;     /**< influence_correction cubic: omega (1 + gamma P(n)) (pd_lps.c) */
+    double gamma;   /**< its gamma (0 without the correction) */
     double *wvol;   /**< weighted volume m_i = sum omega beta |xi|^2 V_j [m^5] */
     double *theta;  /**< dilatation of the last force call */
     double *alpha;  /**< deviatoric coefficient d (d + 2) mu / m_i */

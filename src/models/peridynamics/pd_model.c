@@ -48,6 +48,8 @@
  *                               plasticity (pd_eps.c), materials need
  *                               yield_stress
  *     influence: one | inverse  lps: omega = 1 or delta / |xi|
+ *     influence_correction: none | cubic   lps/eps on square, sc, fcc: omega
+ *                               (1 + gamma P(n)), isotropic fourth moment
  *     interfaces: [{materials: [a, b], critical_stretch | fracture_energy,
  *                  stiffness_factor}]   bonds between two materials
  *                               (pd_interface.c); default: the smaller s0
@@ -120,10 +122,12 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     static const char *const mco[] = {"bond", "fiber_plane", NULL};
     static const char *const fmo[] = {"bond", "lps", "eps", NULL};
     static const char *const inf[] = {"one", "inverse", NULL};
+    static const char *const icor[] = {"none", "cubic", NULL};
     static const char *const keys[] = {"type", "variant", "horizon_factor", "plane",
                                        "partial_volume", "partial_volume_rule", "break_order", "surface_correction", "quasi_static",
                                        "fiber_model", "fiber_power", "mixed_mode", "bk_exponent", "matrix_crack",
-                                       "formulation", "influence", "interfaces", NULL};
+                                       "formulation", "influence", "interfaces",
+                                       "influence_correction", NULL};
     *out = NULL;
     struct model *m = calloc(1, sizeof *m);
     if (!m)
@@ -135,7 +139,8 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     m->opt.mixed_mode = true;
     m->opt.bk_exponent = 2.0;
     if (params) {
-        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, mmode = 0, mc = 0, fo = 0, in = 0, rc;
+        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, mmode = 0, mc = 0, fo = 0, in = 0, ic = 0;
+        int rc;
         long pw = 32;
         if ((rc = deck_enum(params, "variant", false, variants, &v, err)) ||
             (rc = deck_double_pos(params, "horizon_factor", false, &m->opt.horizon_factor, err)) ||
@@ -153,7 +158,8 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             (rc = deck_double(params, "bk_exponent", false, 0.1, 20.0, &m->opt.bk_exponent,
                               err)) ||
             (rc = deck_enum(params, "formulation", false, fmo, &fo, err)) ||
-            (rc = deck_enum(params, "influence", false, inf, &in, err))) {
+            (rc = deck_enum(params, "influence", false, inf, &in, err)) ||
+            (rc = deck_enum(params, "influence_correction", false, icor, &ic, err))) {
             free(m);
             return rc;
         }
@@ -169,6 +175,12 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
         m->opt.lps = fo >= 1; /* eps is lps with a plastic deviatoric state */
         m->opt.eps = fo == 2;
         m->lps.influence = (enum pd_influence)in;
+        m->lps.cubic = ic == 1;
+        if (m->lps.cubic && !m->opt.lps) {
+            free(m);
+            return deck_error_key(err, params, "influence_correction", "influence_correction "
+                                  "is for formulation lps or eps");
+        }
         if (m->opt.lps && (sim->dim == 1 || m->opt.variant == PD_PDLM ||
                            m->opt.surface_correction || m->opt.break_late)) {
             free(m);
