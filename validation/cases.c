@@ -84,6 +84,9 @@ static const struct vcase cases[] = {
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_patch},
     {"pd-lps-waves", "LPS P-wave speed in a 2D plate (nu = 0.3) vs analytical",
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_waves},
+    {"pd-bimaterial-bar", "1D PMB bar of two materials: wave transmission and reflection vs "
+     "the impedance formula",
+     VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_bimaterial},
     {"pd-eps-bar", "EPS bar: uniaxial yield, unloading and reverse yield vs the elastic-"
      "perfectly plastic bar",
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_eps_bar},
