@@ -84,6 +84,9 @@ static const struct vcase cases[] = {
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_patch},
     {"pd-lps-waves", "LPS P-wave speed in a 2D plate (nu = 0.3) vs analytical",
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_waves},
+    {"pd-kalthoff-lps", "Kalthoff-Winkler plate with LPS (plane strain, nu = 0.3): crack angle "
+     "65-72 deg",
+     VKIND_VALIDATION, VGATE_OFF, NULL, pd_case_kalthoff_lps},
     {"pd-bimaterial-bar", "1D PMB bar of two materials: wave transmission and reflection vs "
      "the impedance formula",
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_bimaterial},
