@@ -121,6 +121,12 @@ static const struct restart_case k_cases[] = {
      "  - {group: bottom, type: velocity, components: [y], value: -2.0,\n"
      "     function: {type: linear_ramp, duration: 6.0e-6}}\n",
      300, "state/pd.bond_state"},
+    {"pd-eps", /* the plastic extension state of formulation eps (pd.eps_plastic) */
+     "model: {type: peridynamics, formulation: eps}\n"
+     "materials:\n"
+     "  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3, yield_stress: 5.0e6,\n"
+     "      critical_stretch: 0.5}\n" PLATE_2D PULL_2D,
+     300, NULL},
     {"macro-langevin-plastic",
      "model: {type: macroparticle, damping: pairwise, temperature: 300, eta_cg: 2000}\n"
      "materials:\n"

@@ -106,6 +106,17 @@ static const struct known_gap known_gaps[] = {
     {"macro-rod-large", "n_phi = 4, free ends: share of slip normals on {111} after collapse"},
     /* #4 item 5c: the first bonds break at a corner of the stepped hole edge */
     {"pd-lamina-a", "A-0: crack start, distance from the hole's centre line"},
+    /* #26 item 4: cubic lattices' fourth moment is not isotropic (LPS E, nu along [100]) */
+    {"pd-lps-patch", "3D sc nu = 0.10: E"},
+    {"pd-lps-patch", "3D sc nu = 0.10: Poisson's ratio"},
+    {"pd-lps-patch", "3D sc nu = 0.30: E"},
+    {"pd-lps-patch", "3D sc nu = 0.30: Poisson's ratio"},
+    {"pd-lps-patch", "3D sc nu = 0.45: E"},
+    {"pd-lps-patch", "3D fcc nu = 0.10: Poisson's ratio"},
+    /* #26 item 4: LPS surface particles (no surface correction) in the EPS strip */
+    {"pd-eps-bar", "centre: unloading elastic slope"},
+    {"pd-eps-bar", "section: unloading elastic slope (mean sigma_xx)"},
+    {"pd-eps-bar", "section: yield plateau (largest mean sigma_xx)"},
     /* #6 item 7c: no published length or radius for this set-up was found */
     {"sph-taylor-2d", "published final length / radius for this set-up found"},
     /* #6 item 7g: second-hand experiment; cause not separated (quick: d/20) */

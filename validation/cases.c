@@ -80,6 +80,19 @@ static const struct vcase cases[] = {
      VKIND_VALIDATION, VGATE_QUICK, NULL, pd_case_lamina_a},
     {"pd-lamina-b", "T700 line-crack laminae B-theta-alpha (mixed mode): crack along fibers",
      VKIND_VALIDATION, VGATE_QUICK, NULL, pd_case_lamina_b},
+    {"pd-lps-patch", "LPS patch test: E and nu for nu = 0.1, 0.3, 0.45, 2D and 3D",
+     VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_patch},
+    {"pd-lps-waves", "LPS P-wave speed in a 2D plate (nu = 0.3) vs analytical",
+     VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_waves},
+    {"pd-kalthoff-lps", "Kalthoff-Winkler plate with LPS (plane strain, nu = 0.3): crack angle "
+     "65-72 deg",
+     VKIND_VALIDATION, VGATE_OFF, NULL, pd_case_kalthoff_lps},
+    {"pd-bimaterial-bar", "1D PMB bar of two materials: wave transmission and reflection vs "
+     "the impedance formula",
+     VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_bimaterial},
+    {"pd-eps-bar", "EPS bar: uniaxial yield, unloading and reverse yield vs the elastic-"
+     "perfectly plastic bar",
+     VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_eps_bar},
 
     /* macro-particle (issue 5) */
     {"macro-calibration", "[Saitoh] Table 1: E from Eq. 15 for Al and Cu",

@@ -28,4 +28,15 @@ int pd_case_branching(struct vreport *r, struct spall_error *err);
 /** "pd-kalthoff": Kalthoff-Winkler crack angle. */
 int pd_case_kalthoff(struct vreport *r, struct spall_error *err);
 
+/** "pd-lps-patch": LPS E and nu for nu = 0.1, 0.3, 0.45, 2D and 3D (pd_lps_cases.c). */
+int pd_case_lps_patch(struct vreport *r, struct spall_error *err);
+/** "pd-lps-waves": LPS P-wave speed in a 2D plate (pd_lps_cases.c). */
+int pd_case_lps_waves(struct vreport *r, struct spall_error *err);
+/** "pd-bimaterial-bar": 1D two-material bar, T and R against the impedance formula. */
+int pd_case_bimaterial(struct vreport *r, struct spall_error *err);
+/** "pd-kalthoff-lps": Kalthoff-Winkler crack angle with LPS (pd_kalthoff_lps.c). */
+int pd_case_kalthoff_lps(struct vreport *r, struct spall_error *err);
+/** "pd-eps-bar": EPS bar pulled past yield and unloaded (pd_eps_bar.c). */
+int pd_case_eps_bar(struct vreport *r, struct spall_error *err);
+
 #endif

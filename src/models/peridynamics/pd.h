@@ -36,6 +36,7 @@ struct pd_material {
     double fa_cos, fa_sin;  /**< cos, sin of fiber_angle (pd_mixed.c) */
     double Q22;             /**< plane-stress reduced stiffness (mode-I energy weight) */
     double mu, kd;          /**< LPS: shear modulus, bulk modulus of the dimension [Pa] */
+    double yield_stress;    /**< EPS (formulation eps): yield stress sigma_Y [Pa] */
 };
 
 /** Isotropic PMB micromodulus of material @p mt (Silling & Askari 2005; digest table). */

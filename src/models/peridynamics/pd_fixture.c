@@ -36,4 +36,18 @@ const struct model_fixture pd_fixtures[] = {
              "critical_stretch: 0.5}\n",
      .lattice = "sc",
      .spacing = 1.0e-3},
+    /* the cubic influence correction follows the deck's lattice angle */
+    {.label = "peridynamics-lps-cubic",
+     .deck = "model: {type: peridynamics, formulation: lps, influence_correction: cubic}\n"
+             "materials:\n  m: {density: 2000, youngs_modulus: 1.0e9, poisson_ratio: 0.2, "
+             "critical_stretch: 0.5}\n",
+     .lattice = "square",
+     .spacing = 1.0e-3},
+    /* yield stress low enough that the perturbation (strains ~1e-3) flows */
+    {.label = "peridynamics-eps",
+     .deck = "model: {type: peridynamics, formulation: eps}\n"
+             "materials:\n  m: {density: 2000, youngs_modulus: 1.0e9, poisson_ratio: 0.3, "
+             "critical_stretch: 0.5, yield_stress: 2.0e5}\n",
+     .lattice = "triangular",
+     .spacing = 1.0e-3},
     {.label = NULL}};

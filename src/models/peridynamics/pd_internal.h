@@ -39,7 +39,8 @@ enum pd_quasi { PD_QS_OFF, PD_QS_ADR };
 
 struct pd_options {
     enum pd_variant variant;
-    bool lps;                /**< formulation lps: linear peridynamic solid (pd_lps.c) */
+    bool lps;                /**< formulation lps or eps: linear peridynamic solid (pd_lps.c) */
+    bool eps;                /**< formulation eps: with deviatoric plasticity (pd_eps.c) */
     enum pd_plane plane;
     double horizon_factor;   /**< m: delta = m dx (PMB) */
     bool partial_volume;     /**< beta_ij for bonds cut by the horizon */
@@ -52,6 +53,14 @@ struct pd_options {
     bool mixed_mode;         /**< laminae: matrix bonds by the BK mixed-mode G_c (pd_mixed.c) */
     double bk_exponent;      /**< Benzeggagh-Kenane exponent eta */
     bool fiber_plane;        /**< matrix_crack: fiber_plane (pd_plane.c) */
+};
+
+/** Law of the bonds between two materials (deck `model.interfaces`, pd_interface.c). */
+struct pd_interface {
+    char a[64], b[64];  /**< material names */
+    double s0;          /**< critical stretch (0: from G, or the default) */
+    double G;           /**< fracture energy [J/m^2] (0: none) */
+    double stiffness;   /**< factor on the pair's micromodulus (formulation bond) */
 };
 
 struct model {
@@ -84,8 +93,19 @@ struct model {
     bool mixed;              /**< some bond type uses the mixed-mode threshold */
     bool ortho;              /**< some material is orthotropic */
     struct pd_lps lps;       /**< formulation lps (pd_lps.c) */
+    struct pd_interface *ifc; /**< material-pair bond laws (pd_interface.c) */
+    size_t n_ifc;
     bool initialised;
 };
+
+/* pd_interface.c */
+struct deck_node;
+/** Parse `model.interfaces` (names resolved at init). */
+int pd_interfaces_parse(struct model *m, const struct deck_node *params,
+                        struct spall_error *err);
+/** Resolve the names and apply the laws to s0_tab and the pair coefficients
+ *  (after the default table and the coefficients exist). */
+int pd_interfaces_apply(struct model *m, struct sim *sim, struct spall_error *err);
 
 /* pd_restart.c */
 struct field_state;

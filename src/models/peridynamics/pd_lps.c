@@ -24,6 +24,7 @@
 
 #include "core/bond_list.h"
 #include "core/fields.h"
+#include "core/lattice_gen.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -48,6 +49,79 @@ void pd_lps_free(struct pd_lps *L)
     free(L->alpha);
     free(L->bcoef);
     free(L->ob);
+    free(L->ep);
+    free(L->tb);
+}
+
+/* Cubic harmonic of the unit bond n in the lattice frame (2D: rotated by the
+ * lattice angle): P = sum_a n_a^4 - 3 / (d + 2), whose isotropic mean is 0,
+ * and Q = n_x^4 - 3 n_x^2 n_y^2, whose family sum A - 3B vanishes exactly
+ * when the fourth moment is isotropic. */
+static void cubic_harmonics(const struct sim *sim, const double *e, double xi, double *P,
+                            double *Q)
+{
+    double n[3] = {e[0] / xi, e[1] / xi, sim->dim == 3 ? e[2] / xi : 0.0};
+    if (sim->dim == 2) {
+        const double c = cos(sim->lattice.angle), s = sin(sim->lattice.angle);
+        const double nx = c * n[0] + s * n[1], ny = -s * n[0] + c * n[1];
+        n[0] = nx;
+        n[1] = ny;
+    }
+    double s4 = 0.0;
+    for (int a = 0; a < sim->dim; a++)
+        s4 += n[a] * n[a] * n[a] * n[a];
+    *P = s4 - 3.0 / (sim->dim + 2.0);
+    *Q = n[0] * n[0] * n[0] * n[0] - 3.0 * n[0] * n[0] * n[1] * n[1];
+}
+
+/* influence_correction cubic: omega -> omega (1 + gamma P(n)).  On a cubic
+ * lattice (square, sc, fcc) the family's fourth moment M = sum omega beta
+ * |xi|^2 n n n n V has cubic symmetry, so the deviatoric energy alpha/2 eps^d
+ * : M : eps^d gives two shear moduli (docs/decks.md); gamma is chosen so that
+ * M of the fullest family is isotropic (M_xxxx = 3 M_xxyy), the second
+ * moment staying isotropic by the same symmetry.  One gamma for the run,
+ * from its fullest family, in the frame of the deck's lattice. */
+static int cubic_correction(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct pd_lps *L = &m->lps;
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    const enum lattice_kind k = sim->lattice.kind;
+    if (k != LATTICE_SQUARE && k != LATTICE_SC && k != LATTICE_FCC)
+        return spall_error_set_key(err, SPALL_ERR_INPUT, "model.influence_correction",
+                                   "influence_correction cubic is for the square, sc and fcc "
+                                   "lattices (got %s)", lattice_kind_name(k));
+    size_t best = 0;
+    for (size_t i = 0; i < p->n; i++)
+        if (bl->offset[i + 1] - bl->offset[i] > bl->offset[best + 1] - bl->offset[best])
+            best = i;
+    double s0 = 0.0, s1 = 0.0;
+    for (size_t s = bl->offset[best]; s < bl->offset[best + 1]; s++) {
+        size_t j = (size_t)bl->partner[s];
+        double e[3] = {0, 0, 0}, P, Q;
+        for (int c = 0; c < sim->dim; c++)
+            e[c] = p->x0[c][j] - p->x0[c][best];
+        cubic_harmonics(sim, e, bl->rest[s], &P, &Q);
+        const double w = L->ob[s] * bl->rest[s] * bl->rest[s] * p->volume[j];
+        s0 += w * Q;
+        s1 += w * P * Q;
+    }
+    L->gamma = s1 != 0.0 ? -s0 / s1 : 0.0;
+    for (size_t i = 0; i < p->n; i++)
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            size_t j = (size_t)bl->partner[s];
+            double e[3] = {0, 0, 0}, P, Q;
+            for (int c = 0; c < sim->dim; c++)
+                e[c] = p->x0[c][j] - p->x0[c][i];
+            cubic_harmonics(sim, e, bl->rest[s], &P, &Q);
+            const double f = 1.0 + L->gamma * P;
+            if (!(f > 0.0))
+                return spall_error_set_key(err, SPALL_ERR_PHYSICS, "model.influence_correction",
+                                           "influence_correction cubic: gamma = %g makes the "
+                                           "influence of some bonds non-positive", L->gamma);
+            L->ob[s] *= f;
+        }
+    return SPALL_OK;
 }
 
 int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
@@ -64,6 +138,11 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
         double xi = m->bl->rest[s];
         double om = L->influence == PD_OMEGA_INVERSE ? m->delta / xi : 1.0;
         L->ob[s] = om * lps_beta(m, xi);
+    }
+    if (L->cubic) {
+        int rc = cubic_correction(m, sim, err);
+        if (rc)
+            return rc;
     }
     pd_lps_weights(m, sim);
     return SPALL_OK;
@@ -120,6 +199,8 @@ int pd_lps_forces(struct model *m, struct sim *sim)
     const int dim = p->dim;
     const double d = (double)dim;
     uint8_t *st = bl->state;
+    if (L->ep)
+        return pd_eps_forces(m, sim); /* formulation eps: plastic return map (pd_eps.c) */
     /* pass 1: breaking and dilatation; each half-bond decided by its own
      * particle from a length that is bit-identical from both ends */
 #pragma omp parallel for schedule(dynamic, 256)
@@ -232,10 +313,13 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
             l += r[c] * r[c];
         }
         l = sqrt(l);
-        const double xi = bl->rest[s], e = l - xi, ed = e - th * xi / (double)dim;
+        /* formulation eps: only the elastic part e^d - e^dp stores energy (pd_eps.c) */
+        const double ep = L->ep ? L->ep[s] : 0.0;
+        const double xi = bl->rest[s], e = l - xi, ed = e - th * xi / (double)dim - ep;
         w += 0.5 * L->alpha[i] * L->ob[s] * ed * ed * p->volume[j];
         /* collapsed stress sum_j t_ij M (x) xi V_j ([Silling2007], homogeneous case) */
-        const double g = L->ob[s] * (L->alpha[i] * e + L->bcoef[i] * xi * th) * p->volume[j] / l;
+        const double g = L->ob[s] * (L->alpha[i] * (e - ep) + L->bcoef[i] * xi * th) *
+                         p->volume[j] / l;
         pd_add_bond_virial(sg, dim, g, r, r0);
     }
     if (energy)

@@ -25,11 +25,16 @@ enum pd_influence {
 /** Per-particle constants and state of the LPS formulation. */
 struct pd_lps {
     enum pd_influence influence;
+    bool cubic;     /**< influence_correction cubic: omega (1 + gamma P(n)) (pd_lps.c) */
+    double gamma;   /**< its gamma (0 without the correction) */
     double *wvol;   /**< weighted volume m_i = sum omega beta |xi|^2 V_j [m^5] */
     double *theta;  /**< dilatation of the last force call */
     double *alpha;  /**< deviatoric coefficient d (d + 2) mu / m_i */
     double *bcoef;  /**< coefficient of |xi| theta in the scalar force: d k / m_i - alpha / d */
     double *ob;     /**< per half-bond: omega(xi) beta(xi) */
+    /* formulation eps (pd_eps.c); NULL for lps */
+    double *ep;     /**< per half-bond: plastic deviatoric extension e^dp [m] */
+    double *tb;     /**< per half-bond: scalar force state t_ij / omega of the last call */
 };
 
 /** Allocate and fill the LPS arrays (after the bond list and materials). */
@@ -45,5 +50,13 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim);
 /** Energy [J] and stress [Pa] of particle @p i from the current positions. */
 void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i,
                           double *energy, double *stress);
+
+/* pd_eps.c: elastic-plastic LPS (model.formulation: eps) */
+/** Allocate the plastic extension state (after pd_lps_init) and the reverse slots. */
+int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err);
+/** Forces with the plastic return map and fused breaking (replaces pd_lps_forces). */
+int pd_eps_forces(struct model *m, struct sim *sim);
+/** Equivalent plastic strain of particle @p i from its plastic extension state. */
+double pd_eps_plastic_strain(const struct model *m, const struct sim *sim, size_t i);
 
 #endif

@@ -42,16 +42,24 @@
  *                               stretch-broken matrix bond also breaks its two
  *                               zigzag neighbours on the same fiber-parallel
  *                               interface (pd_plane.c; default bond)
- *     formulation: bond | lps   lps: linear peridynamic solid ([Silling2007],
- *                               pd_lps.c), any nu; materials need poisson_ratio
+ *     formulation: bond | lps | eps   lps: linear peridynamic solid
+ *                               ([Silling2007], pd_lps.c), any nu; materials
+ *                               need poisson_ratio; eps: lps with deviatoric
+ *                               plasticity (pd_eps.c), materials need
+ *                               yield_stress
  *     influence: one | inverse  lps: omega = 1 or delta / |xi|
+ *     influence_correction: none | cubic   lps/eps on square, sc, fcc: omega
+ *                               (1 + gamma P(n)), isotropic fourth moment
+ *     interfaces: [{materials: [a, b], critical_stretch | fracture_energy,
+ *                  stiffness_factor}]   bonds between two materials
+ *                               (pd_interface.c); default: the smaller s0
  *
  *   materials:
  *     <name>:   isotropic
  *       density, youngs_modulus (or bulk_modulus in 3D), poisson_ratio
  *       (optional; must be the model's fixed value: 1/4 in 3D and plane
  *       strain, 1/3 in plane stress and PDLM; required and free with lps), fracture_energy G0 [J/m^2]
- *       or critical_stretch (neither: unbreakable)
+ *       or critical_stretch (neither: unbreakable), yield_stress [Pa] (eps only)
  *     <name>:   orthotropic lamina (2D plane stress)
  *       density, fiber_modulus E1, transverse_modulus E2, shear_modulus G12,
  *       major_poisson_ratio nu12, fiber_angle [deg] (default: lattice
@@ -60,7 +68,7 @@
  *
  * Fields: damage (phi = 1 - intact/initial bonds, pre-cut count as
  * broken), damage_fiber, damage_matrix (orthotropic), strain_energy [J],
- * stress [Pa] (virial).  History: bonds_broken, damage_fraction, adr_damping,
+ * stress [Pa] (virial), plastic_strain (eps).  History: bonds_broken, damage_fraction, adr_damping,
  * damage_sum.
  */
 #include "models/peridynamics/pd_internal.h"
@@ -84,6 +92,7 @@ static void pd_destroy(struct model **pm)
         return;
     struct model *m = *pm;
     free(m->mat);
+    free(m->ifc);
     bond_list_destroy(&m->bl);
     free(m->coef);
     free(m->n_init);
@@ -111,12 +120,14 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     static const char *const bo[] = {"immediate", "next_step", NULL};
     static const char *const mmo[] = {"bk", "off", NULL};
     static const char *const mco[] = {"bond", "fiber_plane", NULL};
-    static const char *const fmo[] = {"bond", "lps", NULL};
+    static const char *const fmo[] = {"bond", "lps", "eps", NULL};
     static const char *const inf[] = {"one", "inverse", NULL};
+    static const char *const icor[] = {"none", "cubic", NULL};
     static const char *const keys[] = {"type", "variant", "horizon_factor", "plane",
                                        "partial_volume", "partial_volume_rule", "break_order", "surface_correction", "quasi_static",
                                        "fiber_model", "fiber_power", "mixed_mode", "bk_exponent", "matrix_crack",
-                                       "formulation", "influence", NULL};
+                                       "formulation", "influence", "interfaces",
+                                       "influence_correction", NULL};
     *out = NULL;
     struct model *m = calloc(1, sizeof *m);
     if (!m)
@@ -128,7 +139,8 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     m->opt.mixed_mode = true;
     m->opt.bk_exponent = 2.0;
     if (params) {
-        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, mmode = 0, mc = 0, fo = 0, in = 0, rc;
+        int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, mmode = 0, mc = 0, fo = 0, in = 0, ic = 0;
+        int rc;
         long pw = 32;
         if ((rc = deck_enum(params, "variant", false, variants, &v, err)) ||
             (rc = deck_double_pos(params, "horizon_factor", false, &m->opt.horizon_factor, err)) ||
@@ -147,7 +159,7 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
                               err)) ||
             (rc = deck_enum(params, "formulation", false, fmo, &fo, err)) ||
             (rc = deck_enum(params, "influence", false, inf, &in, err)) ||
-            (rc = deck_check_unused(params, "model", keys, err))) {
+            (rc = deck_enum(params, "influence_correction", false, icor, &ic, err))) {
             free(m);
             return rc;
         }
@@ -160,12 +172,19 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
         m->opt.fiber_plane = mc == 1;
         m->opt.family_at_delta = pr == 1;
         m->opt.break_late = b == 1;
-        m->opt.lps = fo == 1;
+        m->opt.lps = fo >= 1; /* eps is lps with a plastic deviatoric state */
+        m->opt.eps = fo == 2;
         m->lps.influence = (enum pd_influence)in;
+        m->lps.cubic = ic == 1;
+        if (m->lps.cubic && !m->opt.lps) {
+            free(m);
+            return deck_error_key(err, params, "influence_correction", "influence_correction "
+                                  "is for formulation lps or eps");
+        }
         if (m->opt.lps && (sim->dim == 1 || m->opt.variant == PD_PDLM ||
                            m->opt.surface_correction || m->opt.break_late)) {
             free(m);
-            return deck_error_key(err, params, "formulation", "lps needs a 2D or 3D pmb run "
+            return deck_error_key(err, params, "formulation", "lps and eps need a 2D or 3D pmb run "
                                   "without surface_correction (each particle's own weighted "
                                   "volume normalises its dilatation) and break_order "
                                   "immediate");
@@ -187,6 +206,12 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             free(m);
             return deck_error_key(err, params, "plane", "plane_strain needs a 2D pmb run");
         }
+        if ((rc = pd_interfaces_parse(m, params, err)) ||
+            (rc = deck_check_unused(params, "model", keys, err))) {
+            free(m->ifc);
+            free(m);
+            return rc;
+        }
     }
     *out = m;
     return SPALL_OK;
@@ -205,7 +230,7 @@ static int pd_parse_material(struct model *m, struct sim *sim, int index,
 {
     static const char *const k_iso[] = {"density", "youngs_modulus", "bulk_modulus",
                                         "poisson_ratio", "fracture_energy", "critical_stretch",
-                                        NULL};
+                                        "yield_stress", NULL};
     static const char *const k_ort[] = {"density", "fiber_modulus", "transverse_modulus",
                                         "shear_modulus", "major_poisson_ratio", "fiber_angle",
                                         "matrix_fracture_energy", "fiber_fracture_energy",
@@ -256,12 +281,21 @@ static int pd_parse_material(struct model *m, struct sim *sim, int index,
             (rc = deck_double(node, "fracture_energy", false, 0.0, INFINITY, &mt.G0, err)) ||
             (rc = deck_double(node, "critical_stretch", false, 0.0, INFINITY, &mt.s0_given,
                               err)) ||
+            (rc = deck_double(node, "yield_stress", m->opt.eps, 0.0, INFINITY, &mt.yield_stress,
+                              err)) ||
             (rc = deck_check_unused(node, "a peridynamic material", k_iso, err)))
             return rc;
         double fixed = pd_fixed_nu(m, dim);
+        if (!m->opt.eps && mt.yield_stress > 0.0)
+            return deck_error_key(err, node, "yield_stress", "yield_stress needs "
+                                  "model.formulation eps (elastic-plastic state-based PD)");
+        if (m->opt.eps && !(mt.yield_stress > 0.0))
+            return deck_error_key(err, node, "yield_stress", "formulation eps needs "
+                                  "yield_stress > 0");
         if (m->opt.lps) {
             if (isnan(nu))
-                return deck_error(err, node, "formulation lps needs poisson_ratio");
+                return deck_error(err, node, "formulation %s needs poisson_ratio",
+                                  m->opt.eps ? "eps" : "lps");
             if (!(nu < 0.5) || (dim == 2 && m->opt.plane == PD_PLANE_STRESS && !(nu < 1.0)))
                 return deck_error_key(err, node, "poisson_ratio", "poisson_ratio must be "
                                       "below 1/2");
@@ -405,7 +439,8 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
             }
         }
     if ((rc = pd_build_coefficients(m, sim, err)) || (rc = pd_mixed_init(m, sim, err)) ||
-        (rc = pd_plane_init(m, sim, err)) || (m->opt.lps && (rc = pd_lps_init(m, sim, err))))
+        (rc = pd_plane_init(m, sim, err)) || (m->opt.lps && (rc = pd_lps_init(m, sim, err))) ||
+        (m->opt.eps && (rc = pd_eps_init(m, sim, err))))
         return rc;
     for (size_t a = 0; a < nm; a++)
         for (size_t b = 0; b < nm; b++)
@@ -415,6 +450,8 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
                 double sb = B->ortho ? (f ? B->s0_f : B->s0_m) : B->s0;
                 m->s0_tab[(a * nm + b) * 2 + (size_t)f] = fmin(sa, sb);
             }
+    if ((rc = pd_interfaces_apply(m, sim, err))) /* model.interfaces (pd_interface.c) */
+        return rc;
     for (size_t i = 0; i < n; i++) {
         m->n_init[i] = bl->offset[i + 1] - bl->offset[i];
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
@@ -484,6 +521,14 @@ static void field_stress(const void *ctx, size_t n, double *out)
         pd_particle_eval(m, m->sim, i, NULL, &out[i * nc]);
 }
 
+static void field_plastic(const void *ctx, size_t n, double *out)
+{
+    const struct model *m = ctx;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        out[i] = pd_eps_plastic_strain(m, m->sim, i);
+}
+
 static int pd_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
                               struct spall_error *err)
 {
@@ -495,7 +540,9 @@ static int pd_register_fields(struct model *m, struct sim *sim, struct field_reg
         (m->ortho && (rc = field_registry_add_computed(reg, "damage_matrix", "1", 1, od, field_damage_m, m, err))) ||
         (m->ortho && (rc = field_registry_add_computed(reg, "mode2_share", "1", 1, FIELD_OUTPUT, field_mixity, m, err))) ||
         (rc = field_registry_add_computed(reg, "strain_energy", "J", 1, FIELD_OUTPUT, field_energy, m, err)) ||
-        (rc = field_registry_add_computed(reg, "stress", "Pa", nc, od, field_stress, m, err)))
+        (rc = field_registry_add_computed(reg, "stress", "Pa", nc, od, field_stress, m, err)) ||
+        (m->opt.eps && (rc = field_registry_add_computed(reg, "plastic_strain", "1", 1, od,
+                                                          field_plastic, m, err))))
         return rc;
     return SPALL_OK;
 }
@@ -580,6 +627,10 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
                 "c_f = %g, c_m = %g, s0_f = %g, s0_m = %g\n", sim->materials[k].name, mt->E1,
                 mt->E2, mt->G12, mt->nu12, mt->fiber_angle * 180.0 / SPALL_PI, mt->c_f, mt->c_m,
                 mt->s0_f, mt->s0_m);
+        else if (m->opt.eps)
+            PUT("  material '%s': EPS, E = %g Pa, nu = %g, mu = %g Pa, k = %g Pa, s0 = %g, "
+                "yield stress %g Pa\n", sim->materials[k].name, mt->E, mt->nu, mt->mu, mt->kd,
+                mt->s0, mt->yield_stress);
         else if (m->opt.lps)
             PUT("  material '%s': LPS, E = %g Pa, nu = %g, mu = %g Pa, k = %g Pa, s0 = %g\n",
                 sim->materials[k].name, mt->E, mt->nu, mt->mu, mt->kd, mt->s0);

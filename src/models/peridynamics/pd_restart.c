@@ -1,7 +1,8 @@
 /**
  * @file pd_restart.c
  * @brief Restart state of the peridynamics model: bond states and the
- *        energy they released, the mixed-mode history, and the adaptive
+ *        energy they released, the mixed-mode history, the plastic
+ *        extension state of formulation eps, and the adaptive
  *        dynamic relaxation's previous forces and coefficient.  Families,
  *        reference lengths and micromodulus coefficients are rebuilt from
  *        the deck by init.
@@ -32,6 +33,9 @@ int pd_register_state(struct model *m, struct sim *sim, struct field_state *fs,
         rc = field_state_add_array(fs, "pd.mixed_g", FIELD_F64, (void **)&m->mm_g, n, 1, err);
     if (!rc && m->mm_beta)
         rc = field_state_add_array(fs, "pd.mixed_beta", FIELD_F64, (void **)&m->mm_beta, n, 1,
+                                   err);
+    if (!rc && m->lps.ep) /* formulation eps: the plastic extension state */
+        rc = field_state_add_array(fs, "pd.eps_plastic", FIELD_F64, (void **)&m->lps.ep, nh, 1,
                                    err);
     char nm[FIELD_STATE_NAME_LEN];
     for (int d = 0; d < sim->dim && !rc; d++)

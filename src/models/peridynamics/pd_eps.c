@@ -1,0 +1,173 @@
+/**
+ * @file pd_eps.c
+ * @brief Elastic-plastic state-based peridynamics (deck `model.formulation:
+ *        eps`): the linear peridynamic solid of pd_lps.c with perfectly
+ *        plastic flow of the deviatoric extension state ([Mitchell2011]; the
+ *        model of LAMMPS pair peri/eps).
+ *
+ * Notation of pd_lps.c (omega, beta, m_i, theta_i, d, k, alpha_i = d (d + 2)
+ * mu / m_i).  The deviatoric extension e^d = e - theta |xi| / d splits into
+ * an elastic part and the plastic extension state e^dp (one value per
+ * half-bond, the history of the model).  With tau = alpha_i (e^d - e^dp):
+ *   t_ij = omega (d k theta_i |xi| / m_i + tau),
+ *   W_i  = k theta^2 / 2 + ||tau||^2 / (2 alpha_i),
+ *   ||tau||^2 = sum_j omega beta tau^2 V_j   (the weighted norm of the state),
+ *   yield:  ||tau||^2 / 2 <= psi_i = d (d + 2) c_d sigma_Y^2 / (4 m_i).
+ * psi_i follows from the homogeneous state: e^d = eps^d : (n (x) n) |xi| with
+ * an isotropic family gives ||tau||^2 = alpha_i s : s / (2 mu), s the
+ * deviatoric stress, and J2 yield is s : s <= c_d sigma_Y^2.  In 3D c_3 = 2/3
+ * (von Mises), and with omega = 1 and m = 4 pi delta^5 / 5 psi = 25
+ * sigma_Y^2 / (8 pi delta^5), the constant of [Mitchell2011] / peri/eps; here
+ * each particle's own m_i is used, as for alpha_i.  In 2D the criterion is
+ * that of the in-plane deviator, c_2 = 1/2, which yields at sigma_Y in
+ * uniaxial stress (a 2D J2 surface: not the plane-stress or plane-strain
+ * reduction of the 3D von Mises surface, with which it agrees in uniaxial
+ * plane stress only).
+ * Return map (backward Euler, radial): tau_trial = alpha_i (e^d - e^dp_n); if
+ * ||tau_trial||^2 > 2 psi_i, tau = tau_trial sqrt(2 psi_i) / ||tau_trial||
+ * and e^dp = e^d - tau / alpha_i.  The flow direction is tau itself (not
+ * omega tau as in [Mitchell2011], the same for omega = 1), so e^dp stays
+ * deviatoric in the omega-weighted sense (sum omega beta |xi| e^dp V = 0)
+ * and the dilatation stays elastic.  Plastic work tau . delta e^dp V_i goes
+ * to the particle's dissipated energy.  Bonds break at the LPS critical
+ * stretch (pd_lps.c).
+ */
+#include "models/peridynamics/pd_internal.h"
+
+#include "core/bond_list.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* c_d of the J2 criterion s : s <= c_d sigma_Y^2 (see the file comment) */
+static double eps_cd(int dim)
+{
+    return dim == 3 ? 2.0 / 3.0 : 0.5;
+}
+
+int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct pd_lps *L = &m->lps;
+    const size_t nh = m->bl->offset[sim->p->n];
+    if (!(L->ep = calloc(nh ? nh : 1, sizeof(double))) ||
+        !(L->tb = calloc(nh ? nh : 1, sizeof(double))))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the plastic "
+                               "extension state");
+    /* t_ji of a pair comes from j's row: the slot of the same bond there */
+    return m->bl->reverse ? SPALL_OK : bond_list_build_reverse(m->bl, err);
+}
+
+int pd_eps_forces(struct model *m, struct sim *sim)
+{
+    struct particles *p = sim->p;
+    struct bond_list *bl = m->bl;
+    struct pd_lps *L = &m->lps;
+    const size_t n = p->n, no = p->n_owned;
+    const int dim = p->dim;
+    const double d = (double)dim, cd = eps_cd(dim);
+    uint8_t *st = bl->state;
+    const size_t *rev = bl->reverse;
+    double *tb = L->tb, *ep = L->ep;
+    /* pass 1, per particle (its own half-bonds only): breaking, dilatation,
+     * return map, scalar force state t_ij / omega into tb */
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < n; i++) {
+        const size_t s0 = bl->offset[i], s1 = bl->offset[i + 1];
+        const struct pd_material *mt = &m->mat[p->material[i]];
+        double sum = 0.0;
+        for (size_t s = s0; s < s1; s++) {
+            if (st[s] & BOND_BROKEN)
+                continue;
+            size_t j = (size_t)bl->partner[s];
+            double l2 = 0.0;
+            for (int c = 0; c < dim; c++) {
+                double r = p->x[c][j] - p->x[c][i];
+                l2 += r * r;
+            }
+            const double xi = bl->rest[s], e = sqrt(l2) - xi;
+            if (e / xi > m->s0_tab[bl->type[s]]) {
+                st[s] |= BOND_BROKEN;
+                /* elastic energy of the half-bond at the last state: t (e - e^dp) / 2 */
+                double t = L->alpha[i] * (e - ep[s]) + L->bcoef[i] * xi * L->theta[i];
+                m->diss[i] += 0.5 * L->ob[s] * t * (e - ep[s]) * p->volume[i] * p->volume[j];
+                continue;
+            }
+            tb[s] = e; /* kept for the return map below */
+            sum += L->ob[s] * xi * e * p->volume[j];
+        }
+        const double wv = L->wvol[i];
+        const double th = wv > 0.0 ? d * sum / wv : 0.0;
+        L->theta[i] = th;
+        if (!(wv > 0.0))
+            continue;
+        const double al = L->alpha[i];
+        double nrm2 = 0.0;
+        for (size_t s = s0; s < s1; s++) {
+            if (st[s] & BOND_BROKEN)
+                continue;
+            const double tau = al * (tb[s] - th * bl->rest[s] / d - ep[s]);
+            nrm2 += L->ob[s] * tau * tau * p->volume[bl->partner[s]];
+        }
+        const double lim2 = d * (d + 2.0) * cd * mt->yield_stress * mt->yield_stress / (2.0 * wv);
+        const double scale = nrm2 > lim2 ? sqrt(lim2 / nrm2) : 1.0;
+        const double iso = (d * mt->kd / wv) * th; /* d k theta / m_i, times |xi| below */
+        double work = 0.0;
+        for (size_t s = s0; s < s1; s++) {
+            if (st[s] & BOND_BROKEN)
+                continue;
+            const double xi = bl->rest[s], ed = tb[s] - th * xi / d;
+            double tau = al * (ed - ep[s]);
+            if (scale < 1.0) {
+                tau *= scale;
+                const double dep = ed - tau / al - ep[s];
+                ep[s] += dep;
+                work += L->ob[s] * tau * dep * p->volume[bl->partner[s]];
+            }
+            tb[s] = iso * xi + tau;
+        }
+        m->diss[i] += work * p->volume[i];
+    }
+    /* pass 2: F_i = V_i sum_j (t_ij + t_ji) beta V_j M_ij; t_ji from j's row */
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < no; i++) {
+        double fi[3] = {0.0, 0.0, 0.0};
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            if (st[s] & BOND_BROKEN)
+                continue;
+            size_t j = (size_t)bl->partner[s];
+            double r[3] = {0.0, 0.0, 0.0}, l2 = 0.0;
+            for (int c = 0; c < dim; c++) {
+                r[c] = p->x[c][j] - p->x[c][i];
+                l2 += r[c] * r[c];
+            }
+            const double g = L->ob[s] * (tb[s] + tb[rev[s]]) * (p->volume[i] * p->volume[j]) /
+                             sqrt(l2);
+            for (int c = 0; c < dim; c++)
+                fi[c] += g * r[c];
+        }
+        for (int c = 0; c < dim; c++)
+            p->f[c][i] += fi[c];
+    }
+    return SPALL_OK;
+}
+
+/* For a homogeneous plastic strain eps^p (deviatoric) and an isotropic family,
+ * sum omega beta (e^dp)^2 V = 2 m eps^p : eps^p / (d (d + 2)); the equivalent
+ * plastic strain of the J2 criterion is sqrt(c_d eps^p : eps^p) (3D: the usual
+ * sqrt(2/3 eps^p : eps^p); 2D: the axial plastic strain in uniaxial stress). */
+double pd_eps_plastic_strain(const struct model *m, const struct sim *sim, size_t i)
+{
+    const struct bond_list *bl = m->bl;
+    const struct pd_lps *L = &m->lps;
+    const double d = (double)sim->dim;
+    if (!L->ep || !(L->wvol[i] > 0.0))
+        return 0.0;
+    double q = 0.0;
+    for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+        if (!(bl->state[s] & BOND_BROKEN))
+            q += L->ob[s] * L->ep[s] * L->ep[s] * sim->p->volume[bl->partner[s]];
+    return sqrt(eps_cd(sim->dim) * d * (d + 2.0) * q / (2.0 * L->wvol[i]));
+}
