@@ -1,0 +1,160 @@
+"""Open a spall run's fields.xdmf in ParaView as a user would, and check it.
+
+Run by pvbatch under a virtual X server (tests/client/pvbatch.sh):
+
+    pvbatch pv_check.py --xdmf RUN/fields.xdmf --reader default|legacy --png OUT.png
+
+--reader default: paraview.simple.OpenDataFile, i.e. the reader ParaView picks
+for the file name (5.11: Xdmf3ReaderS); legacy: the older "XDMF Reader"
+(XDMFReader).  On the last time step it checks
+  - one cell per particle (ParaView's default Surface representation draws
+    cells only: with 0 cells the view is empty, issue 23);
+  - the point coordinates' bounds equal the HDF5 /position data's, and every
+    point array's per-component range equals the HDF5 dataset's (read with
+    h5py from the frame the XDMF's last grid names), and the component counts
+    agree;
+  - the default representation, coloured by each point array in turn, renders
+    particle pixels: at least --min-fill of the image differs from the same
+    view with the data hidden (ParaView's own background and axes).  --png
+    keeps the picture coloured by --color (default: the first array).
+Prints one line per finding and exits 1 on any failure.
+"""
+import argparse
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+import h5py
+import numpy as np
+from paraview import simple as pv
+from paraview.vtk.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+def last_frame_h5(xdmf):
+    """The HDF5 file the XDMF's last temporal grid points its geometry at."""
+    root = ET.parse(xdmf).getroot()
+    grids = [g for g in root.iter("Grid") if g.get("GridType") == "Uniform"]
+    if not grids:
+        return None
+    item = grids[-1].find("Geometry/DataItem")
+    h5name = item.text.strip().split(":")[0]
+    return os.path.join(os.path.dirname(os.path.abspath(xdmf)), h5name)
+
+
+def open_reader(xdmf, which):
+    if which == "default":
+        return pv.OpenDataFile(xdmf)
+    return pv.XDMFReader(FileNames=[xdmf])
+
+
+def read_png(png):
+    r = vtkPNGReader()
+    r.SetFileName(png)
+    r.Update()
+    return vtk_to_numpy(r.GetOutput().GetPointData().GetScalars())[:, :3]
+
+
+def image_fill(png, empty_png):
+    """Fraction of the pixels of @png that differ from the empty view's."""
+    px, bg = read_png(png), read_png(empty_png)
+    return float(np.count_nonzero(np.any(px != bg, axis=1))) / px.shape[0]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--xdmf", required=True)
+    ap.add_argument("--reader", choices=["default", "legacy"], default="default")
+    ap.add_argument("--png", required=True)
+    ap.add_argument("--color", default=None)
+    ap.add_argument("--min-fill", type=float, default=0.01)
+    a = ap.parse_args()
+    failures = []
+
+    src = open_reader(a.xdmf, a.reader)
+    print("reader: %s (%s)" % (src.GetXMLName(), a.reader))
+    times = list(src.TimestepValues) if src.TimestepValues else [0.0]
+    t = times[-1]
+    src.UpdatePipeline(t)
+    info = src.GetDataInformation()
+    npts, ncells = info.GetNumberOfPoints(), info.GetNumberOfCells()
+    print("time steps: %d, last t = %.9g s: %d points, %d cells" % (len(times), t, npts, ncells))
+
+    h5path = last_frame_h5(a.xdmf)
+    with h5py.File(h5path, "r") as f:
+        pos = f["position"][()]
+        if ncells != pos.shape[0] or npts != pos.shape[0]:
+            failures.append("%d points and %d cells, expected %d of each (one vertex cell per "
+                            "particle)" % (npts, ncells, pos.shape[0]))
+        b = info.GetBounds()
+        for c in range(3):
+            lo, hi = pos[:, c].min(), pos[:, c].max()
+            if (b[2 * c], b[2 * c + 1]) != (lo, hi):
+                failures.append("bounds[%d] = (%r, %r), HDF5 /position has (%r, %r)"
+                                % (c, b[2 * c], b[2 * c + 1], lo, hi))
+        arrays = list(src.PointData.keys())
+        print("point arrays: %s" % ", ".join(arrays))
+        for name in f.keys():
+            ds = f[name]
+            if name in ("position", "connectivity") or ds.ndim == 0:
+                continue
+            if name not in arrays:
+                failures.append("HDF5 dataset /%s is not a point array" % name)
+        for name in arrays:
+            if name not in f:
+                failures.append("point array %s has no HDF5 dataset" % name)
+                continue
+            data = f[name][()]
+            data = data.reshape(data.shape[0], -1)
+            arr = src.PointData[name]
+            nc = arr.GetNumberOfComponents()
+            if nc != data.shape[1]:
+                failures.append("%s: %d components, HDF5 has %d" % (name, nc, data.shape[1]))
+                continue
+            for c in range(nc):
+                got = tuple(arr.GetRange(c))
+                want = (data[:, c].min(), data[:, c].max())
+                if got != want:
+                    failures.append("%s[%d]: range %r, HDF5 %r" % (name, c, got, want))
+            print("  %s: %d component(s), ranges equal to HDF5" % (name, nc))
+
+    view = pv.GetActiveViewOrCreate("RenderView")
+    view.ViewSize = [480, 360]
+    view.ViewTime = t
+    disp = pv.Show(src, view)
+    print("default representation: %s" % disp.Representation)
+    view.ResetCamera()
+    if b[5] - b[4] > 0:  # 3D: look from an oblique direction, z up
+        cam = view.GetActiveCamera()
+        cam.SetFocalPoint(0, 0, 0)
+        cam.SetPosition(1.0, -1.6, 0.8)
+        cam.SetViewUp(0, 0, 1)
+        view.ResetCamera()
+    # The background as the user sees it (ParaView's palette, orientation
+    # axes): the same view with the data hidden.
+    pv.Hide(src, view)
+    empty = a.png[:-4] + "_empty.png"
+    pv.SaveScreenshot(empty, view, ImageResolution=[480, 360])
+    pv.Show(src, view)
+    color = a.color or (arrays[0] if arrays else None)
+    for name in arrays + [color]:  # every array, then the screenshot's
+        if name is not None:
+            pv.ColorBy(disp, ("POINTS", name))
+            disp.RescaleTransferFunctionToDataRange(False, True)
+        pv.SaveScreenshot(a.png, view, ImageResolution=[480, 360])
+        fill = image_fill(a.png, empty)
+        print("coloured by %s: %.1f %% of the image is particles" % (name, 100 * fill))
+        if fill < a.min_fill:
+            failures.append("coloured by %s: only %.2f %% particle pixels (< %.2f %%): the "
+                            "default representation shows nothing"
+                            % (name, 100 * fill, 100 * a.min_fill))
+    os.remove(empty)
+
+    for msg in failures:
+        print("FAIL: " + msg)
+    print("pv_check: %s" % ("FAILED" if failures else "ok"))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    if main() != 0:
+        sys.exit(1)
