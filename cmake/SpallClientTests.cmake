@@ -26,7 +26,8 @@ if(SPALL_TESTS)
   # the array each screenshot is coloured by (every array is checked)
   set(SPALL_CLIENT_COLOR_epoxy_holes strain_energy)
   set(SPALL_CLIENT_COLOR_sph_taylor_3d pressure)
-  foreach(run epoxy_holes sph_taylor_3d)
+  set(SPALL_CLIENT_COLOR_impact_vinylester velocity)
+  foreach(run epoxy_holes sph_taylor_3d impact_vinylester)
     foreach(reader default legacy)
       add_test(NAME client_pv_${run}_${reader}
                COMMAND bash ${SPALL_CLIENT_SRC}/pvbatch.sh ${SPALL_CLIENT_SRC}/pv_check.py
@@ -41,7 +42,7 @@ if(SPALL_TESTS)
                    ${SPALL_CLIENT_DIR}/runs ${SPALL_CLIENT_DIR} ${SPALL_DEBIAN_PYTHON3})
   set_tests_properties(client_pv_no_connectivity PROPERTIES FIXTURES_REQUIRED client_runs
                        LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300)
-  foreach(run epoxy_holes sph_taylor_3d)
+  foreach(run epoxy_holes sph_taylor_3d impact_vinylester)
     add_test(NAME client_h5py_${run}
              COMMAND bash -c "${SPALL_DEBIAN_PYTHON3} -c 'import h5py' 2>/dev/null || { echo 'client test skipped: python3-h5py not installed'; exit 77; }; exec ${SPALL_DEBIAN_PYTHON3} ${SPALL_CLIENT_SRC}/h5_user.py ${SPALL_CLIENT_DIR}/runs/${run}")
     set_tests_properties(client_h5py_${run} PROPERTIES FIXTURES_REQUIRED client_runs

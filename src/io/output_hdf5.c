@@ -13,18 +13,17 @@
  *   /position is always n x 3, padded with 0 in 1D/2D, because ParaView's
  *           XDMF readers need three coordinates for GeometryType XYZ.
  *
- * XDMF attribute types: 1 component -> Scalar, 3 -> Vector, 6 -> Tensor6,
- * 9 -> Tensor, anything else (2D vectors with 2 components, 4-component
- * 2D tensors) -> Matrix.  ParaView's Xdmf3 reader takes the component count
- * from the dataset size for every type, but only Matrix is honest for 2
- * components (a "Vector" promises 3); such arrays show up as 2-component point
- * arrays (use Calculator "velocity_X*iHat+velocity_Y*jHat" to glyph them).
+ * XDMF attribute types, component names and units: io/output_xdmf.c (a 2D
+ * vector or tensor is a Matrix: a "Vector" promises 3 components).  With
+ * rigid impactors or walls a frame is a spatial collection of the particles
+ * and one small triangle mesh per body (output_xdmf.c).
  *
  * Crash safety: every file is first written under a hidden temporary name in
  * DIR and then rename()d over the final name (atomic within one file system),
  * so readers never see half a frame or half an index.
  */
 #include "io/output.h"
+#include "io/output_xdmf.h"
 
 #include "core/fields.h"
 #include "core/particles.h"
@@ -49,6 +48,8 @@
 struct out_field {
     char name[FIELD_NAME_LEN];
     int ncomp; /**< components as registered (position: the registry's, padded on write) */
+    char unit[16];
+    int parity; /**< enum field_parity: what the components are (output_xdmf.h) */
 };
 
 /** Growable text buffer holding the XDMF <Grid> elements written so far, so the
@@ -270,6 +271,8 @@ static int writer_add(struct field_writer *w, const struct field_desc *f, struct
     struct out_field *o = &w->fields[w->n_fields++];
     memcpy(o->name, f->name, sizeof o->name);
     o->ncomp = f->ncomp;
+    memcpy(o->unit, f->unit, sizeof o->unit);
+    o->parity = (int)f->parity;
     return SPALL_OK;
 }
 
@@ -340,7 +343,9 @@ int field_writer_create(struct field_writer **out, const char *dir, const struct
     if (!pos) {
         memset(&fallback, 0, sizeof fallback);
         strcpy(fallback.name, OUTPUT_POSITION);
+        strcpy(fallback.unit, "m");
         fallback.ncomp = s->dim;
+        fallback.parity = FIELD_VECTOR;
         pos = &fallback;
     }
     int rc = writer_add(w, pos, err);
@@ -398,17 +403,6 @@ static void gather_padded(struct field_writer *w, const struct sim *s, const str
     for (size_t i = n; i-- > 0;) {
         for (int c = ncomp_out - 1; c >= 0; c--)
             b[i * (size_t)ncomp_out + (size_t)c] = c < ncomp ? b[i * (size_t)ncomp + (size_t)c] : 0.0;
-    }
-}
-
-static const char *xdmf_attribute_type(int ncomp)
-{
-    switch (ncomp) {
-    case 1: return "Scalar";
-    case 3: return "Vector";
-    case 6: return "Tensor6";
-    case 9: return "Tensor";
-    default: return "Matrix";
     }
 }
 
@@ -479,14 +473,30 @@ static void format_exact(char *out, size_t size, double v)
     }
 }
 
-static int append_xdmf_grid(struct field_writer *w, const char *h5name, double t, long step,
-                            size_t n)
+/* With rigid bodies a frame is a spatial collection of the particles and one
+ * small grid per body (output_xdmf.h); without, the particles' grid alone. */
+static int append_xdmf_grid(struct field_writer *w, const struct sim *s, const char *h5name,
+                            double t, long step, size_t n)
 {
     struct text_buf *g = &w->grids;
     char tbuf[40];
     format_exact(tbuf, sizeof tbuf, t);
+    char *rigid = NULL;
+    if (xdmf_rigid_count(s) > 0) {
+        rigid = xdmf_rigid_grids(s, n);
+        if (!rigid)
+            return -1;
+        if (text_append(g,
+                        "      <Grid Name=\"frame_%06zu\" GridType=\"Collection\""
+                        " CollectionType=\"Spatial\">\n"
+                        "        <Time Value=\"%s\"/>\n",
+                        w->frames, tbuf)) {
+            free(rigid);
+            return -1;
+        }
+    }
     int bad = text_append(g,
-                          "      <Grid Name=\"frame_%06zu\" GridType=\"Uniform\">\n"
+                          "      <Grid Name=\"%s%06zu\" GridType=\"Uniform\">\n"
                           "        <Time Value=\"%s\"/>\n"
                           "        <Information Name=\"step\" Value=\"%ld\"/>\n"
                           "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%zu\""
@@ -498,8 +508,8 @@ static int append_xdmf_grid(struct field_writer *w, const char *h5name, double t
                           "          <DataItem Dimensions=\"%zu 3\" NumberType=\"Float\""
                           " Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem>\n"
                           "        </Geometry>\n",
-                          w->frames, tbuf, step, n, n, h5name, OUTPUT_CONNECTIVITY, n, h5name,
-                          OUTPUT_POSITION);
+                          rigid ? "particles_" : "frame_", w->frames, tbuf, step, n, n, h5name,
+                          OUTPUT_CONNECTIVITY, n, h5name, OUTPUT_POSITION);
     for (size_t k = 1; k < w->n_fields && !bad; k++) {
         const struct out_field *o = &w->fields[k];
         char dims[48];
@@ -507,15 +517,24 @@ static int append_xdmf_grid(struct field_writer *w, const char *h5name, double t
             snprintf(dims, sizeof dims, "%zu", n);
         else
             snprintf(dims, sizeof dims, "%zu %d", n, o->ncomp);
+        enum xdmf_kind kind = xdmf_field_kind(o->ncomp, s->dim, o->parity);
+        const char *comps = xdmf_component_names(kind, o->ncomp);
         bad = text_append(g,
                           "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n"
+                          "          <Information Name=\"unit\" Value=\"%s\"/>\n"
+                          "%s%s%s"
                           "          <DataItem Dimensions=\"%s\" NumberType=\"Float\""
                           " Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem>\n"
                           "        </Attribute>\n",
-                          o->name, xdmf_attribute_type(o->ncomp), dims, h5name, o->name);
+                          o->name, xdmf_attribute_type(kind, o->ncomp), o->unit[0] ? o->unit : "1",
+                          comps ? "          <Information Name=\"components\" Value=\"" : "",
+                          comps ? comps : "", comps ? "\"/>\n" : "", dims, h5name, o->name);
     }
     if (!bad)
         bad = text_append(g, "      </Grid>\n");
+    if (rigid && !bad)
+        bad = text_append(g, "%s      </Grid>\n", rigid);
+    free(rigid);
     return bad;
 }
 
@@ -598,7 +617,7 @@ int field_writer_write(struct field_writer *w, const struct sim *s, struct spall
         goto done;
     }
     size_t old_len = w->grids.len;
-    if (append_xdmf_grid(w, h5name, s->t, s->step, n)) {
+    if (append_xdmf_grid(w, s, h5name, s->t, s->step, n)) {
         w->grids.len = old_len;
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory writing XDMF index");
         goto done;

@@ -51,9 +51,12 @@ def main(run_dir):
                                             "" if comps is None else
                                             " components " + comps.decode()))
     # the XDMF index's last grid is this frame at this time
+    # (with rigid bodies each frame is a spatial collection holding the
+    # particles' grid and one grid per body; the Time is the frame's)
     root = ET.parse(os.path.join(run_dir, "fields.xdmf")).getroot()
-    grids = [g for g in root.iter("Grid") if g.get("GridType") == "Uniform"]
-    if float(grids[-1].find("Time").get("Value")) != t:
+    temporal = [g for g in root.iter("Grid") if g.get("CollectionType") == "Temporal"][0]
+    frames = [g for g in temporal if g.tag == "Grid"]
+    if float(frames[-1].find("Time").get("Value")) != t:
         sys.exit("fields.xdmf's last grid is not at t = %r" % t)
     print("h5_user: ok")
 

@@ -30,15 +30,25 @@ from paraview import simple as pv
 from paraview.vtk.vtkIOImage import vtkPNGReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-def last_frame_h5(xdmf):
-    """The HDF5 file the XDMF's last temporal grid points its geometry at."""
+def last_frame(xdmf):
+    """The last temporal entry of the index: the HDF5 file its particle grid
+    reads, and the inline points and triangle count of its rigid bodies."""
     root = ET.parse(xdmf).getroot()
-    grids = [g for g in root.iter("Grid") if g.get("GridType") == "Uniform"]
-    if not grids:
-        return None
-    item = grids[-1].find("Geometry/DataItem")
-    h5name = item.text.strip().split(":")[0]
-    return os.path.join(os.path.dirname(os.path.abspath(xdmf)), h5name)
+    temporal = [g for g in root.iter("Grid") if g.get("CollectionType") == "Temporal"][0]
+    frames = [g for g in temporal if g.tag == "Grid"]
+    last = frames[-1]
+    grids = [last] if last.get("GridType") == "Uniform" else [g for g in last if g.tag == "Grid"]
+    h5path, body_pts, body_cells = None, [], 0
+    for g in grids:
+        item = g.find("Geometry/DataItem")
+        if item.get("Format") == "HDF":
+            h5name = item.text.strip().split(":")[0]
+            h5path = os.path.join(os.path.dirname(os.path.abspath(xdmf)), h5name)
+        else:
+            body_pts.append(np.array(item.text.split(), dtype=float).reshape(-1, 3))
+            body_cells += int(g.find("Topology").get("NumberOfElements"))
+    pts = np.concatenate(body_pts) if body_pts else np.zeros((0, 3))
+    return h5path, len(frames), pts, body_cells
 
 
 def open_reader(xdmf, which):
@@ -79,17 +89,24 @@ def main():
     npts, ncells = info.GetNumberOfPoints(), info.GetNumberOfCells()
     print("time steps: %d, last t = %.9g s: %d points, %d cells" % (len(times), t, npts, ncells))
 
-    h5path = last_frame_h5(a.xdmf)
+    h5path, nframes, body_pts, body_cells = last_frame(a.xdmf)
+    if len(times) != nframes:
+        failures.append("%d time steps, the index has %d frames" % (len(times), nframes))
+    if body_cells:
+        print("rigid bodies: %d points, %d triangles" % (body_pts.shape[0], body_cells))
     with h5py.File(h5path, "r") as f:
         pos = f["position"][()]
-        if ncells != pos.shape[0] or npts != pos.shape[0]:
-            failures.append("%d points and %d cells, expected %d of each (one vertex cell per "
-                            "particle)" % (npts, ncells, pos.shape[0]))
+        n = pos.shape[0]
+        want_pts, want_cells = n + body_pts.shape[0], n + body_cells
+        if ncells != want_cells or npts != want_pts:
+            failures.append("%d points and %d cells, expected %d and %d (one vertex cell per "
+                            "particle, the bodies' triangles)" % (npts, ncells, want_pts, want_cells))
+        allpts = np.concatenate([pos, body_pts])
         b = info.GetBounds()
         for c in range(3):
-            lo, hi = pos[:, c].min(), pos[:, c].max()
+            lo, hi = allpts[:, c].min(), allpts[:, c].max()
             if (b[2 * c], b[2 * c + 1]) != (lo, hi):
-                failures.append("bounds[%d] = (%r, %r), HDF5 /position has (%r, %r)"
+                failures.append("bounds[%d] = (%r, %r), HDF5 /position and the bodies have (%r, %r)"
                                 % (c, b[2 * c], b[2 * c + 1], lo, hi))
         arrays = list(src.PointData.keys())
         print("point arrays: %s" % ", ".join(arrays))

@@ -25,8 +25,13 @@ short_deck "$src/examples/epoxy_holes/epoxy_holes.yaml" "$out/epoxy_holes.yaml" 
 # 3D Taylor bar: 20 us with a frame every 10 us (frames 0, 1, 2)
 short_deck "$src/examples/sph_taylor_3d/sph_taylor_3d.yaml" "$out/sph_taylor_3d.yaml" \
     's/end_time: 9\.0e-5/end_time: 2.0e-5/'
+# 2D drop-weight test with a round-nose tup and two roller supports (rigid
+# bodies in the index): 0.5 ms, frames every 0.25 ms
+short_deck "$src/examples/impact_vinylester/impact_vinylester.yaml" "$out/impact_vinylester.yaml" \
+    's/end_time: 3\.0e-3/end_time: 5.0e-4/'
+"$spall" run "$out/impact_vinylester.yaml" -o "$out/impact_vinylester" --overwrite --quiet
 "$spall" run "$out/epoxy_holes.yaml" -o "$out/epoxy_holes" --overwrite --quiet
 "$spall" run "$out/sph_taylor_3d.yaml" -o "$out/sph_taylor_3d" --overwrite --quiet
-for d in epoxy_holes sph_taylor_3d; do
+for d in epoxy_holes sph_taylor_3d impact_vinylester; do
     [ -f "$out/$d/fields_000002.h5" ] || { echo "runs.sh: $d wrote no frame 2"; exit 1; }
 done
