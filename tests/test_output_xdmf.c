@@ -4,8 +4,9 @@
  * and 3D, that every vertex of the mesh written for a sphere, a rounded flat
  * punch, a round nose (2D and 3D) lies on the body's surface as
  * rigid_distance() defines it, that a wall's mesh lies in its plane and spans
- * the particles, and that a run with impactors writes one spatial collection
- * per frame with one grid per body (ParaView opens it: tests/client).
+ * the particles, and that a run with impactors writes bodies.xdmf, one
+ * spatial collection per frame with one grid per body, beside fields.xdmf
+ * (ParaView opens both: tests/client), through a checkpoint round trip.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
@@ -202,9 +203,33 @@ static void test_meshes_3d(void **state)
     check_deck(deck_3d, 3);
 }
 
-/** A frame of a run with impactors: a spatial collection holding the
- *  particles' grid and one grid per body, with units and components. */
-static void test_frame_collection(void **state)
+static char *slurp(const char *dir, const char *name)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    char *x = calloc(1 << 20, 1);
+    assert_non_null(x);
+    size_t len = fread(x, 1, (1 << 20) - 1, f);
+    fclose(f);
+    x[len] = '\0';
+    return x;
+}
+
+static size_t count(const char *x, const char *needle)
+{
+    size_t k = 0;
+    for (const char *q = x; (q = strstr(q, needle)); q++)
+        k++;
+    return k;
+}
+
+/** A run with impactors: fields.xdmf holds the particles only (with units
+ *  and component names), bodies.xdmf one spatial collection per frame with
+ *  one grid per body; both survive a checkpoint's round trip of
+ *  field_writer_grids / field_writer_resume. */
+static void test_bodies_index(void **state)
 {
     (void)state;
     struct sim *s = test_build_ok(deck_2d);
@@ -216,34 +241,49 @@ static void test_frame_collection(void **state)
     assert_int_equal(field_writer_create(&w, dir, s, names, 2, &err), SPALL_OK);
     assert_int_equal(field_writer_write(w, s, &err), SPALL_OK);
     assert_int_equal(field_writer_write(w, s, &err), SPALL_OK);
+    char *fields = slurp(dir, "fields.xdmf"), *bodies = slurp(dir, "bodies.xdmf");
+    assert_int_equal(count(fields, "CollectionType=\"Spatial\""), 0);
+    assert_int_equal(count(fields, "impactor_"), 0);
+    assert_int_equal(count(fields, "GridType=\"Uniform\""), 2);
+    assert_non_null(strstr(fields, "<Attribute Name=\"velocity\" AttributeType=\"Matrix\" Center=\"Node\">\n"
+                                   "          <Information Name=\"unit\" Value=\"m/s\"/>\n"
+                                   "          <Information Name=\"components\" Value=\"x y\"/>\n"));
+    assert_non_null(strstr(fields, "<Attribute Name=\"stress\" AttributeType=\"Matrix\" Center=\"Node\">\n"
+                                   "          <Information Name=\"unit\" Value=\"Pa\"/>\n"
+                                   "          <Information Name=\"components\" Value=\"xx yy xy\"/>\n"));
+    assert_int_equal(count(bodies, "CollectionType=\"Spatial\""), 2);
+    assert_int_equal(count(bodies, "<Grid Name=\"impactor_"), 8);
+    assert_int_equal(count(bodies, "<Time Value=\"0\"/>"), 2);
+    assert_non_null(strstr(bodies, "<Grid Name=\"bodies_000001\""));
+    /* checkpoint round trip: a new writer resumed from the saved text
+     * rewrites both indexes byte for byte */
+    size_t len;
+    const char *g = field_writer_grids(w, &len);
+    char *copy = malloc(len + 1);
+    assert_non_null(copy);
+    memcpy(copy, g, len);
     field_writer_destroy(&w);
     char path[256];
-    snprintf(path, sizeof path, "%s/fields.xdmf", dir);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    static char xml[1 << 20];
-    size_t len = fread(xml, 1, sizeof xml - 1, f);
-    fclose(f);
-    xml[len] = '\0';
-    size_t spatial = 0, imp = 0;
-    for (const char *q = xml; (q = strstr(q, "CollectionType=\"Spatial\"")); q++)
-        spatial++;
-    for (const char *q = xml; (q = strstr(q, "<Grid Name=\"impactor_")); q++)
-        imp++;
-    assert_int_equal(spatial, 2);
-    assert_int_equal(imp, 8);
-    assert_non_null(strstr(xml, "<Grid Name=\"particles_000001\" GridType=\"Uniform\">"));
-    assert_non_null(strstr(xml, "<Attribute Name=\"velocity\" AttributeType=\"Matrix\" Center=\"Node\">\n"
-                                "          <Information Name=\"unit\" Value=\"m/s\"/>\n"
-                                "          <Information Name=\"components\" Value=\"x y\"/>\n"));
-    assert_non_null(strstr(xml, "<Attribute Name=\"stress\" AttributeType=\"Matrix\" Center=\"Node\">\n"
-                                "          <Information Name=\"unit\" Value=\"Pa\"/>\n"
-                                "          <Information Name=\"components\" Value=\"xx yy xy\"/>\n"));
+    snprintf(path, sizeof path, "%s/bodies.xdmf", dir);
+    remove(path);
+    assert_int_equal(field_writer_create(&w, dir, s, names, 2, &err), SPALL_OK);
+    assert_int_equal(field_writer_resume(w, 2, copy, len, &err), SPALL_OK);
+    char *fields2 = slurp(dir, "fields.xdmf"), *bodies2 = slurp(dir, "bodies.xdmf");
+    assert_string_equal(fields, fields2);
+    assert_string_equal(bodies, bodies2);
+    field_writer_destroy(&w);
+    free(copy);
+    free(fields);
+    free(bodies);
+    free(fields2);
+    free(bodies2);
     for (int k = 0; k < 2; k++) {
         snprintf(path, sizeof path, "%s/fields_%06d.h5", dir, k);
         remove(path);
     }
     snprintf(path, sizeof path, "%s/fields.xdmf", dir);
+    remove(path);
+    snprintf(path, sizeof path, "%s/bodies.xdmf", dir);
     remove(path);
     rmdir(dir);
     sim_destroy(&s);
@@ -255,7 +295,7 @@ int main(void)
         cmocka_unit_test(test_kinds),
         cmocka_unit_test(test_meshes_2d),
         cmocka_unit_test(test_meshes_3d),
-        cmocka_unit_test(test_frame_collection),
+        cmocka_unit_test(test_bodies_index),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

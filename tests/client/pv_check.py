@@ -65,9 +65,16 @@ def read_png(png):
 
 
 def image_fill(png, empty_png):
-    """Fraction of the pixels of @png that differ from the empty view's."""
+    """Fraction of the pixels of @png that differ from the empty view's, and
+    the fraction of those that are coloured (max - min channel > 40 of 255:
+    not the grey of an uncoloured surface, shaded or not)."""
     px, bg = read_png(png), read_png(empty_png)
-    return float(np.count_nonzero(np.any(px != bg, axis=1))) / px.shape[0]
+    changed = np.any(px != bg, axis=1)
+    if not changed.any():
+        return 0.0, 0.0
+    c = px[changed].astype(int)
+    sat = c.max(axis=1) - c.min(axis=1) > 40
+    return float(np.count_nonzero(changed)) / px.shape[0], float(np.mean(sat))
 
 
 def main():
@@ -77,6 +84,7 @@ def main():
     ap.add_argument("--png", required=True)
     ap.add_argument("--color", default=None)
     ap.add_argument("--min-fill", type=float, default=0.01)
+    ap.add_argument("--min-colour", type=float, default=0.01)
     a = ap.parse_args()
     failures = []
 
@@ -134,11 +142,31 @@ def main():
                     failures.append("%s[%d]: range %r, HDF5 %r" % (name, c, got, want))
             print("  %s: %d component(s), ranges equal to HDF5" % (name, nc))
 
+    # rigid impactors and walls: their own index beside fields.xdmf
+    bodies = None
+    bpath = os.path.join(os.path.dirname(os.path.abspath(a.xdmf)), "bodies.xdmf")
+    if os.path.exists(bpath):
+        bodies = open_reader(bpath, a.reader)
+        btimes = list(bodies.TimestepValues) if bodies.TimestepValues else [0.0]
+        bodies.UpdatePipeline(t)
+        binfo = bodies.GetDataInformation()
+        _, bframes, bpts, bcells = last_frame(bpath)
+        print("bodies.xdmf: %d time steps, %d points, %d triangles at t = %.9g s"
+              % (len(btimes), binfo.GetNumberOfPoints(), binfo.GetNumberOfCells(), t))
+        if btimes != times:
+            failures.append("bodies.xdmf's times differ from fields.xdmf's")
+        if (binfo.GetNumberOfCells(), binfo.GetNumberOfPoints()) != (bcells, bpts.shape[0]):
+            failures.append("bodies.xdmf: %d triangles and %d points, the index has %d and %d"
+                            % (binfo.GetNumberOfCells(), binfo.GetNumberOfPoints(), bcells,
+                               bpts.shape[0]))
+
     view = pv.GetActiveViewOrCreate("RenderView")
     view.ViewSize = [480, 360]
     view.ViewTime = t
     disp = pv.Show(src, view)
     print("default representation: %s" % disp.Representation)
+    if bodies is not None:  # in the camera's frame, out of the colour count
+        pv.Show(bodies, view)
     view.ResetCamera()
     if b[5] - b[4] > 0:  # 3D: look from an oblique direction, z up
         cam = view.GetActiveCamera()
@@ -146,6 +174,8 @@ def main():
         cam.SetPosition(1.0, -1.6, 0.8)
         cam.SetViewUp(0, 0, 1)
         view.ResetCamera()
+    if bodies is not None:
+        pv.Hide(bodies, view)
     # The background as the user sees it (ParaView's palette, orientation
     # axes): the same view with the data hidden.
     pv.Hide(src, view)
@@ -158,12 +188,22 @@ def main():
             pv.ColorBy(disp, ("POINTS", name))
             disp.RescaleTransferFunctionToDataRange(False, True)
         pv.SaveScreenshot(a.png, view, ImageResolution=[480, 360])
-        fill = image_fill(a.png, empty)
-        print("coloured by %s: %.1f %% of the image is particles" % (name, 100 * fill))
+        fill, sat = image_fill(a.png, empty)
+        print("coloured by %s: %.1f %% of the image is particles, %.1f %% of them in colour"
+              % (name, 100 * fill, 100 * sat))
+        if name is not None:
+            lo, hi = src.PointData[name].GetRange(-1)
+            if hi > lo and sat < a.min_colour:
+                failures.append("coloured by %s (range %g..%g): %.2f %% of the particle pixels in "
+                                "colour (< %.2f %%): the particles are not coloured"
+                                % (name, lo, hi, 100 * sat, 100 * a.min_colour))
         if fill < a.min_fill:
             failures.append("coloured by %s: only %.2f %% particle pixels (< %.2f %%): the "
                             "default representation shows nothing"
                             % (name, 100 * fill, 100 * a.min_fill))
+    if bodies is not None:
+        pv.Show(bodies, view)
+        pv.SaveScreenshot(a.png, view, ImageResolution=[480, 360])
     os.remove(empty)
 
     for msg in failures:

@@ -3,7 +3,8 @@
 # SKIP_RETURN_CODE) when the clients are not installed: `make check` installs
 # them (scripts/install-test-deps.sh); a bare `ctest` reports them skipped.
 # xvfb-run -a can race another xvfb-run for the same display number, and the
-# loser's GL window then fails with "bad X server connection": retried.
+# loser's GL window then fails with "bad X server connection": a run that
+# stops before pv_check.py's verdict line is retried (3 attempts).
 # Usage: pvbatch.sh SCRIPT.py [ARGS...]
 set -uo pipefail
 for tool in pvbatch xvfb-run; do
@@ -16,8 +17,11 @@ for attempt in 1 2 3; do
     # 24-bit screen: Mesa's GLX visual needs it
     xvfb-run -a -s "-screen 0 1024x768x24" pvbatch "$@" >"$log" 2>&1
     rc=$?
-    if grep -q -E "bad X server connection|xvfb-run: error|Xvfb failed to start" "$log"; then
-        echo "pvbatch.sh: X server not usable (attempt $attempt), retrying"
+    # pv_check.py always ends with its verdict line; without it pvbatch or
+    # the X server died first (a display-number race, a GLX failure)
+    if [ $rc -ne 0 ] && ! grep -q "^pv_check: " "$log"; then
+        echo "pvbatch.sh: pvbatch stopped before a verdict (attempt $attempt, exit $rc):"
+        grep -v -E '^\s*[0-9]+\s+0x[0-9a-f]+ ' "$log" | tail -5
         sleep 2
         continue
     fi
