@@ -49,3 +49,10 @@ if(SPALL_TESTS)
                          LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 120)
   endforeach()
 endif()
+if(SPALL_TESTS)
+  add_test(NAME client_docs_snippets
+           COMMAND bash ${SPALL_CLIENT_SRC}/doc_snippets.sh ${CMAKE_SOURCE_DIR}
+                   ${SPALL_CLIENT_DIR}/runs/impact_vinylester ${SPALL_DEBIAN_PYTHON3})
+  set_tests_properties(client_docs_snippets PROPERTIES FIXTURES_REQUIRED client_runs
+                       LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300)
+endif()
