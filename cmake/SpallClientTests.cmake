@@ -5,7 +5,9 @@
 # them the tests report "skipped" (exit 77), never "passed".
 # Outputs (screenshots, logs) go to ${CMAKE_BINARY_DIR}/client.
 # Labelled no_asan too: they test the file format, not memory safety, and the
-# instrumented runs would only make `make asan` slower.
+# instrumented runs would only make `make asan` slower.  The pvbatch tests
+# hold RESOURCE_LOCK spall_xvfb: started together under ctest -j, pvbatch
+# often failed to open its virtual display ("bad X server connection").
 if(SPALL_TESTS)
   set(SPALL_CLIENT_DIR ${CMAKE_BINARY_DIR}/client)
   set(SPALL_CLIENT_SRC ${CMAKE_SOURCE_DIR}/tests/client)
@@ -34,14 +36,16 @@ if(SPALL_TESTS)
                        --xdmf ${SPALL_CLIENT_DIR}/runs/${run}/fields.xdmf --reader ${reader}
                        --png ${SPALL_CLIENT_DIR}/${run}_${reader}.png --color ${SPALL_CLIENT_COLOR_${run}})
       set_tests_properties(client_pv_${run}_${reader} PROPERTIES FIXTURES_REQUIRED client_runs
-                           LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300)
+                           LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300
+                           RESOURCE_LOCK spall_xvfb)
     endforeach()
   endforeach()
   add_test(NAME client_pv_no_connectivity
            COMMAND bash ${SPALL_CLIENT_SRC}/no_connectivity.sh ${CMAKE_SOURCE_DIR}
                    ${SPALL_CLIENT_DIR}/runs ${SPALL_CLIENT_DIR} ${SPALL_DEBIAN_PYTHON3})
   set_tests_properties(client_pv_no_connectivity PROPERTIES FIXTURES_REQUIRED client_runs
-                       LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300)
+                       LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300
+                           RESOURCE_LOCK spall_xvfb)
   foreach(run epoxy_holes sph_taylor_3d impact_vinylester)
     add_test(NAME client_h5py_${run}
              COMMAND bash -c "${SPALL_DEBIAN_PYTHON3} -c 'import h5py' 2>/dev/null || { echo 'client test skipped: python3-h5py not installed'; exit 77; }; exec ${SPALL_DEBIAN_PYTHON3} ${SPALL_CLIENT_SRC}/h5_user.py ${SPALL_CLIENT_DIR}/runs/${run}")
@@ -54,5 +58,6 @@ if(SPALL_TESTS)
            COMMAND bash ${SPALL_CLIENT_SRC}/doc_snippets.sh ${CMAKE_SOURCE_DIR}
                    ${SPALL_CLIENT_DIR}/runs/impact_vinylester ${SPALL_DEBIAN_PYTHON3})
   set_tests_properties(client_docs_snippets PROPERTIES FIXTURES_REQUIRED client_runs
-                       LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300)
+                       LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300
+                           RESOURCE_LOCK spall_xvfb)
 endif()
