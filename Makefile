@@ -21,7 +21,10 @@ demo: build
 	@bash scripts/demo.sh $(BUILD)
 
 # Whole test suite: optimised build, then an AddressSanitizer + UBSan build.
+# The ctest label `client` opens the output in ParaView (pvbatch) and h5py;
+# install-test-deps.sh installs those clients when missing (not `make demo`).
 check: build
+	@bash scripts/install-test-deps.sh
 	@cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
 	@$(MAKE) --no-print-directory asan
 

@@ -18,6 +18,9 @@ int cli_calibrate_peridynamics(int argc, char **argv);
 int cli_calibrate_deck(const char *path);
 int cli_calibrate_sph(int argc, char **argv);
 int cli_render(int argc, char **argv);
+/* cmd_post.c: history plots and fragment distributions of a run directory */
+int cli_plot(int argc, char **argv);
+int cli_fragments(int argc, char **argv);
 
 /** Map a libspall status to the process exit status: bad input 2,
  *  unstable run 3, I/O 4, anything else 1. */

@@ -27,6 +27,8 @@ static void usage(FILE *out)
             "  calibrate MODEL ...      model constants from continuum data, with a patch test\n"
             "  penetrate MODE ...       analytical sphere-penetration models, fits, sweeps\n"
             "  render RUN_DIR [...]     PNG pictures of a particle field (--field, --all)\n"
+            "  plot RUN_DIR [COLUMN..]  history.csv columns against time as a PNG\n"
+            "  fragments RUN_DIR        fragment mass/size distribution (CSV + PNG)\n"
             "\n"
             "options:\n"
             "  -h, --help               this help (spall COMMAND --help for a command)\n"
@@ -84,8 +86,12 @@ int main(int argc, char **argv)
         return cli_penetrate(argc - 1, argv + 1);
     if (strcmp(cmd, "render") == 0)
         return cli_render(argc - 1, argv + 1);
+    if (strcmp(cmd, "plot") == 0)
+        return cli_plot(argc - 1, argv + 1);
+    if (strcmp(cmd, "fragments") == 0)
+        return cli_fragments(argc - 1, argv + 1);
     fprintf(stderr, "spall: unknown command '%s'; expected run, validate, bench, calibrate, "
-                    "penetrate or render "
+                    "penetrate, render, plot or fragments "
                     "(see spall --help)\n",
             cmd);
     return 2;

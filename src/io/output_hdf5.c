@@ -13,18 +13,17 @@
  *   /position is always n x 3, padded with 0 in 1D/2D, because ParaView's
  *           XDMF readers need three coordinates for GeometryType XYZ.
  *
- * XDMF attribute types: 1 component -> Scalar, 3 -> Vector, 6 -> Tensor6,
- * 9 -> Tensor, anything else (2D vectors with 2 components, 4-component
- * 2D tensors) -> Matrix.  ParaView's Xdmf3 reader takes the component count
- * from the dataset size for every type, but only Matrix is honest for 2
- * components (a "Vector" promises 3); such arrays show up as 2-component point
- * arrays (use Calculator "velocity_X*iHat+velocity_Y*jHat" to glyph them).
+ * XDMF attribute types, component names and units: io/output_xdmf.c (a 2D
+ * vector or tensor is a Matrix: a "Vector" promises 3 components).  Rigid
+ * impactors and walls: DIR/bodies.xdmf, a temporal collection with one small
+ * triangle mesh per body and frame (output_xdmf.c), at the frames' times.
  *
  * Crash safety: every file is first written under a hidden temporary name in
  * DIR and then rename()d over the final name (atomic within one file system),
  * so readers never see half a frame or half an index.
  */
 #include "io/output.h"
+#include "io/output_xdmf.h"
 
 #include "core/fields.h"
 #include "core/particles.h"
@@ -49,6 +48,8 @@
 struct out_field {
     char name[FIELD_NAME_LEN];
     int ncomp; /**< components as registered (position: the registry's, padded on write) */
+    char unit[16];
+    int parity; /**< enum field_parity: what the components are (output_xdmf.h) */
 };
 
 /** Growable text buffer holding the XDMF <Grid> elements written so far, so the
@@ -64,6 +65,8 @@ struct field_writer {
     size_t n_fields;
     size_t frames;
     struct text_buf grids;
+    struct text_buf bodies; /**< bodies.xdmf's frames (rigid impactors, walls) */
+    struct text_buf saved;  /**< field_writer_grids with bodies: both, for a checkpoint */
     double *buf; /**< gather buffer, n x max(ncomp, 3) */
     size_t buf_cap;
 };
@@ -270,6 +273,8 @@ static int writer_add(struct field_writer *w, const struct field_desc *f, struct
     struct out_field *o = &w->fields[w->n_fields++];
     memcpy(o->name, f->name, sizeof o->name);
     o->ncomp = f->ncomp;
+    memcpy(o->unit, f->unit, sizeof o->unit);
+    o->parity = (int)f->parity;
     return SPALL_OK;
 }
 
@@ -340,7 +345,9 @@ int field_writer_create(struct field_writer **out, const char *dir, const struct
     if (!pos) {
         memset(&fallback, 0, sizeof fallback);
         strcpy(fallback.name, OUTPUT_POSITION);
+        strcpy(fallback.unit, "m");
         fallback.ncomp = s->dim;
+        fallback.parity = FIELD_VECTOR;
         pos = &fallback;
     }
     int rc = writer_add(w, pos, err);
@@ -372,6 +379,8 @@ void field_writer_destroy(struct field_writer **w)
     free((*w)->dir);
     free((*w)->fields);
     free((*w)->grids.s);
+    free((*w)->bodies.s);
+    free((*w)->saved.s);
     free((*w)->buf);
     free(*w);
     *w = NULL;
@@ -398,17 +407,6 @@ static void gather_padded(struct field_writer *w, const struct sim *s, const str
     for (size_t i = n; i-- > 0;) {
         for (int c = ncomp_out - 1; c >= 0; c--)
             b[i * (size_t)ncomp_out + (size_t)c] = c < ncomp ? b[i * (size_t)ncomp + (size_t)c] : 0.0;
-    }
-}
-
-static const char *xdmf_attribute_type(int ncomp)
-{
-    switch (ncomp) {
-    case 1: return "Scalar";
-    case 3: return "Vector";
-    case 6: return "Tensor6";
-    case 9: return "Tensor";
-    default: return "Matrix";
     }
 }
 
@@ -479,8 +477,29 @@ static void format_exact(char *out, size_t size, double v)
     }
 }
 
-static int append_xdmf_grid(struct field_writer *w, const char *h5name, double t, long step,
-                            size_t n)
+/* The rigid bodies go to their own index, bodies.xdmf: ParaView 5.11's
+ * default reader (Xdmf3ReaderS) reads a frame holding particles and bodies as
+ * a spatial collection, but then colours no particle by any array (measured,
+ * docs/postprocessing.md); the legacy reader does. */
+static int append_xdmf_bodies(struct field_writer *w, const struct sim *s, const char *tbuf,
+                              size_t n)
+{
+    if (xdmf_rigid_count(s) == 0)
+        return 0;
+    char *rigid = xdmf_rigid_grids(s, n);
+    if (!rigid)
+        return -1;
+    int bad = text_append(&w->bodies,
+                          "      <Grid Name=\"bodies_%06zu\" GridType=\"Collection\""
+                          " CollectionType=\"Spatial\">\n"
+                          "        <Time Value=\"%s\"/>\n%s      </Grid>\n",
+                          w->frames, tbuf, rigid);
+    free(rigid);
+    return bad;
+}
+
+static int append_xdmf_grid(struct field_writer *w, const struct sim *s, const char *h5name,
+                            double t, long step, size_t n)
 {
     struct text_buf *g = &w->grids;
     char tbuf[40];
@@ -507,22 +526,31 @@ static int append_xdmf_grid(struct field_writer *w, const char *h5name, double t
             snprintf(dims, sizeof dims, "%zu", n);
         else
             snprintf(dims, sizeof dims, "%zu %d", n, o->ncomp);
+        enum xdmf_kind kind = xdmf_field_kind(o->ncomp, s->dim, o->parity);
+        const char *comps = xdmf_component_names(kind, o->ncomp);
         bad = text_append(g,
                           "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n"
+                          "          <Information Name=\"unit\" Value=\"%s\"/>\n"
+                          "%s%s%s"
                           "          <DataItem Dimensions=\"%s\" NumberType=\"Float\""
                           " Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem>\n"
                           "        </Attribute>\n",
-                          o->name, xdmf_attribute_type(o->ncomp), dims, h5name, o->name);
+                          o->name, xdmf_attribute_type(kind, o->ncomp), o->unit[0] ? o->unit : "1",
+                          comps ? "          <Information Name=\"components\" Value=\"" : "",
+                          comps ? comps : "", comps ? "\"/>\n" : "", dims, h5name, o->name);
     }
     if (!bad)
         bad = text_append(g, "      </Grid>\n");
+    if (!bad)
+        bad = append_xdmf_bodies(w, s, tbuf, n);
     return bad;
 }
 
-static int write_xdmf(const struct field_writer *w, struct spall_error *err)
+static int write_index(const struct field_writer *w, const char *name, const char *tmpname,
+                       const struct text_buf *grids, struct spall_error *err)
 {
-    char *final = path_join(w->dir, "fields.xdmf");
-    char *tmp = path_join(w->dir, ".fields.xdmf.tmp");
+    char *final = path_join(w->dir, name);
+    char *tmp = path_join(w->dir, tmpname);
     int rc = SPALL_OK;
     if (!final || !tmp) {
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory writing XDMF index");
@@ -538,8 +566,8 @@ static int write_xdmf(const struct field_writer *w, struct spall_error *err)
           "  <Domain>\n"
           "    <Grid Name=\"spall\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
           fp);
-    if (w->grids.len)
-        fwrite(w->grids.s, 1, w->grids.len, fp);
+    if (grids->len)
+        fwrite(grids->s, 1, grids->len, fp);
     fputs("    </Grid>\n  </Domain>\n</Xdmf>\n", fp);
     int bad = ferror(fp);
     bad |= fclose(fp) != 0;
@@ -555,6 +583,27 @@ static int write_xdmf(const struct field_writer *w, struct spall_error *err)
 done:
     free(final);
     free(tmp);
+    return rc;
+}
+
+/* A checkpoint keeps both indexes' frames as one text (field_writer_grids):
+ * the particles' grids, then, with rigid bodies, this marker and
+ * bodies.xdmf's grids. */
+#define OUTPUT_BODIES_MARK "<!-- spall: bodies.xdmf -->\n"
+
+static int save_grids(struct field_writer *w)
+{
+    w->saved.len = 0;
+    return w->bodies.len ? text_append(&w->saved, "%.*s%s%.*s", (int)w->grids.len, w->grids.s,
+                                       OUTPUT_BODIES_MARK, (int)w->bodies.len, w->bodies.s)
+                         : 0;
+}
+
+static int write_xdmf(const struct field_writer *w, struct spall_error *err)
+{
+    int rc = write_index(w, "fields.xdmf", ".fields.xdmf.tmp", &w->grids, err);
+    if (!rc && w->bodies.len)
+        rc = write_index(w, "bodies.xdmf", ".bodies.xdmf.tmp", &w->bodies, err);
     return rc;
 }
 
@@ -597,9 +646,10 @@ int field_writer_write(struct field_writer *w, const struct sim *s, struct spall
         rc = spall_error_set(err, SPALL_ERR_IO, "cannot rename '%s' to '%s'", tmp, final);
         goto done;
     }
-    size_t old_len = w->grids.len;
-    if (append_xdmf_grid(w, h5name, s->t, s->step, n)) {
+    size_t old_len = w->grids.len, old_bodies = w->bodies.len;
+    if (append_xdmf_grid(w, s, h5name, s->t, s->step, n) || save_grids(w)) {
         w->grids.len = old_len;
+        w->bodies.len = old_bodies;
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory writing XDMF index");
         goto done;
     }
@@ -613,16 +663,29 @@ done:
 
 const char *field_writer_grids(const struct field_writer *w, size_t *len)
 {
-    *len = w->grids.len;
-    return w->grids.s ? w->grids.s : "";
+    const struct text_buf *t = w->bodies.len ? &w->saved : &w->grids;
+    *len = t->len;
+    return t->s ? t->s : "";
 }
 
 int field_writer_resume(struct field_writer *w, size_t frames, const char *grids, size_t len,
                         struct spall_error *err)
 {
     w->grids.len = 0;
-    if (len && text_append(&w->grids, "%.*s", (int)len, grids))
+    w->bodies.len = 0;
+    const char *mark = NULL;
+    for (size_t i = 0; len && i + strlen(OUTPUT_BODIES_MARK) <= len && !mark; i++)
+        if (memcmp(grids + i, OUTPUT_BODIES_MARK, strlen(OUTPUT_BODIES_MARK)) == 0)
+            mark = grids + i;
+    size_t glen = mark ? (size_t)(mark - grids) : len;
+    if (glen && text_append(&w->grids, "%.*s", (int)glen, grids))
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (XDMF index)");
+    if (mark) {
+        const char *b = mark + strlen(OUTPUT_BODIES_MARK);
+        if (text_append(&w->bodies, "%.*s", (int)(len - (size_t)(b - grids)), b) ||
+            save_grids(w))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (XDMF index)");
+    }
     w->frames = frames;
     return write_xdmf(w, err);
 }
