@@ -1,5 +1,6 @@
 #include "cli/cli.h"
 
+#include "core/parallel/comm.h"
 #include "spall/spall.h"
 
 #include <stdio.h>
@@ -75,9 +76,11 @@ int cli_run(int argc, char **argv)
     struct spall_run_result res;
     struct spall_error err = {0};
     int rc = spall_run(&opt, &res, &err);
+    const int root = par_rank() == 0; /* mpirun: every rank agrees, rank 0 speaks */
     if (rc) {
-        fprintf(stderr, "spall: error: %s\n", err.msg);
-        if (rc == SPALL_ERR_UNSTABLE && res.out_dir[0])
+        if (root)
+            fprintf(stderr, "spall: error: %s\n", err.msg);
+        if (root && rc == SPALL_ERR_UNSTABLE && res.out_dir[0])
             fprintf(stderr, "spall: the last good output is in %s\n", res.out_dir);
         return cli_exit_status(rc);
     }
@@ -88,7 +91,7 @@ int cli_run(int argc, char **argv)
                 res.signal, res.steps, res.time, res.checkpoint, opt.deck_path, res.out_dir);
         return SPALL_EXIT_INTERRUPTED;
     }
-    if (!opt.quiet) {
+    if (!opt.quiet && root) {
         printf("spall: %ld steps, t = %.6g s, %zu particles, %.3g s wall, %.3g particle-steps/s\n",
                res.steps, res.time, res.particles, res.wall_seconds, res.particle_steps_per_s);
         printf("spall: results in %s/ (run.log, history.csv, fields.xdmf with %zu frames)\n",
