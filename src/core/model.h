@@ -176,9 +176,15 @@ struct model_ops {
      *  particles keep all their partners in their order, ghost rows may be
      *  emptied.  Refuses what it cannot distribute (SPALL_ERR_INPUT); with
      *  @p keep NULL it only answers that question, changing nothing (asked
+     *  before any output exists; a model whose damping hook is active
+     *  refuses here, the engine does not distribute that estimate)
      *  before any output exists).  NULL: the model runs on one rank only. */
     int (*localize)(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                     size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
+    /** Optional (distributed runs): the fixed bond list whose partners are a
+     *  particle's ghosts and whose row lengths weight the partition, for a
+     *  model whose `bonds` hook is NULL (no fragments); else `bonds` is used. */
+    const struct bond_list *(*halo_bonds)(const struct model *m);
 };
 
 #endif

@@ -38,9 +38,12 @@ refused() { # name deck-text expected-substring
         cat stderr.txt; fail=1
     fi
 }
-refused "model not distributed" "model: {type: peridynamics}
-$(echo "$base" | sed 's/, poisson_ratio: 0.3333333333333333, failure_strain: 0.05/, fracture_energy: 100/')
-" "model 'peridynamics' is not distributed yet"
+refused "model not distributed" "$(sed 's/^  end_time: .*/  steps: 3/' \
+    "$src/examples/macro_rod_tension/macro_rod_tension.yaml")
+" "model 'macroparticle' is not distributed yet"
+refused "pd lps" "model: {type: peridynamics, formulation: lps}
+$(echo "$base" | sed 's/failure_strain: 0.05/fracture_energy: 100/')
+" "formulation lps is not distributed yet"
 refused "checkpoints" "model: {type: lattice}
 ${base}output: {checkpoint: {every_steps: 2}}
 " "checkpoints and restart are not distributed yet"

@@ -89,8 +89,6 @@ int par_check_supported(const struct sim *s, bool restart, bool checkpoints,
         what = "particle contact is";
     else if (s->integrator != INTEGRATOR_VERLET || s->adaptive_dt)
         what = "this time integration is";
-    else if (s->ops->damping)
-        what = "adaptive dynamic relaxation is";
     if (!what)
         return SPALL_OK;
     return spall_error_set(err, SPALL_ERR_INPUT,
@@ -449,7 +447,9 @@ void par_halo_x(struct sim *s)
 
 static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *err)
 {
-    const struct bond_list *bl = s->ops->bonds ? s->ops->bonds(s->model) : NULL;
+    const struct bond_list *bl = s->ops->halo_bonds ? s->ops->halo_bonds(s->model)
+                                 : s->ops->bonds    ? s->ops->bonds(s->model)
+                                                    : NULL;
     if (!bl)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "distributed runs: model '%s' has no bond list", s->ops->name);

@@ -184,7 +184,13 @@ int par_check_finite(const struct sim *s, int64_t *bad_gid, double *kinetic)
                 bad[d] = p->gid[i];
         }
 #ifdef SPALL_HAVE_MPI
-    MPI_Allreduce(MPI_IN_PLACE, acc, 3, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    /* reduce on rank 0 and broadcast: an allreduce may round differently
+     * on different ranks, and every rank must take the same branch below */
+    double tot[3] = {0, 0, 0};
+    MPI_Reduce(acc, tot, 3, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+    MPI_Bcast(tot, 3, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    for (int d = 0; d < 3; d++)
+        acc[d] = tot[d];
     MPI_Allreduce(MPI_IN_PLACE, bad, 3, MPI_INT64_T, MPI_MIN, MPI_COMM_WORLD);
 #endif
     *kinetic = 0.0;
