@@ -24,6 +24,14 @@ static void run_usage(FILE *out)
                  "(docs/restart.md).\n");
 }
 
+/* Under mpirun every rank parses the same arguments and fails alike; only
+ * rank 0 prints (core/parallel/comm.h). */
+#define RUN_ERR(...)                                                                            \
+    do {                                                                                        \
+        if (par_rank() == 0)                                                                    \
+            fprintf(stderr, __VA_ARGS__);                                                       \
+    } while (0)
+
 int cli_run(int argc, char **argv)
 {
     struct spall_run_options opt = {.progress = -1};
@@ -34,13 +42,13 @@ int cli_run(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
             if (++k >= argc) {
-                fprintf(stderr, "spall run: %s needs a directory\n", a);
+                RUN_ERR("spall run: %s needs a directory\n", a);
                 return 2;
             }
             opt.out_dir = argv[k];
         } else if (strcmp(a, "--restart") == 0) {
             if (++k >= argc) {
-                fprintf(stderr, "spall run: --restart needs a run directory or checkpoint file\n");
+                RUN_ERR("spall run: --restart needs a run directory or checkpoint file\n");
                 return 2;
             }
             opt.restart = argv[k];
@@ -49,7 +57,7 @@ int cli_run(int argc, char **argv)
         } else if (strcmp(a, "--threads") == 0) {
             char *end = NULL;
             if (++k >= argc || (opt.threads = (int)strtol(argv[k], &end, 10)) <= 0 || *end) {
-                fprintf(stderr, "spall run: --threads needs a positive integer\n");
+                RUN_ERR("spall run: --threads needs a positive integer\n");
                 return 2;
             }
         } else if (strcmp(a, "--progress") == 0) {
@@ -59,18 +67,19 @@ int cli_run(int argc, char **argv)
         } else if (strcmp(a, "--quiet") == 0) {
             opt.quiet = true;
         } else if (a[0] == '-') {
-            fprintf(stderr, "spall run: unknown option '%s' (see spall run --help)\n", a);
+            RUN_ERR("spall run: unknown option '%s' (see spall run --help)\n", a);
             return 2;
         } else if (!opt.deck_path) {
             opt.deck_path = a;
         } else {
-            fprintf(stderr, "spall run: more than one deck given ('%s' and '%s')\n", opt.deck_path,
+            RUN_ERR("spall run: more than one deck given ('%s' and '%s')\n", opt.deck_path,
                     a);
             return 2;
         }
     }
     if (!opt.deck_path) {
-        run_usage(stderr);
+        if (par_rank() == 0)
+            run_usage(stderr);
         return 2;
     }
     struct spall_run_result res;

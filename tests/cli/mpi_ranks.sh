@@ -10,6 +10,10 @@ set -u
 spall="$1"
 mpiexec="$3"
 export OMP_WAIT_POLICY=passive
+# ASan builds (make asan): full stacks and loaded MCA components, so that
+# tests/lsan.supp can name Open MPI's own run-time state
+export OMPI_MCA_mca_base_component_disable_dlclose=1
+[ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp"
