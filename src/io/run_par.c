@@ -86,6 +86,6 @@ void run_par_log_end(const struct sim *s, FILE *log)
 {
     if (!s->par || !log)
         return;
-    fprintf(log, "halo_exchanges: %ld (rank 0: %.3f s in MPI_Alltoallv)\n", s->par->halo_calls,
+    fprintf(log, "halo_exchanges: %ld (rank 0: %.3f s exchanging ghost positions)\n", s->par->halo_calls,
             s->par->comm_seconds);
 }

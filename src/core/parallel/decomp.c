@@ -37,6 +37,7 @@ void par_decomp_destroy(struct par_decomp **dp)
     free(d->recv_idx);
     free(d->sbuf);
     free(d->rbuf);
+    free(d->req);
     if (d->group_key)
         for (size_t g = 0; g < d->n_groups; g++)
             free(d->group_key[g]);
@@ -418,6 +419,9 @@ static int build_halo(struct par_decomp *d, const struct bond_list *bl, const in
         d->recv_idx[(size_t)(d->recv_displs[r] + fill[r]++)] = k;
     }
     free(fill);
+    d->req = malloc(2 * (size_t)size * sizeof(MPI_Request));
+    if (!d->req)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory building the halo");
     for (int r = 0; r < size; r++) { /* in doubles, for the exchange */
         d->send_counts[r] *= dim;
         d->send_displs[r] *= dim;
@@ -436,8 +440,22 @@ void par_halo_x(struct sim *s)
     for (size_t k = 0; k < d->n_send; k++)
         for (int c = 0; c < dim; c++)
             d->sbuf[k * (size_t)dim + (size_t)c] = p->x[c][d->send_idx[k]];
-    MPI_Alltoallv(d->sbuf, d->send_counts, d->send_displs, MPI_DOUBLE, d->rbuf, d->recv_counts,
-                  d->recv_displs, MPI_DOUBLE, MPI_COMM_WORLD);
+    /* point to point with the neighbour ranks only (those sharing bonds),
+     * so the cost per step does not grow with the number of ranks */
+    const int size = par_size();
+    MPI_Request *req = d->req;
+    int nreq = 0;
+    for (int r = 0; r < size; r++) {
+        if (d->recv_counts[r])
+            MPI_Irecv(d->rbuf + d->recv_displs[r], d->recv_counts[r], MPI_DOUBLE, r, 17,
+                      MPI_COMM_WORLD, &req[nreq++]);
+    }
+    for (int r = 0; r < size; r++) {
+        if (d->send_counts[r])
+            MPI_Isend(d->sbuf + d->send_displs[r], d->send_counts[r], MPI_DOUBLE, r, 17,
+                      MPI_COMM_WORLD, &req[nreq++]);
+    }
+    MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
     for (size_t k = 0; k < d->n_recv; k++)
         for (int c = 0; c < dim; c++)
             p->x[c][d->recv_idx[k]] = d->rbuf[k * (size_t)dim + (size_t)c];
