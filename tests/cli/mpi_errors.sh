@@ -14,6 +14,7 @@ export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 # tests/lsan.supp can name Open MPI's own run-time state
 export OMPI_MCA_mca_base_component_disable_dlclose=1
 [ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
+[ -n "${LSAN_OPTIONS:-}" ] && export LSAN_OPTIONS="$LSAN_OPTIONS:print_suppressions=0"
 launch="timeout 120 $mpiexec --allow-run-as-root --oversubscribe -q -np 2"
 fail=0
 # the deck error cases of the suite, on two ranks
