@@ -23,6 +23,7 @@
 #include "io/output.h"
 #include "io/run_par.h"
 #include "io/run_restart.h"
+#include "io/run_summary.h"
 #include "io/run_util.h"
 #include "io/setup_check.h"
 #include "core/model.h"
@@ -179,23 +180,7 @@ static void write_log_header(FILE *log, const struct spall_run_options *opt, con
             spall_git_revision(), SPALL_BUILD_TYPE, when);
     fprintf(log, "deck: %s\ntitle: %s\nthreads: %d\n", opt->deck_path, ro->title,
             omp_get_max_threads());
-    fprintf(log, "model: %s\ndimension: %d\nparticles: %zu\n", s->ops->name, s->dim, s->p->n);
-    if (s->ops->interactions)
-        fprintf(log, "interactions: %zu\n", s->ops->interactions(s->model, s));
-    fprintf(log, "lattice: %s, spacing %.6g m, thickness %.6g %s%s\n",
-            lattice_kind_name(s->lattice.kind), s->lattice.spacing, s->thickness,
-            s->dim == 1 ? "m^2 (cross-section)" : "m",
-            s->thickness_given ? "" : " (default: volume r0^3 per particle in 1D/2D triangular)");
-    fprintf(log, "precut_bonds: %zu\n", s->n_precut);
-    fprintf(log, "dt: %.6g s (stability limit %.6g s, factor %.3g)\nsteps: %ld\nend_time: %.6g s\n",
-            s->dt, s->dt_limit, s->dt / s->dt_limit, s->n_steps, s->end_time);
-    if (s->ops->describe) {
-        char buf[4096] = "";
-        s->ops->describe(s->model, s, buf, sizeof buf);
-        fprintf(log, "model_constants: |\n");
-        for (char *line = strtok(buf, "\n"); line; line = strtok(NULL, "\n"))
-            fprintf(log, "  %s\n", line);
-    }
+    run_summary_write(log, s);
     fprintf(log, "deck_echo: |\n");
     const char *t = d->text ? d->text : "";
     while (*t) {
@@ -350,8 +335,12 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
                 s->t, wall);
         fprintf(log, "particle_steps_per_s: %.4g\nframes: %zu\n", res->particle_steps_per_s,
                 res->frames);
-        fprintf(log, "energy_balance_final: %.6g J (input %.6g J)\n", s->energy.balance,
-                fabs(s->energy.initial_total) + fabs(s->energy.external));
+        const double input = fabs(s->energy.initial_total) + fabs(s->energy.external);
+        if (input > 0.0) /* the fraction is what tells a user whether to trust a run */
+            fprintf(log, "energy_balance_final: %.6g J (input %.6g J; %.3g %% of the input)\n",
+                    s->energy.balance, input, 100.0 * s->energy.balance / input);
+        else
+            fprintf(log, "energy_balance_final: %.6g J (no energy put in)\n", s->energy.balance);
         run_par_log_end(s, log);
     }
     if (!rc && hl.frag) { /* the fragment table of the final state */
