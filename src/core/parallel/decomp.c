@@ -339,9 +339,10 @@ static int localize_sets(struct sim *s, struct par_decomp *d, const int *owner,
     return SPALL_OK;
 }
 
-/* Halo lists: my owned particles that rank r holds as ghosts (ascending
- * gid), and my ghosts by owner (ascending gid: the order of `keep`).  Bonds
- * are symmetric, so both sides derive the same lists without talking. */
+/* Halo lists (@p dim: doubles per particle): my owned particles that rank r
+ * holds as ghosts (ascending gid), and my ghosts by owner (ascending gid: the
+ * order of `keep`).  Bonds are symmetric, so both sides derive the same lists
+ * without talking. */
 static int build_halo(struct par_decomp *d, const struct bond_list *bl, const int *owner,
                       const size_t *keep, size_t n_owned, size_t n_keep, int dim,
                       struct spall_error *err)
@@ -435,11 +436,13 @@ void par_halo_x(struct sim *s)
 {
     struct par_decomp *d = s->par;
     struct particles *p = s->p;
-    const int dim = p->dim;
+    const int dim = p->dim, w = 2 * dim;
     double t0 = MPI_Wtime();
     for (size_t k = 0; k < d->n_send; k++)
-        for (int c = 0; c < dim; c++)
-            d->sbuf[k * (size_t)dim + (size_t)c] = p->x[c][d->send_idx[k]];
+        for (int c = 0; c < dim; c++) {
+            d->sbuf[k * (size_t)w + (size_t)c] = p->x[c][d->send_idx[k]];
+            d->sbuf[k * (size_t)w + (size_t)(dim + c)] = p->v[c][d->send_idx[k]];
+        }
     /* point to point with the neighbour ranks only (those sharing bonds),
      * so the cost per step does not grow with the number of ranks */
     const int size = par_size();
@@ -457,8 +460,10 @@ void par_halo_x(struct sim *s)
     }
     MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
     for (size_t k = 0; k < d->n_recv; k++)
-        for (int c = 0; c < dim; c++)
-            p->x[c][d->recv_idx[k]] = d->rbuf[k * (size_t)dim + (size_t)c];
+        for (int c = 0; c < dim; c++) {
+            p->x[c][d->recv_idx[k]] = d->rbuf[k * (size_t)w + (size_t)c];
+            p->v[c][d->recv_idx[k]] = d->rbuf[k * (size_t)w + (size_t)(dim + c)];
+        }
     d->comm_seconds += MPI_Wtime() - t0;
     d->halo_calls++;
 }
@@ -509,7 +514,9 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
             }
         d->n_owned = n_owned;
         d->n_ghost = n_keep - n_owned;
-        rc = build_halo(d, bl, owner, keep, n_owned, n_keep, s->dim, err);
+        /* per particle: position and velocity (the models' force calls may
+         * read a partner's drift velocity, sim_drift_velocities) */
+        rc = build_halo(d, bl, owner, keep, n_owned, n_keep, 2 * s->dim, err);
     }
     if (!rc)
         rc = localize_sets(s, d, owner, new_of_old, err);
@@ -565,7 +572,7 @@ void par_describe(const struct sim *s, char *buf, size_t len)
         PUT("  rank %d: %llu owned, %llu ghosts, %llu particles sent per halo exchange (%llu "
             "bytes)\n", r, (unsigned long long)all[3 * r], (unsigned long long)all[3 * r + 1],
             (unsigned long long)all[3 * r + 2],
-            (unsigned long long)(all[3 * r + 2] * (uint64_t)s->dim * sizeof(double)));
+            (unsigned long long)(all[3 * r + 2] * 2u * (uint64_t)s->dim * sizeof(double)));
 #undef PUT
     free(all);
 }

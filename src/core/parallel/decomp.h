@@ -61,7 +61,8 @@ size_t par_interactions_global(const struct sim *s, size_t local);
 /** Members of group @p g over all ranks (s->groups[g].n when serial). */
 size_t sim_group_count(const struct sim *s, int g);
 
-/** Copy the owners' current positions into the ghosts (collective). */
+/** Copy the owners' current positions and velocities into the ghosts
+ *  (collective; before every force call). */
 void par_halo_x(struct sim *s);
 
 /** Reducer run on rank 0 over @p n rows of @p ncol terms, sorted in the
