@@ -1,7 +1,8 @@
 /**
  * @file comm.c
- * @brief Rank, size, reductions and error agreement (comm.h).  All MPI calls
- *        of the engine outside the decomposition (decomp.c) live here.
+ * @brief Rank, size, reductions and error agreement (comm.h).  MPI is called
+ *        only here and in the other files of src/core/parallel (decomp.c,
+ *        reduce.c, step.c, h5.c); models and the I/O layer never call it.
  */
 #include "core/parallel/comm.h"
 

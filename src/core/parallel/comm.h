@@ -1,7 +1,7 @@
 /**
  * @file comm.h
- * @brief The one place where spall talks to MPI (issue 20): the process's
- *        rank and size, reductions, and error agreement.
+ * @brief The process's rank and size, reductions and error agreement
+ *        (issue 20); with decomp.h, the engine's only door to MPI.
  *
  * One binary serves any rank count.  The CLI calls par_world_init(), which
  * initialises MPI only when an MPI launcher started the process (mpirun,
