@@ -1,5 +1,6 @@
 #include "cli/cli.h"
 
+#include "core/parallel/comm.h"
 #include "spall/spall.h"
 
 #include <stdio.h>
@@ -23,6 +24,14 @@ static void run_usage(FILE *out)
                  "(docs/restart.md).\n");
 }
 
+/* Under mpirun every rank parses the same arguments and fails alike; only
+ * rank 0 prints (core/parallel/comm.h). */
+#define RUN_ERR(...)                                                                            \
+    do {                                                                                        \
+        if (par_rank() == 0)                                                                    \
+            fprintf(stderr, __VA_ARGS__);                                                       \
+    } while (0)
+
 int cli_run(int argc, char **argv)
 {
     struct spall_run_options opt = {.progress = -1};
@@ -33,13 +42,13 @@ int cli_run(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
             if (++k >= argc) {
-                fprintf(stderr, "spall run: %s needs a directory\n", a);
+                RUN_ERR("spall run: %s needs a directory\n", a);
                 return 2;
             }
             opt.out_dir = argv[k];
         } else if (strcmp(a, "--restart") == 0) {
             if (++k >= argc) {
-                fprintf(stderr, "spall run: --restart needs a run directory or checkpoint file\n");
+                RUN_ERR("spall run: --restart needs a run directory or checkpoint file\n");
                 return 2;
             }
             opt.restart = argv[k];
@@ -48,7 +57,7 @@ int cli_run(int argc, char **argv)
         } else if (strcmp(a, "--threads") == 0) {
             char *end = NULL;
             if (++k >= argc || (opt.threads = (int)strtol(argv[k], &end, 10)) <= 0 || *end) {
-                fprintf(stderr, "spall run: --threads needs a positive integer\n");
+                RUN_ERR("spall run: --threads needs a positive integer\n");
                 return 2;
             }
         } else if (strcmp(a, "--progress") == 0) {
@@ -58,26 +67,29 @@ int cli_run(int argc, char **argv)
         } else if (strcmp(a, "--quiet") == 0) {
             opt.quiet = true;
         } else if (a[0] == '-') {
-            fprintf(stderr, "spall run: unknown option '%s' (see spall run --help)\n", a);
+            RUN_ERR("spall run: unknown option '%s' (see spall run --help)\n", a);
             return 2;
         } else if (!opt.deck_path) {
             opt.deck_path = a;
         } else {
-            fprintf(stderr, "spall run: more than one deck given ('%s' and '%s')\n", opt.deck_path,
+            RUN_ERR("spall run: more than one deck given ('%s' and '%s')\n", opt.deck_path,
                     a);
             return 2;
         }
     }
     if (!opt.deck_path) {
-        run_usage(stderr);
+        if (par_rank() == 0)
+            run_usage(stderr);
         return 2;
     }
     struct spall_run_result res;
     struct spall_error err = {0};
     int rc = spall_run(&opt, &res, &err);
+    const int root = par_rank() == 0; /* mpirun: every rank agrees, rank 0 speaks */
     if (rc) {
-        fprintf(stderr, "spall: error: %s\n", err.msg);
-        if (rc == SPALL_ERR_UNSTABLE && res.out_dir[0])
+        if (root)
+            fprintf(stderr, "spall: error: %s\n", err.msg);
+        if (root && rc == SPALL_ERR_UNSTABLE && res.out_dir[0])
             fprintf(stderr, "spall: the last good output is in %s\n", res.out_dir);
         return cli_exit_status(rc);
     }
@@ -88,7 +100,7 @@ int cli_run(int argc, char **argv)
                 res.signal, res.steps, res.time, res.checkpoint, opt.deck_path, res.out_dir);
         return SPALL_EXIT_INTERRUPTED;
     }
-    if (!opt.quiet) {
+    if (!opt.quiet && root) {
         printf("spall: %ld steps, t = %.6g s, %zu particles, %.3g s wall, %.3g particle-steps/s\n",
                res.steps, res.time, res.particles, res.wall_seconds, res.particle_steps_per_s);
         printf("spall: results in %s/ (run.log, history.csv, fields.xdmf with %zu frames)\n",

@@ -5,6 +5,7 @@
  */
 #include "cli/cli.h"
 
+#include "core/parallel/comm.h"
 #include "spall/spall.h"
 
 #include <stdio.h>
@@ -49,6 +50,8 @@ int cli_exit_status(int code)
     }
 }
 
+static int dispatch(int argc, char **argv);
+
 int main(int argc, char **argv)
 {
 #if defined(__GLIBC__)
@@ -61,6 +64,18 @@ int main(int argc, char **argv)
      * huge pages and cost 25 % of the lattice benchmark's speed.) */
     mallopt(M_MMAP_THRESHOLD, 128 * 1024);
 #endif
+    /* under mpirun (and only there) MPI is initialised; core/parallel/comm.h */
+    if (par_world_init(&argc, &argv)) {
+        fprintf(stderr, "spall: error: MPI_Init failed\n");
+        return 1;
+    }
+    int rc = dispatch(argc, argv);
+    par_world_finalize();
+    return rc;
+}
+
+static int dispatch(int argc, char **argv)
+{
     if (argc < 2) {
         usage(stderr);
         return 2;
@@ -76,6 +91,13 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "run") == 0)
         return cli_run(argc - 1, argv + 1);
+    if (par_size() > 1) { /* one line, once, and the same status on every rank */
+        if (par_rank() == 0)
+            fprintf(stderr, "spall: error: 'spall %s' does not run distributed yet (%d MPI "
+                            "ranks); run it without mpirun (docs/parallel.md)\n",
+                    cmd, par_size());
+        return 2;
+    }
     if (strcmp(cmd, "validate") == 0)
         return cli_validate(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)

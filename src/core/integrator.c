@@ -21,6 +21,9 @@
  */
 #include "core/contact_particles.h"
 #include "core/fields.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/step.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -52,7 +55,8 @@ static void apply_loads(struct sim *s, double t)
         if (bc_prescribes_velocity(b))
             continue;
         const struct group *g = &s->groups[b->group];
-        if (g->n == 0)
+        const size_t gn = sim_group_count(s, b->group); /* over all ranks */
+        if (gn == 0)
             continue;
         double scale = time_function_eval(&b->tf, t);
         double total[3] = {0, 0, 0};
@@ -60,7 +64,7 @@ static void apply_loads(struct sim *s, double t)
             if (!(b->comp_mask & (1u << d)))
                 continue;
             total[d] = b->value[d] * scale * (b->kind == BC_TRACTION ? b->area : 1.0);
-            double per = total[d] / (double)g->n;
+            double per = total[d] / (double)gn;
             for (size_t q = 0; q < g->n; q++)
                 p->f[d][g->idx[q]] += per;
         }
@@ -92,6 +96,10 @@ static void account_body_work(struct sim *s, double dt)
 {
     if (s->damping == 0.0 && s->gravity[0] == 0.0 && s->gravity[1] == 0.0 && s->gravity[2] == 0.0)
         return;
+    if (s->par) { /* distributed: the same sums in the serial order */
+        par_body_work(s, dt);
+        return;
+    }
     const struct particles *p = s->p;
     double damp = 0.0, grav = 0.0;
     for (size_t i = 0; i < p->n_owned; i++)
@@ -114,6 +122,14 @@ static void impose_velocities(struct sim *s, double t, double half_dt, int recor
         struct bc *b = &s->bcs[k];
         if (!bc_prescribes_velocity(b))
             continue;
+        if (s->par) { /* distributed: the same sums in the serial order */
+            double vb[3] = {0, 0, 0};
+            for (int d = 0; d < s->dim; d++)
+                if (b->comp_mask & (1u << d))
+                    vb[d] = bc_velocity(b, d, t);
+            par_bc_velocities(s, b, vb, half_dt, record);
+            continue;
+        }
         const struct group *g = &s->groups[b->group];
         double reaction[3] = {0, 0, 0};
         double work = 0.0;
@@ -221,8 +237,14 @@ static void account_load_work(struct sim *s, double dt)
         if (bc_prescribes_velocity(b))
             continue;
         const struct group *g = &s->groups[b->group];
-        if (g->n == 0)
+        if (sim_group_count(s, b->group) == 0)
             continue;
+        if (s->par) { /* distributed: the same sum in the serial order */
+            double wp = par_load_work(s, b, dt);
+            b->work += wp;
+            s->energy.external += wp;
+            continue;
+        }
         double w = 0.0;
         for (int d = 0; d < s->dim; d++) {
             if (!(b->comp_mask & (1u << d)))
@@ -252,6 +274,8 @@ static void reflect_axis(struct sim *s)
 static int compute_all_forces(struct sim *s, double state_dt, struct spall_error *err)
 {
     particles_zero_forces(s->p);
+    if (s->par) /* ghosts take their owners' drifted positions */
+        par_halo_x(s);
     if (s->axisymmetric)
         reflect_axis(s);
     int rc = state_dt > 0.0 ? s->ops->compute_forces_kick(s->model, s, state_dt, err)
@@ -274,12 +298,14 @@ void sim_update_energy(struct sim *s)
     const struct particles *p = s->p;
     /* fixed-order serial sum: diagnostics identical for any thread count */
     double ke = 0.0;
-    for (size_t i = 0; i < p->n_owned; i++) {
+    for (size_t i = 0; i < p->n_owned && !s->par; i++) {
         double v2 = 0.0;
         for (int d = 0; d < s->dim; d++)
             v2 += p->v[d][i] * p->v[d][i];
         ke += 0.5 * p->mass[i] * v2;
     }
+    if (s->par) /* distributed: the same sum in the serial order */
+        ke = par_kinetic(s);
     struct model_energy me = {0, 0};
     if (s->ops->energy)
         s->ops->energy(s->model, s, &me);
@@ -403,12 +429,15 @@ static int check_energy(struct sim *s, double kinetic, struct spall_error *err)
     double ratio = 0.0;
     if (!energy_blew_up(s, &ratio))
         return SPALL_OK;
-    size_t i = fastest_particle(s);
+    size_t i = s->par ? 0 : fastest_particle(s);
+    long long id = s->par ? (long long)par_fastest_gid(s) : (long long)s->p->gid[i];
+    if (s->par) /* a local index means nothing to the user: the gid twice, as serial */
+        i = (size_t)id;
     return spall_error_set(err, SPALL_ERR_UNSTABLE,
                            "run went unstable at step %ld, t = %.6g s: mechanical energy "
                            "is %.3g times the energy put in (limit run.energy_blowup = "
                            "%g); fastest particle %zu (id %lld)",
-                           s->step, s->t, ratio, s->energy_blowup, i, (long long)s->p->gid[i]);
+                           s->step, s->t, ratio, s->energy_blowup, i, id);
 }
 
 int sim_step(struct sim *s, struct spall_error *err)
@@ -438,7 +467,10 @@ int sim_step(struct sim *s, struct spall_error *err)
         (rc = s->ops->advance_state(s->model, s, dt, MODEL_STAGE_PREDICT, err)))
         return unstable_or(s, rc, err);
     const double state_dt = s->integrator == INTEGRATOR_LEAPFROG ? dt : 0.0;
-    if ((rc = compute_all_forces(s, state_dt, err)))
+    rc = compute_all_forces(s, state_dt, err);
+    if (s->par && (rc = par_agree(rc, err))) /* one rank's failure stops all */
+        return rc;
+    if (rc)
         return unstable_or(s, rc, err);
     if (pc)
         for (int d = 0; d < s->dim; d++)
@@ -451,12 +483,16 @@ int sim_step(struct sim *s, struct spall_error *err)
         (rc = s->ops->advance_state(s->model, s, dt, MODEL_STAGE_CORRECT, err)))
         return unstable_or(s, rc, err);
     rc = s->ops->end_step(s->model, s, err);
+    if (s->par && (rc = par_agree(rc, err)))
+        return rc;
     if (rc)
         return unstable_or(s, rc, err);
     if (s->adaptive_dt) {
         /* e.g. SPH, Eq. 3.38: the limit moves with the sound speed and
          * particle velocities; never step past end_time */
         double lim = fmin(s->ops->stable_dt(s->model, s), particle_contact_stable_dt(s));
+        if (s->par) /* the smallest over all ranks: min is exact in any order */
+            lim = par_min_double(lim);
         double dt_new = s->dt_factor * lim;
         if (s->end_time > s->t && dt_new > s->end_time - s->t)
             dt_new = s->end_time - s->t;
@@ -465,8 +501,16 @@ int sim_step(struct sim *s, struct spall_error *err)
     }
     size_t bad = 0;
     double kinetic = 0.0;
-    if (check_finite(s, &bad, &kinetic))
+    if (s->par) {
+        int64_t g = 0;
+        if (par_check_finite(s, &g, &kinetic))
+            return spall_error_set(err, SPALL_ERR_UNSTABLE,
+                                   "run went unstable at step %ld, t = %.6g s: particle %lld (id "
+                                   "%lld) has a non-finite position or velocity",
+                                   s->step, s->t, (long long)g, (long long)g);
+    } else if (check_finite(s, &bad, &kinetic)) {
         return unstable_error(s, bad, err);
+    }
     return check_energy(s, kinetic, err);
 }
 

@@ -40,6 +40,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 struct bond_list;
 struct deck_node;
@@ -166,6 +167,24 @@ struct model_ops {
     /** Contract-test fixtures, ended by a NULL label: every formulation of
      *  the model, each must pass tests/test_model_contract.c. */
     const struct model_fixture *fixtures;
+    /** Optional (distributed runs, core/parallel/decomp.h): the rank keeps
+     *  the particles keep[0, n_keep) (old indices; the first @p n_owned are
+     *  its own, the rest ghosts), renumbered 0..n_keep-1 in that order
+     *  (new_of_old[i]: the new index, or negative when dropped).  The model
+     *  renumbers its rows and per-particle arrays that are NOT stored fields
+     *  of the registry (the engine compacts those); the rows of owned
+     *  particles keep all their partners in their order, ghost rows may be
+     *  emptied.  Refuses what it cannot distribute (SPALL_ERR_INPUT); with
+     *  @p keep NULL it only answers that question, changing nothing (asked
+     *  before any output exists; a model whose damping hook is active
+     *  refuses here, the engine does not distribute that estimate)
+     *  before any output exists).  NULL: the model runs on one rank only. */
+    int (*localize)(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
+                    size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
+    /** Optional (distributed runs): the fixed bond list whose partners are a
+     *  particle's ghosts and whose row lengths weight the partition, for a
+     *  model whose `bonds` hook is NULL (no fragments); else `bonds` is used. */
+    const struct bond_list *(*halo_bonds)(const struct model *m);
 };
 
 #endif

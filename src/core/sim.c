@@ -13,6 +13,7 @@
 #include "core/geometry.h"
 #include "core/particles.h"
 #include "core/model.h"
+#include "core/parallel/decomp.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -64,6 +65,7 @@ void sim_destroy(struct sim **sp)
     free(s->materials);
     rigid_set_destroy(&s->rigid);
     particle_contact_destroy(&s->pcontact);
+    par_decomp_destroy(&s->par);
     free(s);
     *sp = NULL;
 }

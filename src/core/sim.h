@@ -21,6 +21,7 @@ struct deck_node;
 struct field_registry;
 struct model;
 struct model_ops;
+struct par_decomp;
 struct particle_contact;
 struct particles;
 struct precrack;
@@ -146,6 +147,7 @@ struct sim {
     uint64_t seed;        /**< random seed for stochastic features */
     struct rigid_set *rigid; /**< rigid impactors / supports (core/rigid.h), may be NULL */
     struct particle_contact *pcontact; /**< particle-particle contact (core/contact_particles.h), may be NULL */
+    struct par_decomp *par; /**< distributed run (core/parallel/decomp.h); NULL: serial */
 };
 
 /** Empty context for a @p dim-dimensional run. */

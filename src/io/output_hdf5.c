@@ -23,9 +23,13 @@
  * so readers never see half a frame or half an index.
  */
 #include "io/output.h"
+#include "io/output_par.h"
 #include "io/output_xdmf.h"
 
 #include "core/fields.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/h5.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -260,6 +264,17 @@ static int write_connectivity(hid_t file, size_t n)
     return bad ? -1 : 0;
 }
 
+/** Distributed run: this rank's owned rows at their global ids (output_par.c). */
+static int write_rows_par(hid_t file, const char *name, int ncomp, const struct sim *s,
+                          const double *data, const char *unit)
+{
+    hid_t ds = output_par_write_rows(file, name, ncomp, s, data);
+    int bad = ds < 0 || (unit && h5_write_unit(ds, unit) < 0);
+    if (ds >= 0)
+        H5Dclose(ds);
+    return bad ? -1 : 0;
+}
+
 /* ---------------------------------------------------------------- create */
 
 static int writer_add(struct field_writer *w, const struct field_desc *f, struct spall_error *err)
@@ -416,9 +431,10 @@ static int write_frame_h5(struct field_writer *w, const struct sim *s, const cha
                           const char *final, size_t n, struct spall_error *err)
 {
     const struct field_registry *reg = s->fields;
-    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    /* distributed (s->par): one file opened by all ranks through MPI-IO */
+    hid_t fapl = s->par ? parallel_h5_fapl() : H5Pcreate(H5P_FILE_ACCESS);
     /* STRONG: H5Fclose really closes (and flushes) the file before rename() */
-    if (fapl >= 0)
+    if (fapl >= 0 && !s->par)
         H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
     hid_t file = fapl >= 0 ? H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : -1;
     if (file < 0) {
@@ -436,7 +452,8 @@ static int write_frame_h5(struct field_writer *w, const struct sim *s, const cha
         H5Fclose(file);
         return rc;
     }
-    if (write_connectivity(file, n) < 0) {
+    if ((s->par ? output_par_write_ids(file, OUTPUT_CONNECTIVITY, s)
+                : write_connectivity(file, n)) < 0) {
         int rc = h5_fail(err, "cannot write /" OUTPUT_CONNECTIVITY " to", final);
         H5Fclose(file);
         return rc;
@@ -452,8 +469,9 @@ static int write_frame_h5(struct field_writer *w, const struct sim *s, const cha
         int ncomp_out = k == 0 ? 3 : o->ncomp; /* position padded to XYZ */
         gather_padded(w, s, f, o->ncomp, n, ncomp_out);
         hsize_t dims[2] = {(hsize_t)n, (hsize_t)ncomp_out};
-        if (h5_write_f64(file, o->name, ncomp_out == 1 ? 1 : 2, dims, w->buf,
-                         f ? f->unit : "m") < 0) {
+        if ((s->par ? write_rows_par(file, o->name, ncomp_out, s, w->buf, f ? f->unit : "m")
+                    : h5_write_f64(file, o->name, ncomp_out == 1 ? 1 : 2, dims, w->buf,
+                                   f ? f->unit : "m")) < 0) {
             char what[FIELD_NAME_LEN + 48];
             snprintf(what, sizeof what, "cannot write dataset '%s' to", o->name);
             int rc = h5_fail(err, what, final);
@@ -637,24 +655,26 @@ int field_writer_write(struct field_writer *w, const struct sim *s, struct spall
     h5_quiet_begin(&q);
     rc = write_frame_h5(w, s, tmp, final, n, err);
     h5_quiet_end(&q);
+    const int root = par_rank() == 0; /* distributed: rank 0 renames and indexes */
     if (rc) {
-        remove(tmp);
+        if (root)
+            remove(tmp);
         goto done;
     }
-    if (rename(tmp, final) != 0) {
+    if (root && rename(tmp, final) != 0) {
         remove(tmp);
         rc = spall_error_set(err, SPALL_ERR_IO, "cannot rename '%s' to '%s'", tmp, final);
         goto done;
     }
     size_t old_len = w->grids.len, old_bodies = w->bodies.len;
-    if (append_xdmf_grid(w, s, h5name, s->t, s->step, n) || save_grids(w)) {
+    if (append_xdmf_grid(w, s, h5name, s->t, s->step, par_n_global(s)) || save_grids(w)) {
         w->grids.len = old_len;
         w->bodies.len = old_bodies;
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory writing XDMF index");
         goto done;
     }
     w->frames++;
-    rc = write_xdmf(w, err);
+    rc = root ? write_xdmf(w, err) : SPALL_OK;
 done:
     free(final);
     free(tmp);

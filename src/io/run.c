@@ -14,12 +14,14 @@
 
 #include "core/bond_list.h"
 #include "core/fragments.h"
+#include "core/parallel/decomp.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "io/output.h"
+#include "io/run_par.h"
 #include "io/run_restart.h"
 #include "io/run_summary.h"
 #include "io/run_util.h"
@@ -129,14 +131,17 @@ static void history_values(const struct sim *s, const struct history_layout *h, 
     v[c++] = s->energy.damping;
     v[c++] = s->energy.external;
     v[c++] = s->energy.balance;
-    for (size_t k = 0; k < s->n_probes; k++)
-        for (int d = 0; d < s->dim; d++) {
-            size_t i = s->probes[k].particle;
-            v[c++] = s->p->x[d][i] - s->p->x0[d][i];
-        }
-    for (size_t k = 0; k < s->n_probes; k++)
+    double pu[3], pv[3]; /* distributed: from the probe's owner (run_par.c) */
+    for (size_t k = 0; k < s->n_probes; k++) {
+        run_probe(s, k, pu, pv);
         for (int d = 0; d < s->dim; d++)
-            v[c++] = s->p->v[d][s->probes[k].particle];
+            v[c++] = pu[d];
+    }
+    for (size_t k = 0; k < s->n_probes; k++) {
+        run_probe(s, k, pu, pv);
+        for (int d = 0; d < s->dim; d++)
+            v[c++] = pv[d];
+    }
     for (size_t k = 0; k < s->n_bcs; k++)
         for (int d = 0; d < s->dim; d++)
             v[c++] = s->bcs[k].reaction[d];
@@ -151,7 +156,7 @@ static void history_values(const struct sim *s, const struct history_layout *h, 
             v[c++] = vals[k];
     }
     struct fragment_summary fs;
-    if (h->frag && c + 6 <= h->n && fragments_of_sim(h->frag, s, NULL) == SPALL_OK) {
+    if (h->frag && c + 6 <= h->n && run_fragments(h->frag, s, NULL) == SPALL_OK) {
         fragments_summarise(h->frag, &fs);
         v[c++] = (double)fs.count;
         v[c++] = (double)fs.ge10;
@@ -208,7 +213,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     if (opt->threads > 0)
         omp_set_num_threads(opt->threads);
     rc = deck_build_sim(d, &s, &ro, err);
-    if (rc)
+    if ((rc = run_par_setup(s, opt, &ro, rc, err))) /* mpirun: refusals, agreed */
         goto done;
     if (opt->threads <= 0 && ro.threads > 0)
         omp_set_num_threads(ro.threads);
@@ -223,32 +228,32 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     snprintf(res->out_dir, sizeof res->out_dir, "%s", dir);
     if (ck.restarted && !resume)
         rc = run_ckpt_copy_outputs(&ck, opt->overwrite, err);
-    else if (!ck.restarted)
+    else if (!ck.restarted && run_par_root())
         rc = run_prepare_out_dir(dir, opt->overwrite, err);
-    if (rc)
-        goto done;
     char path[1200];
     snprintf(path, sizeof path, "%s/run.log", dir);
-    log = fopen(path, resume ? "a" : "w");
-    if (!log) {
+    if (!rc && run_par_root() && !(log = fopen(path, resume ? "a" : "w")))
         rc = spall_error_set(err, SPALL_ERR_IO, "cannot write '%s': %s", path, strerror(errno));
+    if ((rc = run_par_agree(rc, err))) /* only rank 0 writes files */
         goto done;
-    }
-    if (!resume)
+    if (!resume && log)
         write_log_header(log, opt, d, s, &ro);
     if (ck.restarted)
         run_ckpt_log_restart(&ck, s, log);
+    if ((rc = run_par_distribute(s, log, err))) /* mpirun: owned + ghosts */
+        goto done;
 
     struct history_layout hl;
     if (s->ops->bonds && s->ops->bonds(s->model) &&
-        (rc = fragments_create(&frag, s->p->n_owned, err)))
+        (rc = fragments_create(&frag, par_n_global(s), err)))
         goto done;
     hl.frag = frag;
     history_columns(s, &hl);
     snprintf(path, sizeof path, "%s/history.csv", dir);
-    rc = ck.restarted ? history_writer_resume(&hw, path, (long)ck.meta.history_bytes, hl.n, err)
-                      : history_writer_create(&hw, path, hl.names, hl.n, err);
-    if (rc)
+    if (run_par_root())
+        rc = ck.restarted ? history_writer_resume(&hw, path, (long)ck.meta.history_bytes, hl.n, err)
+                          : history_writer_create(&hw, path, hl.names, hl.n, err);
+    if ((rc = run_par_agree(rc, err)))
         goto done;
     int frames_on = ro.field_interval > 0.0 || ro.field_every > 0;
     if (!frames_on) {
@@ -269,16 +274,17 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
                                  ck.meta.xdmf_len, err);
     } else {
         history_values(s, &hl, hv);
-        if (!(rc = history_writer_append(hw, hv, err)))
-            rc = field_writer_write(fw, s, err);
+        if (!(rc = run_par_agree(hw ? history_writer_append(hw, hv, err) : 0, err)))
+            rc = run_par_agree(field_writer_write(fw, s, err), err);
     }
     if (rc)
         goto done;
 
     struct progress pr;
-    progress_start(&pr, opt->progress, s->n_steps, s->p->n_owned);
+    progress_start(&pr, run_par_root() ? opt->progress : 0, s->n_steps, par_n_global(s));
     double t0 = omp_get_wtime();
-    run_signals_install();
+    if (!run_par_on()) /* mpirun forwards signals to every rank; no checkpoint there yet */
+        run_signals_install();
     while (!sim_done(s)) {
         rc = sim_step(s, err);
         if (rc)
@@ -287,7 +293,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         if (s->step % hist_every == 0 || last) {
             /* sim_step checked the energy at this step: the account is current */
             history_values(s, &hl, hv);
-            if ((rc = history_writer_append(hw, hv, err)))
+            if ((rc = run_par_agree(hw ? history_writer_append(hw, hv, err) : 0, err)))
                 break;
         }
         int frame = 0;
@@ -301,7 +307,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             frame = 1;
         }
         if (frame || last) {
-            if ((rc = field_writer_write(fw, s, err)))
+            if ((rc = run_par_agree(field_writer_write(fw, s, err), err)))
                 break;
         }
         int sig = run_signal_pending();
@@ -312,39 +318,45 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         if ((res->signal = sig))
             break;
     }
-    run_signals_restore();
+    if (!run_par_on())
+        run_signals_restore();
     double wall = omp_get_wtime() - t0;
     progress_finish(&pr);
     res->steps = s->step;
     res->time = s->t;
     res->wall_seconds = wall;
-    res->particles = s->p->n_owned;
-    res->bonds = s->ops->interactions ? s->ops->interactions(s->model, s) : 0;
-    res->particle_steps_per_s = wall > 0 ? (double)s->p->n_owned * (double)s->step / wall : 0;
+    res->particles = par_n_global(s);
+    res->bonds = s->ops->interactions
+                     ? par_interactions_global(s, s->ops->interactions(s->model, s)) : 0;
+    res->particle_steps_per_s = wall > 0 ? (double)res->particles * (double)s->step / wall : 0;
     res->frames = field_writer_frames(fw);
-    fprintf(log, "steps_done: %ld\ntime_reached: %.6g s\nwall_seconds: %.3f\n", s->step, s->t,
-            wall);
-    fprintf(log, "particle_steps_per_s: %.4g\nframes: %zu\n", res->particle_steps_per_s,
-            res->frames);
-    const double input = fabs(s->energy.initial_total) + fabs(s->energy.external);
-    if (input > 0.0) /* the fraction is what tells a user whether to trust a run */
-        fprintf(log, "energy_balance_final: %.6g J (input %.6g J; %.3g %% of the input)\n",
-                s->energy.balance, input, 100.0 * s->energy.balance / input);
-    else
-        fprintf(log, "energy_balance_final: %.6g J (no energy put in)\n", s->energy.balance);
+    if (log) {
+        fprintf(log, "steps_done: %ld\ntime_reached: %.6g s\nwall_seconds: %.3f\n", s->step,
+                s->t, wall);
+        fprintf(log, "particle_steps_per_s: %.4g\nframes: %zu\n", res->particle_steps_per_s,
+                res->frames);
+        const double input = fabs(s->energy.initial_total) + fabs(s->energy.external);
+        if (input > 0.0) /* the fraction is what tells a user whether to trust a run */
+            fprintf(log, "energy_balance_final: %.6g J (input %.6g J; %.3g %% of the input)\n",
+                    s->energy.balance, input, 100.0 * s->energy.balance / input);
+        else
+            fprintf(log, "energy_balance_final: %.6g J (no energy put in)\n", s->energy.balance);
+        run_par_log_end(s, log);
+    }
     if (!rc && hl.frag) { /* the fragment table of the final state */
         snprintf(path, sizeof path, "%s/fragments.csv", dir);
-        if (!(rc = fragments_of_sim(hl.frag, s, err)))
+        if (!(rc = run_fragments(hl.frag, s, err)) && run_par_root())
             rc = fragments_write_csv(hl.frag, path, s->t, err);
+        rc = run_par_agree(rc, err);
     }
     snprintf(res->checkpoint, sizeof res->checkpoint, "%s", ck.last);
-    if (rc)
+    if (rc && log)
         fprintf(log, "status: FAILED: %s\n", err->msg);
-    else if (res->signal)
+    else if (res->signal && log)
         fprintf(log, "status: interrupted by signal %d at step %ld, t = %.6g s; checkpoint %s; "
                      "continue with: spall run %s --restart %s\n",
                 res->signal, s->step, s->t, ck.last, opt->deck_path, dir);
-    else
+    else if (log)
         fprintf(log, "status: completed\n");
 done:
     run_ckpt_end(&ck);

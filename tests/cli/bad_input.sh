@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The CLI turns bad input into one line naming file:line:column, exit status
 # 2, and leaves no output directory behind.  Usage: bad_input.sh SPALL SRC
+# SPALL_LAUNCH (environment) prefixes every run, e.g. "mpirun -q -np 2"
+# (tests/cli/mpi_errors.sh: the same cases on two MPI ranks).
 set -u
 spall="$1"
 src="$2"
@@ -13,7 +15,7 @@ check() { # name deck-text expected-substring
     local name="$1" text="$2" expect="$3"
     printf '%s' "$text" > deck.yaml
     rm -rf out
-    "$spall" run deck.yaml -o out >stdout.txt 2>stderr.txt
+    ${SPALL_LAUNCH:-} "$spall" run deck.yaml -o out >stdout.txt 2>stderr.txt
     local rc=$?
     local lines
     lines=$(wc -l < stderr.txt)
@@ -91,17 +93,17 @@ run: {steps: 10}
 if [ "$(wc -c < stderr.txt)" -gt 300 ]; then echo "FAIL long unknown name: $(wc -c < stderr.txt) bytes"; fail=$((fail+1)); fi
 
 # a missing deck file: one line, exit 2
-"$spall" run missing.yaml -o out2 2>stderr.txt; rc=$?
+${SPALL_LAUNCH:-} "$spall" run missing.yaml -o out2 2>stderr.txt; rc=$?
 if [ $rc -ne 2 ] || [ -e out2 ]; then echo "FAIL missing deck: exit $rc"; fail=$((fail+1)); else pass=$((pass+1)); fi
 
 # existing results are never overwritten without --overwrite
 printf '%s' "${base}run: {steps: 3}
 " > good.yaml
-if ! "$spall" run good.yaml -o res --no-progress >/dev/null 2>err.txt; then echo "FAIL good deck did not run"; cat err.txt; fail=$((fail+1)); fi
+if ! ${SPALL_LAUNCH:-} "$spall" run good.yaml -o res --no-progress >/dev/null 2>err.txt; then echo "FAIL good deck did not run"; cat err.txt; fail=$((fail+1)); fi
 before=$(stat -c %Y res/history.csv 2>/dev/null || echo none)
-"$spall" run good.yaml -o res >/dev/null 2>err.txt; rc=$?
+${SPALL_LAUNCH:-} "$spall" run good.yaml -o res >/dev/null 2>err.txt; rc=$?
 if [ $rc -ne 2 ] || ! grep -q -- "--overwrite" err.txt; then echo "FAIL overwrite refused: exit $rc"; cat err.txt; fail=$((fail+1)); else pass=$((pass+1)); fi
-if ! "$spall" run good.yaml -o res --overwrite >/dev/null 2>err.txt; then echo "FAIL --overwrite"; cat err.txt; fail=$((fail+1)); else pass=$((pass+1)); fi
+if ! ${SPALL_LAUNCH:-} "$spall" run good.yaml -o res --overwrite >/dev/null 2>err.txt; then echo "FAIL --overwrite"; cat err.txt; fail=$((fail+1)); else pass=$((pass+1)); fi
 [ "$before" != none ] && pass=$((pass+1))
 
 echo "$pass passed, $fail failed"

@@ -79,6 +79,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "core/options.h"
+#include "core/parallel/comm.h"
 #include "core/model.h"
 #include "spall/error.h"
 
@@ -547,6 +548,10 @@ static void lattice_energy_fn(const struct model *m, const struct sim *sim,
                               struct model_energy *out)
 {
     double strain = 0.0, diss = 0.0;
+    if (sim->par) { /* distributed: the same sums in the serial (gid) order */
+        lattice_energy_par(m, sim, out);
+        return;
+    }
     for (size_t i = 0; i < sim->p->n_owned; i++) {
         double e;
         lattice_particle_eval(m, sim, i, &e, NULL);
@@ -566,6 +571,13 @@ static size_t lattice_history(const struct model *m, const struct sim *sim, cons
     for (size_t s = 0; s < nh; s++) {
         broken_all += (bl->state[s] & BOND_BROKEN) != 0;
         broken_run += bl->state[s] == BOND_BROKEN;
+    }
+    if (sim->par) { /* integer counts: exact in any order */
+        uint64_t c[3] = {broken_run, broken_all, nh};
+        par_sum_u64_array(c, 3);
+        broken_run = (size_t)c[0];
+        broken_all = (size_t)c[1];
+        nh = (size_t)c[2];
     }
     names[0] = "bonds_broken";
     values[0] = 0.5 * (double)broken_run;
@@ -658,6 +670,7 @@ const struct model_ops lattice_model_ops = {
     .interactions = lattice_interactions,
     .bonds = lattice_bonds,
     .register_state = lattice_register_state,
+    .localize = lattice_localize,
     .fixtures = lattice_fixtures,
 };
 

@@ -565,6 +565,10 @@ static int pd_end_step(struct model *m, struct sim *sim, struct spall_error *err
 static void pd_energy(const struct model *m, const struct sim *sim, struct model_energy *out)
 {
     double strain = 0.0, diss = 0.0;
+    if (sim->par) { /* distributed: the same sums in the serial (gid) order */
+        pd_energy_par(m, sim, out);
+        return;
+    }
     for (size_t i = 0; i < sim->p->n_owned; i++) {
         double e;
         pd_particle_eval(m, sim, i, &e, NULL);
@@ -584,21 +588,23 @@ static size_t pd_history(const struct model *m, const struct sim *sim, const cha
         all += (bl->state[s] & BOND_BROKEN) != 0;
         run += bl->state[s] == BOND_BROKEN;
     }
+    /* sum over particles of phi_i (fixed order): compared with LAMMPS's
+     * compute damage/atom in bench/pd_vs_lammps.sh */
+    double dsum = 0.0;
+    if (sim->par) /* distributed: counts over all ranks, phi_i in gid order */
+        pd_history_par(m, sim, &run, &all, &nh, &dsum);
+    for (size_t i = 0; i < sim->p->n_owned && !sim->par; i++) {
+        size_t intact = 0;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            intact += !(bl->state[s] & BOND_BROKEN);
+        dsum += m->n_init[i] ? 1.0 - (double)intact / (double)m->n_init[i] : 0.0;
+    }
     names[0] = "bonds_broken";
     values[0] = 0.5 * (double)run;
     names[1] = "damage_fraction";
     values[1] = nh ? (double)all / (double)nh : 0.0;
     names[2] = "adr_damping";
     values[2] = m->opt.quasi == PD_QS_ADR ? sim->damping : 0.0;
-    /* sum over particles of phi_i (fixed order): compared with LAMMPS's
-     * compute damage/atom in bench/pd_vs_lammps.sh */
-    double dsum = 0.0;
-    for (size_t i = 0; i < sim->p->n_owned; i++) {
-        size_t intact = 0;
-        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
-            intact += !(bl->state[s] & BOND_BROKEN);
-        dsum += m->n_init[i] ? 1.0 - (double)intact / (double)m->n_init[i] : 0.0;
-    }
     names[3] = "damage_sum";
     values[3] = dsum;
     return 4;
@@ -684,6 +690,8 @@ const struct model_ops peridynamics_model_ops = {
     .destroy = pd_destroy,
     .interactions = pd_interactions,
     .damping = pd_damping,
+    .localize = pd_localize,
+    .halo_bonds = pd_bonds,
     .fixtures = pd_fixtures,
 };
 

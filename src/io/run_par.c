@@ -1,0 +1,91 @@
+/**
+ * @file run_par.c
+ * @brief Distributed pieces of `spall run` (run_par.h).
+ */
+#include "io/run_par.h"
+
+#include "core/fragments.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/decomp_internal.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "io/deck_build.h"
+#include "spall/error.h"
+#include "spall/spall.h"
+
+#include <string.h>
+
+bool run_par_on(void)
+{
+    return par_size() > 1;
+}
+
+bool run_par_root(void)
+{
+    return par_rank() == 0;
+}
+
+int run_par_agree(int rc, struct spall_error *err)
+{
+    return run_par_on() ? par_agree(rc, err) : rc;
+}
+
+int run_par_setup(const struct sim *s, const struct spall_run_options *opt,
+                  const struct run_output *ro, int rc, struct spall_error *err)
+{
+    if (!run_par_on())
+        return rc;
+    if (!rc && s)
+        rc = par_check_supported(s, opt->restart != NULL, ro->checkpoint.on, err);
+    for (size_t k = 0; k < ro->n_fields && !rc; k++)
+        if (strcmp(ro->fields[k], "fragment_id") == 0) /* labels need the whole graph */
+            rc = spall_error_set(err, SPALL_ERR_INPUT,
+                                 "distributed runs (%d MPI ranks): the output field "
+                                 "'fragment_id' is not distributed yet (fragments.csv and the "
+                                 "history columns are); see docs/parallel.md",
+                                 par_size());
+    return par_agree(rc, err);
+}
+
+int run_par_distribute(struct sim *s, FILE *log, struct spall_error *err)
+{
+    if (!run_par_on())
+        return SPALL_OK;
+    int rc = par_distribute(s, err);
+    if (rc)
+        return rc;
+    char buf[8192] = "";
+    par_describe(s, buf, sizeof buf);
+    if (log) {
+        fputs(buf, log);
+        fflush(log);
+    }
+    return SPALL_OK;
+}
+
+void run_probe(const struct sim *s, size_t k, double u[3], double v[3])
+{
+    if (s->par) {
+        par_probe(s, k, u, v);
+        return;
+    }
+    size_t i = s->probes[k].particle;
+    for (int d = 0; d < 3; d++) {
+        u[d] = d < s->dim ? s->p->x[d][i] - s->p->x0[d][i] : 0.0;
+        v[d] = d < s->dim ? s->p->v[d][i] : 0.0;
+    }
+}
+
+int run_fragments(struct fragments *f, const struct sim *s, struct spall_error *err)
+{
+    return s->par ? par_fragments(s, f, err) : fragments_of_sim(f, s, err);
+}
+
+void run_par_log_end(const struct sim *s, FILE *log)
+{
+    if (!s->par || !log)
+        return;
+    fprintf(log, "halo_exchanges: %ld (rank 0: %.3f s exchanging ghost positions)\n", s->par->halo_calls,
+            s->par->comm_seconds);
+}

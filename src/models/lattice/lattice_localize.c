@@ -1,0 +1,113 @@
+/**
+ * @file lattice_localize.c
+ * @brief model_ops.localize of the lattice model (distributed runs,
+ *        core/parallel/decomp.h): keep the bond rows of the rank's owned
+ *        particles, partners renumbered to local indices, in their serial
+ *        order (ascending partner gid), so every owned particle's force sum
+ *        is the serial one bit for bit.  Ghost rows are emptied: a ghost's
+ *        force is its owner's business.  Each half-bond decides its own
+ *        breaking from |x_j - x_i| and the rest length, which are bitwise
+ *        symmetric (lattice_forces.c), so the two halves of a bond that
+ *        crosses ranks break in the same step without any message.
+ */
+#include "models/lattice/lattice_internal.h"
+
+#include "core/bond_list.h"
+#include "models/lattice/lattice_thermal.h"
+#include "core/model.h"
+#include "core/parallel/decomp.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
+                     size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
+{
+    (void)sim;
+    if (m->angular || lattice_thermal_enabled(m))
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "distributed runs: the lattice model's %s not distributed yet; "
+                               "run on one rank (without mpirun), see docs/parallel.md",
+                               m->angular ? "angular springs are" : "thermal lattice is");
+    if (!keep) /* only asked whether it can */
+        return SPALL_OK;
+    struct bond_list *bl = m->bl;
+    size_t nh = 0;
+    for (size_t k = 0; k < n_owned; k++)
+        nh += bl->offset[keep[k] + 1] - bl->offset[keep[k]];
+    size_t *offset = calloc(n_keep + 1, sizeof *offset);
+    int32_t *partner = malloc((nh ? nh : 1) * sizeof *partner);
+    double *rest = malloc((nh ? nh : 1) * sizeof *rest);
+    uint8_t *state = malloc(nh ? nh : 1);
+    uint8_t *type = malloc(nh ? nh : 1);
+    double *kappa = m->kappa ? malloc((nh ? nh : 1) * sizeof *kappa) : NULL;
+    double *diss = calloc(n_keep ? n_keep : 1, sizeof *diss);
+    if (!offset || !partner || !rest || !state || !type || (m->kappa && !kappa) || !diss) {
+        free(offset);
+        free(partner);
+        free(rest);
+        free(state);
+        free(type);
+        free(kappa);
+        free(diss);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+    }
+    size_t w = 0;
+    for (size_t k = 0; k < n_keep; k++) {
+        size_t i = keep[k];
+        diss[k] = m->diss[i];
+        if (k < n_owned)
+            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++, w++) {
+                partner[w] = (int32_t)new_of_old[bl->partner[s]];
+                rest[w] = bl->rest[s];
+                state[w] = bl->state[s];
+                type[w] = bl->type[s];
+                if (kappa)
+                    kappa[w] = m->kappa[s];
+            }
+        offset[k + 1] = w;
+    }
+    /* same bond_list struct: the restart registry holds its members' addresses */
+    free(bl->offset);
+    free(bl->partner);
+    free(bl->rest);
+    free(bl->state);
+    free(bl->type);
+    free(bl->reverse);
+    bl->reverse = NULL;
+    bl->n = n_keep;
+    bl->offset = offset;
+    bl->partner = partner;
+    bl->rest = rest;
+    bl->state = state;
+    bl->type = type;
+    free(m->kappa);
+    m->kappa = kappa;
+    free(m->diss);
+    m->diss = diss;
+    m->n_half = nh;
+    return SPALL_OK;
+}
+
+void lattice_energy_par(const struct model *m, const struct sim *sim, struct model_energy *out)
+{
+    /* the serial hook's two accumulators, one column each, summed by gid */
+    const size_t n = sim->p->n_owned;
+    double *rows = malloc((n ? n : 1) * 2 * sizeof *rows);
+    double sum[2] = {0.0, 0.0};
+    if (rows) {
+        for (size_t i = 0; i < n; i++) {
+            lattice_particle_eval(m, sim, i, &rows[2 * i], NULL);
+            rows[2 * i + 1] = m->diss[i];
+        }
+    }
+    /* collective even when this rank could not allocate: it sends no rows */
+    par_ordered_reduce(sim->p->gid, rows ? rows : sum, rows ? n : 0, 2, par_reduce_cols, NULL,
+                       sum, 2);
+    free(rows);
+    out->strain = sum[0];
+    out->dissipated = sum[1];
+}

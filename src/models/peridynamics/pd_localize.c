@@ -1,0 +1,147 @@
+/**
+ * @file pd_localize.c
+ * @brief model_ops.localize of the peridynamic model (distributed runs,
+ *        core/parallel/decomp.h) and its sums over particles in the serial
+ *        order.  The bond-based kernel (PMB, PDLM) gathers over each owned
+ *        particle's family; families keep their serial order (ascending
+ *        partner gid) with the partners renumbered to local indices, so
+ *        each force sum is the serial one bit for bit; a bond's two halves
+ *        decide breaking from the same bitwise-symmetric stretch.
+ */
+#include "models/peridynamics/pd_internal.h"
+
+#include "core/bond_list.h"
+#include "core/model.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <stdlib.h>
+
+int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
+                size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
+{
+    (void)sim;
+    const char *what = m->opt.lps                  ? "formulation lps is"
+                       : m->opt.quasi == PD_QS_ADR ? "quasi-static adr is"
+                       : m->ortho || m->mixed      ? "laminae (orthotropic materials) are"
+                       : m->fresh || m->twin       ? "matrix_crack: fiber_plane is"
+                                                   : NULL;
+    if (what)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "distributed runs: peridynamics' %s not distributed yet; run on "
+                               "one rank (without mpirun), see docs/parallel.md",
+                               what);
+    if (!keep) /* only asked whether it can */
+        return SPALL_OK;
+    struct bond_list *bl = m->bl;
+    size_t nh = 0;
+    for (size_t k = 0; k < n_owned; k++)
+        nh += bl->offset[keep[k] + 1] - bl->offset[keep[k]];
+    const size_t nk = n_keep ? n_keep : 1, hh = nh ? nh : 1;
+    size_t *offset = calloc(n_keep + 1, sizeof *offset);
+    int32_t *partner = malloc(hh * sizeof *partner);
+    double *rest = malloc(hh * sizeof *rest), *coef = malloc(hh * sizeof *coef);
+    uint8_t *state = malloc(hh), *type = malloc(hh);
+    size_t *n_init = calloc(nk, sizeof *n_init), *n_init_f = calloc(nk, sizeof *n_init_f);
+    double *diss = calloc(nk, sizeof *diss);
+    if (!offset || !partner || !rest || !coef || !state || !type || !n_init || !n_init_f ||
+        !diss) {
+        free(offset);
+        free(partner);
+        free(rest);
+        free(coef);
+        free(state);
+        free(type);
+        free(n_init);
+        free(n_init_f);
+        free(diss);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+    }
+    size_t w = 0;
+    for (size_t k = 0; k < n_keep; k++) {
+        size_t i = keep[k];
+        diss[k] = m->diss[i];
+        n_init[k] = m->n_init[i];
+        n_init_f[k] = m->n_init_f[i];
+        if (k < n_owned)
+            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++, w++) {
+                partner[w] = (int32_t)new_of_old[bl->partner[s]];
+                rest[w] = bl->rest[s];
+                coef[w] = m->coef[s];
+                state[w] = bl->state[s];
+                type[w] = bl->type[s];
+            }
+        offset[k + 1] = w;
+    }
+    /* same bond_list struct: the restart registry holds its members' addresses */
+    free(bl->offset);
+    free(bl->partner);
+    free(bl->rest);
+    free(bl->state);
+    free(bl->type);
+    free(bl->reverse);
+    bl->reverse = NULL;
+    bl->n = n_keep;
+    bl->offset = offset;
+    bl->partner = partner;
+    bl->rest = rest;
+    bl->state = state;
+    bl->type = type;
+    free(m->coef);
+    m->coef = coef;
+    free(m->n_init);
+    m->n_init = n_init;
+    free(m->n_init_f);
+    m->n_init_f = n_init_f;
+    free(m->diss);
+    m->diss = diss;
+    m->n_half = nh;
+    return SPALL_OK;
+}
+
+void pd_energy_par(const struct model *m, const struct sim *sim, struct model_energy *out)
+{
+    const size_t n = sim->p->n_owned;
+    double *rows = malloc((n ? n : 1) * 2 * sizeof *rows);
+    double sum[2] = {0.0, 0.0};
+    if (rows)
+        for (size_t i = 0; i < n; i++) {
+            pd_particle_eval(m, sim, i, &rows[2 * i], NULL);
+            rows[2 * i + 1] = m->diss[i];
+        }
+    /* collective even when this rank could not allocate: it sends no rows */
+    par_ordered_reduce(sim->p->gid, rows ? rows : sum, rows ? n : 0, 2, par_reduce_cols, NULL,
+                       sum, 2);
+    free(rows);
+    out->strain = sum[0];
+    out->dissipated = sum[1];
+}
+
+void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, size_t *all,
+                    size_t *nh, double *dsum)
+{
+    const struct bond_list *bl = m->bl;
+    const size_t n = sim->p->n_owned;
+    uint64_t c[3] = {*run, *all, *nh};
+    par_sum_u64_array(c, 3);
+    *run = (size_t)c[0];
+    *all = (size_t)c[1];
+    *nh = (size_t)c[2];
+    /* phi_i per particle, summed in gid order as the serial loop does */
+    double *rows = malloc((n ? n : 1) * sizeof *rows);
+    double s = 0.0;
+    if (rows)
+        for (size_t i = 0; i < n; i++) {
+            size_t intact = 0;
+            for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++)
+                intact += !(bl->state[q] & BOND_BROKEN);
+            rows[i] = m->n_init[i] ? 1.0 - (double)intact / (double)m->n_init[i] : 0.0;
+        }
+    par_ordered_reduce(sim->p->gid, rows ? rows : &s, rows ? n : 0, 1, par_reduce_cols, NULL, &s,
+                       1);
+    free(rows);
+    *dsum = s;
+}
