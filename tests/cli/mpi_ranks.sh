@@ -87,7 +87,11 @@ compare() { # name out-dir [reference-dir]
         h5diff -q "$f" "$2/$(basename "$f")" || { echo "FAIL $1: $(basename "$f") differs"; fail=1; }
     done
 }
-for n in 1 2 3 4; do
+# SPALL_MPI_RANK_COUNTS: the rank counts to compare (the ASan build runs 3
+# only: every path of the halo, the reductions and the collective frames, at
+# a third of the cost; CMakeLists.txt)
+counts="${SPALL_MPI_RANK_COUNTS:-1 2 3 4}"
+for n in $counts; do
     OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$n" \
         "$spall" run frac.yaml -o "r$n" --quiet --no-progress || { echo "FAIL $n ranks: exit $?"; fail=1; continue; }
     compare "$n ranks" "r$n"
@@ -96,10 +100,12 @@ for n in 1 2 3 4; do
         "$spall" run pd.yaml -o "pd$n" --quiet --no-progress || { echo "FAIL pd $n ranks: exit $?"; fail=1; continue; }
     compare "pd, $n ranks" "pd$n" pd_serial
 done
-OMP_NUM_THREADS=2 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np 2 \
-    "$spall" run frac.yaml -o r2t2 --quiet --no-progress || { echo "FAIL 2x2: exit $?"; fail=1; }
-compare "2 ranks x 2 threads" r2t2
-grep -q "^ranks_x_threads: 2 x 2$" r2t2/run.log || { echo "FAIL run.log: ranks x threads"; fail=1; }
+if [ -z "${SPALL_MPI_RANK_COUNTS:-}" ]; then
+    OMP_NUM_THREADS=2 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np 2 \
+        "$spall" run frac.yaml -o r2t2 --quiet --no-progress || { echo "FAIL 2x2: exit $?"; fail=1; }
+    compare "2 ranks x 2 threads" r2t2
+    grep -q "^ranks_x_threads: 2 x 2$" r2t2/run.log || { echo "FAIL run.log: ranks x threads"; fail=1; }
+fi
 [ "$(grep -c '^  rank [0-9]*: [0-9]* owned, [0-9]* ghosts' r3/run.log)" -eq 3 ] ||
     { echo "FAIL run.log: decomposition per rank"; fail=1; }
 pd_broken=$(awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "bonds_broken") c = k}
