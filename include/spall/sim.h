@@ -53,8 +53,10 @@ void spall_sim_destroy(struct spall_sim **s);
 int spall_sim_step(struct spall_sim *s, long n, struct spall_error *err);
 
 /** Step until the simulated time reaches @p t (the step that crosses t is
- *  the last; nothing happens if t is already reached).  Steps past the
- *  deck's run.end_time are allowed: the deck's end is a default, not a
+ *  the last; nothing happens if t is already reached; the engine shortens
+ *  the steps that would cross run.end_time or a frame time to land on
+ *  them).  Steps past
+ *  the deck's run.end_time are allowed: the deck's end is a default, not a
  *  limit.  A frame is written at the deck's output interval if an output
  *  directory is open (spall_sim_output_open). */
 int spall_sim_run_to(struct spall_sim *s, double t, struct spall_error *err);

@@ -113,8 +113,16 @@ static int frame_if_due(struct spall_sim *h, bool last, struct spall_error *err)
     return frame ? field_writer_write(h->fw, s, err) : SPALL_OK;
 }
 
+/* The next frame time of the deck's schedule (0: none), where the engine
+ * lands a step (sim_step_length). */
+static double next_stop(const struct spall_sim *h)
+{
+    return h->fw && h->ro.field_interval > 0.0 ? h->next_frame_t : 0.0;
+}
+
 static int one_step(struct spall_sim *h, struct spall_error *err)
 {
+    h->sim->stop_time = next_stop(h);
     int rc = sim_step(h->sim, err);
     return rc ? rc : frame_if_due(h, false, err);
 }
@@ -155,6 +163,7 @@ int spall_sim_run(struct spall_sim *s, struct spall_error *err)
     if (!s)
         return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_run: simulation is NULL");
     while (!sim_done(s->sim)) {
+        s->sim->stop_time = next_stop(s);
         int rc = sim_step(s->sim, err);
         if (rc)
             return rc;

@@ -182,8 +182,11 @@ static void write_log_header(FILE *log, const struct spall_run_options *opt, con
             s->dim == 1 ? "m^2 (cross-section)" : "m",
             s->thickness_given ? "" : " (default: volume r0^3 per particle in 1D/2D triangular)");
     fprintf(log, "precut_bonds: %zu\n", s->n_precut);
-    fprintf(log, "dt: %.6g s (stability limit %.6g s, factor %.3g)\nsteps: %ld\nend_time: %.6g s\n",
-            s->dt, s->dt_limit, s->dt / s->dt_limit, s->n_steps, s->end_time);
+    fprintf(log, "dt: %.6g s (stability limit %.6g s, factor %.3g)\nsteps: %ld%s\nend_time: %.6g s\n",
+            s->dt, s->dt_limit, s->dt / s->dt_limit, s->n_steps,
+            s->adaptive_dt ? " (estimate: adaptive dt; steps_done below)"
+            : ro->field_interval > 0.0 ? " (one more per frame time inside a step)" : "",
+            s->end_time);
     if (s->ops->describe) {
         char buf[4096] = "";
         s->ops->describe(s->model, s, buf, sizeof buf);
@@ -295,6 +298,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     double t0 = omp_get_wtime();
     run_signals_install();
     while (!sim_done(s)) {
+        s->stop_time = ro.field_interval > 0.0 ? next_frame_t : 0.0; /* frames land on time */
         rc = sim_step(s, err);
         if (rc)
             break;
