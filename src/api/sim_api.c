@@ -18,6 +18,8 @@
 #include "io/deck_build.h"
 #include "io/output.h"
 #include "io/run_util.h"
+#include "io/setup_check.h"
+#include "io/setup_check_sim.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -40,7 +42,14 @@ static int create_from_deck(struct spall_sim **out, struct deck *d, struct spall
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating a simulation");
     }
     h->deck = d;
-    int rc = deck_build_sim(d, &h->sim, &h->ro, err);
+    /* the set-up checks of spall run (unit slips, set-ups that cannot be
+     * right); the API has no warnings to print: every finding here refuses */
+    struct setup_report setup = {0};
+    int rc = setup_check_units(d, err);
+    if (!rc)
+        rc = deck_build_sim(d, &h->sim, &h->ro, err);
+    if (!rc)
+        rc = setup_check_sim(d, h->sim, &setup, err);
     if (rc) {
         spall_sim_destroy(&h);
         return rc;

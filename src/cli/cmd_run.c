@@ -10,6 +10,7 @@ static void run_usage(FILE *out)
 {
     fprintf(out, "usage: spall run DECK.yaml [-o DIR] [--overwrite] [--threads N]\n"
                  "                 [--progress | --no-progress] [--quiet] [--restart RUN|FILE]\n"
+                 "                 [--yes]\n"
                  "\n"
                  "Runs the simulation of DECK.yaml and writes into DIR (default: a directory\n"
                  "named after the deck): run.log, history.csv, fields_NNNNNN.h5 and\n"
@@ -20,7 +21,12 @@ static void run_usage(FILE *out)
                  "(deck key output.checkpoint), --restart FILE from that checkpoint; with -o\n"
                  "another directory gets a continued copy.  SIGTERM, SIGINT or SIGUSR1 end\n"
                  "the current step, write a checkpoint and exit with status 75\n"
-                 "(docs/restart.md).\n");
+                 "(docs/restart.md).\n"
+                 "\n"
+                 "Before step 0 the set-up is checked (docs/decks.md, run.allow): impactors,\n"
+                 "walls or symmetry planes inside a body, probes off every body, a large\n"
+                 "initial strain energy, and the run's cost (particle-steps, output size,\n"
+                 "printed to run.log); --yes runs a run whose cost is far beyond the machine.\n");
 }
 
 int cli_run(int argc, char **argv)
@@ -57,6 +63,8 @@ int cli_run(int argc, char **argv)
             opt.progress = 0;
         } else if (strcmp(a, "--quiet") == 0) {
             opt.quiet = true;
+        } else if (strcmp(a, "--yes") == 0) {
+            opt.yes = true;
         } else if (a[0] == '-') {
             fprintf(stderr, "spall run: unknown option '%s' (see spall run --help)\n", a);
             return 2;

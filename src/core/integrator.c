@@ -488,14 +488,15 @@ int sim_step(struct sim *s, struct spall_error *err)
 {
     /* the engine owns dt: a step is shortened here, for every model, to land
      * on end_time or the driver's output time; the hooks see the step
-     * actually taken in s->dt, which then returns to its value */
-    const double nominal = s->dt;
+     * actually taken in s->dt_step (sim_step_dt) and the nominal s->dt, which
+     * the stiffnesses scaled by the step keep (a penalty k = eta m / dt^2 of
+     * a short step would be a stiff spring for all the steps after it) */
     const double planned = planned_step(s);
     double landing;
     const double h = sim_step_length(s, &landing);
-    s->dt = h;
+    s->dt_step = h;
     int rc = advance(s, h, landing, err);
-    s->dt = nominal;
+    s->dt_step = 0.0;
     if (rc)
         return rc;
     if (!s->adaptive_dt) {

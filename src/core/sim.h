@@ -124,7 +124,11 @@ struct sim {
     double damping;       /**< mass-proportional damping coefficient [1/s] */
 
     double t;             /**< current time [s] */
-    double dt;            /**< time step [s] */
+    double dt;            /**< time step [s]: the nominal one (stiffnesses scaled by
+                               the step, e.g. impactor penalties, use it) */
+    double dt_step;       /**< length of the step being taken [s]: dt, or shorter where
+                               the step lands on end_time or a frame time (what the
+                               hooks that integrate over the step use: sim_step_dt) */
     double dt_limit;      /**< stability limit at start [s] */
     double dt_factor;     /**< dt = dt_factor * dt_limit unless the deck sets dt */
     bool dt_override;     /**< allow dt above the limit (explicit deck key) */
@@ -198,6 +202,14 @@ int sim_step(struct sim *s, struct spall_error *err);
 /** True when the run has reached its end (steps, or end_time with an
  *  adaptive time step). */
 bool sim_done(const struct sim *s);
+
+/** The length of the step being taken (hooks that integrate over the step:
+ *  heat conduction, Langevin noise, a stiffness estimate from a position
+ *  change); s->dt outside a step. */
+static inline double sim_step_dt(const struct sim *s)
+{
+    return s->dt_step > 0.0 ? s->dt_step : s->dt;
+}
 
 /** Length of the next step: dt, or shorter where the step would pass
  *  end_time or stop_time (*landing: the time it lands on, else NAN); a

@@ -23,6 +23,7 @@
 #include "io/run_restart.h"
 #include "io/run_util.h"
 #include "io/setup_check.h"
+#include "io/setup_check_sim.h"
 #include "core/model.h"
 
 #include <errno.h>
@@ -225,7 +226,10 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         goto done;
     if (opt->threads > 0)
         omp_set_num_threads(opt->threads);
+    struct setup_report setup = {0};
     rc = deck_build_sim(d, &s, &ro, err);
+    if (!rc)
+        rc = setup_check_sim(d, s, &setup, err); /* set-ups that cannot be right */
     if (rc)
         goto done;
     if (opt->threads <= 0 && ro.threads > 0)
@@ -236,6 +240,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     if ((rc = run_ckpt_begin(&ck, opt, d, &ro.checkpoint, s, dir, sizeof dir, err)))
         goto done;
     bool resume = ck.restarted && run_ckpt_same_dir(&ck);
+    if ((rc = setup_check_cost(d, s, &ro, dir, opt->yes, &setup, err)))
+        goto done;
 
     /* all checks passed: now, and only now, touch the file system */
     snprintf(res->out_dir, sizeof res->out_dir, "%s", dir);
@@ -254,6 +260,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     }
     if (!resume)
         write_log_header(log, opt, d, s, &ro);
+    setup_report_print(&setup, log, stderr);
     if (ck.restarted)
         run_ckpt_log_restart(&ck, s, log);
 
