@@ -10,7 +10,7 @@ static void run_usage(FILE *out)
 {
     fprintf(out, "usage: spall run DECK.yaml [-o DIR] [--overwrite] [--threads N]\n"
                  "                 [--progress | --no-progress] [--quiet] [--restart RUN|FILE]\n"
-                 "                 [--yes]\n"
+                 "                 [--progress-every SECONDS] [--yes]\n"
                  "\n"
                  "Runs the simulation of DECK.yaml and writes into DIR (default: a directory\n"
                  "named after the deck): run.log, history.csv, fields_NNNNNN.h5 and\n"
@@ -22,6 +22,10 @@ static void run_usage(FILE *out)
                  "another directory gets a continued copy.  SIGTERM, SIGINT or SIGUSR1 end\n"
                  "the current step, write a checkpoint and exit with status 75\n"
                  "(docs/restart.md).\n"
+                 "\n"
+                 "Without a terminal on stderr (a batch job) a progress line is printed every\n"
+                 "60 s (--progress-every): step, time, %%, rate, ETA and the energy balance as\n"
+                 "a fraction of the energy put in; --no-progress turns it off.\n"
                  "\n"
                  "Before step 0 the set-up is checked (docs/decks.md, run.allow): impactors,\n"
                  "walls or symmetry planes inside a body, probes off every body, a large\n"
@@ -63,6 +67,12 @@ int cli_run(int argc, char **argv)
             opt.progress = 0;
         } else if (strcmp(a, "--quiet") == 0) {
             opt.quiet = true;
+        } else if (strcmp(a, "--progress-every") == 0) {
+            char *end = NULL;
+            if (++k >= argc || !((opt.progress_every = strtod(argv[k], &end)) > 0.0) || *end) {
+                fprintf(stderr, "spall run: --progress-every needs a positive number of seconds\n");
+                return 2;
+            }
         } else if (strcmp(a, "--yes") == 0) {
             opt.yes = true;
         } else if (a[0] == '-') {

@@ -302,6 +302,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
 
     struct progress pr;
     progress_start(&pr, opt->progress, s->n_steps, s->p->n_owned);
+    progress_set_every(&pr, opt->progress_every);
     double t0 = omp_get_wtime();
     run_signals_install();
     while (!sim_done(s)) {
@@ -334,7 +335,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         if ((ck.opt.on || sig) &&
             (rc = run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, log, err)))
             break;
-        progress_update(&pr, s->step, s->t, s->end_time);
+        progress_update_sim(&pr, s);
         if ((res->signal = sig))
             break;
     }
@@ -352,8 +353,9 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             wall);
     fprintf(log, "particle_steps_per_s: %.4g\nframes: %zu\n", res->particle_steps_per_s,
             res->frames);
-    fprintf(log, "energy_balance_final: %.6g J (input %.6g J)\n", s->energy.balance,
-            fabs(s->energy.initial_total) + fabs(s->energy.external));
+    const double e_in = fabs(s->energy.initial_total) + fabs(s->energy.external);
+    fprintf(log, "energy_balance_final: %.6g J (input %.6g J; %.3g of the input)\n",
+            s->energy.balance, e_in, e_in > 0.0 ? s->energy.balance / e_in : 0.0);
     if (!rc && hl.frag) { /* the fragment table of the final state */
         snprintf(path, sizeof path, "%s/fragments.csv", dir);
         if (!(rc = fragments_of_sim(hl.frag, s, err)))
