@@ -34,8 +34,11 @@ struct spall_sim;
 /** Read the YAML deck at @p path and build the simulation: particles, model,
  *  materials, boundary conditions, the stable time step and the initial
  *  forces and energies.  Input errors name FILE:LINE:COLUMN and come back as
- *  SPALL_ERR_INPUT (or SPALL_ERR_PHYSICS for impossible physics).  Nothing
- *  is written to disk.  *out is NULL on failure. */
+ *  SPALL_ERR_INPUT (or SPALL_ERR_PHYSICS for impossible physics).  The
+ *  set-up checks of `spall run` apply (unit slips, impactors, walls and
+ *  symmetry planes inside a body, probes off every body, a large initial
+ *  strain energy; docs/decks.md "Set-up check", deck key run.allow), not
+ *  the cost check.  Nothing is written to disk.  *out is NULL on failure. */
 int spall_sim_create_file(struct spall_sim **out, const char *path, struct spall_error *err);
 
 /** As spall_sim_create_file, for deck text in memory; @p name stands for
