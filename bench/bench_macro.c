@@ -44,7 +44,7 @@ static int bench_macro_rod(int threads, double scale, struct bench_result *out,
              "  - {group: top, type: velocity, components: [z], value: 0.5}\n"
              "run: {steps: %ld, max_particles: 1e9}\n",
              r0, -e, L + e, 0.5 * D + e, 0.25 * r0, L - 0.25 * r0, steps);
-    int rc = bench_run_deck("macro_rod", yaml, threads, 0, out, err);
+    int rc = bench_run_deck("macro-rod", yaml, threads, 0, out, err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
@@ -55,7 +55,7 @@ static int bench_macro_rod(int threads, double scale, struct bench_result *out,
 
 /* Macro-particle cases, listed by bench/cases.c. */
 const struct bench_case bench_macro_cases[] = {
-    {"macro_rod", "macro-particle Al rod, n_phi 16, n_h/n_phi 4 (~51k particles), 500 steps",
+    {"macro-rod", "macro-particle Al rod, n_phi 16, n_h/n_phi 4 (~51k particles), 500 steps",
      bench_macro_rod},
 };
 const size_t bench_macro_n_cases = sizeof bench_macro_cases / sizeof bench_macro_cases[0];

@@ -19,7 +19,7 @@ static int bench_pen_gelatin(int threads, double scale, struct bench_result *out
     char yaml[4096];
     const double d = 7.38e-6;
     pen_sph_deck(yaml, sizeof yaml, 1290.0, 20.0e6, d / 10.0, 1.0, 260e-9);
-    int rc = bench_run_deck("pen_gelatin", yaml, threads, scale < 1.0 ? 300 : 0, out, err);
+    int rc = bench_run_deck("pen-gelatin", yaml, threads, scale < 1.0 ? 300 : 0, out, err);
     if (rc)
         return rc;
     snprintf(out->note, sizeof out->note,
@@ -29,7 +29,7 @@ static int bench_pen_gelatin(int threads, double scale, struct bench_result *out
 }
 
 const struct bench_case bench_pen_cases[] = {
-    {"pen_gelatin", "1290 m/s silica into gelatin (pen-sph-gelatin deck), axisymmetric SPH",
+    {"pen-gelatin", "1290 m/s silica into gelatin (pen-sph-gelatin deck), axisymmetric SPH",
      bench_pen_gelatin},
 };
 const size_t bench_pen_n_cases = sizeof bench_pen_cases / sizeof bench_pen_cases[0];

@@ -175,7 +175,7 @@ static int sph_taylor_case(const char *name, const char *form, double hf, double
 static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
                             struct spall_error *err)
 {
-    return sph_taylor_case("sph_taylor_cu", "updated", 1.5, 1.0, 1.0, "", threads, scale, out,
+    return sph_taylor_case("sph-taylor-cu", "updated", 1.5, 1.0, 1.0, "", threads, scale, out,
                            err);
 }
 
@@ -187,7 +187,7 @@ static int bench_sph_taylor(int threads, double scale, struct bench_result *out,
 static int bench_sph_taylor_tl(int threads, double scale, struct bench_result *out,
                                struct spall_error *err)
 {
-    return sph_taylor_case("sph_taylor_cu_tl", "total", 1.005, 1.0, 1.0, "", threads, scale, out,
+    return sph_taylor_case("sph-taylor-cu-tl", "total", 1.005, 1.0, 1.0, "", threads, scale, out,
                            err);
 }
 
@@ -198,7 +198,7 @@ static int bench_sph_taylor_tl(int threads, double scale, struct bench_result *o
 static int bench_sph_taylor_tl_split(int threads, double scale, struct bench_result *out,
                                      struct spall_error *err)
 {
-    return sph_taylor_loops("sph_taylor_cu_tl_split", "total", 1.005, 1.0, 1.0, "", true,
+    return sph_taylor_loops("sph-taylor-cu-tl-split", "total", 1.005, 1.0, 1.0, "", true,
                             threads, scale, out, err);
 }
 
@@ -235,23 +235,23 @@ static int sph_taylor_rest(const char *name, const char *form, double hf, const 
 static int bench_sph_taylor_rest(int threads, double scale, struct bench_result *out,
                                  struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest", "total", 1.005, "", scale, threads, out, err);
+    return sph_taylor_rest("sph-taylor-cu-rest", "total", 1.005, "", scale, threads, out, err);
 }
 
 static int bench_sph_taylor_rest_ul(int threads, double scale, struct bench_result *out,
                                     struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest_ul32", "updated", 1.005, "", scale, threads, out,
+    return sph_taylor_rest("sph-taylor-cu-rest-ul32", "updated", 1.005, "", scale, threads, out,
                            err);
 }
 
-/* the sph_taylor_cu bar (updated form, h = 1.5 dx) run to rest: what
+/* the sph-taylor-cu bar (updated form, h = 1.5 dx) run to rest: what
  * spall's updated form gives against the FE reference of the race's
  * accuracy half (validation/fe/taylor_cu) */
 static int bench_sph_taylor_rest_ul15(int threads, double scale, struct bench_result *out,
                                       struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest_ul", "updated", 1.5, "", scale, threads, out,
+    return sph_taylor_rest("sph-taylor-cu-rest-ul", "updated", 1.5, "", scale, threads, out,
                            err);
 }
 
@@ -261,7 +261,7 @@ static int bench_sph_taylor_rest_ul15(int threads, double scale, struct bench_re
 static int bench_sph_taylor_rest_ulbal(int threads, double scale, struct bench_result *out,
                                        struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest_ulbal", "updated", 1.5,
+    return sph_taylor_rest("sph-taylor-cu-rest-ulbal", "updated", 1.5,
                            " viscosity_switch: balsara,", scale, threads, out, err);
 }
 
@@ -272,7 +272,7 @@ static int bench_sph_taylor_rest_ulbal(int threads, double scale, struct bench_r
 static int bench_sph_taylor_rest_lf(int threads, double scale, struct bench_result *out,
                                     struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest_lf", "total", 1.005,
+    return sph_taylor_rest("sph-taylor-cu-rest-lf", "total", 1.005,
                            " time_integration: leapfrog, hourglass: 1.0,", scale, threads, out,
                            err);
 }
@@ -284,7 +284,7 @@ static int bench_sph_taylor_rest_lf(int threads, double scale, struct bench_resu
 static int bench_sph_taylor_rest_rr(int threads, double scale, struct bench_result *out,
                                     struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest_rr", "total", 1.005,
+    return sph_taylor_rest("sph-taylor-cu-rest-rr", "total", 1.005,
                            " time_integration: leapfrog, reference_update: {distortion: 1.2},",
                            scale, threads, out, err);
 }
@@ -296,7 +296,7 @@ static int bench_sph_taylor_rest_rr(int threads, double scale, struct bench_resu
 static int bench_sph_taylor_rest_bal(int threads, double scale, struct bench_result *out,
                                      struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest_bal", "total", 1.005,
+    return sph_taylor_rest("sph-taylor-cu-rest-bal", "total", 1.005,
                            " time_integration: leapfrog, hourglass: 1.0, viscosity_switch: "
                            "balsara,",
                            scale, threads, out, err);
@@ -308,19 +308,19 @@ static int bench_sph_taylor_rest_bal(int threads, double scale, struct bench_res
 static int bench_sph_taylor_rest_rrbal(int threads, double scale, struct bench_result *out,
                                        struct spall_error *err)
 {
-    return sph_taylor_rest("sph_taylor_cu_rest_rrbal", "total", 1.005,
+    return sph_taylor_rest("sph-taylor-cu-rest-rrbal", "total", 1.005,
                            " time_integration: leapfrog, hourglass: 1.0, viscosity_switch: "
                            "balsara, reference_update: {distortion: 1.2},",
                            scale, threads, out, err);
 }
 
 /* throughput of the configuration the race's accuracy half reports
- * (sph_taylor_cu_rest_bal: leapfrog, hourglass 1, Balsara's switch),
+ * (sph-taylor-cu-rest-bal: leapfrog, hourglass 1, Balsara's switch),
  * 200 steps: what the accurate bar costs per particle-step */
 static int bench_sph_taylor_tl_bal(int threads, double scale, struct bench_result *out,
                                    struct spall_error *err)
 {
-    return sph_taylor_case("sph_taylor_cu_tl_bal", "total", 1.005, 1.0, 1.0,
+    return sph_taylor_case("sph-taylor-cu-tl-bal", "total", 1.005, 1.0, 1.0,
                            " time_integration: leapfrog, hourglass: 1.0, viscosity_switch: "
                            "balsara,",
                            threads, scale, out, err);
@@ -330,7 +330,7 @@ static int bench_sph_taylor_tl_bal(int threads, double scale, struct bench_resul
 static int bench_sph_taylor_ul32(int threads, double scale, struct bench_result *out,
                                  struct spall_error *err)
 {
-    return sph_taylor_case("sph_taylor_cu_ul32", "updated", 1.005, 1.0, 1.0, "", threads, scale,
+    return sph_taylor_case("sph-taylor-cu-ul32", "updated", 1.005, 1.0, 1.0, "", threads, scale,
                            out, err);
 }
 
@@ -361,7 +361,7 @@ static int bench_sph_rings(int threads, double scale, struct bench_result *out,
     double nb_share = 0.0;
     size_t builds = 0;
     double t_setup = 0.0, cpu = 0.0;
-    int rc = sph_bench_run("sph_rings_2d", yaml, threads, false, out, &nb_share, &builds,
+    int rc = sph_bench_run("sph-rings-2d", yaml, threads, false, out, &nb_share, &builds,
                            &t_setup, NULL, &cpu, NULL, err);
     if (rc)
         return rc;
@@ -374,33 +374,33 @@ static int bench_sph_rings(int threads, double scale, struct bench_result *out,
 
 /* SPH cases, listed by bench/cases.c. */
 const struct bench_case bench_sph_cases[] = {
-    {"sph_taylor_cu", "3D copper Taylor bar (LAMMPS race), dx = 0.4 mm, 200 steps",
+    {"sph-taylor-cu", "3D copper Taylor bar (LAMMPS race), dx = 0.4 mm, 200 steps",
      bench_sph_taylor},
-    {"sph_taylor_cu_tl", "3D copper Taylor bar, total-Lagrangian, support 2.01 dx (32 neighbours, "
+    {"sph-taylor-cu-tl", "3D copper Taylor bar, total-Lagrangian, support 2.01 dx (32 neighbours, "
      "the MACHDYN count), 200 steps", bench_sph_taylor_tl},
-    {"sph_taylor_cu_tl_split", "sph_taylor_cu_tl with the TLSPH stages one after the other "
+    {"sph-taylor-cu-tl-split", "sph-taylor-cu-tl with the TLSPH stages one after the other "
      "(sph_set_split_loops), not pipelined", bench_sph_taylor_tl_split},
-    {"sph_taylor_cu_rest", "the sph_taylor_cu_tl bar run to rest (80 us): final length and "
+    {"sph-taylor-cu-rest", "the sph-taylor-cu-tl bar run to rest (80 us): final length and "
      "radius", bench_sph_taylor_rest},
-    {"sph_taylor_cu_rest_lf", "the sph_taylor_cu_rest bar, leapfrog (plain dt limit), hourglass 1",
+    {"sph-taylor-cu-rest-lf", "the sph-taylor-cu-rest bar, leapfrog (plain dt limit), hourglass 1",
      bench_sph_taylor_rest_lf},
-    {"sph_taylor_cu_rest_rr", "the sph_taylor_cu_rest_lf bar, hourglass 0.1, reference updated "
+    {"sph-taylor-cu-rest-rr", "the sph-taylor-cu-rest-lf bar, hourglass 0.1, reference updated "
      "when the distortion passes 1.2", bench_sph_taylor_rest_rr},
-    {"sph_taylor_cu_rest_bal", "the sph_taylor_cu_rest_lf bar with Balsara's switch on the "
+    {"sph-taylor-cu-rest-bal", "the sph-taylor-cu-rest-lf bar with Balsara's switch on the "
      "artificial viscosity", bench_sph_taylor_rest_bal},
-    {"sph_taylor_cu_rest_rrbal", "the sph_taylor_cu_rest_bal bar with the reference updated "
+    {"sph-taylor-cu-rest-rrbal", "the sph-taylor-cu-rest-bal bar with the reference updated "
      "when the distortion passes 1.2", bench_sph_taylor_rest_rrbal},
-    {"sph_taylor_cu_tl_bal", "sph_taylor_cu_tl in the accurate bar's settings (leapfrog, "
+    {"sph-taylor-cu-tl-bal", "sph-taylor-cu-tl in the accurate bar's settings (leapfrog, "
      "hourglass 1, Balsara's switch), 200 steps", bench_sph_taylor_tl_bal},
-    {"sph_taylor_cu_rest_ul32", "the sph_taylor_cu_ul32 bar run to rest (80 us)",
+    {"sph-taylor-cu-rest-ul32", "the sph-taylor-cu-ul32 bar run to rest (80 us)",
      bench_sph_taylor_rest_ul},
-    {"sph_taylor_cu_rest_ul", "the sph_taylor_cu bar (updated form, h = 1.5 dx) run to rest "
+    {"sph-taylor-cu-rest-ul", "the sph-taylor-cu bar (updated form, h = 1.5 dx) run to rest "
      "(80 us)", bench_sph_taylor_rest_ul15},
-    {"sph_taylor_cu_rest_ulbal", "the sph_taylor_cu_rest_ul bar with Balsara's switch",
+    {"sph-taylor-cu-rest-ulbal", "the sph-taylor-cu-rest-ul bar with Balsara's switch",
      bench_sph_taylor_rest_ulbal},
-    {"sph_taylor_cu_ul32", "3D copper Taylor bar, updated form, support 2.01 dx, 200 steps",
+    {"sph-taylor-cu-ul32", "3D copper Taylor bar, updated form, support 2.01 dx, 200 steps",
      bench_sph_taylor_ul32},
-    {"sph_rings_2d", "2D rubber rings (Gray et al. 2001), artificial stress, dx = 0.5 mm, 200 steps",
+    {"sph-rings-2d", "2D rubber rings (Gray et al. 2001), artificial stress, dx = 0.5 mm, 200 steps",
      bench_sph_rings},
 };
 const size_t bench_sph_n_cases = sizeof bench_sph_cases / sizeof bench_sph_cases[0];

@@ -14,7 +14,7 @@
 # takes h = radius_i + radius_j as the support of its spiky kernel: 32
 # neighbours inside a cubic lattice, 27.3 on average over this bar.
 # spall's Wendland kernel with h = 1.005 dx has the same support 2.01 dx
-# (bench case sph_taylor_cu_tl).  Same AV (Monaghan [1, 1] in both; MACHDYN
+# (bench case sph-taylor-cu-tl).  Same AV (Monaghan [1, 1] in both; MACHDYN
 # Q1 = Q2 = 1).  Not matched (different formulas): the hourglass control
 # (MACHDYN 10 on its own pair-error measure; spall kappa = 0.1 default, 1 in
 # the rest case) and the time step (MACHDYN 0.1 x radius / c; spall 0.3 h /
@@ -30,7 +30,7 @@
 # 2. with --rest: the accuracy half, both codes run to 80 us and report the
 #    final length (axial extent + dx) and mushroom radius (largest radius of
 #    a particle + dx/2), spall with the leapfrog and hourglass 1
-#    (sph_taylor_cu_rest_lf), LAMMPS with the settings above.
+#    (sph-taylor-cu-rest-lf), LAMMPS with the settings above.
 #
 # LMP defaults to `lmp` on PATH; Debian's lammps 20220106 binary has no
 # MACHDYN (`lmp -h | grep -c smd/tlsph` prints 0), its source package does:
@@ -42,13 +42,13 @@ LMP=${LMP:-lmp}
 echo "== spall: copper Taylor bar, 200 steps"
 for s in 1 0.3; do
     for t in 1 2; do
-        OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} "$BUILD/spall" bench sph_taylor_cu_tl --threads "$t" \
+        OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} "$BUILD/spall" bench sph-taylor-cu-tl --threads "$t" \
             --scale "$s" || true
     done
 done
 if [ "$REST" = "--rest" ]; then
     for s in 0.125 0.3 1; do
-        OMP_NUM_THREADS=1 "$BUILD/spall" bench sph_taylor_cu_rest_lf --threads 1 --scale "$s" \
+        OMP_NUM_THREADS=1 "$BUILD/spall" bench sph-taylor-cu-rest-lf --threads 1 --scale "$s" \
             || true
     done
 fi

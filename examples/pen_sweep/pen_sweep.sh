@@ -28,6 +28,10 @@ if [ ! -f "$spall" ] || [ ! -x "$spall" ]; then
     echo "pen_sweep.sh: no spall executable at '$spall' (build first, or pass its path)" >&2
     exit 2
 fi
+if [ -d "$out" ] && [ -n "$(ls -A "$out")" ]; then # as spall run: never replace results
+    echo "pen_sweep.sh: '$out' exists and is not empty; name another output directory" >&2
+    exit 2
+fi
 mkdir -p "$out"
 
 # NAME.csv (long form) -> NAME_table.csv: v0, then P_max/d per diameter

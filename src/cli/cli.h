@@ -12,6 +12,11 @@ int cli_penetrate(int argc, char **argv);
 int cli_calibrate_macroparticle(int argc, char **argv);
 /** `spall calibrate peridynamics ...` (src/cli/cmd_calibrate_pd.c). */
 int cli_calibrate_peridynamics(int argc, char **argv);
+/** `spall calibrate DECK.yaml` and `spall calibrate sph ...`
+ *  (cmd_calibrate_deck.c): the constants and time step of the simulation as
+ *  `spall run` builds it. */
+int cli_calibrate_deck(const char *path);
+int cli_calibrate_sph(int argc, char **argv);
 int cli_render(int argc, char **argv);
 
 /** Map a libspall status to the process exit status: bad input 2,

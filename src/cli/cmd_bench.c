@@ -66,7 +66,22 @@ int cli_bench(int argc, char **argv)
             while (c < n_cases && strcmp(bench_case_at(c)->name, a) != 0)
                 c++;
             if (c == n_cases) {
-                fprintf(stderr, "spall bench: unknown case '%s' (see spall bench --list)\n", a);
+                /* names typed on the command line use hyphens (like validation
+                 * cases and options); the old underscore names name the new */
+                char alt[64];
+                snprintf(alt, sizeof alt, "%s", a);
+                for (char *q = alt; *q; q++)
+                    *q = *q == '_' ? '-' : *q;
+                size_t old = 0;
+                while (old < n_cases && strcmp(bench_case_at(old)->name, alt) != 0)
+                    old++;
+                if (old < n_cases && strcmp(alt, a) != 0)
+                    fprintf(stderr, "spall bench: case '%s' is now called '%s' (case names "
+                                    "are written with hyphens)\n",
+                            a, alt);
+                else
+                    fprintf(stderr, "spall bench: unknown case '%s' (see spall bench --list)\n",
+                            a);
                 return 2;
             }
             if (n_wanted < 32)

@@ -5,9 +5,26 @@
 #include "spall/error.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+static void overview_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: spall calibrate DECK.yaml\n"
+            "       spall calibrate lattice       --E PA --nu NU --rho KG_M3 --spacing M ...\n"
+            "       spall calibrate peridynamics  --E PA [--rho KG_M3] [--spacing M] ...\n"
+            "       spall calibrate macroparticle [--material al|cu] [--rho KG_M3] ...\n"
+            "       spall calibrate sph           --E PA --nu NU --rho KG_M3 --spacing M ...\n"
+            "\n"
+            "DECK.yaml: builds the deck's simulation exactly as `spall run` does (nothing\n"
+            "is run or written) and prints what run.log would: particles, materials,\n"
+            "the time step and its stability limit, steps, and every constant the model\n"
+            "derives.  The model forms derive a model's constants from material data;\n"
+            "`spall calibrate MODEL --help` describes each.\n");
+}
 
 static void calibrate_usage(FILE *out)
 {
@@ -42,16 +59,31 @@ static int parse_num(const char *opt, const char *s, double *out)
 
 int cli_calibrate(int argc, char **argv)
 {
-    if (argc >= 2 && strcmp(argv[1], "macroparticle") == 0)
-        return cli_calibrate_macroparticle(argc, argv);
     if (argc < 2 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
-        calibrate_usage(argc < 2 ? stderr : stdout);
+        overview_usage(argc < 2 ? stderr : stdout);
         return argc < 2 ? 2 : 0;
     }
+    if (strcmp(argv[1], "macroparticle") == 0)
+        return cli_calibrate_macroparticle(argc, argv);
     if (strcmp(argv[1], "peridynamics") == 0)
         return cli_calibrate_peridynamics(argc, argv);
+    if (strcmp(argv[1], "sph") == 0)
+        return cli_calibrate_sph(argc, argv);
     if (strcmp(argv[1], "lattice") != 0) {
-        fprintf(stderr, "spall calibrate: unknown model '%s'; expected: lattice\n", argv[1]);
+        size_t len = strlen(argv[1]);
+        bool yaml = (len > 5 && strcmp(argv[1] + len - 5, ".yaml") == 0) ||
+                    (len > 4 && strcmp(argv[1] + len - 4, ".yml") == 0);
+        if (yaml && argc == 2)
+            return cli_calibrate_deck(argv[1]);
+        if (yaml) {
+            fprintf(stderr, "spall calibrate: a deck takes no options ('%s' after '%s')\n",
+                    argv[2], argv[1]);
+            return 2;
+        }
+        fprintf(stderr,
+                "spall calibrate: unknown model '%s'; expected a deck (.yaml) or one of "
+                "lattice, peridynamics, macroparticle, sph\n",
+                argv[1]);
         return 2;
     }
     struct lattice_calib c;

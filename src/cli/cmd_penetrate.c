@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define PEN_MAX_D 64
 
@@ -49,6 +50,7 @@ static void pen_usage(FILE *out)
             "  --nose                   fit (b): measured P_max include the nose d/2 (Eq. 4.7)\n"
             "  --ode                    integrate the ODE even where a closed form exists\n"
             "  --n N                    trajectory samples in --csv (default 201)\n"
+            "  --overwrite              replace existing --csv/--curve/PNG files (refused otherwise)\n"
             "fit: --trajectory CSV has columns t, P [s, m] (approach a, one curve of given d, v0);\n"
             "     --points CSV has columns d, v0, P_max [m, m/s, m] (approach b).  Coefficient\n"
             "     options give the initial guess.  Prints coefficients, standard errors, 95 %%\n"
@@ -60,7 +62,7 @@ static void pen_usage(FILE *out)
 struct pen_opts {
     struct pen_params p;
     double v0;
-    int have_d, have_v0, nose, ode, n;
+    int have_d, have_v0, nose, ode, n, overwrite;
     const char *csv, *curve, *traj, *points, *model, *vrange, *dlist;
 };
 
@@ -92,6 +94,10 @@ static int parse_opts(int argc, char **argv, int first, struct pen_opts *o)
         }
         if (strcmp(a, "--ode") == 0) {
             o->ode = 1;
+            continue;
+        }
+        if (strcmp(a, "--overwrite") == 0) {
+            o->overwrite = 1;
             continue;
         }
         if (strncmp(a, "--", 2) != 0)
@@ -559,6 +565,17 @@ int cli_penetrate(int argc, char **argv)
         return fail(&e);
     if (!(o.p.rho_p > 0) || !(o.p.rho_t > 0))
         return bad("densities missing: give --rho-p/--projectile and --rho-t/--target%s%s", "", "");
+    /* like `spall run`: results are never replaced silently, and the check
+     * comes before anything is computed or written */
+    const char *outs[3] = {o.csv, o.curve, NULL};
+    char png[1024];
+    if (o.csv && (is_fit || is_sweep)) {
+        png_path(o.csv, png, sizeof png);
+        outs[2] = png;
+    }
+    for (int k = 0; k < 3 && !o.overwrite; k++)
+        if (outs[k] && access(outs[k], F_OK) == 0)
+            return bad("'%s' exists; give --overwrite to replace it%s", outs[k], "");
     if (is_fit) {
         /* initial guesses where none given */
         if (!(o.p.cd > 0)) o.p.cd = 0.5;

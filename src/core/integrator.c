@@ -187,6 +187,12 @@ static void drift(struct sim *s, double dt)
     }
 }
 
+double *const *sim_drift_velocities(const struct sim *s)
+{
+    /* the predictor-corrector copies p->v into v_half right after drift() */
+    return s->integrator == INTEGRATOR_PREDICTOR_CORRECTOR ? s->v_half : s->p->v;
+}
+
 /* The model's drift velocity u (XSPH): x += dt u after x += dt v (two
  * roundings, as when the model moved x itself), except where a BC
  * prescribes the velocity (s->no_drift_velocity, sim_prepare). */

@@ -229,6 +229,14 @@ void sim_update_energy(struct sim *s);
  *  axisymmetric runs: the mirror image of a ring is the same ring). */
 void sim_reflect_particle(struct sim *s, size_t i, int k);
 
+/** Inside a model's force call: the velocities this step's positions were
+ *  drifted with (x_{n+1} = x_n + dt u), so a model can recover x_n without
+ *  storing it (e.g. to book the energy of a bond that breaks within the
+ *  step).  Velocity Verlet and leapfrog: the half-step velocities in p->v;
+ *  predictor-corrector: the engine's copy v_half (p->v then holds the
+ *  prediction).  A model drift velocity (XSPH) is not included. */
+double *const *sim_drift_velocities(const struct sim *s);
+
 /** Resultant force [N] the constraints/loads applied to group @p g this step. */
 void sim_group_reaction(const struct sim *s, int g, double out[3]);
 

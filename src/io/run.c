@@ -21,6 +21,7 @@
 #include "io/deck_build.h"
 #include "io/output.h"
 #include "io/run_restart.h"
+#include "io/run_summary.h"
 #include "io/run_util.h"
 #include "io/setup_check.h"
 #include "io/setup_check_sim.h"
@@ -175,26 +176,7 @@ static void write_log_header(FILE *log, const struct spall_run_options *opt, con
             spall_git_revision(), SPALL_BUILD_TYPE, when);
     fprintf(log, "deck: %s\ntitle: %s\nthreads: %d\n", opt->deck_path, ro->title,
             omp_get_max_threads());
-    fprintf(log, "model: %s\ndimension: %d\nparticles: %zu\n", s->ops->name, s->dim, s->p->n);
-    if (s->ops->interactions)
-        fprintf(log, "interactions: %zu\n", s->ops->interactions(s->model, s));
-    fprintf(log, "lattice: %s, spacing %.6g m, thickness %.6g %s%s\n",
-            lattice_kind_name(s->lattice.kind), s->lattice.spacing, s->thickness,
-            s->dim == 1 ? "m^2 (cross-section)" : "m",
-            s->thickness_given ? "" : " (default: volume r0^3 per particle in 1D/2D triangular)");
-    fprintf(log, "precut_bonds: %zu\n", s->n_precut);
-    fprintf(log, "dt: %.6g s (stability limit %.6g s, factor %.3g)\nsteps: %ld%s\nend_time: %.6g s\n",
-            s->dt, s->dt_limit, s->dt / s->dt_limit, s->n_steps,
-            s->adaptive_dt ? " (estimate: adaptive dt; steps_done below)"
-            : ro->field_interval > 0.0 ? " (one more per frame time inside a step)" : "",
-            s->end_time);
-    if (s->ops->describe) {
-        char buf[4096] = "";
-        s->ops->describe(s->model, s, buf, sizeof buf);
-        fprintf(log, "model_constants: |\n");
-        for (char *line = strtok(buf, "\n"); line; line = strtok(NULL, "\n"))
-            fprintf(log, "  %s\n", line);
-    }
+    run_summary_write(log, s);
     fprintf(log, "deck_echo: |\n");
     const char *t = d->text ? d->text : "";
     while (*t) {
@@ -353,9 +335,12 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             wall);
     fprintf(log, "particle_steps_per_s: %.4g\nframes: %zu\n", res->particle_steps_per_s,
             res->frames);
-    const double e_in = fabs(s->energy.initial_total) + fabs(s->energy.external);
-    fprintf(log, "energy_balance_final: %.6g J (input %.6g J; %.3g of the input)\n",
-            s->energy.balance, e_in, e_in > 0.0 ? s->energy.balance / e_in : 0.0);
+    const double input = fabs(s->energy.initial_total) + fabs(s->energy.external);
+    if (input > 0.0) /* the fraction is what tells a user whether to trust a run */
+        fprintf(log, "energy_balance_final: %.6g J (input %.6g J; %.3g %% of the input)\n",
+                s->energy.balance, input, 100.0 * s->energy.balance / input);
+    else
+        fprintf(log, "energy_balance_final: %.6g J (no energy put in)\n", s->energy.balance);
     if (!rc && hl.frag) { /* the fragment table of the final state */
         snprintf(path, sizeof path, "%s/fragments.csv", dir);
         if (!(rc = fragments_of_sim(hl.frag, s, err)))

@@ -16,11 +16,15 @@ refuse() { # name expected-substring args...
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp"
-refuse "scale above 16" "(0, 16]" sph_taylor_cu_tl --scale 17
-refuse "scale zero" "(0, 16]" sph_taylor_cu_tl --scale 0
-refuse "scale text" "(0, 16]" sph_taylor_cu_tl --scale many
-refuse "threads zero" "positive integers" sph_taylor_cu_tl --threads 0
+refuse "scale above 16" "(0, 16]" sph-taylor-cu-tl --scale 17
+refuse "scale zero" "(0, 16]" sph-taylor-cu-tl --scale 0
+refuse "scale text" "(0, 16]" sph-taylor-cu-tl --scale many
+refuse "threads zero" "positive integers" sph-taylor-cu-tl --threads 0
+refuse "old name" "case 'sph_taylor_cu_tl' is now called 'sph-taylor-cu-tl'" sph_taylor_cu_tl
+refuse "unknown case" "unknown case 'no-such-case'" no-such-case
 "$spall" bench --list > list.txt || { echo "FAIL list: exit $?"; fail=1; }
-grep -q "^sph_taylor_cu_tl_bal " list.txt || { echo "FAIL list: no sph_taylor_cu_tl_bal"; fail=1; }
+grep -q "^sph-taylor-cu-tl-bal " list.txt || { echo "FAIL list: no sph-taylor-cu-tl-bal"; fail=1; }
+# one convention: every case name typed on the command line uses hyphens
+if awk '{print $1}' list.txt | grep -q _; then echo "FAIL list: a case name with '_'"; fail=1; fi
 [ "$fail" -eq 0 ] && echo "bench_args: all checks passed"
 exit "$fail"

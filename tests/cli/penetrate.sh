@@ -51,6 +51,18 @@ grep -Eq "^eta +0\.045 " fitb.txt && ok || { ko "fit b eta"; cat fitb.txt; }
 "$spall" penetrate sweep --model mcg --projectile steel --target sebs --eta 4.5e-2 --R 25e6 \
     --d 10e-6,20e-6 --v0 100:900:100 --csv sweep.csv >/dev/null || ko "sweep"
 [ "$(grep -vc '^#' sweep.csv)" -eq 19 ] && ok || ko "sweep rows"
+# results are never replaced silently (as spall run): the same sweep again is
+# refused before anything is written, and --overwrite replaces them
+sum=$(cksum < sweep.csv)
+swp="sweep --model mcg --projectile steel --target sebs --eta 4.5e-2 --R 25e6 --d 10e-6 --v0 100:900:100"
+bad "sweep csv exists" "'sweep.csv' exists; give --overwrite" $swp --csv sweep.csv
+[ "$(cksum < sweep.csv)" = "$sum" ] && ok || ko "refused sweep changed sweep.csv"
+cp sweep.png other.png
+bad "sweep png exists" "'other.png' exists; give --overwrite" $swp --csv other.csv
+[ ! -e other.csv ] && ok || ko "refused sweep wrote other.csv"
+"$spall" penetrate $swp --csv sweep.csv --overwrite >/dev/null 2>&1 && ok || ko "sweep --overwrite"
+[ "$(grep -vc '^#' sweep.csv)" -eq 10 ] && ok || ko "sweep --overwrite rows"
+bad "trajectory csv exists" "exists; give --overwrite" poncelet $gel --csv traj.csv
 "$spall" penetrate mcg --d 1e-3 --v0 1000 --projectile steel --target sebs --eta 1e-4 --R 25e6 \
     >/dev/null 2>warn.txt && grep -q "Re = " warn.txt && ok || ko "Re warning"
 
@@ -70,6 +82,7 @@ for f in gelatin sebs sebs_poncelet; do
     [ "$(head -c 4 sw/$f.png | tail -c 3)" = "PNG" ] && ok || ko "pen_sweep $f.png"
 done
 bash "$src/examples/pen_sweep/pen_sweep.sh" "$tmp/nope" sw2 >/dev/null 2>&1; [ $? -eq 2 ] && ok || ko "pen_sweep missing spall"
+bash "$src/examples/pen_sweep/pen_sweep.sh" "$spall" sw >/dev/null 2>&1; [ $? -eq 2 ] && ok || ko "pen_sweep into its own results"
 
 bad "unknown mode" "unknown mode" bogus
 bad "bad number" "--d needs a number" poncelet --d x

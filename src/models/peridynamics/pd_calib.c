@@ -110,20 +110,7 @@ void pd_particle_eval(const struct model *m, const struct sim *sim, size_t i, do
         e += 0.25 * m->coef[s] * dl * dl; /* half of the bond's energy */
         if (stress) {
             double g = 0.5 * m->coef[s] * dl / l; /* F = g' r, half to this particle */
-            if (dim == 1) {
-                sg[0] += g * r[0] * r0[0];
-            } else if (dim == 2) {
-                sg[0] += g * r[0] * r0[0];
-                sg[1] += g * r[1] * r0[1];
-                sg[2] += 0.5 * g * (r[0] * r0[1] + r[1] * r0[0]);
-            } else {
-                sg[0] += g * r[0] * r0[0];
-                sg[1] += g * r[1] * r0[1];
-                sg[2] += g * r[2] * r0[2];
-                sg[3] += 0.5 * g * (r[0] * r0[1] + r[1] * r0[0]);
-                sg[4] += 0.5 * g * (r[1] * r0[2] + r[2] * r0[1]);
-                sg[5] += 0.5 * g * (r[0] * r0[2] + r[2] * r0[0]);
-            }
+            pd_add_bond_virial(sg, dim, g, r, r0);
         }
     }
     if (energy)

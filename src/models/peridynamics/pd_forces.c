@@ -48,8 +48,17 @@
                 st[s] |= BOND_BROKEN;                                                           \
                 if (fresh && !(type[s] & 1u))                                                   \
                     fresh[s] = 1;                                                               \
+                /* what the kicks left of the bond's energy, not 1/4 coef  */                \
+                /* e_{n+1}^2: immediate, its force at x_n acted half a step */               \
+                /* (1/4 coef e_{n+1} e_n, exact); next_step, its force at   */               \
+                /* x_{n+1} acts half a step more (1/4 coef e_{n+1} (e_{n+1} */               \
+                /* + de), de ~ e_{n+1} - e_n); x_n = x - dt u                */              \
                 const double e0 = l - r;                                                        \
-                dd += 0.25 * coef[s] * e0 * e0;                                                 \
+                const double px = ex - dt * (u[0][j] - u[0][i]);                                \
+                const double py = DIM > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;                \
+                const double pz = DIM > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;                \
+                const double en = sqrt(px * px + py * py + pz * pz) - r;                        \
+                dd += 0.25 * coef[s] * e0 * (late ? 2.0 * e0 - en : en);                        \
                 if (!late)                                                                      \
                     continue;                                                                   \
             }                                                                                   \
@@ -84,6 +93,9 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     double *diss = m->diss;
     double *const *x = p->x;
     double *const *f = p->f;
+    /* x_n = x_{n+1} - dt u for the energy of a bond that breaks in this step */
+    double *const *u = sim_drift_velocities(sim);
+    const double dt = sim->dt;
     /* break_order next_step: a bond past s0 still pulls in this step
      * (PDLAMMPS pair peri/pmb order); immediate: it is dropped at once */
     const bool late = m->opt.break_late;

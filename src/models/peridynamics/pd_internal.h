@@ -117,4 +117,25 @@ int pd_build_coefficients(struct model *m, struct sim *sim, struct spall_error *
  *  model's damping hook right after the force call. */
 void pd_adr_update(struct model *m, const struct sim *sim);
 
+/** Adds g (r (x) r0), symmetrised, to the Voigt stress sum @p sg (1D: xx;
+ *  2D: xx yy xy; 3D: xx yy zz xy yz xz): the virial of one bond force g r
+ *  over its reference vector r0, shared by the PMB and LPS stress
+ *  recoveries. */
+static inline void pd_add_bond_virial(double *sg, int dim, double g, const double r[3],
+                                      const double r0[3])
+{
+    sg[0] += g * r[0] * r0[0];
+    if (dim == 1)
+        return;
+    sg[1] += g * r[1] * r0[1];
+    if (dim == 2) {
+        sg[2] += 0.5 * g * (r[0] * r0[1] + r[1] * r0[0]);
+        return;
+    }
+    sg[2] += g * r[2] * r0[2];
+    sg[3] += 0.5 * g * (r[0] * r0[1] + r[1] * r0[0]);
+    sg[4] += 0.5 * g * (r[1] * r0[2] + r[2] * r0[1]);
+    sg[5] += 0.5 * g * (r[0] * r0[2] + r[2] * r0[0]);
+}
+
 #endif

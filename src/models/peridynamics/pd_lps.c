@@ -236,18 +236,7 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
         w += 0.5 * L->alpha[i] * L->ob[s] * ed * ed * p->volume[j];
         /* collapsed stress sum_j t_ij M (x) xi V_j ([Silling2007], homogeneous case) */
         const double g = L->ob[s] * (L->alpha[i] * e + L->bcoef[i] * xi * th) * p->volume[j] / l;
-        if (dim == 2) {
-            sg[0] += g * r[0] * r0[0];
-            sg[1] += g * r[1] * r0[1];
-            sg[2] += 0.5 * g * (r[0] * r0[1] + r[1] * r0[0]);
-        } else {
-            sg[0] += g * r[0] * r0[0];
-            sg[1] += g * r[1] * r0[1];
-            sg[2] += g * r[2] * r0[2];
-            sg[3] += 0.5 * g * (r[0] * r0[1] + r[1] * r0[0]);
-            sg[4] += 0.5 * g * (r[1] * r0[2] + r[2] * r0[1]);
-            sg[5] += 0.5 * g * (r[0] * r0[2] + r[2] * r0[0]);
-        }
+        pd_add_bond_virial(sg, dim, g, r, r0);
     }
     if (energy)
         *energy = w * p->volume[i];

@@ -75,6 +75,53 @@ size_t sph_history(const struct model *m, const struct sim *sim, const char **na
     return k;
 }
 
+/* The material's EOS, yield, rate and failure laws with their constants, so
+ * that run.log records every number the model uses. */
+static size_t sph_describe_laws(const struct sph_material *mt, char *buf, size_t len)
+{
+    size_t off = 0;
+#define ADD(...)                                                                                   \
+    do {                                                                                           \
+        if (off < len)                                                                             \
+            off += (size_t)snprintf(buf + off, len - off, __VA_ARGS__);                            \
+    } while (0)
+    if (mt->eos == SPH_EOS_LINEAR)
+        ADD("    eos: linear (p = K eta, eta = rho/rho0 - 1), rho0 = %.6g kg/m^3\n", mt->rho0);
+    else
+        ADD("    eos: Mie-Grueneisen%s, rho0 = %.6g kg/m^3, C = %.6g m/s, S = %.6g, Gamma = %.6g, "
+            "P0 = %.6g Pa\n",
+            mt->eos == SPH_EOS_MIE_GRUNEISEN_CK ? " (C_k polynomial form, no energy term)" : "", mt->rho0, mt->mg_c,
+            mt->mg_s, mt->mg_gamma, mt->mg_p0);
+    switch (mt->yield) {
+    case SPH_YIELD_ELASTIC:
+        ADD("    yield: none (elastic)\n");
+        break;
+    case SPH_YIELD_PERFECT:
+        ADD("    yield: perfectly plastic, sigma_y = %.6g Pa\n", mt->sy);
+        break;
+    case SPH_YIELD_POWER:
+        ADD("    yield: A + B ep^n, A = %.6g Pa, B = %.6g Pa, n = %.6g\n", mt->A, mt->B, mt->n);
+        break;
+    case SPH_YIELD_JOHNSON_COOK:
+        ADD("    yield: Johnson-Cook, A = %.6g Pa, B = %.6g Pa, n = %.6g, C = %.6g, m = %.6g, "
+            "T_melt = %.6g K, T_room = %.6g K, eps0_dot = %.6g 1/s, c_p = %.6g J/(kg K), "
+            "Taylor-Quinney %.3g\n",
+            mt->A, mt->B, mt->n, mt->jc_c, mt->jc_m, mt->Tm, mt->Troom, mt->eps0, mt->cp,
+            mt->beta_tq);
+        break;
+    }
+    if (mt->rate == SPH_RATE_COWPER_SYMONDS)
+        ADD("    rate: Cowper-Symonds, D = %.6g 1/s, q = %.6g\n", mt->cs_d, mt->cs_q);
+    if (mt->failure == SPH_FAIL_STRESS)
+        ADD("    failure: stress %.6g Pa%s\n", mt->fail_value,
+            mt->failed_tension ? " (failed particles keep EOS tension)" : "");
+    else if (mt->failure == SPH_FAIL_PLASTIC_STRAIN)
+        ADD("    failure: plastic strain %.6g%s\n", mt->fail_value,
+            mt->failed_tension ? " (failed particles keep EOS tension)" : "");
+#undef ADD
+    return off < len ? off : len;
+}
+
 void sph_describe(const struct model *m, const struct sim *sim, char *buf, size_t len)
 {
     static const char *const kn[] = {"", "cubic_spline", "gaussian", "quintic_spline",
@@ -88,10 +135,12 @@ void sph_describe(const struct model *m, const struct sim *sim, char *buf, size_
     for (size_t k = 0; k < m->n_mat && off < len; k++) {
         const struct sph_material *mt = &m->mat[k];
         off += (size_t)snprintf(buf + off, len - off,
-                                "  material %zu: E = %.4g Pa, nu = %.4g, K = %.4g Pa, G = %.4g Pa, "
+                                "  material %s: E = %.4g Pa, nu = %.4g, K = %.4g Pa, G = %.4g Pa, "
                                 "c0 = %.5g m/s\n",
-                                k, mt->E, mt->nu, mt->K, mt->G,
-                                sph_sound_speed(mt, mt->rho0, 0.0));
+                                k < sim->n_materials ? sim->materials[k].name : "?", mt->E,
+                                mt->nu, mt->K, mt->G, sph_sound_speed(mt, mt->rho0, 0.0));
+        if (off < len)
+            off += sph_describe_laws(mt, buf + off, len - off);
     }
     if (m->form && off < len)
         sph_forms_describe(m, sim, buf + off, len - off);
