@@ -34,8 +34,11 @@ struct spall_sim;
 /** Read the YAML deck at @p path and build the simulation: particles, model,
  *  materials, boundary conditions, the stable time step and the initial
  *  forces and energies.  Input errors name FILE:LINE:COLUMN and come back as
- *  SPALL_ERR_INPUT (or SPALL_ERR_PHYSICS for impossible physics).  Nothing
- *  is written to disk.  *out is NULL on failure. */
+ *  SPALL_ERR_INPUT (or SPALL_ERR_PHYSICS for impossible physics).  The
+ *  set-up checks of `spall run` apply (unit slips, impactors, walls and
+ *  symmetry planes inside a body, probes off every body, a large initial
+ *  strain energy; docs/decks.md "Set-up check", deck key run.allow), not
+ *  the cost check.  Nothing is written to disk.  *out is NULL on failure. */
 int spall_sim_create_file(struct spall_sim **out, const char *path, struct spall_error *err);
 
 /** As spall_sim_create_file, for deck text in memory; @p name stands for
@@ -53,8 +56,10 @@ void spall_sim_destroy(struct spall_sim **s);
 int spall_sim_step(struct spall_sim *s, long n, struct spall_error *err);
 
 /** Step until the simulated time reaches @p t (the step that crosses t is
- *  the last; nothing happens if t is already reached).  Steps past the
- *  deck's run.end_time are allowed: the deck's end is a default, not a
+ *  the last; nothing happens if t is already reached; the engine shortens
+ *  the steps that would cross run.end_time or a frame time to land on
+ *  them).  Steps past
+ *  the deck's run.end_time are allowed: the deck's end is a default, not a
  *  limit.  A frame is written at the deck's output interval if an output
  *  directory is open (spall_sim_output_open). */
 int spall_sim_run_to(struct spall_sim *s, double t, struct spall_error *err);

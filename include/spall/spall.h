@@ -27,6 +27,10 @@ struct spall_run_options {
     bool quiet;            /**< no summary lines on stdout */
     const char *restart;   /**< continue from this checkpoint file or run directory
                                 (its newest checkpoint); NULL: start at t = 0 */
+    double progress_every; /**< batch progress lines (stderr not a terminal): seconds
+                                between them (0: 60) */
+    bool yes;              /**< run even when the set-up check finds the run's cost far
+                                beyond the machine (deck key run.allow: [cost]) */
 };
 
 /** What a finished (or failed) run did. */

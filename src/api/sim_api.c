@@ -18,6 +18,8 @@
 #include "io/deck_build.h"
 #include "io/output.h"
 #include "io/run_util.h"
+#include "io/setup_check.h"
+#include "io/setup_check_sim.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -40,7 +42,14 @@ static int create_from_deck(struct spall_sim **out, struct deck *d, struct spall
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory creating a simulation");
     }
     h->deck = d;
-    int rc = deck_build_sim(d, &h->sim, &h->ro, err);
+    /* the set-up checks of spall run (unit slips, set-ups that cannot be
+     * right); the API has no warnings to print: every finding here refuses */
+    struct setup_report setup = {0};
+    int rc = setup_check_units(d, err);
+    if (!rc)
+        rc = deck_build_sim(d, &h->sim, &h->ro, err);
+    if (!rc)
+        rc = setup_check_sim(d, h->sim, &setup, err);
     if (rc) {
         spall_sim_destroy(&h);
         return rc;
@@ -113,8 +122,16 @@ static int frame_if_due(struct spall_sim *h, bool last, struct spall_error *err)
     return frame ? field_writer_write(h->fw, s, err) : SPALL_OK;
 }
 
+/* The next frame time of the deck's schedule (0: none), where the engine
+ * lands a step (sim_step_length). */
+static double next_stop(const struct spall_sim *h)
+{
+    return h->fw && h->ro.field_interval > 0.0 ? h->next_frame_t : 0.0;
+}
+
 static int one_step(struct spall_sim *h, struct spall_error *err)
 {
+    h->sim->stop_time = next_stop(h);
     int rc = sim_step(h->sim, err);
     return rc ? rc : frame_if_due(h, false, err);
 }
@@ -155,6 +172,7 @@ int spall_sim_run(struct spall_sim *s, struct spall_error *err)
     if (!s)
         return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_run: simulation is NULL");
     while (!sim_done(s->sim)) {
+        s->sim->stop_time = next_stop(s);
         int rc = sim_step(s->sim, err);
         if (rc)
             return rc;

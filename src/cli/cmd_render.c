@@ -21,17 +21,22 @@ static void render_usage(FILE *out)
     fprintf(out,
             "usage: spall render RUN_DIR|FRAME.h5 [--field NAME] [--component C]\n"
             "                    [--frame K | --all] [-o PATH] [--width PX]\n"
-            "                    [--range MIN MAX] [--reference] [--slice-z Z]\n"
+            "                    [--range MIN MAX] [--reference] [--slice AXIS[=V]]\n"
             "\n"
             "Draws one particle field of the run's HDF5 frames as PNG: one disc per\n"
             "particle coloured by the value, with a colour bar, a length scale and the\n"
             "time.  2D runs are drawn in the x-y plane; 3D runs as the slice of particles\n"
-            "within 0.6 spacing of z = Z (default: the body's mid-plane).\n"
-            "  --field NAME     dataset to draw (default fracture_density): any field the run\n"
-            "                   wrote, e.g. velocity, displacement, stress, temperature,\n"
-            "                   fragment_id, strain_energy\n"
-            "  --component C    0, 1, 2 (or x, y, z) or mag; default: magnitude for\n"
+            "within 0.6 spacing of a plane normal to x, y or z (default: z at the body's\n"
+            "mid-plane).\n"
+            "  --field NAME     dataset to draw: any field the run wrote (an unknown name\n"
+            "                   lists them), e.g. velocity, displacement, stress, damage,\n"
+            "                   fragment_id; default: the first the run has of\n"
+            "                   fracture_density, damage, plastic_strain, velocity\n"
+            "  --component C    x, y, z (vectors); xx, yy, zz, xy, yz, xz (tensors: stress,\n"
+            "                   strain); mag; or an index 0-8; default: magnitude for\n"
             "                   position/velocity/displacement/force, component 0 otherwise\n"
+            "  --slice AXIS[=V] 3D: the slice normal to AXIS (x, y or z) at V [m] (default:\n"
+            "                   the body's mid-plane); --slice-z Z is --slice z=Z\n"
             "  --frame K        frame number K (default: the last frame)\n"
             "  --all            every frame\n"
             "  -o PATH          output PNG (one frame) or directory (--all); default\n"
@@ -67,8 +72,9 @@ static int parse_double(const char *s, double *v)
 
 int cli_render(int argc, char **argv)
 {
-    const char *input = NULL, *out = NULL, *field = "fracture_density", *comp = NULL;
+    const char *input = NULL, *out = NULL, *field = NULL, *comp = NULL;
     long frame = -1;
+    int axis = 2;
     int all = 0, reference = 0, width = 800;
     double vmin = NAN, vmax = NAN, slice = NAN;
     for (int k = 1; k < argc; k++) {
@@ -106,6 +112,14 @@ int cli_render(int argc, char **argv)
                 fprintf(stderr, "spall render: --slice-z needs a number (m)\n");
                 return 2;
             }
+        } else if (strcmp(a, "--slice") == 0 && more) {
+            const char *v = argv[++k];
+            if (!(v[0] >= 'x' && v[0] <= 'z') || (v[1] && (v[1] != '=' || !parse_double(v + 2, &slice)))) {
+                fprintf(stderr, "spall render: --slice needs x, y or z, optionally =V (m), "
+                                "e.g. --slice y=0.01\n");
+                return 2;
+            }
+            axis = v[0] - 'x';
         } else if (strcmp(a, "--reference") == 0) {
             reference = 1;
         } else if (a[0] == '-') {
@@ -128,32 +142,29 @@ int cli_render(int argc, char **argv)
     o.vmin = vmin;
     o.vmax = vmax;
     o.slice_z = slice;
+    o.slice_axis = axis;
     o.reference = reference;
-    if (comp) {
-        if (strcmp(comp, "mag") == 0)
-            o.component = RENDER_MAGNITUDE;
-        else if (strlen(comp) == 1 && comp[0] >= 'x' && comp[0] <= 'z')
-            o.component = comp[0] - 'x';
-        else if (strlen(comp) == 1 && comp[0] >= '0' && comp[0] <= '8')
-            o.component = comp[0] - '0';
-        else {
-            fprintf(stderr, "spall render: --component '%s': expected 0-8, x, y, z or mag\n", comp);
-            return 2;
-        }
-    }
+    o.component_name = comp; /* resolved against the field's components */
     struct spall_error err = {0};
     struct stat st;
     if (stat(input, &st) != 0) {
         fprintf(stderr, "spall: error: cannot open '%s'\n", input);
         return 4;
     }
+    char picked[RENDER_NAME_LEN];
     if (!S_ISDIR(st.st_mode)) { /* a single frame file */
+        int rc = render_pick_field(input, field, picked, sizeof picked, &err);
+        if (rc) {
+            fprintf(stderr, "spall: error: %s\n", err.msg);
+            return cli_exit_status(rc);
+        }
+        field = picked;
         char png[4096];
         if (out)
             snprintf(png, sizeof png, "%s", out);
         else
             snprintf(png, sizeof png, "%.*s_%s.png", (int)(strlen(input) - 3), input, field);
-        int rc = render_frame_png(input, png, &o, &err);
+        rc = render_frame_png(input, png, &o, &err);
         if (rc) {
             fprintf(stderr, "spall: error: %s\n", err.msg);
             return cli_exit_status(rc);
@@ -194,6 +205,17 @@ int cli_render(int argc, char **argv)
         return 2;
     }
     qsort(frames, nf, sizeof *frames, cmp_long);
+    { /* the field, from the last frame: its name goes into the PNG names */
+        char h5[4096];
+        snprintf(h5, sizeof h5, "%s/fields_%06ld.h5", input, frames[nf - 1]);
+        int rc = render_pick_field(h5, field, picked, sizeof picked, &err);
+        if (rc) {
+            free(frames);
+            fprintf(stderr, "spall: error: %s\n", err.msg);
+            return cli_exit_status(rc);
+        }
+        field = picked; /* o.field stays: NULL picks the same default per frame */
+    }
     size_t first = nf - 1, last = nf - 1;
     if (all) {
         first = 0;

@@ -11,6 +11,7 @@ static void run_usage(FILE *out)
 {
     fprintf(out, "usage: spall run DECK.yaml [-o DIR] [--overwrite] [--threads N]\n"
                  "                 [--progress | --no-progress] [--quiet] [--restart RUN|FILE]\n"
+                 "                 [--progress-every SECONDS] [--yes]\n"
                  "\n"
                  "Runs the simulation of DECK.yaml and writes into DIR (default: a directory\n"
                  "named after the deck): run.log, history.csv, fields_NNNNNN.h5 and\n"
@@ -21,7 +22,16 @@ static void run_usage(FILE *out)
                  "(deck key output.checkpoint), --restart FILE from that checkpoint; with -o\n"
                  "another directory gets a continued copy.  SIGTERM, SIGINT or SIGUSR1 end\n"
                  "the current step, write a checkpoint and exit with status 75\n"
-                 "(docs/restart.md).\n");
+                 "(docs/restart.md).\n"
+                 "\n"
+                 "Without a terminal on stderr (a batch job) a progress line is printed every\n"
+                 "60 s (--progress-every): step, time, %%, rate, ETA and the energy balance as\n"
+                 "a fraction of the energy put in; --no-progress turns it off.\n"
+                 "\n"
+                 "Before step 0 the set-up is checked (docs/decks.md, run.allow): impactors,\n"
+                 "walls or symmetry planes inside a body, probes off every body, a large\n"
+                 "initial strain energy, and the run's cost (particle-steps, output size,\n"
+                 "printed to run.log); --yes runs a run whose cost is far beyond the machine.\n");
 }
 
 /* Under mpirun every rank parses the same arguments and fails alike; only
@@ -66,6 +76,14 @@ int cli_run(int argc, char **argv)
             opt.progress = 0;
         } else if (strcmp(a, "--quiet") == 0) {
             opt.quiet = true;
+        } else if (strcmp(a, "--progress-every") == 0) {
+            char *end = NULL;
+            if (++k >= argc || !((opt.progress_every = strtod(argv[k], &end)) > 0.0) || *end) {
+                fprintf(stderr, "spall run: --progress-every needs a positive number of seconds\n");
+                return 2;
+            }
+        } else if (strcmp(a, "--yes") == 0) {
+            opt.yes = true;
         } else if (a[0] == '-') {
             RUN_ERR("spall run: unknown option '%s' (see spall run --help)\n", a);
             return 2;

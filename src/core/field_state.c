@@ -165,6 +165,8 @@ int sim_register_state(struct sim *s, struct field_state *fs, struct spall_error
     if ((rc = field_state_add_values(fs, "sim.t", FIELD_F64, &s->t, 1, err)) ||
         (rc = field_state_add_values(fs, "sim.dt", FIELD_F64, &s->dt, 1, err)) ||
         (rc = field_state_add_values(fs, "sim.step", FIELD_I64, &s->step, 1, err)) ||
+        (rc = field_state_add_values(fs, "sim.dt_rest", FIELD_F64, &s->dt_rest, 1, err)) ||
+        (rc = field_state_add_values(fs, "sim.n_split", FIELD_I64, &s->n_split, 1, err)) ||
         (rc = field_state_add_values(fs, "sim.damping", FIELD_F64, &s->damping, 1, err)) ||
         (rc = field_state_add_values(fs, "sim.energy", FIELD_F64, &s->energy,
                                      sizeof s->energy / sizeof(double), err)))

@@ -205,7 +205,7 @@ static void drift(struct sim *s, double dt)
 
 double *const *sim_drift_velocities(const struct sim *s, double *dt)
 {
-    *dt = s->dt;
+    *dt = sim_step_dt(s); /* the step actually taken (shortened to land on a time) */
     /* the predictor-corrector copies p->v into v_half right after drift() */
     return s->integrator == INTEGRATOR_PREDICTOR_CORRECTOR ? s->v_half : s->p->v;
 }
@@ -440,9 +440,46 @@ static int check_energy(struct sim *s, double kinetic, struct spall_error *err)
                            s->step, s->t, ratio, s->energy_blowup, i, id);
 }
 
-int sim_step(struct sim *s, struct spall_error *err)
+/* A target closer than this (times dt) counts as reached: the rounding
+ * sim_prepare allows when it counts the steps to end_time. */
+#define STEP_LAND_TOL 1e-9
+
+/* The step before any landing: dt, or the rest of a fixed-dt step that was
+ * split at an output time (the steps stay on the grid k dt). */
+static double planned_step(const struct sim *s)
 {
-    const double dt = s->dt;
+    if (!s->adaptive_dt && s->dt_rest > 0.0 && s->dt_rest < s->dt)
+        return s->dt_rest;
+    return s->dt;
+}
+
+double sim_step_length(const struct sim *s, double *landing)
+{
+    const double planned = planned_step(s);
+    const double tol = STEP_LAND_TOL * s->dt;
+    double h = planned;
+    *landing = NAN;
+    /* an output time: split the step unless the rest would be negligible */
+    const double to_stop = s->stop_time - s->t;
+    if (to_stop > tol && to_stop < planned - tol) {
+        h = to_stop;
+        *landing = s->stop_time;
+    }
+    /* end_time: the last step is shortened to land on it (issue 24 item 2:
+     * a step that overshoots end_time reports a state the user never asked
+     * for) */
+    const double to_end = s->end_time - s->t;
+    if (to_end > 0.0 && to_end <= h) {
+        h = to_end;
+        *landing = s->end_time;
+    }
+    return h;
+}
+
+/* One step of length dt from s->t, ending at @p landing when that is a
+ * number (the target exactly, not t + dt rounded). */
+static int advance(struct sim *s, double dt, double landing, struct spall_error *err)
+{
     const double half = 0.5 * dt;
     const int pc = s->integrator == INTEGRATOR_PREDICTOR_CORRECTOR;
     kick(s, half);
@@ -453,7 +490,7 @@ int sim_step(struct sim *s, struct spall_error *err)
     rigid_drift(s, dt);
     account_body_work(s, dt);
     account_load_work(s, dt);
-    s->t += dt;
+    s->t = isnan(landing) ? s->t + dt : landing;
     s->step++;
     int rc = SPALL_OK;
     if (pc) {
@@ -483,19 +520,39 @@ int sim_step(struct sim *s, struct spall_error *err)
         (rc = s->ops->advance_state(s->model, s, dt, MODEL_STAGE_CORRECT, err)))
         return unstable_or(s, rc, err);
     rc = s->ops->end_step(s->model, s, err);
-    if (s->par && (rc = par_agree(rc, err)))
+    if (s->par && (rc = par_agree(rc, err))) /* a failure on any rank stops all */
         return rc;
+    return rc ? unstable_or(s, rc, err) : SPALL_OK;
+}
+
+int sim_step(struct sim *s, struct spall_error *err)
+{
+    /* the engine owns dt: a step is shortened here, for every model, to land
+     * on end_time or the driver's output time; the hooks see the step
+     * actually taken in s->dt_step (sim_step_dt) and the nominal s->dt, which
+     * the stiffnesses scaled by the step keep (a penalty k = eta m / dt^2 of
+     * a short step would be a stiff spring for all the steps after it) */
+    const double planned = planned_step(s);
+    double landing;
+    const double h = sim_step_length(s, &landing);
+    s->dt_step = h;
+    int rc = advance(s, h, landing, err);
+    s->dt_step = 0.0;
     if (rc)
-        return unstable_or(s, rc, err);
-    if (s->adaptive_dt) {
+        return rc;
+    if (!s->adaptive_dt) {
+        /* a split step (an output time inside it): its rest comes next and
+         * the run takes one step more */
+        const bool split = !isnan(landing) && landing != s->end_time && h < planned;
+        s->dt_rest = split ? planned - h : 0.0;
+        s->n_split += split;
+    } else {
         /* e.g. SPH, Eq. 3.38: the limit moves with the sound speed and
-         * particle velocities; never step past end_time */
+         * particle velocities (sim_step_length keeps it off end_time) */
         double lim = fmin(s->ops->stable_dt(s->model, s), particle_contact_stable_dt(s));
         if (s->par) /* the smallest over all ranks: min is exact in any order */
             lim = par_min_double(lim);
         double dt_new = s->dt_factor * lim;
-        if (s->end_time > s->t && dt_new > s->end_time - s->t)
-            dt_new = s->end_time - s->t;
         if (dt_new > 0.0 && isfinite(dt_new))
             s->dt = dt_new;
     }
@@ -518,7 +575,7 @@ bool sim_done(const struct sim *s)
 {
     if (s->adaptive_dt)
         return s->t >= s->end_time * (1.0 - 1e-12);
-    return s->step >= s->n_steps;
+    return s->step >= s->n_steps + s->n_split;
 }
 
 void sim_reflect_particle(struct sim *s, size_t i, int k)

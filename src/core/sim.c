@@ -378,5 +378,7 @@ int sim_prepare(struct sim *s, struct spall_error *err)
     }
     s->t = 0.0;
     s->step = 0;
+    s->dt_rest = 0.0;
+    s->n_split = 0;
     return sim_initial_forces(s, err);
 }

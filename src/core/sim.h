@@ -125,15 +125,26 @@ struct sim {
     double damping;       /**< mass-proportional damping coefficient [1/s] */
 
     double t;             /**< current time [s] */
-    double dt;            /**< time step [s] */
+    double dt;            /**< time step [s]: the nominal one (stiffnesses scaled by
+                               the step, e.g. impactor penalties, use it) */
+    double dt_step;       /**< length of the step being taken [s]: dt, or shorter where
+                               the step lands on end_time or a frame time (what the
+                               hooks that integrate over the step use: sim_step_dt) */
     double dt_limit;      /**< stability limit at start [s] */
     double dt_factor;     /**< dt = dt_factor * dt_limit unless the deck sets dt */
     bool dt_override;     /**< allow dt above the limit (explicit deck key) */
     bool adaptive_dt;     /**< re-evaluate dt = dt_factor * stable_dt every step
                                (n_steps is then only an estimate) */
-    double end_time;      /**< s */
+    double end_time;      /**< s; the step that would pass it is shortened to land on it */
+    double stop_time;     /**< the driver's next output time (a frame): the step that would
+                               pass it is split to land on it (0 or <= t: none) */
+    double dt_rest;       /**< fixed dt: the rest of a step split at stop_time, taken next so
+                               the steps stay on the grid k dt (0: none) */
     long step;
-    long n_steps;
+    long n_steps;         /**< steps to end_time (fixed dt: exact with n_split; adaptive
+                               dt: the estimate at start) */
+    long n_split;         /**< fixed dt: steps split at an output time so far (each adds
+                               one step to the run) */
 
     double energy_blowup; /**< stop if total energy exceeds this factor x reference */
     long energy_check_every; /**< sim_step checks the full energy account for a
@@ -193,6 +204,19 @@ int sim_step(struct sim *s, struct spall_error *err);
 /** True when the run has reached its end (steps, or end_time with an
  *  adaptive time step). */
 bool sim_done(const struct sim *s);
+
+/** The length of the step being taken (hooks that integrate over the step:
+ *  heat conduction, Langevin noise, a stiffness estimate from a position
+ *  change); s->dt outside a step. */
+static inline double sim_step_dt(const struct sim *s)
+{
+    return s->dt_step > 0.0 ? s->dt_step : s->dt;
+}
+
+/** Length of the next step: dt, or shorter where the step would pass
+ *  end_time or stop_time (*landing: the time it lands on, else NAN); a
+ *  fixed-dt step after a split takes the rest of the split step. */
+double sim_step_length(const struct sim *s, double *landing);
 
 /** Recompute the energy account from the current state. */
 void sim_update_energy(struct sim *s);

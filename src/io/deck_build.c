@@ -7,6 +7,7 @@
  */
 #include "core/mathconst.h"
 #include "io/deck_build.h"
+#include "io/setup_check_sim.h"
 #include "io/deck_shapes.h"
 
 #include "core/geometry.h"
@@ -371,13 +372,15 @@ static int parse_groups(struct build_ctx *c, const struct deck_node *root, struc
             free(idx);
             return rc;
         }
+        char why[300] = ""; /* the likely cause: a region thinner than the spacing */
+        if (n == 0)
+            setup_empty_group_hint(c->sim, g, why, sizeof why);
         geom_destroy(&g);
         if (n == 0) {
             free(idx);
             return deck_error_key(err, gs, gs->keys[k],
-                                  "group '%s' contains no particle; check its geometry against "
-                                  "the body",
-                                  gs->keys[k]);
+                                  "group '%s' contains no particle; %s", gs->keys[k],
+                                  why[0] ? why : "check its geometry against the body");
         }
         rc = sim_add_group(c->sim, gs->keys[k], idx, n, NULL, err);
         free(idx);
@@ -611,7 +614,8 @@ static int parse_run(struct build_ctx *c, const struct deck_node *root, struct r
                      struct spall_error *err)
 {
     static const char *const keys[] = {"end_time", "steps", "dt", "dt_factor", "dt_override",
-                                       "threads", "energy_blowup", "seed", "max_particles", NULL};
+                                       "threads", "energy_blowup", "seed", "max_particles", "allow",
+                                       NULL};
     const struct deck_node *r = deck_get(root, "run");
     if (!r)
         return deck_error(err, root, "missing required key 'run' (end_time or steps)");

@@ -27,6 +27,7 @@ void render_options_default(struct render_options *o, const char *field)
     o->width = 800;
     o->vmin = o->vmax = NAN;
     o->slice_z = NAN;
+    o->slice_axis = 2;
     o->categorical = field && (strcmp(field, "fragment_id") == 0 || strcmp(field, "material") == 0 ||
                                strcmp(field, "id") == 0);
 }
@@ -192,7 +193,9 @@ int render_points_png(const char *png_path, const struct render_points *d,
         if (kept == 0) {
             free(keep);
             return spall_error_set(err, SPALL_ERR_INPUT,
-                                   "no particle within 0.6 spacing of the slice z = %g m", zc);
+                                   "no particle within 0.6 spacing of the slice %c = %g m",
+                                   "xyz"[o->slice_axis >= 0 && o->slice_axis < 3 ? o->slice_axis : 2],
+                                   zc);
         }
     }
     if (!isfinite(h) || h <= 0.0)
@@ -275,7 +278,8 @@ int render_points_png(const char *png_path, const struct render_points *d,
     }
     if (is3d) {
         cairo_set_font_size(cr, 11.0);
-        snprintf(buf, sizeof buf, "slice z = %.4g m", zc);
+        snprintf(buf, sizeof buf, "slice %c = %.4g m",
+                 "xyz"[o->slice_axis >= 0 && o->slice_axis < 3 ? o->slice_axis : 2], zc);
         text_at(cr, W - 10, 28, buf, 1.0, 0.0);
     }
     /* length scale: a 1/2/5 x 10^k length near a quarter of the width */
@@ -354,17 +358,46 @@ static int to_xyz(double *src, size_t n, size_t nc, double **out, struct spall_e
     return SPALL_OK;
 }
 
-int render_frame_png(const char *h5_path, const char *png_path, const struct render_options *o,
+int render_frame_png(const char *h5_path, const char *png_path, const struct render_options *opt,
                      struct spall_error *err)
 {
     double *pos_raw = NULL, *val = NULL, *ref_raw = NULL, *pos = NULL, *ref = NULL, *scalar = NULL;
     size_t n = 0, npc = 0, nv = 0, nvc = 0;
     double time = NAN;
-    int rc = field_frame_read(h5_path, "position", &pos_raw, &n, &npc, &time, err);
+    /* the field: one the run wrote (render_select.c) */
+    char fname[RENDER_NAME_LEN];
+    int rc = render_pick_field(h5_path, opt->field, fname, sizeof fname, err);
+    if (rc)
+        return rc;
+    struct render_options oo = *opt;
+    const struct render_options *o = &oo;
+    oo.field = fname;
+    if (!opt->field) {
+        struct render_options def;
+        render_options_default(&def, fname);
+        oo.categorical = def.categorical;
+    }
+    rc = field_frame_read(h5_path, "position", &pos_raw, &n, &npc, &time, err);
     if (rc)
         return rc;
     if (npc == 0)
         npc = 1;
+    /* the run's dimension: positions are written with 3 components (the
+     * XDMF geometry), zero beyond the run's own */
+    size_t dim = npc;
+    while (dim > 1) {
+        size_t i = 0;
+        while (i < n && pos_raw[i * npc + dim - 1] == 0.0)
+            i++;
+        if (i < n)
+            break;
+        dim--;
+    }
+    if (dim < 3 && o->slice_axis != 2) {
+        rc = spall_error_set(err, SPALL_ERR_INPUT, "'%s' is a %zuD run: there is no slice to "
+                             "choose (--slice is for 3D runs)", h5_path, dim);
+        goto done;
+    }
     if ((rc = field_frame_read(h5_path, o->field, &val, &nv, &nvc, NULL, err)))
         goto done;
     if (nvc == 0)
@@ -400,7 +433,12 @@ int render_frame_png(const char *h5_path, const char *png_path, const struct ren
                 ref[i] = pos[i] - ref[i];
         }
     }
+    render_slice_axis(pos, n, o->slice_axis); /* 3D: the slice axis becomes the depth */
+    render_slice_axis(ref, n, o->slice_axis);
     int comp = o->component;
+    if (o->component_name &&
+        (rc = render_component_index(o->component_name, o->field, nvc, dim, &comp, err)))
+        goto done;
     if (comp == RENDER_AUTO) {
         int vec = strcmp(o->field, "velocity") == 0 || strcmp(o->field, "displacement") == 0 ||
                   strcmp(o->field, "force") == 0 || strcmp(o->field, "position") == 0;
@@ -432,6 +470,8 @@ int render_frame_png(const char *h5_path, const char *png_path, const struct ren
     if (nvc > 1) {
         if (comp == RENDER_MAGNITUDE)
             snprintf(cname, sizeof cname, " |.|");
+        else if (o->component_name)
+            snprintf(cname, sizeof cname, " %.8s", o->component_name);
         else
             snprintf(cname, sizeof cname, " [%d]", comp);
     }

@@ -20,20 +20,28 @@
 
 struct spall_error;
 
+#define RENDER_NAME_LEN 64
+
 /** Component selection: a component index >= 0, or one of these. */
 enum { RENDER_MAGNITUDE = -1, RENDER_AUTO = -2 };
 
 /** Rendering options (zero-initialised = defaults, except the NaN fields,
  *  see render_options_default). */
 struct render_options {
-    const char *field;   /**< dataset name, e.g. "fracture_density" */
+    const char *field;   /**< dataset name, e.g. "fracture_density"; NULL: the first the
+                              frame has of fracture_density, damage, plastic strain,
+                              velocity, displacement (render_pick_field) */
+    const char *component_name; /**< x, y, z, xx, yy, zz, xy, yz, xz (tensors), mag or
+                              an index: resolved against the field (overrides component) */
+    int slice_axis;      /**< 3D: the axis the slice is normal to, 0 1 2 = x y z
+                              (default z); the picture shows the other two */
     int component;       /**< index, RENDER_MAGNITUDE, or RENDER_AUTO (magnitude for
                               vectors of position/velocity/displacement/force, else 0) */
     int width;           /**< image width in pixels (height follows the aspect) */
     bool reference;      /**< draw at reference positions (default: current) */
     bool categorical;    /**< distinct colours per integer value (ids) */
     double vmin, vmax;   /**< colour range; NaN: the data's range */
-    double slice_z;      /**< 3D: slice plane; NaN: the middle */
+    double slice_z;      /**< 3D: slice plane's coordinate along slice_axis; NaN: the middle */
     const char *title;   /**< NULL: the field name */
 };
 
@@ -54,6 +62,26 @@ struct render_points {
 /** Draw @p d into @p png_path. */
 int render_points_png(const char *png_path, const struct render_points *d,
                       const struct render_options *o, struct spall_error *err);
+
+/** The particle fields of frame @p h5_path (datasets but time and step),
+ *  at most @p max names; 0 when the file cannot be read. */
+size_t render_frame_fields(const char *h5_path, char (*names)[RENDER_NAME_LEN], size_t max);
+
+/** The field to draw: @p wanted if the frame has it (else SPALL_ERR_INPUT
+ *  listing the fields it has), or the default when @p wanted is NULL. */
+int render_pick_field(const char *h5_path, const char *wanted, char *out, size_t len,
+                      struct spall_error *err);
+
+/** Component @p name of field @p field with @p nvc components in a @p dim
+ *  dimensional run: x y z (vectors), xx yy zz xy yz xz (symmetric tensors:
+ *  3 components in 2D, 6 in 3D, yx etc. accepted), xx xy ... zz (3x3),
+ *  mag, or an index 0-8; SPALL_ERR_INPUT naming the valid ones. */
+int render_component_index(const char *name, const char *field, size_t nvc, size_t dim,
+                           int *comp, struct spall_error *err);
+
+/** Permute n points xyz[3i + c] so that @p axis becomes the third coordinate
+ *  (the depth of the slice) and the other two the drawing plane. */
+void render_slice_axis(double *xyz, size_t n, int axis);
 
 /** Read one HDF5 frame (io/output.h layout) and draw the chosen field. */
 int render_frame_png(const char *h5_path, const char *png_path, const struct render_options *o,

@@ -26,6 +26,7 @@
 #include "io/run_summary.h"
 #include "io/run_util.h"
 #include "io/setup_check.h"
+#include "io/setup_check_sim.h"
 #include "core/model.h"
 
 #include <errno.h>
@@ -212,7 +213,10 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         goto done;
     if (opt->threads > 0)
         omp_set_num_threads(opt->threads);
+    struct setup_report setup = {0};
     rc = deck_build_sim(d, &s, &ro, err);
+    if (!rc)
+        rc = setup_check_sim(d, s, &setup, err); /* set-ups that cannot be right */
     if ((rc = run_par_setup(s, opt, &ro, rc, err))) /* mpirun: refusals, agreed */
         goto done;
     if (opt->threads <= 0 && ro.threads > 0)
@@ -223,6 +227,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     if ((rc = run_ckpt_begin(&ck, opt, d, &ro.checkpoint, s, dir, sizeof dir, err)))
         goto done;
     bool resume = ck.restarted && run_ckpt_same_dir(&ck);
+    if ((rc = setup_check_cost(d, s, &ro, dir, opt->yes, &setup, err)))
+        goto done;
 
     /* all checks passed: now, and only now, touch the file system */
     snprintf(res->out_dir, sizeof res->out_dir, "%s", dir);
@@ -238,6 +244,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         goto done;
     if (!resume && log)
         write_log_header(log, opt, d, s, &ro);
+    if (run_par_root()) /* the warnings once, not per rank */
+        setup_report_print(&setup, log, stderr);
     if (ck.restarted)
         run_ckpt_log_restart(&ck, s, log);
     if ((rc = run_par_distribute(s, log, err))) /* mpirun: owned + ghosts */
@@ -282,10 +290,12 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
 
     struct progress pr;
     progress_start(&pr, run_par_root() ? opt->progress : 0, s->n_steps, par_n_global(s));
+    progress_set_every(&pr, opt->progress_every);
     double t0 = omp_get_wtime();
     if (!run_par_on()) /* mpirun forwards signals to every rank; no checkpoint there yet */
         run_signals_install();
     while (!sim_done(s)) {
+        s->stop_time = ro.field_interval > 0.0 ? next_frame_t : 0.0; /* frames land on time */
         rc = sim_step(s, err);
         if (rc)
             break;
@@ -314,7 +324,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         if ((ck.opt.on || sig) &&
             (rc = run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, log, err)))
             break;
-        progress_update(&pr, s->step, s->t, s->end_time);
+        progress_update_sim(&pr, s);
         if ((res->signal = sig))
             break;
     }

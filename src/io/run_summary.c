@@ -42,8 +42,12 @@ void run_summary_write(FILE *f, const struct sim *s)
         fprintf(f, "%s %s (index %zu, density %.6g kg/m^3)", k ? "," : "",
                 s->materials[k].name, k, s->materials[k].density);
     fprintf(f, "\nprecut_bonds: %zu\n", s->n_precut);
-    fprintf(f, "dt: %.6g s (stability limit %.6g s, factor %.3g)\nsteps: %ld\nend_time: %.6g s\n",
-            s->dt, s->dt_limit, s->dt / s->dt_limit, s->n_steps, s->end_time);
+    /* steps: with an adaptive dt only an estimate; a fixed-dt run takes one
+     * more per frame time inside a step (run.log's steps_done is the count) */
+    fprintf(f, "dt: %.6g s (stability limit %.6g s, factor %.3g)\nsteps: %ld%s\nend_time: %.6g s\n",
+            s->dt, s->dt_limit, s->dt / s->dt_limit, s->n_steps,
+            s->adaptive_dt ? " (estimate: adaptive dt; steps_done at the end)" : "",
+            s->end_time);
     if (s->ops->describe) {
         char buf[4096] = "";
         s->ops->describe(s->model, s, buf, sizeof buf);

@@ -1,10 +1,12 @@
 #define _POSIX_C_SOURCE 200809L
 #include "io/run_util.h"
 
+#include "core/sim.h"
 #include "spall/error.h"
 
 #include <dirent.h>
 #include <errno.h>
+#include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <string.h>
@@ -102,6 +104,8 @@ int run_prepare_out_dir(const char *dir, bool overwrite, struct spall_error *err
 void progress_start(struct progress *p, int mode, long n_steps, size_t n_particles)
 {
     p->on = mode == 1 || (mode < 0 && isatty(STDERR_FILENO));
+    p->batch = mode < 0 && !p->on;
+    p->every = PROGRESS_BATCH_EVERY;
     p->n_steps = n_steps;
     p->n_particles = n_particles;
     p->t_start = omp_get_wtime();
@@ -142,6 +146,53 @@ void progress_update(struct progress *p, long step, double t, double end_time)
     fprintf(stderr, "\r[%s] step %ld/%ld  t = %.4g/%.4g s  %5.1f%%  %.3g particle-steps/s  ETA %s ",
             bar, step, p->n_steps, t, end_time, 100.0 * frac, rate, eta);
     fflush(stderr);
+}
+
+void progress_set_every(struct progress *p, double seconds)
+{
+    if (seconds > 0.0 && isfinite(seconds))
+        p->every = seconds;
+}
+
+/* One line per interval for logs of batch jobs: no carriage returns, and
+ * the energy balance, the first sign of a run going wrong. */
+static void progress_batch(struct progress *p, const struct sim *s)
+{
+    double now = omp_get_wtime();
+    if (now - p->t_last < p->every)
+        return;
+    if (p->t_last == 0.0 && now - p->t_start < p->every)
+        return;
+    p->t_last = now;
+    double el = now - p->t_start;
+    const long planned = s->n_steps + s->n_split;
+    double frac = s->end_time > 0 ? s->t / s->end_time
+                                  : (planned > 0 ? (double)s->step / (double)planned : 1.0);
+    if (frac > 1.0)
+        frac = 1.0;
+    double rate = el > 0 ? (double)p->n_particles * (double)s->step / el : 0.0;
+    char eta[32];
+    fmt_hms(frac > 0 ? el * (1.0 - frac) / frac : -1.0, eta, sizeof eta);
+    double input = fabs(s->energy.initial_total) + fabs(s->energy.external);
+    char bal[64];
+    if (input > 0.0)
+        snprintf(bal, sizeof bal, "%.3g of the energy put in", s->energy.balance / input);
+    else
+        snprintf(bal, sizeof bal, "%.3g J (no energy put in)", s->energy.balance);
+    fprintf(stderr,
+            "spall: progress: step %ld/%ld%s, t = %.4g/%.4g s (%.1f %%), %.3g particle-steps/s, "
+            "ETA %s, energy balance %s\n",
+            s->step, planned, s->adaptive_dt ? " (estimate)" : "", s->t, s->end_time,
+            100.0 * frac, rate, eta, bal);
+    fflush(stderr);
+}
+
+void progress_update_sim(struct progress *p, const struct sim *s)
+{
+    if (p->batch)
+        progress_batch(p, s);
+    else
+        progress_update(p, s->step, s->t, s->end_time);
 }
 
 void progress_finish(struct progress *p)

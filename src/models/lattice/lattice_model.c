@@ -541,7 +541,7 @@ static int lattice_end_step(struct model *m, struct sim *sim, struct spall_error
 {
     /* Breaking is fused into the force loop (each half-bond decided by its
      * own particle's thread); the thermal lattice advances here. */
-    return lattice_thermal_step(m, sim, sim->dt, err);
+    return lattice_thermal_step(m, sim, sim_step_dt(sim), err);
 }
 
 static void lattice_energy_fn(const struct model *m, const struct sim *sim,

@@ -136,7 +136,7 @@ int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *e
     const size_t n = p->n_owned;
     const int dim = sim->dim;
     const bool plastic = isfinite(w.e_y);
-    const double dt = sim->dt > 0.0 ? sim->dt : 1.0;
+    const double dt = sim_step_dt(sim) > 0.0 ? sim_step_dt(sim) : 1.0; /* this step's noise */
     const double kT = MACRO_KB * m->temperature;
     const double g = m->damping == MACRO_DAMP_ABSOLUTE ? m->gamma_used : 0.0;
     const double mu = m->damping == MACRO_DAMP_PAIRWISE ? m->mu_used : 0.0;

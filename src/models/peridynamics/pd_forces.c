@@ -155,8 +155,9 @@ void pd_adr_update(struct model *m, const struct sim *sim)
             double fi = p->f[d][i];
             double u = p->x[d][i] - p->x0[d][i];
             double v = p->v[d][i];
-            if (sim->step > 0 && sim->dt > 0.0 && fabs(v) * sim->dt > 1e-9 * fabs(u)) {
-                double k = -(fi - fp[i]) / (p->mass[i] * sim->dt * v);
+            const double h = sim_step_dt(sim); /* the position change is v h */
+            if (sim->step > 0 && h > 0.0 && fabs(v) * h > 1e-9 * fabs(u)) {
+                double k = -(fi - fp[i]) / (p->mass[i] * h * v);
                 num += u * k * u;
             }
             den += u * u;
