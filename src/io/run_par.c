@@ -7,7 +7,6 @@
 #include "core/fragments.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
-#include "core/parallel/decomp_internal.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck_build.h"
@@ -86,6 +85,8 @@ void run_par_log_end(const struct sim *s, FILE *log)
 {
     if (!s->par || !log)
         return;
-    fprintf(log, "halo_exchanges: %ld (rank 0: %.3f s exchanging ghost positions)\n", s->par->halo_calls,
-            s->par->comm_seconds);
+    long calls = 0;
+    double secs = 0.0;
+    par_halo_stats(s, &calls, &secs);
+    fprintf(log, "halo_exchanges: %ld (rank 0: %.3f s exchanging ghost positions)\n", calls, secs);
 }

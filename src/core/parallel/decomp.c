@@ -598,3 +598,9 @@ void par_describe(const struct sim *s, char *buf, size_t len)
 }
 
 #endif
+
+void par_halo_stats(const struct sim *s, long *calls, double *seconds)
+{
+    *calls = s->par ? s->par->halo_calls : 0;
+    *seconds = s->par ? s->par->comm_seconds : 0.0;
+}

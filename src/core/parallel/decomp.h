@@ -54,6 +54,10 @@ void par_decomp_destroy(struct par_decomp **d);
  *  the halo per step. */
 void par_describe(const struct sim *s, char *buf, size_t len);
 
+/** Halo exchanges so far and the wall seconds this rank spent in them
+ *  (run.log; 0 when serial). */
+void par_halo_stats(const struct sim *s, long *calls, double *seconds);
+
 /** Particles of the whole run (s->p->n_owned when serial). */
 size_t par_n_global(const struct sim *s);
 /** Half-bonds or interactions of the whole run as counted at set-up. */
