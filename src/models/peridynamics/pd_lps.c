@@ -78,7 +78,7 @@ static void cubic_harmonics(const struct sim *sim, const double *e, double xi, d
  * lattice (square, sc, fcc) the family's fourth moment M = sum omega beta
  * |xi|^2 n n n n V has cubic symmetry, so the deviatoric energy alpha/2 eps^d
  * : M : eps^d gives two shear moduli (docs/decks.md); gamma is chosen so that
- * M of the fullest family is isotropic (M_xxxx = 3 M_xxyy), the second
+ * M of the fullest family is isotropic (M_1111 = 3 M_1122), the second
  * moment staying isotropic by the same symmetry.  One gamma for the run,
  * from its fullest family, in the frame of the deck's lattice. */
 static int cubic_correction(struct model *m, struct sim *sim, struct spall_error *err)
