@@ -283,3 +283,70 @@ size_t bond_list_bytes(const struct bond_list *bl)
     return sizeof *bl + (bl->n + 1) * sizeof *bl->offset + m * per +
            (bl->reverse ? m * sizeof *bl->reverse : 0);
 }
+
+void *array_gather(const void *a, size_t size, const size_t *idx, size_t n)
+{
+    unsigned char *out = malloc((n ? n : 1) * size);
+    if (!out)
+        return NULL;
+    const unsigned char *in = a;
+    for (size_t k = 0; k < n; k++)
+        memcpy(out + k * size, in + idx[k] * size, size);
+    return out;
+}
+
+int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, size_t n_owned,
+                       const int64_t *new_of_old, size_t **old_half, size_t *n_half,
+                       struct spall_error *err)
+{
+    size_t nh = 0;
+    for (size_t k = 0; k < n_owned; k++)
+        nh += bl->offset[keep[k] + 1] - bl->offset[keep[k]];
+    size_t *offset = calloc(n_keep + 1, sizeof *offset);
+    size_t *oh = malloc((nh ? nh : 1) * sizeof *oh);
+    int32_t *partner = malloc((nh ? nh : 1) * sizeof *partner);
+    if (!offset || !oh || !partner) {
+        free(offset);
+        free(oh);
+        free(partner);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+    }
+    size_t w = 0;
+    for (size_t k = 0; k < n_keep; k++) {
+        const size_t i = keep[k];
+        if (k < n_owned)
+            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++, w++) {
+                partner[w] = (int32_t)new_of_old[bl->partner[s]];
+                oh[w] = s;
+            }
+        offset[k + 1] = w;
+    }
+    double *rest = array_gather(bl->rest, sizeof *rest, oh, nh);
+    uint8_t *state = array_gather(bl->state, sizeof *state, oh, nh);
+    uint8_t *type = array_gather(bl->type, sizeof *type, oh, nh);
+    if (!rest || !state || !type) {
+        free(offset);
+        free(oh);
+        free(partner);
+        free(rest);
+        free(state);
+        free(type);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+    }
+    free(bl->offset);
+    free(bl->partner);
+    free(bl->rest);
+    free(bl->state);
+    free(bl->type);
+    free(bl->reverse);
+    bl->rest = rest;
+    bl->state = state;
+    bl->type = type;
+    bl->reverse = NULL;
+    bl->n = n_keep;
+    bl->offset = offset;
+    bl->partner = partner;
+    *old_half = oh;
+    *n_half = nh;
+    return SPALL_OK;
+}

@@ -36,6 +36,21 @@ struct bond_list {
     size_t *reverse;    /**< optional: slot of j->i for slot i->j (NULL until built) */
 };
 
+/** Distributed runs (model_ops.localize): keep the rows of particles
+ *  keep[0..n_owned) in their order, partners renumbered by @p new_of_old,
+ *  and give keep[n_owned..n_keep) (the ghosts) empty rows; the reverse map
+ *  is dropped.  The struct keeps its address (the restart registry holds
+ *  its members').  *old_half (free it) holds, for each of the *n_half kept
+ *  half-bonds, its old index, for array_gather of the model's per-half-bond
+ *  arrays. */
+int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, size_t n_owned,
+                       const int64_t *new_of_old, size_t **old_half, size_t *n_half,
+                       struct spall_error *err);
+
+/** A new array (free it) of a[idx[0..n)], elements of @p size bytes; NULL
+ *  when out of memory. */
+void *array_gather(const void *a, size_t size, const size_t *idx, size_t n);
+
 /** Build from reference positions: a bond for every pair closer than
  *  @p radius (cell list search).  type = 0 for all. */
 int bond_list_build(struct bond_list **out, const struct particles *p, double radius,

@@ -34,56 +34,18 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
                                m->angular ? "angular springs are" : "thermal lattice is");
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
-    struct bond_list *bl = m->bl;
-    size_t nh = 0;
-    for (size_t k = 0; k < n_owned; k++)
-        nh += bl->offset[keep[k] + 1] - bl->offset[keep[k]];
-    size_t *offset = calloc(n_keep + 1, sizeof *offset);
-    int32_t *partner = malloc((nh ? nh : 1) * sizeof *partner);
-    double *rest = malloc((nh ? nh : 1) * sizeof *rest);
-    uint8_t *state = malloc(nh ? nh : 1);
-    uint8_t *type = malloc(nh ? nh : 1);
-    double *kappa = m->kappa ? malloc((nh ? nh : 1) * sizeof *kappa) : NULL;
-    double *diss = calloc(n_keep ? n_keep : 1, sizeof *diss);
-    if (!offset || !partner || !rest || !state || !type || (m->kappa && !kappa) || !diss) {
-        free(offset);
-        free(partner);
-        free(rest);
-        free(state);
-        free(type);
+    size_t *oh = NULL, nh = 0;
+    int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
+    if (rc)
+        return rc;
+    double *kappa = m->kappa ? array_gather(m->kappa, sizeof *kappa, oh, nh) : NULL;
+    double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
+    free(oh);
+    if ((m->kappa && !kappa) || !diss) {
         free(kappa);
         free(diss);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
     }
-    size_t w = 0;
-    for (size_t k = 0; k < n_keep; k++) {
-        size_t i = keep[k];
-        diss[k] = m->diss[i];
-        if (k < n_owned)
-            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++, w++) {
-                partner[w] = (int32_t)new_of_old[bl->partner[s]];
-                rest[w] = bl->rest[s];
-                state[w] = bl->state[s];
-                type[w] = bl->type[s];
-                if (kappa)
-                    kappa[w] = m->kappa[s];
-            }
-        offset[k + 1] = w;
-    }
-    /* same bond_list struct: the restart registry holds its members' addresses */
-    free(bl->offset);
-    free(bl->partner);
-    free(bl->rest);
-    free(bl->state);
-    free(bl->type);
-    free(bl->reverse);
-    bl->reverse = NULL;
-    bl->n = n_keep;
-    bl->offset = offset;
-    bl->partner = partner;
-    bl->rest = rest;
-    bl->state = state;
-    bl->type = type;
     free(m->kappa);
     m->kappa = kappa;
     free(m->diss);

@@ -36,60 +36,22 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
                                what);
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
-    struct bond_list *bl = m->bl;
-    size_t nh = 0;
-    for (size_t k = 0; k < n_owned; k++)
-        nh += bl->offset[keep[k] + 1] - bl->offset[keep[k]];
-    const size_t nk = n_keep ? n_keep : 1, hh = nh ? nh : 1;
-    size_t *offset = calloc(n_keep + 1, sizeof *offset);
-    int32_t *partner = malloc(hh * sizeof *partner);
-    double *rest = malloc(hh * sizeof *rest), *coef = malloc(hh * sizeof *coef);
-    uint8_t *state = malloc(hh), *type = malloc(hh);
-    size_t *n_init = calloc(nk, sizeof *n_init), *n_init_f = calloc(nk, sizeof *n_init_f);
-    double *diss = calloc(nk, sizeof *diss);
-    if (!offset || !partner || !rest || !coef || !state || !type || !n_init || !n_init_f ||
-        !diss) {
-        free(offset);
-        free(partner);
-        free(rest);
+    size_t *oh = NULL, nh = 0;
+    int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
+    if (rc)
+        return rc;
+    double *coef = array_gather(m->coef, sizeof *coef, oh, nh);
+    size_t *n_init = array_gather(m->n_init, sizeof *n_init, keep, n_keep);
+    size_t *n_init_f = array_gather(m->n_init_f, sizeof *n_init_f, keep, n_keep);
+    double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
+    free(oh);
+    if (!coef || !n_init || !n_init_f || !diss) {
         free(coef);
-        free(state);
-        free(type);
         free(n_init);
         free(n_init_f);
         free(diss);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
     }
-    size_t w = 0;
-    for (size_t k = 0; k < n_keep; k++) {
-        size_t i = keep[k];
-        diss[k] = m->diss[i];
-        n_init[k] = m->n_init[i];
-        n_init_f[k] = m->n_init_f[i];
-        if (k < n_owned)
-            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++, w++) {
-                partner[w] = (int32_t)new_of_old[bl->partner[s]];
-                rest[w] = bl->rest[s];
-                coef[w] = m->coef[s];
-                state[w] = bl->state[s];
-                type[w] = bl->type[s];
-            }
-        offset[k + 1] = w;
-    }
-    /* same bond_list struct: the restart registry holds its members' addresses */
-    free(bl->offset);
-    free(bl->partner);
-    free(bl->rest);
-    free(bl->state);
-    free(bl->type);
-    free(bl->reverse);
-    bl->reverse = NULL;
-    bl->n = n_keep;
-    bl->offset = offset;
-    bl->partner = partner;
-    bl->rest = rest;
-    bl->state = state;
-    bl->type = type;
     free(m->coef);
     m->coef = coef;
     free(m->n_init);
