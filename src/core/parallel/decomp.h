@@ -84,6 +84,16 @@ void par_ordered_reduce(const int64_t *key, const double *rows, size_t n, int nc
 /** par_ordered_reduce over the owned particles keyed by global id, columns summed. */
 void par_sum_owned(const struct sim *s, const double *rows, int ncol, double *out);
 
+struct model;
+/** A model's per-particle strain energy (and stress, may be NULL). */
+typedef void (*par_particle_energy_fn)(const struct model *m, const struct sim *s, size_t i,
+                                       double *energy, double *stress);
+/** A bond model's energy on a distributed run: the strain terms of @p eval
+ *  and the dissipated store @p diss of every owned particle, each summed in
+ *  global-id order as the serial loop sums them (collective). */
+void par_bond_energy(const struct model *m, const struct sim *s, par_particle_energy_fn eval,
+                     const double *diss, double *strain, double *dissipated);
+
 /** Order key of local member @p q of group @p g: its position in the
  *  serial group list. */
 int64_t par_group_key(const struct sim *s, int g, size_t q);

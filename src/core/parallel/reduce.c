@@ -283,3 +283,22 @@ void par_sum_owned(const struct sim *s, const double *rows, int ncol, double *ou
 {
     par_ordered_reduce(s->p->gid, rows, s->p->n_owned, ncol, par_reduce_cols, NULL, out, ncol);
 }
+
+void par_bond_energy(const struct model *m, const struct sim *s, par_particle_energy_fn eval,
+                     const double *diss, double *strain, double *dissipated)
+{
+    const size_t n = s->p->n_owned;
+    double *rows = malloc((n ? n : 1) * 2 * sizeof *rows);
+    double sum[2] = {0.0, 0.0};
+    if (rows)
+        for (size_t i = 0; i < n; i++) {
+            eval(m, s, i, &rows[2 * i], NULL);
+            rows[2 * i + 1] = diss[i];
+        }
+    /* collective even when this rank could not allocate: it sends no rows */
+    par_ordered_reduce(s->p->gid, rows ? rows : sum, rows ? n : 0, 2, par_reduce_cols, NULL,
+                       sum, 2);
+    free(rows);
+    *strain = sum[0];
+    *dissipated = sum[1];
+}

@@ -63,8 +63,6 @@ int lattice_register_state(struct model *m, struct sim *sim, struct field_state 
 int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                      size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
 struct model_energy;
-/** model_ops.energy on a distributed run: the serial sums in gid order. */
-void lattice_energy_par(const struct model *m, const struct sim *sim, struct model_energy *out);
 
 /* lattice_forces.c */
 int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);

@@ -81,6 +81,7 @@
 #include "core/options.h"
 #include "core/parallel/comm.h"
 #include "core/model.h"
+#include "core/parallel/decomp.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -549,7 +550,7 @@ static void lattice_energy_fn(const struct model *m, const struct sim *sim,
 {
     double strain = 0.0, diss = 0.0;
     if (sim->par) { /* distributed: the same sums in the serial (gid) order */
-        lattice_energy_par(m, sim, out);
+        par_bond_energy(m, sim, lattice_particle_eval, m->diss, &out->strain, &out->dissipated);
         return;
     }
     for (size_t i = 0; i < sim->p->n_owned; i++) {

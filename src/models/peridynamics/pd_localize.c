@@ -64,24 +64,6 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     return SPALL_OK;
 }
 
-void pd_energy_par(const struct model *m, const struct sim *sim, struct model_energy *out)
-{
-    const size_t n = sim->p->n_owned;
-    double *rows = malloc((n ? n : 1) * 2 * sizeof *rows);
-    double sum[2] = {0.0, 0.0};
-    if (rows)
-        for (size_t i = 0; i < n; i++) {
-            pd_particle_eval(m, sim, i, &rows[2 * i], NULL);
-            rows[2 * i + 1] = m->diss[i];
-        }
-    /* collective even when this rank could not allocate: it sends no rows */
-    par_ordered_reduce(sim->p->gid, rows ? rows : sum, rows ? n : 0, 2, par_reduce_cols, NULL,
-                       sum, 2);
-    free(rows);
-    out->strain = sum[0];
-    out->dissipated = sum[1];
-}
-
 void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, size_t *all,
                     size_t *nh, double *dsum)
 {

@@ -79,6 +79,7 @@
 #include "core/sim.h"
 #include "core/options.h"
 #include "core/model.h"
+#include "core/parallel/decomp.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -566,7 +567,7 @@ static void pd_energy(const struct model *m, const struct sim *sim, struct model
 {
     double strain = 0.0, diss = 0.0;
     if (sim->par) { /* distributed: the same sums in the serial (gid) order */
-        pd_energy_par(m, sim, out);
+        par_bond_energy(m, sim, pd_particle_eval, m->diss, &out->strain, &out->dissipated);
         return;
     }
     for (size_t i = 0; i < sim->p->n_owned; i++) {
