@@ -45,6 +45,7 @@ void par_decomp_destroy(struct par_decomp **dp)
     free(d->group_n);
     free(d->probe_owner);
     free(d->probe_local);
+    par_balance_free(d);
     free(d);
     *dp = NULL;
 }
@@ -231,20 +232,14 @@ static int compact(void **ptr, size_t esize, const size_t *keep, size_t n_keep)
     return 0;
 }
 
-struct slots {
-    void **ptr[64];
-    size_t esize[64];
-    size_t n;
-};
-
-static int slot_add(struct slots *sl, void **ptr, size_t esize)
+int par_slot_add(struct par_slots *sl, void **ptr, size_t esize)
 {
     if (!*ptr)
         return 0;
     for (size_t k = 0; k < sl->n; k++)
         if (sl->ptr[k] == ptr || *sl->ptr[k] == *ptr)
             return 0; /* the same array, reached twice */
-    if (sl->n == 64)
+    if (sl->n == PAR_MAX_SLOTS)
         return -1;
     sl->ptr[sl->n] = ptr;
     sl->esize[sl->n++] = esize;
@@ -262,35 +257,42 @@ static size_t type_size(enum field_type t)
     }
 }
 
-/* Every per-particle array of the engine and the registry, compacted once. */
-static int compact_particles(struct sim *s, const size_t *keep, size_t n_keep, size_t n_owned,
-                             struct spall_error *err)
+int par_particle_slots(struct sim *s, struct par_slots *sl)
 {
     struct particles *p = s->p;
-    struct slots sl = {.n = 0};
     int bad = 0;
+    sl->n = 0;
     for (int d = 0; d < p->dim; d++) {
-        bad |= slot_add(&sl, (void **)&p->x[d], sizeof(double));
-        bad |= slot_add(&sl, (void **)&p->x0[d], sizeof(double));
-        bad |= slot_add(&sl, (void **)&p->v[d], sizeof(double));
-        bad |= slot_add(&sl, (void **)&p->f[d], sizeof(double));
-        bad |= slot_add(&sl, (void **)&s->v_half[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&p->x[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&p->x0[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&p->v[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&p->f[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&s->v_half[d], sizeof(double));
     }
-    bad |= slot_add(&sl, (void **)&p->mass, sizeof(double));
-    bad |= slot_add(&sl, (void **)&p->volume, sizeof(double));
-    bad |= slot_add(&sl, (void **)&p->gid, sizeof(int64_t));
-    bad |= slot_add(&sl, (void **)&p->material, sizeof(int32_t));
-    bad |= slot_add(&sl, (void **)&p->body, sizeof(int32_t));
-    bad |= slot_add(&sl, (void **)&s->no_drift_velocity, sizeof(uint8_t));
+    bad |= par_slot_add(sl, (void **)&p->mass, sizeof(double));
+    bad |= par_slot_add(sl, (void **)&p->volume, sizeof(double));
+    bad |= par_slot_add(sl, (void **)&p->gid, sizeof(int64_t));
+    bad |= par_slot_add(sl, (void **)&p->material, sizeof(int32_t));
+    bad |= par_slot_add(sl, (void **)&p->body, sizeof(int32_t));
+    bad |= par_slot_add(sl, (void **)&s->no_drift_velocity, sizeof(uint8_t));
     const struct field_registry *reg = s->fields;
     for (size_t k = 0; k < reg->n && !bad; k++) {
         const struct field_desc *f = &reg->fields[k];
         if (f->compute)
             continue;
         for (int c = 0; c < f->ncomp && f->comp[c]; c++)
-            bad |= slot_add(&sl, f->comp[c], type_size(f->type));
+            bad |= par_slot_add(sl, f->comp[c], type_size(f->type));
     }
-    if (bad)
+    return bad ? -1 : 0;
+}
+
+/* Every per-particle array of the engine and the registry, compacted once. */
+static int compact_particles(struct sim *s, const size_t *keep, size_t n_keep, size_t n_owned,
+                             struct spall_error *err)
+{
+    struct particles *p = s->p;
+    struct par_slots sl;
+    if (par_particle_slots(s, &sl))
         return spall_error_set(err, SPALL_ERR_INTERNAL, "distributed runs: too many fields");
     for (size_t k = 0; k < sl.n; k++)
         if (compact(sl.ptr[k], sl.esize[k], keep, n_keep))

@@ -25,6 +25,27 @@ struct par_decomp {
     /* timing (run.log; not performance numbers on a loaded machine) */
     double setup_seconds, comm_seconds;
     long halo_calls;
+    /* rebalancing and migration (migrate.c, balance.c) */
+    void *zz;              /**< Zoltan_Struct kept between rebalances (its cuts are reused) */
+    long rebalances;
+    unsigned long long migrated;
 };
+
+struct sim;
+
+/** Every per-particle array of the engine and the registry (addresses of
+ *  the array pointers, element sizes), each array once. */
+#define PAR_MAX_SLOTS 96
+struct par_slots {
+    void **ptr[PAR_MAX_SLOTS];
+    size_t esize[PAR_MAX_SLOTS];
+    size_t n;
+};
+/** Add an array (a NULL array or one already listed is skipped); -1: full. */
+int par_slot_add(struct par_slots *sl, void **ptr, size_t esize);
+/** The engine's and the registry's stored arrays; -1: too many. */
+int par_particle_slots(struct sim *s, struct par_slots *sl);
+/** Release the rebalancing state (balance.c). */
+void par_balance_free(struct par_decomp *d);
 
 #endif

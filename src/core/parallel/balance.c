@@ -1,0 +1,212 @@
+/**
+ * @file balance.c
+ * @brief Measured imbalance and Zoltan repartitioning (migrate.h).
+ *
+ * A particle's work is 1 + its intact half-bonds: the force loop visits
+ * every half-bond of the row (a broken one costs a distance test only)
+ * plus the per-particle update.  As a body fragments and broken bonds
+ * concentrate on some ranks, this estimate follows the cost, unlike the
+ * bond count at set-up that weights the first partition.
+ */
+#include "core/parallel/migrate.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/decomp_internal.h"
+
+#include "core/bond_list.h"
+#include "core/model.h"
+#include "core/parallel/comm.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef SPALL_HAVE_MPI
+#include <mpi.h>
+#include <zoltan.h>
+#endif
+
+static const struct bond_list *work_bonds(const struct sim *s)
+{
+    return s->ops->halo_bonds ? s->ops->halo_bonds(s->model)
+           : s->ops->bonds    ? s->ops->bonds(s->model)
+                              : NULL;
+}
+
+static double particle_work(const struct bond_list *bl, size_t i)
+{
+    double w = 1.0;
+    if (bl)
+        for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++)
+            w += !(bl->state[q] & BOND_BROKEN);
+    return w;
+}
+
+double par_imbalance(const struct sim *s)
+{
+    if (!s->par)
+        return 1.0;
+    const struct bond_list *bl = work_bonds(s);
+    double w = 0.0;
+    for (size_t i = 0; i < s->p->n_owned; i++)
+        w += particle_work(bl, i);
+    /* integer-valued sums: exact in any order */
+    uint64_t total = par_sum_u64((uint64_t)w);
+    double mx = par_max_double(w);
+    double mean = (double)total / (double)par_size();
+    return mean > 0.0 ? mx / mean : 1.0;
+}
+
+void par_balance_stats(const struct sim *s, long *rebalances, unsigned long long *migrated)
+{
+    *rebalances = s->par ? s->par->rebalances : 0;
+    *migrated = s->par ? s->par->migrated : 0;
+}
+
+#ifdef SPALL_HAVE_MPI
+
+struct zlocal {
+    const struct sim *s;
+    const struct bond_list *bl;
+};
+
+static int zl_num_obj(void *data, int *ierr)
+{
+    const struct zlocal *z = data;
+    *ierr = ZOLTAN_OK;
+    return (int)z->s->p->n_owned;
+}
+
+static void zl_obj_list(void *data, int ng, int nl, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR lids,
+                        int wdim, float *w, int *ierr)
+{
+    (void)ng;
+    (void)nl;
+    const struct zlocal *z = data;
+    for (size_t i = 0; i < z->s->p->n_owned; i++) {
+        gids[i] = (ZOLTAN_ID_TYPE)z->s->p->gid[i];
+        lids[i] = (ZOLTAN_ID_TYPE)i;
+        if (wdim > 0)
+            w[i] = (float)particle_work(z->bl, i);
+    }
+    *ierr = ZOLTAN_OK;
+}
+
+static int zl_num_geom(void *data, int *ierr)
+{
+    const struct zlocal *z = data;
+    *ierr = ZOLTAN_OK;
+    return z->s->p->dim;
+}
+
+/* the current positions: the partition follows the deformed body */
+static void zl_geom_multi(void *data, int ng, int nl, int n, ZOLTAN_ID_PTR gids,
+                          ZOLTAN_ID_PTR lids, int ndim, double *geom, int *ierr)
+{
+    (void)ng;
+    (void)nl;
+    (void)gids;
+    const struct zlocal *z = data;
+    for (int k = 0; k < n; k++)
+        for (int c = 0; c < ndim; c++)
+            geom[(size_t)k * (size_t)ndim + (size_t)c] = z->s->p->x[c][lids[k]];
+    *ierr = ZOLTAN_OK;
+}
+
+void par_balance_free(struct par_decomp *d)
+{
+    struct Zoltan_Struct *zz = d->zz;
+    if (zz)
+        Zoltan_Destroy(&zz);
+    d->zz = NULL;
+}
+
+/* A Zoltan RCB object kept for the run: with KEEP_CUTS and RCB_REUSE each
+ * repartition starts from the previous cuts, so a small change of the
+ * weights moves few particles. */
+static struct Zoltan_Struct *balancer(struct par_decomp *d)
+{
+    if (d->zz)
+        return d->zz;
+    struct Zoltan_Struct *zz = Zoltan_Create(MPI_COMM_WORLD);
+    if (!zz)
+        return NULL;
+    Zoltan_Set_Param(zz, "DEBUG_LEVEL", "0");
+    Zoltan_Set_Param(zz, "LB_METHOD", "RCB");
+    Zoltan_Set_Param(zz, "LB_APPROACH", "REPARTITION");
+    Zoltan_Set_Param(zz, "NUM_GID_ENTRIES", "1");
+    Zoltan_Set_Param(zz, "NUM_LID_ENTRIES", "1");
+    Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", "1");
+    Zoltan_Set_Param(zz, "RETURN_LISTS", "EXPORT");
+    Zoltan_Set_Param(zz, "RCB_OUTPUT_LEVEL", "0");
+    Zoltan_Set_Param(zz, "KEEP_CUTS", "1");
+    Zoltan_Set_Param(zz, "RCB_REUSE", "1");
+    d->zz = zz;
+    return zz;
+}
+
+int par_rebalance(struct sim *s, double *before, double *after, unsigned long long *moved,
+                  struct spall_error *err)
+{
+    *moved = 0;
+    *before = *after = par_imbalance(s);
+    struct par_decomp *d = s->par;
+    if (!d)
+        return SPALL_OK;
+    struct zlocal z = {s, work_bonds(s)};
+    struct Zoltan_Struct *zz = balancer(d);
+    int rc = zz ? SPALL_OK : spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
+    if ((rc = par_agree(rc, err)))
+        return rc;
+    Zoltan_Set_Num_Obj_Fn(zz, zl_num_obj, &z);
+    Zoltan_Set_Obj_List_Fn(zz, zl_obj_list, &z);
+    Zoltan_Set_Num_Geom_Fn(zz, zl_num_geom, &z);
+    Zoltan_Set_Geom_Multi_Fn(zz, zl_geom_multi, &z);
+    int changes, ngid, nlid, nimp, nexp;
+    ZOLTAN_ID_PTR imp_g = NULL, imp_l = NULL, exp_g = NULL, exp_l = NULL;
+    int *imp_p = NULL, *imp_parts = NULL, *exp_p = NULL, *exp_parts = NULL;
+    int zrc = Zoltan_LB_Partition(zz, &changes, &ngid, &nlid, &nimp, &imp_g, &imp_l, &imp_p,
+                                  &imp_parts, &nexp, &exp_g, &exp_l, &exp_p, &exp_parts);
+    const size_t n = s->p->n_owned;
+    int *dest = malloc((n ? n : 1) * sizeof *dest);
+    if (zrc != ZOLTAN_OK)
+        rc = spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan RCB repartition failed (%d)", zrc);
+    else if (!dest)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory rebalancing");
+    if (!rc) {
+        for (size_t i = 0; i < n; i++)
+            dest[i] = par_rank();
+        for (int k = 0; k < nexp; k++)
+            dest[exp_l[k]] = exp_parts[k];
+    }
+    Zoltan_LB_Free_Part(&imp_g, &imp_l, &imp_p, &imp_parts);
+    Zoltan_LB_Free_Part(&exp_g, &exp_l, &exp_p, &exp_parts);
+    if (!(rc = par_agree(rc, err)))
+        rc = par_migrate(s, dest, moved, err);
+    free(dest);
+    if (rc)
+        return rc;
+    d->rebalances++;
+    *after = par_imbalance(s);
+    return SPALL_OK;
+}
+
+#else
+
+void par_balance_free(struct par_decomp *d)
+{
+    (void)d;
+}
+
+int par_rebalance(struct sim *s, double *before, double *after, unsigned long long *moved,
+                  struct spall_error *err)
+{
+    (void)s;
+    (void)err;
+    *before = *after = 1.0;
+    *moved = 0;
+    return SPALL_OK;
+}
+
+#endif
