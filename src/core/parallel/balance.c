@@ -34,15 +34,6 @@ static const struct bond_list *work_bonds(const struct sim *s)
                               : NULL;
 }
 
-static double particle_work(const struct bond_list *bl, size_t i)
-{
-    double w = 1.0;
-    if (bl)
-        for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++)
-            w += !(bl->state[q] & BOND_BROKEN);
-    return w;
-}
-
 double par_imbalance(const struct sim *s)
 {
     if (!s->par)
@@ -50,7 +41,7 @@ double par_imbalance(const struct sim *s)
     const struct bond_list *bl = work_bonds(s);
     double w = 0.0;
     for (size_t i = 0; i < s->p->n_owned; i++)
-        w += particle_work(bl, i);
+        w += par_particle_work(bl, i, 1);
     /* integer-valued sums: exact in any order */
     uint64_t total = par_sum_u64((uint64_t)w);
     double mx = par_max_double(w);
@@ -65,54 +56,6 @@ void par_balance_stats(const struct sim *s, long *rebalances, unsigned long long
 }
 
 #ifdef SPALL_HAVE_MPI
-
-struct zlocal {
-    const struct sim *s;
-    const struct bond_list *bl;
-};
-
-static int zl_num_obj(void *data, int *ierr)
-{
-    const struct zlocal *z = data;
-    *ierr = ZOLTAN_OK;
-    return (int)z->s->p->n_owned;
-}
-
-static void zl_obj_list(void *data, int ng, int nl, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR lids,
-                        int wdim, float *w, int *ierr)
-{
-    (void)ng;
-    (void)nl;
-    const struct zlocal *z = data;
-    for (size_t i = 0; i < z->s->p->n_owned; i++) {
-        gids[i] = (ZOLTAN_ID_TYPE)z->s->p->gid[i];
-        lids[i] = (ZOLTAN_ID_TYPE)i;
-        if (wdim > 0)
-            w[i] = (float)particle_work(z->bl, i);
-    }
-    *ierr = ZOLTAN_OK;
-}
-
-static int zl_num_geom(void *data, int *ierr)
-{
-    const struct zlocal *z = data;
-    *ierr = ZOLTAN_OK;
-    return z->s->p->dim;
-}
-
-/* the current positions: the partition follows the deformed body */
-static void zl_geom_multi(void *data, int ng, int nl, int n, ZOLTAN_ID_PTR gids,
-                          ZOLTAN_ID_PTR lids, int ndim, double *geom, int *ierr)
-{
-    (void)ng;
-    (void)nl;
-    (void)gids;
-    const struct zlocal *z = data;
-    for (int k = 0; k < n; k++)
-        for (int c = 0; c < ndim; c++)
-            geom[(size_t)k * (size_t)ndim + (size_t)c] = z->s->p->x[c][lids[k]];
-    *ierr = ZOLTAN_OK;
-}
 
 void par_balance_free(struct par_decomp *d)
 {
@@ -154,15 +97,14 @@ int par_rebalance(struct sim *s, double *before, double *after, unsigned long lo
     struct par_decomp *d = s->par;
     if (!d)
         return SPALL_OK;
-    struct zlocal z = {s, work_bonds(s)};
+    /* the owned particles at their current positions (the partition follows
+     * the deformed body), weighted by 1 + intact half-bonds */
+    struct par_zobjs z = {0, s->p->n_owned, s->p->gid, s->p->x, s->dim, work_bonds(s), 1};
     struct Zoltan_Struct *zz = balancer(d);
     int rc = zz ? SPALL_OK : spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
     if ((rc = par_agree(rc, err)))
         return rc;
-    Zoltan_Set_Num_Obj_Fn(zz, zl_num_obj, &z);
-    Zoltan_Set_Obj_List_Fn(zz, zl_obj_list, &z);
-    Zoltan_Set_Num_Geom_Fn(zz, zl_num_geom, &z);
-    Zoltan_Set_Geom_Multi_Fn(zz, zl_geom_multi, &z);
+    par_zoltan_queries(zz, &z);
     int changes, ngid, nlid, nimp, nexp;
     ZOLTAN_ID_PTR imp_g = NULL, imp_l = NULL, exp_g = NULL, exp_l = NULL;
     int *imp_p = NULL, *imp_parts = NULL, *exp_p = NULL, *exp_parts = NULL;

@@ -70,6 +70,18 @@ int64_t par_group_key(const struct sim *s, int g, size_t q)
     return s->par->group_key[g][q];
 }
 
+double par_particle_work(const struct bond_list *bl, size_t i, int intact_only)
+{
+    double w = 1.0;
+    if (!bl)
+        return w;
+    if (!intact_only)
+        return w + (double)(bl->offset[i + 1] - bl->offset[i]);
+    for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++)
+        w += !(bl->state[q] & BOND_BROKEN);
+    return w;
+}
+
 int par_check_supported(const struct sim *s, bool restart, bool checkpoints,
                         struct spall_error *err)
 {
@@ -101,17 +113,11 @@ int par_check_supported(const struct sim *s, bool restart, bool checkpoints,
 
 #ifdef SPALL_HAVE_MPI
 
-/* ---- Zoltan query functions over this rank's slice [lo, hi) of the whole body */
-
-struct zslice {
-    size_t lo, hi;
-    const struct particles *p;
-    const struct bond_list *bl;
-};
+/* ---- Zoltan query functions over the rows [lo, hi) of par_zobjs */
 
 static int zq_num_obj(void *data, int *ierr)
 {
-    const struct zslice *z = data;
+    const struct par_zobjs *z = data;
     *ierr = ZOLTAN_OK;
     return (int)(z->hi - z->lo);
 }
@@ -121,23 +127,22 @@ static void zq_obj_list(void *data, int ng, int nl, ZOLTAN_ID_PTR gids, ZOLTAN_I
 {
     (void)ng;
     (void)nl;
-    const struct zslice *z = data;
+    const struct par_zobjs *z = data;
     for (size_t k = 0; k < z->hi - z->lo; k++) {
         size_t i = z->lo + k;
-        gids[k] = (ZOLTAN_ID_TYPE)i;
+        gids[k] = (ZOLTAN_ID_TYPE)(z->gid ? (size_t)z->gid[i] : i);
         lids[k] = (ZOLTAN_ID_TYPE)k;
-        /* cost ~ bonds: the force loop visits every half-bond of the row */
         if (wdim > 0)
-            w[k] = 1.0f + (float)(z->bl ? z->bl->offset[i + 1] - z->bl->offset[i] : 0);
+            w[k] = (float)par_particle_work(z->bl, i, z->intact_only);
     }
     *ierr = ZOLTAN_OK;
 }
 
 static int zq_num_geom(void *data, int *ierr)
 {
-    const struct zslice *z = data;
+    const struct par_zobjs *z = data;
     *ierr = ZOLTAN_OK;
-    return z->p->dim;
+    return z->dim;
 }
 
 static void zq_geom_multi(void *data, int ng, int nl, int n, ZOLTAN_ID_PTR gids,
@@ -146,11 +151,19 @@ static void zq_geom_multi(void *data, int ng, int nl, int n, ZOLTAN_ID_PTR gids,
     (void)ng;
     (void)nl;
     (void)gids;
-    const struct zslice *z = data;
+    const struct par_zobjs *z = data;
     for (int k = 0; k < n; k++)
         for (int c = 0; c < ndim; c++)
-            geom[(size_t)k * (size_t)ndim + (size_t)c] = z->p->x0[c][z->lo + lids[k]];
+            geom[(size_t)k * (size_t)ndim + (size_t)c] = z->pos[c][z->lo + lids[k]];
     *ierr = ZOLTAN_OK;
+}
+
+void par_zoltan_queries(struct Zoltan_Struct *zz, struct par_zobjs *z)
+{
+    Zoltan_Set_Num_Obj_Fn(zz, zq_num_obj, z);
+    Zoltan_Set_Obj_List_Fn(zz, zq_obj_list, z);
+    Zoltan_Set_Num_Geom_Fn(zz, zq_num_geom, z);
+    Zoltan_Set_Geom_Multi_Fn(zz, zq_geom_multi, z);
 }
 
 /* owner[i] for every particle of the whole body (same on all ranks). */
@@ -162,8 +175,10 @@ static int partition(const struct sim *s, const struct bond_list *bl, int *owner
     if (n > (size_t)0xFFFFFFFFu)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "distributed runs: %zu particles exceed Zoltan's 32-bit ids", n);
-    struct zslice z = {n * (size_t)rank / (size_t)size, n * (size_t)(rank + 1) / (size_t)size,
-                       s->p, bl};
+    /* this rank's slice of the whole body, at the reference positions,
+     * weighted by 1 + half-bonds (the force loop visits every half-bond) */
+    struct par_zobjs z = {n * (size_t)rank / (size_t)size, n * (size_t)(rank + 1) / (size_t)size,
+                          NULL, s->p->x0, s->p->dim, bl, 0};
     float ver = 0.0f;
     if (Zoltan_Initialize(0, NULL, &ver) != ZOLTAN_OK)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Initialize failed");
@@ -178,10 +193,7 @@ static int partition(const struct sim *s, const struct bond_list *bl, int *owner
     Zoltan_Set_Param(zz, "RETURN_LISTS", "EXPORT");
     Zoltan_Set_Param(zz, "RCB_OUTPUT_LEVEL", "0");
     Zoltan_Set_Param(zz, "KEEP_CUTS", "0");
-    Zoltan_Set_Num_Obj_Fn(zz, zq_num_obj, &z);
-    Zoltan_Set_Obj_List_Fn(zz, zq_obj_list, &z);
-    Zoltan_Set_Num_Geom_Fn(zz, zq_num_geom, &z);
-    Zoltan_Set_Geom_Multi_Fn(zz, zq_geom_multi, &z);
+    par_zoltan_queries(zz, &z);
     int changes, ngid, nlid, nimp, nexp;
     ZOLTAN_ID_PTR imp_g = NULL, imp_l = NULL, exp_g = NULL, exp_l = NULL;
     int *imp_p = NULL, *imp_parts = NULL, *exp_p = NULL, *exp_parts = NULL;

@@ -45,6 +45,25 @@ struct par_slots {
 int par_slot_add(struct par_slots *sl, void **ptr, size_t esize);
 /** The engine's and the registry's stored arrays; -1: too many. */
 int par_particle_slots(struct sim *s, struct par_slots *sl);
+/** A particle's work for the partition: 1 + the half-bonds of its row
+ *  (@p intact_only: the intact ones), 1 without a bond list. */
+struct bond_list;
+double par_particle_work(const struct bond_list *bl, size_t i, int intact_only);
+
+/** Objects handed to Zoltan: rows [lo, hi) with global ids gid[i] (NULL:
+ *  i), positions pos[c][i] and the work above as weight. */
+struct par_zobjs {
+    size_t lo, hi;
+    const int64_t *gid;
+    double *const *pos;
+    int dim;
+    const struct bond_list *bl;
+    int intact_only;
+};
+struct Zoltan_Struct;
+/** Install the query functions over @p z (kept by address) in @p zz. */
+void par_zoltan_queries(struct Zoltan_Struct *zz, struct par_zobjs *z);
+
 /** Release the rebalancing state (balance.c). */
 void par_balance_free(struct par_decomp *d);
 

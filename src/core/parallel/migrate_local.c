@@ -103,19 +103,7 @@ static int rebuild_bonds(struct mig *M, struct spall_error *err)
             free(mb[k]);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory migrating bonds");
     }
-    free(bl->offset);
-    free(bl->partner);
-    free(bl->rest);
-    free(bl->state);
-    free(bl->type);
-    free(bl->reverse);
-    bl->reverse = NULL;
-    bl->offset = off;
-    bl->partner = partner;
-    bl->rest = rest;
-    bl->state = state;
-    bl->type = type;
-    bl->n = n_new;
+    bond_list_replace(bl, n_new, off, partner, rest, state, type);
     for (int k = 0; k < L->ma.n_bond; k++) {
         free(*L->ma.bond[k]);
         *L->ma.bond[k] = mb[k];
