@@ -178,14 +178,8 @@ void bond_list_destroy(struct bond_list **pbl)
 {
     if (!pbl || !*pbl)
         return;
-    struct bond_list *bl = *pbl;
-    free(bl->offset);
-    free(bl->partner);
-    free(bl->rest);
-    free(bl->state);
-    free(bl->type);
-    free(bl->reverse);
-    free(bl);
+    bond_list_replace(*pbl, 0, NULL, NULL, NULL, NULL, NULL); /* frees the arrays */
+    free(*pbl);
     *pbl = NULL;
 }
 

@@ -72,19 +72,7 @@ static struct Zoltan_Struct *balancer(struct par_decomp *d)
 {
     if (d->zz)
         return d->zz;
-    struct Zoltan_Struct *zz = Zoltan_Create(MPI_COMM_WORLD);
-    if (!zz)
-        return NULL;
-    Zoltan_Set_Param(zz, "DEBUG_LEVEL", "0");
-    Zoltan_Set_Param(zz, "LB_METHOD", "RCB");
-    Zoltan_Set_Param(zz, "LB_APPROACH", "REPARTITION");
-    Zoltan_Set_Param(zz, "NUM_GID_ENTRIES", "1");
-    Zoltan_Set_Param(zz, "NUM_LID_ENTRIES", "1");
-    Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", "1");
-    Zoltan_Set_Param(zz, "RETURN_LISTS", "EXPORT");
-    Zoltan_Set_Param(zz, "RCB_OUTPUT_LEVEL", "0");
-    Zoltan_Set_Param(zz, "KEEP_CUTS", "1");
-    Zoltan_Set_Param(zz, "RCB_REUSE", "1");
+    struct Zoltan_Struct *zz = par_zoltan_rcb(1);
     d->zz = zz;
     return zz;
 }

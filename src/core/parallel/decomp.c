@@ -158,6 +158,26 @@ static void zq_geom_multi(void *data, int ng, int nl, int n, ZOLTAN_ID_PTR gids,
     *ierr = ZOLTAN_OK;
 }
 
+struct Zoltan_Struct *par_zoltan_rcb(int reuse)
+{
+    struct Zoltan_Struct *zz = Zoltan_Create(MPI_COMM_WORLD);
+    if (!zz)
+        return NULL;
+    Zoltan_Set_Param(zz, "DEBUG_LEVEL", "0");
+    Zoltan_Set_Param(zz, "LB_METHOD", "RCB");
+    Zoltan_Set_Param(zz, "NUM_GID_ENTRIES", "1");
+    Zoltan_Set_Param(zz, "NUM_LID_ENTRIES", "1");
+    Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", "1");
+    Zoltan_Set_Param(zz, "RETURN_LISTS", "EXPORT");
+    Zoltan_Set_Param(zz, "RCB_OUTPUT_LEVEL", "0");
+    Zoltan_Set_Param(zz, "KEEP_CUTS", reuse ? "1" : "0");
+    if (reuse) { /* start each repartition from the previous cuts */
+        Zoltan_Set_Param(zz, "LB_APPROACH", "REPARTITION");
+        Zoltan_Set_Param(zz, "RCB_REUSE", "1");
+    }
+    return zz;
+}
+
 void par_zoltan_queries(struct Zoltan_Struct *zz, struct par_zobjs *z)
 {
     Zoltan_Set_Num_Obj_Fn(zz, zq_num_obj, z);
@@ -182,17 +202,9 @@ static int partition(const struct sim *s, const struct bond_list *bl, int *owner
     float ver = 0.0f;
     if (Zoltan_Initialize(0, NULL, &ver) != ZOLTAN_OK)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Initialize failed");
-    struct Zoltan_Struct *zz = Zoltan_Create(MPI_COMM_WORLD);
+    struct Zoltan_Struct *zz = par_zoltan_rcb(0);
     if (!zz)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
-    Zoltan_Set_Param(zz, "DEBUG_LEVEL", "0");
-    Zoltan_Set_Param(zz, "LB_METHOD", "RCB");
-    Zoltan_Set_Param(zz, "NUM_GID_ENTRIES", "1");
-    Zoltan_Set_Param(zz, "NUM_LID_ENTRIES", "1");
-    Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", "1");
-    Zoltan_Set_Param(zz, "RETURN_LISTS", "EXPORT");
-    Zoltan_Set_Param(zz, "RCB_OUTPUT_LEVEL", "0");
-    Zoltan_Set_Param(zz, "KEEP_CUTS", "0");
     par_zoltan_queries(zz, &z);
     int changes, ngid, nlid, nimp, nexp;
     ZOLTAN_ID_PTR imp_g = NULL, imp_l = NULL, exp_g = NULL, exp_l = NULL;

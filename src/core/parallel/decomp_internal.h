@@ -61,6 +61,9 @@ struct par_zobjs {
     int intact_only;
 };
 struct Zoltan_Struct;
+/** A Zoltan RCB object with spall's parameters (NULL on failure); with
+ *  @p reuse it keeps its cuts and starts each repartition from them. */
+struct Zoltan_Struct *par_zoltan_rcb(int reuse);
 /** Install the query functions over @p z (kept by address) in @p zz. */
 void par_zoltan_queries(struct Zoltan_Struct *zz, struct par_zobjs *z);
 
