@@ -16,6 +16,7 @@
 #include "models/lattice/lattice_thermal.h"
 #include "core/model.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/migrate.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -51,5 +52,22 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
     free(m->diss);
     m->diss = diss;
     m->n_half = nh;
+    return SPALL_OK;
+}
+
+/* model_ops.migrate_arrays: the bond rows, the dissipated energy per
+ * particle and the softening history per half-bond travel with a particle. */
+int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a)
+{
+    a->bl = m->bl;
+    a->n_half = &m->n_half;
+    a->n_particle = 1;
+    a->particle[0] = (void **)&m->diss;
+    a->particle_size[0] = sizeof *m->diss;
+    a->n_bond = 0;
+    if (m->kappa) {
+        a->bond[a->n_bond] = (void **)&m->kappa;
+        a->bond_size[a->n_bond++] = sizeof *m->kappa;
+    }
     return SPALL_OK;
 }

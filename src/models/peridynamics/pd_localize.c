@@ -14,6 +14,7 @@
 #include "core/model.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/migrate.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -88,4 +89,24 @@ void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, s
                        1);
     free(rows);
     *dsum = s;
+}
+
+/* model_ops.migrate_arrays: the family rows with their pair coefficients,
+ * the initial bond counts (damage = 1 - intact / initial) and the
+ * dissipated energy travel with a particle. */
+int pd_migrate_arrays(struct model *m, struct par_model_arrays *a)
+{
+    a->bl = m->bl;
+    a->n_half = &m->n_half;
+    a->n_particle = 3;
+    a->particle[0] = (void **)&m->n_init;
+    a->particle_size[0] = sizeof *m->n_init;
+    a->particle[1] = (void **)&m->n_init_f;
+    a->particle_size[1] = sizeof *m->n_init_f;
+    a->particle[2] = (void **)&m->diss;
+    a->particle_size[2] = sizeof *m->diss;
+    a->n_bond = 1;
+    a->bond[0] = (void **)&m->coef;
+    a->bond_size[0] = sizeof *m->coef;
+    return SPALL_OK;
 }
