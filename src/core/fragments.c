@@ -109,6 +109,34 @@ static size_t uf_find(size_t *parent, size_t i)
     return i;
 }
 
+size_t fragments_root(size_t *parent, size_t i)
+{
+    return uf_find(parent, i);
+}
+
+void fragments_union_local(size_t *parent, const struct bond_list *bl, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        parent[i] = i;
+    if (!bl)
+        return;
+    /* union over intact bonds; the smaller root index wins, so every root is
+     * the smallest particle index of its component, whatever the bond order */
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
+            if (bl->state[k] & BOND_BROKEN)
+                continue;
+            size_t j = (size_t)bl->partner[k];
+            if (j <= i || j >= n) /* each bond once; ghosts are not ours */
+                continue;
+            size_t a = uf_find(parent, i), b = uf_find(parent, j);
+            if (a < b)
+                parent[b] = a;
+            else if (b < a)
+                parent[a] = b;
+        }
+}
+
 int fragments_compute(struct fragments *f, const struct particles *p, int dim,
                       const struct bond_list *bl, struct spall_error *err)
 {
@@ -120,25 +148,7 @@ int fragments_compute(struct fragments *f, const struct particles *p, int dim,
         return spall_error_set(err, SPALL_ERR_INTERNAL, "bond list has %zu rows for %zu particles",
                                bl->n, n);
     size_t *parent = f->parent;
-    for (size_t i = 0; i < n; i++)
-        parent[i] = i;
-    /* union over intact bonds; the smaller root index wins, so every root is
-     * the smallest particle index of its component, whatever the bond order */
-    if (bl) {
-        for (size_t i = 0; i < n; i++)
-            for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
-                if (bl->state[k] & BOND_BROKEN)
-                    continue;
-                size_t j = (size_t)bl->partner[k];
-                if (j <= i || j >= n) /* each bond once; ghosts are not ours */
-                    continue;
-                size_t a = uf_find(parent, i), b = uf_find(parent, j);
-                if (a < b)
-                    parent[b] = a;
-                else if (b < a)
-                    parent[a] = b;
-            }
-    }
+    fragments_union_local(parent, bl, n);
     /* fragments in order of their smallest index; sums in particle order */
     f->n_frag = 0;
     for (size_t i = 0; i < n; i++)

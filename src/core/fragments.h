@@ -73,6 +73,12 @@ void fragments_summarise(const struct fragments *f, struct fragment_summary *out
 int fragments_write_csv(const struct fragments *f, const char *path, double time,
                         struct spall_error *err);
 
+/** Union-find over the intact bonds between particles [0, @p n) of @p bl
+ *  (bonds to ghosts, partner >= n, are left out): parent[] of n entries;
+ *  every root is the smallest index of its component. */
+void fragments_union_local(size_t *parent, const struct bond_list *bl, size_t n);
+/** Root of @p i in a forest of fragments_union_local (path halving). */
+size_t fragments_root(size_t *parent, size_t i);
 /** Add particle @p gid (mass @p m, velocity @p v) to @p fi, zeroed for a new
  *  fragment: the serial loop's sums, one particle at a time, so a fragment
  *  whose particles are added in gid order gets the serial bits wherever it

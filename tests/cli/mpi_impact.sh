@@ -15,13 +15,8 @@
 set -u
 spall="$1"
 mpiexec="$3"
-export OMP_WAIT_POLICY=passive
-export OMPI_MCA_mca_base_component_disable_dlclose=1
-[ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
-[ -n "${LSAN_OPTIONS:-}" ] && export LSAN_OPTIONS="$LSAN_OPTIONS:print_suppressions=0"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-cd "$tmp"
+# shellcheck source=lib/rank_compare.bash
+source "$2/tests/cli/lib/rank_compare.bash"
 cat > shatter.yaml <<'YAML'
 title: lattice plate shattered by a sphere, rank-count independence
 model: {type: lattice, law: linear}
@@ -78,14 +73,9 @@ impactors:
 run: {steps: 400}
 output: {field_every: 200, history_every: 10, fields: [position, velocity, fragment_id]}
 YAML
-fail=0
 for deck in shatter kw tup; do
-    OMP_NUM_THREADS=1 timeout 120 "$spall" run $deck.yaml -o ${deck}_serial --quiet --no-progress ||
-        { echo "FAIL serial $deck run"; exit 1; }
+    serial $deck
 done
-col() { # file column-name: the last row's value
-    awk -F, -v n="$2" 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == n) c = k} END {print $c}' "$1"
-}
 # the references must fracture and touch, else the test proves little
 frags=$(col shatter_serial/history.csv "fragments [1]")
 awk -v f="$frags" 'BEGIN {exit !(f >= 50)}' || { echo "FAIL shatter made $frags fragments"; fail=1; }
@@ -97,24 +87,11 @@ for c in "ball_contacts" "striker_contacts" "tup_contacts"; do
                        $c > 0 {hit = 1} END {exit !hit}' $f/history.csv ||
         { echo "FAIL $c: the impactor never touched the body"; fail=1; }
 done
-compare() { # name out-dir reference-dir
-    local f
-    for f in history.csv fragments.csv fields.xdmf bodies.xdmf; do
-        [ -e "$3/$f" ] || continue
-        cmp -s "$3/$f" "$2/$f" || { echo "FAIL $1: $f differs"; fail=1; }
-    done
-    for f in "$3"/fields_*.h5; do
-        h5diff -q "$f" "$2/$(basename "$f")" || { echo "FAIL $1: $(basename "$f") differs"; fail=1; }
-    done
-}
 counts="${SPALL_MPI_RANK_COUNTS:-2 3 4}"
 for n in $counts; do
     for deck in shatter kw tup; do
         [ "$n" = 4 ] && [ $deck != shatter ] && continue
-        OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$n" \
-            "$spall" run $deck.yaml -o "${deck}$n" --quiet --no-progress ||
-            { echo "FAIL $deck on $n ranks: exit $?"; fail=1; continue; }
-        compare "$deck, $n ranks" "${deck}$n" ${deck}_serial
+        ranks $deck "$n"
     done
 done
 [ $fail -eq 0 ] && echo "mpi_impact: identical on $counts ranks ($frags fragments," \

@@ -12,13 +12,8 @@
 set -u
 spall="$1"
 mpiexec="$3"
-export OMP_WAIT_POLICY=passive
-export OMPI_MCA_mca_base_component_disable_dlclose=1
-[ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
-[ -n "${LSAN_OPTIONS:-}" ] && export LSAN_OPTIONS="$LSAN_OPTIONS:print_suppressions=0"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-cd "$tmp"
+# shellcheck source=lib/rank_compare.bash
+source "$2/tests/cli/lib/rank_compare.bash"
 cat > lps.yaml <<'YAML'
 title: LPS fracture, rank-count independence
 model: {type: peridynamics, formulation: lps}
@@ -64,36 +59,18 @@ groups:
 run: {steps: 300}
 output: {field_every: 150, history_every: 10, fields: [position, temperature, fragment_id, material]}
 YAML
-fail=0
 for deck in lps thermal; do
-    OMP_NUM_THREADS=1 timeout 120 "$spall" run $deck.yaml -o ${deck}_serial --quiet --no-progress ||
-        { echo "FAIL serial $deck run"; exit 1; }
+    serial $deck
 done
-col() { # file column-name: the last row's value
-    awk -F, -v n="$2" 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == n) c = k} END {print $c}' "$1"
-}
 # the references must break and melt bonds, else the test proves little
 lps_broken=$(col lps_serial/history.csv bonds_broken)
 awk -v b="$lps_broken" 'BEGIN {exit !(b > 50)}' || { echo "FAIL lps broke $lps_broken bonds"; fail=1; }
 melted=$(col thermal_serial/history.csv bonds_melted)
 awk -v b="$melted" 'BEGIN {exit !(b > 10)}' || { echo "FAIL thermal melted $melted bonds"; fail=1; }
-compare() { # name out-dir reference-dir
-    local f
-    for f in history.csv fragments.csv fields.xdmf; do
-        [ -e "$3/$f" ] || continue
-        cmp -s "$3/$f" "$2/$f" || { echo "FAIL $1: $f differs"; fail=1; }
-    done
-    for f in "$3"/fields_*.h5; do
-        h5diff -q "$f" "$2/$(basename "$f")" || { echo "FAIL $1: $(basename "$f") differs"; fail=1; }
-    done
-}
 counts="${SPALL_MPI_RANK_COUNTS:-2 3}"
 for n in $counts; do
     for deck in lps thermal; do
-        OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$n" \
-            "$spall" run $deck.yaml -o "${deck}$n" --quiet --no-progress ||
-            { echo "FAIL $deck on $n ranks: exit $?"; fail=1; continue; }
-        compare "$deck, $n ranks" "${deck}$n" ${deck}_serial
+        ranks $deck "$n"
     done
 done
 [ $fail -eq 0 ] && echo "mpi_models: identical on $counts ranks ($lps_broken lps bonds broken," \

@@ -73,15 +73,6 @@ void par_halo_values(const struct sim *s, double *vals, int ncomp)
                (size_t)ncomp * sizeof *vals);
 }
 
-static size_t uf_find(size_t *parent, size_t i)
-{
-    while (parent[i] != i) {
-        parent[i] = parent[parent[i]]; /* path halving */
-        i = parent[i];
-    }
-    return i;
-}
-
 /* The labelling workspace: root of each owned particle, the label of each
  * root (as a double: gids < 2^53 travel exactly), and whether the root's
  * component has an intact bond to a ghost. */
@@ -120,26 +111,16 @@ static int labels_compute(const struct sim *s, struct labels *L, struct spall_er
     int ok = L->root && L->val && L->cross && L->edge;
     if (ok) {
         size_t *parent = L->root;
-        for (size_t i = 0; i < n; i++)
-            parent[i] = i;
-        for (size_t i = 0; bl && i < n; i++)
-            for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
-                size_t j = (size_t)bl->partner[k];
-                if ((bl->state[k] & BOND_BROKEN) || j <= i)
-                    continue;
-                if (j >= n) { /* the component goes on on another rank */
-                    L->edge[2 * L->n_edge] = i;
-                    L->edge[2 * L->n_edge++ + 1] = j;
-                    continue;
-                }
-                size_t a = uf_find(parent, i), b = uf_find(parent, j);
-                if (a < b)
-                    parent[b] = a;
-                else if (b < a)
-                    parent[a] = b;
-            }
+        fragments_union_local(parent, bl, n);
         for (size_t i = 0; i < n; i++) /* flatten: root[i] is the final root */
-            parent[i] = uf_find(parent, i);
+            parent[i] = fragments_root(parent, i);
+        /* the intact bonds to ghosts: the component goes on on another rank */
+        for (size_t i = 0; bl && i < n; i++)
+            for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++)
+                if (!(bl->state[k] & BOND_BROKEN) && (size_t)bl->partner[k] >= n) {
+                    L->edge[2 * L->n_edge] = i;
+                    L->edge[2 * L->n_edge++ + 1] = (size_t)bl->partner[k];
+                }
         for (size_t e = 0; e < L->n_edge; e++) {
             L->edge[2 * e] = parent[L->edge[2 * e]];
             L->cross[L->edge[2 * e]] = 1;
