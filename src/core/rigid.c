@@ -6,7 +6,11 @@
  * The contact loops are serial on purpose: they visit only the particles in
  * the impactor's bounding box (a cheap O(N) filter) and sum the impactor's
  * force in a fixed order, so the result is bitwise independent of the number
- * of threads.
+ * of threads.  On a distributed run each rank visits its owned particles and
+ * records each contact's terms keyed by gid; par_ordered_reduce adds the
+ * contacts of all ranks in gid order (the serial order) and hands every rank
+ * the sums, so every rank moves each impactor as one rank would
+ * (docs/parallel.md).
  */
 #include "core/rigid.h"
 
