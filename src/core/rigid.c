@@ -267,7 +267,8 @@ int rigid_par_prepare(struct sim *s, struct spall_error *err)
     free(rs->par_row);
     rs->par_key = malloc(n * sizeof *rs->par_key);
     rs->par_row = malloc(n * RIGID_PAR_COLS * sizeof *rs->par_row);
-    if (!rs->par_key || !rs->par_row)
+    rs->par_cap = rs->par_key && rs->par_row ? n : 0;
+    if (!rs->par_cap)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for impactor contacts of %zu "
                                "particles", n);
     return SPALL_OK;
@@ -311,10 +312,19 @@ static void reduce_no_slip(const double *rows, size_t n, int ncol, double *out, 
     out[5] = (double)n;
 }
 
+/* A distributed run whose owned set grew since rigid_par_prepare: grow the
+ * rows first (the loops write one per contact, at most n_owned). */
+static void par_rows_fit(struct sim *s)
+{
+    if (s->par && s->p->n_owned > s->rigid->par_cap)
+        rigid_par_prepare(s, NULL); /* on failure par_cap is 0 and no row is written */
+}
+
 void rigid_contact_forces(struct sim *s)
 {
     if (!s->rigid)
         return;
+    par_rows_fit(s);
     struct particles *p = s->p;
     const int dim = s->dim;
     const double dt = s->dt > 0 ? s->dt : 1.0;
@@ -372,7 +382,7 @@ void rigid_contact_forces(struct sim *s)
                 im->f_pen[d] -= f[d];
             }
             im->pen_energy += 0.5 * kc * phi * phi;
-            if (s->par) {
+            if (s->par && nc < rs->par_cap) {
                 double *row = rs->par_row + nc * RIGID_PAR_COLS;
                 memcpy(row, f, sizeof f);
                 row[3] = 0.5 * kc * phi * phi;
@@ -383,7 +393,8 @@ void rigid_contact_forces(struct sim *s)
         }
         if (s->par) { /* every rank: the contacts of all ranks, in gid order */
             double out[6];
-            par_ordered_reduce(rs->par_key, rs->par_row, nc, RIGID_PAR_COLS, reduce_penalty, &dim,
+            size_t nr = nc < rs->par_cap ? nc : rs->par_cap; /* < nc only without memory */
+            par_ordered_reduce(rs->par_key, rs->par_row, nr, RIGID_PAR_COLS, reduce_penalty, &dim,
                                out, 6);
             for (int d = 0; d < 3; d++)
                 im->f_pen[d] = out[d];
@@ -406,6 +417,7 @@ void rigid_no_slip(struct sim *s, double dt)
 {
     if (!s->rigid)
         return;
+    par_rows_fit(s);
     struct particles *p = s->p;
     const int dim = s->dim;
     size_t moved = 0; /* contacts put back on a surface, over all ranks */
@@ -428,7 +440,7 @@ void rigid_no_slip(struct sim *s, double dt)
             if (!(phi < 0.0))
                 continue;
             double m = p->mass[i];
-            double *row = s->par ? rs->par_row + nc * RIGID_PAR_COLS : NULL;
+            double *row = s->par && nc < rs->par_cap ? rs->par_row + nc * RIGID_PAR_COLS : NULL;
             if (row)
                 memset(row, 0, RIGID_PAR_COLS * sizeof *row);
             for (int d = 0; d < dim; d++) {
@@ -456,7 +468,8 @@ void rigid_no_slip(struct sim *s, double dt)
         }
         if (s->par) { /* every rank: the contacts of all ranks, in gid order */
             double out[6];
-            par_ordered_reduce(rs->par_key, rs->par_row, nc, RIGID_PAR_COLS, reduce_no_slip, &dim,
+            size_t nr = nc < rs->par_cap ? nc : rs->par_cap; /* < nc only without memory */
+            par_ordered_reduce(rs->par_key, rs->par_row, nr, RIGID_PAR_COLS, reduce_no_slip, &dim,
                                out, 6);
             memcpy(J, out, sizeof J);
             push = out[3];
