@@ -97,8 +97,6 @@ int par_check_supported(const struct sim *s, bool restart, bool checkpoints,
     const char *what = NULL;
     if (restart || checkpoints)
         what = "checkpoints and restart are";
-    else if (s->rigid)
-        what = "impactors are";
     else if (s->pcontact)
         what = "particle contact is";
     else if (s->integrator != INTEGRATOR_VERLET || s->adaptive_dt)

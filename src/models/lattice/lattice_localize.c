@@ -28,11 +28,11 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
                      size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
     (void)sim;
-    if (m->angular || lattice_thermal_enabled(m))
+    if (m->angular) /* angles centred on ghosts would need ghosts of ghosts */
         return spall_error_set(err, SPALL_ERR_INPUT,
-                               "distributed runs: the lattice model's %s not distributed yet; "
-                               "run on one rank (without mpirun), see docs/parallel.md",
-                               m->angular ? "angular springs are" : "thermal lattice is");
+                               "distributed runs: the lattice model's angular springs are not "
+                               "distributed yet; run on one rank (without mpirun), see "
+                               "docs/parallel.md");
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
     size_t *oh = NULL, nh = 0;
@@ -41,11 +41,14 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
         return rc;
     double *kappa = m->kappa ? array_gather(m->kappa, sizeof *kappa, oh, nh) : NULL;
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
+    /* thermal lattice: temperatures of owned and ghosts (the halo refreshes
+     * the ghosts' each conduction sub-step, lattice_thermal.c) */
+    rc = lattice_thermal_localize(m, keep, n_keep, oh, nh, err);
     free(oh);
-    if ((m->kappa && !kappa) || !diss) {
+    if (rc || (m->kappa && !kappa) || !diss) {
         free(kappa);
         free(diss);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+        return rc ? rc : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
     }
     free(m->kappa);
     m->kappa = kappa;
