@@ -11,6 +11,7 @@
 #include "core/rigid.h"
 #include "core/sim.h"
 #include "io/deck_build.h"
+#include "io/run_balance.h"
 #include "spall/error.h"
 #include "spall/spall.h"
 
@@ -36,6 +37,8 @@ int run_par_setup(const struct sim *s, const struct spall_run_options *opt,
         return rc;
     if (!rc && s)
         rc = par_check_supported(s, opt->restart != NULL, ro->checkpoint.on, err);
+    if (!rc && s)
+        rc = run_balance_check(s, &ro->parallel, err);
     return par_agree(rc, err);
 }
 

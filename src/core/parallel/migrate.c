@@ -31,7 +31,7 @@ static int make_layout(struct sim *s, struct layout *L, struct spall_error *err)
                                "distributed runs: model '%s' cannot migrate particles; leave "
                                "parallel.rebalance_every at 0",
                                s->ops->name);
-    int rc = s->ops->migrate_arrays(s->model, &L->ma);
+    int rc = s->ops->migrate_arrays(s->model, &L->ma, err);
     if (rc)
         return rc;
     if (!L->ma.bl || !L->ma.n_half)

@@ -122,9 +122,12 @@ void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, s
 
 /* model_ops.migrate_arrays: the family rows with their pair coefficients,
  * the initial bond counts (damage = 1 - intact / initial) and the
- * dissipated energy travel with a particle. */
-int pd_migrate_arrays(struct model *m, struct par_model_arrays *a)
+ * dissipated energy travel with a particle; with LPS also its weighted
+ * volume, dilatation and coefficients, and the influence of each half-bond
+ * (a ghost's alpha, bcoef and theta enter its partners' forces). */
+int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
+    (void)err; /* every option that distributes can migrate */
     a->bl = m->bl;
     a->n_half = &m->n_half;
     a->n_particle = 3;
@@ -137,5 +140,15 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a)
     a->n_bond = 1;
     a->bond[0] = (void **)&m->coef;
     a->bond_size[0] = sizeof *m->coef;
+    if (m->opt.lps) {
+        struct pd_lps *L = &m->lps;
+        double **pp[4] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef};
+        for (int k = 0; k < 4; k++) {
+            a->particle[a->n_particle] = (void **)pp[k];
+            a->particle_size[a->n_particle++] = sizeof(double);
+        }
+        a->bond[a->n_bond] = (void **)&L->ob;
+        a->bond_size[a->n_bond++] = sizeof *L->ob;
+    }
     return SPALL_OK;
 }
