@@ -138,7 +138,14 @@ static char *pack_migrant(const struct mig *M, size_t i, char *b)
         int64_t pg = M->s->p->gid[bl->partner[q]];
         memcpy(b, &pg, sizeof pg);
         b += sizeof pg;
-        memcpy(b, &bl->rest[q], sizeof(double));
+        /* the rest length as stored: a double, or the 16-bit index into the
+         * compact table (bond_list_compact_rest; built from the whole body
+         * at set-up, the same on every rank) in the slot's first bytes */
+        memset(b, 0, sizeof(double));
+        if (bl->rest)
+            memcpy(b, &bl->rest[q], sizeof(double));
+        else if (bl->rest_idx)
+            memcpy(b, &bl->rest_idx[q], sizeof(uint16_t));
         b += sizeof(double);
         *b++ = (char)bl->state[q];
         *b++ = (char)(bl->type ? bl->type[q] : 0);
