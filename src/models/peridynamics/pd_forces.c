@@ -23,7 +23,24 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* One kernel per dimension: the loop over j is the hot path. */
+/* Energy released by a half-bond that breaks in this step: what the kicks
+ * left of the bond's energy, not 1/4 coef e_{n+1}^2.  immediate: its force
+ * at x_n acted half a step (1/4 coef e_{n+1} e_n, exact); next_step: its
+ * force at x_{n+1} acts half a step more (1/4 coef e_{n+1} (e_{n+1} + de),
+ * de ~ e_{n+1} - e_n).  x_n = x - dt u; (ex, ey, ez) = x_j - x_i, e0 = l - r. */
+static inline double pd_break_energy(int dim, double ex, double ey, double ez, double r,
+                                     double e0, double coef, double dt, double *const *u,
+                                     size_t i, size_t j, bool late)
+{
+    const double px = ex - dt * (u[0][j] - u[0][i]);
+    const double py = dim > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;
+    const double pz = dim > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;
+    const double en = sqrt(px * px + py * py + pz * pz) - r;
+    return 0.25 * coef * e0 * (late ? 2.0 * e0 - en : en);
+}
+
+/* One kernel per dimension: the loop over j is the hot path (the mixed-mode
+ * threshold; PD_KERNEL_SPLIT below for the others). */
 #define PD_KERNEL(DIM, MIXED)                                                                   \
     _Pragma("omp parallel for schedule(dynamic, 256)")                                          \
     for (size_t i = 0; i < n; i++) {                                                            \
@@ -48,17 +65,7 @@
                 st[s] |= BOND_BROKEN;                                                           \
                 if (fresh && !(type[s] & 1u))                                                   \
                     fresh[s] = 1;                                                               \
-                /* what the kicks left of the bond's energy, not 1/4 coef  */                \
-                /* e_{n+1}^2: immediate, its force at x_n acted half a step */               \
-                /* (1/4 coef e_{n+1} e_n, exact); next_step, its force at   */               \
-                /* x_{n+1} acts half a step more (1/4 coef e_{n+1} (e_{n+1} */               \
-                /* + de), de ~ e_{n+1} - e_n); x_n = x - dt u                */              \
-                const double e0 = l - r;                                                        \
-                const double px = ex - dt * (u[0][j] - u[0][i]);                                \
-                const double py = DIM > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;                \
-                const double pz = DIM > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;                \
-                const double en = sqrt(px * px + py * py + pz * pz) - r;                        \
-                dd += 0.25 * coef[s] * e0 * (late ? 2.0 * e0 - en : en);                        \
+                dd += pd_break_energy(DIM, ex, ey, ez, r, l - r, coef[s], dt, u, i, j, late);   \
                 if (!late)                                                                      \
                     continue;                                                                   \
             }                                                                                   \
@@ -163,17 +170,11 @@ PD_CHUNK_DIM(3)
                     const double ex = x[0][j] - xi0;                                            \
                     const double ey = DIM > 1 ? x[1][j] - yi0 : 0.0;                            \
                     const double ez = DIM > 2 ? x[2][j] - zi0 : 0.0;                            \
-                    const double r = rest[s];                                                   \
                     st[s] |= BOND_BROKEN;                                                       \
                     if (fresh && !(type[s] & 1u))                                               \
                         fresh[s] = 1;                                                           \
-                    /* released energy: as in PD_KERNEL */                                      \
-                    const double e0 = el[k];                                                    \
-                    const double px = ex - dt * (u[0][j] - u[0][i]);                            \
-                    const double py = DIM > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;            \
-                    const double pz = DIM > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;            \
-                    const double en = sqrt(px * px + py * py + pz * pz) - r;                    \
-                    dd += 0.25 * coef[s] * e0 * (late ? 2.0 * e0 - en : en);                    \
+                    dd += pd_break_energy(DIM, ex, ey, ez, rest[s], el[k], coef[s], dt, u, i, j, \
+                                          late);                                                \
                     if (!late)                                                                  \
                         continue;                                                               \
                 }                                                                               \
