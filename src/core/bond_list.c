@@ -279,7 +279,8 @@ size_t bond_list_bytes(const struct bond_list *bl)
     if (!bl)
         return 0;
     size_t m = bl->offset[bl->n];
-    size_t per = sizeof *bl->partner + sizeof *bl->rest + sizeof *bl->state + sizeof *bl->type;
+    size_t per = sizeof *bl->partner + sizeof *bl->state + (bl->rest ? sizeof *bl->rest : 0) +
+                 (bl->type ? sizeof *bl->type : 0);
     return sizeof *bl + (bl->n + 1) * sizeof *bl->offset + m * per +
            (bl->reverse ? m * sizeof *bl->reverse : 0);
 }
@@ -321,10 +322,11 @@ int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, 
             }
         offset[k + 1] = w;
     }
-    double *rest = array_gather(bl->rest, sizeof *rest, oh, nh);
+    /* rest and type may be NULL: a model that keeps them elsewhere */
+    double *rest = bl->rest ? array_gather(bl->rest, sizeof *rest, oh, nh) : NULL;
     uint8_t *state = array_gather(bl->state, sizeof *state, oh, nh);
-    uint8_t *type = array_gather(bl->type, sizeof *type, oh, nh);
-    if (!rest || !state || !type) {
+    uint8_t *type = bl->type ? array_gather(bl->type, sizeof *type, oh, nh) : NULL;
+    if ((bl->rest && !rest) || !state || (bl->type && !type)) {
         free(offset);
         free(oh);
         free(partner);

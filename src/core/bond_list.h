@@ -30,9 +30,10 @@ struct bond_list {
     size_t n;           /**< particles */
     size_t *offset;     /**< n+1 */
     int32_t *partner;   /**< local index of the partner */
-    double *rest;       /**< reference length |x0_j - x0_i| [m] */
+    double *rest;       /**< reference length |x0_j - x0_i| [m]; NULL once a model keeps it
+                             elsewhere (peridynamics' compact families, pd_compact.c) */
     uint8_t *state;     /**< enum bond_state_flags */
-    uint8_t *type;      /**< model-defined */
+    uint8_t *type;      /**< model-defined; NULL as rest */
     size_t *reverse;    /**< optional: slot of j->i for slot i->j (NULL until built) */
 };
 

@@ -87,11 +87,11 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
 #define PD_CHUNK 64
 #define PD_PRE (1.0 - 1e-12)
 
-/* Pass 1 over half-bonds s0 .. s0 + nb of particle i at (xi0, yi0, zi0),
- * broken or not: the force components g e into gx, gy, gz and the
+/* Pass 1 over the nb half-bonds of one chunk of particle i's row (partner,
+ * rest and coef start at the chunk) at (xi0, yi0, zi0), broken or not: the force components g e into gx, gy, gz and the
  * elongation l - r into el.  Only 32- and 64-bit data, so that the
  * vectoriser keeps to two doubles a vector. */
-static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t s0, size_t nb, double xi0, double yi0, double zi0,
+static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0,
                             double *const *restrict x, const int32_t *restrict partner,
                             const double *restrict rest, const double *restrict coef,
                             double *restrict gx, double *restrict gy, double *restrict gz,
@@ -99,17 +99,16 @@ static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t s0, s
 {
     const double *restrict x0 = x[0], *restrict x1 = x[1], *restrict x2 = x[2];
     for (size_t k = 0; k < nb; k++) {
-        const size_t s = s0 + k;
-        const size_t j = (size_t)partner[s];
+        const size_t j = (size_t)partner[k];
         const double ex = x0[j] - xi0;
         const double ey = dim > 1 ? x1[j] - yi0 : 0.0;
         const double ez = dim > 2 ? x2[j] - zi0 : 0.0;
         const double l = sqrt(ex * ex + ey * ey + ez * ez);
-        const double g = coef[s] * (l - rest[s]) / l;
+        const double g = coef[k] * (l - rest[k]) / l;
         gx[k] = g * ex;
         gy[k] = g * ey;
         gz[k] = g * ez;
-        el[k] = l - rest[s];
+        el[k] = l - rest[k];
     }
 }
 
@@ -125,7 +124,7 @@ static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t s0, s
 #define PD_CLONES
 #endif
 #define PD_CHUNK_DIM(DIM)                                                                       \
-    PD_CLONES static void pd_chunk##DIM(size_t s0, size_t nb, double xi0, double yi0,          \
+    PD_CLONES static void pd_chunk##DIM(size_t nb,        double xi0, double yi0,          \
                                         double zi0, double *const *restrict x,                  \
                                         const int32_t *restrict partner,                        \
                                         const double *restrict rest,                            \
@@ -133,7 +132,7 @@ static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t s0, s
                                         double *restrict gy, double *restrict gz,               \
                                         double *restrict el)                                    \
     {                                                                                           \
-        pd_chunk(DIM, s0, nb, xi0, yi0, zi0, x, partner, rest, coef, gx, gy, gz, el);           \
+        pd_chunk(DIM, nb, xi0, yi0, zi0, x, partner, rest, coef, gx, gy, gz, el);           \
     }
 PD_CHUNK_DIM(1)
 PD_CHUNK_DIM(2)
@@ -159,21 +158,28 @@ PD_CHUNK_DIM(3)
         const double zi0 = DIM > 2 ? x[2][i] : 0.0;                                             \
         for (size_t s0 = off[i]; s0 < off[i + 1]; s0 += PD_CHUNK) {                             \
             const size_t nb = off[i + 1] - s0 < PD_CHUNK ? off[i + 1] - s0 : PD_CHUNK;          \
-            pd_chunk##DIM(s0, nb, xi0, yi0, zi0, x, partner, rest, coef, gx, gy, gz, el);        \
+            /* compact families: the chunk's lengths and coefficients from the table */  \
+            double rb[PD_CHUNK], cb[PD_CHUNK];                                                  \
+            const double *rr = rest ? rest + s0 : rb, *cc = coef ? coef + s0 : cb;              \
+            for (size_t k = 0; kind && k < nb; k++) {                                           \
+                rb[k] = k_rest[kind[s0 + k]];                                                   \
+                cb[k] = k_coef[kind[s0 + k]];                                                   \
+            }                                                                                   \
+            pd_chunk##DIM(nb, xi0, yi0, zi0, x, partner + s0, rr, cc, gx, gy, gz, el);          \
             for (size_t k = 0; k < nb; k++) {                                                   \
                 const size_t s = s0 + k;                                                        \
                 if (st[s] & BOND_BROKEN)                                                        \
                     continue;                                                                   \
-                if (el[k] > s0tab[type[s]] * rest[s] * PD_PRE &&                                \
-                    el[k] / rest[s] > s0tab[type[s]]) {                                         \
+                const unsigned ty = kind ? k_type[kind[s]] : type[s];                           \
+                if (el[k] > s0tab[ty] * rr[k] * PD_PRE && el[k] / rr[k] > s0tab[ty]) {          \
                     const size_t j = (size_t)partner[s];                                        \
                     const double ex = x[0][j] - xi0;                                            \
                     const double ey = DIM > 1 ? x[1][j] - yi0 : 0.0;                            \
                     const double ez = DIM > 2 ? x[2][j] - zi0 : 0.0;                            \
                     st[s] |= BOND_BROKEN;                                                       \
-                    if (fresh && !(type[s] & 1u))                                               \
+                    if (fresh && !(ty & 1u))                                                    \
                         fresh[s] = 1;                                                           \
-                    dd += pd_break_energy(DIM, ex, ey, ez, rest[s], el[k], coef[s], dt, u, i, j, \
+                    dd += pd_break_energy(DIM, ex, ey, ez, rr[k], el[k], cc[k], dt, u, i, j,    \
                                           late);                                                \
                     if (!late)                                                                  \
                         continue;                                                               \
@@ -205,6 +211,10 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     const uint8_t *type = bl->type;
     uint8_t *st = bl->state;
     const double *coef = m->coef;
+    /* compact families (pd_compact.c): rest, type and coef are NULL */
+    const uint16_t *kind = m->kind;
+    const double *k_rest = m->k_rest, *k_coef = m->k_coef;
+    const uint8_t *k_type = m->k_type;
     const double *s0tab = m->s0_tab;
     double *diss = m->diss;
     double *const *x = p->x;
@@ -304,7 +314,7 @@ double pd_stable_dt(const struct model *m, const struct sim *sim)
         double k = 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
             if (!(bl->state[s] & BOND_BROKEN))
-                k += m->coef[s];
+                k += pd_coef(m, s);
         w2 = fmax(w2, k / p->mass[i]);
     }
     return w2 > 0.0 ? sqrt(2.0 / w2) : INFINITY;

@@ -40,13 +40,16 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
     if (rc)
         return rc;
-    double *coef = array_gather(m->coef, sizeof *coef, oh, nh);
+    /* per half-bond: the coefficients, or the compact families' table rows */
+    double *coef = m->coef ? array_gather(m->coef, sizeof *coef, oh, nh) : NULL;
+    uint16_t *kind = m->kind ? array_gather(m->kind, sizeof *kind, oh, nh) : NULL;
     size_t *n_init = array_gather(m->n_init, sizeof *n_init, keep, n_keep);
     size_t *n_init_f = array_gather(m->n_init_f, sizeof *n_init_f, keep, n_keep);
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
     free(oh);
-    if (!coef || !n_init || !n_init_f || !diss) {
+    if ((m->coef && !coef) || (m->kind && !kind) || !n_init || !n_init_f || !diss) {
         free(coef);
+        free(kind);
         free(n_init);
         free(n_init_f);
         free(diss);
@@ -54,6 +57,8 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     }
     free(m->coef);
     m->coef = coef;
+    free(m->kind);
+    m->kind = kind;
     free(m->n_init);
     m->n_init = n_init;
     free(m->n_init_f);
