@@ -274,8 +274,8 @@ size_t bond_list_bytes(const struct bond_list *bl)
     if (!bl)
         return 0;
     size_t m = bl->offset[bl->n];
-    size_t per = sizeof *bl->partner + sizeof *bl->state + sizeof *bl->type +
-                 (bl->rest_idx ? sizeof *bl->rest_idx : sizeof *bl->rest);
+    size_t per = sizeof *bl->partner + sizeof *bl->state + (bl->type ? sizeof *bl->type : 0) +
+                 (bl->rest_idx ? sizeof *bl->rest_idx : bl->rest ? sizeof *bl->rest : 0);
     return sizeof *bl + (bl->n + 1) * sizeof *bl->offset + m * per +
            bl->n_rest * sizeof *bl->rest_tab + (bl->reverse ? m * sizeof *bl->reverse : 0);
 }
@@ -395,13 +395,14 @@ int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, 
             }
         offset[k + 1] = w;
     }
-    /* the rest lengths as they are stored: doubles or the compact index
-     * (the table stays: it holds every value a kept index can name) */
+    /* the rest lengths as they are stored: doubles, the compact index (the
+     * table stays: it holds every value a kept index can name) or neither (a
+     * model that keeps them elsewhere); type may be NULL likewise */
     double *rest = bl->rest ? array_gather(bl->rest, sizeof *rest, oh, nh) : NULL;
     uint16_t *ridx = bl->rest_idx ? array_gather(bl->rest_idx, sizeof *ridx, oh, nh) : NULL;
     uint8_t *state = array_gather(bl->state, sizeof *state, oh, nh);
-    uint8_t *type = array_gather(bl->type, sizeof *type, oh, nh);
-    if ((bl->rest && !rest) || (bl->rest_idx && !ridx) || !state || !type) {
+    uint8_t *type = bl->type ? array_gather(bl->type, sizeof *type, oh, nh) : NULL;
+    if ((bl->rest && !rest) || (bl->rest_idx && !ridx) || !state || (bl->type && !type)) {
         free(offset);
         free(oh);
         free(partner);

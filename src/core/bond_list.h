@@ -30,13 +30,15 @@ struct bond_list {
     size_t n;           /**< particles */
     size_t *offset;     /**< n+1 */
     int32_t *partner;   /**< local index of the partner */
-    double *rest;       /**< reference length |x0_j - x0_i| [m]; NULL once compacted */
+    double *rest;       /**< reference length |x0_j - x0_i| [m]; NULL once compacted here
+                             (rest_idx) or kept by a model elsewhere (peridynamics'
+                             compact families, pd_compact.c) */
     uint16_t *rest_idx; /**< compacted (bond_list_compact_rest): rest length =
                              rest_tab[rest_idx[k]]; NULL otherwise */
     double *rest_tab;   /**< the distinct rest lengths, n_rest of them */
     size_t n_rest;
     uint8_t *state;     /**< enum bond_state_flags */
-    uint8_t *type;      /**< model-defined */
+    uint8_t *type;      /**< model-defined; NULL as rest */
     size_t *reverse;    /**< optional: slot of j->i for slot i->j (NULL until built) */
 };
 
