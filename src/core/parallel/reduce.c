@@ -1,17 +1,9 @@
 /**
  * @file reduce.c
- * @brief Sums that do not depend on the decomposition (decomp.h): the
- *        per-particle terms travel to rank 0, which adds them in the serial
- *        order and broadcasts the result; probes from their owner; the
- *        fragment graph gathered on rank 0.
- *
- * Why not MPI_Allreduce: a floating-point sum depends on its order, and the
- * serial run adds particle by particle in global-id order.  Reproducing that
- * order makes history.csv identical for every rank count and identical to
- * the serial run, at the price of moving n terms to rank 0; that is paid at
- * history rows for the energies and every step only for the (small) groups
- * of boundary conditions and, with damping or gravity, for all particles
- * (docs/parallel.md, "cost").
+ * @brief Values of the whole run on a distributed run (decomp.h): probes
+ *        from their owner, and the fragment graph gathered on rank 0 in
+ *        global-id order.  (Sums over particles are exact and need no
+ *        gather: psum.h.)
  */
 #include "core/parallel/decomp.h"
 #include "core/parallel/decomp_internal.h"
@@ -30,17 +22,6 @@
 #ifdef SPALL_HAVE_MPI
 #include <mpi.h>
 #endif
-
-void par_reduce_cols(const double *rows, size_t n, int ncol, double *out, const void *ctx)
-{
-    (void)ctx;
-    for (int c = 0; c < ncol; c++) {
-        double acc = 0.0;
-        for (size_t q = 0; q < n; q++)
-            acc += rows[q * (size_t)ncol + (size_t)c];
-        out[c] = acc;
-    }
-}
 
 #ifdef SPALL_HAVE_MPI
 
@@ -104,17 +85,6 @@ static double *gather_sorted(const int64_t *key, const double *rows, size_t n, i
     free(ddispls);
     *n_all = total;
     return sorted;
-}
-
-void par_ordered_reduce(const int64_t *key, const double *rows, size_t n, int ncol,
-                        par_reduce_fn fn, const void *ctx, double *out, int nout)
-{
-    size_t total = 0;
-    double *sorted = gather_sorted(key, rows, n, ncol, &total);
-    if (par_rank() == 0)
-        fn(sorted, total, ncol, out, ctx);
-    free(sorted);
-    MPI_Bcast(out, nout, MPI_DOUBLE, 0, MPI_COMM_WORLD);
 }
 
 void par_probe(const struct sim *s, size_t k, double u[3], double v[3])
@@ -255,14 +225,6 @@ int par_fragments(const struct sim *s, struct fragments *f, struct spall_error *
 
 #else
 
-void par_ordered_reduce(const int64_t *key, const double *rows, size_t n, int ncol,
-                        par_reduce_fn fn, const void *ctx, double *out, int nout)
-{
-    (void)key;
-    (void)nout;
-    fn(rows, n, ncol, out, ctx);
-}
-
 void par_probe(const struct sim *s, size_t k, double u[3], double v[3])
 {
     size_t i = s->probes[k].particle;
@@ -278,27 +240,3 @@ int par_fragments(const struct sim *s, struct fragments *f, struct spall_error *
 }
 
 #endif
-
-void par_sum_owned(const struct sim *s, const double *rows, int ncol, double *out)
-{
-    par_ordered_reduce(s->p->gid, rows, s->p->n_owned, ncol, par_reduce_cols, NULL, out, ncol);
-}
-
-void par_bond_energy(const struct model *m, const struct sim *s, par_particle_energy_fn eval,
-                     const double *diss, double *strain, double *dissipated)
-{
-    const size_t n = s->p->n_owned;
-    double *rows = malloc((n ? n : 1) * 2 * sizeof *rows);
-    double sum[2] = {0.0, 0.0};
-    if (rows)
-        for (size_t i = 0; i < n; i++) {
-            eval(m, s, i, &rows[2 * i], NULL);
-            rows[2 * i + 1] = diss[i];
-        }
-    /* collective even when this rank could not allocate: it sends no rows */
-    par_ordered_reduce(s->p->gid, rows ? rows : sum, rows ? n : 0, 2, par_reduce_cols, NULL,
-                       sum, 2);
-    free(rows);
-    *strain = sum[0];
-    *dissipated = sum[1];
-}
