@@ -79,7 +79,7 @@ for c in lattice pd; do
             OMP_NUM_THREADS=$threads "$SPALL" run "$WORK/$c.yaml" -o "$out" --no-progress \
                 > "$out.txt" 2>&1
         else
-            OMP_NUM_THREADS=$threads "$MPIRUN" --oversubscribe -np "$ranks" "$SPALL" run \
+            OMP_NUM_THREADS=$threads "$MPIRUN" --allow-run-as-root --oversubscribe -np "$ranks" "$SPALL" run \
                 "$WORK/$c.yaml" -o "$out" --no-progress > "$out.txt" 2>&1
         fi || { echo "mpi_scaling.sh: $c on $cfg failed:" >&2; cat "$out.txt" >&2; exit 1; }
         log="$out/run.log"

@@ -14,13 +14,7 @@
 #include <math.h>
 #include <string.h>
 
-#define XSUM_PINF XSUM_DIGITS
-#define XSUM_NINF (XSUM_DIGITS + 1)
-#define XSUM_NAN (XSUM_DIGITS + 2)
-#define XSUM_ADDS (XSUM_DIGITS + 3)
-/* adds before the carries must be propagated (see the file comment) */
-#define XSUM_MAX_ADDS (INT64_C(1) << 28)
-#define LOW32 UINT64_C(0xffffffff)
+#define LOW32 XSUM_LOW32
 
 void xsum_init(struct xsum *a)
 {
@@ -39,42 +33,6 @@ void xsum_normalize(struct xsum *a)
     }
     a->w[XSUM_DIGITS - 1] += carry; /* the top digit keeps the sign */
     a->w[XSUM_ADDS] = 0;
-}
-
-void xsum_add(struct xsum *a, double x)
-{
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    const int neg = (int)(bits >> 63);
-    const int ebits = (int)((bits >> 52) & 0x7ff);
-    uint64_t m = bits & ((UINT64_C(1) << 52) - 1);
-    if (ebits == 0x7ff) { /* infinity or NaN: counted, not summed */
-        a->w[m ? XSUM_NAN : (neg ? XSUM_NINF : XSUM_PINF)]++;
-        return;
-    }
-    if (ebits)
-        m |= UINT64_C(1) << 52;
-    if (!m)
-        return;
-    /* x = m 2^(e - 1075) with e = max(ebits, 1): bit offset from 2^-1074 */
-    const int off = ebits ? ebits - 1 : 0;
-    const int k = off >> 5, sh = off & 31;
-    const uint64_t lo = (m & LOW32) << sh; /* < 2^64 */
-    const uint64_t hi = (m >> 32) << sh;   /* < 2^53 */
-    const int64_t d0 = (int64_t)(lo & LOW32);
-    const int64_t d1 = (int64_t)((lo >> 32) + (hi & LOW32));
-    const int64_t d2 = (int64_t)(hi >> 32);
-    if (neg) {
-        a->w[k] -= d0;
-        a->w[k + 1] -= d1;
-        a->w[k + 2] -= d2;
-    } else {
-        a->w[k] += d0;
-        a->w[k + 1] += d1;
-        a->w[k + 2] += d2;
-    }
-    if (++a->w[XSUM_ADDS] >= XSUM_MAX_ADDS)
-        xsum_normalize(a);
 }
 
 void xsum_merge(struct xsum *a, const struct xsum *b)
