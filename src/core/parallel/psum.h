@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 
+struct model;
 struct sim;
 struct xsum;
 
@@ -24,5 +25,14 @@ struct xsum;
  *  same @p n), then out[k] = acc[k] rounded to the nearest double.  Serial:
  *  the rounding alone. */
 void par_xsum_finish(const struct sim *s, struct xsum *acc, size_t n, double *out);
+
+/** A model's per-particle strain energy (and stress, may be NULL). */
+typedef void (*par_particle_energy_fn)(const struct model *m, const struct sim *s, size_t i,
+                                       double *energy, double *stress);
+/** A bond model's energy account: the exact sums of the strain energy
+ *  @p eval gives each owned particle and of its dissipated store @p diss,
+ *  over all ranks when distributed (collective then), serial otherwise. */
+void par_bond_energy(const struct model *m, const struct sim *s, par_particle_energy_fn eval,
+                     const double *diss, double *strain, double *dissipated);
 
 #endif

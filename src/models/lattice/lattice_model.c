@@ -74,7 +74,6 @@
 #include "models/lattice/lattice_softening.h"
 
 #include "core/bond_list.h"
-#include "core/exact_sum.h"
 #include "models/lattice/lattice_thermal.h"
 #include "core/fields.h"
 #include "core/particles.h"
@@ -550,20 +549,8 @@ static int lattice_end_step(struct model *m, struct sim *sim, struct spall_error
 static void lattice_energy_fn(const struct model *m, const struct sim *sim,
                               struct model_energy *out)
 {
-    /* exact sums (core/exact_sum.h): one value for any rank count */
-    struct xsum acc[2];
-    xsum_init(&acc[0]);
-    xsum_init(&acc[1]);
-    for (size_t i = 0; i < sim->p->n_owned; i++) {
-        double e;
-        lattice_particle_eval(m, sim, i, &e, NULL);
-        xsum_add(&acc[0], e);
-        xsum_add(&acc[1], m->diss[i]);
-    }
-    double sum[2];
-    par_xsum_finish(sim, acc, 2, sum); /* over all ranks when distributed */
-    out->strain = sum[0];
-    out->dissipated = sum[1];
+    /* exact sums: one value for any thread and rank count */
+    par_bond_energy(m, sim, lattice_particle_eval, m->diss, &out->strain, &out->dissipated);
 }
 
 static size_t lattice_history(const struct model *m, const struct sim *sim, const char **names,
