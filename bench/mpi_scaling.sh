@@ -67,7 +67,7 @@ EOF
 
 # value of a "key: value" line of run.log
 logval() { awk -v k="$1:" '$1 == k {print $2; exit}' "$2"; }
-halo() { awk '$1 == "halo_exchanges:" {gsub(/[(:]/, " "); print $4; exit}' "$1"; }
+halo() { awk '$1 == "halo_exchanges:" {gsub(/[(:]/, " "); print $5; exit}' "$1"; }
 
 printf '%-8s %-12s %10s %6s %14s %7s %9s %s\n' case ranks_x_thr particles steps \
     particle_st/s ratio halo_s history
