@@ -102,26 +102,32 @@ static void account_body_work(struct sim *s, double dt)
         return;
     const struct particles *p = s->p;
     const size_t n = p->n_owned;
+    const int dim = s->dim;
+    const double c = s->damping, *g = s->gravity;
+    const bool grav = g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0;
     struct xsum acc[2];
     xsum_init(&acc[0]);
     xsum_init(&acc[1]);
-    /* exact partial sums per thread: their merge does not depend on the
-     * thread count or on which thread merges first */
+    /* one term per particle and sum (adding zeros would not change an exact
+     * sum); exact partial sums per thread, whose merge does not depend on
+     * the thread count or on which thread merges first */
 #pragma omp parallel if (n > SPALL_OMP_MIN_PARTICLES)
     {
         struct xsum part[2];
         xsum_init(&part[0]);
         xsum_init(&part[1]);
-        for (int d = 0; d < s->dim; d++) {
-            const double c = s->damping, g = s->gravity[d];
-            if (c == 0.0 && g == 0.0)
-                continue; /* adding zeros would not change an exact sum */
 #pragma omp for schedule(static) nowait
-            for (size_t i = 0; i < n; i++) {
-                double v = p->v[d][i];
-                xsum_add(&part[0], c * p->mass[i] * v * v * dt);
-                xsum_add(&part[1], p->mass[i] * g * v * dt);
+        for (size_t i = 0; i < n; i++) {
+            double v2 = 0.0, gv = 0.0;
+            for (int d = 0; d < dim; d++) {
+                const double v = p->v[d][i];
+                v2 += v * v;
+                gv += g[d] * v;
             }
+            if (c != 0.0)
+                xsum_add(&part[0], c * p->mass[i] * v2 * dt);
+            if (grav)
+                xsum_add(&part[1], p->mass[i] * gv * dt);
         }
 #pragma omp critical(spall_exact_sum)
         {
