@@ -82,6 +82,7 @@
 #include "core/parallel/comm.h"
 #include "core/model.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/psum.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -552,19 +553,8 @@ static int lattice_end_step(struct model *m, struct sim *sim, struct spall_error
 static void lattice_energy_fn(const struct model *m, const struct sim *sim,
                               struct model_energy *out)
 {
-    double strain = 0.0, diss = 0.0;
-    if (sim->par) { /* distributed: the same sums in the serial (gid) order */
-        par_bond_energy(m, sim, lattice_particle_eval, m->diss, &out->strain, &out->dissipated);
-        return;
-    }
-    for (size_t i = 0; i < sim->p->n_owned; i++) {
-        double e;
-        lattice_particle_eval(m, sim, i, &e, NULL);
-        strain += e;
-        diss += m->diss[i];
-    }
-    out->strain = strain;
-    out->dissipated = diss;
+    /* exact sums: one value for any thread and rank count */
+    par_bond_energy(m, sim, lattice_particle_eval, m->diss, &out->strain, &out->dissipated);
 }
 
 static size_t lattice_history(const struct model *m, const struct sim *sim, const char **names,

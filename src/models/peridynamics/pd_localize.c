@@ -1,8 +1,7 @@
 /**
  * @file pd_localize.c
  * @brief model_ops.localize of the peridynamic model (distributed runs,
- *        core/parallel/decomp.h) and its sums over particles in the serial
- *        order.  The bond-based kernel (PMB, PDLM) gathers over each owned
+ *        core/parallel/decomp.h).  The bond-based kernel (PMB, PDLM) gathers over each owned
  *        particle's family; families keep their serial order (ascending
  *        partner gid) with the partners renumbered to local indices, so
  *        each force sum is the serial one bit for bit; a bond's two halves
@@ -12,7 +11,6 @@
 
 #include "core/bond_list.h"
 #include "core/model.h"
-#include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/migrate.h"
 #include "core/particles.h"
@@ -97,32 +95,6 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     m->diss = diss;
     m->n_half = nh;
     return SPALL_OK;
-}
-
-void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, size_t *all,
-                    size_t *nh, double *dsum)
-{
-    const struct bond_list *bl = m->bl;
-    const size_t n = sim->p->n_owned;
-    uint64_t c[3] = {*run, *all, *nh};
-    par_sum_u64_array(c, 3);
-    *run = (size_t)c[0];
-    *all = (size_t)c[1];
-    *nh = (size_t)c[2];
-    /* phi_i per particle, summed in gid order as the serial loop does */
-    double *rows = malloc((n ? n : 1) * sizeof *rows);
-    double s = 0.0;
-    if (rows)
-        for (size_t i = 0; i < n; i++) {
-            size_t intact = 0;
-            for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++)
-                intact += !(bl->state[q] & BOND_BROKEN);
-            rows[i] = m->n_init[i] ? 1.0 - (double)intact / (double)m->n_init[i] : 0.0;
-        }
-    par_ordered_reduce(sim->p->gid, rows ? rows : &s, rows ? n : 0, 1, par_reduce_cols, NULL, &s,
-                       1);
-    free(rows);
-    *dsum = s;
 }
 
 /* model_ops.migrate_arrays: the family rows with their pair coefficients,
