@@ -1,6 +1,7 @@
 /**
  * @file sim_api.c
- * @brief The public C API of include/spall/sim.h: a thin layer over the deck
+ * @brief The public C API of include/spall/sim.h (and spall_sim_create_setup
+ *        of include/spall/setup.h): a thin layer over the deck
  *        reader (io/deck.c, io/deck_build.c), the engine (core/sim.h), the
  *        field registry (core/fields.h) and the frame writer (io/output.h).
  *
@@ -9,6 +10,9 @@
  * output.field_interval, else output.field_every, else 20 frames over the run.
  */
 #include "spall/sim.h"
+#include "spall/setup.h"
+
+#include "api/setup_internal.h"
 
 #include "core/fields.h"
 #include "core/model.h"
@@ -86,6 +90,19 @@ int spall_sim_create_string(struct spall_sim **out, const char *yaml, const char
         return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_create_string: yaml is NULL");
     struct deck *d = NULL;
     int rc = deck_load_string(&d, name ? name : "<string>", yaml, err);
+    return rc ? rc : create_from_deck(out, d, err);
+}
+
+int spall_sim_create_setup(struct spall_sim **out, const struct spall_setup *setup,
+                           struct spall_error *err)
+{
+    if (!out)
+        return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_create_setup: out is NULL");
+    *out = NULL;
+    if (!setup)
+        return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_create_setup: setup is NULL");
+    struct deck *d = NULL;
+    int rc = setup_deck_copy(setup, &d, err);
     return rc ? rc : create_from_deck(out, d, err);
 }
 
