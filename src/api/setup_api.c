@@ -50,25 +50,6 @@ static struct deck_node *node_new(const struct spall_setup *s, enum deck_kind ki
     return n;
 }
 
-/* Free a tree of nodes (as deck_destroy frees the YAML reader's). */
-static void node_free(struct deck_node *n)
-{
-    if (!n)
-        return;
-    free(n->scalar);
-    for (size_t i = 0; i < n->n; ++i) {
-        node_free(n->items[i]);
-        if (n->keys)
-            free(n->keys[i]);
-    }
-    free(n->items);
-    free(n->keys);
-    free(n->key_line);
-    free(n->key_col);
-    free(n->used);
-    free(n);
-}
-
 /* Append a child (with @p key for a mapping); false when out of memory,
  * @p child then still belongs to the caller. */
 static bool node_append(struct deck_node *n, const char *key, struct deck_node *child, int line)
@@ -124,7 +105,7 @@ void spall_setup_destroy(struct spall_setup **s)
     if (!s || !*s)
         return;
     if ((*s)->deck) {
-        node_free((*s)->deck->root);
+        deck_node_free((*s)->deck->root);
         (*s)->deck->root = NULL;
         deck_destroy(&(*s)->deck);
     }
@@ -241,7 +222,7 @@ static int walk(struct spall_setup *s, const char *key, bool create, struct deck
                 child->scalar = dup_text("");
             if (!child || (kind == DECK_SCALAR && !child->scalar) ||
                 !node_append(cur, seg.key, child, s->calls)) {
-                node_free(child);
+                deck_node_free(child);
                 return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory setting '%.100s'",
                                        key);
             }
@@ -265,10 +246,10 @@ static int set_node(struct spall_setup *s, const char *key, struct deck_node *va
     if (!rc)
         rc = walk(s, key, true, &slot, err);
     if (rc) {
-        node_free(value);
+        deck_node_free(value);
         return rc;
     }
-    node_free(*slot);
+    deck_node_free(*slot);
     *slot = value;
     return SPALL_OK;
 }
@@ -348,7 +329,7 @@ static int set_list(struct spall_setup *s, const char *key, const double *nums,
         char buf[40];
         const char *text = buf;
         if (nums && !fmt_number(buf, sizeof buf, nums[k])) {
-            node_free(seq);
+            deck_node_free(seq);
             return spall_error_set_key(err, SPALL_ERR_INPUT, key,
                                        "spall_setup_numbers: '%.100s' item %zu is not finite",
                                        key, k);
@@ -356,14 +337,14 @@ static int set_list(struct spall_setup *s, const char *key, const double *nums,
         if (!nums)
             text = words[k];
         if (!text) {
-            node_free(seq);
+            deck_node_free(seq);
             return spall_error_set_key(err, SPALL_ERR_INPUT, key,
                                        "spall_setup_texts: '%.100s' item %zu is NULL", key, k);
         }
         struct deck_node *item = scalar_new(s, text);
         if (!item || !node_append(seq, NULL, item, s->calls)) {
-            node_free(item);
-            node_free(seq);
+            deck_node_free(item);
+            deck_node_free(seq);
             return nomem(key, err);
         }
     }
@@ -435,8 +416,8 @@ static struct deck_node *node_copy(const struct deck_node *n, const struct deck 
         struct deck_node *item = node_copy(n->items[i], d);
         if (!item || !node_append(c, n->keys ? n->keys[i] : NULL, item,
                                   n->key_line ? n->key_line[i] : n->line)) {
-            node_free(item);
-            node_free(c);
+            deck_node_free(item);
+            deck_node_free(c);
             return NULL;
         }
     }
