@@ -12,10 +12,10 @@
  *   /broken         float64, m: 1 for a broken bond (BOND_BROKEN, pre-cut
  *                   ones included), 0 for an intact one
  * bonds.xdmf: a temporal collection of Uniform grids, TopologyType Polyline
- * with NodesPerElement 2 (VTK lines), the geometry taken from the field
- * frame's /position, `broken` a cell attribute.  Measured with ParaView 5.11
- * (tests/client: client_pv_bonds_*): both XDMF readers give one line cell
- * per bond and the default Surface representation draws them.
+ * with NodesPerElement 2, the geometry taken from the field frame's
+ * /position, `broken` a cell attribute.  Measured with ParaView 5.11
+ * (tests/client: client_pv_bonds_*): both XDMF readers give one 2-point
+ * polyline cell per bond and the default Surface representation draws them.
  */
 #include "io/output_bonds.h"
 
