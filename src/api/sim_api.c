@@ -93,19 +93,6 @@ int spall_sim_create_string(struct spall_sim **out, const char *yaml, const char
     return rc ? rc : create_from_deck(out, d, err);
 }
 
-int spall_sim_create_setup(struct spall_sim **out, const struct spall_setup *setup,
-                           struct spall_error *err)
-{
-    if (!out)
-        return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_create_setup: out is NULL");
-    *out = NULL;
-    if (!setup)
-        return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_create_setup: setup is NULL");
-    struct deck *d = NULL;
-    int rc = setup_deck_copy(setup, &d, err);
-    return rc ? rc : create_from_deck(out, d, err);
-}
-
 void spall_sim_destroy(struct spall_sim **s)
 {
     if (!s || !*s)
@@ -367,4 +354,19 @@ int spall_sim_write_frame(struct spall_sim *s, struct spall_error *err)
 size_t spall_sim_frames(const struct spall_sim *s)
 {
     return s ? field_writer_frames(s->fw) : 0;
+}
+
+/* ---------------------------------------------------------------- set-up by calls */
+
+int spall_sim_create_setup(struct spall_sim **out, const struct spall_setup *setup,
+                           struct spall_error *err)
+{
+    if (!out)
+        return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_create_setup: out is NULL");
+    *out = NULL;
+    if (!setup)
+        return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_create_setup: setup is NULL");
+    struct deck *d = NULL;
+    int rc = setup_deck_copy(setup, &d, err);
+    return rc ? rc : create_from_deck(out, d, err);
 }
