@@ -32,6 +32,8 @@ int pd_case_kalthoff(struct vreport *r, struct spall_error *err);
 int pd_case_lps_patch(struct vreport *r, struct spall_error *err);
 /** "pd-lps-surface": E and nu of small bodies with the LPS surface correction (pd_lps_surface.c). */
 int pd_case_lps_surface(struct vreport *r, struct spall_error *err);
+/** "pd-interface-crack": a crack along the weaker interface (pd_interface_crack.c). */
+int pd_case_interface_crack(struct vreport *r, struct spall_error *err);
 /** "pd-lps-waves": LPS P-wave speed in a 2D plate (pd_lps_cases.c). */
 int pd_case_lps_waves(struct vreport *r, struct spall_error *err);
 /** "pd-bimaterial-bar": 1D two-material bar, T and R against the impedance formula. */
