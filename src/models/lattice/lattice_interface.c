@@ -53,18 +53,8 @@ int lattice_interfaces_parse(struct model *m, const struct deck_node *params,
         q->ia = q->ib = -1;
         if ((rc = deck_expect_map(e, "an interface {materials: [a, b], ...}", err)))
             return rc;
-        const struct deck_node *mats = deck_get(e, "materials");
-        if (!mats)
-            return deck_error(err, e, "interface: missing required key 'materials' ([a, b])");
-        if (mats->kind != DECK_SEQUENCE || mats->n != 2 ||
-            mats->items[0]->kind != DECK_SCALAR || mats->items[1]->kind != DECK_SCALAR)
-            return deck_error(err, mats, "interface materials: expected two material names "
-                              "[a, b]");
-        snprintf(q->a, sizeof q->a, "%s", mats->items[0]->scalar);
-        snprintf(q->b, sizeof q->b, "%s", mats->items[1]->scalar);
-        if (strcmp(q->a, q->b) == 0)
-            return deck_error(err, mats, "interface materials: '%s' twice (an interface joins "
-                              "two different materials)", q->a);
+        if ((rc = deck_material_pair(e, q->a, q->b, sizeof q->a, err)))
+            return rc;
         if ((rc = deck_double_pos(e, "failure_strain", false, &q->eps_t, err)) ||
             (rc = deck_double_pos(e, "tensile_strength", false, &q->strength, err)) ||
             (rc = deck_double_pos(e, "compressive_failure_strain", false, &q->eps_c, err)) ||
@@ -77,26 +67,19 @@ int lattice_interfaces_parse(struct model *m, const struct deck_node *params,
         for (size_t j = 0; j < k; j++)
             if ((!strcmp(m->ifc[j].a, q->a) && !strcmp(m->ifc[j].b, q->b)) ||
                 (!strcmp(m->ifc[j].a, q->b) && !strcmp(m->ifc[j].b, q->a)))
-                return deck_error(err, mats, "interface %s-%s given twice", q->a, q->b);
+                return deck_error(err, deck_get(e, "materials"), "interface %s-%s given twice",
+                                  q->a, q->b);
         m->n_ifc++;
     }
     return SPALL_OK;
-}
-
-static int find_material(const struct sim *sim, const char *name)
-{
-    for (size_t k = 0; k < sim->n_materials; k++)
-        if (strcmp(sim->materials[k].name, name) == 0)
-            return (int)k;
-    return -1;
 }
 
 int lattice_interfaces_resolve(struct model *m, const struct sim *sim, struct spall_error *err)
 {
     for (size_t k = 0; k < m->n_ifc; k++) {
         struct lattice_interface *q = &m->ifc[k];
-        q->ia = find_material(sim, q->a);
-        q->ib = find_material(sim, q->b);
+        q->ia = sim_find_material(sim, q->a);
+        q->ib = sim_find_material(sim, q->b);
         if (q->ia < 0 || q->ib < 0) {
             char key[64];
             snprintf(key, sizeof key, "model.interfaces[%zu].materials", k);
