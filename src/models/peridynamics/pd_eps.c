@@ -3,7 +3,8 @@
  * @brief Elastic-plastic state-based peridynamics (deck `model.formulation:
  *        eps`): the linear peridynamic solid of pd_lps.c with perfectly
  *        plastic flow of the deviatoric extension state ([Mitchell2011]; the
- *        model of LAMMPS pair peri/eps).
+ *        model LAMMPS pair peri/eps implements, which differs from it in three
+ *        formulas: docs/performance.md, bench/pd_lps_vs_lammps.sh).
  *
  * Notation of pd_lps.c (omega, beta, m_i, theta_i, d, k, alpha_i = d (d + 2)
  * mu / m_i).  The deviatoric extension e^d = e - theta |xi| / d splits into

@@ -16,9 +16,13 @@
  * E / (2 (1 - nu)) in plane stress.  The force state follows from W (the
  * deviatoric sum of omega |xi| e^d vanishes by the definition of theta), so
  * any nu is reproduced; m_i is each particle's own (pre-cracks excluded),
- * which normalises a surface particle's dilatation.  A bond breaks,
- * irreversibly, when its stretch passes s0 (pd_model.c), decided from both
- * ends from the same length so that threads agree.
+ * which normalises a surface particle's dilatation (surface_correction:
+ * pd_lps_surface.c).  A bond breaks, irreversibly, when its stretch passes
+ * s0 (pd_model.c), decided from both ends from the same length so that
+ * threads agree: before the forces (break_order immediate) or after them
+ * (next_step, pd_lps_break_late: the order of LAMMPS pair peri/lps, with
+ * which influence inverse and partial_volume_rule lammps give the same
+ * forces, bench/pd_lps_vs_lammps.sh).
  */
 #include "models/peridynamics/pd_internal.h"
 
