@@ -147,6 +147,7 @@ static void lattice_destroy(struct model **pm)
     free(m->diss);
     free(m->kappa);
     lattice_thermal_destroy(&m->th);
+    free(m->ifc);
     free(m);
     *pm = NULL;
 }
@@ -160,7 +161,7 @@ static int lattice_create(struct model **out, struct sim *sim, const struct deck
                                        "softening", NULL};
     static const char *const angs[] = {"auto", "on", "off", NULL};
     static const char *const keys[] = {"type", "law", "layers", "second_layer_ratio", "angular",
-                                       "thermal", NULL};
+                                       "thermal", "interfaces", NULL};
     struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
     *out = NULL;
     if (params) {
@@ -203,6 +204,8 @@ static int lattice_create(struct model **out, struct sim *sim, const struct deck
     int rc = lattice_model_new(out, sim, &opt, err);
     const struct deck_node *th = params ? deck_get(params, "thermal") : NULL;
     if (!rc && th && (rc = lattice_thermal_parse_options(*out, th, err)))
+        lattice_destroy(out);
+    if (!rc && params && (rc = lattice_interfaces_parse(*out, params, err)))
         lattice_destroy(out);
     return rc;
 }
@@ -254,6 +257,7 @@ static void build_pair_table(struct model *m)
                 m->pair[(a * nm + b) * LATTICE_MAX_TYPES + (size_t)t] = w;
                 m->pair[(b * nm + a) * LATTICE_MAX_TYPES + (size_t)t] = w;
             }
+    lattice_interfaces_apply(m); /* model.interfaces (lattice_interface.c) */
 }
 
 void lattice_model_override(struct model *m, double k1, double k_phi)
@@ -403,6 +407,8 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
     m->angular = angular && sim->dim == 2;
     m->lp.law = m->opt.law;
     m->lp.curves = m->curves;
+    if (lattice_interfaces_resolve(m, sim, err))
+        return err->code;
     build_pair_table(m);
     /* bonds: one shell per layer, +-5% around the shell distance (the
      * lattices' shells are at least 15% apart) */

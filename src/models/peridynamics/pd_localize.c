@@ -25,19 +25,21 @@
 static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, const size_t *oh,
                         size_t nh, struct spall_error *err)
 {
-    double **pp[4] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef};
-    double *np[4];
+    /* afac (surface correction) is NULL without it */
+    double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
+    const int npp = L->afac ? 5 : 4;
+    double *np[5] = {NULL, NULL, NULL, NULL, NULL};
     int bad = 0;
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < npp; k++)
         bad |= !(np[k] = array_gather(*pp[k], sizeof(double), keep, n_keep));
     double *ob = array_gather(L->ob, sizeof *ob, oh, nh);
     if (bad || !ob) {
-        for (int k = 0; k < 4; k++)
+        for (int k = 0; k < npp; k++)
             free(np[k]);
         free(ob);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the LPS state");
     }
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < npp; k++) {
         free(*pp[k]);
         *pp[k] = np[k];
     }
@@ -128,8 +130,8 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
     }
     if (m->opt.lps) {
         struct pd_lps *L = &m->lps;
-        double **pp[4] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef};
-        for (int k = 0; k < 4; k++) {
+        double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
+        for (int k = 0; k < (L->afac ? 5 : 4); k++) {
             a->particle[a->n_particle] = (void **)pp[k];
             a->particle_size[a->n_particle++] = sizeof(double);
         }

@@ -198,13 +198,14 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             return deck_error_key(err, params, "influence_correction", "influence_correction "
                                   "is for formulation lps or eps");
         }
-        if (m->opt.lps && (sim->dim == 1 || m->opt.variant == PD_PDLM ||
-                           m->opt.surface_correction || m->opt.break_late)) {
+        if (m->opt.lps && (sim->dim == 1 || m->opt.variant == PD_PDLM)) {
             free(m);
-            return deck_error_key(err, params, "formulation", "lps and eps need a 2D or 3D pmb run "
-                                  "without surface_correction (each particle's own weighted "
-                                  "volume normalises its dilatation) and break_order "
-                                  "immediate");
+            return deck_error_key(err, params, "formulation", "lps and eps need a 2D or 3D pmb "
+                                  "run");
+        }
+        if (m->opt.lps) { /* lps/eps: their own surface correction (pd_lps_surface.c) */
+            m->lps.surface = m->opt.surface_correction;
+            m->opt.surface_correction = false;
         }
         if (m->opt.variant == PD_PDLM && sim->dim != 2) {
             free(m);
@@ -640,7 +641,7 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
         m->delta, m->delta / m->dx,
         sim->dim == 2 ? (m->opt.plane == PD_PLANE_STRAIN ? "plane strain" : "plane stress")
                       : sim->dim == 3 ? "3D" : "1D",
-        m->opt.partial_volume ? "on" : "off", m->opt.surface_correction ? "on" : "off",
+        m->opt.partial_volume ? "on" : "off", (m->opt.surface_correction || m->lps.surface) ? "on" : "off",
         m->opt.quasi == PD_QS_ADR ? "adr" : "off", m->bl ? bond_list_count(m->bl) : 0);
     if (m->bl) { /* the allocations themselves: the memory target of issue 25 */
         const size_t n = sim->p->n_owned, nb = pd_model_bytes(m, n);
