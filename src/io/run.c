@@ -217,14 +217,15 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     rc = deck_build_sim(d, &s, &ro, err);
     if (!rc)
         rc = setup_check_sim(d, s, &setup, err); /* set-ups that cannot be right */
-    if ((rc = run_par_setup(s, opt, &ro, rc, err))) /* mpirun: refusals, agreed */
+    if ((rc = run_par_setup(s, &ro, rc, err))) /* mpirun: refusals, agreed */
         goto done;
     if (opt->threads <= 0 && ro.threads > 0)
         omp_set_num_threads(ro.threads);
 
     /* a restart reads its checkpoint here, before any output is touched */
     char dir[1024];
-    if ((rc = run_ckpt_begin(&ck, opt, d, &ro.checkpoint, s, dir, sizeof dir, err)))
+    if ((rc = run_par_agree(run_ckpt_begin(&ck, opt, d, &ro.checkpoint, s, dir, sizeof dir, err),
+                            err)))
         goto done;
     bool resume = ck.restarted && run_ckpt_same_dir(&ck);
     if ((rc = setup_check_cost(d, s, &ro, dir, opt->yes, &setup, err)))
@@ -232,7 +233,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
 
     /* all checks passed: now, and only now, touch the file system */
     snprintf(res->out_dir, sizeof res->out_dir, "%s", dir);
-    if (ck.restarted && !resume)
+    if (ck.restarted && !resume && run_par_root())
         rc = run_ckpt_copy_outputs(&ck, opt->overwrite, err);
     else if (!ck.restarted && run_par_root())
         rc = run_prepare_out_dir(dir, opt->overwrite, err);
@@ -278,8 +279,9 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     double next_frame_t = ro.field_interval;
     if (ck.restarted) { /* the checkpoint's rows and frames are on disk */
         next_frame_t = ck.meta.next_frame_t;
-        rc = field_writer_resume(fw, (size_t)ck.meta.frames, ck.meta.xdmf_grids,
-                                 ck.meta.xdmf_len, err);
+        rc = run_par_agree(field_writer_resume(fw, (size_t)ck.meta.frames, ck.meta.xdmf_grids,
+                                               ck.meta.xdmf_len, err),
+                           err);
     } else {
         history_values(s, &hl, hv);
         if (!(rc = run_par_agree(hw ? history_writer_append(hw, hv, err) : 0, err)))
@@ -292,8 +294,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     progress_start(&pr, run_par_root() ? opt->progress : 0, s->n_steps, par_n_global(s));
     progress_set_every(&pr, opt->progress_every);
     double t0 = omp_get_wtime();
-    if (!run_par_on()) /* mpirun forwards signals to every rank; no checkpoint there yet */
-        run_signals_install();
+    run_signals_install();
     while (!sim_done(s)) {
         s->stop_time = ro.field_interval > 0.0 ? next_frame_t : 0.0; /* frames land on time */
         rc = sim_step(s, err);
@@ -320,7 +321,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             if ((rc = run_par_agree(field_writer_write(fw, s, err), err)))
                 break;
         }
-        int sig = run_signal_pending();
+        int sig = run_signal_agreed(); /* distributed: the same step on every rank */
         if ((ck.opt.on || sig) &&
             (rc = run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, log, err)))
             break;
@@ -328,8 +329,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         if ((res->signal = sig))
             break;
     }
-    if (!run_par_on())
-        run_signals_restore();
+    run_signals_restore();
     double wall = omp_get_wtime() - t0;
     progress_finish(&pr);
     res->steps = s->step;

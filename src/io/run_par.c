@@ -30,13 +30,13 @@ int run_par_agree(int rc, struct spall_error *err)
     return run_par_on() ? par_agree(rc, err) : rc;
 }
 
-int run_par_setup(const struct sim *s, const struct spall_run_options *opt,
-                  const struct run_output *ro, int rc, struct spall_error *err)
+int run_par_setup(const struct sim *s, const struct run_output *ro, int rc,
+                  struct spall_error *err)
 {
     if (!run_par_on())
         return rc;
     if (!rc && s)
-        rc = par_check_supported(s, opt->restart != NULL, ro->checkpoint.on, err);
+        rc = par_check_supported(s, err);
     for (size_t k = 0; k < ro->n_fields && !rc; k++)
         if (strcmp(ro->fields[k], "fragment_id") == 0) /* labels need the whole graph */
             rc = spall_error_set(err, SPALL_ERR_INPUT,

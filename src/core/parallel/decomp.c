@@ -69,8 +69,7 @@ int64_t par_group_key(const struct sim *s, int g, size_t q)
     return s->par->group_key[g][q];
 }
 
-int par_check_supported(const struct sim *s, bool restart, bool checkpoints,
-                        struct spall_error *err)
+int par_check_supported(const struct sim *s, struct spall_error *err)
 {
     const int n = par_size();
     if (!s->ops->localize)
@@ -82,9 +81,7 @@ int par_check_supported(const struct sim *s, bool restart, bool checkpoints,
     if (rc)
         return rc;
     const char *what = NULL;
-    if (restart || checkpoints)
-        what = "checkpoints and restart are";
-    else if (s->rigid)
+    if (s->rigid)
         what = "impactors are";
     else if (s->pcontact)
         what = "particle contact is";
