@@ -420,9 +420,12 @@ int checkpoint_write_par(const char *path, const struct sim *s, const struct fie
     H5Eget_auto2(H5E_DEFAULT, &func, &data);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     struct pck c = {.file = -1, .dcpl = -1, .dxpl = -1, .s = s, .path = path, .err = err};
-    int rc = order_owned(&c);
-    /* a failure to create is agreed first: every later call is collective */
-    if ((rc = par_agree(rc ? rc : create_file(&c), err)))
+    /* each failure is agreed before the next collective call, so that no
+     * rank waits in HDF5 for one that has given up */
+    int rc = par_agree(order_owned(&c), err);
+    if (!rc)
+        rc = par_agree(create_file(&c), err);
+    if (rc)
         goto done;
     if (!(rc = header_and_run(&c, d, meta, true)) && !(rc = particle_fields(&c)) &&
         !(rc = state_slots(&c, fs)))
