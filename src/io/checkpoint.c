@@ -32,7 +32,9 @@
 
 int64_t checkpoint_fapl(void)
 {
-    /* serial: the default driver; the MPI build sets MPI-IO here */
+    /* the default driver: serial writes, and every restart's read (a
+     * distributed run reads the whole file on each rank before it
+     * partitions; its collective writes open files in checkpoint_par.c) */
     return H5Pcreate(H5P_FILE_ACCESS);
 }
 

@@ -59,8 +59,8 @@ struct checkpoint_meta {
  *  description).  Returns a malloc'd string (NULL: out of memory). */
 char *checkpoint_deck_fingerprint(const struct deck_node *root);
 
-/** File-access properties of checkpoint files (the one place the MPI build
- *  will ask for collective MPI-IO).  Close with H5Pclose. */
+/** File-access properties of checkpoint files read, and written by a
+ *  serial run (checkpoint_write_par uses MPI-IO).  Close with H5Pclose. */
 int64_t checkpoint_fapl(void);
 
 /** Write the state of @p s (its registry @p fs) into @p path. */
