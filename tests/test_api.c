@@ -103,6 +103,52 @@ static void test_string_file_run(void **state)
     assert_null(a);
 }
 
+/* DECK with its text @p from replaced by @p to, into @p out. */
+static void replaced(char *out, size_t len, const char *from, const char *to)
+{
+    const char *at = strstr(DECK, from);
+    assert_non_null(at);
+    snprintf(out, len, "%.*s%s%s", (int)(at - DECK), DECK, to, at + strlen(from));
+}
+
+/* The set-up checks of spall run reach API users: a large run is a
+ * warning with the estimate (silenced by run.allow: [cost]), a run far
+ * beyond a day of the machine is refused at the deck key. */
+static void test_setup_warnings(void **state)
+{
+    (void)state;
+    struct spall_error err = {0};
+    struct spall_sim *s = NULL;
+    char deck[2048];
+    assert_int_equal(spall_sim_create_string(&s, DECK, "strip.yaml", &err), SPALL_OK);
+    assert_int_equal(spall_sim_warning_count(s), 0);
+    assert_null(spall_sim_warning(s, 0));
+    assert_non_null(strstr(spall_sim_estimate(s), "particles x"));
+    spall_sim_destroy(&s);
+
+    /* ~1e9 steps of ~120 particles: above the warning level (1e11
+     * particle-steps), below the refusal (1e13) */
+    replaced(deck, sizeof deck, "run: {end_time: 4.0e-6}", "run: {end_time: 400.0}");
+    assert_int_equal(spall_sim_create_string(&s, deck, "large.yaml", &err), SPALL_OK);
+    assert_int_equal(spall_sim_warning_count(s), 1);
+    assert_non_null(strstr(spall_sim_warning(s, 0), "large.yaml:"));
+    assert_non_null(strstr(spall_sim_warning(s, 0), "a large run"));
+    assert_non_null(strstr(spall_sim_warning(s, 0), "run.allow: [cost]"));
+    spall_sim_destroy(&s);
+
+    replaced(deck, sizeof deck, "run: {end_time: 4.0e-6}",
+             "run: {end_time: 400.0, allow: [cost]}");
+    assert_int_equal(spall_sim_create_string(&s, deck, "allowed.yaml", &err), SPALL_OK);
+    assert_int_equal(spall_sim_warning_count(s), 0);
+    spall_sim_destroy(&s);
+
+    replaced(deck, sizeof deck, "run: {end_time: 4.0e-6}", "run: {end_time: 4.0e+6}");
+    assert_int_equal(spall_sim_create_string(&s, deck, "huge.yaml", &err), SPALL_ERR_INPUT);
+    assert_null(s);
+    assert_non_null(strstr(err.msg, "huge.yaml:"));
+    assert_non_null(strstr(err.msg, "far beyond a day"));
+}
+
 /* Errors come back with messages and positions, never an exit. */
 static void test_errors(void **state)
 {
@@ -174,6 +220,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_string_file_run),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_setup_warnings),
         cmocka_unit_test(test_output),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -58,11 +58,11 @@ pivot() {
 }
 
 "$spall" penetrate sweep --model poncelet --projectile silica --target gelatin \
-    --cd 0.375 --R 21e6 --d 5e-6,7.38e-6,10e-6 --v0 100:1500:50 --csv "$out/gelatin.csv"
+    --Cd 0.375 --R 21e6 --diameter 5e-6,7.38e-6,10e-6 --v0 100:1500:50 --csv "$out/gelatin.csv"
 "$spall" penetrate sweep --model mcg --projectile steel --target sebs \
-    --eta 4.5e-2 --R 25e6 --d 11e-6,13e-6,16e-6,20e-6,22e-6 --v0 50:900:25 --csv "$out/sebs.csv"
+    --eta 4.5e-2 --R 25e6 --diameter 11e-6,13e-6,16e-6,20e-6,22e-6 --v0 50:900:25 --csv "$out/sebs.csv"
 "$spall" penetrate sweep --model poncelet --projectile steel --target sebs \
-    --cd 0.8 --R 33.7e6 --d 11e-6,13e-6,16e-6,20e-6,22e-6 --v0 50:900:25 \
+    --Cd 0.8 --R 33.7e6 --diameter 11e-6,13e-6,16e-6,20e-6,22e-6 --v0 50:900:25 \
     --csv "$out/sebs_poncelet.csv"
 for f in gelatin sebs sebs_poncelet; do
     pivot "$out/$f.csv"

@@ -68,6 +68,19 @@ int spall_sim_run_to(struct spall_sim *s, double t, struct spall_error *err);
  *  as spall_sim_run_to does, and the last one at the end. */
 int spall_sim_run(struct spall_sim *s, struct spall_error *err);
 
+/** Set-up findings that do not refuse the run (the set-up checks of
+ *  `spall run`, which the create functions run: a refusal is their error).
+ *  Today the warning is a large run (particle-steps or output size); the
+ *  deck's `run.allow: [cost]` silences it, as for `spall run`. */
+size_t spall_sim_warning_count(const struct spall_sim *s);
+/** Warning @p k as one line "FILE:L:C: ... (to silence this: run.allow:
+ *  [NAME])"; NULL when @p k is out of range. */
+const char *spall_sim_warning(const struct spall_sim *s, size_t k);
+/** The cost estimate of the deck's run, one line ("N particles x M steps =
+ *  P particle-steps; output about B (F frames)"), as run.log's
+ *  setup_estimate. */
+const char *spall_sim_estimate(const struct spall_sim *s);
+
 /** Where a simulation stands. */
 struct spall_sim_info {
     int dim;                 /**< 1, 2 or 3 */

@@ -32,6 +32,7 @@ struct spall_sim {
     struct run_output ro;
     struct field_writer *fw; /**< NULL until spall_sim_output_open */
     double next_frame_t;     /**< field_interval schedule */
+    struct setup_report setup; /**< the set-up checks' warnings and estimate */
 };
 
 static int create_from_deck(struct spall_sim **out, struct deck *d, struct spall_error *err)
@@ -43,13 +44,16 @@ static int create_from_deck(struct spall_sim **out, struct deck *d, struct spall
     }
     h->deck = d;
     /* the set-up checks of spall run (unit slips, set-ups that cannot be
-     * right); the API has no warnings to print: every finding here refuses */
-    struct setup_report setup = {0};
+     * right, the cost); refusals are errors, warnings are kept for
+     * spall_sim_warning.  No output directory yet: the disk is checked by
+     * spall_sim_output_open's writes, not here. */
     int rc = setup_check_units(d, err);
     if (!rc)
         rc = deck_build_sim(d, &h->sim, &h->ro, err);
     if (!rc)
-        rc = setup_check_sim(d, h->sim, &setup, err);
+        rc = setup_check_sim(d, h->sim, &h->setup, err);
+    if (!rc)
+        rc = setup_check_cost(d, h->sim, &h->ro, NULL, false, &h->setup, err);
     if (rc) {
         spall_sim_destroy(&h);
         return rc;
@@ -87,6 +91,21 @@ int spall_sim_create_string(struct spall_sim **out, const char *yaml, const char
     struct deck *d = NULL;
     int rc = deck_load_string(&d, name ? name : "<string>", yaml, err);
     return rc ? rc : create_from_deck(out, d, err);
+}
+
+size_t spall_sim_warning_count(const struct spall_sim *s)
+{
+    return s ? s->setup.n_warn : 0;
+}
+
+const char *spall_sim_warning(const struct spall_sim *s, size_t k)
+{
+    return s && k < s->setup.n_warn ? s->setup.warn[k] : NULL;
+}
+
+const char *spall_sim_estimate(const struct spall_sim *s)
+{
+    return s ? s->setup.estimate : "";
 }
 
 void spall_sim_destroy(struct spall_sim **s)

@@ -21,13 +21,14 @@
 static void pen_usage(FILE *out)
 {
     fprintf(out,
-            "usage: spall penetrate poncelet|liu|mcg --d M --v0 M_S [--rho-p KG_M3 | --projectile P]\n"
-            "                       [--rho-t KG_M3 | --target T] [coefficients] [--ode]\n"
+            "usage: spall penetrate poncelet|liu|mcg (--diameter M | --radius M) --v0 M_S\n"
+            "                       [--rho-projectile KG_M3 | --projectile P]\n"
+            "                       [--rho-target KG_M3 | --target T] [coefficients] [--ode]\n"
             "                       [--csv TRAJ.csv] [--n N]\n"
-            "       spall penetrate fit --model poncelet|liu|mcg (--trajectory P.csv --d M --v0 M_S\n"
+            "       spall penetrate fit --model poncelet|liu|mcg (--trajectory P.csv --diameter M --v0 M_S\n"
             "                       | --points PTS.csv [--nose]) [densities] [initial coefficients]\n"
             "                       [--csv FIT.csv (also FIT.png: data vs model)] [--curve CURVE.csv]\n"
-            "       spall penetrate sweep --model poncelet|liu|mcg --v0 FROM:TO:STEP --d D1[,D2,...]\n"
+            "       spall penetrate sweep --model poncelet|liu|mcg --v0 FROM:TO:STEP --diameter D1[,D2,...]\n"
             "                       [densities] [coefficients] --csv TABLE.csv\n"
             "\n"
             "Rigid sphere into a soft target, -M dV/dt = F(V) ([Meng2021] sec. 4.2):\n"
@@ -40,12 +41,13 @@ static void pen_usage(FILE *out)
             "Prints T_f, P_max, P_max + d/2 (nose, Eq. 4.7) and P_max/d; --csv writes t, P, V.\n"
             "\n"
             "options (SI units):\n"
-            "  --d M, --v0 M_S          diameter, impact velocity\n"
-            "  --rho-p, --rho-t         projectile / target density\n"
+            "  --diameter M, --v0 M_S   sphere diameter d, impact velocity\n"
+            "  --radius M               or the radius (d = 2 r), as decks give impactors\n"
+            "  --rho-projectile, --rho-target   projectile / target density\n"
             "  --projectile silica|steel  rho_p = 1850 / 7800 (thesis Tab. 4.4)\n"
             "  --target gelatin|sebs    rho_t = 1030 / 875 (10 wt%% gelatin, 40 vol%% SEBS, Tab. 4.3)\n"
-            "  --cd, --R PA             Poncelet (C_d, R), Liu (C_d), MCG (R)\n"
-            "  --cv PA_S_M, --sigma0 PA, --edot0 1_S   Liu (edot0 default 1e7 1/s)\n"
+            "  --Cd, --R PA             Poncelet (C_d, R), Liu (C_d), MCG (R)\n"
+            "  --Cv PA_S_M, --sigma0 PA, --edot0 1_S   Liu (edot0 default 1e7 1/s)\n"
             "  --eta PA_S               MCG viscosity\n"
             "  --nose                   fit (b): measured P_max include the nose d/2 (Eq. 4.7)\n"
             "  --ode                    integrate the ODE even where a closed form exists\n"
@@ -63,6 +65,7 @@ struct pen_opts {
     struct pen_params p;
     double v0;
     int have_d, have_v0, nose, ode, n, overwrite;
+    int d_is_radius; /**< --radius given: the list holds radii, d = 2 r */
     const char *csv, *curve, *traj, *points, *model, *vrange, *dlist;
 };
 
@@ -81,6 +84,26 @@ static int num(const char *opt, const char *s, double *out)
     if (end == s || *end || !isfinite(*out))
         return bad("%s needs a number, got '%s'", opt, s);
     return 0;
+}
+
+/* Old spellings, refused with the new name (issue 24: one convention for
+ * every command).  The convention: a material constant is its symbol as in
+ * the equations of --help and calibrate (--E, --nu, --rho, --R, --Cd, --Cv),
+ * a qualifier follows with a hyphen (--rho-projectile), and a length is
+ * named in words (--diameter, or --radius as the decks give impactors). */
+static const char *renamed_option(const char *a)
+{
+    static const char *const old_new[][2] = {
+        {"--d", "--diameter (or --radius, as decks give impactor radii)"},
+        {"--rho-p", "--rho-projectile"},
+        {"--rho-t", "--rho-target"},
+        {"--cd", "--Cd"},
+        {"--cv", "--Cv"},
+    };
+    for (size_t k = 0; k < sizeof old_new / sizeof old_new[0]; k++)
+        if (strcmp(a, old_new[k][0]) == 0)
+            return old_new[k][1];
+    return NULL;
 }
 
 /* Parse options from argv[first..]; the model (if any) is already in o->p. */
@@ -102,24 +125,33 @@ static int parse_opts(int argc, char **argv, int first, struct pen_opts *o)
         }
         if (strncmp(a, "--", 2) != 0)
             return bad("unexpected argument '%s'%s; see spall penetrate --help", a, "");
+        const char *renamed = renamed_option(a);
+        if (renamed)
+            return bad("%s was renamed %s; see spall penetrate --help", a, renamed);
         if (k + 1 >= argc)
             return bad("%s needs a value%s", a, "");
         const char *v = argv[++k];
         double x = 0.0;
         int rc = 0;
-        if (strcmp(a, "--d") == 0) {
+        if (strcmp(a, "--diameter") == 0 || strcmp(a, "--radius") == 0) {
+            if (o->dlist)
+                return bad("give one of --diameter and --radius, once%s%s", "", "");
             o->dlist = v;
-            if (!strchr(v, ','))
+            o->d_is_radius = a[2] == 'r';
+            if (!strchr(v, ',')) {
                 rc = num(a, v, &o->p.d), o->have_d = 1;
+                if (o->d_is_radius)
+                    o->p.d *= 2.0;
+            }
         } else if (strcmp(a, "--v0") == 0) {
             o->vrange = v;
             if (!strchr(v, ':'))
                 rc = num(a, v, &o->v0), o->have_v0 = 1;
-        } else if (strcmp(a, "--rho-p") == 0) rc = num(a, v, &o->p.rho_p);
-        else if (strcmp(a, "--rho-t") == 0) rc = num(a, v, &o->p.rho_t);
-        else if (strcmp(a, "--cd") == 0) rc = num(a, v, &o->p.cd);
+        } else if (strcmp(a, "--rho-projectile") == 0) rc = num(a, v, &o->p.rho_p);
+        else if (strcmp(a, "--rho-target") == 0) rc = num(a, v, &o->p.rho_t);
+        else if (strcmp(a, "--Cd") == 0) rc = num(a, v, &o->p.cd);
         else if (strcmp(a, "--R") == 0) rc = num(a, v, &o->p.R);
-        else if (strcmp(a, "--cv") == 0) rc = num(a, v, &o->p.cv);
+        else if (strcmp(a, "--Cv") == 0) rc = num(a, v, &o->p.cv);
         else if (strcmp(a, "--sigma0") == 0) rc = num(a, v, &o->p.sigma0);
         else if (strcmp(a, "--edot0") == 0) rc = num(a, v, &o->p.edot0);
         else if (strcmp(a, "--eta") == 0) rc = num(a, v, &o->p.eta);
@@ -179,7 +211,7 @@ static int cmd_model(struct pen_opts *o)
 {
     struct spall_error e = {0};
     if (!o->have_d || !o->have_v0)
-        return bad("%s needs --d and --v0 (single numbers)%s", pen_model_name(o->p.model), "");
+        return bad("%s needs --diameter (or --radius) and --v0 (single numbers)%s", pen_model_name(o->p.model), "");
     struct pen_result r;
     int rc = pen_solve(&o->p, o->v0, 0, NULL, NULL, NULL, o->ode, &r, &e);
     if (rc)
@@ -360,7 +392,7 @@ static int cmd_fit(struct pen_opts *o)
     double *buf = NULL;
     if (o->traj) {
         if (!o->have_d || !o->have_v0) {
-            rc = bad("a trajectory fit (approach a) needs --d and --v0%s%s", "", "");
+            rc = bad("a trajectory fit (approach a) needs --diameter (or --radius) and --v0%s%s", "", "");
             goto done;
         }
         if ((rc = col(&c, "t", path, &k0)) || (rc = col(&c, "P", path, &k1)))
@@ -390,7 +422,7 @@ static int cmd_fit(struct pen_opts *o)
     else
         in.d = a0, in.v0s = a1, in.pmax = a2;
     /* approach (b): every point carries its own d; the parameter set needs a
-     * valid one, so it takes the first point's unless --d was given */
+     * valid one, so it takes the first point's unless --diameter or --radius was given */
     if (o->points && !o->have_d && in.n > 0)
         in.base.d = a0[0];
     struct pen_fit_result fr;
@@ -452,8 +484,8 @@ static int cmd_sweep(struct pen_opts *o)
 {
     struct spall_error e = {0};
     if (!o->model || !o->vrange || !o->dlist || !o->csv)
-        return bad("sweep needs --model, --v0 FROM:TO:STEP, --d D1[,D2,...] and --csv%s%s", "",
-                   "");
+        return bad("sweep needs --model, --v0 FROM:TO:STEP, --diameter D1[,D2,...] (or --radius) "
+                   "and --csv%s%s", "", "");
     double v_from = 0, v_to = 0, v_step = 0;
     char tail = 0;
     if (sscanf(o->vrange, "%lf:%lf:%lf%c", &v_from, &v_to, &v_step, &tail) != 3 ||
@@ -466,10 +498,13 @@ static int cmd_sweep(struct pen_opts *o)
     while (*s) {
         char *end = NULL;
         if (nd == PEN_MAX_D)
-            return bad("--d lists more than 64 diameters%s%s", "", "");
+            return bad("%s lists more than 64 values%s", o->d_is_radius ? "--radius" : "--diameter", "");
         ds[nd] = strtod(s, &end);
         if (end == s || !(ds[nd] > 0) || !isfinite(ds[nd]) || (*end && *end != ','))
-            return bad("--d '%s' must be a comma-separated list of diameters > 0%s", o->dlist, "");
+            return bad("%s '%s' must be a comma-separated list of lengths > 0",
+                       o->d_is_radius ? "--radius" : "--diameter", o->dlist);
+        if (o->d_is_radius)
+            ds[nd] *= 2.0;
         nd++;
         s = *end ? end + 1 : end;
     }
@@ -564,7 +599,7 @@ int cli_penetrate(int argc, char **argv)
     if ((is_fit || is_sweep) && o.model && pen_model_from_name(o.model, &o.p.model, &e))
         return fail(&e);
     if (!(o.p.rho_p > 0) || !(o.p.rho_t > 0))
-        return bad("densities missing: give --rho-p/--projectile and --rho-t/--target%s%s", "", "");
+        return bad("densities missing: give --rho-projectile/--projectile and --rho-target/--target%s%s", "", "");
     /* like `spall run`: results are never replaced silently, and the check
      * comes before anything is computed or written */
     const char *outs[3] = {o.csv, o.curve, NULL};

@@ -178,14 +178,8 @@ void bond_list_destroy(struct bond_list **pbl)
 {
     if (!pbl || !*pbl)
         return;
-    struct bond_list *bl = *pbl;
-    free(bl->offset);
-    free(bl->partner);
-    free(bl->rest);
-    free(bl->state);
-    free(bl->type);
-    free(bl->reverse);
-    free(bl);
+    bond_list_replace(*pbl, 0, NULL, NULL, NULL, NULL, NULL); /* frees the arrays */
+    free(*pbl);
     *pbl = NULL;
 }
 
@@ -295,6 +289,24 @@ void *array_gather(const void *a, size_t size, const size_t *idx, size_t n)
     return out;
 }
 
+void bond_list_replace(struct bond_list *bl, size_t n, size_t *offset, int32_t *partner,
+                       double *rest, uint8_t *state, uint8_t *type)
+{
+    free(bl->offset);
+    free(bl->partner);
+    free(bl->rest);
+    free(bl->state);
+    free(bl->type);
+    free(bl->reverse);
+    bl->n = n;
+    bl->offset = offset;
+    bl->partner = partner;
+    bl->rest = rest;
+    bl->state = state;
+    bl->type = type;
+    bl->reverse = NULL;
+}
+
 int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, size_t n_owned,
                        const int64_t *new_of_old, size_t **old_half, size_t *n_half,
                        struct spall_error *err)
@@ -333,19 +345,7 @@ int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, 
         free(type);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
     }
-    free(bl->offset);
-    free(bl->partner);
-    free(bl->rest);
-    free(bl->state);
-    free(bl->type);
-    free(bl->reverse);
-    bl->rest = rest;
-    bl->state = state;
-    bl->type = type;
-    bl->reverse = NULL;
-    bl->n = n_keep;
-    bl->offset = offset;
-    bl->partner = partner;
+    bond_list_replace(bl, n_keep, offset, partner, rest, state, type);
     *old_half = oh;
     *n_half = nh;
     return SPALL_OK;

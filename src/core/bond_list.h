@@ -47,6 +47,12 @@ int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, 
                        const int64_t *new_of_old, size_t **old_half, size_t *n_half,
                        struct spall_error *err);
 
+/** Replace the list's arrays by new ones for @p n particles (taken over;
+ *  the old ones and the reverse map are freed).  The struct keeps its
+ *  address (distributed runs: localize and migration). */
+void bond_list_replace(struct bond_list *bl, size_t n, size_t *offset, int32_t *partner,
+                       double *rest, uint8_t *state, uint8_t *type);
+
 /** A new array (free it) of a[idx[0..n)], elements of @p size bytes; NULL
  *  when out of memory. */
 void *array_gather(const void *a, size_t size, const size_t *idx, size_t n);

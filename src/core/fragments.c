@@ -9,6 +9,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "core/model.h"
+#include "core/parallel/decomp.h"
 #include "spall/error.h"
 
 #include <errno.h>
@@ -59,6 +60,46 @@ void fragments_destroy(struct fragments **f)
     *f = NULL;
 }
 
+void fragment_add(struct fragment_info *fi, int64_t gid, double m, const double v[3], int dim)
+{
+    double v2 = 0.0;
+    fi->count++;
+    fi->mass += m;
+    if (gid < fi->id)
+        fi->id = gid;
+    for (int d = 0; d < dim; d++) {
+        fi->vcm[d] += m * v[d]; /* momentum until fragment_finish */
+        v2 += v[d] * v[d];
+    }
+    fi->kinetic += 0.5 * m * v2;
+}
+
+void fragment_finish(struct fragment_info *fi, int dim)
+{
+    double v2 = 0.0;
+    for (int d = 0; d < dim; d++) {
+        fi->vcm[d] = fi->mass > 0.0 ? fi->vcm[d] / fi->mass : 0.0;
+        v2 += fi->vcm[d] * fi->vcm[d];
+    }
+    fi->kinetic_cm = 0.5 * fi->mass * v2;
+}
+
+int fragments_set(struct fragments *f, const struct fragment_info *info, size_t n_frag,
+                  const int64_t *label, size_t n, struct spall_error *err)
+{
+    if (n_frag > f->cap || n > f->cap)
+        return spall_error_set(err, SPALL_ERR_INTERNAL,
+                               "fragments workspace holds %zu particles, %zu fragments and %zu "
+                               "labels given", f->cap, n_frag, n);
+    if (n_frag)
+        memcpy(f->info, info, n_frag * sizeof *info);
+    if (n)
+        memcpy(f->label, label, n * sizeof *label);
+    f->n_frag = n_frag;
+    f->n = n;
+    return SPALL_OK;
+}
+
 static size_t uf_find(size_t *parent, size_t i)
 {
     while (parent[i] != i) {
@@ -66,6 +107,34 @@ static size_t uf_find(size_t *parent, size_t i)
         i = parent[i];
     }
     return i;
+}
+
+size_t fragments_root(size_t *parent, size_t i)
+{
+    return uf_find(parent, i);
+}
+
+void fragments_union_local(size_t *parent, const struct bond_list *bl, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        parent[i] = i;
+    if (!bl)
+        return;
+    /* union over intact bonds; the smaller root index wins, so every root is
+     * the smallest particle index of its component, whatever the bond order */
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
+            if (bl->state[k] & BOND_BROKEN)
+                continue;
+            size_t j = (size_t)bl->partner[k];
+            if (j <= i || j >= n) /* each bond once; ghosts are not ours */
+                continue;
+            size_t a = uf_find(parent, i), b = uf_find(parent, j);
+            if (a < b)
+                parent[b] = a;
+            else if (b < a)
+                parent[a] = b;
+        }
 }
 
 int fragments_compute(struct fragments *f, const struct particles *p, int dim,
@@ -79,25 +148,7 @@ int fragments_compute(struct fragments *f, const struct particles *p, int dim,
         return spall_error_set(err, SPALL_ERR_INTERNAL, "bond list has %zu rows for %zu particles",
                                bl->n, n);
     size_t *parent = f->parent;
-    for (size_t i = 0; i < n; i++)
-        parent[i] = i;
-    /* union over intact bonds; the smaller root index wins, so every root is
-     * the smallest particle index of its component, whatever the bond order */
-    if (bl) {
-        for (size_t i = 0; i < n; i++)
-            for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
-                if (bl->state[k] & BOND_BROKEN)
-                    continue;
-                size_t j = (size_t)bl->partner[k];
-                if (j <= i || j >= n) /* each bond once; ghosts are not ours */
-                    continue;
-                size_t a = uf_find(parent, i), b = uf_find(parent, j);
-                if (a < b)
-                    parent[b] = a;
-                else if (b < a)
-                    parent[a] = b;
-            }
-    }
+    fragments_union_local(parent, bl, n);
     /* fragments in order of their smallest index; sums in particle order */
     f->n_frag = 0;
     for (size_t i = 0; i < n; i++)
@@ -111,27 +162,13 @@ int fragments_compute(struct fragments *f, const struct particles *p, int dim,
             memset(fi, 0, sizeof *fi);
             fi->id = p->gid[i];
         }
-        struct fragment_info *fi = &f->info[q];
-        double m = p->mass[i], v2 = 0.0;
-        fi->count++;
-        fi->mass += m;
-        if (p->gid[i] < fi->id)
-            fi->id = p->gid[i];
-        for (int d = 0; d < dim; d++) {
-            fi->vcm[d] += m * p->v[d][i]; /* momentum for now */
-            v2 += p->v[d][i] * p->v[d][i];
-        }
-        fi->kinetic += 0.5 * m * v2;
+        double v[3] = {0.0, 0.0, 0.0};
+        for (int d = 0; d < dim; d++)
+            v[d] = p->v[d][i];
+        fragment_add(&f->info[q], p->gid[i], p->mass[i], v, dim);
     }
-    for (size_t q = 0; q < f->n_frag; q++) {
-        struct fragment_info *fi = &f->info[q];
-        double v2 = 0.0;
-        for (int d = 0; d < dim; d++) {
-            fi->vcm[d] = fi->mass > 0.0 ? fi->vcm[d] / fi->mass : 0.0;
-            v2 += fi->vcm[d] * fi->vcm[d];
-        }
-        fi->kinetic_cm = 0.5 * fi->mass * v2;
-    }
+    for (size_t q = 0; q < f->n_frag; q++)
+        fragment_finish(&f->info[q], dim);
     for (size_t i = 0; i < n; i++)
         f->label[i] = f->info[f->frag_of[uf_find(parent, i)]].id;
     f->n = n;
@@ -227,6 +264,14 @@ int fragments_of_sim(struct fragments *f, const struct sim *s, struct spall_erro
 static void field_fragment_id(const void *ctx, size_t n, double *out)
 {
     const struct sim *s = ctx;
+    if (s->par) { /* distributed: collective label rounds (parallel/fragments_par.c) */
+        int64_t *lab = malloc((n ? n : 1) * sizeof *lab);
+        int rc = par_fragment_labels(s, lab, NULL); /* takes part even without memory */
+        for (size_t i = 0; i < n; i++)
+            out[i] = rc == SPALL_OK && lab && i < s->p->n_owned ? (double)lab[i] : -1.0;
+        free(lab);
+        return;
+    }
     struct fragments *f = NULL;
     if (fragments_create(&f, s->p->n_owned, NULL) == SPALL_OK &&
         fragments_of_sim(f, s, NULL) == SPALL_OK && f->n == s->p->n_owned) {

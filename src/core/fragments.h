@@ -73,6 +73,23 @@ void fragments_summarise(const struct fragments *f, struct fragment_summary *out
 int fragments_write_csv(const struct fragments *f, const char *path, double time,
                         struct spall_error *err);
 
+/** Union-find over the intact bonds between particles [0, @p n) of @p bl
+ *  (bonds to ghosts, partner >= n, are left out): parent[] of n entries;
+ *  every root is the smallest index of its component. */
+void fragments_union_local(size_t *parent, const struct bond_list *bl, size_t n);
+/** Root of @p i in a forest of fragments_union_local (path halving). */
+size_t fragments_root(size_t *parent, size_t i);
+/** Add particle @p gid (mass @p m, velocity @p v) to @p fi, zeroed for a new
+ *  fragment: the serial loop's sums, one particle at a time, so a fragment
+ *  whose particles are added in gid order gets the serial bits wherever it
+ *  is summed (the distributed fragments, parallel/fragments_par.c). */
+void fragment_add(struct fragment_info *fi, int64_t gid, double m, const double v[3], int dim);
+/** Turn @p fi's momentum into the centre-of-mass velocity, set kinetic_cm. */
+void fragment_finish(struct fragment_info *fi, int dim);
+/** Set the result from outside (the distributed computation): @p n_frag
+ *  fragments in order of their id, @p n per-particle labels. */
+int fragments_set(struct fragments *f, const struct fragment_info *info, size_t n_frag,
+                  const int64_t *label, size_t n, struct spall_error *err);
 /** Register the computed output field `fragment_id` (int, the fragment's
  *  smallest gid; computed when a frame is written) if the model has bonds
  *  (model_ops.bonds); a no-op otherwise. */

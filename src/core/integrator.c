@@ -19,6 +19,7 @@
  * sim_reflect_particle mirrors one particle through the field registry's
  * parities plus the integrator's own velocity copies (v_half).
  */
+#include "core/bc_work.h"
 #include "core/contact_particles.h"
 #include "core/fields.h"
 #include "core/parallel/decomp.h"
@@ -112,10 +113,12 @@ static void account_body_work(struct sim *s, double dt)
     s->energy.external += grav;
 }
 
-/* Set prescribed velocity components at time t; with @p record, store the
- * force each BC needed to impose them (m dv/(dt/2) - nothing else), i.e. the
- * reaction, and accumulate the constraint's work. */
-static void impose_velocities(struct sim *s, double t, double half_dt, int record)
+/* Set prescribed velocity components at time t (the previous imposition was
+ * at @p t_prev); with @p record (the second half kick), store the force each
+ * BC needed to impose them (m dv/(dt/2) - nothing else), i.e. the reaction,
+ * and accumulate the constraint's work (core/bc_work.h). */
+static void impose_velocities(struct sim *s, double t_prev, double t, double half_dt,
+                              int record)
 {
     struct particles *p = s->p;
     for (size_t k = 0; k < s->n_bcs; k++) {
@@ -123,11 +126,13 @@ static void impose_velocities(struct sim *s, double t, double half_dt, int recor
         if (!bc_prescribes_velocity(b))
             continue;
         if (s->par) { /* distributed: the same sums in the serial order */
-            double vb[3] = {0, 0, 0};
+            double vb[3] = {0, 0, 0}, vp[3] = {0, 0, 0};
             for (int d = 0; d < s->dim; d++)
-                if (b->comp_mask & (1u << d))
+                if (b->comp_mask & (1u << d)) {
                     vb[d] = bc_velocity(b, d, t);
-            par_bc_velocities(s, b, vb, half_dt, record);
+                    vp[d] = bc_velocity(b, d, t_prev);
+                }
+            par_bc_velocities(s, b, vp, vb, half_dt, record);
             continue;
         }
         const struct group *g = &s->groups[b->group];
@@ -136,16 +141,14 @@ static void impose_velocities(struct sim *s, double t, double half_dt, int recor
         for (int d = 0; d < s->dim; d++) {
             if (!(b->comp_mask & (1u << d)))
                 continue;
-            double vb = bc_velocity(b, d, t);
+            const double vb = bc_velocity(b, d, t), vp = bc_velocity(b, d, t_prev);
+            const double v_drift = record ? vp : vb;
             for (size_t q = 0; q < g->n; q++) {
                 size_t i = g->idx[q];
                 double dv = vb - p->v[d][i];
                 double r = p->mass[i] * dv / half_dt;
                 reaction[d] += r;
-                /* the constraint point moves at vb, so its impulse m dv does
-                 * the work m dv vb; summed over the two half kicks this is
-                 * the trapezoidal rule for the reaction's power R . vb */
-                work += p->mass[i] * dv * vb;
+                work += bc_constraint_work(p->mass[i], vp, p->v[d][i], vb, v_drift);
                 p->v[d][i] = vb;
             }
         }
@@ -326,7 +329,7 @@ int sim_initial_forces(struct sim *s, struct spall_error *err)
     int rc = compute_all_forces(s, 0.0, err);
     if (rc)
         return rc;
-    impose_velocities(s, 0.0, 0.5 * s->dt, 1);
+    impose_velocities(s, 0.0, 0.0, 0.5 * s->dt, 1);
     /* the initial imposition is a set-up, not work done during the run */
     s->energy.external = 0.0;
     for (size_t k = 0; k < s->n_bcs; k++)
@@ -484,7 +487,8 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
     const int pc = s->integrator == INTEGRATOR_PREDICTOR_CORRECTOR;
     kick(s, half);
     rigid_kick(s, half, s->t + half);
-    impose_velocities(s, s->t + half, half, 0);
+    const double t_mid = s->t + half;
+    impose_velocities(s, s->t, t_mid, half, 0);
     drift(s, dt);
     drift_extra(s, dt);
     rigid_drift(s, dt);
@@ -514,7 +518,7 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
             memcpy(s->p->v[d], s->v_half[d], s->p->n_owned * sizeof(double));
     kick(s, half);
     rigid_kick(s, half, s->t);
-    impose_velocities(s, s->t, half, 1);
+    impose_velocities(s, t_mid, s->t, half, 1);
     rigid_no_slip(s, dt);
     if (pc && s->ops->advance_state &&
         (rc = s->ops->advance_state(s->model, s, dt, MODEL_STAGE_CORRECT, err)))

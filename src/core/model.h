@@ -46,6 +46,7 @@ struct bond_list;
 struct deck_node;
 struct field_registry;
 struct field_state;
+struct par_model_arrays;
 struct precrack;
 struct sim;
 struct spall_error;
@@ -185,6 +186,12 @@ struct model_ops {
      *  particle's ghosts and whose row lengths weight the partition, for a
      *  model whose `bonds` hook is NULL (no fragments); else `bonds` is used. */
     const struct bond_list *(*halo_bonds)(const struct model *m);
+    /** Optional (distributed runs with rebalancing, core/parallel/migrate.h):
+     *  lend the migration the model's bond list and its per-particle and
+     *  per-half-bond arrays that are not stored fields of the registry, so
+     *  that a particle moving to another rank takes them along.  Called
+     *  after localize.  NULL: the model's particles cannot migrate. */
+    int (*migrate_arrays)(struct model *m, struct par_model_arrays *a);
 };
 
 #endif

@@ -6,10 +6,15 @@
  * The contact loops are serial on purpose: they visit only the particles in
  * the impactor's bounding box (a cheap O(N) filter) and sum the impactor's
  * force in a fixed order, so the result is bitwise independent of the number
- * of threads.
+ * of threads.  On a distributed run each rank visits its owned particles and
+ * records each contact's terms keyed by gid; par_ordered_reduce adds the
+ * contacts of all ranks in gid order (the serial order) and hands every rank
+ * the sums, so every rank moves each impactor as one rank would
+ * (docs/parallel.md).
  */
 #include "core/rigid.h"
 
+#include "core/parallel/decomp.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -58,6 +63,8 @@ void rigid_set_destroy(struct rigid_set **rs)
     for (size_t k = 0; k < (*rs)->n; k++)
         time_function_free(&(*rs)->im[k].tf);
     free((*rs)->im);
+    free((*rs)->par_key);
+    free((*rs)->par_row);
     free(*rs);
     *rs = NULL;
 }
@@ -245,10 +252,79 @@ static inline double contact_gap(const struct impactor *im, const double x[3], d
     return rigid_distance(im, x, nrm) - im->contact_offset;
 }
 
+/* Distributed runs: one row of a rank's contact terms (at most 9 numbers,
+ * rigid_par_prepare); the reducers below add them in the serial loops'
+ * order, particle by particle in gid order. */
+#define RIGID_PAR_COLS 9
+
+int rigid_par_prepare(struct sim *s, struct spall_error *err)
+{
+    struct rigid_set *rs = s->rigid;
+    if (!rs || !s->par)
+        return SPALL_OK;
+    size_t n = s->p->n_owned ? s->p->n_owned : 1;
+    free(rs->par_key);
+    free(rs->par_row);
+    rs->par_key = malloc(n * sizeof *rs->par_key);
+    rs->par_row = malloc(n * RIGID_PAR_COLS * sizeof *rs->par_row);
+    rs->par_cap = rs->par_key && rs->par_row ? n : 0;
+    if (!rs->par_cap)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for impactor contacts of %zu "
+                               "particles", n);
+    return SPALL_OK;
+}
+
+/* rows: f (3), 1/2 k delta^2, friction loss -> f_pen (3), energy, loss, count */
+static void reduce_penalty(const double *rows, size_t n, int ncol, double *out, const void *ctx)
+{
+    const int dim = *(const int *)ctx;
+    double fp[3] = {0.0, 0.0, 0.0}, e = 0.0, fl = 0.0;
+    for (size_t q = 0; q < n; q++) {
+        const double *r = rows + q * (size_t)ncol;
+        for (int d = 0; d < dim; d++)
+            fp[d] -= r[d];
+        e += r[3];
+        fl += r[4];
+    }
+    memcpy(out, fp, sizeof fp);
+    out[3] = e;
+    out[4] = fl;
+    out[5] = (double)n;
+}
+
+/* rows: m dv (3), f dx (3), kinetic change (3) per component ->
+ * J (3), push work, kinetic change, count */
+static void reduce_no_slip(const double *rows, size_t n, int ncol, double *out, const void *ctx)
+{
+    const int dim = *(const int *)ctx;
+    double J[3] = {0.0, 0.0, 0.0}, push = 0.0, ke = 0.0;
+    for (size_t q = 0; q < n; q++) {
+        const double *r = rows + q * (size_t)ncol;
+        for (int d = 0; d < dim; d++) {
+            push -= r[3 + d];
+            J[d] += r[d];
+            ke += r[6 + d];
+        }
+    }
+    memcpy(out, J, sizeof J);
+    out[3] = push;
+    out[4] = ke;
+    out[5] = (double)n;
+}
+
+/* A distributed run whose owned set grew since rigid_par_prepare: grow the
+ * rows first (the loops write one per contact, at most n_owned). */
+static void par_rows_fit(struct sim *s)
+{
+    if (s->par && s->p->n_owned > s->rigid->par_cap)
+        rigid_par_prepare(s, NULL); /* on failure par_cap is 0 and no row is written */
+}
+
 void rigid_contact_forces(struct sim *s)
 {
     if (!s->rigid)
         return;
+    par_rows_fit(s);
     struct particles *p = s->p;
     const int dim = s->dim;
     const double dt = s->dt > 0 ? s->dt : 1.0;
@@ -262,6 +338,7 @@ void rigid_contact_forces(struct sim *s)
         int boxed = bounding_box(im, lo, hi);
         size_t nc = 0;
         double floss = 0.0;
+        struct rigid_set *rs = s->rigid;
         /* stiffness_dt first_contact: k = eta m / dt^2 with the dt of the
          * first contact step (stored below once a particle touched),
          * constant after: a k that follows the adaptive dt (SPH: dt drops
@@ -280,6 +357,7 @@ void rigid_contact_forces(struct sim *s)
             double kc = im->stiffness > 0 ? im->stiffness : im->stiffness_factor * m / (dk * dk);
             double fn = -kc * phi;
             double f[3] = {fn * nrm[0], fn * nrm[1], fn * nrm[2]};
+            double fl = 0.0; /* friction loss: adding +0 leaves floss as it is */
             if (im->friction > 0.0) {
                 double vr[3] = {0, 0, 0};
                 for (int d = 0; d < dim; d++)
@@ -295,7 +373,8 @@ void rigid_contact_forces(struct sim *s)
                         ft = stick;
                     for (int d = 0; d < 3; d++)
                         f[d] -= ft * vt[d] / vts;
-                    floss += ft * vts * dt;
+                    fl = ft * vts * dt;
+                    floss += fl;
                 }
             }
             for (int d = 0; d < dim; d++) {
@@ -303,7 +382,25 @@ void rigid_contact_forces(struct sim *s)
                 im->f_pen[d] -= f[d];
             }
             im->pen_energy += 0.5 * kc * phi * phi;
+            if (s->par && nc < rs->par_cap) {
+                double *row = rs->par_row + nc * RIGID_PAR_COLS;
+                memcpy(row, f, sizeof f);
+                row[3] = 0.5 * kc * phi * phi;
+                row[4] = fl;
+                rs->par_key[nc] = p->gid[i];
+            }
             nc++;
+        }
+        if (s->par) { /* every rank: the contacts of all ranks, in gid order */
+            double out[6];
+            size_t nr = nc < rs->par_cap ? nc : rs->par_cap; /* < nc only without memory */
+            par_ordered_reduce(rs->par_key, rs->par_row, nr, RIGID_PAR_COLS, reduce_penalty, &dim,
+                               out, 6);
+            for (int d = 0; d < 3; d++)
+                im->f_pen[d] = out[d];
+            im->pen_energy = out[3];
+            floss = out[4];
+            nc = (size_t)out[5];
         }
         /* axisymmetric run: the rings' radial forces cancel around the
          * circumference; an impactor on the axis feels only the axial one */
@@ -320,8 +417,10 @@ void rigid_no_slip(struct sim *s, double dt)
 {
     if (!s->rigid)
         return;
+    par_rows_fit(s);
     struct particles *p = s->p;
     const int dim = s->dim;
+    size_t moved = 0; /* contacts put back on a surface, over all ranks */
     for (size_t k = 0; k < s->rigid->n; k++) {
         struct impactor *im = &s->rigid->im[k];
         if (im->contact != RIGID_NO_SLIP)
@@ -331,6 +430,7 @@ void rigid_no_slip(struct sim *s, double dt)
         int boxed = bounding_box(im, lo, hi);
         double J[3] = {0, 0, 0}, ke_p = 0.0, push = 0.0;
         size_t nc = 0;
+        struct rigid_set *rs = s->rigid;
         for (size_t i = 0; i < p->n_owned; i++) {
             double x[3], nrm[3];
             particle_pos(p, dim, i, x);
@@ -340,22 +440,45 @@ void rigid_no_slip(struct sim *s, double dt)
             if (!(phi < 0.0))
                 continue;
             double m = p->mass[i];
+            double *row = s->par && nc < rs->par_cap ? rs->par_row + nc * RIGID_PAR_COLS : NULL;
+            if (row)
+                memset(row, 0, RIGID_PAR_COLS * sizeof *row);
             for (int d = 0; d < dim; d++) {
                 /* back onto the surface along the normal ([Wang2010] Fig. 9);
                  * the work against the particle's current force is the
                  * energy the correction puts in */
                 double dx = -phi * nrm[d];
                 p->x[d][i] += dx;
-                push -= p->f[d][i] * dx;
+                double pw = p->f[d][i] * dx;
+                push -= pw;
                 double dv = im->v[d] - p->v[d][i];
                 J[d] += m * dv;
-                ke_p += 0.5 * m * (im->v[d] * im->v[d] - p->v[d][i] * p->v[d][i]);
+                double dke = 0.5 * m * (im->v[d] * im->v[d] - p->v[d][i] * p->v[d][i]);
+                ke_p += dke;
                 p->v[d][i] = im->v[d];
+                if (row) {
+                    row[d] = m * dv;
+                    row[3 + d] = pw;
+                    row[6 + d] = dke;
+                }
             }
+            if (row)
+                rs->par_key[nc] = p->gid[i];
             nc++;
+        }
+        if (s->par) { /* every rank: the contacts of all ranks, in gid order */
+            double out[6];
+            size_t nr = nc < rs->par_cap ? nc : rs->par_cap; /* < nc only without memory */
+            par_ordered_reduce(rs->par_key, rs->par_row, nr, RIGID_PAR_COLS, reduce_no_slip, &dim,
+                               out, 6);
+            memcpy(J, out, sizeof J);
+            push = out[3];
+            ke_p = out[4];
+            nc = (size_t)out[5];
         }
         im->n_contact = nc;
         im->push_work += push;
+        moved += nc;
         if (nc == 0)
             continue;
         if (s->axisymmetric)
@@ -378,6 +501,10 @@ void rigid_no_slip(struct sim *s, double dt)
         for (int d = 0; d < dim; d++)
             im->f_noslip[d] = -J[d] / dt;
     }
+    /* the ghosts of moved particles take their new positions now: the
+     * energy account and fragments of this step read bonds to ghosts */
+    if (s->par && moved)
+        par_halo_x(s);
 }
 
 static double impactor_ke(const struct impactor *im, const double *v)

@@ -28,6 +28,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "core/time_function.h"
 
@@ -78,6 +79,11 @@ struct impactor {
 struct rigid_set {
     struct impactor *im;
     size_t n;
+    /* distributed runs: this rank's contacts of one impactor, one row each
+     * keyed by gid, reduced in gid order (rigid_par_prepare) */
+    int64_t *par_key;
+    double *par_row;
+    size_t par_cap; /**< rows they hold */
 };
 
 /** Append a copy of @p im (takes ownership of its time function). */
@@ -93,6 +99,11 @@ void rigid_kick(struct sim *s, double half_dt, double t);
 void rigid_drift(struct sim *s, double dt);
 void rigid_contact_forces(struct sim *s);
 void rigid_no_slip(struct sim *s, double dt);
+/** Distributed runs, after the partition (and after any change of the
+ *  owned set): room for one contact row per owned particle, so that the
+ *  contact loops never allocate (and never fail on one rank only).  Every rank sums the contacts of all ranks in gid
+ *  order, so the impactors' state is the serial one on every rank. */
+int rigid_par_prepare(struct sim *s, struct spall_error *err);
 /** Energies of the impactors: kinetic, strain (penalty), dissipated, external. */
 void rigid_energy(const struct sim *s, double *kinetic, double *strain, double *dissipated,
                   double *external);

@@ -338,9 +338,10 @@ int sim_prepare(struct sim *s, struct spall_error *err)
         if (s->dt > s->dt_limit && !s->dt_override)
             return spall_error_set_key(err, SPALL_ERR_PHYSICS, "run.dt",
                                        "time step %g s is above the stability limit %g s "
-                                       "([Wang2010] Eq. 25); lower run.dt or set "
+                                       "of the %s model (run.log's model_constants say how "
+                                       "it is derived); lower run.dt or set "
                                        "run.dt_override: true",
-                                       s->dt, s->dt_limit);
+                                       s->dt, s->dt_limit, s->ops->name);
     } else {
         s->dt = s->dt_factor * s->dt_limit;
     }

@@ -21,6 +21,7 @@
 #include "io/deck_inclusions.h"
 #include "io/deck_time_function.h"
 #include "io/output.h"
+#include "io/run_balance.h"
 #include "core/model.h"
 #include "models/registry.h"
 #include "spall/error.h"
@@ -35,7 +36,7 @@
 static const char *const top_keys[] = {"title", "description", "model", "materials", "geometry",
                                        "lattice", "body", "bodies", "regions", "precracks", "groups",
                                        "boundary_conditions", "initial_velocity", "gravity",
-                                       "damping", "probes", "run", "output",
+                                       "damping", "probes", "run", "output", "parallel",
                                        /* impact (issue 3) keys */
                                        "impactors", "contact",
 
@@ -718,6 +719,7 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
         (rc = deck_vector(root, "gravity", false, (size_t)c.dim, 3, gravity, err)) ||
         (rc = deck_double(root, "damping", false, 0.0, INFINITY, &c.sim->damping, err)) ||
         (rc = parse_run(&c, root, ro, err)) || (rc = parse_output(&c, root, ro, err)) ||
+        (rc = run_balance_parse(root, &ro->parallel, err)) ||
         (rc = deck_check_unused(root, "the deck", top_keys, err)))
         goto fail;
     memcpy(c.sim->gravity, gravity, sizeof gravity);

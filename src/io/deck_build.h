@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 
+#include "core/parallel/migrate.h"
 #include "io/checkpoint.h"
 
 struct deck;
@@ -26,6 +27,7 @@ struct run_output {
     size_t n_fields;
     int threads;            /**< run.threads (0 = default) */
     struct checkpoint_options checkpoint; /**< output.checkpoint (io/checkpoint.h) */
+    struct par_balance_opts parallel;     /**< parallel: rebalancing (io/run_balance.h) */
 };
 
 /** Build the simulation described by @p d.  On success the model is created,

@@ -21,6 +21,7 @@
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "io/output.h"
+#include "io/run_balance.h"
 #include "io/run_par.h"
 #include "io/run_restart.h"
 #include "io/run_summary.h"
@@ -206,6 +207,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     FILE *log = NULL;
     struct run_ckpt ck;
     memset(&ck, 0, sizeof ck);
+    struct run_balance rb;
+    memset(&rb, 0, sizeof rb);
     int rc = deck_load_file(&d, opt->deck_path, err);
     if (rc)
         return rc;
@@ -217,7 +220,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     rc = deck_build_sim(d, &s, &ro, err);
     if (!rc)
         rc = setup_check_sim(d, s, &setup, err); /* set-ups that cannot be right */
-    if ((rc = run_par_setup(s, &ro, rc, err))) /* mpirun: refusals, agreed */
+    if ((rc = run_par_setup(s, rc, err))) /* mpirun: refusals, agreed */
         goto done;
     if (opt->threads <= 0 && ro.threads > 0)
         omp_set_num_threads(ro.threads);
@@ -250,6 +253,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     if (ck.restarted)
         run_ckpt_log_restart(&ck, s, log);
     if ((rc = run_par_distribute(s, log, err))) /* mpirun: owned + ghosts */
+        goto done;
+    if ((rc = run_balance_begin(&rb, s, &ro.parallel, dir, err))) /* mpirun: balance.csv */
         goto done;
 
     struct history_layout hl;
@@ -301,7 +306,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         if (rc)
             break;
         int last = sim_done(s);
-        if (s->step % hist_every == 0 || last) {
+        const int hist_row = s->step % hist_every == 0 || last;
+        if (hist_row) {
             /* sim_step checked the energy at this step: the account is current */
             history_values(s, &hl, hv);
             if ((rc = run_par_agree(hw ? history_writer_append(hw, hv, err) : 0, err)))
@@ -321,6 +327,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             if ((rc = run_par_agree(field_writer_write(fw, s, err), err)))
                 break;
         }
+        if ((rc = run_balance_step(&rb, s, hist_row, log, err))) /* mpirun: rebalancing */
+            break;
         int sig = run_signal_agreed(); /* distributed: the same step on every rank */
         if ((ck.opt.on || sig) &&
             (rc = run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, log, err)))
@@ -359,6 +367,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             rc = fragments_write_csv(hl.frag, path, s->t, err);
         rc = run_par_agree(rc, err);
     }
+    run_balance_end(&rb, rc ? NULL : s, log); /* collective: every rank */
     snprintf(res->checkpoint, sizeof res->checkpoint, "%s", ck.last);
     if (rc && log)
         fprintf(log, "status: FAILED: %s\n", err->msg);
@@ -369,6 +378,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     else if (log)
         fprintf(log, "status: completed\n");
 done:
+    run_balance_end(&rb, NULL, NULL);
     run_ckpt_end(&ck);
     fragments_destroy(&frag);
     if (log)

@@ -8,12 +8,11 @@
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/particles.h"
+#include "core/rigid.h"
 #include "core/sim.h"
 #include "io/deck_build.h"
 #include "spall/error.h"
 #include "spall/spall.h"
-
-#include <string.h>
 
 bool run_par_on(void)
 {
@@ -30,20 +29,12 @@ int run_par_agree(int rc, struct spall_error *err)
     return run_par_on() ? par_agree(rc, err) : rc;
 }
 
-int run_par_setup(const struct sim *s, const struct run_output *ro, int rc,
-                  struct spall_error *err)
+int run_par_setup(const struct sim *s, int rc, struct spall_error *err)
 {
     if (!run_par_on())
         return rc;
     if (!rc && s)
         rc = par_check_supported(s, err);
-    for (size_t k = 0; k < ro->n_fields && !rc; k++)
-        if (strcmp(ro->fields[k], "fragment_id") == 0) /* labels need the whole graph */
-            rc = spall_error_set(err, SPALL_ERR_INPUT,
-                                 "distributed runs (%d MPI ranks): the output field "
-                                 "'fragment_id' is not distributed yet (fragments.csv and the "
-                                 "history columns are); see docs/parallel.md",
-                                 par_size());
     return par_agree(rc, err);
 }
 
@@ -52,6 +43,8 @@ int run_par_distribute(struct sim *s, FILE *log, struct spall_error *err)
     if (!run_par_on())
         return SPALL_OK;
     int rc = par_distribute(s, err);
+    if (!rc) /* impactors: contact rows of the owned particles */
+        rc = par_agree(rigid_par_prepare(s, err), err);
     if (rc)
         return rc;
     char buf[8192] = "";

@@ -46,9 +46,9 @@ refused() { # name deck-text expected-substring
 refused "model not distributed" "$(sed 's/^  end_time: .*/  steps: 3/' \
     "$src/examples/macro_rod_tension/macro_rod_tension.yaml")
 " "model 'macroparticle' is not distributed yet"
-refused "pd lps" "model: {type: peridynamics, formulation: lps}
-$(echo "$base" | sed 's/failure_strain: 0.05/fracture_energy: 100/')
-" "formulation lps is not distributed yet"
+refused "pd eps" "model: {type: peridynamics, formulation: eps}
+$(echo "$base" | sed 's/failure_strain: 0.05/fracture_energy: 100, yield_stress: 1.0e8/')
+" "formulation eps is not distributed yet"
 refused "angular springs" "model: {type: lattice, angular: on}
 ${base}" "angular springs are not distributed yet"
 $launch "$spall" validate --quick >stdout.txt 2>stderr.txt; rc=$?

@@ -7,6 +7,7 @@
 # - restarts from the 2-rank (and 3-rank, 1-rank) checkpoints on 1, 2 and 3
 #   ranks give history.csv, fragments.csv and fields.xdmf identical byte for
 #   byte and every frame and later checkpoint identical under h5diff;
+# - the same with particles migrating (a repartition every 20 steps);
 # - SIGUSR1 sent to one rank only stops both ranks after the same step with
 #   one checkpoint, one message and exit status 75; the run continues from it
 #   on 3 ranks exactly;
@@ -134,6 +135,18 @@ if [ "$full" = 1 ]; then
     run_ok "same directory, 3 ranks" mpi 3 run frac.yaml --restart same
     compare "same directory, 3 ranks" serial same
     grep -q '^restart_step: 100$' same/run.log || { echo "FAIL run.log: no restart section"; fail=1; }
+fi
+
+# ---- with migration: a Zoltan repartition every 20 steps ------------------
+if [ "$full" = 1 ]; then
+    { cat frac.yaml; echo "parallel: {rebalance_every: 20, imbalance_threshold: 1.0}"; } > mig.yaml
+    run_ok "migrating, serial" "$spall" run mig.yaml -o mig_serial
+    run_ok "migrating, 2 ranks" mpi 2 run mig.yaml -o mig2
+    grep -q '^rebalances: [1-9][0-9]* ([1-9][0-9]* particles migrated)' mig2/run.log ||
+        { echo "FAIL migrating: no particle migrated"; fail=1; }
+    compare "migrating on 2 ranks vs serial" mig_serial mig2
+    run_ok "migrating, 2 -> 3 ranks" mpi 3 run mig.yaml --restart mig2/checkpoint_0000000100.h5 -o mig3
+    compare "migrating, written by 2, restarted on 3 ranks" mig_serial mig3
 fi
 
 # ---- peridynamics ---------------------------------------------------------

@@ -24,11 +24,15 @@ bad() { # name expected-substring args...
     ok
 }
 
-gel="--d 7.38e-6 --v0 1290 --projectile silica --target gelatin --cd 0.375 --R 21e6"
+gel="--diameter 7.38e-6 --v0 1290 --projectile silica --target gelatin --Cd 0.375 --R 21e6"
 # check value: 65.78 um (69.47 with the nose)
 out=$("$spall" penetrate poncelet $gel) || ko "poncelet run"
 echo "$out" | grep -q "P_max            6.57794e-05" && ok || { ko "P_max line"; echo "$out"; }
 echo "$out" | grep -q "P_max + d/2      6.94694e-05" && ok || ko "nose line"
+# --radius is the decks' impactor radius: the same run as --diameter 2r
+rad=$("$spall" penetrate poncelet --radius 3.69e-6 --v0 1290 --projectile silica --target gelatin \
+      --Cd 0.375 --R 21e6) || ko "radius run"
+[ "$rad" = "$out" ] && ok || { ko "--radius 3.69e-6 differs from --diameter 7.38e-6"; echo "$rad"; }
 # trajectory CSV: header and 201 rows, last P = P_max
 "$spall" penetrate poncelet $gel --csv traj.csv >/dev/null || ko "csv run"
 [ "$(grep -vc '^#' traj.csv)" -eq 202 ] && ok || ko "traj.csv rows"
@@ -38,7 +42,7 @@ for m in poncelet liu mcg fit sweep; do
 done
 "$spall" penetrate >/dev/null 2>&1; [ $? -eq 2 ] && ok || ko "no args"
 # fit (a) on a self-made trajectory recovers C_d, R
-"$spall" penetrate fit --model poncelet --trajectory traj.csv $gel --cd 0.7 --R 9e6 --csv fit.csv > fit.txt 2>&1 || { ko "fit"; cat fit.txt; }
+"$spall" penetrate fit --model poncelet --trajectory traj.csv $gel --Cd 0.7 --R 9e6 --csv fit.csv > fit.txt 2>&1 || { ko "fit"; cat fit.txt; }
 grep -Eq "^C_d +0\.375" fit.txt && ok || { ko "fit C_d"; cat fit.txt; }
 [ -s fit.csv ] && ok || ko "fit.csv"
 # fit (b) on the recorded MCG references recovers eta; --curve writes 5 x 200 rows
@@ -49,12 +53,12 @@ grep -Eq "^eta +0\.045 " fitb.txt && ok || { ko "fit b eta"; cat fitb.txt; }
 [ "$(grep -vc '^#' curve.csv)" -eq 1001 ] && ok || ko "curve rows"
 # sweep writes the table; MCG warns above Re = 1e5 but succeeds
 "$spall" penetrate sweep --model mcg --projectile steel --target sebs --eta 4.5e-2 --R 25e6 \
-    --d 10e-6,20e-6 --v0 100:900:100 --csv sweep.csv >/dev/null || ko "sweep"
+    --diameter 10e-6,20e-6 --v0 100:900:100 --csv sweep.csv >/dev/null || ko "sweep"
 [ "$(grep -vc '^#' sweep.csv)" -eq 19 ] && ok || ko "sweep rows"
 # results are never replaced silently (as spall run): the same sweep again is
 # refused before anything is written, and --overwrite replaces them
 sum=$(cksum < sweep.csv)
-swp="sweep --model mcg --projectile steel --target sebs --eta 4.5e-2 --R 25e6 --d 10e-6 --v0 100:900:100"
+swp="sweep --model mcg --projectile steel --target sebs --eta 4.5e-2 --R 25e6 --diameter 10e-6 --v0 100:900:100"
 bad "sweep csv exists" "'sweep.csv' exists; give --overwrite" $swp --csv sweep.csv
 [ "$(cksum < sweep.csv)" = "$sum" ] && ok || ko "refused sweep changed sweep.csv"
 cp sweep.png other.png
@@ -63,7 +67,7 @@ bad "sweep png exists" "'other.png' exists; give --overwrite" $swp --csv other.c
 "$spall" penetrate $swp --csv sweep.csv --overwrite >/dev/null 2>&1 && ok || ko "sweep --overwrite"
 [ "$(grep -vc '^#' sweep.csv)" -eq 10 ] && ok || ko "sweep --overwrite rows"
 bad "trajectory csv exists" "exists; give --overwrite" poncelet $gel --csv traj.csv
-"$spall" penetrate mcg --d 1e-3 --v0 1000 --projectile steel --target sebs --eta 1e-4 --R 25e6 \
+"$spall" penetrate mcg --diameter 1e-3 --v0 1000 --projectile steel --target sebs --eta 1e-4 --R 25e6 \
     >/dev/null 2>warn.txt && grep -q "Re = " warn.txt && ok || ko "Re warning"
 
 # examples/pen_sweep (issue 7 item 7): velocity x diameter tables, the
@@ -85,18 +89,25 @@ bash "$src/examples/pen_sweep/pen_sweep.sh" "$tmp/nope" sw2 >/dev/null 2>&1; [ $
 bash "$src/examples/pen_sweep/pen_sweep.sh" "$spall" sw >/dev/null 2>&1; [ $? -eq 2 ] && ok || ko "pen_sweep into its own results"
 
 bad "unknown mode" "unknown mode" bogus
-bad "bad number" "--d needs a number" poncelet --d x
-bad "negative R" "R must be" poncelet --d 1e-5 --v0 100 --rho-p 1 --rho-t 1 --cd 0.4 --R -3
-bad "no densities" "densities" poncelet --d 1e-5 --v0 100 --cd 0.4 --R 3
+bad "bad number" "--diameter needs a number" poncelet --diameter x
+bad "negative R" "R must be" poncelet --diameter 1e-5 --v0 100 --rho-projectile 1 --rho-target 1 --Cd 0.4 --R -3
+bad "no densities" "densities" poncelet --diameter 1e-5 --v0 100 --Cd 0.4 --R 3
 bad "unknown option" "unknown option" poncelet --frobnicate 3
-bad "fit without data" "exactly one of" fit --model poncelet --rho-p 1 --rho-t 1
-bad "fit missing file" "cannot open" fit --model poncelet --points nope.csv --rho-p 1 --rho-t 1
+# old spellings are refused with the new name (one convention across commands)
+bad "old --d" "renamed --diameter" poncelet --d 1e-5 --v0 100
+bad "old --rho-p" "renamed --rho-projectile" poncelet --rho-p 1
+bad "old --rho-t" "renamed --rho-target" poncelet --rho-t 1
+bad "old --cd" "renamed --Cd" poncelet --cd 0.4
+bad "old --cv" "renamed --Cv" liu --cv 2e4
+bad "diameter and radius" "one of --diameter and --radius" poncelet --diameter 1e-5 --radius 5e-6
+bad "fit without data" "exactly one of" fit --model poncelet --rho-projectile 1 --rho-target 1
+bad "fit missing file" "cannot open" fit --model poncelet --points nope.csv --rho-projectile 1 --rho-target 1
 printf 'd,v0\n1e-5,100\n' > pts.csv
-bad "fit missing column" "no column 'P_max'" fit --model poncelet --points pts.csv --rho-p 1 --rho-t 1
+bad "fit missing column" "no column 'P_max'" fit --model poncelet --points pts.csv --rho-projectile 1 --rho-target 1
 printf 'd,v0,P_max\n1e-5,100,x\n' > pts2.csv
-bad "fit bad cell" "pts2.csv:2:" fit --model poncelet --points pts2.csv --rho-p 1 --rho-t 1
-bad "sweep range" "FROM:TO:STEP" sweep --model poncelet --d 1e-5 --v0 5:1:1 --rho-p 1 --rho-t 1 --cd 1 --R 1 --csv s.csv
-bad "unknown model" "unknown penetration model" sweep --model xx --d 1e-5 --v0 1:2:1 --rho-p 1 --rho-t 1 --csv s.csv
+bad "fit bad cell" "pts2.csv:2:" fit --model poncelet --points pts2.csv --rho-projectile 1 --rho-target 1
+bad "sweep range" "FROM:TO:STEP" sweep --model poncelet --diameter 1e-5 --v0 5:1:1 --rho-projectile 1 --rho-target 1 --Cd 1 --R 1 --csv s.csv
+bad "unknown model" "unknown penetration model" sweep --model xx --diameter 1e-5 --v0 1:2:1 --rho-projectile 1 --rho-target 1 --csv s.csv
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

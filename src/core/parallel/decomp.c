@@ -45,6 +45,7 @@ void par_decomp_destroy(struct par_decomp **dp)
     free(d->group_n);
     free(d->probe_owner);
     free(d->probe_local);
+    par_balance_free(d);
     free(d);
     *dp = NULL;
 }
@@ -69,6 +70,18 @@ int64_t par_group_key(const struct sim *s, int g, size_t q)
     return s->par->group_key[g][q];
 }
 
+double par_particle_work(const struct bond_list *bl, size_t i, int intact_only)
+{
+    double w = 1.0;
+    if (!bl)
+        return w;
+    if (!intact_only)
+        return w + (double)(bl->offset[i + 1] - bl->offset[i]);
+    for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++)
+        w += !(bl->state[q] & BOND_BROKEN);
+    return w;
+}
+
 int par_check_supported(const struct sim *s, struct spall_error *err)
 {
     const int n = par_size();
@@ -81,9 +94,7 @@ int par_check_supported(const struct sim *s, struct spall_error *err)
     if (rc)
         return rc;
     const char *what = NULL;
-    if (s->rigid)
-        what = "impactors are";
-    else if (s->pcontact)
+    if (s->pcontact)
         what = "particle contact is";
     else if (s->integrator != INTEGRATOR_VERLET || s->adaptive_dt)
         what = "this time integration is";
@@ -97,17 +108,11 @@ int par_check_supported(const struct sim *s, struct spall_error *err)
 
 #ifdef SPALL_HAVE_MPI
 
-/* ---- Zoltan query functions over this rank's slice [lo, hi) of the whole body */
-
-struct zslice {
-    size_t lo, hi;
-    const struct particles *p;
-    const struct bond_list *bl;
-};
+/* ---- Zoltan query functions over the rows [lo, hi) of par_zobjs */
 
 static int zq_num_obj(void *data, int *ierr)
 {
-    const struct zslice *z = data;
+    const struct par_zobjs *z = data;
     *ierr = ZOLTAN_OK;
     return (int)(z->hi - z->lo);
 }
@@ -117,23 +122,22 @@ static void zq_obj_list(void *data, int ng, int nl, ZOLTAN_ID_PTR gids, ZOLTAN_I
 {
     (void)ng;
     (void)nl;
-    const struct zslice *z = data;
+    const struct par_zobjs *z = data;
     for (size_t k = 0; k < z->hi - z->lo; k++) {
         size_t i = z->lo + k;
-        gids[k] = (ZOLTAN_ID_TYPE)i;
+        gids[k] = (ZOLTAN_ID_TYPE)(z->gid ? (size_t)z->gid[i] : i);
         lids[k] = (ZOLTAN_ID_TYPE)k;
-        /* cost ~ bonds: the force loop visits every half-bond of the row */
         if (wdim > 0)
-            w[k] = 1.0f + (float)(z->bl ? z->bl->offset[i + 1] - z->bl->offset[i] : 0);
+            w[k] = (float)par_particle_work(z->bl, i, z->intact_only);
     }
     *ierr = ZOLTAN_OK;
 }
 
 static int zq_num_geom(void *data, int *ierr)
 {
-    const struct zslice *z = data;
+    const struct par_zobjs *z = data;
     *ierr = ZOLTAN_OK;
-    return z->p->dim;
+    return z->dim;
 }
 
 static void zq_geom_multi(void *data, int ng, int nl, int n, ZOLTAN_ID_PTR gids,
@@ -142,11 +146,39 @@ static void zq_geom_multi(void *data, int ng, int nl, int n, ZOLTAN_ID_PTR gids,
     (void)ng;
     (void)nl;
     (void)gids;
-    const struct zslice *z = data;
+    const struct par_zobjs *z = data;
     for (int k = 0; k < n; k++)
         for (int c = 0; c < ndim; c++)
-            geom[(size_t)k * (size_t)ndim + (size_t)c] = z->p->x0[c][z->lo + lids[k]];
+            geom[(size_t)k * (size_t)ndim + (size_t)c] = z->pos[c][z->lo + lids[k]];
     *ierr = ZOLTAN_OK;
+}
+
+struct Zoltan_Struct *par_zoltan_rcb(int reuse)
+{
+    struct Zoltan_Struct *zz = Zoltan_Create(MPI_COMM_WORLD);
+    if (!zz)
+        return NULL;
+    Zoltan_Set_Param(zz, "DEBUG_LEVEL", "0");
+    Zoltan_Set_Param(zz, "LB_METHOD", "RCB");
+    Zoltan_Set_Param(zz, "NUM_GID_ENTRIES", "1");
+    Zoltan_Set_Param(zz, "NUM_LID_ENTRIES", "1");
+    Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", "1");
+    Zoltan_Set_Param(zz, "RETURN_LISTS", "EXPORT");
+    Zoltan_Set_Param(zz, "RCB_OUTPUT_LEVEL", "0");
+    Zoltan_Set_Param(zz, "KEEP_CUTS", reuse ? "1" : "0");
+    if (reuse) { /* start each repartition from the previous cuts */
+        Zoltan_Set_Param(zz, "LB_APPROACH", "REPARTITION");
+        Zoltan_Set_Param(zz, "RCB_REUSE", "1");
+    }
+    return zz;
+}
+
+void par_zoltan_queries(struct Zoltan_Struct *zz, struct par_zobjs *z)
+{
+    Zoltan_Set_Num_Obj_Fn(zz, zq_num_obj, z);
+    Zoltan_Set_Obj_List_Fn(zz, zq_obj_list, z);
+    Zoltan_Set_Num_Geom_Fn(zz, zq_num_geom, z);
+    Zoltan_Set_Geom_Multi_Fn(zz, zq_geom_multi, z);
 }
 
 /* owner[i] for every particle of the whole body (same on all ranks). */
@@ -158,26 +190,17 @@ static int partition(const struct sim *s, const struct bond_list *bl, int *owner
     if (n > (size_t)0xFFFFFFFFu)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "distributed runs: %zu particles exceed Zoltan's 32-bit ids", n);
-    struct zslice z = {n * (size_t)rank / (size_t)size, n * (size_t)(rank + 1) / (size_t)size,
-                       s->p, bl};
+    /* this rank's slice of the whole body, at the reference positions,
+     * weighted by 1 + half-bonds (the force loop visits every half-bond) */
+    struct par_zobjs z = {n * (size_t)rank / (size_t)size, n * (size_t)(rank + 1) / (size_t)size,
+                          NULL, s->p->x0, s->p->dim, bl, 0};
     float ver = 0.0f;
     if (Zoltan_Initialize(0, NULL, &ver) != ZOLTAN_OK)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Initialize failed");
-    struct Zoltan_Struct *zz = Zoltan_Create(MPI_COMM_WORLD);
+    struct Zoltan_Struct *zz = par_zoltan_rcb(0);
     if (!zz)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
-    Zoltan_Set_Param(zz, "DEBUG_LEVEL", "0");
-    Zoltan_Set_Param(zz, "LB_METHOD", "RCB");
-    Zoltan_Set_Param(zz, "NUM_GID_ENTRIES", "1");
-    Zoltan_Set_Param(zz, "NUM_LID_ENTRIES", "1");
-    Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", "1");
-    Zoltan_Set_Param(zz, "RETURN_LISTS", "EXPORT");
-    Zoltan_Set_Param(zz, "RCB_OUTPUT_LEVEL", "0");
-    Zoltan_Set_Param(zz, "KEEP_CUTS", "0");
-    Zoltan_Set_Num_Obj_Fn(zz, zq_num_obj, &z);
-    Zoltan_Set_Obj_List_Fn(zz, zq_obj_list, &z);
-    Zoltan_Set_Num_Geom_Fn(zz, zq_num_geom, &z);
-    Zoltan_Set_Geom_Multi_Fn(zz, zq_geom_multi, &z);
+    par_zoltan_queries(zz, &z);
     int changes, ngid, nlid, nimp, nexp;
     ZOLTAN_ID_PTR imp_g = NULL, imp_l = NULL, exp_g = NULL, exp_l = NULL;
     int *imp_p = NULL, *imp_parts = NULL, *exp_p = NULL, *exp_parts = NULL;
@@ -228,20 +251,14 @@ static int compact(void **ptr, size_t esize, const size_t *keep, size_t n_keep)
     return 0;
 }
 
-struct slots {
-    void **ptr[64];
-    size_t esize[64];
-    size_t n;
-};
-
-static int slot_add(struct slots *sl, void **ptr, size_t esize)
+int par_slot_add(struct par_slots *sl, void **ptr, size_t esize)
 {
     if (!*ptr)
         return 0;
     for (size_t k = 0; k < sl->n; k++)
         if (sl->ptr[k] == ptr || *sl->ptr[k] == *ptr)
             return 0; /* the same array, reached twice */
-    if (sl->n == 64)
+    if (sl->n == PAR_MAX_SLOTS)
         return -1;
     sl->ptr[sl->n] = ptr;
     sl->esize[sl->n++] = esize;
@@ -259,35 +276,42 @@ static size_t type_size(enum field_type t)
     }
 }
 
-/* Every per-particle array of the engine and the registry, compacted once. */
-static int compact_particles(struct sim *s, const size_t *keep, size_t n_keep, size_t n_owned,
-                             struct spall_error *err)
+int par_particle_slots(struct sim *s, struct par_slots *sl)
 {
     struct particles *p = s->p;
-    struct slots sl = {.n = 0};
     int bad = 0;
+    sl->n = 0;
     for (int d = 0; d < p->dim; d++) {
-        bad |= slot_add(&sl, (void **)&p->x[d], sizeof(double));
-        bad |= slot_add(&sl, (void **)&p->x0[d], sizeof(double));
-        bad |= slot_add(&sl, (void **)&p->v[d], sizeof(double));
-        bad |= slot_add(&sl, (void **)&p->f[d], sizeof(double));
-        bad |= slot_add(&sl, (void **)&s->v_half[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&p->x[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&p->x0[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&p->v[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&p->f[d], sizeof(double));
+        bad |= par_slot_add(sl, (void **)&s->v_half[d], sizeof(double));
     }
-    bad |= slot_add(&sl, (void **)&p->mass, sizeof(double));
-    bad |= slot_add(&sl, (void **)&p->volume, sizeof(double));
-    bad |= slot_add(&sl, (void **)&p->gid, sizeof(int64_t));
-    bad |= slot_add(&sl, (void **)&p->material, sizeof(int32_t));
-    bad |= slot_add(&sl, (void **)&p->body, sizeof(int32_t));
-    bad |= slot_add(&sl, (void **)&s->no_drift_velocity, sizeof(uint8_t));
+    bad |= par_slot_add(sl, (void **)&p->mass, sizeof(double));
+    bad |= par_slot_add(sl, (void **)&p->volume, sizeof(double));
+    bad |= par_slot_add(sl, (void **)&p->gid, sizeof(int64_t));
+    bad |= par_slot_add(sl, (void **)&p->material, sizeof(int32_t));
+    bad |= par_slot_add(sl, (void **)&p->body, sizeof(int32_t));
+    bad |= par_slot_add(sl, (void **)&s->no_drift_velocity, sizeof(uint8_t));
     const struct field_registry *reg = s->fields;
     for (size_t k = 0; k < reg->n && !bad; k++) {
         const struct field_desc *f = &reg->fields[k];
         if (f->compute)
             continue;
         for (int c = 0; c < f->ncomp && f->comp[c]; c++)
-            bad |= slot_add(&sl, f->comp[c], type_size(f->type));
+            bad |= par_slot_add(sl, f->comp[c], type_size(f->type));
     }
-    if (bad)
+    return bad ? -1 : 0;
+}
+
+/* Every per-particle array of the engine and the registry, compacted once. */
+static int compact_particles(struct sim *s, const size_t *keep, size_t n_keep, size_t n_owned,
+                             struct spall_error *err)
+{
+    struct particles *p = s->p;
+    struct par_slots sl;
+    if (par_particle_slots(s, &sl))
         return spall_error_set(err, SPALL_ERR_INTERNAL, "distributed runs: too many fields");
     for (size_t k = 0; k < sl.n; k++)
         if (compact(sl.ptr[k], sl.esize[k], keep, n_keep))

@@ -100,8 +100,16 @@ int64_t par_group_key(const struct sim *s, int g, size_t q);
 /** Displacement and velocity of probe @p k, from its owner (collective). */
 void par_probe(const struct sim *s, size_t k, double u[3], double v[3]);
 
-/** Fragments of the whole run (core/fragments.h), computed on rank 0 from
- *  the gathered bond graph; on other ranks @p f is left empty (collective). */
+/** Fragments of the whole run (core/fragments.h), computed distributed
+ *  (parallel/fragments_par.c): every rank gets the labels of its owned
+ *  particles, rank 0 the whole fragment list, other ranks none (collective). */
 int par_fragments(const struct sim *s, struct fragments *f, struct spall_error *err);
+/** Fragment id (smallest gid of its fragment) of each owned particle into
+ *  @p label (n_owned entries; NULL: this rank has no memory for it, which
+ *  fails all ranks, but it still takes part).  Collective. */
+int par_fragment_labels(const struct sim *s, int64_t *label, struct spall_error *err);
+/** Copy @p ncomp doubles per particle from the owners into the ghosts
+ *  (the halo lists of par_halo_x; collective). */
+void par_halo_values(const struct sim *s, double *vals, int ncomp);
 
 #endif

@@ -25,6 +25,49 @@ struct par_decomp {
     /* timing (run.log; not performance numbers on a loaded machine) */
     double setup_seconds, comm_seconds;
     long halo_calls;
+    /* rebalancing and migration (migrate.c, balance.c) */
+    void *zz;              /**< Zoltan_Struct kept between rebalances (its cuts are reused) */
+    long rebalances;
+    unsigned long long migrated;
 };
+
+struct sim;
+
+/** Every per-particle array of the engine and the registry (addresses of
+ *  the array pointers, element sizes), each array once. */
+#define PAR_MAX_SLOTS 96
+struct par_slots {
+    void **ptr[PAR_MAX_SLOTS];
+    size_t esize[PAR_MAX_SLOTS];
+    size_t n;
+};
+/** Add an array (a NULL array or one already listed is skipped); -1: full. */
+int par_slot_add(struct par_slots *sl, void **ptr, size_t esize);
+/** The engine's and the registry's stored arrays; -1: too many. */
+int par_particle_slots(struct sim *s, struct par_slots *sl);
+/** A particle's work for the partition: 1 + the half-bonds of its row
+ *  (@p intact_only: the intact ones), 1 without a bond list. */
+struct bond_list;
+double par_particle_work(const struct bond_list *bl, size_t i, int intact_only);
+
+/** Objects handed to Zoltan: rows [lo, hi) with global ids gid[i] (NULL:
+ *  i), positions pos[c][i] and the work above as weight. */
+struct par_zobjs {
+    size_t lo, hi;
+    const int64_t *gid;
+    double *const *pos;
+    int dim;
+    const struct bond_list *bl;
+    int intact_only;
+};
+struct Zoltan_Struct;
+/** A Zoltan RCB object with spall's parameters (NULL on failure); with
+ *  @p reuse it keeps its cuts and starts each repartition from them. */
+struct Zoltan_Struct *par_zoltan_rcb(int reuse);
+/** Install the query functions over @p z (kept by address) in @p zz. */
+void par_zoltan_queries(struct Zoltan_Struct *zz, struct par_zobjs *z);
+
+/** Release the rebalancing state (balance.c). */
+void par_balance_free(struct par_decomp *d);
 
 #endif

@@ -6,6 +6,7 @@
  */
 #include "core/parallel/step.h"
 
+#include "core/bc_work.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/particles.h"
@@ -78,8 +79,8 @@ static void reduce_bc(const double *rows, size_t n, int ncol, double *out, const
     out[c->dim] = work;
 }
 
-void par_bc_velocities(struct sim *s, struct bc *b, const double vb[3], double half_dt,
-                       int record)
+void par_bc_velocities(struct sim *s, struct bc *b, const double vp[3], const double vb[3],
+                       double half_dt, int record)
 {
     struct particles *p = s->p;
     const struct group *g = &s->groups[b->group];
@@ -97,7 +98,8 @@ void par_bc_velocities(struct sim *s, struct bc *b, const double vb[3], double h
                 size_t i = g->idx[q];
                 double dv = vb[d] - p->v[d][i];
                 rows[q * (size_t)ncol + (size_t)d] = p->mass[i] * dv / half_dt;
-                rows[q * (size_t)ncol + (size_t)(dim + d)] = p->mass[i] * dv * vb[d];
+                rows[q * (size_t)ncol + (size_t)(dim + d)] = bc_constraint_work(
+                    p->mass[i], vp[d], p->v[d][i], vb[d], record ? vp[d] : vb[d]);
                 p->v[d][i] = vb[d];
             }
         }

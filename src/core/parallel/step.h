@@ -17,10 +17,11 @@ struct sim;
 
 /** Damping loss and gravity work over the drift (account_body_work). */
 void par_body_work(struct sim *s, double dt);
-/** Set BC @p b's prescribed components to vb[d] on its owned members and
- *  book its reaction (when @p record) and work (impose_velocities). */
-void par_bc_velocities(struct sim *s, struct bc *b, const double vb[3], double half_dt,
-                       int record);
+/** Set BC @p b's prescribed components from vp[d] (the previous
+ *  imposition's) to vb[d] on its owned members and book its reaction (when
+ *  @p record) and work (impose_velocities, core/bc_work.h). */
+void par_bc_velocities(struct sim *s, struct bc *b, const double vp[3], const double vb[3],
+                       double half_dt, int record);
 /** Work of load BC @p b over the drift (account_load_work); returns it. */
 double par_load_work(const struct sim *s, const struct bc *b, double dt);
 /** Kinetic energy of the particles (sim_update_energy). */

@@ -16,6 +16,7 @@
 #include "models/lattice/lattice_thermal.h"
 #include "core/model.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/migrate.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -27,11 +28,11 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
                      size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
     (void)sim;
-    if (m->angular || lattice_thermal_enabled(m))
+    if (m->angular) /* angles centred on ghosts would need ghosts of ghosts */
         return spall_error_set(err, SPALL_ERR_INPUT,
-                               "distributed runs: the lattice model's %s not distributed yet; "
-                               "run on one rank (without mpirun), see docs/parallel.md",
-                               m->angular ? "angular springs are" : "thermal lattice is");
+                               "distributed runs: the lattice model's angular springs are not "
+                               "distributed yet; run on one rank (without mpirun), see "
+                               "docs/parallel.md");
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
     size_t *oh = NULL, nh = 0;
@@ -40,16 +41,36 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
         return rc;
     double *kappa = m->kappa ? array_gather(m->kappa, sizeof *kappa, oh, nh) : NULL;
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
+    /* thermal lattice: temperatures of owned and ghosts (the halo refreshes
+     * the ghosts' each conduction sub-step, lattice_thermal.c) */
+    rc = lattice_thermal_localize(m, keep, n_keep, oh, nh, err);
     free(oh);
-    if ((m->kappa && !kappa) || !diss) {
+    if (rc || (m->kappa && !kappa) || !diss) {
         free(kappa);
         free(diss);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+        return rc ? rc : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
     }
     free(m->kappa);
     m->kappa = kappa;
     free(m->diss);
     m->diss = diss;
     m->n_half = nh;
+    return SPALL_OK;
+}
+
+/* model_ops.migrate_arrays: the bond rows, the dissipated energy per
+ * particle and the softening history per half-bond travel with a particle. */
+int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a)
+{
+    a->bl = m->bl;
+    a->n_half = &m->n_half;
+    a->n_particle = 1;
+    a->particle[0] = (void **)&m->diss;
+    a->particle_size[0] = sizeof *m->diss;
+    a->n_bond = 0;
+    if (m->kappa) {
+        a->bond[a->n_bond] = (void **)&m->kappa;
+        a->bond_size[a->n_bond++] = sizeof *m->kappa;
+    }
     return SPALL_OK;
 }

@@ -672,6 +672,7 @@ const struct model_ops lattice_model_ops = {
     .bonds = lattice_bonds,
     .register_state = lattice_register_state,
     .localize = lattice_localize,
+    .migrate_arrays = lattice_migrate_arrays,
     .fixtures = lattice_fixtures,
 };
 

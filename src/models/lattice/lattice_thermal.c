@@ -11,6 +11,8 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "core/options.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
 #include "models/lattice/lattice_internal.h"
 #include "spall/error.h"
 
@@ -361,6 +363,8 @@ int lattice_thermal_step(struct model *m, struct sim *sim, double dt, struct spa
                 for (size_t q = 0; q < g->n; q++)
                     th->T[g->idx[q]] = th->bc[b].T;
             }
+            if (sim->par) /* ghosts: their owners' temperatures, for the next sub-step */
+                par_halo_values(sim, th->T, 1);
         }
     }
     /* expansion of rest lengths (Eq. 21) and melting; symmetric in i, j so
@@ -392,7 +396,7 @@ int lattice_thermal_step(struct model *m, struct sim *sim, double dt, struct spa
             }
             if (!(bl->state[s] & BOND_BROKEN) && (th->T[i] > a->T_melt || th->T[j] > b->T_melt)) {
                 bl->state[s] |= BOND_BROKEN;
-                melted += j > i;
+                melted += p->gid[j] > p->gid[i]; /* once per bond, on every rank count */
             }
         }
     }
@@ -434,6 +438,55 @@ int lattice_thermal_register_state(struct model *m, struct field_state *fs,
     return rc;
 }
 
+/* rows (m T, m, T) -> the serial loop's sum m T, sum m, max T */
+static void th_reduce(const double *rows, size_t n, int ncol, double *out, const void *ctx)
+{
+    (void)ctx;
+    double sum = 0.0, mass = 0.0, tmax = -INFINITY;
+    for (size_t q = 0; q < n; q++) {
+        const double *r = rows + q * (size_t)ncol;
+        sum += r[0];
+        mass += r[1];
+        tmax = fmax(tmax, r[2]);
+    }
+    out[0] = sum;
+    out[1] = mass;
+    out[2] = tmax;
+}
+
+int lattice_thermal_localize(struct model *m, const size_t *keep, size_t n_keep,
+                             const size_t *oh, size_t nh, struct spall_error *err)
+{
+    struct lattice_thermal *th = m->th;
+    if (!lattice_thermal_enabled(m))
+        return SPALL_OK;
+    /* T itself is the registered field `temperature`: the engine compacts
+     * it with the particles (core/parallel/decomp.c) */
+    double **pp[6] = {&th->T_new, &th->heat, &th->inv_mC, &th->rest0, &th->kappa, &th->kscale};
+    double *np[6] = {NULL, NULL, NULL, NULL, NULL, NULL};
+    int bad = 0;
+    for (int k = 0; k < 6; k++) {
+        if (!*pp[k])
+            continue; /* kscale: only with a youngs_modulus_table */
+        np[k] = k < 3 ? array_gather(*pp[k], sizeof(double), keep, n_keep)
+                      : array_gather(*pp[k], sizeof(double), oh, nh);
+        bad |= !np[k];
+    }
+    if (bad) {
+        for (int k = 0; k < 6; k++)
+            free(np[k]);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the thermal lattice");
+    }
+    for (int k = 0; k < 6; k++)
+        if (*pp[k]) {
+            free(*pp[k]);
+            *pp[k] = np[k];
+        }
+    th->n = n_keep;
+    m->kscale = th->kscale;
+    return SPALL_OK;
+}
+
 size_t lattice_thermal_history(const struct model *m, const struct sim *sim, const char **names,
                                double *values)
 {
@@ -441,17 +494,37 @@ size_t lattice_thermal_history(const struct model *m, const struct sim *sim, con
         return 0;
     const struct lattice_thermal *th = m->th;
     double sum = 0.0, mass = 0.0, tmax = -INFINITY;
-    for (size_t i = 0; i < sim->p->n_owned; i++) {
-        sum += sim->p->mass[i] * th->T[i];
-        mass += sim->p->mass[i];
-        tmax = fmax(tmax, th->T[i]);
+    size_t melted = th->melted;
+    if (sim->par) { /* distributed: the serial sums, in gid order */
+        const size_t n = sim->p->n_owned;
+        double *rows = malloc((n ? n : 1) * 3 * sizeof *rows), out[3] = {0.0, 0.0, -INFINITY};
+        for (size_t i = 0; rows && i < n; i++) {
+            rows[3 * i] = sim->p->mass[i] * th->T[i];
+            rows[3 * i + 1] = sim->p->mass[i];
+            rows[3 * i + 2] = th->T[i];
+        }
+        /* collective even without memory: this rank then sends no rows and
+         * the means are of the others (a NOMEM at a history row only) */
+        par_ordered_reduce(sim->p->gid, rows ? rows : out, rows ? n : 0, 3, th_reduce, NULL, out,
+                           3);
+        free(rows);
+        sum = out[0];
+        mass = out[1];
+        tmax = out[2];
+        melted = (size_t)par_sum_u64(th->melted);
+    } else {
+        for (size_t i = 0; i < sim->p->n_owned; i++) {
+            sum += sim->p->mass[i] * th->T[i];
+            mass += sim->p->mass[i];
+            tmax = fmax(tmax, th->T[i]);
+        }
     }
     names[0] = "temperature_mean [K]";
     values[0] = mass > 0.0 ? sum / mass : 0.0;
     names[1] = "temperature_max [K]";
     values[1] = tmax;
     names[2] = "bonds_melted";
-    values[2] = (double)th->melted;
+    values[2] = (double)melted;
     return 3;
 }
 

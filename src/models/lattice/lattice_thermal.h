@@ -64,6 +64,10 @@ int lattice_thermal_register_state(struct model *m, struct field_state *fs,
                                    struct spall_error *err);
 int lattice_thermal_register_fields(struct model *m, struct field_registry *reg,
                                     struct spall_error *err);
+/** Distributed runs (lattice_localize): keep the state of particles
+ *  @p keep (owned, then ghosts) and of the half-bonds @p oh. */
+int lattice_thermal_localize(struct model *m, const size_t *keep, size_t n_keep,
+                             const size_t *oh, size_t nh, struct spall_error *err);
 /** History columns (temperature_mean, temperature_max, melted bonds); returns
  *  how many were written at @p names / @p values. */
 size_t lattice_thermal_history(const struct model *m, const struct sim *sim, const char **names,

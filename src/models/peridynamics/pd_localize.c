@@ -14,17 +14,45 @@
 #include "core/model.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/migrate.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
 
 #include <stdlib.h>
 
+/* formulation lps: the per-particle state of owned particles and ghosts
+ * (a ghost's alpha, bcoef and, refreshed by the halo each force call,
+ * theta enter t_ji of pd_lps_forces) and the per-half-bond influence. */
+static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, const size_t *oh,
+                        size_t nh, struct spall_error *err)
+{
+    double **pp[4] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef};
+    double *np[4];
+    int bad = 0;
+    for (int k = 0; k < 4; k++)
+        bad |= !(np[k] = array_gather(*pp[k], sizeof(double), keep, n_keep));
+    double *ob = array_gather(L->ob, sizeof *ob, oh, nh);
+    if (bad || !ob) {
+        for (int k = 0; k < 4; k++)
+            free(np[k]);
+        free(ob);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the LPS state");
+    }
+    for (int k = 0; k < 4; k++) {
+        free(*pp[k]);
+        *pp[k] = np[k];
+    }
+    free(L->ob);
+    L->ob = ob;
+    return SPALL_OK;
+}
+
 int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
     (void)sim;
-    const char *what = m->opt.lps                  ? "formulation lps is"
+    const char *what = m->opt.eps                  ? "formulation eps is"
                        : m->opt.quasi == PD_QS_ADR ? "quasi-static adr is"
                        : m->ortho || m->mixed      ? "laminae (orthotropic materials) are"
                        : m->fresh || m->twin       ? "matrix_crack: fiber_plane is"
@@ -44,13 +72,15 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     size_t *n_init = array_gather(m->n_init, sizeof *n_init, keep, n_keep);
     size_t *n_init_f = array_gather(m->n_init_f, sizeof *n_init_f, keep, n_keep);
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
+    if (!rc && m->opt.lps)
+        rc = lps_localize(&m->lps, keep, n_keep, oh, nh, err);
     free(oh);
-    if (!coef || !n_init || !n_init_f || !diss) {
+    if (rc || !coef || !n_init || !n_init_f || !diss) {
         free(coef);
         free(n_init);
         free(n_init_f);
         free(diss);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+        return rc ? rc : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
     }
     free(m->coef);
     m->coef = coef;
@@ -88,4 +118,24 @@ void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, s
                        1);
     free(rows);
     *dsum = s;
+}
+
+/* model_ops.migrate_arrays: the family rows with their pair coefficients,
+ * the initial bond counts (damage = 1 - intact / initial) and the
+ * dissipated energy travel with a particle. */
+int pd_migrate_arrays(struct model *m, struct par_model_arrays *a)
+{
+    a->bl = m->bl;
+    a->n_half = &m->n_half;
+    a->n_particle = 3;
+    a->particle[0] = (void **)&m->n_init;
+    a->particle_size[0] = sizeof *m->n_init;
+    a->particle[1] = (void **)&m->n_init_f;
+    a->particle_size[1] = sizeof *m->n_init_f;
+    a->particle[2] = (void **)&m->diss;
+    a->particle_size[2] = sizeof *m->diss;
+    a->n_bond = 1;
+    a->bond[0] = (void **)&m->coef;
+    a->bond_size[0] = sizeof *m->coef;
+    return SPALL_OK;
 }

@@ -25,6 +25,7 @@
 #include "core/bond_list.h"
 #include "core/fields.h"
 #include "core/lattice_gen.h"
+#include "core/parallel/decomp.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -228,6 +229,10 @@ int pd_lps_forces(struct model *m, struct sim *sim)
         }
         L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
     }
+    /* distributed: a ghost's row is empty here; its owner's dilatation,
+     * which t_ji needs, comes with the halo */
+    if (sim->par)
+        par_halo_values(sim, L->theta, 1);
     /* pass 2: forces, t_ij from i's state and t_ji from j's */
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < no; i++) {

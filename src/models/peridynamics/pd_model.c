@@ -692,6 +692,7 @@ const struct model_ops peridynamics_model_ops = {
     .interactions = pd_interactions,
     .damping = pd_damping,
     .localize = pd_localize,
+    .migrate_arrays = pd_migrate_arrays,
     .halo_bonds = pd_bonds,
     .fixtures = pd_fixtures,
 };

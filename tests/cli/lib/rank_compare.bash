@@ -1,0 +1,36 @@
+# Shared by tests/cli/mpi_impact.sh and mpi_models.sh (sourced, not a test):
+# the MPI environment of the suite's rank tests, a scratch directory, and
+# the comparison of a distributed run's output with the serial reference.
+# Expects $spall and $mpiexec; sets $fail (0) and changes into the scratch
+# directory.
+export OMP_WAIT_POLICY=passive
+# ASan builds (make asan): full stacks and loaded MCA components, so that
+# tests/lsan.supp can name Open MPI's own run-time state
+export OMPI_MCA_mca_base_component_disable_dlclose=1
+[ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
+[ -n "${LSAN_OPTIONS:-}" ] && export LSAN_OPTIONS="$LSAN_OPTIONS:print_suppressions=0"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp" || exit 1
+fail=0
+col() { # file column-name: the last row's value
+    awk -F, -v n="$2" 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == n) c = k} END {print $c}' "$1"
+}
+serial() { # deck: its reference run, without mpirun, into DECK_serial
+    OMP_NUM_THREADS=1 timeout 120 "$spall" run "$1.yaml" -o "$1_serial" --quiet --no-progress ||
+        { echo "FAIL serial $1 run"; exit 1; }
+}
+ranks() { # deck n: run on n ranks into DECKn and compare with DECK_serial
+    OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$2" \
+        "$spall" run "$1.yaml" -o "$1$2" --quiet --no-progress ||
+        { echo "FAIL $1 on $2 ranks: exit $?"; fail=1; return; }
+    local f ref="$1_serial" out="$1$2"
+    for f in history.csv fragments.csv fields.xdmf bodies.xdmf; do
+        [ -e "$ref/$f" ] || continue
+        cmp -s "$ref/$f" "$out/$f" || { echo "FAIL $1, $2 ranks: $f differs"; fail=1; }
+    done
+    for f in "$ref"/fields_*.h5; do
+        h5diff -q "$f" "$out/$(basename "$f")" ||
+            { echo "FAIL $1, $2 ranks: $(basename "$f") differs"; fail=1; }
+    done
+}

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Rank-count independence of models lifted from the issue-20 refusals:
+#  - peridynamics `formulation: lps` (state-based: each force call sends the
+#    owners' dilatations to their ghosts, a second halo after the positions)
+#    on a pre-cracked plate under traction;
+#  - the thermal lattice (conduction over bonds to ghosts, one halo of the
+#    temperatures per conduction sub-step; heating, expansion, melting; a
+#    fixed-temperature group) with two materials.
+# Each runs without mpirun and on 2 and 3 ranks: history.csv, fragments.csv
+# and fields.xdmf identical byte for byte, every frame under h5diff.
+# Usage: mpi_models.sh SPALL SRC MPIEXEC
+set -u
+spall="$1"
+mpiexec="$3"
+# shellcheck source=lib/rank_compare.bash
+source "$2/tests/cli/lib/rank_compare.bash"
+cat > lps.yaml <<'YAML'
+title: LPS fracture, rank-count independence
+model: {type: peridynamics, formulation: lps}
+materials:
+  glass: {density: 2440, youngs_modulus: 72.0e9, poisson_ratio: 0.22, fracture_energy: 3.8}
+lattice: {type: square, spacing: 1.0e-3, thickness: 1.0e-3}
+geometry:
+  plate: {box: {min: [-1.0e-5, -1.0e-5], max: [0.04001, 0.02001]}}
+body: {geometry: plate, material: glass}
+precracks:
+  - {from: [-0.001, 0.0105], to: [0.015, 0.0105]}
+groups:
+  top: {box: {min: [-1, 0.0175], max: [1, 1]}}
+  bottom: {box: {min: [-1, -1], max: [1, 0.0025]}}
+probes:
+  - {name: tip, position: [0.015, 0.0105]}
+boundary_conditions:
+  - {group: top, type: traction, components: [y], value: 15.0e6, area: 4.0e-5}
+  - {group: bottom, type: traction, components: [y], value: -15.0e6, area: 4.0e-5}
+run: {steps: 300}
+output: {field_every: 150, history_every: 10}
+YAML
+cat > thermal.yaml <<'YAML'
+title: thermal lattice, rank-count independence
+model: {type: lattice, law: linear, thermal: {boundary: [{group: cold, temperature: 293.15}]}}
+materials:
+  calcite: {density: 2710, youngs_modulus: 70.0e9, poisson_ratio: 0.3333333333333333,
+            tensile_strength: 10.0e6, specific_heat: 820, conductivity: 3.6,
+            thermal_expansion: 1.0e-5, power_density: 0, reference_temperature: 293.15}
+  pyrite: {density: 5010, youngs_modulus: 290.0e9, poisson_ratio: 0.3333333333333333,
+           tensile_strength: 50.0e6, specific_heat: 520, conductivity: 19,
+           thermal_expansion: 2.7e-5, power_density: 8.0e14, melting_temperature: 800,
+           reference_temperature: 293.15}
+lattice: {type: triangular, spacing: 2.0e-4}
+geometry:
+  plate: {box: {min: [0, 0], max: [0.006, 0.006]}}
+  inner: {box: {min: [0.0008, 0.0008], max: [0.0052, 0.0052]}}
+body: {geometry: plate, material: calcite}
+inclusions:
+  - {material: pyrite, count: 5, radius: [0.0004, 0.0006], within: inner, seed: 1, min_gap: 0.0003}
+groups:
+  cold: {box: {min: [-1, -1], max: [1, 0.0003]}}
+run: {steps: 300}
+output: {field_every: 150, history_every: 10, fields: [position, temperature, fragment_id, material]}
+YAML
+for deck in lps thermal; do
+    serial $deck
+done
+# the references must break and melt bonds, else the test proves little
+lps_broken=$(col lps_serial/history.csv bonds_broken)
+awk -v b="$lps_broken" 'BEGIN {exit !(b > 50)}' || { echo "FAIL lps broke $lps_broken bonds"; fail=1; }
+melted=$(col thermal_serial/history.csv bonds_melted)
+awk -v b="$melted" 'BEGIN {exit !(b > 10)}' || { echo "FAIL thermal melted $melted bonds"; fail=1; }
+counts="${SPALL_MPI_RANK_COUNTS:-2 3}"
+for n in $counts; do
+    for deck in lps thermal; do
+        ranks $deck "$n"
+    done
+done
+[ $fail -eq 0 ] && echo "mpi_models: identical on $counts ranks ($lps_broken lps bonds broken," \
+    "$melted bonds melted)"
+[ $fail -eq 0 ]

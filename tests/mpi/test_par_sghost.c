@@ -1,0 +1,232 @@
+/*
+ * Spatial ghosts (core/parallel/sghost.h) under mpirun: on a particle cloud
+ * split over the ranks (slabs, and a random interleaving whose boxes all
+ * overlap), the ghost set of every rank equals the brute-force set (the
+ * particles of other ranks within range + skin of the rank's box, in
+ * ascending id, positions exact); after every particle moves less than
+ * skin/2 no rebuild is asked for, the refreshed ghosts carry the owners'
+ * new positions, and every cross-rank pair within the range has its
+ * partner among the ghosts; a move past skin/2 asks for a rebuild; a move
+ * past the skin stops every rank with the particle's id.
+ * Run: mpirun -np N test_par_sghost (N = 1 is valid: no ghosts).
+ */
+#include "core/parallel/comm.h"
+#include "core/parallel/sghost.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define M 1500
+
+static int failures;
+
+#define CHECK(cond, ...)                                                                        \
+    do {                                                                                        \
+        if (!(cond)) {                                                                          \
+            fprintf(stderr, "rank %d: FAIL %s:%d: ", par_rank(), __FILE__, __LINE__);           \
+            fprintf(stderr, __VA_ARGS__);                                                       \
+            fputc('\n', stderr);                                                                \
+            failures++;                                                                         \
+        }                                                                                       \
+    } while (0)
+
+static uint64_t rng_state;
+
+static double urand(void)
+{
+    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(rng_state >> 11) * 0x1.0p-53;
+}
+
+struct cloud {
+    int dim;
+    double x[3][M];
+    int owner[M];
+};
+
+static void make_cloud(struct cloud *c, int dim, int interleave, int size)
+{
+    rng_state = 12345u + (uint64_t)dim * 7u + (uint64_t)interleave;
+    c->dim = dim;
+    for (int j = 0; j < M; j++) {
+        for (int d = 0; d < 3; d++)
+            c->x[d][j] = d < dim ? urand() : 0.0;
+        c->owner[j] = interleave ? (int)(urand() * size) % size
+                                 : (int)(c->x[0][j] * size) % size;
+    }
+}
+
+static double dist2_box(const struct cloud *c, int j, const double *lo, const double *hi)
+{
+    double r2 = 0.0;
+    for (int d = 0; d < c->dim; d++) {
+        double p = c->x[d][j];
+        double u = p < lo[d] ? lo[d] - p : p > hi[d] ? p - hi[d] : 0.0;
+        r2 += u * u;
+    }
+    return r2;
+}
+
+/* this rank's owned particles, ascending id (= index in the cloud) */
+static size_t owned_of(const struct cloud *c, int rank, double *x[3], int64_t *gid)
+{
+    size_t n = 0;
+    for (int j = 0; j < M; j++)
+        if (c->owner[j] == rank) {
+            for (int d = 0; d < 3; d++)
+                x[d][n] = c->x[d][j];
+            gid[n++] = j;
+        }
+    return n;
+}
+
+static void check_against_brute_force(const struct cloud *c, const struct par_sghost *g,
+                                      double range, double skin, const char *what)
+{
+    const int rank = par_rank();
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    int any = 0;
+    for (int j = 0; j < M; j++)
+        if (c->owner[j] == rank) {
+            any = 1;
+            for (int d = 0; d < c->dim; d++) {
+                lo[d] = fmin(lo[d], c->x[d][j]);
+                hi[d] = fmax(hi[d], c->x[d][j]);
+            }
+        }
+    const double cut2 = (range + skin) * (range + skin);
+    size_t q = 0, ng = par_sghost_count(g);
+    const int64_t *gg = par_sghost_gid(g);
+    for (int j = 0; j < M && any; j++) {
+        if (c->owner[j] == rank || dist2_box(c, j, lo, hi) > cut2)
+            continue;
+        CHECK(q < ng && gg[q] == j, "%s: ghost %zu should be particle %d (got %lld)", what, q, j,
+              q < ng ? (long long)gg[q] : -1LL);
+        if (q < ng && gg[q] == j) {
+            for (int d = 0; d < c->dim; d++)
+                CHECK(par_sghost_x(g, d)[q] == c->x[d][j], "%s: ghost %d position", what, j);
+            CHECK(par_sghost_owner(g)[q] == c->owner[j], "%s: ghost %d owner", what, j);
+        }
+        q++;
+    }
+    CHECK(q == ng, "%s: %zu ghosts, brute force %zu", what, ng, q);
+}
+
+static void run_case(int dim, int interleave)
+{
+    const int size = par_size(), rank = par_rank();
+    static struct cloud c;
+    make_cloud(&c, dim, interleave, size);
+    const double range = dim == 3 ? 0.08 : 0.04, skin = 0.3 * range;
+    char what[64];
+    snprintf(what, sizeof what, "%dD %s", dim, interleave ? "interleaved" : "slabs");
+    double *x[3];
+    for (int d = 0; d < 3; d++)
+        x[d] = calloc(M, sizeof(double));
+    int64_t *gid = calloc(M, sizeof *gid);
+    struct par_sghost *g = NULL;
+    struct spall_error err = {0};
+    int rc = par_sghost_create(&g, dim, range, skin, &err);
+    CHECK(!rc, "create: %s", err.msg);
+    size_t n = owned_of(&c, rank, x, gid);
+    rc = par_sghost_build(g, n, (const double *const *)x, gid, &err);
+    CHECK(!rc, "build: %s", err.msg);
+    check_against_brute_force(&c, g, range, skin, what);
+    if (size > 1 && !interleave && M / size > 50)
+        CHECK(par_sghost_count(g) > 0 && par_sghost_count(g) < M - n,
+              "%s: ghosts %zu: expected some, not all", what, par_sghost_count(g));
+
+    /* every particle moves by less than skin/2 (the same moves on all ranks) */
+    rng_state = 999u + (uint64_t)dim;
+    for (int j = 0; j < M; j++) {
+        double u[3] = {0, 0, 0}, r2 = 0.0;
+        for (int d = 0; d < dim; d++) {
+            u[d] = urand() - 0.5;
+            r2 += u[d] * u[d];
+        }
+        double s = 0.49 * skin * urand() / (sqrt(r2) + 1e-300);
+        for (int d = 0; d < dim; d++)
+            c.x[d][j] += s * u[d];
+    }
+    n = owned_of(&c, rank, x, gid);
+    int rebuild = -1;
+    rc = par_sghost_check(g, (const double *const *)x, &rebuild, &err);
+    CHECK(!rc && rebuild == 0, "%s: moves < skin/2: rc %d, rebuild %d", what, rc, rebuild);
+    par_sghost_update(g, (const double *const *)x);
+    /* refreshed positions, and the skin's promise: every pair within the
+     * range across ranks has the partner among this rank's ghosts */
+    const int64_t *gg = par_sghost_gid(g);
+    size_t ng = par_sghost_count(g);
+    long pairs = 0;
+    for (size_t q = 0; q < ng; q++)
+        for (int d = 0; d < dim; d++)
+            CHECK(par_sghost_x(g, d)[q] == c.x[d][gg[q]], "%s: refreshed ghost %lld", what,
+                  (long long)gg[q]);
+    for (size_t i = 0; i < n; i++)
+        for (int j = 0; j < M; j++) {
+            if (c.owner[j] == rank)
+                continue;
+            double r2 = 0.0;
+            for (int d = 0; d < dim; d++)
+                r2 += (c.x[d][j] - x[d][i]) * (c.x[d][j] - x[d][i]);
+            if (r2 > range * range)
+                continue;
+            pairs++;
+            size_t lo = 0, hi = ng;
+            while (lo < hi) {
+                size_t mid = (lo + hi) / 2;
+                if (gg[mid] < j)
+                    lo = mid + 1;
+                else
+                    hi = mid;
+            }
+            CHECK(lo < ng && gg[lo] == j, "%s: pair %lld-%d within range, partner not a ghost",
+                  what, (long long)gid[i], j);
+        }
+    if (size > 1 && !interleave)
+        CHECK(par_sum_u64((uint64_t)pairs) > 0, "%s: no cross-rank pairs: the test proves little",
+              what);
+
+    /* one particle past skin/2: every rank is asked to rebuild */
+    const int mover = M / 2;
+    c.x[0][mover] += 0.6 * skin;
+    n = owned_of(&c, rank, x, gid);
+    rc = par_sghost_check(g, (const double *const *)x, &rebuild, &err);
+    CHECK(!rc && rebuild == 1, "%s: move > skin/2: rc %d, rebuild %d", what, rc, rebuild);
+    rc = par_sghost_build(g, n, (const double *const *)x, gid, &err);
+    CHECK(!rc, "rebuild: %s", err.msg);
+    check_against_brute_force(&c, g, range, skin, what);
+    rc = par_sghost_check(g, (const double *const *)x, &rebuild, &err);
+    CHECK(!rc && rebuild == 0, "%s: after the rebuild: rc %d, rebuild %d", what, rc, rebuild);
+
+    /* one particle past the whole skin: every rank stops, naming it */
+    c.x[dim - 1][mover] += 1.5 * skin;
+    n = owned_of(&c, rank, x, gid);
+    struct spall_error e2 = {0};
+    rc = par_sghost_check(g, (const double *const *)x, &rebuild, &e2);
+    char want[32];
+    snprintf(want, sizeof want, "particle %d moved", mover);
+    CHECK(rc == SPALL_ERR_UNSTABLE && strstr(e2.msg, want), "%s: move > skin: rc %d, '%s'",
+          what, rc, e2.msg);
+    par_sghost_destroy(&g);
+    for (int d = 0; d < 3; d++)
+        free(x[d]);
+    free(gid);
+}
+
+int main(int argc, char **argv)
+{
+    if (par_world_init(&argc, &argv))
+        return 1;
+    for (int dim = 2; dim <= 3; dim++)
+        for (int inter = 0; inter <= 1; inter++)
+            run_case(dim, inter);
+    int total = (int)par_sum_u64((uint64_t)failures);
+    if (par_rank() == 0)
+        printf("test_par_sghost: %d ranks, %s\n", par_size(), total ? "FAILED" : "ok");
+    par_world_finalize();
+    return total ? 1 : 0;
+}
