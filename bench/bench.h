@@ -17,6 +17,7 @@ struct bench_result {
     size_t bonds;               /**< interactions counted once */
     long steps;
     double seconds;             /**< wall time of the time loop only */
+    double cpu_seconds;         /**< CPU time of the process (all threads) in the loop */
     double particle_steps_per_s;
     double bond_steps_per_s;
     double bytes_per_particle;  /**< resident memory growth / particles */
@@ -65,6 +66,9 @@ extern const size_t bench_pen_n_cases;
  *  fills out->note. */
 int bench_run_deck(const char *name, const char *yaml, int threads, long max_steps,
                    struct bench_result *out, struct spall_error *err);
+
+/** CPU seconds of this process, all threads (CLOCK_PROCESS_CPUTIME_ID). */
+double bench_cpu_seconds(void);
 
 /** Resident set size of this process [bytes] (from /proc/self/statm). */
 double bench_rss_bytes(void);

@@ -15,8 +15,18 @@
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
+
+double bench_cpu_seconds(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0)
+        return 0.0;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 double bench_rss_bytes(void)
 {
@@ -46,10 +56,10 @@ int bench_run_deck(const char *name, const char *yaml, int threads, long max_ste
         return rc;
     }
     double rss1 = bench_rss_bytes();
-    double t0 = omp_get_wtime();
+    double t0 = omp_get_wtime(), c0 = bench_cpu_seconds();
     while (!sim_done(s) && !rc && (max_steps <= 0 || s->step < max_steps))
         rc = sim_step(s, err);
-    double wall = omp_get_wtime() - t0;
+    double wall = omp_get_wtime() - t0, cpu = bench_cpu_seconds() - c0;
     memset(out, 0, sizeof *out);
     snprintf(out->name, sizeof out->name, "%s", name);
     out->threads = threads;
@@ -57,6 +67,7 @@ int bench_run_deck(const char *name, const char *yaml, int threads, long max_ste
     out->bonds = s->ops->interactions ? s->ops->interactions(s->model, s) : 0;
     out->steps = s->step;
     out->seconds = wall;
+    out->cpu_seconds = cpu;
     out->particle_steps_per_s = wall > 0 ? (double)out->particles * (double)out->steps / wall : 0;
     out->bond_steps_per_s = wall > 0 ? (double)out->bonds * (double)out->steps / wall : 0;
     out->bytes_per_particle = (rss1 - rss0) / (double)out->particles;
@@ -65,9 +76,61 @@ int bench_run_deck(const char *name, const char *yaml, int threads, long max_ste
     return rc;
 }
 
+/* STREAM-triad-like memory bandwidth [B/s] on @p threads threads:
+ * a[i] = b[i] + q c[i] over three arrays of 2^23 doubles (64 MiB each,
+ * twice the largest L3 of the project's VMs), best of 5 sweeps, counted as
+ * STREAM does (24 B per element: no write-allocate traffic).  0 when out
+ * of memory. */
+static double triad_bandwidth(int threads)
+{
+    const size_t n = (size_t)1 << 23;
+    double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b), *c = malloc(n * sizeof *c);
+    double best = 0.0;
+    if (a && b && c) {
+        omp_set_num_threads(threads);
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) { /* first touch by the sweeping thread */
+            a[i] = 0.0;
+            b[i] = 1.0;
+            c[i] = 2.0;
+        }
+        for (int rep = 0; rep < 5; rep++) {
+            const double q = 3.0, t0 = omp_get_wtime();
+#pragma omp parallel for schedule(static)
+            for (size_t i = 0; i < n; i++)
+                a[i] = b[i] + q * c[i];
+            const double t = omp_get_wtime() - t0;
+            if (t > 0.0 && 24.0 * (double)n / t > best)
+                best = 24.0 * (double)n / t;
+        }
+    }
+    free(a);
+    free(b);
+    free(c);
+    return best;
+}
+
+/* Bytes the lattice2d step moves to and from memory per particle, counted
+ * from the data layout (docs/performance.md, "Roofline of the lattice
+ * step"): 2D, one bond type, h half-bonds per particle, the rest lengths
+ * compacted to 2 B (bond_list_compact_rest) or 8 B.  Every array is
+ * streamed once per pass; the partners' positions come from the caches
+ * (rows j = i +- 1, i +- n_side +- 1). */
+static double lattice2d_step_bytes(double h, double rest_bytes)
+{
+    const double kick = 8 + 2 * (8 + 8 + 8); /* m; per dimension f, v read, v written */
+    const double drift = 2 * (8 + 8 + 8);    /* per dimension: v, x read, x written */
+    const double zero = 2 * 8;               /* forces cleared */
+    const double force = 8 + 2 * 8 + 2 * 16 + h * (4 + rest_bytes + 1); /* offset, x_i, f
+                                                   read and written; partner, rest, state */
+    const double check = 8 + 2 * 8;          /* NaN check and kinetic energy: m, v */
+    return 2 * kick + drift + zero + force + check;
+}
+
 static int bench_lattice2d(int threads, double scale, struct bench_result *out,
                            struct spall_error *err)
 {
+    const double bw = triad_bandwidth(threads);
     /* 1000 x 1000 sites of a triangular lattice: width 1000 r0, height
      * 999 rows * sqrt(3)/2 r0 */
     double r0 = 1e-3;
@@ -93,9 +156,22 @@ static int bench_lattice2d(int threads, double scale, struct bench_result *out,
              "run: {steps: %ld, max_particles: 1e9}\n",
              r0, -0.25 * r0, -0.25 * r0, w, h, 0.5 * r0, steps);
     int rc = bench_run_deck("lattice2d", yaml, threads, 0, out, err);
-    if (!rc)
+    if (!rc) {
+        const double halves = 2.0 * (double)out->bonds / (double)out->particles;
+        const double bytes = lattice2d_step_bytes(halves, 2.0);
+        const double rate = out->seconds > 0 ? bytes * (double)out->particles *
+                                                   (double)out->steps / out->seconds
+                                             : 0.0;
+        const double cpu_rate = out->cpu_seconds > 0 ? (double)out->bonds * (double)out->steps /
+                                                           out->cpu_seconds
+                                                     : 0.0;
         snprintf(out->note, sizeof out->note,
-                 "2D triangular alpha model, linear law, velocity-loaded edge");
+                 "2D triangular alpha model, linear law, velocity-loaded edge; %.3g bond-steps "
+                 "per CPU-second; triad bandwidth %.1f GB/s; the step moves %.0f B/particle: "
+                 "%.1f GB/s = %.0f %% of the triad (roofline %.3g bond-steps/s)",
+                 cpu_rate, 1e-9 * bw, bytes, 1e-9 * rate, bw > 0 ? 100.0 * rate / bw : 0.0,
+                 bw * (double)out->bonds / ((double)out->particles * bytes));
+    }
     return rc;
 }
 

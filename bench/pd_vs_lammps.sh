@@ -121,6 +121,9 @@ for T in (1, 2):
     ds = float(last["damage_sum"])
     mem = float(open(f"{W}/spall_{T}.mem").read().split()[-1]) * 1024
     res[("spall", T)] = (wall, bonds * steps / wall, ds, ux, mem / n)
+    ma = re.search(r"model arrays: (\d+) B, (\d+) B/particle \((\w+) families", log)
+    if ma and T == 1:  # the model's own allocations (pd_model_bytes), not the process' RSS
+        print(f"spall model arrays: {ma.group(2)} B/particle ({ma.group(3)} families)")
     lg = open(f"{W}/lmp_{T}.log").read()
     lw = float(re.search(r"Loop time of ([0-9.eE+-]+)", lg).group(1))
     th = re.findall(r"^\s*(\d+)\s+([-0-9.eE+]+)\s+([-0-9.eE+]+)\s*$", lg, re.M)

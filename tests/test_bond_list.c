@@ -16,6 +16,7 @@
 #include <math.h>
 #include <omp.h>
 #include <stdbool.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const double R0 = 2e-3;
@@ -192,6 +193,75 @@ static void test_precrack(void **state)
     particles_destroy(&p);
 }
 
+/* bond_list_compact_rest: the same doubles through the index, a table of
+ * the distinct values only, 2 B per half-bond in the byte count; a list
+ * with more distinct values than an index holds keeps its doubles. */
+static void test_compact_rest(void **state)
+{
+    (void)state;
+    struct spall_error err = {0};
+    struct particles *p = plate();
+    struct bond_list *bl = two_shells(p);
+    const size_t m = bl->offset[bl->n];
+    double *before = malloc(m * sizeof *before);
+    assert_non_null(before);
+    memcpy(before, bl->rest, m * sizeof *before);
+    const size_t bytes = bond_list_bytes(bl);
+    assert_int_equal(bond_list_compact_rest(bl, &err), SPALL_OK);
+    assert_null(bl->rest);
+    assert_non_null(bl->rest_idx);
+    assert_true(bl->n_rest >= 2 && bl->n_rest < m / 4); /* regular: few values */
+    for (size_t k = 0; k < m; k++) {
+        const double r = bond_rest(bl, k);
+        assert_memory_equal(&r, &before[k], sizeof r); /* bit for bit */
+        for (size_t q = 0; q < bl->n_rest; q++) /* each value once in the table */
+            if (q != bl->rest_idx[k])
+                assert_true(memcmp(&bl->rest_tab[q], &r, sizeof r) != 0);
+    }
+    assert_int_equal(bond_list_bytes(bl), bytes - m * 6 + bl->n_rest * sizeof(double));
+    assert_int_equal(bond_list_compact_rest(bl, &err), SPALL_OK); /* again: nothing to do */
+
+    /* localize keeps the index: particle 5's row and the first 40 particles */
+    size_t keep[40];
+    int64_t new_of_old[NX * NY];
+    for (size_t i = 0; i < NX * NY; i++)
+        new_of_old[i] = i < 40 ? (int64_t)i : -1;
+    for (size_t i = 0; i < 40; i++)
+        keep[i] = i;
+    size_t *oh = NULL, nh = 0;
+    assert_int_equal(bond_list_localize(bl, keep, 40, 1, new_of_old, &oh, &nh, &err), SPALL_OK);
+    assert_int_equal(nh, bl->offset[1]);
+    for (size_t k = 0; k < nh; k++) {
+        const double r = bond_rest(bl, k);
+        assert_memory_equal(&r, &before[oh[k]], sizeof r);
+    }
+    free(oh);
+    bond_list_destroy(&bl);
+
+    /* more distinct lengths than a 16-bit index holds: the doubles stay */
+    struct particles *q = NULL;
+    assert_int_equal(particles_create(&q, 2, 0, &err), SPALL_OK);
+    const double lo[3] = {0, 0, 0}, hi[3] = {120 * R0, 120 * R0, 0};
+    struct geom *box = geom_box(lo, hi);
+    struct lattice_spec sp = {.kind = LATTICE_TRIANGULAR, .spacing = R0};
+    size_t nq = 0;
+    assert_int_equal(lattice_fill(q, &sp, box, 0, &nq, &err), SPALL_OK);
+    geom_destroy(&box);
+    assert_int_equal(bond_list_build(&bl, q, 1.01 * R0, &err), SPALL_OK);
+    const size_t mq = bl->offset[bl->n];
+    assert_true(mq > 65536);
+    for (size_t k = 0; k < mq; k++)
+        bl->rest[k] = R0 * (1.0 + 1e-9 * (double)k);
+    assert_int_equal(bond_list_compact_rest(bl, &err), SPALL_OK);
+    assert_null(bl->rest_idx);
+    assert_non_null(bl->rest);
+    assert_true(bond_rest(bl, mq - 1) == R0 * (1.0 + 1e-9 * (double)(mq - 1)));
+    bond_list_destroy(&bl);
+    particles_destroy(&q);
+    free(before);
+    particles_destroy(&p);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -214,6 +284,7 @@ int main(void)
         cmocka_unit_test(test_shells_coordination),
         cmocka_unit_test(test_reverse),
         cmocka_unit_test(test_precrack),
+        cmocka_unit_test(test_compact_rest),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -303,7 +303,7 @@ static void family_bond_strain(const struct sim *s, const double c[2], double ra
         for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++) {
             size_t j = (size_t)bl->partner[q];
             double ex = p->x[0][j] - p->x[0][i], ey = p->x[1][j] - p->x[1][i];
-            double st = sqrt(ex * ex + ey * ey) / bl->rest[q] - 1.0;
+            double st = sqrt(ex * ex + ey * ey) / bond_rest(bl, q) - 1.0;
             out[bl->type[q]] = fmax(out[bl->type[q]], fabs(st));
         }
     }

@@ -123,10 +123,11 @@ int cli_bench(int argc, char **argv)
             if (jf) {
                 fprintf(jf,
                         "%s  {\"case\": \"%s\", \"threads\": %d, \"particles\": %zu, \"bonds\": %zu, "
-                        "\"steps\": %ld, \"seconds\": %.6g, \"particle_steps_per_s\": %.6g, "
+                        "\"steps\": %ld, \"seconds\": %.6g, \"cpu_seconds\": %.6g, "
+                        "\"particle_steps_per_s\": %.6g, "
                         "\"bond_steps_per_s\": %.6g, \"bytes_per_particle\": %.1f}",
                         first ? "" : ",\n", r.name, r.threads, r.particles, r.bonds, r.steps,
-                        r.seconds, r.particle_steps_per_s, r.bond_steps_per_s,
+                        r.seconds, r.cpu_seconds, r.particle_steps_per_s, r.bond_steps_per_s,
                         r.bytes_per_particle);
                 first = 0;
             }

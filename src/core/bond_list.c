@@ -178,7 +178,8 @@ void bond_list_destroy(struct bond_list **pbl)
 {
     if (!pbl || !*pbl)
         return;
-    bond_list_replace(*pbl, 0, NULL, NULL, NULL, NULL, NULL); /* frees the arrays */
+    bond_list_replace(*pbl, 0, NULL, NULL, NULL, NULL, NULL, NULL); /* frees the arrays */
+    free((*pbl)->rest_tab);
     free(*pbl);
     *pbl = NULL;
 }
@@ -273,9 +274,68 @@ size_t bond_list_bytes(const struct bond_list *bl)
     if (!bl)
         return 0;
     size_t m = bl->offset[bl->n];
-    size_t per = sizeof *bl->partner + sizeof *bl->rest + sizeof *bl->state + sizeof *bl->type;
+    size_t per = sizeof *bl->partner + sizeof *bl->state + (bl->type ? sizeof *bl->type : 0) +
+                 (bl->rest_idx ? sizeof *bl->rest_idx : bl->rest ? sizeof *bl->rest : 0);
     return sizeof *bl + (bl->n + 1) * sizeof *bl->offset + m * per +
-           (bl->reverse ? m * sizeof *bl->reverse : 0);
+           bl->n_rest * sizeof *bl->rest_tab + (bl->reverse ? m * sizeof *bl->reverse : 0);
+}
+
+/* Open-addressing set of the distinct rest lengths, keyed by their bits:
+ * 2^17 slots for at most 2^16 values keep it at most half full. */
+#define REST_HASH_BITS 17
+#define REST_MAX_DISTINCT 65536u
+
+int bond_list_compact_rest(struct bond_list *bl, struct spall_error *err)
+{
+    if (!bl || !bl->rest)
+        return SPALL_OK;
+    const size_t m = bl->offset[bl->n], nslot = (size_t)1 << REST_HASH_BITS;
+    uint32_t *slot = calloc(nslot, sizeof *slot); /* 0: empty, else table index + 1 */
+    double *tab = malloc(REST_MAX_DISTINCT * sizeof *tab);
+    uint16_t *idx = malloc((m ? m : 1) * sizeof *idx);
+    if (!slot || !tab || !idx) {
+        free(slot);
+        free(tab);
+        free(idx);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory compacting rest lengths");
+    }
+    size_t nt = 0;
+    int fits = 1;
+    for (size_t k = 0; k < m && fits; k++) {
+        uint64_t bits;
+        memcpy(&bits, &bl->rest[k], sizeof bits);
+        size_t h = (size_t)((bits * 0x9E3779B97F4A7C15ull) >> (64 - REST_HASH_BITS));
+        for (;;) {
+            if (!slot[h]) {
+                if (nt == REST_MAX_DISTINCT) {
+                    fits = 0;
+                    break;
+                }
+                tab[nt] = bl->rest[k];
+                slot[h] = (uint32_t)++nt;
+            }
+            uint64_t tb;
+            memcpy(&tb, &tab[slot[h] - 1], sizeof tb);
+            if (tb == bits) {
+                idx[k] = (uint16_t)(slot[h] - 1);
+                break;
+            }
+            h = (h + 1) & (nslot - 1);
+        }
+    }
+    free(slot);
+    double *shrunk = fits ? realloc(tab, (nt ? nt : 1) * sizeof *tab) : NULL;
+    if (!shrunk) { /* more distinct values than an index holds: keep the doubles */
+        free(tab);
+        free(idx);
+        return SPALL_OK;
+    }
+    free(bl->rest);
+    bl->rest = NULL;
+    bl->rest_idx = idx;
+    bl->rest_tab = shrunk;
+    bl->n_rest = nt;
+    return SPALL_OK;
 }
 
 void *array_gather(const void *a, size_t size, const size_t *idx, size_t n)
@@ -290,11 +350,12 @@ void *array_gather(const void *a, size_t size, const size_t *idx, size_t n)
 }
 
 void bond_list_replace(struct bond_list *bl, size_t n, size_t *offset, int32_t *partner,
-                       double *rest, uint8_t *state, uint8_t *type)
+                       double *rest, uint16_t *rest_idx, uint8_t *state, uint8_t *type)
 {
     free(bl->offset);
     free(bl->partner);
     free(bl->rest);
+    free(bl->rest_idx);
     free(bl->state);
     free(bl->type);
     free(bl->reverse);
@@ -302,6 +363,7 @@ void bond_list_replace(struct bond_list *bl, size_t n, size_t *offset, int32_t *
     bl->offset = offset;
     bl->partner = partner;
     bl->rest = rest;
+    bl->rest_idx = rest_idx;
     bl->state = state;
     bl->type = type;
     bl->reverse = NULL;
@@ -333,19 +395,24 @@ int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, 
             }
         offset[k + 1] = w;
     }
-    double *rest = array_gather(bl->rest, sizeof *rest, oh, nh);
+    /* the rest lengths as they are stored: doubles, the compact index (the
+     * table stays: it holds every value a kept index can name) or neither (a
+     * model that keeps them elsewhere); type may be NULL likewise */
+    double *rest = bl->rest ? array_gather(bl->rest, sizeof *rest, oh, nh) : NULL;
+    uint16_t *ridx = bl->rest_idx ? array_gather(bl->rest_idx, sizeof *ridx, oh, nh) : NULL;
     uint8_t *state = array_gather(bl->state, sizeof *state, oh, nh);
-    uint8_t *type = array_gather(bl->type, sizeof *type, oh, nh);
-    if (!rest || !state || !type) {
+    uint8_t *type = bl->type ? array_gather(bl->type, sizeof *type, oh, nh) : NULL;
+    if ((bl->rest && !rest) || (bl->rest_idx && !ridx) || !state || (bl->type && !type)) {
         free(offset);
         free(oh);
         free(partner);
         free(rest);
+        free(ridx);
         free(state);
         free(type);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
     }
-    bond_list_replace(bl, n_keep, offset, partner, rest, state, type);
+    bond_list_replace(bl, n_keep, offset, partner, rest, ridx, state, type);
     *old_half = oh;
     *n_half = nh;
     return SPALL_OK;

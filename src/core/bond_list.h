@@ -30,11 +30,31 @@ struct bond_list {
     size_t n;           /**< particles */
     size_t *offset;     /**< n+1 */
     int32_t *partner;   /**< local index of the partner */
-    double *rest;       /**< reference length |x0_j - x0_i| [m] */
+    double *rest;       /**< reference length |x0_j - x0_i| [m]; NULL once compacted here
+                             (rest_idx) or kept by a model elsewhere (peridynamics'
+                             compact families, pd_compact.c) */
+    uint16_t *rest_idx; /**< compacted (bond_list_compact_rest): rest length =
+                             rest_tab[rest_idx[k]]; NULL otherwise */
+    double *rest_tab;   /**< the distinct rest lengths, n_rest of them */
+    size_t n_rest;
     uint8_t *state;     /**< enum bond_state_flags */
-    uint8_t *type;      /**< model-defined */
+    uint8_t *type;      /**< model-defined; NULL as rest */
     size_t *reverse;    /**< optional: slot of j->i for slot i->j (NULL until built) */
 };
+
+/** Reference length of half-bond @p k (either storage). */
+static inline double bond_rest(const struct bond_list *bl, size_t k)
+{
+    return bl->rest_idx ? bl->rest_tab[bl->rest_idx[k]] : bl->rest[k];
+}
+
+/** Store the rest lengths as a 16-bit index into a table of their distinct
+ *  values (the same doubles, bit for bit) when there are at most 65 536 of
+ *  them, as on a regular lattice: 2 instead of 8 bytes per half-bond.  Only
+ *  for a list whose rest lengths no longer change (not the thermal
+ *  lattice's).  Leaves the list as it is when there are more distinct
+ *  values; an error only when out of memory. */
+int bond_list_compact_rest(struct bond_list *bl, struct spall_error *err);
 
 /** Distributed runs (model_ops.localize): keep the rows of particles
  *  keep[0..n_owned) in their order, partners renumbered by @p new_of_old,
@@ -48,10 +68,12 @@ int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, 
                        struct spall_error *err);
 
 /** Replace the list's arrays by new ones for @p n particles (taken over;
- *  the old ones and the reverse map are freed).  The struct keeps its
- *  address (distributed runs: localize and migration). */
+ *  the old ones and the reverse map are freed; the compact rest table
+ *  stays: it holds every value a kept index names).  The struct keeps its
+ *  address (distributed runs: localize and migration).  Exactly one of
+ *  @p rest and @p rest_idx is set when the list has bonds. */
 void bond_list_replace(struct bond_list *bl, size_t n, size_t *offset, int32_t *partner,
-                       double *rest, uint8_t *state, uint8_t *type);
+                       double *rest, uint16_t *rest_idx, uint8_t *state, uint8_t *type);
 
 /** A new array (free it) of a[idx[0..n)], elements of @p size bytes; NULL
  *  when out of memory. */

@@ -190,8 +190,10 @@ struct model_ops {
      *  lend the migration the model's bond list and its per-particle and
      *  per-half-bond arrays that are not stored fields of the registry, so
      *  that a particle moving to another rank takes them along.  Called
-     *  after localize.  NULL: the model's particles cannot migrate. */
-    int (*migrate_arrays)(struct model *m, struct par_model_arrays *a);
+     *  after localize, and once at set-up to learn whether the model's
+     *  options allow migration (an error names the option that does not).
+     *  NULL: the model's particles cannot migrate. */
+    int (*migrate_arrays)(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 };
 
 #endif

@@ -4,6 +4,9 @@
 
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 static int grow_array(void **ptr, size_t elem, size_t cap)
 {
@@ -103,6 +106,19 @@ int particles_append(struct particles *p, const double pos[3], int32_t material,
 
 void particles_zero_forces(struct particles *p)
 {
-    for (int d = 0; d < p->dim; d++)
-        memset(p->f[d], 0, p->n * sizeof(double));
+    /* each thread clears its own static share (the share it will fill in
+     * the force loops), not one thread the whole array */
+    const size_t n = p->n;
+    const int dim = p->dim;
+#pragma omp parallel if (n > SPALL_OMP_MIN_PARTICLES)
+    {
+#ifdef _OPENMP
+        const size_t nt = (size_t)omp_get_num_threads(), t = (size_t)omp_get_thread_num();
+#else
+        const size_t nt = 1, t = 0;
+#endif
+        const size_t lo = n * t / nt, hi = n * (t + 1) / nt;
+        for (int d = 0; d < dim; d++)
+            memset(p->f[d] + lo, 0, (hi - lo) * sizeof(double));
+    }
 }

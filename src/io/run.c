@@ -220,8 +220,11 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     rc = deck_build_sim(d, &s, &ro, err);
     if (!rc)
         rc = setup_check_sim(d, s, &setup, err); /* set-ups that cannot be right */
-    if ((rc = run_par_setup(s, rc, err))) /* mpirun: refusals, agreed */
+    if ((rc = run_par_setup(s, &ro, rc, err))) { /* mpirun: refusals, agreed */
+        if (s && err->key[0]) /* a refusal naming a deck key: at its position */
+            deck_locate_error(d->root, err);
         goto done;
+    }
     if (opt->threads <= 0 && ro.threads > 0)
         omp_set_num_threads(ro.threads);
 

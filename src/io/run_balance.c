@@ -33,6 +33,22 @@ int run_balance_parse(const struct deck_node *root, struct par_balance_opts *o,
     return SPALL_OK;
 }
 
+int run_balance_check(const struct sim *s, const struct par_balance_opts *o,
+                      struct spall_error *err)
+{
+    if (o->rebalance_every <= 0)
+        return SPALL_OK;
+    if (!s->ops->migrate_arrays)
+        return spall_error_set_key(err, SPALL_ERR_INPUT, "parallel.rebalance_every",
+                                   "distributed runs: model '%s' cannot migrate particles; "
+                                   "leave parallel.rebalance_every at 0",
+                                   s->ops->name);
+    /* do the model's options allow it (the thermal lattice does not)? */
+    struct par_model_arrays probe;
+    memset(&probe, 0, sizeof probe);
+    return s->ops->migrate_arrays(s->model, &probe, err);
+}
+
 static void csv_row(struct run_balance *b, const struct sim *s, double imb)
 {
     if (b->csv) {
@@ -49,12 +65,7 @@ int run_balance_begin(struct run_balance *b, const struct sim *s,
     b->opt = *o;
     if (!s->par)
         return SPALL_OK;
-    int rc = SPALL_OK;
-    if (o->rebalance_every > 0 && !s->ops->migrate_arrays)
-        rc = spall_error_set_key(err, SPALL_ERR_INPUT, "parallel.rebalance_every",
-                                 "distributed runs: model '%s' cannot migrate particles; "
-                                 "leave parallel.rebalance_every at 0",
-                                 s->ops->name);
+    int rc = run_balance_check(s, o, err); /* run_par_setup asked already */
     char path[1200];
     snprintf(path, sizeof path, "%s/balance.csv", dir);
     if (!rc && par_rank() == 0) {

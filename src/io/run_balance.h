@@ -26,6 +26,12 @@ struct run_balance {
 int run_balance_parse(const struct deck_node *root, struct par_balance_opts *o,
                       struct spall_error *err);
 
+/** Before any output (run_par_setup): rebalancing asked of a model, or of
+ *  model options, whose particles cannot migrate is refused at
+ *  parallel.rebalance_every. */
+int run_balance_check(const struct sim *s, const struct par_balance_opts *o,
+                      struct spall_error *err);
+
 /** After the decomposition (collective): refuse rebalancing for a model
  *  that cannot migrate, open balance.csv in @p dir and write its first row. */
 int run_balance_begin(struct run_balance *b, const struct sim *s,

@@ -11,6 +11,7 @@
 #include "core/rigid.h"
 #include "core/sim.h"
 #include "io/deck_build.h"
+#include "io/run_balance.h"
 #include "spall/error.h"
 #include "spall/spall.h"
 
@@ -29,12 +30,15 @@ int run_par_agree(int rc, struct spall_error *err)
     return run_par_on() ? par_agree(rc, err) : rc;
 }
 
-int run_par_setup(const struct sim *s, int rc, struct spall_error *err)
+int run_par_setup(const struct sim *s, const struct run_output *ro, int rc,
+                  struct spall_error *err)
 {
     if (!run_par_on())
         return rc;
     if (!rc && s)
         rc = par_check_supported(s, err);
+    if (!rc && s)
+        rc = run_balance_check(s, &ro->parallel, err);
     return par_agree(rc, err);
 }
 

@@ -94,6 +94,8 @@ for n in $counts; do
         ranks $deck "$n"
     done
 done
+# impactors with migrating particles (contact rows keyed by gid, regrown)
+rebalanced kw 3
 [ $fail -eq 0 ] && echo "mpi_impact: identical on $counts ranks ($frags fragments," \
     "$kw_broken pd bonds broken)"
 [ $fail -eq 0 ]

@@ -73,6 +73,18 @@ for n in $counts; do
         ranks $deck "$n"
     done
 done
+# LPS state (weighted volume, dilatation, coefficients, influence) travels
+# with migrating particles: forced rebalancing, still bitwise
+rebalanced lps 3
+# the thermal lattice cannot migrate yet: refused before any output
+{ cat thermal.yaml; echo "parallel: {rebalance_every: 20}"; } > thermal_rb.yaml
+OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np 2 \
+    "$spall" run thermal_rb.yaml -o thermal_rb --quiet --no-progress 2> thermal_rb.err
+rc=$?
+[ $rc -eq 2 ] || { echo "FAIL thermal rebalanced: exit $rc, expected 2"; fail=1; }
+[ "$(grep -c "thermal_rb.yaml:[0-9]*:[0-9]*: .*thermal lattice cannot migrate" thermal_rb.err)" -eq 1 ] ||
+    { echo "FAIL thermal rebalanced: message"; cat thermal_rb.err; fail=1; }
+[ ! -e thermal_rb ] || { echo "FAIL thermal rebalanced: output written"; fail=1; }
 [ $fail -eq 0 ] && echo "mpi_models: identical on $counts ranks ($lps_broken lps bonds broken," \
     "$melted bonds melted)"
 [ $fail -eq 0 ]

@@ -14,7 +14,6 @@
 
 #ifdef SPALL_HAVE_MPI
 #include <mpi.h>
-#endif
 
 /* Environment variables set by the launchers spall knows: Open MPI's mpirun,
  * PMIx (Slurm srun --mpi=pmix, Open MPI 5) and PMI-1/2 (MPICH, Slurm). */
@@ -27,6 +26,7 @@ static bool launched_by_mpi(void)
             return true;
     return false;
 }
+#endif
 
 int par_world_init(int *argc, char ***argv)
 {

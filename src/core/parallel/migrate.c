@@ -31,7 +31,7 @@ static int make_layout(struct sim *s, struct layout *L, struct spall_error *err)
                                "distributed runs: model '%s' cannot migrate particles; leave "
                                "parallel.rebalance_every at 0",
                                s->ops->name);
-    int rc = s->ops->migrate_arrays(s->model, &L->ma);
+    int rc = s->ops->migrate_arrays(s->model, &L->ma, err);
     if (rc)
         return rc;
     if (!L->ma.bl || !L->ma.n_half)
@@ -138,7 +138,14 @@ static char *pack_migrant(const struct mig *M, size_t i, char *b)
         int64_t pg = M->s->p->gid[bl->partner[q]];
         memcpy(b, &pg, sizeof pg);
         b += sizeof pg;
-        memcpy(b, &bl->rest[q], sizeof(double));
+        /* the rest length as stored: a double, or the 16-bit index into the
+         * compact table (bond_list_compact_rest; built from the whole body
+         * at set-up, the same on every rank) in the slot's first bytes */
+        memset(b, 0, sizeof(double));
+        if (bl->rest)
+            memcpy(b, &bl->rest[q], sizeof(double));
+        else if (bl->rest_idx)
+            memcpy(b, &bl->rest_idx[q], sizeof(uint16_t));
         b += sizeof(double);
         *b++ = (char)bl->state[q];
         *b++ = (char)(bl->type ? bl->type[q] : 0);

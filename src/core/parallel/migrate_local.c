@@ -56,10 +56,15 @@ static int rebuild_bonds(struct mig *M, struct spall_error *err)
         off[j + 1] = nh;
     }
     int32_t *partner = alloc_n(nh, sizeof *partner);
-    double *rest = alloc_n(nh, sizeof *rest);
-    uint8_t *state = alloc_n(nh, sizeof *state), *type = alloc_n(nh, sizeof *type);
+    /* the list's own layout kept: rest lengths as doubles or as compact
+     * indices (bond_list_compact_rest), types only where it has them */
+    double *rest = bl->rest ? alloc_n(nh, sizeof *rest) : NULL;
+    uint16_t *ridx = bl->rest_idx ? alloc_n(nh, sizeof *ridx) : NULL;
+    uint8_t *state = alloc_n(nh, sizeof *state);
+    uint8_t *type = bl->type ? alloc_n(nh, sizeof *type) : NULL;
     void *mb[PAR_MIGRATE_MAX_ARRAYS] = {NULL};
-    int bad = !partner || !rest || !state || !type;
+    int bad = !partner || (bl->rest && !rest) || (bl->rest_idx && !ridx) || !state ||
+              (bl->type && !type);
     for (int k = 0; k < L->ma.n_bond; k++)
         bad |= !(mb[k] = alloc_n(nh, L->ma.bond_size[k]));
     for (size_t j = 0; j < M->n_own && !bad; j++) {
@@ -72,19 +77,28 @@ static int rebuild_bonds(struct mig *M, struct spall_error *err)
             partner[h] = (int32_t)loc;
             if (!row) {
                 size_t o = bl->offset[M->own[j].old] + q;
-                rest[h] = bl->rest[o];
+                if (rest)
+                    rest[h] = bl->rest[o];
+                if (ridx)
+                    ridx[h] = bl->rest_idx[o];
                 state[h] = bl->state[o];
-                type[h] = bl->type ? bl->type[o] : 0;
+                if (type)
+                    type[h] = bl->type[o];
                 for (int k = 0; k < L->ma.n_bond; k++) {
                     size_t e = L->ma.bond_size[k];
                     memcpy((char *)mb[k] + h * e, (const char *)*L->ma.bond[k] + o * e, e);
                 }
             } else {
                 const char *b = row + q * L->half + sizeof(int64_t);
-                memcpy(&rest[h], b, sizeof(double));
+                if (rest)
+                    memcpy(&rest[h], b, sizeof(double));
+                if (ridx)
+                    memcpy(&ridx[h], b, sizeof(uint16_t));
                 b += sizeof(double);
                 state[h] = (uint8_t)*b++;
-                type[h] = (uint8_t)*b++;
+                if (type)
+                    type[h] = (uint8_t)*b;
+                b++;
                 for (int k = 0; k < L->ma.n_bond; k++) {
                     size_t e = L->ma.bond_size[k];
                     memcpy((char *)mb[k] + h * e, b, e);
@@ -97,13 +111,14 @@ static int rebuild_bonds(struct mig *M, struct spall_error *err)
         free(off);
         free(partner);
         free(rest);
+        free(ridx);
         free(state);
         free(type);
         for (int k = 0; k < L->ma.n_bond; k++)
             free(mb[k]);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory migrating bonds");
     }
-    bond_list_replace(bl, n_new, off, partner, rest, state, type);
+    bond_list_replace(bl, n_new, off, partner, rest, ridx, state, type);
     for (int k = 0; k < L->ma.n_bond; k++) {
         free(*L->ma.bond[k]);
         *L->ma.bond[k] = mb[k];

@@ -69,7 +69,9 @@ static double break_half(struct model *m, size_t i, size_t s, const struct latti
 struct lattice_view {
     const size_t *restrict offset;
     const int32_t *restrict partner;
-    const double *restrict rest;
+    const double *restrict rest;        /* NULL when compacted: */
+    const uint16_t *restrict rest_idx;  /* rest = rest_tab[rest_idx[s]] */
+    const double *restrict rest_tab;
     const uint8_t *restrict state;
     const uint8_t *restrict type;
     const size_t *restrict reverse;
@@ -90,6 +92,8 @@ static struct lattice_view make_view(const struct model *m, struct sim *sim)
     v.offset = bl->offset;
     v.partner = bl->partner;
     v.rest = bl->rest;
+    v.rest_idx = bl->rest_idx;
+    v.rest_tab = bl->rest_tab;
     v.state = bl->state;
     v.type = bl->type;
     v.reverse = bl->reverse;
@@ -104,6 +108,12 @@ static struct lattice_view make_view(const struct model *m, struct sim *sim)
     v.f2 = p->dim > 2 ? p->f[2] : NULL;
     v.u = (const double *const *)sim_drift_velocities(sim, &v.dt_drift);
     return v;
+}
+
+/** Reference length of half-bond s (bond_rest on the view's copies). */
+LATTICE_INLINE double view_rest(const struct lattice_view *v, size_t s)
+{
+    return v->rest_idx ? v->rest_tab[v->rest_idx[s]] : v->rest[s];
 }
 
 /** dx = x_j - x_i for the first @p dim components; returns |dx|^2. */
@@ -158,7 +168,7 @@ LATTICE_INLINE void row_linear(struct model *m, const struct lattice_view *v,
         const size_t j = (size_t)v->partner[s];
         double dx[3] = {0, 0, 0};
         const double r = sqrt(bond_vec(v, i, j, dim, dx));
-        const double r_rest = v->rest[s];
+        const double r_rest = view_rest(v, s);
         double k = k0, tl = tl0, cl = cl0;
         if (multi_type) {
             const struct lattice_bond_law *b = &pw[v->type[s]];
@@ -198,7 +208,7 @@ LATTICE_INLINE void row_general(struct model *m, const struct lattice_view *v, s
         const size_t j = (size_t)v->partner[s];
         double dx[3] = {0, 0, 0};
         const double r = sqrt(bond_vec(v, i, j, dim, dx));
-        const double r_rest = v->rest[s];
+        const double r_rest = view_rest(v, s);
         const struct lattice_bond_law *bw =
             &prow[(size_t)v->mat[j] * LATTICE_MAX_TYPES + v->type[s]];
         const double st = r / r_rest;
@@ -264,7 +274,7 @@ static inline double angle_forces(double k_phi, double phi0, const double a[2],
 /** Rest area of the triangle spanned by the arms of angle s (arm b in slot sb). */
 static inline double area_rest(const struct bond_list *bl, size_t s, size_t sb, double phi0)
 {
-    return 0.5 * bl->rest[s] * bl->rest[sb] * sin(phi0);
+    return 0.5 * bond_rest(bl, s) * bond_rest(bl, sb) * sin(phi0);
 }
 
 /** Alpha-beta-gamma area share (lattice_calib.c): energy k_s (A/A0 - 1)^2 / 2
@@ -348,15 +358,146 @@ static void angles_row(struct model *m, const int32_t *mat, double *const *x, si
  * inside it) switch once per range to a loop whose dimension, law and
  * variant are literal constants. */
 
+/* Half-bonds per block of the linear loop: the block's scratch (bond
+ * vectors and coefficients, 4 x 8 B per half-bond) stays in L1. */
+#define LATTICE_BLOCK 256
+
+/** Pass 2 of block_linear over the block's @p nt half-bonds from slot @p sb:
+ *  the force coefficients into cb; returns nonzero when a bond breaks now.
+ *  @p tab: the rest lengths are compacted (bond_list_compact_rest). */
+LATTICE_INLINE int block_coefs(const struct lattice_view *v, const struct lattice_bond_law *pw,
+                               size_t sb, size_t nt, double dxb[3][LATTICE_BLOCK],
+                               double *restrict cb, const int dim, const int multi,
+                               const int tab)
+{
+    const double *restrict rest = tab ? NULL : v->rest + sb;
+    const uint16_t *restrict ridx = tab ? v->rest_idx + sb : NULL;
+    const double *restrict rtab = v->rest_tab;
+    const uint8_t *restrict state = v->state + sb;
+    const uint8_t *restrict type = v->type + sb;
+    const double k0 = pw[0].k, tl0 = pw[0].t_lim, cl0 = pw[0].c_lim;
+    int breaks = 0;
+    for (size_t t = 0; t < nt; t++) {
+        double r2 = dxb[0][t] * dxb[0][t];
+        if (dim > 1)
+            r2 += dxb[1][t] * dxb[1][t];
+        if (dim > 2)
+            r2 += dxb[2][t] * dxb[2][t];
+        const double r = sqrt(r2), r_rest = tab ? rtab[ridx[t]] : rest[t];
+        double k = k0, tl = tl0, cl = cl0;
+        if (multi) {
+            k = pw[type[t]].k;
+            tl = pw[type[t]].t_lim;
+            cl = pw[type[t]].c_lim;
+        }
+        const double c = k - k * r_rest / r;
+        const double cmin = c < 0.0 ? c : 0.0;
+        const int intact = state[t] == 0;
+        breaks |= intact & ((r > r_rest * tl) | (r < r_rest * cl));
+        cb[t] = intact ? c : cmin;
+    }
+    return breaks;
+}
+
+/** The linear loop over the particles [i0, i1), whose rows hold at most
+ *  LATTICE_BLOCK half-bonds together, in three passes so that the
+ *  arithmetic of a row is the same, bit for bit, as row_linear's (same
+ *  operations in the same order; -ffp-contract=off) while the costly part
+ *  vectorises: (1) bond vectors dx = x_j - x_i (the partner gathers),
+ *  (2) over the block's half-bonds, contiguous and without branches: one
+ *  sqrt and one division each, the broken-bond clamp and a flag for a
+ *  bond that breaks now, (3) per particle the force sum in row order.
+ *  A breaking bond takes the rare path of row_linear (break_half), in row
+ *  order, so diss[i] sums in the same order too. */
+LATTICE_INLINE void block_linear(struct model *m, const struct lattice_view *v,
+                                 const struct lattice_bond_law *pw, size_t i0, size_t i1,
+                                 const int dim, const int multi, const int gather)
+{
+    double dxb[3][LATTICE_BLOCK], cb[LATTICE_BLOCK];
+    const size_t sb = v->offset[i0], nt = v->offset[i1] - sb;
+    for (size_t i = i0; i < i1; i++) {
+        const double xi = v->x0[i], yi = dim > 1 ? v->x1[i] : 0.0,
+                     zi = dim > 2 ? v->x2[i] : 0.0;
+        for (size_t s = v->offset[i]; s < v->offset[i + 1]; s++) {
+            const size_t j = (size_t)v->partner[s], t = s - sb;
+            dxb[0][t] = v->x0[j] - xi;
+            if (dim > 1)
+                dxb[1][t] = v->x1[j] - yi;
+            if (dim > 2)
+                dxb[2][t] = v->x2[j] - zi;
+        }
+    }
+    const int breaks = v->rest_idx ? block_coefs(v, pw, sb, nt, dxb, cb, dim, multi, 1)
+                                   : block_coefs(v, pw, sb, nt, dxb, cb, dim, multi, 0);
+    if (LATTICE_UNLIKELY(breaks)) {
+        for (size_t i = i0; i < i1; i++)
+            for (size_t s = v->offset[i]; s < v->offset[i + 1]; s++) {
+                const size_t t = s - sb;
+                if (v->state[s])
+                    continue;
+                double dx[3] = {dxb[0][t], dim > 1 ? dxb[1][t] : 0.0, dim > 2 ? dxb[2][t] : 0.0};
+                double r2 = dx[0] * dx[0];
+                if (dim > 1)
+                    r2 += dx[1] * dx[1];
+                if (dim > 2)
+                    r2 += dx[2] * dx[2];
+                const double r = sqrt(r2), r_rest = view_rest(v, s);
+                const struct lattice_bond_law *b = &pw[multi ? v->type[s] : 0];
+                if (r > r_rest * b->t_lim || r < r_rest * b->c_lim)
+                    cb[t] = break_half(m, i, s, b, r_rest, r,
+                                       bond_dr(v, i, (size_t)v->partner[s], dim, dx, r));
+            }
+    }
+    for (size_t i = i0; i < i1; i++) {
+        double fi[3] = {0, 0, 0};
+        for (size_t s = v->offset[i]; s < v->offset[i + 1]; s++) {
+            const size_t t = s - sb;
+            for (int d = 0; d < dim; d++)
+                fi[d] += cb[t] * dxb[d][t];
+            if (gather) {
+                const double *ab = v->ang_buf + 2 * v->reverse[s];
+                fi[0] += ab[0];
+                fi[1] += ab[1];
+            }
+        }
+        add_force(v, i, dim, fi);
+    }
+}
+
 LATTICE_INLINE void loop_linear(struct model *m, const struct lattice_view *v, size_t lo,
                                 size_t hi, const int dim, const int multi, const int gather)
 {
     const struct lattice_bond_law *pw = m->pair; /* material 0 with itself: types 0..1 */
-    for (size_t i = lo; i < hi; i++)
-        row_linear(m, v, pw, i, dim, multi, gather);
+    size_t i = lo;
+    while (i < hi) {
+        const size_t sb = v->offset[i];
+        size_t e = i;
+        while (e < hi && v->offset[e + 1] - sb <= LATTICE_BLOCK)
+            e++;
+        if (e == i) { /* one row longer than a block */
+            row_linear(m, v, pw, i, dim, multi, gather);
+            i++;
+        } else {
+            block_linear(m, v, pw, i, e, dim, multi, gather);
+            i = e;
+        }
+    }
 }
 
-static void range_linear(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
+/* The linear loop in two versions picked once at load time by the CPU (GCC
+ * function multi-versioning): x86-64-v3 (four-lane sqrt and division) and
+ * the build's baseline.  The file is built without FP contraction (ISO C
+ * mode) and with -fno-math-errno (a sqrt the compiler may vectorise), so
+ * both versions round every operation alike: the same bits on any CPU and
+ * thread.  SPALL_NO_CLONES builds the baseline only. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
+    !defined(SPALL_NO_CLONES)
+#define LATTICE_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define LATTICE_CLONES
+#endif
+
+LATTICE_CLONES static void range_linear(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
                          int dim, int multi, int gather)
 {
     if (dim == 1)
@@ -516,7 +657,7 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
             dx[d] = p->x[d][j] - p->x[d][i];
             r2 += dx[d] * dx[d];
         }
-        const double st = sqrt(r2) / bl->rest[s];
+        const double r_rest = bond_rest(bl, s), st = sqrt(r2) / r_rest;
         const struct lattice_bond_law *bw =
             &m->pair[((size_t)mat[i] * nm + (size_t)mat[j]) * LATTICE_MAX_TYPES + bl->type[s]];
         const int broken = bl->state[s] != 0;
@@ -527,9 +668,9 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
             const double ef = bw->t_lim - 1.0, kap = m->kappa[s];
             if (st > 1.0)
                 c *= lattice_soft_secant(bw->e0, ef, kap);
-            e += 0.5 * lattice_soft_energy(bw->e0, ef, k, bl->rest[s], st, kap);
+            e += 0.5 * lattice_soft_energy(bw->e0, ef, k, r_rest, st, kap);
         } else {
-            e += 0.5 * lattice_energy(&m->lp, bw->curve, k, bl->rest[s], st, broken);
+            e += 0.5 * lattice_energy(&m->lp, bw->curve, k, r_rest, st, broken);
         }
         add_outer(dim, sig, dx, dx, 0.5 * c);
     }

@@ -63,7 +63,7 @@ int lattice_register_state(struct model *m, struct sim *sim, struct field_state 
 int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                      size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
 struct par_model_arrays;
-int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a);
+int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 struct model_energy;
 
 /* lattice_forces.c */

@@ -59,9 +59,15 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
 }
 
 /* model_ops.migrate_arrays: the bond rows, the dissipated energy per
- * particle and the softening history per half-bond travel with a particle. */
-int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a)
+ * particle and the softening history per half-bond travel with a particle.
+ * The thermal lattice keeps per-particle and per-bond state whose owners
+ * (th->n, m->kscale) a moved array would leave behind: refused. */
+int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
+    if (lattice_thermal_enabled(m))
+        return spall_error_set_key(err, SPALL_ERR_INPUT, "parallel.rebalance_every",
+                                   "distributed runs: the thermal lattice cannot migrate "
+                                   "particles yet; leave parallel.rebalance_every at 0");
     a->bl = m->bl;
     a->n_half = &m->n_half;
     a->n_particle = 1;

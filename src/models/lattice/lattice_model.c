@@ -429,6 +429,10 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
         return rc;
     if ((rc = lattice_thermal_init(m, sim, err)))
         return rc;
+    /* rest lengths that never change (no thermal expansion) as an index
+     * into their distinct values: 6 B less per half-bond, the same bits */
+    if (!lattice_thermal_enabled(m) && (rc = bond_list_compact_rest(m->bl, err)))
+        return rc;
     m->initialised = true;
     return SPALL_OK;
 }
@@ -518,12 +522,12 @@ static double lattice_stable_dt(const struct model *m, const struct sim *sim)
                 if (m->ang_b[s] == LATTICE_NO_ANGLE)
                     continue;
                 size_t sb = bl->offset[i] + m->ang_b[s];
-                double ia = 1.0 / bl->rest[s], ib = 1.0 / bl->rest[sb], g = ia + ib;
+                double ia = 1.0 / bond_rest(bl, s), ib = 1.0 / bond_rest(bl, sb), g = ia + ib;
                 om[i] += kp * g * g;
                 om[bl->partner[s]] += kp * ia * g;
                 om[bl->partner[sb]] += kp * ib * g;
                 /* area share (lattice_calib.c): half the Gershgorin row */
-                double ra = bl->rest[s], rb = bl->rest[sb];
+                double ra = bond_rest(bl, s), rb = bond_rest(bl, sb);
                 double A0 = 0.5 * ra * rb * sin(m->ang_phi0[s]);
                 double ks = m->mat_k_area[p->material[i]] / 3.0, h = 0.5 * ks / (A0 * A0);
                 om[i] += h * 0.5 * (ra + rb) * (ra + rb);

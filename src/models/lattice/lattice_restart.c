@@ -3,7 +3,8 @@
  * @brief Restart state of the lattice model: what breaks, softens and
  *        dissipates during a run.  The bonds, angles and their reference
  *        lengths and angles are rebuilt from the deck by init and the
- *        pre-cracks; only their evolving state is saved.
+ *        pre-cracks; only their evolving state is saved (the rest lengths
+ *        only where thermal expansion moves them).
  */
 #include "models/lattice/lattice_internal.h"
 
@@ -20,8 +21,10 @@ int lattice_register_state(struct model *m, struct sim *sim, struct field_state 
     struct bond_list *bl = m->bl;
     int rc = field_state_add_bond_array(fs, "lattice.bond_state", FIELD_U8, (void **)&bl->state,
                                         bl, 1, err);
-    /* thermal expansion moves the rest lengths */
-    if (!rc)
+    /* thermal expansion moves the rest lengths; otherwise they are stored
+     * compacted (bond_list_compact_rest), never change and init rebuilds
+     * them */
+    if (!rc && bl->rest)
         rc = field_state_add_bond_array(fs, "lattice.bond_rest", FIELD_F64, (void **)&bl->rest,
                                         bl, 1, err);
     if (!rc && m->angular) /* angles: not distributed (lattice_localize refuses them) */

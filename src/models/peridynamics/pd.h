@@ -69,6 +69,9 @@ void pd_patch_stiffness(struct model *m, struct sim *sim, size_t i, double th, d
 /* pd_model.c: read-only views of a built peridynamics model @p m */
 /** The family: every particle's bonds (CSR, BOND_BROKEN marks broken ones). */
 const struct bond_list *pd_bonds(const struct model *m);
+/** Rows of the compact families' table (pd_compact.c); 0 when the model keeps
+ *  per-half-bond arrays (deck bond_storage: full, or a layout it cannot compact). */
+size_t pd_compact_kinds(const struct model *m);
 /** Material @p k (input and derived constants: micromoduli, critical stretches). */
 const struct pd_material *pd_material_get(const struct model *m, int k);
 /** Mixed-mode matrix failure (pd_mixed.c) of particle @p i: *beta its mode-II

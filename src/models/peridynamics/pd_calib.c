@@ -106,10 +106,11 @@ void pd_particle_eval(const struct model *m, const struct sim *sim, size_t i, do
             l += r[d] * r[d];
         }
         l = sqrt(l);
-        double dl = l - bl->rest[s];
-        e += 0.25 * m->coef[s] * dl * dl; /* half of the bond's energy */
+        const double c = pd_coef(m, s);
+        double dl = l - pd_rest(m, s);
+        e += 0.25 * c * dl * dl; /* half of the bond's energy */
         if (stress) {
-            double g = 0.5 * m->coef[s] * dl / l; /* F = g' r, half to this particle */
+            double g = 0.5 * c * dl / l; /* F = g' r, half to this particle */
             pd_add_bond_virial(sg, dim, g, r, r0);
         }
     }

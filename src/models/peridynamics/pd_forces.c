@@ -23,7 +23,24 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* One kernel per dimension: the loop over j is the hot path. */
+/* Energy released by a half-bond that breaks in this step: what the kicks
+ * left of the bond's energy, not 1/4 coef e_{n+1}^2.  immediate: its force
+ * at x_n acted half a step (1/4 coef e_{n+1} e_n, exact); next_step: its
+ * force at x_{n+1} acts half a step more (1/4 coef e_{n+1} (e_{n+1} + de),
+ * de ~ e_{n+1} - e_n).  x_n = x - dt u; (ex, ey, ez) = x_j - x_i, e0 = l - r. */
+static inline double pd_break_energy(int dim, double ex, double ey, double ez, double r,
+                                     double e0, double coef, double dt, double *const *u,
+                                     size_t i, size_t j, bool late)
+{
+    const double px = ex - dt * (u[0][j] - u[0][i]);
+    const double py = dim > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;
+    const double pz = dim > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;
+    const double en = sqrt(px * px + py * py + pz * pz) - r;
+    return 0.25 * coef * e0 * (late ? 2.0 * e0 - en : en);
+}
+
+/* One kernel per dimension: the loop over j is the hot path (the mixed-mode
+ * threshold; PD_KERNEL_SPLIT below for the others). */
 #define PD_KERNEL(DIM, MIXED)                                                                   \
     _Pragma("omp parallel for schedule(dynamic, 256)")                                          \
     for (size_t i = 0; i < n; i++) {                                                            \
@@ -48,17 +65,7 @@
                 st[s] |= BOND_BROKEN;                                                           \
                 if (fresh && !(type[s] & 1u))                                                   \
                     fresh[s] = 1;                                                               \
-                /* what the kicks left of the bond's energy, not 1/4 coef  */                \
-                /* e_{n+1}^2: immediate, its force at x_n acted half a step */               \
-                /* (1/4 coef e_{n+1} e_n, exact); next_step, its force at   */               \
-                /* x_{n+1} acts half a step more (1/4 coef e_{n+1} (e_{n+1} */               \
-                /* + de), de ~ e_{n+1} - e_n); x_n = x - dt u                */              \
-                const double e0 = l - r;                                                        \
-                const double px = ex - dt * (u[0][j] - u[0][i]);                                \
-                const double py = DIM > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;                \
-                const double pz = DIM > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;                \
-                const double en = sqrt(px * px + py * py + pz * pz) - r;                        \
-                dd += 0.25 * coef[s] * e0 * (late ? 2.0 * e0 - en : en);                        \
+                dd += pd_break_energy(DIM, ex, ey, ez, r, l - r, coef[s], dt, u, i, j, late);   \
                 if (!late)                                                                      \
                     continue;                                                                   \
             }                                                                                   \
@@ -68,6 +75,121 @@
                 fy += g * ey;                                                                   \
             if (DIM > 2)                                                                        \
                 fz += g * ez;                                                                   \
+        }                                                                                       \
+        f[0][i] += fx;                                                                          \
+        if (DIM > 1)                                                                            \
+            f[1][i] += fy;                                                                      \
+        if (DIM > 2)                                                                            \
+            f[2][i] += fz;                                                                      \
+        diss[i] += dd;                                                                          \
+    }
+
+#define PD_CHUNK 64
+#define PD_PRE (1.0 - 1e-12)
+
+/* Pass 1 over the nb half-bonds of one chunk of particle i's row (partner,
+ * rest and coef start at the chunk) at (xi0, yi0, zi0), broken or not: the force components g e into gx, gy, gz and the
+ * elongation l - r into el.  Only 32- and 64-bit data, so that the
+ * vectoriser keeps to two doubles a vector. */
+static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0,
+                            double *const *restrict x, const int32_t *restrict partner,
+                            const double *restrict rest, const double *restrict coef,
+                            double *restrict gx, double *restrict gy, double *restrict gz,
+                            double *restrict el)
+{
+    const double *restrict x0 = x[0], *restrict x1 = x[1], *restrict x2 = x[2];
+    for (size_t k = 0; k < nb; k++) {
+        const size_t j = (size_t)partner[k];
+        const double ex = x0[j] - xi0;
+        const double ey = dim > 1 ? x1[j] - yi0 : 0.0;
+        const double ez = dim > 2 ? x2[j] - zi0 : 0.0;
+        const double l = sqrt(ex * ex + ey * ey + ez * ez);
+        const double g = coef[k] * (l - rest[k]) / l;
+        gx[k] = g * ex;
+        gy[k] = g * ey;
+        gz[k] = g * ez;
+        el[k] = l - rest[k];
+    }
+}
+
+/* pd_chunk per dimension in two versions picked once at load time by the
+ * CPU (GCC function multi-versioning, as sph_tlsph_data.h): x86-64-v3
+ * (four doubles a vector) and the build's baseline.  The file is compiled
+ * without FP contraction (ISO C mode), so both versions round alike and
+ * the results do not depend on the CPU. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
+    !defined(SPALL_NO_CLONES)
+#define PD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define PD_CLONES
+#endif
+#define PD_CHUNK_DIM(DIM)                                                                       \
+    PD_CLONES static void pd_chunk##DIM(size_t nb,        double xi0, double yi0,          \
+                                        double zi0, double *const *restrict x,                  \
+                                        const int32_t *restrict partner,                        \
+                                        const double *restrict rest,                            \
+                                        const double *restrict coef, double *restrict gx,       \
+                                        double *restrict gy, double *restrict gz,               \
+                                        double *restrict el)                                    \
+    {                                                                                           \
+        pd_chunk(DIM, nb, xi0, yi0, zi0, x, partner, rest, coef, gx, gy, gz, el);           \
+    }
+PD_CHUNK_DIM(1)
+PD_CHUNK_DIM(2)
+PD_CHUNK_DIM(3)
+
+/* The same PMB kernel without the mixed-mode threshold, split so that the
+ * compiler vectorises the costly part (gathers, sqrt, division) of each
+ * chunk of a row: pass 1 (pd_chunk) computes every half-bond with no
+ * dependence between half-bonds; pass 2, in scalar code and in the row
+ * order, skips the broken half-bonds, settles breaking with the exact test
+ * (l - r) / r > s0 where the cheap pre-test l - r > s0 r (1 - 1e-12) lets
+ * a bond through (it misses none: (l - r) / r > s0 in floating point needs
+ * l - r > s0 r (1 - 2^-53)), and adds the components.  Every operation and
+ * the order of the sums are those of PD_KERNEL: the result is bit for bit
+ * the same. */
+#define PD_KERNEL_SPLIT(DIM)                                                                    \
+    _Pragma("omp parallel for schedule(dynamic, 256)")                                          \
+    for (size_t i = 0; i < n; i++) {                                                            \
+        double fx = 0.0, fy = 0.0, fz = 0.0, dd = 0.0;                                          \
+        double gx[PD_CHUNK], gy[PD_CHUNK], gz[PD_CHUNK], el[PD_CHUNK];                          \
+        const double xi0 = x[0][i];                                                             \
+        const double yi0 = DIM > 1 ? x[1][i] : 0.0;                                             \
+        const double zi0 = DIM > 2 ? x[2][i] : 0.0;                                             \
+        for (size_t s0 = off[i]; s0 < off[i + 1]; s0 += PD_CHUNK) {                             \
+            const size_t nb = off[i + 1] - s0 < PD_CHUNK ? off[i + 1] - s0 : PD_CHUNK;          \
+            /* compact families: the chunk's lengths and coefficients from the table */  \
+            double rb[PD_CHUNK], cb[PD_CHUNK];                                                  \
+            const double *rr = rest ? rest + s0 : rb, *cc = coef ? coef + s0 : cb;              \
+            for (size_t k = 0; kind && k < nb; k++) {                                           \
+                rb[k] = k_rest[kind[s0 + k]];                                                   \
+                cb[k] = k_coef[kind[s0 + k]];                                                   \
+            }                                                                                   \
+            pd_chunk##DIM(nb, xi0, yi0, zi0, x, partner + s0, rr, cc, gx, gy, gz, el);          \
+            for (size_t k = 0; k < nb; k++) {                                                   \
+                const size_t s = s0 + k;                                                        \
+                if (st[s] & BOND_BROKEN)                                                        \
+                    continue;                                                                   \
+                const unsigned ty = kind ? k_type[kind[s]] : type[s];                           \
+                if (el[k] > s0tab[ty] * rr[k] * PD_PRE && el[k] / rr[k] > s0tab[ty]) {          \
+                    const size_t j = (size_t)partner[s];                                        \
+                    const double ex = x[0][j] - xi0;                                            \
+                    const double ey = DIM > 1 ? x[1][j] - yi0 : 0.0;                            \
+                    const double ez = DIM > 2 ? x[2][j] - zi0 : 0.0;                            \
+                    st[s] |= BOND_BROKEN;                                                       \
+                    if (fresh && !(ty & 1u))                                                    \
+                        fresh[s] = 1;                                                           \
+                    dd += pd_break_energy(DIM, ex, ey, ez, rr[k], el[k], cc[k], dt, u, i, j,    \
+                                          late);                                                \
+                    if (!late)                                                                  \
+                        continue;                                                               \
+                }                                                                               \
+                fx += gx[k];                                                                    \
+                if (DIM > 1)                                                                    \
+                    fy += gy[k];                                                                \
+                if (DIM > 2)                                                                    \
+                    fz += gz[k];                                                                \
+            }                                                                                   \
         }                                                                                       \
         f[0][i] += fx;                                                                          \
         if (DIM > 1)                                                                            \
@@ -89,6 +211,10 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     const uint8_t *type = bl->type;
     uint8_t *st = bl->state;
     const double *coef = m->coef;
+    /* compact families (pd_compact.c): rest, type and coef are NULL */
+    const uint16_t *kind = m->kind;
+    const double *k_rest = m->k_rest, *k_coef = m->k_coef;
+    const uint8_t *k_type = m->k_type;
     const double *s0tab = m->s0_tab;
     double *diss = m->diss;
     double *const *x = p->x;
@@ -117,18 +243,18 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     }
     switch (p->dim) {
     case 1:
-        PD_KERNEL(1, 0)
+        PD_KERNEL_SPLIT(1)
         break;
     case 2:
         if (m->mixed) {
             pd_mixed_update(m, sim);
             PD_KERNEL(2, 1)
         } else {
-            PD_KERNEL(2, 0)
+            PD_KERNEL_SPLIT(2)
         }
         break;
     default:
-        PD_KERNEL(3, 0)
+        PD_KERNEL_SPLIT(3)
         break;
     }
     if (m->opt.quasi == PD_QS_ADR)
@@ -188,7 +314,7 @@ double pd_stable_dt(const struct model *m, const struct sim *sim)
         double k = 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
             if (!(bl->state[s] & BOND_BROKEN))
-                k += m->coef[s];
+                k += pd_coef(m, s);
         w2 = fmax(w2, k / p->mass[i]);
     }
     return w2 > 0.0 ? sqrt(2.0 / w2) : INFINITY;

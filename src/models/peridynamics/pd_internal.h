@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/bond_list.h"
 #include "core/mathconst.h"
 #include "models/peridynamics/pd.h"
 #include "models/peridynamics/pd_lps.h"
@@ -45,6 +46,7 @@ struct pd_options {
     double horizon_factor;   /**< m: delta = m dx (PMB) */
     bool partial_volume;     /**< beta_ij for bonds cut by the horizon */
     bool break_late;         /**< a bond past s0 acts once more (PDLAMMPS order) */
+    bool full_bonds;         /**< bond_storage full: no compact families (pd_compact.c) */
     bool family_at_delta;    /**< family ends at delta, not delta + dx/2 (PDLAMMPS rule) */
     bool surface_correction; /**< energy method (Madenci & Oterkus 2014 sec. 4.2) */
     enum pd_quasi quasi;
@@ -74,7 +76,14 @@ struct model {
     double s0_tab[256];      /**< critical stretch per bond type; INFINITY: never breaks */
 
     struct bond_list *bl;    /**< family (type = (ma*n_mat+mb)*2 + fiber) */
-    double *coef;            /**< per half-bond: c V_i V_j beta G / xi [N/m] */
+    double *coef;            /**< per half-bond: c V_i V_j beta G / xi [N/m]; NULL when compact */
+    /* compact families (pd_compact.c): bl->rest, bl->type and coef replaced by a
+     * 16-bit row per half-bond of a table of the distinct triples; read them
+     * through pd_rest, pd_coef, pd_type */
+    uint16_t *kind;          /**< per half-bond: row of the table, or NULL (arrays kept) */
+    double *k_rest, *k_coef; /**< per row: reference length, coefficient */
+    uint8_t *k_type;         /**< per row: bond type */
+    size_t n_kind;
     size_t *n_init;          /**< per particle: bonds at t = 0 after pre-cracks (all types) */
     size_t *n_init_f;        /**< fiber bonds at t = 0 */
     double *diss;            /**< per particle: energy released by its broken bonds [J] */
@@ -98,6 +107,30 @@ struct model {
     bool initialised;
 };
 
+/** Reference length, coefficient and type of half-bond @p s in either layout. */
+static inline double pd_rest(const struct model *m, size_t s)
+{
+    return m->kind ? m->k_rest[m->kind[s]] : m->bl->rest[s];
+}
+static inline double pd_coef(const struct model *m, size_t s)
+{
+    return m->kind ? m->k_coef[m->kind[s]] : m->coef[s];
+}
+static inline unsigned pd_type(const struct model *m, size_t s)
+{
+    return m->kind ? m->k_type[m->kind[s]] : m->bl->type[s];
+}
+
+/* pd_compact.c */
+/** Whether the bond-based kernel may drop the per-half-bond arrays. */
+bool pd_compact_eligible(const struct model *m);
+/** Switch to compact families where eligible and the table fits (else a no-op);
+ *  called once the coefficients, types and thresholds are final. */
+int pd_compact(struct model *m, struct spall_error *err);
+/** Bytes of the model's own arrays (families, coefficients, per-particle state)
+ *  for @p n particles: the memory report of pd_describe. */
+size_t pd_model_bytes(const struct model *m, size_t n);
+
 /* pd_interface.c */
 struct deck_node;
 /** Parse `model.interfaces` (names resolved at init). */
@@ -112,7 +145,7 @@ struct model_energy;
 int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
 struct par_model_arrays;
-int pd_migrate_arrays(struct model *m, struct par_model_arrays *a);
+int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 /** The history counts over all ranks and the damage sum in gid order. */
 void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, size_t *all,
                     size_t *nh, double *dsum);

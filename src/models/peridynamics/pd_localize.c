@@ -68,15 +68,18 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
     if (rc)
         return rc;
-    double *coef = array_gather(m->coef, sizeof *coef, oh, nh);
+    /* per half-bond: the coefficients, or the compact families' table rows */
+    double *coef = m->coef ? array_gather(m->coef, sizeof *coef, oh, nh) : NULL;
+    uint16_t *kind = m->kind ? array_gather(m->kind, sizeof *kind, oh, nh) : NULL;
     size_t *n_init = array_gather(m->n_init, sizeof *n_init, keep, n_keep);
     size_t *n_init_f = array_gather(m->n_init_f, sizeof *n_init_f, keep, n_keep);
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
     if (!rc && m->opt.lps)
         rc = lps_localize(&m->lps, keep, n_keep, oh, nh, err);
     free(oh);
-    if (rc || !coef || !n_init || !n_init_f || !diss) {
+    if (rc || (m->coef && !coef) || (m->kind && !kind) || !n_init || !n_init_f || !diss) {
         free(coef);
+        free(kind);
         free(n_init);
         free(n_init_f);
         free(diss);
@@ -84,6 +87,8 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     }
     free(m->coef);
     m->coef = coef;
+    free(m->kind);
+    m->kind = kind;
     free(m->n_init);
     m->n_init = n_init;
     free(m->n_init_f);
@@ -122,9 +127,12 @@ void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, s
 
 /* model_ops.migrate_arrays: the family rows with their pair coefficients,
  * the initial bond counts (damage = 1 - intact / initial) and the
- * dissipated energy travel with a particle. */
-int pd_migrate_arrays(struct model *m, struct par_model_arrays *a)
+ * dissipated energy travel with a particle; with LPS also its weighted
+ * volume, dilatation and coefficients, and the influence of each half-bond
+ * (a ghost's alpha, bcoef and theta enter its partners' forces). */
+int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
+    (void)err; /* every option that distributes can migrate */
     a->bl = m->bl;
     a->n_half = &m->n_half;
     a->n_particle = 3;
@@ -134,8 +142,27 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a)
     a->particle_size[1] = sizeof *m->n_init_f;
     a->particle[2] = (void **)&m->diss;
     a->particle_size[2] = sizeof *m->diss;
-    a->n_bond = 1;
-    a->bond[0] = (void **)&m->coef;
-    a->bond_size[0] = sizeof *m->coef;
+    /* the pair coefficient per half-bond, or in compact storage the row of
+     * the (length, coefficient, type) table (pd_compact.c; the table is
+     * built from the whole body at set-up, the same on every rank) */
+    a->n_bond = 0;
+    if (m->coef) {
+        a->bond[a->n_bond] = (void **)&m->coef;
+        a->bond_size[a->n_bond++] = sizeof *m->coef;
+    }
+    if (m->kind) {
+        a->bond[a->n_bond] = (void **)&m->kind;
+        a->bond_size[a->n_bond++] = sizeof *m->kind;
+    }
+    if (m->opt.lps) {
+        struct pd_lps *L = &m->lps;
+        double **pp[4] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef};
+        for (int k = 0; k < 4; k++) {
+            a->particle[a->n_particle] = (void **)pp[k];
+            a->particle_size[a->n_particle++] = sizeof(double);
+        }
+        a->bond[a->n_bond] = (void **)&L->ob;
+        a->bond_size[a->n_bond++] = sizeof *L->ob;
+    }
     return SPALL_OK;
 }

@@ -25,6 +25,11 @@
  *                               s0 carries no force from that step on;
  *                               next_step: it acts in the step it breaks
  *                               (PDLAMMPS order)
+ *     bond_storage: compact | full   compact (default): lengths, coefficients
+ *                               and types of the bond-based kernel in a table
+ *                               of the distinct ones, a 16-bit row per
+ *                               half-bond (pd_compact.c); full: one of each
+ *                               per half-bond.  Same results bit for bit.
  *     surface_correction: bool  pmb: energy method of Madenci & Oterkus 2014
  *                               sec. 4.2 (default false)
  *     quasi_static: off | adr   adr: adaptive dynamic relaxation damping
@@ -96,6 +101,10 @@ static void pd_destroy(struct model **pm)
     free(m->ifc);
     bond_list_destroy(&m->bl);
     free(m->coef);
+    free(m->kind);
+    free(m->k_rest);
+    free(m->k_coef);
+    free(m->k_type);
     free(m->n_init);
     free(m->n_init_f);
     free(m->diss);
@@ -119,13 +128,14 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     static const char *const fm[] = {"lattice", "angular", NULL};
     static const char *const pvr[] = {"linear", "lammps", NULL};
     static const char *const bo[] = {"immediate", "next_step", NULL};
+    static const char *const bst[] = {"compact", "full", NULL};
     static const char *const mmo[] = {"bk", "off", NULL};
     static const char *const mco[] = {"bond", "fiber_plane", NULL};
     static const char *const fmo[] = {"bond", "lps", "eps", NULL};
     static const char *const inf[] = {"one", "inverse", NULL};
     static const char *const icor[] = {"none", "cubic", NULL};
     static const char *const keys[] = {"type", "variant", "horizon_factor", "plane",
-                                       "partial_volume", "partial_volume_rule", "break_order", "surface_correction", "quasi_static",
+                                       "partial_volume", "partial_volume_rule", "break_order", "bond_storage", "surface_correction", "quasi_static",
                                        "fiber_model", "fiber_power", "mixed_mode", "bk_exponent", "matrix_crack",
                                        "formulation", "influence", "interfaces",
                                        "influence_correction", NULL};
@@ -141,6 +151,7 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     m->opt.bk_exponent = 2.0;
     if (params) {
         int v = 0, pl = 0, q = 0, f = 0, pr = 0, b = 0, mmode = 0, mc = 0, fo = 0, in = 0, ic = 0;
+        int bs = 0;
         int rc;
         long pw = 32;
         if ((rc = deck_enum(params, "variant", false, variants, &v, err)) ||
@@ -149,6 +160,7 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             (rc = deck_bool(params, "partial_volume", false, &m->opt.partial_volume, err)) ||
             (rc = deck_enum(params, "partial_volume_rule", false, pvr, &pr, err)) ||
             (rc = deck_enum(params, "break_order", false, bo, &b, err)) ||
+            (rc = deck_enum(params, "bond_storage", false, bst, &bs, err)) ||
             (rc = deck_bool(params, "surface_correction", false, &m->opt.surface_correction,
                             err)) ||
             (rc = deck_enum(params, "quasi_static", false, qs, &q, err)) ||
@@ -173,6 +185,7 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
         m->opt.fiber_plane = mc == 1;
         m->opt.family_at_delta = pr == 1;
         m->opt.break_late = b == 1;
+        m->opt.full_bonds = bs == 1;
         m->opt.lps = fo >= 1; /* eps is lps with a plastic deviatoric state */
         m->opt.eps = fo == 2;
         m->lps.influence = (enum pd_influence)in;
@@ -458,6 +471,8 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
             m->n_init_f[i] += bl->type[s] & 1u;
     }
+    if ((rc = pd_compact(m, err)))
+        return rc;
     m->initialised = true;
     return SPALL_OK;
 }
@@ -483,7 +498,7 @@ static void damage_of(const struct model *m, size_t n, double *out, int which)
     for (size_t i = 0; i < n; i++) {
         size_t intact = 0, init;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
-            int fib = bl->type[s] & 1u;
+            int fib = pd_type(m, s) & 1u;
             if ((which == 1 && !fib) || (which == 2 && fib))
                 continue;
             intact += !(bl->state[s] & BOND_BROKEN);
@@ -627,6 +642,14 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
                       : sim->dim == 3 ? "3D" : "1D",
         m->opt.partial_volume ? "on" : "off", m->opt.surface_correction ? "on" : "off",
         m->opt.quasi == PD_QS_ADR ? "adr" : "off", m->bl ? bond_list_count(m->bl) : 0);
+    if (m->bl) { /* the allocations themselves: the memory target of issue 25 */
+        const size_t n = sim->p->n_owned, nb = pd_model_bytes(m, n);
+        PUT("  model arrays: %zu B, %.0f B/particle (%s families%s)\n", nb,
+            n ? (double)nb / (double)n : 0.0, m->kind ? "compact" : "full",
+            m->kind ? "" : pd_compact_eligible(m) ? ": over 65535 distinct bonds" : "");
+        if (m->kind)
+            PUT("  compact families: %zu distinct (length, coefficient, type)\n", m->n_kind);
+    }
     for (size_t k = 0; k < m->n_mat; k++) {
         const struct pd_material *mt = &m->mat[k];
         if (mt->ortho)
@@ -700,6 +723,11 @@ const struct model_ops peridynamics_model_ops = {
 const struct bond_list *pd_bonds(const struct model *m)
 {
     return m->bl;
+}
+
+size_t pd_compact_kinds(const struct model *m)
+{
+    return m->kind ? m->n_kind : 0;
 }
 
 const struct pd_material *pd_material_get(const struct model *m, int k)
