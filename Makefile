@@ -22,6 +22,7 @@ demo: build
 
 # Whole test suite: optimised build, then an AddressSanitizer + UBSan build.
 # The ctest label `client` opens the output in ParaView (pvbatch) and h5py;
+# The label `lammps` compares the state-based PD with Debian's LAMMPS.
 # install-test-deps.sh installs those clients when missing (not `make demo`).
 check: build
 	@bash scripts/install-test-deps.sh

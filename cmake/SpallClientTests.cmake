@@ -29,7 +29,8 @@ if(SPALL_TESTS)
   set(SPALL_CLIENT_COLOR_epoxy_holes strain_energy)
   set(SPALL_CLIENT_COLOR_sph_taylor_3d pressure)
   set(SPALL_CLIENT_COLOR_impact_vinylester velocity)
-  foreach(run epoxy_holes sph_taylor_3d impact_vinylester)
+  set(SPALL_CLIENT_COLOR_sph_taylor_2d deviatoric_stress)
+  foreach(run epoxy_holes sph_taylor_3d impact_vinylester sph_taylor_2d)
     foreach(reader default legacy)
       add_test(NAME client_pv_${run}_${reader}
                COMMAND bash ${SPALL_CLIENT_SRC}/pvbatch.sh ${SPALL_CLIENT_SRC}/pv_check.py
@@ -40,13 +41,23 @@ if(SPALL_TESTS)
                            RESOURCE_LOCK spall_xvfb)
     endforeach()
   endforeach()
+  # bonds as line cells (bonds.xdmf) of a cracked lattice plate
+  foreach(reader default legacy)
+    add_test(NAME client_pv_bonds_${reader}
+             COMMAND bash ${SPALL_CLIENT_SRC}/pvbatch.sh ${SPALL_CLIENT_SRC}/pv_bonds.py
+                     --dir ${SPALL_CLIENT_DIR}/runs/plate_bonds --reader ${reader}
+                     --png ${SPALL_CLIENT_DIR}/plate_bonds_${reader}.png)
+    set_tests_properties(client_pv_bonds_${reader} PROPERTIES FIXTURES_REQUIRED client_runs
+                         LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300
+                         RESOURCE_LOCK spall_xvfb)
+  endforeach()
   add_test(NAME client_pv_no_connectivity
            COMMAND bash ${SPALL_CLIENT_SRC}/no_connectivity.sh ${CMAKE_SOURCE_DIR}
                    ${SPALL_CLIENT_DIR}/runs ${SPALL_CLIENT_DIR} ${SPALL_DEBIAN_PYTHON3})
   set_tests_properties(client_pv_no_connectivity PROPERTIES FIXTURES_REQUIRED client_runs
                        LABELS "client;no_asan" SKIP_RETURN_CODE 77 TIMEOUT 300
                            RESOURCE_LOCK spall_xvfb)
-  foreach(run epoxy_holes sph_taylor_3d impact_vinylester)
+  foreach(run epoxy_holes sph_taylor_3d impact_vinylester sph_taylor_2d)
     add_test(NAME client_h5py_${run}
              COMMAND bash -c "${SPALL_DEBIAN_PYTHON3} -c 'import h5py' 2>/dev/null || { echo 'client test skipped: python3-h5py not installed'; exit 77; }; exec ${SPALL_DEBIAN_PYTHON3} ${SPALL_CLIENT_SRC}/h5_user.py ${SPALL_CLIENT_DIR}/runs/${run}")
     set_tests_properties(client_h5py_${run} PROPERTIES FIXTURES_REQUIRED client_runs

@@ -105,6 +105,10 @@ install(TARGETS spall_shared spall_static EXPORT spallTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/include/spall DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.h")
+# the example program of docs/api.md, to be copied and built by a user
+install(FILES ${CMAKE_SOURCE_DIR}/examples/api/plate.c ${CMAKE_SOURCE_DIR}/examples/api/plate.yaml
+              ${CMAKE_SOURCE_DIR}/examples/api/Makefile ${CMAKE_SOURCE_DIR}/examples/api/CMakeLists.txt
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/spall/examples/api)
 
 set(SPALL_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/spall)
 install(EXPORT spallTargets NAMESPACE spall:: DESTINATION ${SPALL_CMAKE_DIR})

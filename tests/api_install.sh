@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # ctest api_install (cmake/SpallInstall.cmake): install the build into a
 # scratch prefix, then build examples/api against the installed libspall
-# only (a copy of the folder, outside the source tree) in three ways -
+# only (a copy of the installed share/spall/examples/api) in three ways -
 # find_package(spall) with spall::spall (shared) and spall::spall_static,
-# and the Makefile through pkg-config - and run each on the example deck.
+# and the Makefile through pkg-config - and run each on the example deck;
+# the pkg-config build also sets the same plate up by C calls without a
+# deck (plate --calls, include/spall/setup.h): the same history is printed.
 # Usage: api_install.sh BUILD_DIR SOURCE_DIR CMAKE
 set -euo pipefail
 build="$1"; src="$2"; cmake="${3:-cmake}"
@@ -13,11 +15,15 @@ prefix="$tmp/prefix"
 
 "$cmake" --install "$build" --prefix "$prefix" >"$tmp/install.log"
 for f in bin/spall lib/libspall.a lib/libspall.so include/spall/spall.h include/spall/sim.h \
-         include/spall/error.h lib/pkgconfig/spall.pc lib/cmake/spall/spallConfig.cmake; do
+         include/spall/error.h include/spall/setup.h lib/pkgconfig/spall.pc \
+         lib/cmake/spall/spallConfig.cmake share/spall/examples/api/plate.c \
+         share/spall/examples/api/plate.yaml share/spall/examples/api/Makefile \
+         share/spall/examples/api/CMakeLists.txt; do
     [ -e "$prefix/$f" ] || { echo "api_install: $prefix/$f not installed"; exit 1; }
 done
 # the installed headers alone compile (no source-tree include path)
 echo '#include <spall/sim.h>
+#include <spall/setup.h>
 #include <spall/spall.h>
 #include <spall/penetration.h>
 int main(void) { return 0; }' >"$tmp/headers.c"
@@ -30,11 +36,11 @@ if nm -D --defined-only "$prefix/lib/libspall.so" | awk '{print $3}' | grep -v -
 fi
 "$prefix/bin/spall" --version >/dev/null
 
-check_run() { # $1: label, $2: program; runs it in a fresh directory
+check_run() { # $1: label, $2: program, $3: deck or --calls; runs it in a fresh directory
     local dir="$tmp/run_$1"
     mkdir -p "$dir"
-    cp "$src/examples/api/plate.yaml" "$dir/"
-    (cd "$dir" && "$2" plate.yaml frames) >"$dir/out.txt" 2>&1 || {
+    cp "$prefix/share/spall/examples/api/plate.yaml" "$dir/"
+    (cd "$dir" && "$2" "${3:-plate.yaml}" frames) >"$dir/out.txt" 2>&1 || {
         echo "api_install: $1 build failed to run:"; cat "$dir/out.txt"; exit 1; }
     cat "$dir/out.txt"
     grep -q "^frames written: 16$" "$dir/out.txt" || { echo "api_install: $1: expected 16 frames"; exit 1; }
@@ -46,12 +52,12 @@ check_run() { # $1: label, $2: program; runs it in a fresh directory
     cp "$dir/out.txt" "$tmp/$1.txt"
 }
 
-cp -r "$src/examples/api" "$tmp/example"
-rm -rf "$tmp/example/build" "$tmp/example/plate"
+cp -r "$prefix/share/spall/examples/api" "$tmp/example"
 
 echo "== pkg-config: $(PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --cflags --libs spall)"
 make -s -C "$tmp/example" PKG_CONFIG_PATH="$prefix/lib/pkgconfig" plate
 LD_LIBRARY_PATH="$prefix/lib" check_run pkgconfig "$tmp/example/plate"
+LD_LIBRARY_PATH="$prefix/lib" check_run calls "$tmp/example/plate" --calls
 # linked against the installed libspall.so, not some other copy
 # (grep reads all of ldd's output: with -q, pipefail saw SIGPIPE in ldd once the
 # MPI build made the list long)
@@ -72,4 +78,6 @@ fi
 # same deck, same library code: the three builds print the same numbers
 cmp "$tmp/pkgconfig.txt" "$tmp/cmake_shared.txt"
 cmp "$tmp/pkgconfig.txt" "$tmp/cmake_static.txt"
+# set up by calls, no deck: the same simulation, the same history
+cmp "$tmp/pkgconfig.txt" "$tmp/calls.txt"
 echo "api_install: OK"

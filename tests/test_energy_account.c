@@ -15,7 +15,9 @@
  *    gradient of the booked contact energy (central difference), and the
  *    particles receive the opposite force (Newton's third law);
  *  - body-body contact (Hertz-like exponent): the contact force on a body is
- *    minus the gradient of the booked contact energy.
+ *    minus the gradient of the booked contact energy;
+ *  - the damping and gravity work of a long chain (summed over threads in
+ *    exact partial sums) is the same bit for bit on 1 and 2 threads.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -31,7 +33,9 @@
 #include "core/rigid.h"
 
 #include <float.h>
+#include <omp.h>
 #include <stdio.h>
+#include <string.h>
 
 
 /* 1D lattice chain of 11 particles, 1 mm apart (c = sqrt(E/rho) = 1000 m/s,
@@ -109,6 +113,42 @@ static void test_damped_translation(void **state)
     assert_near(s->energy.kinetic + s->energy.damping, ke0, 1.0e-3 * ke0);
     assert_true(fabs(s->energy.balance) < 1.0e-3 * ke0);
     sim_destroy(&s);
+}
+
+/* Damping and gravity work of a 6001-particle chain (above the OpenMP
+ * threshold) after 20 steps on @p threads threads. */
+static void body_work_on(int threads, double out[2])
+{
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    struct sim *s = test_build_ok(
+        "model: {type: lattice, law: linear}\n"
+        "materials: {m: {density: 1000, youngs_modulus: 1.0e9, failure_strain: 0.5}}\n"
+        "lattice: {type: chain, spacing: 1.0e-3}\n"
+        "body: {geometry: {box: {min: [-0.0005], max: [6.0005]}}, material: m}\n"
+        "groups: {end: {box: {min: [-1], max: [0.0005]}}}\n"
+        "boundary_conditions: [{group: end, type: velocity, components: [x], value: 3.0}]\n"
+        "initial_velocity: [{group: all, value: [1.7]}]\n"
+        "damping: 3.3e4\ngravity: [-9.8e3]\n"
+        "run: {dt: 1.0e-8, steps: 20}\n");
+    assert_true(s->p->n_owned > 6000);
+    steps(s, 20);
+    out[0] = s->energy.damping;
+    out[1] = s->energy.external;
+    sim_destroy(&s);
+    omp_set_num_threads(saved);
+}
+
+static void test_body_work_thread_independent(void **state)
+{
+    (void)state;
+    double one[2], two[2];
+    body_work_on(1, one);
+    body_work_on(2, two);
+    print_message("damping %.17g / %.17g, external %.17g / %.17g\n", one[0], two[0], one[1],
+                  two[1]);
+    assert_true(one[0] > 0.0 && one[1] != 0.0);
+    assert_memory_equal(one, two, sizeof one);
 }
 
 /* Chain falling from rest under gravity g: velocity Verlet integrates a
@@ -365,6 +405,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_damped_translation),
         cmocka_unit_test(test_free_fall),
+        cmocka_unit_test(test_body_work_thread_independent),
         cmocka_unit_test(test_pulled_chain_reactions),
         cmocka_unit_test(test_penalty_force_is_energy_gradient),
         cmocka_unit_test(test_contact_force_is_energy_gradient),

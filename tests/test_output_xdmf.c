@@ -238,6 +238,8 @@ static void test_bodies_index(void **state)
     struct spall_error err = {0};
     struct field_writer *w = NULL;
     const char *names[] = {"velocity", "stress"};
+    for (size_t i = 0; i < s->p->n_owned; i++) /* 0.1 % strain along x: a stress to write */
+        s->p->x[0][i] *= 1.001;
     assert_int_equal(field_writer_create(&w, dir, s, names, 2, &err), SPALL_OK);
     assert_int_equal(field_writer_write(w, s, &err), SPALL_OK);
     assert_int_equal(field_writer_write(w, s, &err), SPALL_OK);
@@ -248,9 +250,36 @@ static void test_bodies_index(void **state)
     assert_non_null(strstr(fields, "<Attribute Name=\"velocity\" AttributeType=\"Matrix\" Center=\"Node\">\n"
                                    "          <Information Name=\"unit\" Value=\"m/s\"/>\n"
                                    "          <Information Name=\"components\" Value=\"x y\"/>\n"));
-    assert_non_null(strstr(fields, "<Attribute Name=\"stress\" AttributeType=\"Matrix\" Center=\"Node\">\n"
+    /* the 2D symmetric tensor widened to a Tensor6 (xdmf_file_ncomp), so
+     * that ParaView names its components */
+    assert_non_null(strstr(fields, "<Attribute Name=\"stress\" AttributeType=\"Tensor6\" Center=\"Node\">\n"
                                    "          <Information Name=\"unit\" Value=\"Pa\"/>\n"
-                                   "          <Information Name=\"components\" Value=\"xx yy xy\"/>\n"));
+                                   "          <Information Name=\"components\" Value=\"xx yy zz xy yz xz\"/>\n"));
+    {
+        char h5[96];
+        snprintf(h5, sizeof h5, "%s/fields_000000.h5", dir);
+        double *data = NULL;
+        size_t n = 0, nc = 0;
+        assert_int_equal(field_frame_read(h5, "stress", &data, &n, &nc, NULL, &err), SPALL_OK);
+        const struct field_desc *f = field_registry_find(s->fields, "stress");
+        assert_non_null(f);
+        assert_int_equal(f->ncomp, 3);
+        assert_int_equal(nc, 6);
+        assert_int_equal(n, s->p->n_owned);
+        double *g = malloc(n * 3 * sizeof *g);
+        assert_non_null(g);
+        field_gather_f64(f, n, g);
+        double smax = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            const double *r = data + 6 * i;
+            assert_true(r[0] == g[3 * i] && r[1] == g[3 * i + 1] && r[3] == g[3 * i + 2]);
+            assert_true(r[2] == 0.0 && r[4] == 0.0 && r[5] == 0.0);
+            smax = fmax(smax, fabs(g[3 * i]) + fabs(g[3 * i + 1]) + fabs(g[3 * i + 2]));
+        }
+        assert_true(smax > 0.0);
+        free(g);
+        free(data);
+    }
     assert_int_equal(count(bodies, "CollectionType=\"Spatial\""), 2);
     assert_int_equal(count(bodies, "<Grid Name=\"impactor_"), 8);
     assert_int_equal(count(bodies, "<Time Value=\"0\"/>"), 2);

@@ -82,6 +82,11 @@ static const struct vcase cases[] = {
      VKIND_VALIDATION, VGATE_QUICK, NULL, pd_case_lamina_b},
     {"pd-lps-patch", "LPS patch test: E and nu for nu = 0.1, 0.3, 0.45, 2D and 3D",
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_patch},
+    {"pd-lps-surface", "LPS surface correction: E and nu of small bodies with free surfaces",
+     VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_surface},
+    {"pd-interface-crack", "LPS plate of two materials: the crack runs along the weaker "
+     "interface (45 deg)",
+     VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_interface_crack},
     {"pd-lps-waves", "LPS P-wave speed in a 2D plate (nu = 0.3) vs analytical",
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_waves},
     {"pd-kalthoff-lps", "Kalthoff-Winkler plate with LPS (plane strain, nu = 0.3): crack angle "

@@ -30,6 +30,10 @@ int pd_case_kalthoff(struct vreport *r, struct spall_error *err);
 
 /** "pd-lps-patch": LPS E and nu for nu = 0.1, 0.3, 0.45, 2D and 3D (pd_lps_cases.c). */
 int pd_case_lps_patch(struct vreport *r, struct spall_error *err);
+/** "pd-lps-surface": E and nu of small bodies with the LPS surface correction (pd_lps_surface.c). */
+int pd_case_lps_surface(struct vreport *r, struct spall_error *err);
+/** "pd-interface-crack": a crack along the weaker interface (pd_interface_crack.c). */
+int pd_case_interface_crack(struct vreport *r, struct spall_error *err);
 /** "pd-lps-waves": LPS P-wave speed in a 2D plate (pd_lps_cases.c). */
 int pd_case_lps_waves(struct vreport *r, struct spall_error *err);
 /** "pd-bimaterial-bar": 1D two-material bar, T and R against the impedance formula. */

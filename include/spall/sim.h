@@ -9,7 +9,8 @@
  * message) with one line naming the cause, and err->key with the deck key it
  * is about.  The library never exits and prints nothing.  Units are SI.
  * The deck keys are those of `spall run` (docs/decks.md); docs/api.md has a
- * walk-through and examples/api/ a program using this header.
+ * walk-through and examples/api/ a program using this header.  Without a
+ * deck: spall/setup.h sets the same keys by C calls (spall_sim_create_setup).
  *
  * Threads: OpenMP; the caller sets the count (OMP_NUM_THREADS or
  * omp_set_num_threads) - the deck's run.threads applies to `spall run` only.

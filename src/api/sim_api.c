@@ -1,6 +1,7 @@
 /**
  * @file sim_api.c
- * @brief The public C API of include/spall/sim.h: a thin layer over the deck
+ * @brief The public C API of include/spall/sim.h (and spall_sim_create_setup
+ *        of include/spall/setup.h): a thin layer over the deck
  *        reader (io/deck.c, io/deck_build.c), the engine (core/sim.h), the
  *        field registry (core/fields.h) and the frame writer (io/output.h).
  *
@@ -9,6 +10,9 @@
  * output.field_interval, else output.field_every, else 20 frames over the run.
  */
 #include "spall/sim.h"
+#include "spall/setup.h"
+
+#include "api/setup_internal.h"
 
 #include "core/fields.h"
 #include "core/model.h"
@@ -369,4 +373,19 @@ int spall_sim_write_frame(struct spall_sim *s, struct spall_error *err)
 size_t spall_sim_frames(const struct spall_sim *s)
 {
     return s ? field_writer_frames(s->fw) : 0;
+}
+
+/* ---------------------------------------------------------------- set-up by calls */
+
+int spall_sim_create_setup(struct spall_sim **out, const struct spall_setup *setup,
+                           struct spall_error *err)
+{
+    if (!out)
+        return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_create_setup: out is NULL");
+    *out = NULL;
+    if (!setup)
+        return spall_error_set(err, SPALL_ERR_INPUT, "spall_sim_create_setup: setup is NULL");
+    struct deck *d = NULL;
+    int rc = setup_deck_copy(setup, &d, err);
+    return rc ? rc : create_from_deck(out, d, err);
 }

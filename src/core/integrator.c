@@ -21,9 +21,11 @@
  */
 #include "core/bc_work.h"
 #include "core/contact_particles.h"
+#include "core/exact_sum.h"
 #include "core/fields.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/comm.h"
+#include "core/parallel/psum.h"
 #include "core/parallel/step.h"
 #include "core/particles.h"
 #include "core/rigid.h"
@@ -93,31 +95,60 @@ static void apply_body_forces(struct sim *s)
     }
 }
 
-/* Energy removed by damping and work of gravity over the drift dx = v dt. */
+/* Energy removed by damping and work of gravity over the drift dx = v dt.
+ * Every sum of the energy account is exact (core/exact_sum.h): the same
+ * value, rounded once, for any order, thread count and rank count. */
 static void account_body_work(struct sim *s, double dt)
 {
     if (s->damping == 0.0 && s->gravity[0] == 0.0 && s->gravity[1] == 0.0 && s->gravity[2] == 0.0)
         return;
-    if (s->par) { /* distributed: the same sums in the serial order */
-        par_body_work(s, dt);
-        return;
-    }
     const struct particles *p = s->p;
-    double damp = 0.0, grav = 0.0;
-    for (size_t i = 0; i < p->n_owned; i++)
-        for (int d = 0; d < s->dim; d++) {
-            double v = p->v[d][i];
-            damp += s->damping * p->mass[i] * v * v * dt;
-            grav += p->mass[i] * s->gravity[d] * v * dt;
+    const size_t n = p->n_owned;
+    const int dim = s->dim;
+    const double c = s->damping, *g = s->gravity;
+    const bool grav = g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0;
+    struct xsum acc[2];
+    xsum_init(&acc[0]);
+    xsum_init(&acc[1]);
+    /* one term per particle and sum (adding zeros would not change an exact
+     * sum); exact partial sums per thread, whose merge does not depend on
+     * the thread count or on which thread merges first */
+#pragma omp parallel if (n > SPALL_OMP_MIN_PARTICLES)
+    {
+        struct xsum part[2];
+        xsum_init(&part[0]);
+        xsum_init(&part[1]);
+#pragma omp for schedule(static) nowait
+        for (size_t i = 0; i < n; i++) {
+            double v2 = 0.0, gv = 0.0;
+            for (int d = 0; d < dim; d++) {
+                const double v = p->v[d][i];
+                v2 += v * v;
+                gv += g[d] * v;
+            }
+            if (c != 0.0)
+                xsum_add(&part[0], c * p->mass[i] * v2 * dt);
+            if (grav)
+                xsum_add(&part[1], p->mass[i] * gv * dt);
         }
-    s->energy.damping += damp;
-    s->energy.external += grav;
+#pragma omp critical(spall_exact_sum)
+        {
+            xsum_merge(&acc[0], &part[0]);
+            xsum_merge(&acc[1], &part[1]);
+        }
+    }
+    double out[2];
+    par_xsum_finish(s, acc, 2, out); /* over all ranks when distributed */
+    s->energy.damping += out[0];
+    s->energy.external += out[1];
 }
 
 /* Set prescribed velocity components at time t (the previous imposition was
  * at @p t_prev); with @p record (the second half kick), store the force each
  * BC needed to impose them (m dv/(dt/2) - nothing else), i.e. the reaction,
- * and accumulate the constraint's work (core/bc_work.h). */
+ * and accumulate the constraint's work (core/bc_work.h).  Distributed,
+ * g->idx lists the owned members and the exact sums complete over all
+ * ranks. */
 static void impose_velocities(struct sim *s, double t_prev, double t, double half_dt,
                               int record)
 {
@@ -126,19 +157,10 @@ static void impose_velocities(struct sim *s, double t_prev, double t, double hal
         struct bc *b = &s->bcs[k];
         if (!bc_prescribes_velocity(b))
             continue;
-        if (s->par) { /* distributed: the same sums in the serial order */
-            double vb[3] = {0, 0, 0}, vp[3] = {0, 0, 0};
-            for (int d = 0; d < s->dim; d++)
-                if (b->comp_mask & (1u << d)) {
-                    vb[d] = bc_velocity(b, d, t);
-                    vp[d] = bc_velocity(b, d, t_prev);
-                }
-            par_bc_velocities(s, b, vp, vb, half_dt, record);
-            continue;
-        }
         const struct group *g = &s->groups[b->group];
-        double reaction[3] = {0, 0, 0};
-        double work = 0.0;
+        struct xsum acc[4]; /* reaction x, y, z; work */
+        for (int d = 0; d < 4; d++)
+            xsum_init(&acc[d]);
         for (int d = 0; d < s->dim; d++) {
             if (!(b->comp_mask & (1u << d)))
                 continue;
@@ -147,18 +169,19 @@ static void impose_velocities(struct sim *s, double t_prev, double t, double hal
             for (size_t q = 0; q < g->n; q++) {
                 size_t i = g->idx[q];
                 double dv = vb - p->v[d][i];
-                double r = p->mass[i] * dv / half_dt;
-                reaction[d] += r;
-                work += bc_constraint_work(p->mass[i], vp, p->v[d][i], vb, v_drift);
+                xsum_add(&acc[d], p->mass[i] * dv / half_dt);
+                xsum_add(&acc[3], bc_constraint_work(p->mass[i], vp, p->v[d][i], vb, v_drift));
                 p->v[d][i] = vb;
             }
         }
+        double out[4];
+        par_xsum_finish(s, acc, 4, out);
         if (record) {
             for (int d = 0; d < 3; d++)
-                b->reaction[d] = reaction[d];
+                b->reaction[d] = out[d];
         }
-        b->work += work;
-        s->energy.external += work;
+        b->work += out[3];
+        s->energy.external += out[3];
     }
 }
 
@@ -264,7 +287,8 @@ static void drift_extra(struct sim *s, double dt)
                 p->x[d][i] += dt * u[d][i];
 }
 
-/* Work of the loads over the drift: sum over loaded particles of F . dx. */
+/* Work of the loads over the drift: sum over loaded particles of F . dx
+ * (each particle's share of the load: the total over all ranks' members). */
 static void account_load_work(struct sim *s, double dt)
 {
     const struct particles *p = s->p;
@@ -273,22 +297,20 @@ static void account_load_work(struct sim *s, double dt)
         if (bc_prescribes_velocity(b))
             continue;
         const struct group *g = &s->groups[b->group];
-        if (sim_group_count(s, b->group) == 0)
+        const size_t gn = sim_group_count(s, b->group);
+        if (gn == 0)
             continue;
-        if (s->par) { /* distributed: the same sum in the serial order */
-            double wp = par_load_work(s, b, dt);
-            b->work += wp;
-            s->energy.external += wp;
-            continue;
-        }
-        double w = 0.0;
+        struct xsum acc;
+        xsum_init(&acc);
         for (int d = 0; d < s->dim; d++) {
             if (!(b->comp_mask & (1u << d)))
                 continue;
-            double per = b->reaction[d] / (double)g->n;
+            double per = b->reaction[d] / (double)gn;
             for (size_t q = 0; q < g->n; q++)
-                w += per * p->v[d][g->idx[q]] * dt;
+                xsum_add(&acc, per * p->v[d][g->idx[q]] * dt);
         }
+        double w;
+        par_xsum_finish(s, &acc, 1, &w);
         b->work += w;
         s->energy.external += w;
     }
@@ -332,16 +354,17 @@ static int compute_all_forces(struct sim *s, double state_dt, struct spall_error
 void sim_update_energy(struct sim *s)
 {
     const struct particles *p = s->p;
-    /* fixed-order serial sum: diagnostics identical for any thread count */
-    double ke = 0.0;
-    for (size_t i = 0; i < p->n_owned && !s->par; i++) {
+    /* exact sum: diagnostics identical for any thread and rank count */
+    struct xsum acc;
+    xsum_init(&acc);
+    for (size_t i = 0; i < p->n_owned; i++) {
         double v2 = 0.0;
         for (int d = 0; d < s->dim; d++)
             v2 += p->v[d][i] * p->v[d][i];
-        ke += 0.5 * p->mass[i] * v2;
+        xsum_add(&acc, 0.5 * p->mass[i] * v2);
     }
-    if (s->par) /* distributed: the same sum in the serial order */
-        ke = par_kinetic(s);
+    double ke;
+    par_xsum_finish(s, &acc, 1, &ke);
     struct model_energy me = {0, 0};
     if (s->ops->energy)
         s->ops->energy(s->model, s, &me);

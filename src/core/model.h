@@ -64,6 +64,14 @@ struct model_energy {
 /** Stages of model_ops.advance_state (predictor-corrector integrator). */
 enum model_stage { MODEL_STAGE_PREDICT = 0, MODEL_STAGE_CORRECT = 1 };
 
+/** A fixed plane a model enforces itself (model_ops.planes). */
+struct model_plane {
+    char name[32];     /**< e.g. "wall", "symmetry_x" */
+    double point[3];   /**< a point of the plane [m] */
+    double normal[3];  /**< unit, pointing to the particles' side */
+};
+#define MODEL_PLANES_MAX 4
+
 /** A small elastic free body of one model/formulation for the model
  *  contract test (tests/test_model_contract.c), defined in the model's own
  *  folder (*_fixture.c).  The test places the body (a disc or sphere of
@@ -156,6 +164,11 @@ struct model_ops {
      *  used for fragments (core/fragments.h); NULL hook or NULL result for
      *  unbonded models. */
     const struct bond_list *(*bonds)(const struct model *m);
+    /** Optional: the fixed planes the model enforces by itself, not as
+     *  rigid bodies of core/rigid.h (the SPH wall and symmetry planes),
+     *  for the frame index to draw (io/output_xdmf.c).  Fills at most
+     *  MODEL_PLANES_MAX and returns the count. */
+    size_t (*planes)(const struct model *m, const struct sim *sim, struct model_plane *out);
     /** Register the model's restart state (core/field_state.h): every array
      *  and counter that carries information from one step to the next and
      *  is not rebuilt from the deck by create/init/precrack (bond states,

@@ -589,3 +589,20 @@ bool deck_locate_error(const struct deck_node *root, struct spall_error *err)
     spall_error_set_key(err, code, key, "%s:%d:%d: %s", deck_name(root), line, col, msg);
     return true;
 }
+
+int deck_material_pair(const struct deck_node *e, char *a, char *b, size_t len,
+                       struct spall_error *err)
+{
+    const struct deck_node *mats = deck_get(e, "materials");
+    if (!mats)
+        return deck_error(err, e, "interface: missing required key 'materials' ([a, b])");
+    if (mats->kind != DECK_SEQUENCE || mats->n != 2 || mats->items[0]->kind != DECK_SCALAR ||
+        mats->items[1]->kind != DECK_SCALAR)
+        return deck_error(err, mats, "interface materials: expected two material names [a, b]");
+    snprintf(a, len, "%s", mats->items[0]->scalar);
+    snprintf(b, len, "%s", mats->items[1]->scalar);
+    if (strcmp(a, b) == 0)
+        return deck_error(err, mats, "interface materials: '%s' twice (an interface joins two "
+                          "different materials)", a);
+    return SPALL_OK;
+}

@@ -128,6 +128,13 @@ bool deck_locate_error(const struct deck_node *root, struct spall_error *err);
 /** Scalar node -> double, with the node's position in errors. */
 int deck_node_double(const struct deck_node *node, double *out, struct spall_error *err);
 
+/** The `materials: [a, b]` of an entry @p e that joins two different
+ *  materials (model.interfaces of the peridynamics and lattice models): the
+ *  names into @p a and @p b (@p len bytes each), refused with a position when
+ *  missing, not two names, or the same name twice. */
+int deck_material_pair(const struct deck_node *e, char *a, char *b, size_t len,
+                       struct spall_error *err);
+
 /** Report the first unused key of @p map as
  *  "FILE:L:C: unknown key 'k' in <what>; expected one of: a, b, c"
  *  where @p allowed lists the valid keys (NULL-terminated). */

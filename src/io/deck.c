@@ -55,13 +55,13 @@ static char *deck_strndup(const char *s, size_t len)
 
 /* ---- node tree --------------------------------------------------------- */
 
-static void node_free(struct deck_node *n)
+void deck_node_free(struct deck_node *n)
 {
     if (!n)
         return;
     free(n->scalar);
     for (size_t i = 0; i < n->n; ++i) {
-        node_free(n->items[i]);
+        deck_node_free(n->items[i]);
         if (n->keys)
             free(n->keys[i]);
     }
@@ -321,7 +321,7 @@ static int build_node(struct builder *b, yaml_event_t *ev, int depth, struct dec
         yaml_event_delete(ev);
         rc = build_children(b, n, depth + 1);
         if (rc) {
-            node_free(n);
+            deck_node_free(n);
             return rc;
         }
         *out = n;
@@ -336,7 +336,7 @@ static int build_node(struct builder *b, yaml_event_t *ev, int depth, struct dec
     }
     yaml_event_delete(ev);
     if (rc) {
-        node_free(n);
+        deck_node_free(n);
         return rc;
     }
     *out = n;
@@ -377,7 +377,7 @@ static int build_stream(struct builder *b)
         return rc;
     /* "---" alone, or "--- ~"-like empty plain root: treat as an empty deck. */
     if (root->kind == DECK_SCALAR && deck_is_empty_value(root)) {
-        node_free(root);
+        deck_node_free(root);
         b->deck->root = NULL;
     }
     return SPALL_OK;
@@ -474,7 +474,7 @@ void deck_destroy(struct deck **d)
 {
     if (!d || !*d)
         return;
-    node_free((*d)->root);
+    deck_node_free((*d)->root);
     free((*d)->path);
     free((*d)->text);
     free(*d);

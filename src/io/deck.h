@@ -17,5 +17,8 @@ int deck_load_file(struct deck **out, const char *path, struct spall_error *err)
 int deck_load_string(struct deck **out, const char *name, const char *text,
                      struct spall_error *err);
 void deck_destroy(struct deck **d);
+/** Free a node and its children (nodes made as the reader makes them: every
+ *  string and array malloc'd; src/api/setup_api.c builds trees too). */
+void deck_node_free(struct deck_node *n);
 
 #endif

@@ -11,7 +11,8 @@
  *           one per selected field; n = owned particles only (ghosts are
  *           copies that belong to another rank's output).
  *   /position is always n x 3, padded with 0 in 1D/2D, because ParaView's
- *           XDMF readers need three coordinates for GeometryType XYZ.
+ *           XDMF readers need three coordinates for GeometryType XYZ;
+ *           a 2D symmetric tensor is n x 6 (xdmf_file_ncomp: zz yz xz = 0).
  *
  * XDMF attribute types, component names and units: io/output_xdmf.c (a 2D
  * vector or tensor is a Matrix: a "Vector" promises 3 components).  Rigid
@@ -24,6 +25,8 @@
  */
 #include "io/output.h"
 #include "io/output_par.h"
+#include "io/output_bonds.h"
+#include "io/text_buf.h"
 #include "io/output_xdmf.h"
 
 #include "core/fields.h"
@@ -56,13 +59,8 @@ struct out_field {
     int parity; /**< enum field_parity: what the components are (output_xdmf.h) */
 };
 
-/** Growable text buffer holding the XDMF <Grid> elements written so far, so the
- *  index rewrite after each frame only formats the new frame. */
-struct text_buf {
-    char *s;
-    size_t len, cap;
-};
-
+/* The XDMF <Grid> elements written so far are kept (struct text_buf), so the
+ * index rewrite after each frame only formats the new frame. */
 struct field_writer {
     char *dir;
     struct out_field *fields; /**< fields[0] is always position */
@@ -71,55 +69,14 @@ struct field_writer {
     struct text_buf grids;
     struct text_buf bodies; /**< bodies.xdmf's frames (rigid impactors, walls) */
     struct text_buf saved;  /**< field_writer_grids with bodies: both, for a checkpoint */
-    double *buf; /**< gather buffer, n x max(ncomp, 3) */
+    double *buf; /**< gather buffer, n x max(ncomp, 6) */
+    struct bond_writer *bonds; /**< output.fields lists `bonds` (output_bonds.h) */
     size_t buf_cap;
 };
 
 /* ---------------------------------------------------------------- helpers */
 
-static char *path_join(const char *dir, const char *name)
-{
-    size_t a = strlen(dir), b = strlen(name);
-    char *p = malloc(a + b + 2);
-    if (!p)
-        return NULL;
-    memcpy(p, dir, a);
-    p[a] = '/';
-    memcpy(p + a + 1, name, b + 1);
-    return p;
-}
-
-static int text_append(struct text_buf *t, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-
-static int text_append(struct text_buf *t, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int k = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (k < 0)
-        return -1;
-    size_t need = t->len + (size_t)k + 1;
-    if (need > t->cap) {
-        size_t cap = t->cap ? t->cap : 4096;
-        while (cap < need)
-            cap *= 2;
-        char *s = realloc(t->s, cap);
-        if (!s)
-            return -1;
-        t->s = s;
-        t->cap = cap;
-    }
-    va_start(ap, fmt);
-    vsnprintf(t->s + t->len, t->cap - t->len, fmt, ap);
-    va_end(ap);
-    t->len += (size_t)k;
-    return 0;
-}
+/* path_join, text_append: io/text_buf.h */
 
 /** Field names become HDF5 paths and XML attribute values unescaped, and must
  *  not shadow /time or /step. */
@@ -323,6 +280,12 @@ int field_writer_check_names(const struct sim *s, const char *const *names, size
     for (size_t k = 0; k < n_names && names; k++) {
         const struct field_desc *f = field_registry_find(reg, names[k]);
         *bad = k;
+        if (!f && strcmp(names[k], OUTPUT_BONDS) == 0) { /* bonds as lines */
+            int rc = bond_writer_check(s, err);
+            if (rc)
+                return rc;
+            continue;
+        }
         if (!f)
             return unknown_field(err, reg, names[k], "unknown");
         if (!(f->flags & FIELD_OUTPUT) && strcmp(f->name, OUTPUT_POSITION) != 0)
@@ -367,8 +330,11 @@ int field_writer_create(struct field_writer **out, const char *dir, const struct
     }
     int rc = writer_add(w, pos, err);
     if (names && n_names) {
-        for (size_t k = 0; k < n_names && !rc; k++)
-            rc = writer_add(w, field_registry_find(reg, names[k]), err);
+        for (size_t k = 0; k < n_names && !rc; k++) {
+            const struct field_desc *f = field_registry_find(reg, names[k]);
+            rc = f ? writer_add(w, f, err)
+                 : w->bonds ? SPALL_OK : bond_writer_create(&w->bonds, w->dir, s, err);
+        }
     } else {
         for (size_t k = 0; k < reg->n && !rc; k++)
             if (reg->fields[k].flags & FIELD_DEFAULT)
@@ -397,6 +363,7 @@ void field_writer_destroy(struct field_writer **w)
     free((*w)->bodies.s);
     free((*w)->saved.s);
     free((*w)->buf);
+    bond_writer_destroy(&(*w)->bonds);
     free(*w);
     *w = NULL;
 }
@@ -418,6 +385,10 @@ static void gather_padded(struct field_writer *w, const struct sim *s, const str
     }
     if (ncomp_out == ncomp)
         return;
+    if (ncomp == 3 && ncomp_out == 6) { /* 2D symmetric tensor (xdmf_file_ncomp) */
+        xdmf_widen_symtensor(b, n);
+        return;
+    }
     /* widen in place, back to front, so no value is overwritten before use */
     for (size_t i = n; i-- > 0;) {
         for (int c = ncomp_out - 1; c >= 0; c--)
@@ -466,7 +437,9 @@ static int write_frame_h5(struct field_writer *w, const struct sim *s, const cha
             return spall_error_set(err, SPALL_ERR_INTERNAL,
                                    "output field '%s' vanished or changed components", o->name);
         }
-        int ncomp_out = k == 0 ? 3 : o->ncomp; /* position padded to XYZ */
+        /* position padded to XYZ, 2D symmetric tensors to 6 (xdmf_file_ncomp) */
+        int ncomp_out = k == 0 ? 3 : xdmf_file_ncomp(xdmf_field_kind(o->ncomp, s->dim, o->parity),
+                                                     o->ncomp);
         gather_padded(w, s, f, o->ncomp, n, ncomp_out);
         hsize_t dims[2] = {(hsize_t)n, (hsize_t)ncomp_out};
         if ((s->par ? write_rows_par(file, o->name, ncomp_out, s, w->buf, f ? f->unit : "m")
@@ -540,12 +513,13 @@ static int append_xdmf_grid(struct field_writer *w, const struct sim *s, const c
     for (size_t k = 1; k < w->n_fields && !bad; k++) {
         const struct out_field *o = &w->fields[k];
         char dims[48];
-        if (o->ncomp == 1)
+        enum xdmf_kind kind = xdmf_field_kind(o->ncomp, s->dim, o->parity);
+        const int nc = xdmf_file_ncomp(kind, o->ncomp);
+        if (nc == 1)
             snprintf(dims, sizeof dims, "%zu", n);
         else
-            snprintf(dims, sizeof dims, "%zu %d", n, o->ncomp);
-        enum xdmf_kind kind = xdmf_field_kind(o->ncomp, s->dim, o->parity);
-        const char *comps = xdmf_component_names(kind, o->ncomp);
+            snprintf(dims, sizeof dims, "%zu %d", n, nc);
+        const char *comps = xdmf_component_names(kind, nc);
         bad = text_append(g,
                           "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n"
                           "          <Information Name=\"unit\" Value=\"%s\"/>\n"
@@ -553,7 +527,7 @@ static int append_xdmf_grid(struct field_writer *w, const struct sim *s, const c
                           "          <DataItem Dimensions=\"%s\" NumberType=\"Float\""
                           " Precision=\"8\" Format=\"HDF\">%s:/%s</DataItem>\n"
                           "        </Attribute>\n",
-                          o->name, xdmf_attribute_type(kind, o->ncomp), o->unit[0] ? o->unit : "1",
+                          o->name, xdmf_attribute_type(kind, nc), o->unit[0] ? o->unit : "1",
                           comps ? "          <Information Name=\"components\" Value=\"" : "",
                           comps ? comps : "", comps ? "\"/>\n" : "", dims, h5name, o->name);
     }
@@ -628,7 +602,7 @@ static int write_xdmf(const struct field_writer *w, struct spall_error *err)
 int field_writer_write(struct field_writer *w, const struct sim *s, struct spall_error *err)
 {
     size_t n = s->p->n_owned;
-    size_t need = (n ? n : 1) * 3;
+    size_t need = (n ? n : 1) * 6; /* position's 3, a 2D symmetric tensor's 6 */
     for (size_t k = 0; k < w->n_fields; k++)
         if (need < (n ? n : 1) * (size_t)w->fields[k].ncomp)
             need = (n ? n : 1) * (size_t)w->fields[k].ncomp;
@@ -675,6 +649,11 @@ int field_writer_write(struct field_writer *w, const struct sim *s, struct spall
     }
     w->frames++;
     rc = root ? write_xdmf(w, err) : SPALL_OK;
+    if (!rc && w->bonds) {
+        char tbuf[40];
+        format_exact(tbuf, sizeof tbuf, s->t);
+        rc = bond_writer_write(w->bonds, s, w->frames - 1, tbuf, err);
+    }
 done:
     free(final);
     free(tmp);

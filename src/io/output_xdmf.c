@@ -21,12 +21,16 @@
  * surfaces of revolution of their meridian profile (rho, h), h along the
  * axis from the tip; in 2D the same profile mirrored about the axis is the
  * body's plane section.  A wall is drawn as a square (3D) or a thin strip
- * (2D) a little larger than the particles' bounding box, centred on it.
+ * (2D) a little larger than the particles' bounding box, centred on it; so
+ * are the planes a model enforces itself (model_ops.planes: the SPH
+ * model.wall and symmetry planes), as grids "model_NAME" beside the
+ * impactors' "impactor_NAME".
  */
 #include "io/output_xdmf.h"
 
 #include "core/fields.h"
 #include "core/mathconst.h"
+#include "core/model.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -70,6 +74,21 @@ const char *xdmf_component_names(enum xdmf_kind kind, int ncomp)
     case XDMF_SYMTENSOR: return ncomp == 3 ? "xx yy xy" : "xx yy zz xy yz xz";
     case XDMF_TENSOR: return ncomp == 4 ? "xx xy yx yy" : "xx xy xz yx yy yz zx zy zz";
     default: return NULL;
+    }
+}
+
+int xdmf_file_ncomp(enum xdmf_kind kind, int ncomp)
+{
+    return kind == XDMF_SYMTENSOR && ncomp == 3 ? 6 : ncomp;
+}
+
+void xdmf_widen_symtensor(double *b, size_t n)
+{
+    /* back to front: row i's new place (6i..) never overlaps the unread rows (< 3i) */
+    for (size_t i = n; i-- > 0;) {
+        const double xx = b[3 * i], yy = b[3 * i + 1], xy = b[3 * i + 2];
+        double *r = b + 6 * i;
+        r[0] = xx, r[1] = yy, r[2] = 0.0, r[3] = xy, r[4] = 0.0, r[5] = 0.0;
     }
 }
 
@@ -372,9 +391,16 @@ static void mesh_wall(struct mesh *m, const struct sim *s, const struct impactor
     mesh_tri(m, q[0], q[2], q[3]);
 }
 
+/** The model's own planes (model_ops.planes: an SPH wall, symmetry planes). */
+static size_t model_planes(const struct sim *s, struct model_plane *out)
+{
+    return s->ops && s->ops->planes && s->model ? s->ops->planes(s->model, s, out) : 0;
+}
+
 size_t xdmf_rigid_count(const struct sim *s)
 {
-    return s->rigid ? s->rigid->n : 0;
+    struct model_plane pl[MODEL_PLANES_MAX];
+    return (s->rigid ? s->rigid->n : 0) + model_planes(s, pl);
 }
 
 /** Impactor names come from the deck: keep XML- and path-safe characters. */
@@ -391,13 +417,13 @@ static void safe_name(char *out, size_t size, const char *name, size_t k)
         snprintf(out, size, "%zu", k);
 }
 
-static void write_mesh(struct str *b, const struct mesh *m, const char *name)
+static void write_mesh(struct str *b, const struct mesh *m, const char *kind, const char *name)
 {
     str_add(b,
-            "        <Grid Name=\"impactor_%s\" GridType=\"Uniform\">\n"
+            "        <Grid Name=\"%s_%s\" GridType=\"Uniform\">\n"
             "          <Topology TopologyType=\"Triangle\" NumberOfElements=\"%zu\">\n"
             "            <DataItem Dimensions=\"%zu 3\" NumberType=\"Int\" Format=\"XML\">",
-            name, m->nt, m->nt);
+            kind, name, m->nt, m->nt);
     for (size_t i = 0; i < m->nt; i++)
         str_add(b, "%s%zu %zu %zu", i ? " " : "", m->t[i][0], m->t[i][1], m->t[i][2]);
     str_add(b,
@@ -416,7 +442,7 @@ char *xdmf_rigid_grids(const struct sim *s, size_t n_particles)
 {
     struct str b = {0};
     str_add(&b, "%s", "");
-    for (size_t k = 0; k < xdmf_rigid_count(s) && !b.bad; k++) {
+    for (size_t k = 0; s->rigid && k < s->rigid->n && !b.bad; k++) {
         const struct impactor *im = &s->rigid->im[k];
         struct mesh m = {0};
         if (im->shape == RIGID_WALL) {
@@ -439,7 +465,25 @@ char *xdmf_rigid_grids(const struct sim *s, size_t n_particles)
         if (m.bad)
             b.bad = 1;
         else
-            write_mesh(&b, &m, name);
+            write_mesh(&b, &m, "impactor", name);
+        free(m.p);
+        free(m.t);
+    }
+    /* the model's own planes, drawn as walls are */
+    struct model_plane pl[MODEL_PLANES_MAX];
+    size_t np = model_planes(s, pl);
+    for (size_t k = 0; k < np && !b.bad; k++) {
+        struct impactor wall = {.shape = RIGID_WALL};
+        for (int c = 0; c < 3; c++) {
+            wall.x[c] = pl[k].point[c];
+            wall.axis[c] = pl[k].normal[c];
+        }
+        struct mesh m = {0};
+        mesh_wall(&m, s, &wall, n_particles);
+        if (m.bad)
+            b.bad = 1;
+        else
+            write_mesh(&b, &m, "model", pl[k].name);
         free(m.p);
         free(m.t);
     }

@@ -13,6 +13,8 @@ for the file name (5.11: Xdmf3ReaderS); legacy: the older "XDMF Reader"
     point array's per-component range equals the HDF5 dataset's (read with
     h5py from the frame the XDMF's last grid names), and the component counts
     agree;
+  - with the default reader, the components of every vector and tensor carry
+    spall's names (x y z; xx yy zz xy yz xz), as ParaView labels them;
   - the default representation, coloured by each point array in turn, renders
     particle pixels: at least --min-fill of the image differs from the same
     view with the data hidden (ParaView's own background and axes).  --png
@@ -49,6 +51,27 @@ def last_frame(xdmf):
             body_cells += int(g.find("Topology").get("NumberOfElements"))
     pts = np.concatenate(body_pts) if body_pts else np.zeros((0, 3))
     return h5path, len(frames), pts, body_cells
+
+
+def component_names(xdmf):
+    """{array: [component names]} from the <Information Name="components">
+    of the last frame's attributes (spall's names, e.g. xx yy zz xy yz xz)."""
+    root = ET.parse(xdmf).getroot()
+    temporal = [g for g in root.iter("Grid") if g.get("CollectionType") == "Temporal"][0]
+    last = [g for g in temporal if g.tag == "Grid"][-1]
+    names = {}
+    for attr in last.iter("Attribute"):
+        for info in attr.findall("Information"):
+            if info.get("Name") == "components":
+                names[attr.get("Name")] = info.get("Value").split()
+    return names
+
+
+# The legacy XDMF reader expands a Tensor6 to a row-major 3x3 tensor reading
+# the six columns in the XDMF specification's order (xx xy xz yy yz zz), not
+# spall's (xx yy zz xy yz xz, VTK's, whose labels Xdmf3ReaderS shows): the
+# HDF5 column behind each of its 9 components (measured, ParaView 5.11).
+TENSOR6_AS_9 = [0, 1, 2, 1, 3, 4, 2, 4, 5]
 
 
 def open_reader(xdmf, which):
@@ -98,6 +121,7 @@ def main():
     print("time steps: %d, last t = %.9g s: %d points, %d cells" % (len(times), t, npts, ncells))
 
     h5path, nframes, body_pts, body_cells = last_frame(a.xdmf)
+    comps = component_names(a.xdmf)
     if len(times) != nframes:
         failures.append("%d time steps, the index has %d frames" % (len(times), nframes))
     if body_cells:
@@ -132,15 +156,26 @@ def main():
             data = data.reshape(data.shape[0], -1)
             arr = src.PointData[name]
             nc = arr.GetNumberOfComponents()
-            if nc != data.shape[1]:
+            cols = list(range(data.shape[1]))
+            if a.reader == "legacy" and nc == 9 and data.shape[1] == 6:
+                cols = TENSOR6_AS_9
+            if nc != len(cols):
                 failures.append("%s: %d components, HDF5 has %d" % (name, nc, data.shape[1]))
                 continue
             for c in range(nc):
                 got = tuple(arr.GetRange(c))
-                want = (data[:, c].min(), data[:, c].max())
+                want = (data[:, cols[c]].min(), data[:, cols[c]].max())
                 if got != want:
                     failures.append("%s[%d]: range %r, HDF5 %r" % (name, c, got, want))
-            print("  %s: %d component(s), ranges equal to HDF5" % (name, nc))
+            labels = [arr.GetComponentName(c) for c in range(nc)] if nc > 1 else []
+            # ParaView's labels are its own (X, Y, Z; XX .. XZ for a Tensor6):
+            # with the default reader they must be spall's names, upper case
+            want_labels = [s.upper() for s in comps.get(name, [])]
+            if a.reader == "default" and nc > 1 and labels != want_labels:
+                failures.append("%s: ParaView names the components %s, spall's are %s"
+                                % (name, " ".join(labels), " ".join(want_labels) or "none"))
+            print("  %s: %d component(s)%s, ranges equal to HDF5"
+                  % (name, nc, " (" + " ".join(labels) + ")" if labels else ""))
 
     # rigid impactors and walls: their own index beside fields.xdmf
     bodies = None

@@ -3,7 +3,7 @@
  * @brief Domain decomposition of a bonded run over MPI ranks (issue 20):
  *        Zoltan RCB partition weighted by bond count, owned particles and
  *        their ghosts, the halo exchange of positions, and the
- *        decomposition-independent (ordered) reductions the engine needs.
+ *        decomposition-independent values the engine needs.
  *
  * First increment (docs/parallel.md): every rank builds and prepares the
  * whole body exactly as a serial run does (so the set-up, pre-cracks, the
@@ -16,10 +16,10 @@
  * and no migration is needed.  Bond rows keep the serial order (ascending
  * partner gid), so every particle's force sum is the serial one bit for bit.
  *
- * Sums over particles (energies, BC reactions and work) are formed by
- * par_ordered_reduce(): rank 0 sums the per-particle terms in the serial
- * order (by global id, or by position in a group) and broadcasts the sum,
- * so history.csv does not depend on the rank count.
+ * Sums over particles (energies, BC reactions and work) are exact
+ * (core/exact_sum.h): each rank accumulates its owned terms and one
+ * collective completes them (psum.h), so history.csv does not depend on
+ * the rank count.
  *
  * Everything here is collective: every rank calls it in the same order.
  * Without MPI (or on one rank) sim->par is NULL and nothing here is used.
@@ -77,21 +77,12 @@ void par_reduce_cols(const double *rows, size_t n, int ncol, double *out, const 
 
 /** Gather each rank's @p n rows (@p ncol doubles each) with their order
  *  keys to rank 0, sort them by key, reduce with @p fn there and broadcast
- *  the @p nout results to every rank (collective). */
+ *  the @p nout results to every rank (collective).  For sums that feed the
+ *  dynamics in the serial order (impactor contact forces: an exact sum
+ *  would change the serial run's last bits) and the thermal history;
+ *  diagnostics use the exact sums of psum.h. */
 void par_ordered_reduce(const int64_t *key, const double *rows, size_t n, int ncol,
                         par_reduce_fn fn, const void *ctx, double *out, int nout);
-/** par_ordered_reduce over the owned particles keyed by global id, columns summed. */
-void par_sum_owned(const struct sim *s, const double *rows, int ncol, double *out);
-
-struct model;
-/** A model's per-particle strain energy (and stress, may be NULL). */
-typedef void (*par_particle_energy_fn)(const struct model *m, const struct sim *s, size_t i,
-                                       double *energy, double *stress);
-/** A bond model's energy on a distributed run: the strain terms of @p eval
- *  and the dissipated store @p diss of every owned particle, each summed in
- *  global-id order as the serial loop sums them (collective). */
-void par_bond_energy(const struct model *m, const struct sim *s, par_particle_energy_fn eval,
-                     const double *diss, double *strain, double *dissipated);
 
 /** Order key of local member @p q of group @p g: its position in the
  *  serial group list. */

@@ -1,16 +1,14 @@
 /**
  * @file reduce.c
- * @brief Sums that do not depend on the decomposition (decomp.h): the
- *        per-particle terms travel to rank 0, which adds them in the serial
- *        order and broadcasts the result; probes from their owner.
+ * @brief Sums in the serial order where the serial arithmetic must be kept
+ *        (decomp.h): the per-particle terms travel to rank 0, which adds
+ *        them in the serial order and broadcasts the result; probes from
+ *        their owner.
  *
- * Why not MPI_Allreduce: a floating-point sum depends on its order, and the
- * serial run adds particle by particle in global-id order.  Reproducing that
- * order makes history.csv identical for every rank count and identical to
- * the serial run, at the price of moving n terms to rank 0; that is paid at
- * history rows for the energies and every step only for the (small) groups
- * of boundary conditions and, with damping or gravity, for all particles
- * (docs/parallel.md, "cost").
+ * Used where a sum feeds the dynamics (the impactors' contact force: an
+ * exact sum would change the serial run's last bits) and for the thermal
+ * lattice's history; the energy account, BC reactions and work use the
+ * exact sums of psum.h, which need no gather.
  */
 #include "core/parallel/decomp.h"
 #include "core/parallel/decomp_internal.h"
@@ -150,27 +148,3 @@ void par_probe(const struct sim *s, size_t k, double u[3], double v[3])
 }
 
 #endif
-
-void par_sum_owned(const struct sim *s, const double *rows, int ncol, double *out)
-{
-    par_ordered_reduce(s->p->gid, rows, s->p->n_owned, ncol, par_reduce_cols, NULL, out, ncol);
-}
-
-void par_bond_energy(const struct model *m, const struct sim *s, par_particle_energy_fn eval,
-                     const double *diss, double *strain, double *dissipated)
-{
-    const size_t n = s->p->n_owned;
-    double *rows = malloc((n ? n : 1) * 2 * sizeof *rows);
-    double sum[2] = {0.0, 0.0};
-    if (rows)
-        for (size_t i = 0; i < n; i++) {
-            eval(m, s, i, &rows[2 * i], NULL);
-            rows[2 * i + 1] = diss[i];
-        }
-    /* collective even when this rank could not allocate: it sends no rows */
-    par_ordered_reduce(s->p->gid, rows ? rows : sum, rows ? n : 0, 2, par_reduce_cols, NULL,
-                       sum, 2);
-    free(rows);
-    *strain = sum[0];
-    *dissipated = sum[1];
-}

@@ -21,6 +21,16 @@ struct spall_error;
 
 #define LATTICE_NO_ANGLE 0xFFu
 
+/** Law of the bonds between two materials (deck `model.interfaces`, lattice_interface.c). */
+struct lattice_interface {
+    char a[64], b[64];  /**< material names */
+    int ia, ib;         /**< their indices (-1 until init resolves them) */
+    double eps_t;       /**< tensile failure strain (0: from strength, or the default) */
+    double strength;    /**< tensile strength [Pa] (0: none) */
+    double eps_c;       /**< compressive failure strain (0: the default) */
+    double stiffness;   /**< factor on the pair's series stiffness */
+};
+
 struct model {
     struct sim *sim; /**< borrowed */
     struct lattice_options opt;
@@ -51,8 +61,20 @@ struct model {
     const double *kscale; /**< per half-bond stiffness factor E(T)/E_ref, owned by th;
                                NULL: none (youngs_modulus_table absent) */
     size_t n_half;
+    struct lattice_interface *ifc; /**< material-pair bond laws (lattice_interface.c) */
+    size_t n_ifc;
     bool initialised;
 };
+
+/* lattice_interface.c */
+struct deck_node;
+/** Read `model.interfaces` (names only; resolved at init). */
+int lattice_interfaces_parse(struct model *m, const struct deck_node *params,
+                             struct spall_error *err);
+/** Material indices of the interfaces (init, before the pair table). */
+int lattice_interfaces_resolve(struct model *m, const struct sim *sim, struct spall_error *err);
+/** Overwrite the pair table's entries of the interfaces (after each rebuild). */
+void lattice_interfaces_apply(struct model *m);
 
 /* lattice_restart.c */
 struct field_state;

@@ -82,6 +82,7 @@
 #include "core/parallel/comm.h"
 #include "core/model.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/psum.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -146,6 +147,7 @@ static void lattice_destroy(struct model **pm)
     free(m->diss);
     free(m->kappa);
     lattice_thermal_destroy(&m->th);
+    free(m->ifc);
     free(m);
     *pm = NULL;
 }
@@ -159,7 +161,7 @@ static int lattice_create(struct model **out, struct sim *sim, const struct deck
                                        "softening", NULL};
     static const char *const angs[] = {"auto", "on", "off", NULL};
     static const char *const keys[] = {"type", "law", "layers", "second_layer_ratio", "angular",
-                                       "thermal", NULL};
+                                       "thermal", "interfaces", NULL};
     struct lattice_options opt = {LATTICE_LAW_LINEAR, 0, -1, 0.0};
     *out = NULL;
     if (params) {
@@ -202,6 +204,8 @@ static int lattice_create(struct model **out, struct sim *sim, const struct deck
     int rc = lattice_model_new(out, sim, &opt, err);
     const struct deck_node *th = params ? deck_get(params, "thermal") : NULL;
     if (!rc && th && (rc = lattice_thermal_parse_options(*out, th, err)))
+        lattice_destroy(out);
+    if (!rc && params && (rc = lattice_interfaces_parse(*out, params, err)))
         lattice_destroy(out);
     return rc;
 }
@@ -253,6 +257,7 @@ static void build_pair_table(struct model *m)
                 m->pair[(a * nm + b) * LATTICE_MAX_TYPES + (size_t)t] = w;
                 m->pair[(b * nm + a) * LATTICE_MAX_TYPES + (size_t)t] = w;
             }
+    lattice_interfaces_apply(m); /* model.interfaces (lattice_interface.c) */
 }
 
 void lattice_model_override(struct model *m, double k1, double k_phi)
@@ -402,6 +407,8 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
     m->angular = angular && sim->dim == 2;
     m->lp.law = m->opt.law;
     m->lp.curves = m->curves;
+    if (lattice_interfaces_resolve(m, sim, err))
+        return err->code;
     build_pair_table(m);
     /* bonds: one shell per layer, +-5% around the shell distance (the
      * lattices' shells are at least 15% apart) */
@@ -552,19 +559,8 @@ static int lattice_end_step(struct model *m, struct sim *sim, struct spall_error
 static void lattice_energy_fn(const struct model *m, const struct sim *sim,
                               struct model_energy *out)
 {
-    double strain = 0.0, diss = 0.0;
-    if (sim->par) { /* distributed: the same sums in the serial (gid) order */
-        par_bond_energy(m, sim, lattice_particle_eval, m->diss, &out->strain, &out->dissipated);
-        return;
-    }
-    for (size_t i = 0; i < sim->p->n_owned; i++) {
-        double e;
-        lattice_particle_eval(m, sim, i, &e, NULL);
-        strain += e;
-        diss += m->diss[i];
-    }
-    out->strain = strain;
-    out->dissipated = diss;
+    /* exact sums: one value for any thread and rank count */
+    par_bond_energy(m, sim, lattice_particle_eval, m->diss, &out->strain, &out->dissipated);
 }
 
 static size_t lattice_history(const struct model *m, const struct sim *sim, const char **names,

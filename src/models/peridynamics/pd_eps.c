@@ -3,7 +3,8 @@
  * @brief Elastic-plastic state-based peridynamics (deck `model.formulation:
  *        eps`): the linear peridynamic solid of pd_lps.c with perfectly
  *        plastic flow of the deviatoric extension state ([Mitchell2011]; the
- *        model of LAMMPS pair peri/eps).
+ *        model LAMMPS pair peri/eps implements, which differs from it in three
+ *        formulas: docs/performance.md, bench/pd_lps_vs_lammps.sh).
  *
  * Notation of pd_lps.c (omega, beta, m_i, theta_i, d, k, alpha_i = d (d + 2)
  * mu / m_i).  The deviatoric extension e^d = e - theta |xi| / d splits into
@@ -71,6 +72,7 @@ int pd_eps_forces(struct model *m, struct sim *sim)
     uint8_t *st = bl->state;
     const size_t *rev = bl->reverse;
     double *tb = L->tb, *ep = L->ep;
+    const bool late = m->opt.break_late; /* next_step: pd_lps_break_late after the forces */
     /* pass 1, per particle (its own half-bonds only): breaking, dilatation,
      * return map, scalar force state t_ij / omega into tb */
 #pragma omp parallel for schedule(dynamic, 256)
@@ -88,7 +90,7 @@ int pd_eps_forces(struct model *m, struct sim *sim)
                 l2 += r * r;
             }
             const double xi = bl->rest[s], e = sqrt(l2) - xi;
-            if (e / xi > m->s0_tab[bl->type[s]]) {
+            if (!late && e / xi > m->s0_tab[bl->type[s]]) {
                 st[s] |= BOND_BROKEN;
                 /* elastic energy of the half-bond at the last state: t (e - e^dp) / 2 */
                 double t = L->alpha[i] * (e - ep[s]) + L->bcoef[i] * xi * L->theta[i];
@@ -111,7 +113,10 @@ int pd_eps_forces(struct model *m, struct sim *sim)
             const double tau = al * (tb[s] - th * bl->rest[s] / d - ep[s]);
             nrm2 += L->ob[s] * tau * tau * p->volume[bl->partner[s]];
         }
-        const double lim2 = d * (d + 2.0) * cd * mt->yield_stress * mt->yield_stress / (2.0 * wv);
+        /* with the surface correction's a_i on alpha_i (pd_lps_surface.c) the
+         * homogeneous-state norm is ||tau||^2 = a_i alpha_i s : s / (2 mu) */
+        const double lim2 = d * (d + 2.0) * cd * mt->yield_stress * mt->yield_stress /
+                            (2.0 * wv) * (L->afac ? L->afac[i] : 1.0);
         const double scale = nrm2 > lim2 ? sqrt(lim2 / nrm2) : 1.0;
         const double iso = (d * mt->kd / wv) * th; /* d k theta / m_i, times |xi| below */
         double work = 0.0;
@@ -151,6 +156,8 @@ int pd_eps_forces(struct model *m, struct sim *sim)
         for (int c = 0; c < dim; c++)
             p->f[c][i] += fi[c];
     }
+    if (late)
+        pd_lps_break_late(m, sim);
     return SPALL_OK;
 }
 

@@ -52,18 +52,8 @@ int pd_interfaces_parse(struct model *m, const struct deck_node *params,
         q->stiffness = 1.0;
         if ((rc = deck_expect_map(e, "an interface {materials: [a, b], ...}", err)))
             return rc;
-        const struct deck_node *mats = deck_get(e, "materials");
-        if (!mats)
-            return deck_error(err, e, "interface: missing required key 'materials' ([a, b])");
-        if (mats->kind != DECK_SEQUENCE || mats->n != 2 ||
-            mats->items[0]->kind != DECK_SCALAR || mats->items[1]->kind != DECK_SCALAR)
-            return deck_error(err, mats, "interface materials: expected two material names "
-                              "[a, b]");
-        snprintf(q->a, sizeof q->a, "%s", mats->items[0]->scalar);
-        snprintf(q->b, sizeof q->b, "%s", mats->items[1]->scalar);
-        if (strcmp(q->a, q->b) == 0)
-            return deck_error(err, mats, "interface materials: '%s' twice (an interface joins "
-                              "two different materials)", q->a);
+        if ((rc = deck_material_pair(e, q->a, q->b, sizeof q->a, err)))
+            return rc;
         if ((rc = deck_double_pos(e, "critical_stretch", false, &q->s0, err)) ||
             (rc = deck_double_pos(e, "fracture_energy", false, &q->G, err)) ||
             (rc = deck_double_pos(e, "stiffness_factor", false, &q->stiffness, err)) ||
@@ -79,18 +69,11 @@ int pd_interfaces_parse(struct model *m, const struct deck_node *params,
         for (size_t j = 0; j < k; j++)
             if ((!strcmp(m->ifc[j].a, q->a) && !strcmp(m->ifc[j].b, q->b)) ||
                 (!strcmp(m->ifc[j].a, q->b) && !strcmp(m->ifc[j].b, q->a)))
-                return deck_error(err, mats, "interface %s-%s given twice", q->a, q->b);
+                return deck_error(err, deck_get(e, "materials"), "interface %s-%s given twice",
+                                  q->a, q->b);
         m->n_ifc++;
     }
     return SPALL_OK;
-}
-
-static int find_material(const struct sim *sim, const char *name)
-{
-    for (size_t k = 0; k < sim->n_materials; k++)
-        if (strcmp(sim->materials[k].name, name) == 0)
-            return (int)k;
-    return -1;
 }
 
 int pd_interfaces_apply(struct model *m, struct sim *sim, struct spall_error *err)
@@ -99,7 +82,7 @@ int pd_interfaces_apply(struct model *m, struct sim *sim, struct spall_error *er
     const struct bond_list *bl = m->bl;
     for (size_t k = 0; k < m->n_ifc; k++) {
         const struct pd_interface *q = &m->ifc[k];
-        const int ia = find_material(sim, q->a), ib = find_material(sim, q->b);
+        const int ia = sim_find_material(sim, q->a), ib = sim_find_material(sim, q->b);
         char key[64];
         snprintf(key, sizeof key, "model.interfaces[%zu].materials", k);
         if (ia < 0 || ib < 0)

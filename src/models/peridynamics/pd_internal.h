@@ -146,9 +146,6 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
 struct par_model_arrays;
 int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
-/** The history counts over all ranks and the damage sum in gid order. */
-void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, size_t *all,
-                    size_t *nh, double *dsum);
 
 /* pd_restart.c */
 struct field_state;

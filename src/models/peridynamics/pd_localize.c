@@ -1,8 +1,7 @@
 /**
  * @file pd_localize.c
  * @brief model_ops.localize of the peridynamic model (distributed runs,
- *        core/parallel/decomp.h) and its sums over particles in the serial
- *        order.  The bond-based kernel (PMB, PDLM) gathers over each owned
+ *        core/parallel/decomp.h).  The bond-based kernel (PMB, PDLM) gathers over each owned
  *        particle's family; families keep their serial order (ascending
  *        partner gid) with the partners renumbered to local indices, so
  *        each force sum is the serial one bit for bit; a bond's two halves
@@ -12,7 +11,6 @@
 
 #include "core/bond_list.h"
 #include "core/model.h"
-#include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/migrate.h"
 #include "core/particles.h"
@@ -27,19 +25,21 @@
 static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, const size_t *oh,
                         size_t nh, struct spall_error *err)
 {
-    double **pp[4] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef};
-    double *np[4];
+    /* afac (surface correction) is NULL without it */
+    double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
+    const int npp = L->afac ? 5 : 4;
+    double *np[5] = {NULL, NULL, NULL, NULL, NULL};
     int bad = 0;
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < npp; k++)
         bad |= !(np[k] = array_gather(*pp[k], sizeof(double), keep, n_keep));
     double *ob = array_gather(L->ob, sizeof *ob, oh, nh);
     if (bad || !ob) {
-        for (int k = 0; k < 4; k++)
+        for (int k = 0; k < npp; k++)
             free(np[k]);
         free(ob);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the LPS state");
     }
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < npp; k++) {
         free(*pp[k]);
         *pp[k] = np[k];
     }
@@ -99,32 +99,6 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     return SPALL_OK;
 }
 
-void pd_history_par(const struct model *m, const struct sim *sim, size_t *run, size_t *all,
-                    size_t *nh, double *dsum)
-{
-    const struct bond_list *bl = m->bl;
-    const size_t n = sim->p->n_owned;
-    uint64_t c[3] = {*run, *all, *nh};
-    par_sum_u64_array(c, 3);
-    *run = (size_t)c[0];
-    *all = (size_t)c[1];
-    *nh = (size_t)c[2];
-    /* phi_i per particle, summed in gid order as the serial loop does */
-    double *rows = malloc((n ? n : 1) * sizeof *rows);
-    double s = 0.0;
-    if (rows)
-        for (size_t i = 0; i < n; i++) {
-            size_t intact = 0;
-            for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++)
-                intact += !(bl->state[q] & BOND_BROKEN);
-            rows[i] = m->n_init[i] ? 1.0 - (double)intact / (double)m->n_init[i] : 0.0;
-        }
-    par_ordered_reduce(sim->p->gid, rows ? rows : &s, rows ? n : 0, 1, par_reduce_cols, NULL, &s,
-                       1);
-    free(rows);
-    *dsum = s;
-}
-
 /* model_ops.migrate_arrays: the family rows with their pair coefficients,
  * the initial bond counts (damage = 1 - intact / initial) and the
  * dissipated energy travel with a particle; with LPS also its weighted
@@ -156,8 +130,8 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
     }
     if (m->opt.lps) {
         struct pd_lps *L = &m->lps;
-        double **pp[4] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef};
-        for (int k = 0; k < 4; k++) {
+        double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
+        for (int k = 0; k < (L->afac ? 5 : 4); k++) {
             a->particle[a->n_particle] = (void **)pp[k];
             a->particle_size[a->n_particle++] = sizeof(double);
         }

@@ -16,9 +16,13 @@
  * E / (2 (1 - nu)) in plane stress.  The force state follows from W (the
  * deviatoric sum of omega |xi| e^d vanishes by the definition of theta), so
  * any nu is reproduced; m_i is each particle's own (pre-cracks excluded),
- * which normalises a surface particle's dilatation.  A bond breaks,
- * irreversibly, when its stretch passes s0 (pd_model.c), decided from both
- * ends from the same length so that threads agree.
+ * which normalises a surface particle's dilatation (surface_correction:
+ * pd_lps_surface.c).  A bond breaks, irreversibly, when its stretch passes
+ * s0 (pd_model.c), decided from both ends from the same length so that
+ * threads agree: before the forces (break_order immediate) or after them
+ * (next_step, pd_lps_break_late: the order of LAMMPS pair peri/lps, with
+ * which influence inverse and partial_volume_rule lammps give the same
+ * forces, bench/pd_lps_vs_lammps.sh).
  */
 #include "models/peridynamics/pd_internal.h"
 
@@ -50,6 +54,7 @@ void pd_lps_free(struct pd_lps *L)
     free(L->alpha);
     free(L->bcoef);
     free(L->ob);
+    free(L->afac);
     free(L->ep);
     free(L->tb);
 }
@@ -145,6 +150,11 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
         if (rc)
             return rc;
     }
+    if (L->surface) { /* after the cubic factors: it corrects the family as weighted */
+        int rc = pd_lps_surface_init(m, sim, err);
+        if (rc)
+            return rc;
+    }
     pd_lps_weights(m, sim);
     return SPALL_OK;
 }
@@ -162,7 +172,7 @@ void pd_lps_weights(struct model *m, const struct sim *sim)
                 w += L->ob[s] * bl->rest[s] * bl->rest[s] * p->volume[bl->partner[s]];
         const struct pd_material *mt = &m->mat[p->material[i]];
         L->wvol[i] = w;
-        L->alpha[i] = w > 0.0 ? d * (d + 2.0) * mt->mu / w : 0.0;
+        L->alpha[i] = w > 0.0 ? d * (d + 2.0) * mt->mu / w * (L->afac ? L->afac[i] : 1.0) : 0.0;
         L->bcoef[i] = w > 0.0 ? d * mt->kd / w - L->alpha[i] / d : 0.0;
     }
 }
@@ -200,6 +210,7 @@ int pd_lps_forces(struct model *m, struct sim *sim)
     const int dim = p->dim;
     const double d = (double)dim;
     uint8_t *st = bl->state;
+    const bool late = m->opt.break_late;
     if (L->ep)
         return pd_eps_forces(m, sim); /* formulation eps: plastic return map (pd_eps.c) */
     /* pass 1: breaking and dilatation; each half-bond decided by its own
@@ -217,7 +228,7 @@ int pd_lps_forces(struct model *m, struct sim *sim)
                 l2 += r * r;
             }
             const double xi = bl->rest[s], e = sqrt(l2) - xi;
-            if (e / xi > m->s0_tab[bl->type[s]]) {
+            if (!late && e / xi > m->s0_tab[bl->type[s]]) {
                 st[s] |= BOND_BROKEN;
                 /* energy of the half-bond at the last dilatation: t e / 2 (the
                  * state energy is homogeneous of degree 2 in e) */
@@ -256,7 +267,41 @@ int pd_lps_forces(struct model *m, struct sim *sim)
         for (int c = 0; c < dim; c++)
             p->f[c][i] += fi[c];
     }
+    if (late)
+        pd_lps_break_late(m, sim);
     return SPALL_OK;
+}
+
+/* break_order next_step (PDLAMMPS order, pair peri/lps and peri/eps): a bond
+ * past s0 has pulled with its full force state in this step and is dropped
+ * after it, each half-bond by its own particle from the same length (so the
+ * two ends agree).  Its stored elastic energy goes to the dissipated energy
+ * as in the immediate order, from this step's state (e^dp: eps). */
+void pd_lps_break_late(struct model *m, const struct sim *sim)
+{
+    const struct particles *p = sim->p;
+    struct bond_list *bl = m->bl;
+    const struct pd_lps *L = &m->lps;
+    const int dim = p->dim;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (size_t i = 0; i < p->n; i++)
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            if (bl->state[s] & BOND_BROKEN)
+                continue;
+            size_t j = (size_t)bl->partner[s];
+            double l2 = 0.0;
+            for (int c = 0; c < dim; c++) {
+                double r = p->x[c][j] - p->x[c][i];
+                l2 += r * r;
+            }
+            const double xi = bl->rest[s], e = sqrt(l2) - xi;
+            if (!(e / xi > m->s0_tab[bl->type[s]]))
+                continue;
+            bl->state[s] |= BOND_BROKEN;
+            const double ee = e - (L->ep ? L->ep[s] : 0.0);
+            const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
+            m->diss[i] += 0.5 * L->ob[s] * t * ee * p->volume[i] * p->volume[j];
+        }
 }
 
 /* Row sum of the linearised stiffness of particle i (each |n . u| <= |u|):

@@ -32,6 +32,8 @@ struct pd_lps {
     double *alpha;  /**< deviatoric coefficient d (d + 2) mu / m_i */
     double *bcoef;  /**< coefficient of |xi| theta in the scalar force: d k / m_i - alpha / d */
     double *ob;     /**< per half-bond: omega(xi) beta(xi) */
+    bool surface;   /**< surface_correction (pd_lps_surface.c) */
+    double *afac;   /**< per particle: factor on alpha of the surface correction; NULL: 1 */
     /* formulation eps (pd_eps.c); NULL for lps */
     double *ep;     /**< per half-bond: plastic deviatoric extension e^dp [m] */
     double *tb;     /**< per half-bond: scalar force state t_ij / omega of the last call */
@@ -45,6 +47,10 @@ void pd_lps_weights(struct model *m, const struct sim *sim);
 void pd_lps_free(struct pd_lps *L);
 /** Forces with fused breaking (critical stretch). */
 int pd_lps_forces(struct model *m, struct sim *sim);
+/** surface_correction: factors on omega and alpha near free surfaces (pd_lps_surface.c). */
+int pd_lps_surface_init(struct model *m, struct sim *sim, struct spall_error *err);
+/** break_order next_step: drop the bonds past s0 after this step's forces. */
+void pd_lps_break_late(struct model *m, const struct sim *sim);
 /** Gershgorin bound of the linearised LPS stiffness: dt < 2 sqrt(m_i / R_i). */
 double pd_lps_stable_dt(const struct model *m, const struct sim *sim);
 /** Energy [J] and stress [Pa] of particle @p i from the current positions. */

@@ -79,12 +79,15 @@
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
+#include "core/exact_sum.h"
 #include "core/fields.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "core/options.h"
 #include "core/model.h"
+#include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/psum.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -195,13 +198,14 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             return deck_error_key(err, params, "influence_correction", "influence_correction "
                                   "is for formulation lps or eps");
         }
-        if (m->opt.lps && (sim->dim == 1 || m->opt.variant == PD_PDLM ||
-                           m->opt.surface_correction || m->opt.break_late)) {
+        if (m->opt.lps && (sim->dim == 1 || m->opt.variant == PD_PDLM)) {
             free(m);
-            return deck_error_key(err, params, "formulation", "lps and eps need a 2D or 3D pmb run "
-                                  "without surface_correction (each particle's own weighted "
-                                  "volume normalises its dilatation) and break_order "
-                                  "immediate");
+            return deck_error_key(err, params, "formulation", "lps and eps need a 2D or 3D pmb "
+                                  "run");
+        }
+        if (m->opt.lps) { /* lps/eps: their own surface correction (pd_lps_surface.c) */
+            m->lps.surface = m->opt.surface_correction;
+            m->opt.surface_correction = false;
         }
         if (m->opt.variant == PD_PDLM && sim->dim != 2) {
             free(m);
@@ -580,19 +584,8 @@ static int pd_end_step(struct model *m, struct sim *sim, struct spall_error *err
 
 static void pd_energy(const struct model *m, const struct sim *sim, struct model_energy *out)
 {
-    double strain = 0.0, diss = 0.0;
-    if (sim->par) { /* distributed: the same sums in the serial (gid) order */
-        par_bond_energy(m, sim, pd_particle_eval, m->diss, &out->strain, &out->dissipated);
-        return;
-    }
-    for (size_t i = 0; i < sim->p->n_owned; i++) {
-        double e;
-        pd_particle_eval(m, sim, i, &e, NULL);
-        strain += e;
-        diss += m->diss[i];
-    }
-    out->strain = strain;
-    out->dissipated = diss;
+    /* exact sums: one value for any thread and rank count */
+    par_bond_energy(m, sim, pd_particle_eval, m->diss, &out->strain, &out->dissipated);
 }
 
 static size_t pd_history(const struct model *m, const struct sim *sim, const char **names,
@@ -604,17 +597,25 @@ static size_t pd_history(const struct model *m, const struct sim *sim, const cha
         all += (bl->state[s] & BOND_BROKEN) != 0;
         run += bl->state[s] == BOND_BROKEN;
     }
-    /* sum over particles of phi_i (fixed order): compared with LAMMPS's
-     * compute damage/atom in bench/pd_vs_lammps.sh */
-    double dsum = 0.0;
-    if (sim->par) /* distributed: counts over all ranks, phi_i in gid order */
-        pd_history_par(m, sim, &run, &all, &nh, &dsum);
-    for (size_t i = 0; i < sim->p->n_owned && !sim->par; i++) {
+    if (sim->par) { /* distributed: the counts over all ranks */
+        uint64_t c[3] = {run, all, nh};
+        par_sum_u64_array(c, 3);
+        run = (size_t)c[0];
+        all = (size_t)c[1];
+        nh = (size_t)c[2];
+    }
+    /* sum over particles of phi_i (exact, any rank count): compared with
+     * LAMMPS's compute damage/atom in bench/pd_vs_lammps.sh */
+    struct xsum acc;
+    xsum_init(&acc);
+    for (size_t i = 0; i < sim->p->n_owned; i++) {
         size_t intact = 0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
             intact += !(bl->state[s] & BOND_BROKEN);
-        dsum += m->n_init[i] ? 1.0 - (double)intact / (double)m->n_init[i] : 0.0;
+        xsum_add(&acc, m->n_init[i] ? 1.0 - (double)intact / (double)m->n_init[i] : 0.0);
     }
+    double dsum;
+    par_xsum_finish(sim, &acc, 1, &dsum);
     names[0] = "bonds_broken";
     values[0] = 0.5 * (double)run;
     names[1] = "damage_fraction";
@@ -640,7 +641,7 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
         m->delta, m->delta / m->dx,
         sim->dim == 2 ? (m->opt.plane == PD_PLANE_STRAIN ? "plane strain" : "plane stress")
                       : sim->dim == 3 ? "3D" : "1D",
-        m->opt.partial_volume ? "on" : "off", m->opt.surface_correction ? "on" : "off",
+        m->opt.partial_volume ? "on" : "off", (m->opt.surface_correction || m->lps.surface) ? "on" : "off",
         m->opt.quasi == PD_QS_ADR ? "adr" : "off", m->bl ? bond_list_count(m->bl) : 0);
     if (m->bl) { /* the allocations themselves: the memory target of issue 25 */
         const size_t n = sim->p->n_owned, nb = pd_model_bytes(m, n);

@@ -411,6 +411,32 @@ static int sph_advance_state(struct model *m, struct sim *sim, double dt, int st
     return SPALL_OK;
 }
 
+/* The wall (model.wall) and the symmetry planes x_d = 0 (model.symmetry,
+ * the particles on the positive side), for the frame index to draw. */
+static size_t sph_planes(const struct model *m, const struct sim *sim, struct model_plane *out)
+{
+    const struct sph_opt_bound *b = &m->opt.bound;
+    size_t k = 0;
+    if (b->wall) {
+        memset(&out[k], 0, sizeof out[k]);
+        strcpy(out[k].name, "wall");
+        for (int c = 0; c < 3; c++) {
+            out[k].point[c] = b->wall_point[c];
+            out[k].normal[c] = b->wall_normal[c];
+        }
+        k++;
+    }
+    for (int d = 0; d < sim->dim && d < 3 && k < MODEL_PLANES_MAX; d++) {
+        if (!b->symmetry[d])
+            continue;
+        memset(&out[k], 0, sizeof out[k]);
+        snprintf(out[k].name, sizeof out[k].name, "symmetry_%c", "xyz"[d]);
+        out[k].normal[d] = 1.0;
+        k++;
+    }
+    return k;
+}
+
 extern const struct model_fixture sph_fixtures[]; /* sph_fixture.c */
 const struct model_ops sph_model_ops = {
     .name = "sph",
@@ -434,5 +460,6 @@ const struct model_ops sph_model_ops = {
     .drift_velocity = sph_drift_velocity,
     .time_scheme = sph_time_scheme,
     .interactions = sph_interactions,
+    .planes = sph_planes,
     .fixtures = sph_fixtures,
 };
