@@ -3,7 +3,8 @@
  * @brief The restart state registry (core/field_state.h): slots of every
  *        kind report their rows and data, names are unique, a load into a
  *        slot of another length is refused naming the slot, and a list
- *        slot's set_rows resizes the owner's storage.
+ *        slot's set_rows resizes the owner's storage; each slot records
+ *        the layout a distributed checkpoint writes it by.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -13,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/bond_list.h"
 #include "core/field_state.h"
 #include "spall/error.h"
 
@@ -98,8 +100,48 @@ static void test_slots(void **state)
     free(o.list);
 }
 
+/* The distributed writer (io/checkpoint_par.c) places rows by layout: per
+ * owned particle at its global id, per half-bond at the serial bond-row
+ * offset, values from rank 0; a slot in a run's own order cannot be placed. */
+static void test_layouts(void **state)
+{
+    (void)state;
+    struct field_state *fs = NULL;
+    struct spall_error err = {0};
+    assert_int_equal(field_state_create(&fs, &err), 0);
+    size_t offset[4] = {0, 2, 5, 5}; /* three particles, the last one's row empty */
+    struct bond_list bl = {.n = 3, .offset = offset};
+    double *per_p = calloc(3 * 2, sizeof *per_p), *per_b = calloc(5, sizeof *per_b);
+    uint8_t *loc = calloc(4, 1);
+    double t = 0.0;
+    assert_non_null(per_p);
+    assert_non_null(per_b);
+    assert_non_null(loc);
+    assert_int_equal(field_state_add_particle_array(fs, "p", FIELD_F64, (void **)&per_p, 3, 2,
+                                                    &err),
+                     0);
+    assert_int_equal(field_state_add_bond_array(fs, "b", FIELD_F64, (void **)&per_b, &bl, 1, &err),
+                     0);
+    assert_int_equal(field_state_add_array(fs, "l", FIELD_U8, (void **)&loc, 4, 1, &err), 0);
+    assert_int_equal(field_state_add_values(fs, "t", FIELD_F64, &t, 1, &err), 0);
+    const struct field_state_slot *sp = field_state_find(fs, "p"), *sb = field_state_find(fs, "b");
+    assert_int_equal(sp->layout, FIELD_STATE_PARTICLE);
+    assert_int_equal(field_state_slot_rows(sp), 3);
+    assert_int_equal(sp->width, 2);
+    assert_int_equal(sb->layout, FIELD_STATE_HALF_BOND);
+    assert_ptr_equal(sb->bonds, &bl);
+    assert_int_equal(field_state_slot_rows(sb), 5); /* offset[n]: every half-bond */
+    assert_int_equal(field_state_find(fs, "l")->layout, FIELD_STATE_LOCAL);
+    assert_int_equal(field_state_find(fs, "t")->layout, FIELD_STATE_GLOBAL);
+    field_state_destroy(&fs);
+    free(per_p);
+    free(per_b);
+    free(loc);
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_slots)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_slots),
+                                       cmocka_unit_test(test_layouts)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -112,10 +112,11 @@ int cli_run(int argc, char **argv)
         return cli_exit_status(rc);
     }
     if (res.signal) {
-        fprintf(stderr,
-                "spall: stopped by signal %d at step %ld, t = %.6g s; checkpoint %s\n"
-                "spall: continue with: spall run %s --restart %s\n",
-                res.signal, res.steps, res.time, res.checkpoint, opt.deck_path, res.out_dir);
+        if (root)
+            fprintf(stderr,
+                    "spall: stopped by signal %d at step %ld, t = %.6g s; checkpoint %s\n"
+                    "spall: continue with: spall run %s --restart %s\n",
+                    res.signal, res.steps, res.time, res.checkpoint, opt.deck_path, res.out_dir);
         return SPALL_EXIT_INTERRUPTED;
     }
     if (!opt.quiet && root) {

@@ -5,6 +5,7 @@
  */
 #include "core/field_state.h"
 
+#include "core/bond_list.h"
 #include "core/contact_particles.h"
 #include "core/model.h"
 #include "core/particles.h"
@@ -69,7 +70,29 @@ static int add_slot(struct field_state *fs, const struct field_state_slot *s,
 int field_state_add_array(struct field_state *fs, const char *name, enum field_type type,
                           void **data, size_t rows, size_t width, struct spall_error *err)
 {
-    struct field_state_slot s = {.type = type, .width = width, .data = data, .rows_fixed = rows};
+    struct field_state_slot s = {.type = type, .width = width, .data = data, .rows_fixed = rows,
+                                 .layout = FIELD_STATE_LOCAL};
+    snprintf(s.name, sizeof s.name, "%s", name);
+    return add_slot(fs, &s, err);
+}
+
+int field_state_add_particle_array(struct field_state *fs, const char *name,
+                                   enum field_type type, void **data, size_t n_owned,
+                                   size_t width, struct spall_error *err)
+{
+    struct field_state_slot s = {.type = type, .width = width, .data = data,
+                                 .rows_fixed = n_owned, .layout = FIELD_STATE_PARTICLE};
+    snprintf(s.name, sizeof s.name, "%s", name);
+    return add_slot(fs, &s, err);
+}
+
+int field_state_add_bond_array(struct field_state *fs, const char *name, enum field_type type,
+                               void **data, const struct bond_list *bonds, size_t width,
+                               struct spall_error *err)
+{
+    struct field_state_slot s = {.type = type, .width = width, .data = data,
+                                 .rows_fixed = bonds->offset[bonds->n],
+                                 .layout = FIELD_STATE_HALF_BOND, .bonds = bonds};
     snprintf(s.name, sizeof s.name, "%s", name);
     return add_slot(fs, &s, err);
 }
@@ -79,7 +102,7 @@ int field_state_add_list(struct field_state *fs, const char *name, enum field_ty
                          field_state_set_rows_fn set_rows, void *ctx, struct spall_error *err)
 {
     struct field_state_slot s = {.type = type, .width = width, .data = data, .rows = rows,
-                                 .set_rows = set_rows, .ctx = ctx};
+                                 .set_rows = set_rows, .ctx = ctx, .layout = FIELD_STATE_LOCAL};
     snprintf(s.name, sizeof s.name, "%s", name);
     return add_slot(fs, &s, err);
 }
@@ -182,11 +205,12 @@ int sim_register_state(struct sim *s, struct field_state *fs, struct spall_error
     /* the forces of the last step feed the first kick of the next one */
     for (int d = 0; d < s->dim && !rc; d++) {
         snprintf(nm, sizeof nm, "particles.force.%d", d);
-        rc = field_state_add_array(fs, nm, FIELD_F64, (void **)&p->f[d], p->n_owned, 1, err);
+        rc = field_state_add_particle_array(fs, nm, FIELD_F64, (void **)&p->f[d], p->n_owned, 1,
+                                            err);
         if (!rc && s->v_half[d]) {
             snprintf(nm, sizeof nm, "sim.v_half.%d", d);
-            rc = field_state_add_array(fs, nm, FIELD_F64, (void **)&s->v_half[d], p->n_owned, 1,
-                                       err);
+            rc = field_state_add_particle_array(fs, nm, FIELD_F64, (void **)&s->v_half[d],
+                                                p->n_owned, 1, err);
         }
     }
     if (!rc)

@@ -30,10 +30,21 @@
 
 #include "core/fields.h"
 
+struct bond_list;
 struct sim;
 struct spall_error;
 
 #define FIELD_STATE_NAME_LEN 64
+
+/** How a slot's rows map onto the run's particles: what a distributed
+ *  checkpoint (io/checkpoint_par.c) needs to write every rank's rows at
+ *  their place in the serial layout. */
+enum field_state_layout {
+    FIELD_STATE_GLOBAL = 0,  /**< the same values on every rank (scalars, counters) */
+    FIELD_STATE_LOCAL,       /**< rows in the rank's own order: serial runs only */
+    FIELD_STATE_PARTICLE,    /**< one row per owned particle, in local order */
+    FIELD_STATE_HALF_BOND    /**< one row per half-bond of @c bonds' owned rows */
+};
 
 /** Rows currently held by the owner. */
 typedef size_t (*field_state_rows_fn)(const void *ctx);
@@ -51,6 +62,8 @@ struct field_state_slot {
     field_state_rows_fn rows;
     field_state_set_rows_fn set_rows;
     void *ctx;
+    enum field_state_layout layout;
+    const struct bond_list *bonds; /**< FIELD_STATE_HALF_BOND: the rows' bond list */
 };
 
 struct field_state {
@@ -62,9 +75,22 @@ int field_state_create(struct field_state **out, struct spall_error *err);
 void field_state_destroy(struct field_state **fs);
 
 /** Register an owner-allocated array of @p rows rows of @p width values
- *  (the array pointer is read when the slot is saved or loaded). */
+ *  (the array pointer is read when the slot is saved or loaded); its rows
+ *  are in the run's own order (FIELD_STATE_LOCAL). */
 int field_state_add_array(struct field_state *fs, const char *name, enum field_type type,
                           void **data, size_t rows, size_t width, struct spall_error *err);
+
+/** Register an array of one row of @p width values per owned particle
+ *  (@p n_owned rows, local order). */
+int field_state_add_particle_array(struct field_state *fs, const char *name,
+                                   enum field_type type, void **data, size_t n_owned,
+                                   size_t width, struct spall_error *err);
+
+/** Register an array of one row of @p width values per half-bond of the
+ *  owned particles' rows of @p bonds (bonds->offset[bonds->n] rows). */
+int field_state_add_bond_array(struct field_state *fs, const char *name, enum field_type type,
+                               void **data, const struct bond_list *bonds, size_t width,
+                               struct spall_error *err);
 
 /** Register a variable-length array: @p rows gives its current length and
  *  @p set_rows (may be NULL when the length cannot change) resizes it. */

@@ -28,15 +28,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define CKPT_MAGIC "spall-checkpoint"
+#define CKPT_MAGIC CHECKPOINT_MAGIC
 
 int64_t checkpoint_fapl(void)
 {
-    /* serial: the default driver; the MPI build sets MPI-IO here */
+    /* the default driver: serial writes, and every restart's read (a
+     * distributed run reads the whole file on each rank before it
+     * partitions; its collective writes open files in checkpoint_par.c) */
     return H5Pcreate(H5P_FILE_ACCESS);
 }
 
-static hid_t h5_type(enum field_type t)
+int64_t checkpoint_h5_type(enum field_type t)
 {
     switch (t) {
     case FIELD_F64:
@@ -51,7 +53,7 @@ static hid_t h5_type(enum field_type t)
     return H5T_NATIVE_UINT8;
 }
 
-static void fnv(uint64_t *h, const void *data, size_t bytes)
+void checkpoint_hash(uint64_t *h, const void *data, size_t bytes)
 {
     const unsigned char *c = data;
     for (size_t k = 0; k < bytes; k++) {
@@ -73,10 +75,10 @@ static int ck_write(struct ck *c, const char *name, enum field_type t, const voi
 {
     hsize_t dim = count;
     hid_t space = H5Screate_simple(1, &dim, NULL);
-    hid_t ds = space >= 0 ? H5Dcreate2(c->file, name, h5_type(t), space, H5P_DEFAULT, c->dcpl,
+    hid_t ds = space >= 0 ? H5Dcreate2(c->file, name, checkpoint_h5_type(t), space, H5P_DEFAULT, c->dcpl,
                                        H5P_DEFAULT)
                           : -1;
-    int bad = ds < 0 || (count && H5Dwrite(ds, h5_type(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0);
+    int bad = ds < 0 || (count && H5Dwrite(ds, checkpoint_h5_type(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0);
     if (ds >= 0)
         H5Dclose(ds);
     if (space >= 0)
@@ -84,7 +86,7 @@ static int ck_write(struct ck *c, const char *name, enum field_type t, const voi
     if (bad)
         return spall_error_set(c->err, SPALL_ERR_IO, "cannot write '%s' into checkpoint '%s'", name,
                                c->path);
-    fnv(&c->sum, data, count * field_state_type_size(t));
+    checkpoint_hash(&c->sum, data, count * field_state_type_size(t));
     return SPALL_OK;
 }
 
@@ -127,12 +129,12 @@ static int ck_read(struct ck *c, const char *name, enum field_type t, void *data
         return ck_bad(c, "%s", what);
     }
     hid_t ds = H5Dopen2(c->file, name, H5P_DEFAULT);
-    int bad = ds < 0 || (count && H5Dread(ds, h5_type(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0);
+    int bad = ds < 0 || (count && H5Dread(ds, checkpoint_h5_type(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0);
     if (ds >= 0)
         H5Dclose(ds);
     if (bad)
         return ck_bad(c, "'%s' cannot be read (corrupt file)", name);
-    fnv(&c->sum, data, count * field_state_type_size(t));
+    checkpoint_hash(&c->sum, data, count * field_state_type_size(t));
     return SPALL_OK;
 }
 
@@ -271,7 +273,7 @@ int checkpoint_write(const char *path, const struct sim *s, const struct field_s
     H5Eget_auto2(H5E_DEFAULT, &func, &data);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     hid_t fapl = checkpoint_fapl();
-    struct ck c = {.sum = 0xcbf29ce484222325ULL, .path = path, .err = err, .dcpl = -1};
+    struct ck c = {.sum = CHECKPOINT_HASH_SEED, .path = path, .err = err, .dcpl = -1};
     c.file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
     H5Pclose(fapl);
     int rc = SPALL_OK;
@@ -444,7 +446,7 @@ int checkpoint_read(const char *path, struct sim *s, const struct field_state *f
     void *data;
     H5Eget_auto2(H5E_DEFAULT, &func, &data);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    struct ck c = {.sum = 0xcbf29ce484222325ULL, .path = path, .err = err, .dcpl = -1};
+    struct ck c = {.sum = CHECKPOINT_HASH_SEED, .path = path, .err = err, .dcpl = -1};
     int rc = SPALL_OK;
     hid_t fapl = checkpoint_fapl();
     c.file = H5Fis_hdf5(path) > 0 ? H5Fopen(path, H5F_ACC_RDONLY, fapl) : -1;

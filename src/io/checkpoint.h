@@ -18,6 +18,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/fields.h"
+
 struct deck;
 struct deck_node;
 struct field_state;
@@ -57,8 +59,8 @@ struct checkpoint_meta {
  *  description).  Returns a malloc'd string (NULL: out of memory). */
 char *checkpoint_deck_fingerprint(const struct deck_node *root);
 
-/** File-access properties of checkpoint files (the one place the MPI build
- *  will ask for collective MPI-IO).  Close with H5Pclose. */
+/** File-access properties of checkpoint files read, and written by a
+ *  serial run (checkpoint_write_par uses MPI-IO).  Close with H5Pclose. */
 int64_t checkpoint_fapl(void);
 
 /** Write the state of @p s (its registry @p fs) into @p path. */
@@ -72,6 +74,30 @@ int checkpoint_write(const char *path, const struct sim *s, const struct field_s
  *  names the first differing deck key).  Fills @p meta. */
 int checkpoint_read(const char *path, struct sim *s, const struct field_state *fs,
                     const struct deck *d, struct checkpoint_meta *meta, struct spall_error *err);
+
+/* Shared by the serial (checkpoint.c) and the distributed writer
+ * (checkpoint_par.c): the file's magic, the checksum (FNV-1a, 64 bit, over
+ * the bytes of every dataset in the order written) and HDF5's native type
+ * of a field type. */
+#define CHECKPOINT_MAGIC "spall-checkpoint"
+#define CHECKPOINT_HASH_SEED 0xcbf29ce484222325ULL
+void checkpoint_hash(uint64_t *h, const void *data, size_t bytes);
+int64_t checkpoint_h5_type(enum field_type t);
+
+/* checkpoint_par.c -------------------------------------------------------- */
+
+/** Distributed run: every rank writes its owned particles' rows, at their
+ *  global ids, into the one file @p path, which then holds exactly what a
+ *  serial checkpoint of the same state holds (the serial layout), so a
+ *  restart may use any rank count.  Collective; the result is agreed over
+ *  the ranks.  Rank 0 adds the checksum after all ranks have closed. */
+int checkpoint_write_par(const char *path, const struct sim *s, const struct field_state *fs,
+                         const struct deck *d, const struct checkpoint_meta *meta,
+                         struct spall_error *err);
+
+/** Refuse (SPALL_ERR_INPUT naming the slot) state that a distributed run
+ *  cannot write in the serial layout yet (slots in a rank's own order). */
+int checkpoint_par_check(const struct field_state *fs, struct spall_error *err);
 
 /* checkpoint_files.c ------------------------------------------------------ */
 

@@ -8,6 +8,7 @@
 #include "io/checkpoint.h"
 
 #include "core/options.h"
+#include "core/parallel/comm.h"
 #include "core/sim.h"
 #include "spall/error.h"
 
@@ -199,30 +200,22 @@ static void ckpt_name(char *out, size_t len, const char *dir, long step, bool tm
              tmp ? ".tmp" : "");
 }
 
-int checkpoint_save(const char *dir, long keep, const struct sim *s, const struct field_state *fs,
-                    const struct deck *d, const struct checkpoint_meta *meta, char *written,
-                    size_t len, struct spall_error *err)
+/* The written temporary @p tmp becomes @p final, then all but the newest
+ * @p keep complete checkpoints of @p dir are removed. */
+static int publish(const char *dir, long keep, const char *tmp, const char *final,
+                   struct spall_error *err)
 {
-    char tmp[1200], final[1200];
-    ckpt_name(tmp, sizeof tmp, dir, s->step, true);
-    ckpt_name(final, sizeof final, dir, s->step, false);
-    int rc = checkpoint_write(tmp, s, fs, d, meta, err);
-    if (rc) {
-        remove(tmp);
-        return rc;
-    }
     if (rename(tmp, final) != 0) {
-        rc = spall_error_set(err, SPALL_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, final,
-                             strerror(errno));
+        int rc = spall_error_set(err, SPALL_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, final,
+                                 strerror(errno));
         remove(tmp);
         return rc;
     }
-    if (written)
-        snprintf(written, len, "%s", final);
     /* only now, with the new one complete, drop the oldest */
     long *steps = NULL;
     size_t n = 0;
-    if ((rc = list_steps(dir, &steps, &n, err)))
+    int rc = list_steps(dir, &steps, &n, err);
+    if (rc)
         return rc;
     for (size_t k = (size_t)keep; k < n; k++) {
         char old[1200];
@@ -231,6 +224,30 @@ int checkpoint_save(const char *dir, long keep, const struct sim *s, const struc
     }
     free(steps);
     return SPALL_OK;
+}
+
+int checkpoint_save(const char *dir, long keep, const struct sim *s, const struct field_state *fs,
+                    const struct deck *d, const struct checkpoint_meta *meta, char *written,
+                    size_t len, struct spall_error *err)
+{
+    char tmp[1200], final[1200];
+    ckpt_name(tmp, sizeof tmp, dir, s->step, true);
+    ckpt_name(final, sizeof final, dir, s->step, false);
+    /* distributed: one file written by all ranks (agreed result), then
+     * renamed and rotated by rank 0 alone, the outcome agreed again */
+    int rc = s->par ? checkpoint_write_par(tmp, s, fs, d, meta, err)
+                    : checkpoint_write(tmp, s, fs, d, meta, err);
+    if (par_rank() == 0) {
+        if (rc)
+            remove(tmp);
+        else
+            rc = publish(dir, keep, tmp, final, err);
+    }
+    if (s->par)
+        rc = par_agree(rc, err);
+    if (!rc && written)
+        snprintf(written, len, "%s", final);
+    return rc;
 }
 
 int checkpoint_locate(const char *arg, char *file, size_t file_len, char *dir, size_t dir_len,

@@ -686,7 +686,7 @@ int field_writer_resume(struct field_writer *w, size_t frames, const char *grids
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (XDMF index)");
     }
     w->frames = frames;
-    return write_xdmf(w, err);
+    return par_rank() == 0 ? write_xdmf(w, err) : SPALL_OK; /* distributed: rank 0 indexes */
 }
 
 /* ---------------------------------------------------------------- read */

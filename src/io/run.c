@@ -220,7 +220,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     rc = deck_build_sim(d, &s, &ro, err);
     if (!rc)
         rc = setup_check_sim(d, s, &setup, err); /* set-ups that cannot be right */
-    if ((rc = run_par_setup(s, opt, &ro, rc, err))) { /* mpirun: refusals, agreed */
+    if ((rc = run_par_setup(s, &ro, rc, err))) { /* mpirun: refusals, agreed */
         if (s && err->key[0]) /* a refusal naming a deck key: at its position */
             deck_locate_error(d->root, err);
         goto done;
@@ -230,7 +230,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
 
     /* a restart reads its checkpoint here, before any output is touched */
     char dir[1024];
-    if ((rc = run_ckpt_begin(&ck, opt, d, &ro.checkpoint, s, dir, sizeof dir, err)))
+    if ((rc = run_par_agree(run_ckpt_begin(&ck, opt, d, &ro.checkpoint, s, dir, sizeof dir, err),
+                            err)))
         goto done;
     bool resume = ck.restarted && run_ckpt_same_dir(&ck);
     if ((rc = setup_check_cost(d, s, &ro, dir, opt->yes, &setup, err)))
@@ -238,7 +239,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
 
     /* all checks passed: now, and only now, touch the file system */
     snprintf(res->out_dir, sizeof res->out_dir, "%s", dir);
-    if (ck.restarted && !resume)
+    if (ck.restarted && !resume && run_par_root())
         rc = run_ckpt_copy_outputs(&ck, opt->overwrite, err);
     else if (!ck.restarted && run_par_root())
         rc = run_prepare_out_dir(dir, opt->overwrite, err);
@@ -286,8 +287,9 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     double next_frame_t = ro.field_interval;
     if (ck.restarted) { /* the checkpoint's rows and frames are on disk */
         next_frame_t = ck.meta.next_frame_t;
-        rc = field_writer_resume(fw, (size_t)ck.meta.frames, ck.meta.xdmf_grids,
-                                 ck.meta.xdmf_len, err);
+        rc = run_par_agree(field_writer_resume(fw, (size_t)ck.meta.frames, ck.meta.xdmf_grids,
+                                               ck.meta.xdmf_len, err),
+                           err);
     } else {
         history_values(s, &hl, hv);
         if (!(rc = run_par_agree(hw ? history_writer_append(hw, hv, err) : 0, err)))
@@ -300,8 +302,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     progress_start(&pr, run_par_root() ? opt->progress : 0, s->n_steps, par_n_global(s));
     progress_set_every(&pr, opt->progress_every);
     double t0 = omp_get_wtime();
-    if (!run_par_on()) /* mpirun forwards signals to every rank; no checkpoint there yet */
-        run_signals_install();
+    run_signals_install();
     while (!sim_done(s)) {
         s->stop_time = ro.field_interval > 0.0 ? next_frame_t : 0.0; /* frames land on time */
         rc = sim_step(s, err);
@@ -331,7 +332,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         }
         if ((rc = run_balance_step(&rb, s, hist_row, log, err))) /* mpirun: rebalancing */
             break;
-        int sig = run_signal_pending();
+        int sig = run_signal_agreed(); /* distributed: the same step on every rank */
         if ((ck.opt.on || sig) &&
             (rc = run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, log, err)))
             break;
@@ -339,8 +340,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         if ((res->signal = sig))
             break;
     }
-    if (!run_par_on())
-        run_signals_restore();
+    run_signals_restore();
     double wall = omp_get_wtime() - t0;
     progress_finish(&pr);
     res->steps = s->step;

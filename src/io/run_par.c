@@ -30,13 +30,13 @@ int run_par_agree(int rc, struct spall_error *err)
     return run_par_on() ? par_agree(rc, err) : rc;
 }
 
-int run_par_setup(const struct sim *s, const struct spall_run_options *opt,
-                  const struct run_output *ro, int rc, struct spall_error *err)
+int run_par_setup(const struct sim *s, const struct run_output *ro, int rc,
+                  struct spall_error *err)
 {
     if (!run_par_on())
         return rc;
     if (!rc && s)
-        rc = par_check_supported(s, opt->restart != NULL, ro->checkpoint.on, err);
+        rc = par_check_supported(s, err);
     if (!rc && s)
         rc = run_balance_check(s, &ro->parallel, err);
     return par_agree(rc, err);

@@ -25,8 +25,8 @@ bool run_par_root(void);
 /** After the deck is built (@p rc its status, @p s NULL on failure): refuse
  *  what cannot run distributed yet, and agree on the outcome over the ranks
  *  so one rank's failure stops all with one message.  Serial: returns @p rc. */
-int run_par_setup(const struct sim *s, const struct spall_run_options *opt,
-                  const struct run_output *ro, int rc, struct spall_error *err);
+int run_par_setup(const struct sim *s, const struct run_output *ro, int rc,
+                  struct spall_error *err);
 /** Agree on @p rc over the ranks (serial: returns it). */
 int run_par_agree(int rc, struct spall_error *err);
 /** Partition and localise the prepared run and record the decomposition

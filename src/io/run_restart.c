@@ -6,6 +6,7 @@
 #include "io/run_restart.h"
 
 #include "core/field_state.h"
+#include "core/parallel/comm.h"
 #include "core/sim.h"
 #include "io/output.h"
 #include "io/run_util.h"
@@ -54,6 +55,16 @@ int run_signal_pending(void)
     return (int)g_signal;
 }
 
+int run_signal_agreed(void)
+{
+    /* the batch system signals every rank, mpirun forwards SIGUSR1 to all,
+     * but not necessarily within the same step: the highest signal any rank
+     * has seen stops all of them after this step */
+    if (par_size() <= 1)
+        return run_signal_pending();
+    return (int)-par_min_i64(-(int64_t)g_signal);
+}
+
 static int collect_state(struct run_ckpt *c, struct sim *s, struct spall_error *err)
 {
     if (c->fs)
@@ -61,6 +72,8 @@ static int collect_state(struct run_ckpt *c, struct sim *s, struct spall_error *
     int rc = field_state_create(&c->fs, err);
     if (!rc)
         rc = sim_register_state(s, c->fs, err);
+    if (!rc && par_size() > 1) /* refused before the run, not at its first checkpoint */
+        rc = checkpoint_par_check(c->fs, err);
     return rc;
 }
 
@@ -171,8 +184,14 @@ int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_write
             c->next_t += c->opt.every_time;
     }
     double now = omp_get_wtime();
-    if (c->opt.every_minutes > 0 && now - c->wall_last >= 60.0 * c->opt.every_minutes)
-        due = true;
+    if (c->opt.every_minutes > 0) {
+        bool late = now - c->wall_last >= 60.0 * c->opt.every_minutes;
+        /* the ranks' clocks differ: a checkpoint is collective, so any rank's
+         * "due" makes it due for all */
+        if (par_size() > 1)
+            late = par_min_i64(-(int64_t)late) < 0;
+        due |= late;
+    }
     if (!due || (force && c->last_step == s->step)) /* a signal right after a checkpoint */
         return SPALL_OK;
     /* the owners may have replaced their arrays (a new pair list): the
@@ -182,7 +201,8 @@ int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_write
     if (rc)
         return rc;
     struct checkpoint_meta m = {.frames = (int64_t)field_writer_frames(fw),
-                                .history_bytes = history_writer_bytes(hw),
+                                /* distributed: rank 0 writes history.csv */
+                                .history_bytes = hw ? history_writer_bytes(hw) : 0,
                                 .next_frame_t = next_frame_t,
                                 .next_ckpt_t = c->next_t};
     m.xdmf_grids = field_writer_grids(fw, &m.xdmf_len);
@@ -202,6 +222,8 @@ int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_write
 
 void run_ckpt_log_restart(const struct run_ckpt *c, const struct sim *s, FILE *log)
 {
+    if (!log) /* distributed: rank 0 writes run.log */
+        return;
     time_t now = time(NULL);
     char when[64];
     strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));

@@ -65,5 +65,8 @@ void run_signals_install(void);
 void run_signals_restore(void);
 /** The signal received (0: none). */
 int run_signal_pending(void);
+/** The signal received by any rank (collective on a distributed run, where
+ *  every rank calls it after each step; serial: run_signal_pending). */
+int run_signal_agreed(void);
 
 #endif

@@ -49,9 +49,6 @@ refused "model not distributed" "$(sed 's/^  end_time: .*/  steps: 3/' \
 refused "pd eps" "model: {type: peridynamics, formulation: eps}
 $(echo "$base" | sed 's/failure_strain: 0.05/fracture_energy: 100, yield_stress: 1.0e8/')
 " "formulation eps is not distributed yet"
-refused "checkpoints" "model: {type: lattice}
-${base}output: {checkpoint: {every_steps: 2}}
-" "checkpoints and restart are not distributed yet"
 refused "angular springs" "model: {type: lattice, angular: on}
 ${base}" "angular springs are not distributed yet"
 $launch "$spall" validate --quick >stdout.txt 2>stderr.txt; rc=$?

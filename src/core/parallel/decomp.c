@@ -82,8 +82,7 @@ double par_particle_work(const struct bond_list *bl, size_t i, int intact_only)
     return w;
 }
 
-int par_check_supported(const struct sim *s, bool restart, bool checkpoints,
-                        struct spall_error *err)
+int par_check_supported(const struct sim *s, struct spall_error *err)
 {
     const int n = par_size();
     if (!s->ops->localize)
@@ -95,9 +94,7 @@ int par_check_supported(const struct sim *s, bool restart, bool checkpoints,
     if (rc)
         return rc;
     const char *what = NULL;
-    if (restart || checkpoints)
-        what = "checkpoints and restart are";
-    else if (s->pcontact)
+    if (s->pcontact)
         what = "particle contact is";
     else if (s->integrator != INTEGRATOR_VERLET || s->adaptive_dt)
         what = "this time integration is";

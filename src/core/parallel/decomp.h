@@ -41,8 +41,7 @@ struct par_decomp;
 /** Refuse, before any output exists, what cannot yet run on more than one
  *  rank (SPALL_ERR_INPUT, one line).  Not collective: every rank decides
  *  the same from the same deck. */
-int par_check_supported(const struct sim *s, bool restart, bool checkpoints,
-                        struct spall_error *err);
+int par_check_supported(const struct sim *s, struct spall_error *err);
 
 /** Partition the prepared run with Zoltan and keep owned + ghosts (see
  *  above); sets s->par.  Collective; errors are agreed (comm.h). */

@@ -19,24 +19,23 @@ int lattice_register_state(struct model *m, struct sim *sim, struct field_state 
                            struct spall_error *err)
 {
     struct bond_list *bl = m->bl;
-    size_t nh = bl->offset[bl->n];
-    int rc = field_state_add_array(fs, "lattice.bond_state", FIELD_U8, (void **)&bl->state, nh, 1,
-                                   err);
+    int rc = field_state_add_bond_array(fs, "lattice.bond_state", FIELD_U8, (void **)&bl->state,
+                                        bl, 1, err);
     /* thermal expansion moves the rest lengths; otherwise they are stored
      * compacted (bond_list_compact_rest), never change and init rebuilds
      * them */
     if (!rc && bl->rest)
-        rc = field_state_add_array(fs, "lattice.bond_rest", FIELD_F64, (void **)&bl->rest, nh, 1,
-                                   err);
-    if (!rc && m->angular)
+        rc = field_state_add_bond_array(fs, "lattice.bond_rest", FIELD_F64, (void **)&bl->rest,
+                                        bl, 1, err);
+    if (!rc && m->angular) /* angles: not distributed (lattice_localize refuses them) */
         rc = field_state_add_array(fs, "lattice.angle_state", FIELD_U8, (void **)&m->ang_state,
-                                   nh, 1, err);
-    if (!rc && m->kappa)
-        rc = field_state_add_array(fs, "lattice.softening_kappa", FIELD_F64,
-                                   (void **)&m->kappa, m->n_half, 1, err);
+                                   bl->offset[bl->n], 1, err);
+    if (!rc && m->kappa) /* one per half-bond (m->n_half == the rows of bl) */
+        rc = field_state_add_bond_array(fs, "lattice.softening_kappa", FIELD_F64,
+                                        (void **)&m->kappa, bl, 1, err);
     if (!rc)
-        rc = field_state_add_array(fs, "lattice.dissipated", FIELD_F64, (void **)&m->diss,
-                                   sim->p->n_owned, 1, err);
+        rc = field_state_add_particle_array(fs, "lattice.dissipated", FIELD_F64,
+                                            (void **)&m->diss, sim->p->n_owned, 1, err);
     if (!rc)
         rc = lattice_thermal_register_state(m, fs, err);
     return rc;

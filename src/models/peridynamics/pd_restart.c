@@ -23,10 +23,12 @@ int pd_register_state(struct model *m, struct sim *sim, struct field_state *fs,
                       struct spall_error *err)
 {
     size_t n = sim->p->n_owned, nh = m->bl->offset[m->bl->n];
-    int rc = field_state_add_array(fs, "pd.bond_state", FIELD_U8, (void **)&m->bl->state, nh, 1,
-                                   err);
+    int rc = field_state_add_bond_array(fs, "pd.bond_state", FIELD_U8, (void **)&m->bl->state,
+                                        m->bl, 1, err);
     if (!rc)
-        rc = field_state_add_array(fs, "pd.dissipated", FIELD_F64, (void **)&m->diss, n, 1, err);
+        rc = field_state_add_particle_array(fs, "pd.dissipated", FIELD_F64, (void **)&m->diss, n,
+                                            1, err);
+    /* the rest is not distributed yet (pd_localize refuses it): local order */
     if (!rc && m->fresh)
         rc = field_state_add_array(fs, "pd.fresh", FIELD_U8, (void **)&m->fresh, nh, 1, err);
     if (!rc && m->mm_g)
