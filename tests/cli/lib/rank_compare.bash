@@ -20,21 +20,24 @@ serial() { # deck: its reference run, without mpirun, into DECK_serial
     OMP_NUM_THREADS=1 timeout 120 "$spall" run "$1.yaml" -o "$1_serial" --quiet --no-progress ||
         { echo "FAIL serial $1 run"; exit 1; }
 }
+same_as_serial() { # ref out what: the outputs byte for byte, every frame under h5diff
+    local f
+    for f in history.csv fragments.csv fields.xdmf bodies.xdmf; do
+        [ -e "$1/$f" ] || continue
+        cmp -s "$1/$f" "$2/$f" || { echo "FAIL $3: $f differs"; fail=1; }
+    done
+    for f in "$1"/fields_*.h5; do
+        h5diff -q "$f" "$2/$(basename "$f")" || { echo "FAIL $3: $(basename "$f") differs"; fail=1; }
+    done
+}
 rebalanced() { # deck n: ranks() with rebalancing forced every 20 steps (deck
     # DECK_rb.yaml, output DECK_rbN compared with DECK_serial); particles must move
     { cat "$1.yaml"; echo "parallel: {rebalance_every: 20, imbalance_threshold: 1.0}"; } > "$1_rb.yaml"
     OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$2" \
         "$spall" run "$1_rb.yaml" -o "$1_rb$2" --quiet --no-progress ||
         { echo "FAIL $1 rebalanced on $2 ranks: exit $?"; fail=1; return; }
-    local f ref="$1_serial" out="$1_rb$2" moved
-    for f in history.csv fragments.csv fields.xdmf bodies.xdmf; do
-        [ -e "$ref/$f" ] || continue
-        cmp -s "$ref/$f" "$out/$f" || { echo "FAIL $1 rebalanced, $2 ranks: $f differs"; fail=1; }
-    done
-    for f in "$ref"/fields_*.h5; do
-        h5diff -q "$f" "$out/$(basename "$f")" ||
-            { echo "FAIL $1 rebalanced, $2 ranks: $(basename "$f") differs"; fail=1; }
-    done
+    local out="$1_rb$2" moved
+    same_as_serial "$1_serial" "$out" "$1 rebalanced, $2 ranks"
     moved=$(sed -n 's/^rebalances: [0-9]* (\([0-9]*\) particles migrated).*/\1/p' "$out/run.log")
     [ "${moved:-0}" -gt 0 ] || { echo "FAIL $1 rebalanced, $2 ranks: nothing migrated"; fail=1; }
 }
@@ -42,13 +45,5 @@ ranks() { # deck n: run on n ranks into DECKn and compare with DECK_serial
     OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$2" \
         "$spall" run "$1.yaml" -o "$1$2" --quiet --no-progress ||
         { echo "FAIL $1 on $2 ranks: exit $?"; fail=1; return; }
-    local f ref="$1_serial" out="$1$2"
-    for f in history.csv fragments.csv fields.xdmf bodies.xdmf; do
-        [ -e "$ref/$f" ] || continue
-        cmp -s "$ref/$f" "$out/$f" || { echo "FAIL $1, $2 ranks: $f differs"; fail=1; }
-    done
-    for f in "$ref"/fields_*.h5; do
-        h5diff -q "$f" "$out/$(basename "$f")" ||
-            { echo "FAIL $1, $2 ranks: $(basename "$f") differs"; fail=1; }
-    done
+    same_as_serial "$1_serial" "$1$2" "$1, $2 ranks"
 }
