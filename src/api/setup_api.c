@@ -212,7 +212,7 @@ static int walk(struct spall_setup *s, const char *key, bool create, struct deck
             return SPALL_OK;
         }
         if (i == cur->n) {
-            /* a new child: a placeholder scalar for a leaf (the caller
+            /* a new child: an empty scalar for a leaf (the caller
              * replaces it), else the container the next segment needs */
             enum deck_kind kind = leaf                ? DECK_SCALAR
                                   : next.index >= 0 ? DECK_SEQUENCE
