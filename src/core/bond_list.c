@@ -11,6 +11,8 @@
  */
 #include "core/bond_list.h"
 
+#include "core/distinct.h"
+
 #include "core/geometry.h"
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -280,60 +282,30 @@ size_t bond_list_bytes(const struct bond_list *bl)
            bl->n_rest * sizeof *bl->rest_tab + (bl->reverse ? m * sizeof *bl->reverse : 0);
 }
 
-/* Open-addressing set of the distinct rest lengths, keyed by their bits:
- * 2^17 slots for at most 2^16 values keep it at most half full. */
-#define REST_HASH_BITS 17
-#define REST_MAX_DISTINCT 65536u
+static void rest_key(const void *ctx, size_t k, unsigned char *out)
+{
+    memcpy(out, &((const double *)ctx)[k], sizeof(double));
+}
 
 int bond_list_compact_rest(struct bond_list *bl, struct spall_error *err)
 {
     if (!bl || !bl->rest)
         return SPALL_OK;
-    const size_t m = bl->offset[bl->n], nslot = (size_t)1 << REST_HASH_BITS;
-    uint32_t *slot = calloc(nslot, sizeof *slot); /* 0: empty, else table index + 1 */
-    double *tab = malloc(REST_MAX_DISTINCT * sizeof *tab);
+    const size_t m = bl->offset[bl->n];
     uint16_t *idx = malloc((m ? m : 1) * sizeof *idx);
-    if (!slot || !tab || !idx) {
-        free(slot);
-        free(tab);
-        free(idx);
+    if (!idx)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory compacting rest lengths");
-    }
+    void *tab = NULL;
     size_t nt = 0;
-    int fits = 1;
-    for (size_t k = 0; k < m && fits; k++) {
-        uint64_t bits;
-        memcpy(&bits, &bl->rest[k], sizeof bits);
-        size_t h = (size_t)((bits * 0x9E3779B97F4A7C15ull) >> (64 - REST_HASH_BITS));
-        for (;;) {
-            if (!slot[h]) {
-                if (nt == REST_MAX_DISTINCT) {
-                    fits = 0;
-                    break;
-                }
-                tab[nt] = bl->rest[k];
-                slot[h] = (uint32_t)++nt;
-            }
-            uint64_t tb;
-            memcpy(&tb, &tab[slot[h] - 1], sizeof tb);
-            if (tb == bits) {
-                idx[k] = (uint16_t)(slot[h] - 1);
-                break;
-            }
-            h = (h + 1) & (nslot - 1);
-        }
-    }
-    free(slot);
-    double *shrunk = fits ? realloc(tab, (nt ? nt : 1) * sizeof *tab) : NULL;
-    if (!shrunk) { /* more distinct values than an index holds: keep the doubles */
-        free(tab);
+    int rc = distinct_index16(rest_key, bl->rest, m, sizeof(double), 65536u, idx, &tab, &nt, err);
+    if (rc || !tab) { /* more distinct values than an index holds: keep the doubles */
         free(idx);
-        return SPALL_OK;
+        return rc;
     }
     free(bl->rest);
     bl->rest = NULL;
     bl->rest_idx = idx;
-    bl->rest_tab = shrunk;
+    bl->rest_tab = tab;
     bl->n_rest = nt;
     return SPALL_OK;
 }

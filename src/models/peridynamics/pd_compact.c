@@ -17,6 +17,7 @@
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
+#include "core/distinct.h"
 #include "core/sim.h"
 #include "spall/error.h"
 
@@ -25,17 +26,16 @@
 
 #define PD_KIND_MAX 65535u
 
-struct kind_key {
-    uint64_t rest, coef; /* bit patterns */
-    uint8_t type;
-};
+/* The key of half-bond k: the bit patterns of its reference length and
+ * coefficient, then its type (17 bytes, compared as bytes). */
+#define PD_KIND_KEY (2 * sizeof(double) + 1)
 
-static uint64_t key_hash(const struct kind_key *k)
+static void kind_key(const void *ctx, size_t k, unsigned char *out)
 {
-    uint64_t h = k->rest * 0x9E3779B97F4A7C15ull;
-    h ^= (k->coef + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full;
-    h ^= (uint64_t)k->type * 0x165667B19E3779F9ull;
-    return h ^ (h >> 29);
+    const struct model *m = ctx;
+    memcpy(out, &m->bl->rest[k], sizeof(double));
+    memcpy(out + sizeof(double), &m->coef[k], sizeof(double));
+    out[2 * sizeof(double)] = m->bl->type[k];
 }
 
 bool pd_compact_eligible(const struct model *m)
@@ -50,59 +50,34 @@ int pd_compact(struct model *m, struct spall_error *err)
     const size_t nh = bl->offset[bl->n];
     if (!pd_compact_eligible(m) || nh == 0)
         return SPALL_OK;
-    /* open addressing, twice the largest table, slots hold kind + 1 */
-    const size_t cap = 2u * 65536u;
-    uint32_t *slot = calloc(cap, sizeof *slot);
-    struct kind_key *keys = malloc(PD_KIND_MAX * sizeof *keys);
     uint16_t *kind = malloc(nh * sizeof *kind);
-    if (!slot || !keys || !kind) {
-        free(slot);
-        free(keys);
-        free(kind);
+    if (!kind)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
-    }
+    void *tab = NULL;
     size_t nk = 0;
-    bool fits = true;
-    for (size_t s = 0; s < nh && fits; s++) {
-        struct kind_key k = {0, 0, bl->type[s]};
-        memcpy(&k.rest, &bl->rest[s], sizeof k.rest);
-        memcpy(&k.coef, &m->coef[s], sizeof k.coef);
-        size_t h = (size_t)(key_hash(&k) & (cap - 1));
-        while (slot[h]) {
-            const struct kind_key *q = &keys[slot[h] - 1];
-            if (q->rest == k.rest && q->coef == k.coef && q->type == k.type)
-                break;
-            h = (h + 1) & (cap - 1);
-        }
-        if (!slot[h]) {
-            if (nk == PD_KIND_MAX) {
-                fits = false; /* keep the arrays */
-                break;
-            }
-            keys[nk] = k;
-            slot[h] = (uint32_t)++nk;
-        }
-        kind[s] = (uint16_t)(slot[h] - 1);
+    int rc = distinct_index16(kind_key, m, nh, PD_KIND_KEY, PD_KIND_MAX, kind, &tab, &nk, err);
+    if (rc || !tab) { /* more distinct triples than a row index holds: keep the arrays */
+        free(kind);
+        return rc;
     }
-    free(slot);
-    double *k_rest = fits ? malloc(nk * sizeof *k_rest) : NULL;
-    double *k_coef = fits ? malloc(nk * sizeof *k_coef) : NULL;
-    uint8_t *k_type = fits ? malloc(nk * sizeof *k_type) : NULL;
-    if (!fits || !k_rest || !k_coef || !k_type) {
-        free(keys);
+    double *k_rest = malloc(nk * sizeof *k_rest);
+    double *k_coef = malloc(nk * sizeof *k_coef);
+    uint8_t *k_type = malloc(nk * sizeof *k_type);
+    if (!k_rest || !k_coef || !k_type) {
+        free(tab);
         free(kind);
         free(k_rest);
         free(k_coef);
         free(k_type);
-        return fits ? spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds")
-                    : SPALL_OK;
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
     }
     for (size_t q = 0; q < nk; q++) {
-        memcpy(&k_rest[q], &keys[q].rest, sizeof k_rest[q]);
-        memcpy(&k_coef[q], &keys[q].coef, sizeof k_coef[q]);
-        k_type[q] = keys[q].type;
+        const unsigned char *r = (const unsigned char *)tab + q * PD_KIND_KEY;
+        memcpy(&k_rest[q], r, sizeof k_rest[q]);
+        memcpy(&k_coef[q], r + sizeof(double), sizeof k_coef[q]);
+        k_type[q] = r[2 * sizeof(double)];
     }
-    free(keys);
+    free(tab);
     free(bl->rest);
     free(bl->type);
     free(m->coef);
