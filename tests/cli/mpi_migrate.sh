@@ -11,34 +11,20 @@ set -u
 spall="$1"
 src="$2"
 mpiexec="$3"
-export OMP_WAIT_POLICY=passive
-# ASan builds (make asan): full stacks and loaded MCA components (tests/lsan.supp)
-export OMPI_MCA_mca_base_component_disable_dlclose=1
-[ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
-[ -n "${LSAN_OPTIONS:-}" ] && export LSAN_OPTIONS="$LSAN_OPTIONS:print_suppressions=0"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-cd "$tmp"
-# the decks of mpi_ranks.sh (one source of truth), with forced rebalancing
+# shellcheck source=lib/rank_compare.bash
+source "$src/tests/cli/lib/rank_compare.bash"
+# the decks of mpi_ranks.sh (tests/cli/decks), with forced rebalancing
 for d in frac pd; do
-    sed -n "/^cat > $d.yaml <<'YAML'/,/^YAML/p" "$src/tests/cli/mpi_ranks.sh" | sed '1d;$d' > "$d.yaml"
-    [ -s "$d.yaml" ] || { echo "FAIL cannot extract $d.yaml from mpi_ranks.sh"; exit 1; }
-    echo "parallel: {rebalance_every: 20, imbalance_threshold: 1.0}" >> "$d.yaml"
+    { cat "$src/tests/cli/decks/mpi_$d.yaml"
+      echo "parallel: {rebalance_every: 20, imbalance_threshold: 1.0}"; } > "$d.yaml"
 done
 fail=0
 for d in frac pd; do
     OMP_NUM_THREADS=1 timeout 120 "$spall" run "$d.yaml" -o "${d}_1" --quiet --no-progress ||
         { echo "FAIL one-rank $d run"; exit 1; }
 done
-compare() { # name out-dir reference-dir
-    local f
-    for f in history.csv fragments.csv fields.xdmf; do
-        [ -e "$3/$f" ] || continue
-        cmp -s "$3/$f" "$2/$f" || { echo "FAIL $1: $f differs"; fail=1; }
-    done
-    for f in "$3"/fields_*.h5; do
-        h5diff -q "$f" "$2/$(basename "$f")" || { echo "FAIL $1: $(basename "$f") differs"; fail=1; }
-    done
+compare() { # name out-dir reference-dir (tests/cli/lib/rank_compare.bash)
+    same_as_serial "$3" "$2" "$1"
 }
 # SPALL_MPI_RANK_COUNTS: the ASan build runs 3 ranks only (CMakeLists.txt)
 counts="${SPALL_MPI_RANK_COUNTS:-2 3}"

@@ -14,28 +14,12 @@ spall="$1"
 mpiexec="$3"
 # shellcheck source=lib/rank_compare.bash
 source "$2/tests/cli/lib/rank_compare.bash"
-cat > lps.yaml <<'YAML'
-title: LPS fracture, rank-count independence
-model: {type: peridynamics, formulation: lps}
-materials:
-  glass: {density: 2440, youngs_modulus: 72.0e9, poisson_ratio: 0.22, fracture_energy: 3.8}
-lattice: {type: square, spacing: 1.0e-3, thickness: 1.0e-3}
-geometry:
-  plate: {box: {min: [-1.0e-5, -1.0e-5], max: [0.04001, 0.02001]}}
-body: {geometry: plate, material: glass}
-precracks:
-  - {from: [-0.001, 0.0105], to: [0.015, 0.0105]}
-groups:
-  top: {box: {min: [-1, 0.0175], max: [1, 1]}}
-  bottom: {box: {min: [-1, -1], max: [1, 0.0025]}}
-probes:
-  - {name: tip, position: [0.015, 0.0105]}
-boundary_conditions:
-  - {group: top, type: traction, components: [y], value: 15.0e6, area: 4.0e-5}
-  - {group: bottom, type: traction, components: [y], value: -15.0e6, area: 4.0e-5}
-run: {steps: 300}
-output: {field_every: 150, history_every: 10}
-YAML
+# the PMB deck of mpi_ranks.sh (tests/cli/decks) in the LPS formulation, nu = 0.22
+sed 's/^model: {type: peridynamics}$/model: {type: peridynamics, formulation: lps}/;
+     s/youngs_modulus: 72.0e9, fracture_energy/youngs_modulus: 72.0e9, poisson_ratio: 0.22, fracture_energy/' \
+    "$2/tests/cli/decks/mpi_pd.yaml" > lps.yaml
+grep -q "formulation: lps" lps.yaml && grep -q "poisson_ratio: 0.22" lps.yaml ||
+    { echo "FAIL: cannot make lps.yaml from tests/cli/decks/mpi_pd.yaml"; exit 1; }
 cat > thermal.yaml <<'YAML'
 title: thermal lattice, rank-count independence
 model: {type: lattice, law: linear, thermal: {boundary: [{group: cold, temperature: 293.15}]}}

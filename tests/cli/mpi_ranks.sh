@@ -9,63 +9,11 @@
 set -u
 spall="$1"
 mpiexec="$3"
-export OMP_WAIT_POLICY=passive
-# ASan builds (make asan): full stacks and loaded MCA components, so that
-# tests/lsan.supp can name Open MPI's own run-time state
-export OMPI_MCA_mca_base_component_disable_dlclose=1
-[ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
-[ -n "${LSAN_OPTIONS:-}" ] && export LSAN_OPTIONS="$LSAN_OPTIONS:print_suppressions=0"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-cd "$tmp"
-cat > frac.yaml <<'YAML'
-title: lattice fracture, rank-count independence
-model: {type: lattice, law: linear}
-materials:
-  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3333333333333333, failure_strain: 0.004}
-lattice: {type: triangular, spacing: 0.001}
-geometry:
-  plate: {box: {min: [0, 0], max: [0.04, 0.03]}}
-body: {geometry: plate, material: m}
-precracks:
-  - {from: [-0.001, 0.015], to: [0.012, 0.015]}
-groups:
-  bottom: {box: {min: [-1, -1], max: [1, 0.0006]}}
-  top: {box: {min: [-1, 0.0285], max: [1, 1]}}
-  right: {box: {min: [0.0395, -1], max: [1, 1]}}
-boundary_conditions:
-  - {group: bottom, type: velocity, components: [y], value: -2.0}
-  - {group: top, type: velocity, components: [y], value: 2.0}
-  - {group: right, type: force, components: [x], value: 5.0}
-probes:
-  - {name: tip, position: [0.012, 0.015]}
-damping: 50.0
-run: {steps: 300}
-output: {field_every: 100, history_every: 10}
-YAML
-# peridynamics (PMB): a pre-cracked plate pulled by tractions
-cat > pd.yaml <<'YAML'
-title: peridynamic fracture, rank-count independence
-model: {type: peridynamics}
-materials:
-  glass: {density: 2440, youngs_modulus: 72.0e9, fracture_energy: 3.8}
-lattice: {type: square, spacing: 1.0e-3, thickness: 1.0e-3}
-geometry:
-  plate: {box: {min: [-1.0e-5, -1.0e-5], max: [0.04001, 0.02001]}}
-body: {geometry: plate, material: glass}
-precracks:
-  - {from: [-0.001, 0.0105], to: [0.015, 0.0105]}
-groups:
-  top: {box: {min: [-1, 0.0175], max: [1, 1]}}
-  bottom: {box: {min: [-1, -1], max: [1, 0.0025]}}
-probes:
-  - {name: tip, position: [0.015, 0.0105]}
-boundary_conditions:
-  - {group: top, type: traction, components: [y], value: 15.0e6, area: 4.0e-5}
-  - {group: bottom, type: traction, components: [y], value: -15.0e6, area: 4.0e-5}
-run: {steps: 300}
-output: {field_every: 150, history_every: 10}
-YAML
+# shellcheck source=lib/mpi_env.bash
+source "$2/tests/cli/lib/mpi_env.bash"
+# the lattice and PMB decks shared by the MPI tests
+cp "$2/tests/cli/decks/mpi_frac.yaml" frac.yaml
+cp "$2/tests/cli/decks/mpi_pd.yaml" pd.yaml
 fail=0
 OMP_NUM_THREADS=1 timeout 120 "$spall" run frac.yaml -o serial --quiet --no-progress ||
     { echo "FAIL serial run"; exit 1; }

@@ -17,59 +17,16 @@
 set -u
 spall="$1"
 mpiexec="$3"
-export OMP_WAIT_POLICY=passive OMP_NUM_THREADS=1
-# ASan builds (make asan): as in mpi_ranks.sh
-export OMPI_MCA_mca_base_component_disable_dlclose=1
-[ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
-[ -n "${LSAN_OPTIONS:-}" ] && export LSAN_OPTIONS="$LSAN_OPTIONS:print_suppressions=0"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-cd "$tmp"
-cat > frac.yaml <<'YAML'
-title: lattice fracture, distributed restart
-model: {type: lattice, law: linear}
-materials:
-  m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3333333333333333, failure_strain: 0.004}
-lattice: {type: triangular, spacing: 0.001}
-geometry:
-  plate: {box: {min: [0, 0], max: [0.04, 0.03]}}
-body: {geometry: plate, material: m}
-precracks:
-  - {from: [-0.001, 0.015], to: [0.012, 0.015]}
-groups:
-  bottom: {box: {min: [-1, -1], max: [1, 0.0006]}}
-  top: {box: {min: [-1, 0.0285], max: [1, 1]}}
-  right: {box: {min: [0.0395, -1], max: [1, 1]}}
-boundary_conditions:
-  - {group: bottom, type: velocity, components: [y], value: -2.0}
-  - {group: top, type: velocity, components: [y], value: 2.0}
-  - {group: right, type: force, components: [x], value: 5.0}
-probes:
-  - {name: tip, position: [0.012, 0.015]}
-damping: 50.0
-run: {steps: 300}
-output: {field_every: 100, history_every: 10, checkpoint: {every_steps: 100, keep: 5}}
-YAML
-cat > pd.yaml <<'YAML'
-title: peridynamic fracture, distributed restart
-model: {type: peridynamics}
-materials:
-  glass: {density: 2440, youngs_modulus: 72.0e9, fracture_energy: 3.8}
-lattice: {type: square, spacing: 1.0e-3, thickness: 1.0e-3}
-geometry:
-  plate: {box: {min: [-1.0e-5, -1.0e-5], max: [0.04001, 0.02001]}}
-body: {geometry: plate, material: glass}
-precracks:
-  - {from: [-0.001, 0.0105], to: [0.015, 0.0105]}
-groups:
-  top: {box: {min: [-1, 0.0175], max: [1, 1]}}
-  bottom: {box: {min: [-1, -1], max: [1, 0.0025]}}
-boundary_conditions:
-  - {group: top, type: traction, components: [y], value: 15.0e6, area: 4.0e-5}
-  - {group: bottom, type: traction, components: [y], value: -15.0e6, area: 4.0e-5}
-run: {steps: 300}
-output: {field_every: 150, history_every: 10, checkpoint: {every_steps: 150, keep: 5}}
-YAML
+export OMP_NUM_THREADS=1
+# shellcheck source=lib/mpi_env.bash
+source "$2/tests/cli/lib/mpi_env.bash"
+# the decks of mpi_ranks.sh (tests/cli/decks), with checkpoints
+sed 's/^output: {\(.*\)}$/output: {\1, checkpoint: {every_steps: 100, keep: 5}}/' \
+    "$2/tests/cli/decks/mpi_frac.yaml" > frac.yaml
+sed 's/^output: {\(.*\)}$/output: {\1, checkpoint: {every_steps: 150, keep: 5}}/' \
+    "$2/tests/cli/decks/mpi_pd.yaml" > pd.yaml
+grep -q "checkpoint: {every_steps: 100" frac.yaml && grep -q "checkpoint: {every_steps: 150" pd.yaml ||
+    { echo "FAIL: the decks' output lines changed; cannot add checkpoints"; exit 1; }
 fail=0
 mpi() { # ranks args...
     local n="$1"

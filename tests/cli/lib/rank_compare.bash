@@ -3,15 +3,8 @@
 # the comparison of a distributed run's output with the serial reference.
 # Expects $spall and $mpiexec; sets $fail (0) and changes into the scratch
 # directory.
-export OMP_WAIT_POLICY=passive
-# ASan builds (make asan): full stacks and loaded MCA components, so that
-# tests/lsan.supp can name Open MPI's own run-time state
-export OMPI_MCA_mca_base_component_disable_dlclose=1
-[ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
-[ -n "${LSAN_OPTIONS:-}" ] && export LSAN_OPTIONS="$LSAN_OPTIONS:print_suppressions=0"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-cd "$tmp" || exit 1
+# shellcheck source=mpi_env.bash
+source "$(dirname "${BASH_SOURCE[0]}")/mpi_env.bash"
 fail=0
 col() { # file column-name: the last row's value
     awk -F, -v n="$2" 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == n) c = k} END {print $c}' "$1"
