@@ -33,14 +33,32 @@ void par_xsum_finish(const struct sim *s, struct xsum *acc, size_t n, double *ou
 void par_bond_energy(const struct model *m, const struct sim *s, par_particle_energy_fn eval,
                      const double *diss, double *strain, double *dissipated)
 {
+    /* The energy of every history row visits every bond again: on one thread
+     * it cost 2.6 times the force loop of a 3D fcc lattice run with a row per
+     * step (perf, 59 407 particles).  Exact accumulators make the threads'
+     * partial sums independent of how the particles are split, so the
+     * threaded sum is bitwise the serial one (eval only reads the model). */
     struct xsum acc[2];
     xsum_init(&acc[0]);
     xsum_init(&acc[1]);
-    for (size_t i = 0; i < s->p->n_owned; i++) {
-        double e;
-        eval(m, s, i, &e, NULL);
-        xsum_add(&acc[0], e);
-        xsum_add(&acc[1], diss[i]);
+    const size_t n = s->p->n_owned;
+#pragma omp parallel if (n > SPALL_OMP_MIN_PARTICLES)
+    {
+        struct xsum part[2];
+        xsum_init(&part[0]);
+        xsum_init(&part[1]);
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            double e;
+            eval(m, s, i, &e, NULL);
+            xsum_add(&part[0], e);
+            xsum_add(&part[1], diss[i]);
+        }
+#pragma omp critical(par_bond_energy_merge)
+        {
+            xsum_merge(&acc[0], &part[0]);
+            xsum_merge(&acc[1], &part[1]);
+        }
     }
     double sum[2];
     par_xsum_finish(s, acc, 2, sum);

@@ -662,17 +662,19 @@ void lattice_particle_eval(const struct model *m, const struct sim *sim, size_t 
             &m->pair[((size_t)mat[i] * nm + (size_t)mat[j]) * LATTICE_MAX_TYPES + bl->type[s]];
         const int broken = bl->state[s] != 0;
         const double k = m->kscale ? bw->k * m->kscale[s] : bw->k;
-        double c = lattice_coef(&m->lp, bw->curve, k, st, broken);
+        /* the energy alone (every history row) skips the stress's law call */
+        double c = stress ? lattice_coef(&m->lp, bw->curve, k, st, broken) : 0.0;
         if (m->lp.law == LATTICE_LAW_SOFT && !broken) {
             /* damaged bond in tension: secant stiffness (lattice_softening.h) */
             const double ef = bw->t_lim - 1.0, kap = m->kappa[s];
-            if (st > 1.0)
+            if (stress && st > 1.0)
                 c *= lattice_soft_secant(bw->e0, ef, kap);
             e += 0.5 * lattice_soft_energy(bw->e0, ef, k, r_rest, st, kap);
         } else {
             e += 0.5 * lattice_energy(&m->lp, bw->curve, k, r_rest, st, broken);
         }
-        add_outer(dim, sig, dx, dx, 0.5 * c);
+        if (stress)
+            add_outer(dim, sig, dx, dx, 0.5 * c);
     }
     if (m->angular && dim == 2) {
         const double k_phi = m->mat_k_phi[mat[i]];
