@@ -54,7 +54,7 @@ struct pck {
     const struct bond_list *soff_of; /**< the bond list soff was made for */
     struct pck_set *sets; /**< datasets in the order written (the checksum's) */
     size_t n_sets, cap_sets;
-    size_t *start, *count; /**< this rank's runs of file elements */
+    hsize_t *start, *count; /**< this rank's runs of file elements */
     size_t n_runs, cap_runs;
     const char *path;
     struct spall_error *err;
@@ -72,10 +72,10 @@ static int run_add(struct pck *c, size_t start, size_t count)
     }
     if (c->n_runs == c->cap_runs) {
         size_t cap = c->cap_runs ? 2 * c->cap_runs : 256;
-        size_t *a = realloc(c->start, cap * sizeof *a);
+        hsize_t *a = realloc(c->start, cap * sizeof *a);
         if (a)
             c->start = a;
-        size_t *b = a ? realloc(c->count, cap * sizeof *b) : NULL;
+        hsize_t *b = a ? realloc(c->count, cap * sizeof *b) : NULL;
         if (!b)
             return -1;
         c->count = b;
@@ -105,10 +105,14 @@ static int pck_write(struct pck *c, const char *name, enum field_type t, size_t 
     if (!bad && total) {
         hsize_t mdim = mine ? mine : 1;
         hid_t mspace = H5Screate_simple(1, &mdim, NULL);
-        bad = mspace < 0 || H5Sselect_none(fspace) < 0;
-        for (size_t k = 0; k < c->n_runs && !bad; k++) {
-            hsize_t st = c->start[k], ct = c->count[k];
-            bad = H5Sselect_hyperslab(fspace, H5S_SELECT_OR, &st, NULL, &ct, NULL) < 0;
+        bad = mspace < 0;
+        if (!bad) {
+            hid_t sel = parallel_h5_select_runs(fspace, c->n_runs, c->start, c->count);
+            bad = sel < 0;
+            if (!bad) {
+                H5Sclose(fspace);
+                fspace = sel;
+            }
         }
         if (!bad && !mine)
             bad = H5Sselect_none(mspace) < 0;

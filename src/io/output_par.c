@@ -29,19 +29,27 @@ static int select_rows(const struct sim *s, int ncomp, hid_t *fspace, hid_t *msp
         H5Sselect_none(*mspace);
         return 0;
     }
-    /* owned gids ascend: runs of consecutive gids become one hyperslab each */
-    H5Sselect_none(*fspace);
-    size_t i = 0;
-    while (i < n) {
-        size_t j = i + 1;
-        while (j < n && s->p->gid[j] == s->p->gid[j - 1] + 1)
-            j++;
-        hsize_t start[2] = {(hsize_t)s->p->gid[i], 0}, count[2] = {(hsize_t)(j - i),
-                                                                   (hsize_t)ncomp};
-        if (H5Sselect_hyperslab(*fspace, H5S_SELECT_OR, start, NULL, count, NULL) < 0)
-            return -1;
-        i = j;
+    /* owned gids ascend: runs of consecutive gids become one range each */
+    size_t runs = 0;
+    for (size_t i = 0; i < n; i++)
+        runs += i == 0 || s->p->gid[i] != s->p->gid[i - 1] + 1;
+    hsize_t *start = malloc(2 * runs * sizeof *start), *count = start ? start + runs : NULL;
+    if (!start)
+        return -1;
+    size_t r = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (i == 0 || s->p->gid[i] != s->p->gid[i - 1] + 1) {
+            start[r] = (hsize_t)s->p->gid[i];
+            count[r++] = 0;
+        }
+        count[r - 1]++;
     }
+    hid_t sel = parallel_h5_select_runs(*fspace, runs, start, count);
+    free(start);
+    if (sel < 0)
+        return -1;
+    H5Sclose(*fspace);
+    *fspace = sel;
     return 0;
 }
 
