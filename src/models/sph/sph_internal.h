@@ -80,6 +80,7 @@ struct sph_tlsph {
     long reref_step;       /**< step of the last reference update (0: none) */
     double t_reref;        /**< wall seconds spent in reference updates */
     size_t hgrown;         /**< h growths (x1.2) at reference updates */
+    struct bond_list *halo; /**< distributed runs: the reference list as bonds (sph_localize.c) */
 };
 struct sph_clamp;
 struct deck_node;
@@ -237,6 +238,14 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const X[3], cons
                         struct spall_error *err);
 /** Free the TLSPH state; sets *tl to NULL. */
 void sph_tlsph_destroy(struct sph_tlsph **tl);
+
+/* sph_localize.c (distributed runs, core/parallel/decomp.h) */
+struct bond_list;
+/** model_ops.localize: total-Lagrangian runs; refuses the rest. */
+int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
+                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
+/** model_ops.halo_bonds: the TLSPH reference list as bonds. */
+const struct bond_list *sph_halo_bonds(const struct model *m);
 
 /* sph_tlsph_reref.c */
 /** End of a step: re-reference when model.reference_update says so. */

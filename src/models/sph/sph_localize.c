@@ -1,0 +1,229 @@
+/**
+ * @file sph_localize.c
+ * @brief model_ops.localize of the SPH model (distributed runs,
+ *        core/parallel/decomp.h): the total-Lagrangian formulation, whose
+ *        reference partner lists are fixed at set-up and so play the part
+ *        of a bond model's families.  The ghosts of a rank are the
+ *        reference partners of its owned particles (held elsewhere); each
+ *        owned row keeps its serial order (ascending gid) with the partners
+ *        renumbered, so the deformation gradient's sums are the serial
+ *        ones; the force stage gathers (sph_tlsph.c, tl_rates_par) with the
+ *        constants each pair has in its partner's row (prev).
+ *
+ * The updated-Lagrangian form finds its partners by a neighbour search,
+ * which needs the spatial ghosts (core/parallel/sghost.h) that no SPH loop
+ * uses yet: it stays on one rank, refused here with one line.
+ */
+#include "models/sph/sph_internal.h"
+#include "models/sph/sph_tlsph_data.h"
+
+#include "core/bond_list.h"
+#include "core/fields.h"
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* What a distributed SPH run cannot do yet, or NULL. */
+static const char *not_distributed(const struct model *m)
+{
+    const struct sph_options *o = &m->opt;
+    if (!o->tl.total_lagrangian)
+        return "the updated-Lagrangian formulation (model.formulation: updated, the default) is "
+               "not distributed yet (its neighbour search needs the spatial ghosts; "
+               "formulation: total is);";
+    if (o->tl.split_forms || m->form)
+        return "bodies split by formulation (model.body_formulation) are not distributed yet;";
+    if (o->kern.plane == SPH_PLANE_AXISYMMETRIC)
+        return "axisymmetric runs (model.plane: axisymmetric) are not distributed yet;";
+    if (o->bound.symmetry[0] || o->bound.symmetry[1] || o->bound.symmetry[2])
+        return "symmetry planes (model.symmetry) are not distributed yet;";
+    if (m->clamp)
+        return "the mirrored clamp (model.clamp) is not distributed yet;";
+    if (o->iface.kind != SPH_IFACE_NONE)
+        return "interfaces (model.interface) are not distributed yet;";
+    if (o->tl.reref_every || o->tl.reref_distortion > 0.0)
+        return "reference updates (model.reference_update) are not distributed yet;";
+    return NULL;
+}
+
+/* The reference list as a bond list (partners only): the halo and the
+ * partition's weights (1 + partners) read it; its rows follow the list's. */
+static int halo_list(struct model *m, struct spall_error *err)
+{
+    if (m->tl->halo)
+        return SPALL_OK;
+    const struct neighbor_list *nl = m->tl->ref->nl;
+    const size_t n = nl->n, nh = nl->offset[n];
+    struct bond_list *bl = calloc(1, sizeof *bl);
+    if (bl) {
+        bl->n = n;
+        bl->offset = malloc((n + 1) * sizeof *bl->offset);
+        bl->partner = malloc((nh ? nh : 1) * sizeof *bl->partner);
+        bl->state = calloc(nh ? nh : 1, sizeof *bl->state);
+    }
+    if (!bl || !bl->offset || !bl->partner || !bl->state) {
+        bond_list_destroy(&bl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH halo list)");
+    }
+    memcpy(bl->offset, nl->offset, (n + 1) * sizeof *bl->offset);
+    memcpy(bl->partner, nl->idx, nh * sizeof *bl->partner);
+    m->tl->halo = bl;
+    return SPALL_OK;
+}
+
+const struct bond_list *sph_halo_bonds(const struct model *m)
+{
+    return m->tl ? m->tl->halo : NULL;
+}
+
+/* The array is a stored field of the registry (the engine compacts it). */
+static bool in_registry(const struct sim *s, const void *a)
+{
+    const struct field_registry *reg = s->fields;
+    for (size_t k = 0; k < reg->n; k++)
+        for (int c = 0; c < reg->fields[k].ncomp && reg->fields[k].comp[c]; c++)
+            if (*reg->fields[k].comp[c] == a)
+                return true;
+    return false;
+}
+
+/* prev[k] of pair (i, j) = the constants of (j, i) in j's row (rows sorted
+ * ascending; the reference list is symmetric), rown[k] = i. */
+static int reverse_pairs(const struct sph_tl *t, struct tl_pair **prev, int32_t **rown,
+                         struct spall_error *err)
+{
+    const size_t n = t->nl->n, *off = t->nl->offset;
+    const int32_t *nb = t->nl->idx;
+    *prev = malloc((off[n] ? off[n] : 1) * sizeof **prev);
+    *rown = malloc((off[n] ? off[n] : 1) * sizeof **rown);
+    if (!*prev || !*rown)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH reverse pairs)");
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            const size_t j = (size_t)nb[k];
+            size_t lo = off[j], hi = off[j + 1];
+            while (lo < hi) {
+                const size_t mid = lo + (hi - lo) / 2;
+                if ((size_t)nb[mid] < i)
+                    lo = mid + 1;
+                else
+                    hi = mid;
+            }
+            if (lo == off[j + 1] || (size_t)nb[lo] != i)
+                return spall_error_set(err, SPALL_ERR_INTERNAL,
+                                       "TLSPH: the reference list is not symmetric (%zu, %zu)", i,
+                                       j);
+            (*prev)[k] = t->pair[lo];
+            (*rown)[k] = (int32_t)i;
+        }
+    return SPALL_OK;
+}
+
+/* Replace *a by a[keep[0, n)] (elements of @p size bytes). */
+static int gather(void *pa, size_t size, const size_t *keep, size_t n)
+{
+    void **a = pa;
+    void *b = array_gather(*a, size, keep, n ? n : 0);
+    if (!b)
+        return -1;
+    free(*a);
+    *a = b;
+    return 0;
+}
+
+static int localize_tl(struct model *m, const size_t *keep, size_t n_keep, size_t n_owned,
+                       const int64_t *new_of_old, struct spall_error *err)
+{
+    struct sph_tl *t = m->tl->ref;
+    struct tl_pair *prev = NULL;
+    int32_t *rown = NULL;
+    int rc = reverse_pairs(t, &prev, &rown, err);
+    size_t *oh = NULL, nh = 0;
+    if (!rc)
+        rc = bond_list_localize(m->tl->halo, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
+    if (rc) {
+        free(prev);
+        free(rown);
+        return rc;
+    }
+    const struct bond_list *bl = m->tl->halo;
+    struct neighbor_list *nl = t->nl;
+    size_t *noff = malloc((n_keep + 1) * sizeof *noff);
+    int32_t *nidx = malloc((nh ? nh : 1) * sizeof *nidx);
+    size_t *up = malloc((n_keep ? n_keep : 1) * sizeof *up);
+    double *halo = calloc((n_keep ? n_keep : 1) * TL_HALO, sizeof *halo);
+    struct tl_pair *npair = array_gather(t->pair, sizeof *npair, oh, nh);
+    struct tl_pair *nprev = array_gather(prev, sizeof *nprev, oh, nh);
+    int32_t *nrown = malloc((nh ? nh : 1) * sizeof *nrown);
+    free(prev);
+    free(rown);
+    free(oh);
+    int bad = !noff || !nidx || !up || !halo || !npair || !nprev || !nrown;
+    bad = bad || gather(&t->pk, TL_STRIDE * sizeof(double), keep, n_keep) ||
+          gather(&t->self, TL_SELF * sizeof(double), keep, n_keep);
+    if (bad) {
+        free(noff);
+        free(nidx);
+        free(up);
+        free(halo);
+        free(npair);
+        free(nprev);
+        free(nrown);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising TLSPH");
+    }
+    memcpy(noff, bl->offset, (n_keep + 1) * sizeof *noff);
+    memcpy(nidx, bl->partner, nh * sizeof *nidx);
+    for (size_t i = 0; i < n_keep; i++) {
+        /* the serial split of row i: partners of lower serial index first
+         * (their rows scatter into i), then the upper part i's row runs */
+        size_t u = noff[i];
+        while (u < noff[i + 1] && keep[nidx[u]] < keep[i])
+            u++;
+        up[i] = u;
+        for (size_t k = noff[i]; k < noff[i + 1]; k++)
+            nrown[k] = (int32_t)i;
+    }
+    free(nl->offset);
+    free(nl->idx);
+    nl->offset = noff;
+    nl->idx = nidx;
+    nl->n = n_keep;
+    free(t->pair);
+    t->pair = npair;
+    free(t->up);
+    t->up = up;
+    free(t->prev);
+    t->prev = nprev;
+    free(t->rown);
+    t->rown = nrown;
+    free(t->halo);
+    t->halo = halo;
+    return SPALL_OK;
+}
+
+int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
+                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
+{
+    const char *what = not_distributed(m);
+    if (what)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "distributed runs: SPH: %s run on one rank (without mpirun), see "
+                               "docs/parallel.md",
+                               what);
+    int rc = halo_list(m, err);
+    if (rc || !keep) /* only asked whether it can (and for the halo list) */
+        return rc;
+    if ((rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
+        return rc;
+    /* the model's own per-particle arrays (the registry's are the engine's) */
+    double **a[SPH_N_ARRAYS];
+    const size_t na = sph_state_arrays(m, a);
+    for (size_t k = 0; k < na; k++)
+        if (*a[k] && !in_registry(sim, *a[k]) && gather(a[k], sizeof(double), keep, n_keep))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising SPH state");
+    return SPALL_OK;
+}
