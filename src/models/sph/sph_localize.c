@@ -20,6 +20,7 @@
 #include "core/bond_list.h"
 #include "core/fields.h"
 #include "core/neighbor.h"
+#include "core/parallel/migrate.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -135,10 +136,28 @@ static int gather(void *pa, size_t size, const size_t *keep, size_t n)
     return 0;
 }
 
+/* Per listed pair: its row's particle; per particle: the first pair of
+ * its row whose partner comes later in the serial order (serial index =
+ * gid), i.e. the split of sph_tlsph.c's force stage. */
+static void row_split(struct sph_tl *t, const int64_t *gid)
+{
+    const size_t n = t->nl->n, *off = t->nl->offset;
+    const int32_t *nb = t->nl->idx;
+    for (size_t i = 0; i < n; i++) {
+        size_t u = off[i];
+        while (u < off[i + 1] && gid[nb[u]] < gid[i])
+            u++;
+        t->up[i] = u;
+        for (size_t k = off[i]; k < off[i + 1]; k++)
+            t->rown[k] = (int32_t)i;
+    }
+}
+
 static int localize_tl(struct model *m, const size_t *keep, size_t n_keep, size_t n_owned,
                        const int64_t *new_of_old, struct spall_error *err)
 {
     struct sph_tl *t = m->tl->ref;
+    m->tl->pairs_all = t->nl->offset[t->nl->n]; /* the serial m->n_pairs (restart state) */
     struct tl_pair *prev = NULL;
     int32_t *rown = NULL;
     int rc = reverse_pairs(t, &prev, &rown, err);
@@ -177,16 +196,6 @@ static int localize_tl(struct model *m, const size_t *keep, size_t n_keep, size_
     }
     memcpy(noff, bl->offset, (n_keep + 1) * sizeof *noff);
     memcpy(nidx, bl->partner, nh * sizeof *nidx);
-    for (size_t i = 0; i < n_keep; i++) {
-        /* the serial split of row i: partners of lower serial index first
-         * (their rows scatter into i), then the upper part i's row runs */
-        size_t u = noff[i];
-        while (u < noff[i + 1] && keep[nidx[u]] < keep[i])
-            u++;
-        up[i] = u;
-        for (size_t k = noff[i]; k < noff[i + 1]; k++)
-            nrown[k] = (int32_t)i;
-    }
     free(nl->offset);
     free(nl->idx);
     nl->offset = noff;
@@ -202,6 +211,15 @@ static int localize_tl(struct model *m, const size_t *keep, size_t n_keep, size_
     t->rown = nrown;
     free(t->halo);
     t->halo = halo;
+    /* the serial split of each row: partners of lower serial index first
+     * (their rows scatter into i), then the upper part i's row runs */
+    int64_t *serial = malloc((n_keep ? n_keep : 1) * sizeof *serial);
+    if (!serial)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising TLSPH");
+    for (size_t i = 0; i < n_keep; i++)
+        serial[i] = (int64_t)keep[i];
+    row_split(t, serial);
+    free(serial);
     return SPALL_OK;
 }
 
@@ -225,5 +243,81 @@ int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_
     for (size_t k = 0; k < na; k++)
         if (*a[k] && !in_registry(sim, *a[k]) && gather(a[k], sizeof(double), keep, n_keep))
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising SPH state");
+    return SPALL_OK;
+}
+
+/* model_ops.migrate_arrays: the reference rows (as the halo list) with
+ * each pair's constants in both orientations, every per-particle array of
+ * the model (those that are registry fields are the engine's: the
+ * migration takes each array once) and the packed blocks, whose reference
+ * part (mass, volume, X0, B0^-1) a particle keeps for life. */
+int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
+{
+    const char *what = not_distributed(m);
+    if (what)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "distributed runs: SPH: %s run on one rank (without mpirun), see "
+                               "docs/parallel.md",
+                               what);
+    struct sph_tl *t = m->tl->ref;
+    a->bl = m->tl->halo;
+    m->tl->n_half = t->nl->offset[t->nl->n];
+    a->n_half = &m->tl->n_half;
+    double **arr[SPH_N_ARRAYS];
+    const size_t na = sph_state_arrays(m, arr);
+    if (na + 2 > PAR_MIGRATE_MAX_ARRAYS)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "SPH: %zu arrays to migrate", na + 2);
+    a->n_particle = 0;
+    for (size_t k = 0; k < na; k++) {
+        a->particle[a->n_particle] = (void **)arr[k];
+        a->particle_size[a->n_particle++] = sizeof(double);
+    }
+    a->particle[a->n_particle] = (void **)&t->pk;
+    a->particle_size[a->n_particle++] = TL_STRIDE * sizeof(double);
+    a->particle[a->n_particle] = (void **)&t->self;
+    a->particle_size[a->n_particle++] = TL_SELF * sizeof(double);
+    a->n_bond = 2;
+    a->bond[0] = (void **)&t->pair;
+    a->bond_size[0] = sizeof *t->pair;
+    a->bond[1] = (void **)&t->prev;
+    a->bond_size[1] = sizeof *t->prev;
+    return SPALL_OK;
+}
+
+/* model_ops.migrated: the reference list, the row split and the halo
+ * scratch of the new owned + ghost particles. */
+int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct sph_tl *t = m->tl->ref;
+    const struct bond_list *bl = m->tl->halo;
+    const size_t n = sim->p->n, nh = bl->offset[bl->n];
+    size_t *off = malloc((n + 1) * sizeof *off);
+    int32_t *idx = malloc((nh ? nh : 1) * sizeof *idx);
+    size_t *up = malloc((n ? n : 1) * sizeof *up);
+    int32_t *rown = malloc((nh ? nh : 1) * sizeof *rown);
+    double *halo = calloc((n ? n : 1) * TL_HALO, sizeof *halo);
+    if (!off || !idx || !up || !rown || !halo || bl->n != n) {
+        free(off);
+        free(idx);
+        free(up);
+        free(rown);
+        free(halo);
+        return spall_error_set(err, bl->n != n ? SPALL_ERR_INTERNAL : SPALL_ERR_NOMEM,
+                               "SPH: cannot rebuild the reference list after migration");
+    }
+    memcpy(off, bl->offset, (n + 1) * sizeof *off);
+    memcpy(idx, bl->partner, nh * sizeof *idx);
+    free(t->nl->offset);
+    free(t->nl->idx);
+    t->nl->offset = off;
+    t->nl->idx = idx;
+    t->nl->n = n;
+    free(t->up);
+    t->up = up;
+    free(t->rown);
+    t->rown = rown;
+    free(t->halo);
+    t->halo = halo;
+    row_split(t, sim->p->gid);
     return SPALL_OK;
 }

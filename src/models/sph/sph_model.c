@@ -464,4 +464,6 @@ const struct model_ops sph_model_ops = {
     .fixtures = sph_fixtures,
     .localize = sph_localize,
     .halo_bonds = sph_halo_bonds,
+    .migrate_arrays = sph_migrate_arrays,
+    .migrated = sph_migrated,
 };

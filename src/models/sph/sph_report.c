@@ -47,12 +47,9 @@ size_t sph_history(const struct model *m, const struct sim *sim, const char **na
             epmax = m->ep[i];
     }
     par_xsum_finish(sim, &acc, 1, &wp);
-    double jmin = m->tl ? m->tl->jmin : 0.0, kmax = m->tl ? m->tl->kmax : 0.0;
-    if (sim->par) { /* min, max and integer sums: exact in any order */
+    if (sim->par) { /* max and integer sums: exact in any order */
         nf = par_sum_u64(nf);
         epmax = par_max_double(epmax);
-        jmin = par_min_double(jmin);
-        kmax = par_max_double(kmax);
     }
     size_t k = 0;
     names[k] = "plastic_work";
@@ -72,9 +69,9 @@ size_t sph_history(const struct model *m, const struct sim *sim, const char **na
                               : 0.0;
     if (m->opt.tl.total_lagrangian) {
         names[k] = "min_det_F";
-        values[k++] = jmin;
+        values[k++] = m->tl ? m->tl->jmin : 0.0; /* over all ranks (sph_tlsph.c) */
         names[k] = "max_F_distortion";
-        values[k++] = kmax;
+        values[k++] = m->tl ? m->tl->kmax : 0.0;
         if (m->opt.tl.reref_every || m->opt.tl.reref_distortion > 0.0) {
             names[k] = "reference_updates";
             values[k++] = m->tl ? (double)m->tl->rerefs : 0.0;

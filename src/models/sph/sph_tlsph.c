@@ -64,6 +64,7 @@
 #include "models/sph/sph_internal.h"
 
 #include "core/neighbor.h"
+#include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -681,7 +682,7 @@ int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_er
     struct particles *p = s->p;
     const size_t n = p->n_owned;
     const int dim = m->dim;
-    m->n_pairs = m->tl->ref->nl->offset[n];
+    m->n_pairs = s->par ? m->tl->pairs_all : m->tl->ref->nl->offset[n];
     const bool pipelined = !m->loops.tl_split;
     /* det F guard limits; the distortion limit as tl_distortion_pow */
     const double md = m->opt.tl.max_distortion;
@@ -694,8 +695,8 @@ int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_er
         if (tl_rates_par(m, s, lfdt, lim, &w))
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH halo)");
         first = w.first;
-        jmin = w.jmin;
-        kmax = w.kmax;
+        jmin = par_min_double(w.jmin); /* history and restart state: the */
+        kmax = par_max_double(w.kmax); /* whole body's (exact in any order) */
     } else
     /* first offender: min reduction, thread independent */
 #pragma omp parallel reduction(min : first, jmin) reduction(max : kmax)
