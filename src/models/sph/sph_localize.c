@@ -93,15 +93,13 @@ static bool in_registry(const struct sim *s, const void *a)
 }
 
 /* prev[k] of pair (i, j) = the constants of (j, i) in j's row (rows sorted
- * ascending; the reference list is symmetric), rown[k] = i. */
-static int reverse_pairs(const struct sph_tl *t, struct tl_pair **prev, int32_t **rown,
-                         struct spall_error *err)
+ * ascending; the reference list is symmetric). */
+static int reverse_pairs(const struct sph_tl *t, struct tl_pair **prev, struct spall_error *err)
 {
     const size_t n = t->nl->n, *off = t->nl->offset;
     const int32_t *nb = t->nl->idx;
     *prev = malloc((off[n] ? off[n] : 1) * sizeof **prev);
-    *rown = malloc((off[n] ? off[n] : 1) * sizeof **rown);
-    if (!*prev || !*rown)
+    if (!*prev)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH reverse pairs)");
     for (size_t i = 0; i < n; i++)
         for (size_t k = off[i]; k < off[i + 1]; k++) {
@@ -119,7 +117,6 @@ static int reverse_pairs(const struct sph_tl *t, struct tl_pair **prev, int32_t 
                                        "TLSPH: the reference list is not symmetric (%zu, %zu)", i,
                                        j);
             (*prev)[k] = t->pair[lo];
-            (*rown)[k] = (int32_t)i;
         }
     return SPALL_OK;
 }
@@ -153,74 +150,84 @@ static void row_split(struct sph_tl *t, const int64_t *gid)
     }
 }
 
+/* The local reference list of the n particles from the halo list (owned
+ * rows resolved, ghost rows empty), the split of each row at the serial
+ * order @p serial (per local particle) and the halo buffer. */
+static int rebuild_list(struct model *m, size_t n, const int64_t *serial, struct spall_error *err)
+{
+    struct sph_tl *t = m->tl->ref;
+    const struct bond_list *bl = m->tl->halo;
+    const size_t nh = bl->offset[bl->n];
+    size_t *off = malloc((n + 1) * sizeof *off);
+    int32_t *idx = malloc((nh ? nh : 1) * sizeof *idx);
+    size_t *up = malloc((n ? n : 1) * sizeof *up);
+    int32_t *rown = malloc((nh ? nh : 1) * sizeof *rown);
+    double *halo = calloc((n ? n : 1) * TL_HALO, sizeof *halo);
+    if (!off || !idx || !up || !rown || !halo || bl->n != n) {
+        free(off);
+        free(idx);
+        free(up);
+        free(rown);
+        free(halo);
+        return spall_error_set(err, bl->n != n ? SPALL_ERR_INTERNAL : SPALL_ERR_NOMEM,
+                               "SPH: cannot rebuild the TLSPH reference list of this rank");
+    }
+    memcpy(off, bl->offset, (n + 1) * sizeof *off);
+    memcpy(idx, bl->partner, nh * sizeof *idx);
+    free(t->nl->offset);
+    free(t->nl->idx);
+    t->nl->offset = off;
+    t->nl->idx = idx;
+    t->nl->n = n;
+    free(t->up);
+    t->up = up;
+    free(t->rown);
+    t->rown = rown;
+    free(t->halo);
+    t->halo = halo;
+    row_split(t, serial);
+    return SPALL_OK;
+}
+
 static int localize_tl(struct model *m, const size_t *keep, size_t n_keep, size_t n_owned,
                        const int64_t *new_of_old, struct spall_error *err)
 {
     struct sph_tl *t = m->tl->ref;
     m->tl->pairs_all = t->nl->offset[t->nl->n]; /* the serial m->n_pairs (restart state) */
     struct tl_pair *prev = NULL;
-    int32_t *rown = NULL;
-    int rc = reverse_pairs(t, &prev, &rown, err);
+    int rc = reverse_pairs(t, &prev, err);
     size_t *oh = NULL, nh = 0;
     if (!rc)
         rc = bond_list_localize(m->tl->halo, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
     if (rc) {
         free(prev);
-        free(rown);
         return rc;
     }
-    const struct bond_list *bl = m->tl->halo;
-    struct neighbor_list *nl = t->nl;
-    size_t *noff = malloc((n_keep + 1) * sizeof *noff);
-    int32_t *nidx = malloc((nh ? nh : 1) * sizeof *nidx);
-    size_t *up = malloc((n_keep ? n_keep : 1) * sizeof *up);
-    double *halo = calloc((n_keep ? n_keep : 1) * TL_HALO, sizeof *halo);
+    /* per pair: the constants in both orientations; per particle: the
+     * packed blocks (their reference part is set up once) */
     struct tl_pair *npair = array_gather(t->pair, sizeof *npair, oh, nh);
     struct tl_pair *nprev = array_gather(prev, sizeof *nprev, oh, nh);
-    int32_t *nrown = malloc((nh ? nh : 1) * sizeof *nrown);
+    int64_t *serial = malloc((n_keep ? n_keep : 1) * sizeof *serial);
     free(prev);
-    free(rown);
     free(oh);
-    int bad = !noff || !nidx || !up || !halo || !npair || !nprev || !nrown;
-    bad = bad || gather(&t->pk, TL_STRIDE * sizeof(double), keep, n_keep) ||
-          gather(&t->self, TL_SELF * sizeof(double), keep, n_keep);
-    if (bad) {
-        free(noff);
-        free(nidx);
-        free(up);
-        free(halo);
+    if (!npair || !nprev || !serial || gather(&t->pk, TL_STRIDE * sizeof(double), keep, n_keep) ||
+        gather(&t->self, TL_SELF * sizeof(double), keep, n_keep)) {
         free(npair);
         free(nprev);
-        free(nrown);
+        free(serial);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising TLSPH");
     }
-    memcpy(noff, bl->offset, (n_keep + 1) * sizeof *noff);
-    memcpy(nidx, bl->partner, nh * sizeof *nidx);
-    free(nl->offset);
-    free(nl->idx);
-    nl->offset = noff;
-    nl->idx = nidx;
-    nl->n = n_keep;
     free(t->pair);
     t->pair = npair;
-    free(t->up);
-    t->up = up;
     free(t->prev);
     t->prev = nprev;
-    free(t->rown);
-    t->rown = nrown;
-    free(t->halo);
-    t->halo = halo;
     /* the serial split of each row: partners of lower serial index first
      * (their rows scatter into i), then the upper part i's row runs */
-    int64_t *serial = malloc((n_keep ? n_keep : 1) * sizeof *serial);
-    if (!serial)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising TLSPH");
     for (size_t i = 0; i < n_keep; i++)
         serial[i] = (int64_t)keep[i];
-    row_split(t, serial);
+    rc = rebuild_list(m, n_keep, serial, err);
     free(serial);
-    return SPALL_OK;
+    return rc;
 }
 
 int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
@@ -288,36 +295,5 @@ int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall
  * scratch of the new owned + ghost particles. */
 int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    struct sph_tl *t = m->tl->ref;
-    const struct bond_list *bl = m->tl->halo;
-    const size_t n = sim->p->n, nh = bl->offset[bl->n];
-    size_t *off = malloc((n + 1) * sizeof *off);
-    int32_t *idx = malloc((nh ? nh : 1) * sizeof *idx);
-    size_t *up = malloc((n ? n : 1) * sizeof *up);
-    int32_t *rown = malloc((nh ? nh : 1) * sizeof *rown);
-    double *halo = calloc((n ? n : 1) * TL_HALO, sizeof *halo);
-    if (!off || !idx || !up || !rown || !halo || bl->n != n) {
-        free(off);
-        free(idx);
-        free(up);
-        free(rown);
-        free(halo);
-        return spall_error_set(err, bl->n != n ? SPALL_ERR_INTERNAL : SPALL_ERR_NOMEM,
-                               "SPH: cannot rebuild the reference list after migration");
-    }
-    memcpy(off, bl->offset, (n + 1) * sizeof *off);
-    memcpy(idx, bl->partner, nh * sizeof *idx);
-    free(t->nl->offset);
-    free(t->nl->idx);
-    t->nl->offset = off;
-    t->nl->idx = idx;
-    t->nl->n = n;
-    free(t->up);
-    t->up = up;
-    free(t->rown);
-    t->rown = rown;
-    free(t->halo);
-    t->halo = halo;
-    row_split(t, sim->p->gid);
-    return SPALL_OK;
+    return rebuild_list(m, sim->p->n, sim->p->gid, err);
 }
