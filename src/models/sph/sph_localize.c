@@ -51,6 +51,18 @@ static const char *not_distributed(const struct model *m)
     return NULL;
 }
 
+/* One line for what cannot run distributed (SPALL_OK when all can). */
+static int refuse(const struct model *m, struct spall_error *err)
+{
+    const char *what = not_distributed(m);
+    if (!what)
+        return SPALL_OK;
+    return spall_error_set(err, SPALL_ERR_INPUT,
+                           "distributed runs: SPH: %s run on one rank (without mpirun), see "
+                           "docs/parallel.md",
+                           what);
+}
+
 /* The reference list as a bond list (partners only): the halo and the
  * partition's weights (1 + partners) read it; its rows follow the list's. */
 static int halo_list(struct model *m, struct spall_error *err)
@@ -233,13 +245,9 @@ static int localize_tl(struct model *m, const size_t *keep, size_t n_keep, size_
 int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                  size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
-    const char *what = not_distributed(m);
-    if (what)
-        return spall_error_set(err, SPALL_ERR_INPUT,
-                               "distributed runs: SPH: %s run on one rank (without mpirun), see "
-                               "docs/parallel.md",
-                               what);
-    int rc = halo_list(m, err);
+    int rc = refuse(m, err);
+    if (!rc)
+        rc = halo_list(m, err);
     if (rc || !keep) /* only asked whether it can (and for the halo list) */
         return rc;
     if ((rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
@@ -260,12 +268,9 @@ int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_
  * part (mass, volume, X0, B0^-1) a particle keeps for life. */
 int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
-    const char *what = not_distributed(m);
-    if (what)
-        return spall_error_set(err, SPALL_ERR_INPUT,
-                               "distributed runs: SPH: %s run on one rank (without mpirun), see "
-                               "docs/parallel.md",
-                               what);
+    int rc = refuse(m, err);
+    if (rc)
+        return rc;
     struct sph_tl *t = m->tl->ref;
     a->bl = m->tl->halo;
     m->tl->n_half = t->nl->offset[t->nl->n];
