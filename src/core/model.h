@@ -207,6 +207,11 @@ struct model_ops {
      *  options allow migration (an error names the option that does not).
      *  NULL: the model's particles cannot migrate. */
     int (*migrate_arrays)(struct model *m, struct par_model_arrays *a, struct spall_error *err);
+    /** Optional (distributed runs): after a migration (the lent arrays
+     *  replaced, owned then ghosts in ascending gid, owned rows resolved),
+     *  rebuild what the model derives from them (e.g. SPH's reference list
+     *  and the split of its rows).  A failure stops every rank. */
+    int (*migrated)(struct model *m, struct sim *sim, struct spall_error *err);
 };
 
 #endif

@@ -31,6 +31,7 @@
 #include "core/fields.h"
 #include "core/mathconst.h"
 #include "core/model.h"
+#include "core/parallel/comm.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -346,14 +347,24 @@ static void mesh_revolve_3d(struct mesh *m, const struct impactor *im, const dou
 static void mesh_wall(struct mesh *m, const struct sim *s, const struct impactor *im, size_t n)
 {
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    /* a distributed run's n counts every rank's particles: the box of the
+     * owned ones, then min and max over the ranks (exact, collective: every
+     * rank indexes each frame) */
+    const size_t nl = s->par ? s->p->n_owned : n;
     for (int c = 0; c < s->dim; c++) {
-        lo[c] = n ? s->p->x[c][0] : im->x[c];
-        hi[c] = lo[c];
-        for (size_t i = 1; i < n; i++) {
+        lo[c] = nl ? s->p->x[c][0] : INFINITY;
+        hi[c] = nl ? lo[c] : -INFINITY;
+        for (size_t i = 1; i < nl; i++) {
             double v = s->p->x[c][i];
             lo[c] = v < lo[c] ? v : lo[c];
             hi[c] = v > hi[c] ? v : hi[c];
         }
+        if (s->par) {
+            lo[c] = par_min_double(lo[c]);
+            hi[c] = par_max_double(hi[c]);
+        }
+        if (!n)
+            lo[c] = hi[c] = im->x[c];
     }
     double diag = 0, ctr[3];
     for (int c = 0; c < 3; c++) {

@@ -96,8 +96,6 @@ int par_check_supported(const struct sim *s, struct spall_error *err)
     const char *what = NULL;
     if (s->pcontact)
         what = "particle contact is";
-    else if (s->integrator != INTEGRATOR_VERLET || s->adaptive_dt)
-        what = "this time integration is";
     if (!what)
         return SPALL_OK;
     return spall_error_set(err, SPALL_ERR_INPUT,

@@ -102,5 +102,8 @@ int par_fragment_labels(const struct sim *s, int64_t *label, struct spall_error 
 /** Copy @p ncomp doubles per particle from the owners into the ghosts
  *  (the halo lists of par_halo_x; collective). */
 void par_halo_values(const struct sim *s, double *vals, int ncomp);
+/** The same for any @p ncomp (own buffers, halo_block.c; collective):
+ *  SPALL_ERR_NOMEM on every rank when one is out of memory. */
+int par_halo_block(const struct sim *s, double *vals, int ncomp);
 
 #endif

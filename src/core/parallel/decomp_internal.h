@@ -35,7 +35,7 @@ struct sim;
 
 /** Every per-particle array of the engine and the registry (addresses of
  *  the array pointers, element sizes), each array once. */
-#define PAR_MAX_SLOTS 96
+#define PAR_MAX_SLOTS 192
 struct par_slots {
     void **ptr[PAR_MAX_SLOTS];
     size_t esize[PAR_MAX_SLOTS];

@@ -378,6 +378,8 @@ int par_migrate(struct sim *s, const int *dest, unsigned long long *moved,
         rc = find_ghosts(&M, err);
     if (!rc)
         rc = mig_rebuild_local(&M, err);
+    if (!rc && s->ops->migrated) /* the model's caches of the lent arrays */
+        rc = par_agree(s->ops->migrated(s->model, s, err), err);
     mig_free(&M);
     *moved = (unsigned long long)par_sum_u64((uint64_t)out);
     if (!rc)

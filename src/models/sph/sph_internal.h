@@ -80,6 +80,9 @@ struct sph_tlsph {
     long reref_step;       /**< step of the last reference update (0: none) */
     double t_reref;        /**< wall seconds spent in reference updates */
     size_t hgrown;         /**< h growths (x1.2) at reference updates */
+    struct bond_list *halo; /**< distributed runs: the reference list as bonds (sph_localize.c) */
+    size_t n_half;         /**< its half-bonds (migration keeps the count) */
+    size_t pairs_all;      /**< pairs of the whole body's reference list (its serial count) */
 };
 struct sph_clamp;
 struct deck_node;
@@ -237,6 +240,18 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const X[3], cons
                         struct spall_error *err);
 /** Free the TLSPH state; sets *tl to NULL. */
 void sph_tlsph_destroy(struct sph_tlsph **tl);
+
+/* sph_localize.c (distributed runs, core/parallel/decomp.h) */
+struct bond_list;
+/** model_ops.localize: total-Lagrangian runs; refuses the rest. */
+int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
+                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
+/** model_ops.halo_bonds: the TLSPH reference list as bonds. */
+const struct bond_list *sph_halo_bonds(const struct model *m);
+struct par_model_arrays;
+/** model_ops.migrate_arrays and model_ops.migrated (rebalancing). */
+int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
+int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err);
 
 /* sph_tlsph_reref.c */
 /** End of a step: re-reference when model.reference_update says so. */

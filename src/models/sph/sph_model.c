@@ -462,4 +462,8 @@ const struct model_ops sph_model_ops = {
     .interactions = sph_interactions,
     .planes = sph_planes,
     .fixtures = sph_fixtures,
+    .localize = sph_localize,
+    .halo_bonds = sph_halo_bonds,
+    .migrate_arrays = sph_migrate_arrays,
+    .migrated = sph_migrated,
 };

@@ -30,6 +30,8 @@
 #include "models/sph/sph_pairs.h"
 
 #include "core/neighbor.h"
+#include "core/exact_sum.h"
+#include "core/parallel/psum.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -413,7 +415,10 @@ static void wall_forces(struct model *m, struct sim *s)
 {
     struct particles *p = s->p;
     const double *n = m->opt.bound.wall_normal, *x0 = m->opt.bound.wall_point;
-    double energy = 0.0, ft[3] = {0, 0, 0};
+    /* exact sums (core/exact_sum.h): the same on any rank count */
+    struct xsum acc[4];
+    for (int a = 0; a < 4; a++)
+        xsum_init(&acc[a]);
     for (size_t i = 0; i < p->n_owned; i++) {
         double d = 0.0;
         for (int a = 0; a < m->dim; a++)
@@ -426,12 +431,14 @@ static void wall_forces(struct model *m, struct sim *s)
         double k = m->opt.bound.wall_stiffness * p->mass[i] * c0 * c0 / (m->dx[i] * m->dx[i]);
         for (int a = 0; a < m->dim; a++) {
             p->f[a][i] += -k * g * n[a];
-            ft[a] += -k * g * n[a];
+            xsum_add(&acc[a], -k * g * n[a]);
         }
-        energy += 0.5 * k * g * g;
+        xsum_add(&acc[3], 0.5 * k * g * g);
     }
-    m->wall.energy = energy;
-    memcpy(m->wall.force, ft, sizeof ft);
+    double out[4];
+    par_xsum_finish(s, acc, 4, out); /* over all ranks when distributed */
+    m->wall.energy = out[3];
+    memcpy(m->wall.force, out, sizeof m->wall.force);
 }
 
 /* The updated form (fused or two-pass loops) on its particles. */

@@ -4,45 +4,58 @@
  *        the set-up description and the interaction count used for the
  *        pair-steps/s of `spall bench`.  Read-only over the model's state.
  */
+#include <stdint.h>
 #include <stdio.h>
 
 #include "models/sph/sph_internal.h"
 #include "core/model.h"
 #include "core/neighbor.h"
+#include "core/exact_sum.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/psum.h"
 #include "core/particles.h"
 #include "core/sim.h"
 
 void sph_energy(const struct model *m, const struct sim *sim, struct model_energy *out)
 {
     const struct particles *p = sim->p;
-    double ie = 0.0, wp = 0.0;
-    for (size_t i = 0; i < p->n_owned; i++) {
-        ie += p->mass[i] * m->e[i];
-        wp += m->wp[i];
-    }
+    /* exact sum: the same for any thread and rank count (docs/parallel.md) */
+    struct xsum acc;
+    xsum_init(&acc);
+    for (size_t i = 0; i < p->n_owned; i++)
+        xsum_add(&acc, p->mass[i] * m->e[i]);
+    double ie;
+    par_xsum_finish(sim, &acc, 1, &ie);
     /* internal energy (elastic + plastic + AV heat) is the model's store;
      * the plastic work inside it is reported in history (plastic_work) */
     out->strain = ie + m->wall.energy + m->ifs.energy;
     out->dissipated = 0.0;
-    (void)wp;
 }
 
 size_t sph_history(const struct model *m, const struct sim *sim, const char **names,
                           double *values)
 {
     const struct particles *p = sim->p;
-    double wp = 0.0, nf = 0.0, epmax = 0.0;
+    double wp, epmax = 0.0;
+    uint64_t nf = 0;
+    struct xsum acc;
+    xsum_init(&acc);
     for (size_t i = 0; i < p->n_owned; i++) {
-        wp += m->wp[i];
+        xsum_add(&acc, m->wp[i]);
         nf += m->failed[i];
         if (m->ep[i] > epmax)
             epmax = m->ep[i];
+    }
+    par_xsum_finish(sim, &acc, 1, &wp);
+    if (sim->par) { /* max and integer sums: exact in any order */
+        nf = par_sum_u64(nf);
+        epmax = par_max_double(epmax);
     }
     size_t k = 0;
     names[k] = "plastic_work";
     values[k++] = wp;
     names[k] = "failed_particles";
-    values[k++] = nf;
+    values[k++] = (double)nf;
     names[k] = "max_plastic_strain";
     values[k++] = epmax;
     names[k] = "cspm_fallbacks";
@@ -56,7 +69,7 @@ size_t sph_history(const struct model *m, const struct sim *sim, const char **na
                               : 0.0;
     if (m->opt.tl.total_lagrangian) {
         names[k] = "min_det_F";
-        values[k++] = m->tl ? m->tl->jmin : 0.0;
+        values[k++] = m->tl ? m->tl->jmin : 0.0; /* over all ranks (sph_tlsph.c) */
         names[k] = "max_F_distortion";
         values[k++] = m->tl ? m->tl->kmax : 0.0;
         if (m->opt.tl.reref_every || m->opt.tl.reref_distortion > 0.0) {

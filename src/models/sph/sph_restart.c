@@ -96,9 +96,20 @@ static int register_tl(struct model *m, size_t n, struct field_state *fs, struct
         rc = field_state_add_values(fs, dn[k], FIELD_F64, dv[k], 1, err);
     for (size_t k = 0; k < 3 && !rc; k++)
         rc = field_state_add_values(fs, in[k], FIELD_I64, iv[k], 1, err);
+    /* the packed blocks: per particle, in gid order on any rank count */
     if (!rc)
-        rc = field_state_add_array(fs, "sph.tl_offset", FIELD_I64, (void **)&t->nl->offset, n + 1,
-                                   1, err);
+        rc = field_state_add_particle_array(fs, "sph.tl_pack", FIELD_F64, (void **)&t->pk, n,
+                                            TL_STRIDE, err);
+    if (!rc)
+        rc = field_state_add_particle_array(fs, "sph.tl_self", FIELD_F64, (void **)&t->self, n,
+                                            TL_SELF, err);
+    /* the reference list, its pair constants and row split change only at
+     * a re-reference; without reference updates init rebuilds them from
+     * the deck (a distributed run has none, sph_localize.c) */
+    if (rc || !(m->opt.tl.reref_every || m->opt.tl.reref_distortion > 0.0))
+        return rc;
+    rc = field_state_add_array(fs, "sph.tl_offset", FIELD_I64, (void **)&t->nl->offset, n + 1, 1,
+                               err);
     if (!rc)
         rc = field_state_add_list(fs, "sph.tl_partner", FIELD_I32, (void **)&t->nl->idx, 1,
                                   tl_rows, tl_set_idx, m, err);
@@ -109,12 +120,6 @@ static int register_tl(struct model *m, size_t n, struct field_state *fs, struct
         rc = field_state_add_array(fs, "sph.tl_up", FIELD_I64, (void **)&t->up, n, 1, err);
     if (!rc)
         rc = field_state_add_values(fs, "sph.tl_band", FIELD_I64, &t->band, 1, err);
-    if (!rc)
-        rc = field_state_add_array(fs, "sph.tl_pack", FIELD_F64, (void **)&t->pk, n, TL_STRIDE,
-                                   err);
-    if (!rc)
-        rc = field_state_add_array(fs, "sph.tl_self", FIELD_F64, (void **)&t->self, n, TL_SELF,
-                                   err);
     return rc;
 }
 
@@ -124,7 +129,7 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
     _Static_assert(sizeof(size_t) == 8 && sizeof(long) == 8 && sizeof(uint32_t) == 4,
                    "counters are saved as int64, contact counts as int32");
     const size_t n = s->p->n_owned;
-    if (m->sym || s->p->n != n)
+    if (m->sym || (s->p->n != n && !s->par)) /* a distributed run's are the ranks' ghosts */
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "sph: runs with symmetry planes (ghost particles) cannot be "
                                "checkpointed yet");
@@ -134,10 +139,11 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
     int rc = SPALL_OK;
     for (size_t k = 0; k < na && !rc; k++) {
         snprintf(nm, sizeof nm, "sph.array.%zu", k);
-        rc = field_state_add_array(fs, nm, FIELD_F64, (void **)a[k], n, 1, err);
+        rc = field_state_add_particle_array(fs, nm, FIELD_F64, (void **)a[k], n, 1, err);
     }
     if (!rc)
-        rc = field_state_add_array(fs, "sph.failed", FIELD_U8, (void **)&m->failed, n, 1, err);
+        rc = field_state_add_particle_array(fs, "sph.failed", FIELD_U8, (void **)&m->failed, n, 1,
+                                            err);
     if (!rc && m->nl) {
         rc = field_state_add_array(fs, "sph.list_offset", FIELD_I64, (void **)&m->nl->offset,
                                    m->nl->n + 1, 1, err);

@@ -64,6 +64,8 @@
 #include "models/sph/sph_internal.h"
 
 #include "core/neighbor.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -305,7 +307,7 @@ static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, 
                            "neighbourhood no longer describes it (finer dx, a larger "
                            "hourglass, model.reference_update, or the updated "
                            "formulation for this body)",
-                           i, (int)p->body[i], xs, why, s->t, s->step);
+                           (size_t)p->gid[i], (int)p->body[i], xs, why, s->t, s->step);
 }
 
 /* Stage 2, row i: every pair (i, j) with j > i evaluated once, in this
@@ -321,21 +323,21 @@ static int tl_guard_error(const struct model *m, const struct sim *s, size_t i, 
  * acc[0..2], acc[3] (sum f . v_ij).  So each particle's sums run over its
  * lower partners, then its upper ones, each in increasing index, whatever
  * the thread shares: bitwise thread independent.  Dimension a literal. */
-TL_INLINE void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
-                                 const double qa, const double qb, const double lav,
-                                 const bool bal, double acc[4])
+TL_INLINE void tl_row_forces(struct sph_tl *t, size_t i, const struct tl_span *rw, size_t lo,
+                                 size_t hi, const int dim, const double qa, const double qb,
+                                 const double lav, const bool bal, double acc[4])
 {
-    const int32_t *nb = t->nl->idx;
+    const int32_t *nb = rw->nb;
     const double *pk = t->pk, *qi = pk + i * TL_STRIDE;
     const double Vi = qi[TL_VOL], mi = qi[TL_M], hi_ = qi[TL_H], ci = qi[TL_C];
     const double rhoi = qi[TL_RHO];
     const double fsi = bal ? t->self[i * TL_SELF + TL_SW] : 1.0;
-    const size_t end = t->nl->offset[i + 1];
+    const size_t end = rw->k1;
 #ifdef TL_HAVE_V4
     const bool wide = t->wide;
 #endif
-    for (size_t k = t->up[i]; k < end; k++) {
-        const struct tl_pair *pr = &t->pair[k];
+    for (size_t k = rw->k0; k < end; k++) {
+        const struct tl_pair *pr = &rw->pair[k];
         const size_t j = (size_t)nb[k];
         const double *qj = pk + j * TL_STRIDE;
         const double F = pr->F, hg = pr->hg, sv = Vi * qj[TL_VOL] * F;
@@ -414,10 +416,10 @@ TL_INLINE void tl_row_forces(struct sph_tl *t, size_t i, size_t lo, size_t hi, c
  * the split or pipelined order), since FMA contraction is decided per
  * inlined copy (tests/test_sph_tlsph.c caught the copies disagreeing). */
 #define TL_ROW_INSTANCE(NAME, DIM, BAL)                                                         \
-    TL_CLONES static void NAME(struct sph_tl *t, size_t i, size_t lo, size_t hi,                 \
-                               const double av[3], double acc[4])                                \
+    TL_CLONES static void NAME(struct sph_tl *t, size_t i, const struct tl_span *rw, size_t lo,  \
+                               size_t hi, const double av[3], double acc[4])                     \
     {                                                                                            \
-        tl_row_forces(t, i, lo, hi, DIM, av[0], av[1], av[2], BAL, acc);                         \
+        tl_row_forces(t, i, rw, lo, hi, DIM, av[0], av[1], av[2], BAL, acc);                     \
     }
 /* 3D and 2D, without and with Balsara's switch (model.viscosity_switch):
  * the switch a literal in each instance, so the default rows carry no
@@ -428,13 +430,22 @@ TL_ROW_INSTANCE(tl_row3_bal, 3, true)
 TL_ROW_INSTANCE(tl_row2_bal, 2, true)
 #undef TL_ROW_INSTANCE
 
+/* Row i's pairs rw (the upper part of its reference row unless given). */
+static inline void tl_row_span(struct sph_tl *t, size_t i, const struct tl_span *rw, size_t lo,
+                               size_t hi, const int dim, const bool bal, const double av[3],
+                               double acc[4])
+{
+    if (dim == 3)
+        (bal ? tl_row3_bal : tl_row3)(t, i, rw, lo, hi, av, acc);
+    else
+        (bal ? tl_row2_bal : tl_row2)(t, i, rw, lo, hi, av, acc);
+}
+
 static inline void tl_row(struct sph_tl *t, size_t i, size_t lo, size_t hi, const int dim,
                           const bool bal, const double av[3], double acc[4])
 {
-    if (dim == 3)
-        (bal ? tl_row3_bal : tl_row3)(t, i, lo, hi, av, acc);
-    else
-        (bal ? tl_row2_bal : tl_row2)(t, i, lo, hi, av, acc);
+    const struct tl_span rw = {t->up[i], t->nl->offset[i + 1], t->nl->idx, t->pair};
+    tl_row_span(t, i, &rw, lo, hi, dim, bal, av, acc);
 }
 
 /* Stage 2 of a row of mine: its sums from the lower rows (own accumulator),
@@ -600,12 +611,78 @@ TL_CLONES static void tl_sweep2(struct model *m, struct particles *p, size_t n, 
     tl_sweep(m, p, n, lo, hi, lfdt, pipelined, 2, lim, w);
 }
 
+/* A distributed run (sph_localize.c): owned particles [0, n_owned) in
+ * ascending gid, then the ghosts (their reference partners on other ranks).
+ * Each owned particle's sums must be the serial ones, term by term: the
+ * serial force of i starts with what its lower partners' rows scattered
+ * into it (in increasing gid), then its own row's upper part.  A lower
+ * partner may be a ghost, whose row lives elsewhere, so here every owned
+ * particle gathers instead: each lower pair (j, i) is evaluated in j's
+ * orientation by the same row function, over a one-pair span (j's
+ * constants of the pair, prev), scattering into i alone; then i's own row
+ * with no scatter.  The pair arithmetic is the same machine code as in the
+ * serial sweep (the row instances), so the terms and their order are the
+ * serial ones; each pair is evaluated by both its particles (twice the
+ * serial stage 2 arithmetic), and no particle writes another's sums, so
+ * the owned particles run on any number of threads.  Stage 1 of the ghosts
+ * comes from their owners: one halo of TL_HALO doubles per ghost. */
+static int tl_rates_par(struct model *m, struct sim *s, double lfdt, const double lim[3],
+                        struct tl_watch *wout)
+{
+    struct particles *p = s->p;
+    struct sph_tl *t = m->tl->ref;
+    const size_t n_own = p->n_owned, n = p->n;
+    const int dim = m->dim;
+    for (size_t i = 0; i < n; i++) /* ghosts: x, v of this step from the halo */
+        tl_pack(t, p, i, dim);
+    size_t first = SIZE_MAX;
+    double jmin = INFINITY, kmax = 1.0;
+#pragma omp parallel reduction(min : first, jmin) reduction(max : kmax)
+    {
+        struct tl_watch w = {SIZE_MAX, INFINITY, 1.0};
+#pragma omp for schedule(static)
+        for (size_t k = 0; k < n_own; k++)
+            tl_deform(m, k, lfdt, dim, lim, &w);
+        first = w.first;
+        jmin = w.jmin;
+        kmax = w.kmax;
+    }
+    wout->first = first;
+    wout->jmin = jmin;
+    wout->kmax = kmax;
+    double *hv = t->halo;
+    for (size_t i = 0; i < n_own; i++) {
+        memcpy(hv + i * TL_HALO, t->pk + i * TL_STRIDE, (TL_HALO - 1) * sizeof(double));
+        hv[i * TL_HALO + TL_HALO - 1] = t->self[i * TL_SELF + TL_SW];
+    }
+    if (par_halo_block(s, hv, TL_HALO))
+        return SPALL_ERR_NOMEM;
+    for (size_t i = n_own; i < n; i++) {
+        memcpy(t->pk + i * TL_STRIDE, hv + i * TL_HALO, (TL_HALO - 1) * sizeof(double));
+        t->self[i * TL_SELF + TL_SW] = hv[i * TL_HALO + TL_HALO - 1];
+    }
+    const double av[3] = {m->opt.visc.av_a, m->opt.visc.av_b, m->opt.visc.av_length};
+    const bool bal = m->opt.visc.av_balsara;
+    const size_t *off = t->nl->offset;
+    const int32_t *nb = t->nl->idx;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n_own; i++) {
+        for (size_t k = off[i]; k < t->up[i]; k++) {
+            const struct tl_span rw = {k, k + 1, t->rown, t->prev};
+            double row_j[4] = {0, 0, 0, 0}; /* the lower row's own sums: its owner's */
+            tl_row_span(t, (size_t)nb[k], &rw, i, i + 1, dim, bal, av, row_j);
+        }
+        (dim == 3 ? tl_forces3 : tl_forces2)(m, p, i, 0, 0, lfdt);
+    }
+    return SPALL_OK;
+}
+
 int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_error *err)
 {
     struct particles *p = s->p;
     const size_t n = p->n_owned;
     const int dim = m->dim;
-    m->n_pairs = m->tl->ref->nl->offset[n];
+    m->n_pairs = s->par ? m->tl->pairs_all : m->tl->ref->nl->offset[n];
     const bool pipelined = !m->loops.tl_split;
     /* det F guard limits; the distortion limit as tl_distortion_pow */
     const double md = m->opt.tl.max_distortion;
@@ -613,6 +690,14 @@ int sph_tlsph_rates(struct model *m, struct sim *s, double lfdt, struct spall_er
                            dim == 3 ? md * md * md : md};
     size_t first = SIZE_MAX;
     double jmin = INFINITY, kmax = 1.0;
+    if (s->par) {
+        struct tl_watch w;
+        if (tl_rates_par(m, s, lfdt, lim, &w))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH halo)");
+        first = w.first;
+        jmin = par_min_double(w.jmin); /* history and restart state: the */
+        kmax = par_max_double(w.kmax); /* whole body's (exact in any order) */
+    } else
     /* first offender: min reduction, thread independent */
 #pragma omp parallel reduction(min : first, jmin) reduction(max : kmax)
     {

@@ -56,6 +56,15 @@ struct tl_pair {
     double hg;   /**< kappa (E_i + E_j)/2 V0_i V0_j W / |X_ij|^2 */
 };
 
+/* The pairs [k0, k1) of a row: partner nb[k], constants pair[k] (the
+ * reference row's upper part; a distributed run also evaluates single
+ * pairs in the partner's orientation, sph_tlsph_par.c). */
+struct tl_span {
+    size_t k0, k1;
+    const int32_t *nb;
+    const struct tl_pair *pair;
+};
+
 /* What a pair loop gathers from partner j, packed in one block per
  * particle (4 cache lines) instead of 26 separate arrays: the SoA layout
  * spilled the array pointers and touched a line per array and partner.
@@ -78,6 +87,14 @@ struct sph_tl {
     size_t *up;           /**< per particle: first list index of row i with j > i */
     size_t band;          /**< max |j - i| over the list: the pipeline's lag */
     bool wide;            /**< the CPU runs the x86-64-v3 version (TL_CLONES) */
+    /* distributed runs only (sph_localize.c; NULL otherwise) */
+    int32_t *rown;        /**< per listed pair: its row's particle (a pair's reverse row) */
+    struct tl_pair *prev; /**< per listed pair (i, j): the constants of (j, i) in j's row */
+    double *halo;         /**< TL_HALO doubles per particle: stage-1 values for the ghosts */
 };
+
+/* What a ghost needs of its owner's stage 1: the packed block up to TL_H
+ * (Q, Fd, x, v, c, rho, h) and Balsara's factor. */
+enum { TL_HALO = TL_H + 2 };
 
 #endif

@@ -7,6 +7,7 @@
  */
 #include "models/sph/sph_tlsph_data.h"
 
+#include "core/bond_list.h"
 #include "core/neighbor.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -28,6 +29,9 @@ static void sph_tl_destroy(struct sph_tl **tl)
     free(t->pair);
     free(t->self);
     free(t->up);
+    free(t->rown);
+    free(t->prev);
+    free(t->halo);
     free(t);
     *tl = NULL;
 }
@@ -37,6 +41,7 @@ void sph_tlsph_destroy(struct sph_tlsph **tl)
     if (!tl || !*tl)
         return;
     sph_tl_destroy(&(*tl)->ref);
+    bond_list_destroy(&(*tl)->halo);
     free(*tl);
     *tl = NULL;
 }

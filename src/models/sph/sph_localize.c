@@ -1,0 +1,304 @@
+/**
+ * @file sph_localize.c
+ * @brief model_ops.localize of the SPH model (distributed runs,
+ *        core/parallel/decomp.h): the total-Lagrangian formulation, whose
+ *        reference partner lists are fixed at set-up and so play the part
+ *        of a bond model's families.  The ghosts of a rank are the
+ *        reference partners of its owned particles (held elsewhere); each
+ *        owned row keeps its serial order (ascending gid) with the partners
+ *        renumbered, so the deformation gradient's sums are the serial
+ *        ones; the force stage gathers (sph_tlsph.c, tl_rates_par) with the
+ *        constants each pair has in its partner's row (prev).
+ *
+ * The updated-Lagrangian form finds its partners by a neighbour search,
+ * which needs the spatial ghosts (core/parallel/sghost.h) that no SPH loop
+ * uses yet: it stays on one rank, refused here with one line.
+ */
+#include "models/sph/sph_internal.h"
+#include "models/sph/sph_tlsph_data.h"
+
+#include "core/bond_list.h"
+#include "core/fields.h"
+#include "core/neighbor.h"
+#include "core/parallel/migrate.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* What a distributed SPH run cannot do yet, or NULL. */
+static const char *not_distributed(const struct model *m)
+{
+    const struct sph_options *o = &m->opt;
+    if (!o->tl.total_lagrangian)
+        return "the updated-Lagrangian formulation (model.formulation: updated, the default) is "
+               "not distributed yet (its neighbour search needs the spatial ghosts; "
+               "formulation: total is);";
+    if (o->tl.split_forms || m->form)
+        return "bodies split by formulation (model.body_formulation) are not distributed yet;";
+    if (o->kern.plane == SPH_PLANE_AXISYMMETRIC)
+        return "axisymmetric runs (model.plane: axisymmetric) are not distributed yet;";
+    if (o->bound.symmetry[0] || o->bound.symmetry[1] || o->bound.symmetry[2])
+        return "symmetry planes (model.symmetry) are not distributed yet;";
+    if (m->clamp)
+        return "the mirrored clamp (model.clamp) is not distributed yet;";
+    if (o->iface.kind != SPH_IFACE_NONE)
+        return "interfaces (model.interface) are not distributed yet;";
+    if (o->tl.reref_every || o->tl.reref_distortion > 0.0)
+        return "reference updates (model.reference_update) are not distributed yet;";
+    return NULL;
+}
+
+/* One line for what cannot run distributed (SPALL_OK when all can). */
+static int refuse(const struct model *m, struct spall_error *err)
+{
+    const char *what = not_distributed(m);
+    if (!what)
+        return SPALL_OK;
+    return spall_error_set(err, SPALL_ERR_INPUT,
+                           "distributed runs: SPH: %s run on one rank (without mpirun), see "
+                           "docs/parallel.md",
+                           what);
+}
+
+/* The reference list as a bond list (partners only): the halo and the
+ * partition's weights (1 + partners) read it; its rows follow the list's. */
+static int halo_list(struct model *m, struct spall_error *err)
+{
+    if (m->tl->halo)
+        return SPALL_OK;
+    const struct neighbor_list *nl = m->tl->ref->nl;
+    const size_t n = nl->n, nh = nl->offset[n];
+    struct bond_list *bl = calloc(1, sizeof *bl);
+    if (bl) {
+        bl->n = n;
+        bl->offset = malloc((n + 1) * sizeof *bl->offset);
+        bl->partner = malloc((nh ? nh : 1) * sizeof *bl->partner);
+        bl->state = calloc(nh ? nh : 1, sizeof *bl->state);
+    }
+    if (!bl || !bl->offset || !bl->partner || !bl->state) {
+        bond_list_destroy(&bl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH halo list)");
+    }
+    memcpy(bl->offset, nl->offset, (n + 1) * sizeof *bl->offset);
+    memcpy(bl->partner, nl->idx, nh * sizeof *bl->partner);
+    m->tl->halo = bl;
+    return SPALL_OK;
+}
+
+const struct bond_list *sph_halo_bonds(const struct model *m)
+{
+    return m->tl ? m->tl->halo : NULL;
+}
+
+/* The array is a stored field of the registry (the engine compacts it). */
+static bool in_registry(const struct sim *s, const void *a)
+{
+    const struct field_registry *reg = s->fields;
+    for (size_t k = 0; k < reg->n; k++)
+        for (int c = 0; c < reg->fields[k].ncomp && reg->fields[k].comp[c]; c++)
+            if (*reg->fields[k].comp[c] == a)
+                return true;
+    return false;
+}
+
+/* prev[k] of pair (i, j) = the constants of (j, i) in j's row (rows sorted
+ * ascending; the reference list is symmetric). */
+static int reverse_pairs(const struct sph_tl *t, struct tl_pair **prev, struct spall_error *err)
+{
+    const size_t n = t->nl->n, *off = t->nl->offset;
+    const int32_t *nb = t->nl->idx;
+    *prev = malloc((off[n] ? off[n] : 1) * sizeof **prev);
+    if (!*prev)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH reverse pairs)");
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            const size_t j = (size_t)nb[k];
+            size_t lo = off[j], hi = off[j + 1];
+            while (lo < hi) {
+                const size_t mid = lo + (hi - lo) / 2;
+                if ((size_t)nb[mid] < i)
+                    lo = mid + 1;
+                else
+                    hi = mid;
+            }
+            if (lo == off[j + 1] || (size_t)nb[lo] != i)
+                return spall_error_set(err, SPALL_ERR_INTERNAL,
+                                       "TLSPH: the reference list is not symmetric (%zu, %zu)", i,
+                                       j);
+            (*prev)[k] = t->pair[lo];
+        }
+    return SPALL_OK;
+}
+
+/* Replace *a by a[keep[0, n)] (elements of @p size bytes). */
+static int gather(void *pa, size_t size, const size_t *keep, size_t n)
+{
+    void **a = pa;
+    void *b = array_gather(*a, size, keep, n ? n : 0);
+    if (!b)
+        return -1;
+    free(*a);
+    *a = b;
+    return 0;
+}
+
+/* Per listed pair: its row's particle; per particle: the first pair of
+ * its row whose partner comes later in the serial order (serial index =
+ * gid), i.e. the split of sph_tlsph.c's force stage. */
+static void row_split(struct sph_tl *t, const int64_t *gid)
+{
+    const size_t n = t->nl->n, *off = t->nl->offset;
+    const int32_t *nb = t->nl->idx;
+    for (size_t i = 0; i < n; i++) {
+        size_t u = off[i];
+        while (u < off[i + 1] && gid[nb[u]] < gid[i])
+            u++;
+        t->up[i] = u;
+        for (size_t k = off[i]; k < off[i + 1]; k++)
+            t->rown[k] = (int32_t)i;
+    }
+}
+
+/* The local reference list of the n particles from the halo list (owned
+ * rows resolved, ghost rows empty), the split of each row at the serial
+ * order @p serial (per local particle) and the halo buffer. */
+static int rebuild_list(struct model *m, size_t n, const int64_t *serial, struct spall_error *err)
+{
+    struct sph_tl *t = m->tl->ref;
+    const struct bond_list *bl = m->tl->halo;
+    const size_t nh = bl->offset[bl->n];
+    size_t *off = malloc((n + 1) * sizeof *off);
+    int32_t *idx = malloc((nh ? nh : 1) * sizeof *idx);
+    size_t *up = malloc((n ? n : 1) * sizeof *up);
+    int32_t *rown = malloc((nh ? nh : 1) * sizeof *rown);
+    double *halo = calloc((n ? n : 1) * TL_HALO, sizeof *halo);
+    if (!off || !idx || !up || !rown || !halo || bl->n != n) {
+        free(off);
+        free(idx);
+        free(up);
+        free(rown);
+        free(halo);
+        return spall_error_set(err, bl->n != n ? SPALL_ERR_INTERNAL : SPALL_ERR_NOMEM,
+                               "SPH: cannot rebuild the TLSPH reference list of this rank");
+    }
+    memcpy(off, bl->offset, (n + 1) * sizeof *off);
+    memcpy(idx, bl->partner, nh * sizeof *idx);
+    free(t->nl->offset);
+    free(t->nl->idx);
+    t->nl->offset = off;
+    t->nl->idx = idx;
+    t->nl->n = n;
+    free(t->up);
+    t->up = up;
+    free(t->rown);
+    t->rown = rown;
+    free(t->halo);
+    t->halo = halo;
+    row_split(t, serial);
+    return SPALL_OK;
+}
+
+static int localize_tl(struct model *m, const size_t *keep, size_t n_keep, size_t n_owned,
+                       const int64_t *new_of_old, struct spall_error *err)
+{
+    struct sph_tl *t = m->tl->ref;
+    m->tl->pairs_all = t->nl->offset[t->nl->n]; /* the serial m->n_pairs (restart state) */
+    struct tl_pair *prev = NULL;
+    int rc = reverse_pairs(t, &prev, err);
+    size_t *oh = NULL, nh = 0;
+    if (!rc)
+        rc = bond_list_localize(m->tl->halo, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
+    if (rc) {
+        free(prev);
+        return rc;
+    }
+    /* per pair: the constants in both orientations; per particle: the
+     * packed blocks (their reference part is set up once) */
+    struct tl_pair *npair = array_gather(t->pair, sizeof *npair, oh, nh);
+    struct tl_pair *nprev = array_gather(prev, sizeof *nprev, oh, nh);
+    int64_t *serial = malloc((n_keep ? n_keep : 1) * sizeof *serial);
+    free(prev);
+    free(oh);
+    if (!npair || !nprev || !serial || gather(&t->pk, TL_STRIDE * sizeof(double), keep, n_keep) ||
+        gather(&t->self, TL_SELF * sizeof(double), keep, n_keep)) {
+        free(npair);
+        free(nprev);
+        free(serial);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising TLSPH");
+    }
+    free(t->pair);
+    t->pair = npair;
+    free(t->prev);
+    t->prev = nprev;
+    /* the serial split of each row: partners of lower serial index first
+     * (their rows scatter into i), then the upper part i's row runs */
+    for (size_t i = 0; i < n_keep; i++)
+        serial[i] = (int64_t)keep[i];
+    rc = rebuild_list(m, n_keep, serial, err);
+    free(serial);
+    return rc;
+}
+
+int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
+                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
+{
+    int rc = refuse(m, err);
+    if (!rc)
+        rc = halo_list(m, err);
+    if (rc || !keep) /* only asked whether it can (and for the halo list) */
+        return rc;
+    if ((rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
+        return rc;
+    /* the model's own per-particle arrays (the registry's are the engine's) */
+    double **a[SPH_N_ARRAYS];
+    const size_t na = sph_state_arrays(m, a);
+    for (size_t k = 0; k < na; k++)
+        if (*a[k] && !in_registry(sim, *a[k]) && gather(a[k], sizeof(double), keep, n_keep))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising SPH state");
+    return SPALL_OK;
+}
+
+/* model_ops.migrate_arrays: the reference rows (as the halo list) with
+ * each pair's constants in both orientations, every per-particle array of
+ * the model (those that are registry fields are the engine's: the
+ * migration takes each array once) and the packed blocks, whose reference
+ * part (mass, volume, X0, B0^-1) a particle keeps for life. */
+int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
+{
+    int rc = refuse(m, err);
+    if (rc)
+        return rc;
+    struct sph_tl *t = m->tl->ref;
+    a->bl = m->tl->halo;
+    m->tl->n_half = t->nl->offset[t->nl->n];
+    a->n_half = &m->tl->n_half;
+    double **arr[SPH_N_ARRAYS];
+    const size_t na = sph_state_arrays(m, arr);
+    if (na + 2 > PAR_MIGRATE_MAX_ARRAYS)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "SPH: %zu arrays to migrate", na + 2);
+    a->n_particle = 0;
+    for (size_t k = 0; k < na; k++) {
+        a->particle[a->n_particle] = (void **)arr[k];
+        a->particle_size[a->n_particle++] = sizeof(double);
+    }
+    a->particle[a->n_particle] = (void **)&t->pk;
+    a->particle_size[a->n_particle++] = TL_STRIDE * sizeof(double);
+    a->particle[a->n_particle] = (void **)&t->self;
+    a->particle_size[a->n_particle++] = TL_SELF * sizeof(double);
+    a->n_bond = 2;
+    a->bond[0] = (void **)&t->pair;
+    a->bond_size[0] = sizeof *t->pair;
+    a->bond[1] = (void **)&t->prev;
+    a->bond_size[1] = sizeof *t->prev;
+    return SPALL_OK;
+}
+
+/* model_ops.migrated: the reference list, the row split and the halo
+ * scratch of the new owned + ghost particles. */
+int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    return rebuild_list(m, sim->p->n, sim->p->gid, err);
+}
