@@ -30,7 +30,7 @@ struct bond_list;
 struct sim;
 struct spall_error;
 
-#define PAR_MIGRATE_MAX_ARRAYS 8
+#define PAR_MIGRATE_MAX_ARRAYS 16
 
 /** What a model lends the migration (model_ops.migrate_arrays): its bond
  *  list, the address of its half-bond count, and its per-particle and

@@ -36,6 +36,7 @@
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
+#include "core/parallel/bhalo.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -61,7 +62,7 @@ int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err)
     return m->bl->reverse ? SPALL_OK : bond_list_build_reverse(m->bl, err);
 }
 
-int pd_eps_forces(struct model *m, struct sim *sim)
+int pd_eps_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
     struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
@@ -70,7 +71,15 @@ int pd_eps_forces(struct model *m, struct sim *sim)
     const int dim = p->dim;
     const double d = (double)dim, cd = eps_cd(dim);
     uint8_t *st = bl->state;
-    const size_t *rev = bl->reverse;
+    /* distributed: t_ji of a bond to a ghost is computed on the ghost's
+     * owner (it needs j's whole family for the return map) and arrives
+     * through the per-bond halo; rev then points past the local half-bonds
+     * for those (core/parallel/bhalo.h, docs/parallel.md) */
+    size_t nr = 0;
+    const size_t nh = bl->offset[bl->n];
+    const size_t *rev = sim->par ? par_bhalo_reverse(sim, bl, &nr, err) : bl->reverse;
+    if (!rev)
+        return err->code;
     double *tb = L->tb, *ep = L->ep;
     const bool late = m->opt.break_late; /* next_step: pd_lps_break_late after the forces */
     /* pass 1, per particle (its own half-bonds only): breaking, dilatation,
@@ -135,6 +144,7 @@ int pd_eps_forces(struct model *m, struct sim *sim)
         }
         m->diss[i] += work * p->volume[i];
     }
+    const double *tr = sim->par ? par_bhalo_exchange(sim, tb, 1) : NULL;
     /* pass 2: F_i = V_i sum_j (t_ij + t_ji) beta V_j M_ij; t_ji from j's row */
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < no; i++) {
@@ -148,8 +158,9 @@ int pd_eps_forces(struct model *m, struct sim *sim)
                 r[c] = p->x[c][j] - p->x[c][i];
                 l2 += r[c] * r[c];
             }
-            const double g = L->ob[s] * (tb[s] + tb[rev[s]]) * (p->volume[i] * p->volume[j]) /
-                             sqrt(l2);
+            const size_t q = rev[s];
+            const double tji = q < nh ? tb[q] : tr[q - nh];
+            const double g = L->ob[s] * (tb[s] + tji) * (p->volume[i] * p->volume[j]) / sqrt(l2);
             for (int c = 0; c < dim; c++)
                 fi[c] += g * r[c];
         }

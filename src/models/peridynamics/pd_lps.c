@@ -201,7 +201,7 @@ static double lps_theta(const struct model *m, const struct sim *sim, size_t i)
     return (double)dim * sum / m->lps.wvol[i];
 }
 
-int pd_lps_forces(struct model *m, struct sim *sim)
+int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
     struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
@@ -212,7 +212,7 @@ int pd_lps_forces(struct model *m, struct sim *sim)
     uint8_t *st = bl->state;
     const bool late = m->opt.break_late;
     if (L->ep)
-        return pd_eps_forces(m, sim); /* formulation eps: plastic return map (pd_eps.c) */
+        return pd_eps_forces(m, sim, err); /* formulation eps: plastic return map (pd_eps.c) */
     /* pass 1: breaking and dilatation; each half-bond decided by its own
      * particle from a length that is bit-identical from both ends */
 #pragma omp parallel for schedule(dynamic, 256)

@@ -46,7 +46,7 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err);
 void pd_lps_weights(struct model *m, const struct sim *sim);
 void pd_lps_free(struct pd_lps *L);
 /** Forces with fused breaking (critical stretch). */
-int pd_lps_forces(struct model *m, struct sim *sim);
+int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err);
 /** surface_correction: factors on omega and alpha near free surfaces (pd_lps_surface.c). */
 int pd_lps_surface_init(struct model *m, struct sim *sim, struct spall_error *err);
 /** break_order next_step: drop the bonds past s0 after this step's forces. */
@@ -61,7 +61,7 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
 /** Allocate the plastic extension state (after pd_lps_init) and the reverse slots. */
 int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err);
 /** Forces with the plastic return map and fused breaking (replaces pd_lps_forces). */
-int pd_eps_forces(struct model *m, struct sim *sim);
+int pd_eps_forces(struct model *m, struct sim *sim, struct spall_error *err);
 /** Equivalent plastic strain of particle @p i from its plastic extension state. */
 double pd_eps_plastic_strain(const struct model *m, const struct sim *sim, size_t i);
 
