@@ -23,28 +23,36 @@
  * (a ghost's alpha, bcoef and, refreshed by the halo each force call,
  * theta enter t_ji of pd_lps_forces) and the per-half-bond influence; eps
  * adds per half-bond the plastic extension state and the scalar force
- * state (scratch of each force call, kept the size of the rows). */
+ * state (scratch of each force call, kept the size of the rows) and the
+ * copy of the reverse half's plastic extension; per particle the dilatation
+ * and return-map scale its owner sends to the ghosts (pd_eps.c). */
 static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, const size_t *oh,
                         size_t nh, struct spall_error *err)
 {
     /* afac (surface correction) is NULL without it */
     double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
     const int npp = L->afac ? 5 : 4;
-    double **bb[3] = {&L->ob, &L->ep, &L->tb};
-    const int nbb = L->ep ? 3 : 1;
-    double *np[5] = {NULL, NULL, NULL, NULL, NULL}, *nb[3] = {NULL, NULL, NULL};
+    double **bb[4] = {&L->ob, &L->ep, &L->tb, &L->epr};
+    const int nbb = L->ep ? 4 : 1;
+    double *np[5] = {NULL, NULL, NULL, NULL, NULL}, *nb[4] = {NULL, NULL, NULL, NULL};
     int bad = 0;
     for (int k = 0; k < npp; k++)
         bad |= !(np[k] = array_gather(*pp[k], sizeof(double), keep, n_keep));
     for (int k = 0; k < nbb; k++)
         bad |= !(nb[k] = array_gather(*bb[k], sizeof(double), oh, nh));
+    double *hs = NULL; /* eps: theta and scale per particle, filled by each force call */
+    if (L->ep)
+        bad |= !(hs = calloc(2 * (n_keep ? n_keep : 1), sizeof *hs));
     if (bad) {
         for (int k = 0; k < npp; k++)
             free(np[k]);
         for (int k = 0; k < nbb; k++)
             free(nb[k]);
+        free(hs);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the LPS state");
     }
+    free(L->hs);
+    L->hs = hs;
     for (int k = 0; k < npp; k++) {
         free(*pp[k]);
         *pp[k] = np[k];
@@ -90,6 +98,17 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
                                what);
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
+    /* eps: each half-bond i->j gets i's copy of e^dp_ji (pd_eps.c), read
+     * through the reverse slots of the whole body's rows, which
+     * bond_list_localize drops */
+    struct pd_lps *L = &m->lps;
+    if (L->ep && !L->epr) {
+        const size_t nf = m->bl->offset[m->bl->n];
+        if (!(L->epr = malloc((nf ? nf : 1) * sizeof *L->epr)))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+        for (size_t s = 0; s < nf; s++)
+            L->epr[s] = L->ep[m->bl->reverse[s]];
+    }
     size_t *oh = NULL, nh = 0;
     int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
     if (rc)
@@ -132,7 +151,8 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
  * dissipated energy travel with a particle; with LPS also its weighted
  * volume, dilatation and coefficients, and the influence of each half-bond
  * (a ghost's alpha, bcoef and theta enter its partners' forces); with eps
- * the plastic extension and force state of each half-bond; with ADR the
+ * the plastic extension, force state and reverse half's plastic extension
+ * of each half-bond and the halo's theta and scale; with ADR the
  * particle's model forces of the last two steps. */
 int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
@@ -165,10 +185,14 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
             a->particle[a->n_particle] = (void **)pp[k];
             a->particle_size[a->n_particle++] = sizeof(double);
         }
-        double **bb[3] = {&L->ob, &L->ep, &L->tb};
-        for (int k = 0; k < (L->ep ? 3 : 1); k++) {
+        double **bb[4] = {&L->ob, &L->ep, &L->tb, &L->epr};
+        for (int k = 0; k < (L->ep ? 4 : 1); k++) {
             a->bond[a->n_bond] = (void **)bb[k];
             a->bond_size[a->n_bond++] = sizeof(double);
+        }
+        if (L->hs) {
+            a->particle[a->n_particle] = (void **)&L->hs;
+            a->particle_size[a->n_particle++] = 2 * sizeof *L->hs;
         }
     }
     /* quasi_static adr: this and the previous step's model force, per axis */

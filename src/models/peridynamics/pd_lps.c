@@ -57,6 +57,8 @@ void pd_lps_free(struct pd_lps *L)
     free(L->afac);
     free(L->ep);
     free(L->tb);
+    free(L->epr);
+    free(L->hs);
 }
 
 /* Cubic harmonic of the unit bond n in the lattice frame (2D: rotated by the
@@ -201,7 +203,7 @@ static double lps_theta(const struct model *m, const struct sim *sim, size_t i)
     return (double)dim * sum / m->lps.wvol[i];
 }
 
-int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
+int pd_lps_forces(struct model *m, struct sim *sim)
 {
     struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
@@ -212,7 +214,7 @@ int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
     uint8_t *st = bl->state;
     const bool late = m->opt.break_late;
     if (L->ep)
-        return pd_eps_forces(m, sim, err); /* formulation eps: plastic return map (pd_eps.c) */
+        return pd_eps_forces(m, sim); /* formulation eps: plastic return map (pd_eps.c) */
     /* pass 1: breaking and dilatation; each half-bond decided by its own
      * particle from a length that is bit-identical from both ends */
 #pragma omp parallel for schedule(dynamic, 256)

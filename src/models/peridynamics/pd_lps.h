@@ -37,6 +37,9 @@ struct pd_lps {
     /* formulation eps (pd_eps.c); NULL for lps */
     double *ep;     /**< per half-bond: plastic deviatoric extension e^dp [m] */
     double *tb;     /**< per half-bond: scalar force state t_ij / omega of the last call */
+    /* distributed eps only (pd_localize.c; NULL otherwise) */
+    double *epr;    /**< per half-bond i->j: i's copy of e^dp of j->i, kept by the same update */
+    double *hs;     /**< per particle (owned and ghosts): theta, return-map scale of the call */
 };
 
 /** Allocate and fill the LPS arrays (after the bond list and materials). */
@@ -46,7 +49,7 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err);
 void pd_lps_weights(struct model *m, const struct sim *sim);
 void pd_lps_free(struct pd_lps *L);
 /** Forces with fused breaking (critical stretch). */
-int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err);
+int pd_lps_forces(struct model *m, struct sim *sim);
 /** surface_correction: factors on omega and alpha near free surfaces (pd_lps_surface.c). */
 int pd_lps_surface_init(struct model *m, struct sim *sim, struct spall_error *err);
 /** break_order next_step: drop the bonds past s0 after this step's forces. */
@@ -61,7 +64,7 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
 /** Allocate the plastic extension state (after pd_lps_init) and the reverse slots. */
 int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err);
 /** Forces with the plastic return map and fused breaking (replaces pd_lps_forces). */
-int pd_eps_forces(struct model *m, struct sim *sim, struct spall_error *err);
+int pd_eps_forces(struct model *m, struct sim *sim);
 /** Equivalent plastic strain of particle @p i from its plastic extension state. */
 double pd_eps_plastic_strain(const struct model *m, const struct sim *sim, size_t i);
 
