@@ -57,8 +57,6 @@ geometry:
 body: {geometry: plate, material: t700}
 run: {steps: 5}
 " "laminae (orthotropic materials) are not distributed yet"
-refused "angular springs" "model: {type: lattice, angular: on}
-${base}" "angular springs are not distributed yet"
 $launch "$spall" validate --quick >stdout.txt 2>stderr.txt; rc=$?
 if [ $rc -ne 2 ] || [ "$(wc -l < stderr.txt)" -ne 1 ] || ! grep -q "does not run distributed" stderr.txt; then
     echo "FAIL validate on 2 ranks: exit $rc"; cat stderr.txt; fail=1

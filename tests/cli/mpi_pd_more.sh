@@ -7,8 +7,12 @@
 #    yield stress below the applied traction, so many particles flow;
 #  - adaptive dynamic relaxation (`quasi_static: adr`: its damping
 #    coefficient is a ratio of two exact sums over all ranks);
-# each on the pre-cracked plate of tests/cli/decks/mpi_pd.yaml, without
-# mpirun and on 2 and 3 ranks (and rebalanced every 20 steps on 3):
+# both on the pre-cracked plate of tests/cli/decks/mpi_pd.yaml;
+#  - the lattice's angular springs (`angular: on`, nu = 0.25: the forces of
+#    angles centred on a ghost come from its owner through the per-bond halo
+#    core/parallel/bhalo.h) on the pre-cracked plate of
+#    tests/cli/decks/mpi_frac.yaml;
+# each without mpirun and on 2 and 3 ranks (and rebalanced every 20 steps on 3):
 # history.csv, fields.xdmf byte for byte, every frame under h5diff.
 # Usage: mpi_pd_more.sh SPALL SRC MPIEXEC
 set -u
@@ -22,10 +26,13 @@ sed 's/^model: {type: peridynamics}$/model: {type: peridynamics, formulation: ep
      s/^output: {field_every: 150, history_every: 10}$/output: {field_every: 150, history_every: 10, fields: [position, damage, plastic_strain]}/' \
     "$deck" > eps.yaml
 sed 's/^model: {type: peridynamics}$/model: {type: peridynamics, quasi_static: adr}/' "$deck" > adr.yaml
+sed 's/^model: {type: lattice, law: linear}$/model: {type: lattice, law: linear, angular: on}/;
+     s/poisson_ratio: 0.3333333333333333/poisson_ratio: 0.25/' "$2/tests/cli/decks/mpi_frac.yaml" > ang.yaml
 grep -q "formulation: eps" eps.yaml && grep -q "yield_stress: 12.0e6" eps.yaml &&
-    grep -q "plastic_strain" eps.yaml && grep -q "quasi_static: adr" adr.yaml ||
-    { echo "FAIL: cannot make eps.yaml, adr.yaml from $deck"; exit 1; }
-for d in eps adr; do
+    grep -q "plastic_strain" eps.yaml && grep -q "quasi_static: adr" adr.yaml &&
+    grep -q "angular: on" ang.yaml && grep -q "poisson_ratio: 0.25" ang.yaml ||
+    { echo "FAIL: cannot make eps.yaml, adr.yaml, ang.yaml from tests/cli/decks"; exit 1; }
+for d in eps adr ang; do
     serial $d
 done
 # the references must break bonds, flow plastically and damp, else the test proves little
@@ -36,16 +43,20 @@ yielded=$(tr ', ' '\n\n' < eps_plastic.txt | awk 'NF && $1 > 0 {n++} END {print 
 [ "$yielded" -gt 20 ] || { echo "FAIL eps: $yielded particles yielded"; fail=1; }
 adr_c=$(col adr_serial/history.csv adr_damping)
 awk -v c="$adr_c" 'BEGIN {exit !(c > 0)}' || { echo "FAIL adr: damping $adr_c"; fail=1; }
+ang_broken=$(col ang_serial/history.csv bonds_broken)
+awk -v b="$ang_broken" 'BEGIN {exit !(b > 50)}' || { echo "FAIL ang broke $ang_broken bonds"; fail=1; }
 counts="${SPALL_MPI_RANK_COUNTS:-2 3}"
 for n in $counts; do
-    for d in eps adr; do
+    for d in eps adr ang; do
         ranks $d "$n"
     done
 done
-# the plastic extension and force states per half-bond, and ADR's last two
-# forces per particle, travel with migrating particles: still bitwise
+# the plastic extension and force states per half-bond, ADR's last two
+# forces per particle and the angles per half-bond travel with migrating
+# particles: still bitwise
 rebalanced eps 3
 rebalanced adr 3
+rebalanced ang 3
 [ $fail -eq 0 ] && echo "mpi_pd_more: identical on $counts ranks (eps: $eps_broken bonds broken," \
-    "$yielded particles yielded; adr: final damping $adr_c 1/s)"
+    "$yielded particles yielded; adr: final damping $adr_c 1/s; angular: $ang_broken bonds broken)"
 [ $fail -eq 0 ]
