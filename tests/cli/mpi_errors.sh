@@ -46,7 +46,7 @@ refused() { # name deck-text expected-substring
 refused "model not distributed" "$(sed 's/^  end_time: .*/  steps: 3/' \
     "$src/examples/macro_rod_tension/macro_rod_tension.yaml")
 " "model 'macroparticle' is not distributed yet"
-refused "pd laminae" "model: {type: peridynamics, variant: pdlm}
+refused "pd fiber_plane" "model: {type: peridynamics, variant: pdlm, matrix_crack: fiber_plane}
 materials:
   t700: {density: 1550, fiber_modulus: 130.0e9, transverse_modulus: 8.5e9, shear_modulus: 4.5e9,
          major_poisson_ratio: 0.3, matrix_fracture_energy: 300, fiber_fracture_energy: 60.0e3,
@@ -56,7 +56,7 @@ geometry:
   plate: {box: {min: [0, 0], max: [0.01, 0.01]}}
 body: {geometry: plate, material: t700}
 run: {steps: 5}
-" "laminae (orthotropic materials) are not distributed yet"
+" "matrix_crack: fiber_plane is not distributed yet"
 $launch "$spall" validate --quick >stdout.txt 2>stderr.txt; rc=$?
 if [ $rc -ne 2 ] || [ "$(wc -l < stderr.txt)" -ne 1 ] || ! grep -q "does not run distributed" stderr.txt; then
     echo "FAIL validate on 2 ranks: exit $rc"; cat stderr.txt; fail=1

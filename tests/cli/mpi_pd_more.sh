@@ -12,7 +12,11 @@
 #    angles centred on a ghost come from its owner through the per-bond halo
 #    core/parallel/bhalo.h) on the pre-cracked plate of
 #    tests/cli/decks/mpi_frac.yaml;
-# each without mpirun and on 2 and 3 ranks (and rebalanced every 20 steps on 3):
+#  - an orthotropic PDLM lamina (fibers at 30 deg) with mixed-mode matrix
+#    failure (a ghost's factor on the matrix critical stretch comes with the
+#    halo) pulled apart across a pre-crack;
+# each without mpirun and on 2 ranks, and on 3 with particles migrating (a
+# repartition every 20 steps):
 # history.csv, fields.xdmf byte for byte, every frame under h5diff.
 # Usage: mpi_pd_more.sh SPALL SRC MPIEXEC
 set -u
@@ -32,7 +36,29 @@ grep -q "formulation: eps" eps.yaml && grep -q "yield_stress: 12.0e6" eps.yaml &
     grep -q "plastic_strain" eps.yaml && grep -q "quasi_static: adr" adr.yaml &&
     grep -q "angular: on" ang.yaml && grep -q "poisson_ratio: 0.25" ang.yaml ||
     { echo "FAIL: cannot make eps.yaml, adr.yaml, ang.yaml from tests/cli/decks"; exit 1; }
-for d in eps adr ang; do
+cat > lam.yaml <<'YAML'
+title: PDLM lamina, mixed-mode matrix failure
+model: {type: peridynamics, variant: pdlm}
+materials:
+  t700: {density: 1550, fiber_modulus: 130.0e9, transverse_modulus: 8.5e9, shear_modulus: 4.5e9,
+         major_poisson_ratio: 0.3, matrix_fracture_energy: 300, mode2_fracture_energy: 800,
+         fiber_fracture_energy: 60.0e3, fiber_angle: 30}
+lattice: {type: triangular, spacing: 1.0e-3, thickness: 1.0e-4, angle: 30}
+geometry:
+  plate: {box: {min: [-1.0e-5, -1.0e-5], max: [0.04001, 0.02001]}}
+body: {geometry: plate, material: t700}
+precracks:
+  - {from: [-0.001, 0.0105], to: [0.015, 0.0105]}
+groups:
+  top: {box: {min: [-1, 0.0185], max: [1, 1]}}
+  bottom: {box: {min: [-1, -1], max: [1, 0.0015]}}
+boundary_conditions:
+  - {group: top, type: velocity, components: [y], value: 6.0}
+  - {group: bottom, type: velocity, components: [y], value: -6.0}
+run: {steps: 400}
+output: {field_every: 200, history_every: 10}
+YAML
+for d in eps adr ang lam; do
     serial $d
 done
 # the references must break bonds, flow plastically and damp, else the test proves little
@@ -45,18 +71,21 @@ adr_c=$(col adr_serial/history.csv adr_damping)
 awk -v c="$adr_c" 'BEGIN {exit !(c > 0)}' || { echo "FAIL adr: damping $adr_c"; fail=1; }
 ang_broken=$(col ang_serial/history.csv bonds_broken)
 awk -v b="$ang_broken" 'BEGIN {exit !(b > 50)}' || { echo "FAIL ang broke $ang_broken bonds"; fail=1; }
-counts="${SPALL_MPI_RANK_COUNTS:-2 3}"
+lam_broken=$(col lam_serial/history.csv bonds_broken)
+awk -v b="$lam_broken" 'BEGIN {exit !(b > 50)}' || { echo "FAIL lam broke $lam_broken bonds"; fail=1; }
+counts="${SPALL_MPI_RANK_COUNTS:-2}"
 for n in $counts; do
-    for d in eps adr ang; do
+    for d in eps adr ang lam; do
         ranks $d "$n"
     done
 done
 # the plastic extension and force states per half-bond, ADR's last two
-# forces per particle and the angles per half-bond travel with migrating
-# particles: still bitwise
-rebalanced eps 3
-rebalanced adr 3
-rebalanced ang 3
+# forces per particle, the angles per half-bond and the mode-mix factors
+# travel with migrating particles: still bitwise
+for d in eps adr ang lam; do
+    rebalanced $d 3
+done
 [ $fail -eq 0 ] && echo "mpi_pd_more: identical on $counts ranks (eps: $eps_broken bonds broken," \
-    "$yielded particles yielded; adr: final damping $adr_c 1/s; angular: $ang_broken bonds broken)"
+    "$yielded particles yielded; adr: final damping $adr_c 1/s; angular: $ang_broken," \
+    "lamina: $lam_broken bonds broken; rebalanced on 3)"
 [ $fail -eq 0 ]

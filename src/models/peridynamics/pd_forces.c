@@ -16,6 +16,7 @@
 
 #include "core/bond_list.h"
 #include "core/exact_sum.h"
+#include "core/parallel/decomp.h"
 #include "core/parallel/psum.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -252,6 +253,10 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     case 2:
         if (m->mixed) {
             pd_mixed_update(m, sim);
+            /* distributed: a ghost's family is on its owner, and so is its
+             * factor, which the thresholds of its bonds read */
+            if (sim->par)
+                par_halo_values(sim, m->mm_g, 1);
             PD_KERNEL(2, 1)
         } else {
             PD_KERNEL_SPLIT(2)

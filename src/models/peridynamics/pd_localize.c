@@ -85,17 +85,37 @@ static int adr_localize(struct model *m, int dim, const size_t *keep, size_t n_k
     return SPALL_OK;
 }
 
+/* laminae, mixed mode: each particle's factor on the matrix critical
+ * stretch and its mode mix (a ghost's factor, refreshed by the halo after
+ * each update, enters the threshold of its bonds to owned particles) */
+static int mixed_localize(struct model *m, const size_t *keep, size_t n_keep,
+                          struct spall_error *err)
+{
+    double *g = array_gather(m->mm_g, sizeof *g, keep, n_keep);
+    double *b = array_gather(m->mm_beta, sizeof *b, keep, n_keep);
+    if (!g || !b) {
+        free(g);
+        free(b);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the mode mix");
+    }
+    free(m->mm_g);
+    m->mm_g = g;
+    free(m->mm_beta);
+    m->mm_beta = b;
+    return SPALL_OK;
+}
+
 int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
-    const char *what = m->ortho || m->mixed ? "laminae (orthotropic materials) are"
-                       : m->fresh || m->twin  ? "matrix_crack: fiber_plane is"
-                                              : NULL;
-    if (what)
+    /* the fiber-parallel crack rule breaks a bond's twin on the same
+     * interface (pd_plane.c), a half-bond index that may name another
+     * rank's row */
+    if (m->fresh || m->twin)
         return spall_error_set(err, SPALL_ERR_INPUT,
-                               "distributed runs: peridynamics' %s not distributed yet; run on "
-                               "one rank (without mpirun), see docs/parallel.md",
-                               what);
+                               "distributed runs: peridynamics' matrix_crack: fiber_plane is not "
+                               "distributed yet; run on one rank (without mpirun), see "
+                               "docs/parallel.md");
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
     /* eps: each half-bond i->j gets i's copy of e^dp_ji (pd_eps.c), read
@@ -123,6 +143,8 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
         rc = lps_localize(&m->lps, keep, n_keep, oh, nh, err);
     if (!rc && m->f_prev[0])
         rc = adr_localize(m, sim->dim, keep, n_keep, err);
+    if (!rc && m->mm_g)
+        rc = mixed_localize(m, keep, n_keep, err);
     free(oh);
     if (rc || (m->coef && !coef) || (m->kind && !kind) || !n_init || !n_init_f || !diss) {
         free(coef);
@@ -194,6 +216,12 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
             a->particle[a->n_particle] = (void **)&L->hs;
             a->particle_size[a->n_particle++] = 2 * sizeof *L->hs;
         }
+    }
+    if (m->mm_g) { /* laminae, mixed mode */
+        a->particle[a->n_particle] = (void **)&m->mm_g;
+        a->particle_size[a->n_particle++] = sizeof *m->mm_g;
+        a->particle[a->n_particle] = (void **)&m->mm_beta;
+        a->particle_size[a->n_particle++] = sizeof *m->mm_beta;
     }
     /* quasi_static adr: this and the previous step's model force, per axis */
     for (int d = 0; d < 3 && m->f_prev[d]; d++) {
