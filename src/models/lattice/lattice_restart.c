@@ -37,6 +37,6 @@ int lattice_register_state(struct model *m, struct sim *sim, struct field_state 
         rc = field_state_add_particle_array(fs, "lattice.dissipated", FIELD_F64,
                                             (void **)&m->diss, sim->p->n_owned, 1, err);
     if (!rc)
-        rc = lattice_thermal_register_state(m, fs, err);
+        rc = lattice_thermal_register_state(m, sim->p->n_owned, fs, err);
     return rc;
 }
