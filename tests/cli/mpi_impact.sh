@@ -17,25 +17,7 @@ spall="$1"
 mpiexec="$3"
 # shellcheck source=lib/rank_compare.bash
 source "$2/tests/cli/lib/rank_compare.bash"
-cat > shatter.yaml <<'YAML'
-title: lattice plate shattered by a sphere, rank-count independence
-model: {type: lattice, law: linear}
-materials:
-  m: {density: 2500, youngs_modulus: 7.0e10, poisson_ratio: 0.3333333333333333, failure_strain: 0.01}
-lattice: {type: triangular, spacing: 0.001}
-geometry:
-  plate: {box: {min: [0, 0], max: [0.03, 0.02]}}
-body: {geometry: plate, material: m}
-groups:
-  base: {box: {min: [-1, -1], max: [1, 0.0006]}}
-boundary_conditions:
-  - {group: base, type: fixed}
-impactors:
-  - {name: ball, shape: sphere, position: [0.015, 0.0262], radius: 0.005, mass: 0.05,
-     velocity: [30.0, -200.0], contact: penalty, friction: 0.2}
-run: {steps: 400}
-output: {field_every: 200, history_every: 20, fields: [position, velocity, fragment_id, id]}
-YAML
+cp "$2/tests/cli/decks/mpi_shatter.yaml" shatter.yaml
 cat > kw.yaml <<'YAML'
 title: reduced Kalthoff-Winkler plate struck by a cylinder, rank-count independence
 model: {type: peridynamics}
@@ -54,25 +36,7 @@ impactors:
 run: {steps: 300}
 output: {field_every: 150, history_every: 10, fields: [position, velocity, damage]}
 YAML
-cat > tup.yaml <<'YAML'
-title: lattice beam under a falling tup on two rollers, rank-count independence
-model: {type: lattice, law: linear, layers: 2}
-materials:
-  beam: {density: 1050, youngs_modulus: 2.56e9, poisson_ratio: 0.3333333333333333,
-         tensile_strength: 43.5e6}
-lattice: {type: triangular, spacing: 1.0475e-3, thickness: 0.00993}
-body: {geometry: {box: {min: [0, 0], max: [0.04, 0.006]}}, material: beam}
-gravity: [0, -9.80]
-impactors:
-  - {name: tup, shape: round_nose, position: [0.02, 0.0059], radius: 0.004,
-     length: 0.05, axis: [0, -1], mass: 0.3, velocity: [0, -15.0], contact: no_slip}
-  - {name: left_roller, shape: sphere, position: [0.004, -0.003001], radius: 0.003,
-     motion: prescribed, contact: penalty}
-  - {name: right_roller, shape: sphere, position: [0.036, -0.003001], radius: 0.003,
-     motion: prescribed, contact: penalty}
-run: {steps: 400}
-output: {field_every: 200, history_every: 10, fields: [position, velocity, fragment_id]}
-YAML
+cp "$2/tests/cli/decks/mpi_tup.yaml" tup.yaml
 for deck in shatter kw tup; do
     serial $deck
 done

@@ -20,29 +20,7 @@ sed 's/^model: {type: peridynamics}$/model: {type: peridynamics, formulation: lp
     "$2/tests/cli/decks/mpi_pd.yaml" > lps.yaml
 grep -q "formulation: lps" lps.yaml && grep -q "poisson_ratio: 0.22" lps.yaml ||
     { echo "FAIL: cannot make lps.yaml from tests/cli/decks/mpi_pd.yaml"; exit 1; }
-cat > thermal.yaml <<'YAML'
-title: thermal lattice, rank-count independence
-model: {type: lattice, law: linear, thermal: {boundary: [{group: cold, temperature: 293.15}]}}
-materials:
-  calcite: {density: 2710, youngs_modulus: 70.0e9, poisson_ratio: 0.3333333333333333,
-            tensile_strength: 10.0e6, specific_heat: 820, conductivity: 3.6,
-            thermal_expansion: 1.0e-5, power_density: 0, reference_temperature: 293.15}
-  pyrite: {density: 5010, youngs_modulus: 290.0e9, poisson_ratio: 0.3333333333333333,
-           tensile_strength: 50.0e6, specific_heat: 520, conductivity: 19,
-           thermal_expansion: 2.7e-5, power_density: 8.0e14, melting_temperature: 800,
-           reference_temperature: 293.15}
-lattice: {type: triangular, spacing: 2.0e-4}
-geometry:
-  plate: {box: {min: [0, 0], max: [0.006, 0.006]}}
-  inner: {box: {min: [0.0008, 0.0008], max: [0.0052, 0.0052]}}
-body: {geometry: plate, material: calcite}
-inclusions:
-  - {material: pyrite, count: 5, radius: [0.0004, 0.0006], within: inner, seed: 1, min_gap: 0.0003}
-groups:
-  cold: {box: {min: [-1, -1], max: [1, 0.0003]}}
-run: {steps: 300}
-output: {field_every: 150, history_every: 10, fields: [position, temperature, fragment_id, material]}
-YAML
+cp "$2/tests/cli/decks/mpi_thermal.yaml" thermal.yaml
 for deck in lps thermal; do
     serial $deck
 done

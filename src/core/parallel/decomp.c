@@ -5,6 +5,7 @@
  */
 #include "core/parallel/decomp.h"
 #include "core/parallel/decomp_internal.h"
+#include "core/parallel/bhalo.h"
 
 #include "core/bond_list.h"
 #include "core/fields.h"
@@ -46,6 +47,7 @@ void par_decomp_destroy(struct par_decomp **dp)
     free(d->probe_owner);
     free(d->probe_local);
     par_balance_free(d);
+    par_bhalo_free(d);
     free(d);
     *dp = NULL;
 }

@@ -29,6 +29,7 @@ struct par_decomp {
     void *zz;              /**< Zoltan_Struct kept between rebalances (its cuts are reused) */
     long rebalances;
     unsigned long long migrated;
+    void *bhalo; /**< per-half-bond halo plan (bhalo.c), built on first use; NULL */
 };
 
 struct sim;

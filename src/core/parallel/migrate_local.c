@@ -6,6 +6,7 @@
  *        owners, the halo lists and the probes (migrate.h).
  */
 #include "core/parallel/migrate_internal.h"
+#include "core/parallel/bhalo.h"
 
 #include "core/bond_list.h"
 #include "core/parallel/comm.h"
@@ -379,6 +380,7 @@ int mig_rebuild_local(struct mig *M, struct spall_error *err)
         return rc;
     }
     rc = fetch_ghosts(M, err);
+    par_bhalo_free(M->d); /* the per-bond halo's plan is for the old rows */
     if (!rc)
         rebuild_probes(M, pg);
     free(pg);

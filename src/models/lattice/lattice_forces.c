@@ -32,8 +32,10 @@
 #include "models/lattice/lattice_softening.h"
 
 #include "core/bond_list.h"
+#include "core/parallel/bhalo.h"
 #include "core/particles.h"
 #include "core/sim.h"
+#include "spall/error.h"
 
 #include <math.h>
 #include <string.h>
@@ -565,9 +567,10 @@ static void thread_range(size_t n, size_t *lo, size_t *hi)
 /* ---- loop drivers: the only place with OpenMP pragmas ----------------------- */
 
 static void drive_axial(struct model *m, struct sim *sim, int fast, int dim, int multi,
-                        int gather)
+                        int gather, const size_t *reverse)
 {
-    const struct lattice_view v = make_view(m, sim);
+    struct lattice_view v = make_view(m, sim);
+    v.reverse = reverse;
     const size_t n = sim->p->n_owned;
 #pragma omp parallel
     {
@@ -602,13 +605,26 @@ static void drive_angles(struct model *m, struct sim *sim)
 
 int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    (void)err;
     const int dim = m->dim;
     const int gather = m->angular && dim == 2;
-    if (gather)
+    const size_t *reverse = m->bl->reverse;
+    size_t nr = 0;
+    /* distributed: the angles centred on a ghost j are evaluated by j's
+     * owner; the forces they put on i (j's buffer slot j->i) come through
+     * the per-bond halo into ang_buf past the local slots, where reverse
+     * points (core/parallel/bhalo.h; lattice_localize.c sizes ang_buf) */
+    if (gather && sim->par && !(reverse = par_bhalo_reverse(sim, m->bl, &nr, err)))
+        return err->code;
+    if (gather) {
         drive_angles(m, sim);
+        if (sim->par) {
+            const size_t nh = m->bl->offset[m->bl->n];
+            const double *rb = par_bhalo_exchange(sim, m->ang_buf, 2);
+            memcpy(m->ang_buf + 2 * nh, rb, 2 * nr * sizeof *rb);
+        }
+    }
     const int fast = m->lp.law == LATTICE_LAW_LINEAR && m->n_mat == 1 && !m->kscale;
-    drive_axial(m, sim, fast, dim, m->layers > 1 || m->honeycomb, gather);
+    drive_axial(m, sim, fast, dim, m->layers > 1 || m->honeycomb, gather, reverse);
     return 0;
 }
 

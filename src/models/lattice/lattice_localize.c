@@ -24,15 +24,40 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Angular springs: per half-bond the angle that starts at it (its second
+ * arm's place in the row, reference angle, state) and the force buffer.
+ * The buffer holds 4 doubles per local half-bond: 2 for the slot's own
+ * value and room for the 2 of a reverse half received from another rank
+ * (at most one per local half-bond; lattice_compute_forces). */
+static int angles_localize(struct model *m, const size_t *oh, size_t nh,
+                           struct spall_error *err)
+{
+    uint8_t *b = array_gather(m->ang_b, sizeof *b, oh, nh);
+    double *phi0 = array_gather(m->ang_phi0, sizeof *phi0, oh, nh);
+    uint8_t *st = array_gather(m->ang_state, sizeof *st, oh, nh);
+    double *buf = calloc(4 * (nh ? nh : 1), sizeof *buf);
+    if (!b || !phi0 || !st || !buf) {
+        free(b);
+        free(phi0);
+        free(st);
+        free(buf);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising angular springs");
+    }
+    free(m->ang_b);
+    m->ang_b = b;
+    free(m->ang_phi0);
+    m->ang_phi0 = phi0;
+    free(m->ang_state);
+    m->ang_state = st;
+    free(m->ang_buf);
+    m->ang_buf = buf;
+    return SPALL_OK;
+}
+
 int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                      size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
     (void)sim;
-    if (m->angular) /* angles centred on ghosts would need ghosts of ghosts */
-        return spall_error_set(err, SPALL_ERR_INPUT,
-                               "distributed runs: the lattice model's angular springs are not "
-                               "distributed yet; run on one rank (without mpirun), see "
-                               "docs/parallel.md");
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
     size_t *oh = NULL, nh = 0;
@@ -44,6 +69,8 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
     /* thermal lattice: temperatures of owned and ghosts (the halo refreshes
      * the ghosts' each conduction sub-step, lattice_thermal.c) */
     rc = lattice_thermal_localize(m, keep, n_keep, oh, nh, err);
+    if (!rc && m->ang_b)
+        rc = angles_localize(m, oh, nh, err);
     free(oh);
     if (rc || (m->kappa && !kappa) || !diss) {
         free(kappa);
@@ -61,7 +88,8 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
 /* model_ops.migrate_arrays: the bond rows, the dissipated energy per
  * particle and the softening history per half-bond travel with a particle.
  * The thermal lattice keeps per-particle and per-bond state whose owners
- * (th->n, m->kscale) a moved array would leave behind: refused. */
+ * (th->n, m->kscale) a moved array would leave behind: refused.  Angular
+ * springs: each half-bond's angle (second arm, reference angle, state). */
 int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
     if (lattice_thermal_enabled(m))
@@ -77,6 +105,16 @@ int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a, struct s
     if (m->kappa) {
         a->bond[a->n_bond] = (void **)&m->kappa;
         a->bond_size[a->n_bond++] = sizeof *m->kappa;
+    }
+    if (m->ang_b) { /* angles: their half-bond's state; the buffer (4 doubles, scratch) */
+        void **arr[4] = {(void **)&m->ang_b, (void **)&m->ang_phi0, (void **)&m->ang_state,
+                         (void **)&m->ang_buf};
+        const size_t sz[4] = {sizeof *m->ang_b, sizeof *m->ang_phi0, sizeof *m->ang_state,
+                              4 * sizeof *m->ang_buf};
+        for (int k = 0; k < 4; k++) {
+            a->bond[a->n_bond] = arr[k];
+            a->bond_size[a->n_bond++] = sz[k];
+        }
     }
     return SPALL_OK;
 }

@@ -27,9 +27,9 @@ int lattice_register_state(struct model *m, struct sim *sim, struct field_state 
     if (!rc && bl->rest)
         rc = field_state_add_bond_array(fs, "lattice.bond_rest", FIELD_F64, (void **)&bl->rest,
                                         bl, 1, err);
-    if (!rc && m->angular) /* angles: not distributed (lattice_localize refuses them) */
-        rc = field_state_add_array(fs, "lattice.angle_state", FIELD_U8, (void **)&m->ang_state,
-                                   bl->offset[bl->n], 1, err);
+    if (!rc && m->angular) /* one per half-bond: the angle that starts at it */
+        rc = field_state_add_bond_array(fs, "lattice.angle_state", FIELD_U8,
+                                        (void **)&m->ang_state, bl, 1, err);
     if (!rc && m->kappa) /* one per half-bond (m->n_half == the rows of bl) */
         rc = field_state_add_bond_array(fs, "lattice.softening_kappa", FIELD_F64,
                                         (void **)&m->kappa, bl, 1, err);
@@ -37,6 +37,6 @@ int lattice_register_state(struct model *m, struct sim *sim, struct field_state 
         rc = field_state_add_particle_array(fs, "lattice.dissipated", FIELD_F64,
                                             (void **)&m->diss, sim->p->n_owned, 1, err);
     if (!rc)
-        rc = lattice_thermal_register_state(m, fs, err);
+        rc = lattice_thermal_register_state(m, sim->p->n_owned, fs, err);
     return rc;
 }

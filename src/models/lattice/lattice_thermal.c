@@ -57,7 +57,7 @@ struct lattice_thermal {
     double *heat;     /**< P_d V per particle, W */
     double *inv_mC;   /**< 1 / (m C) */
     double dt_limit;  /**< explicit stability limit of conduction */
-    size_t melted;    /**< bonds removed by melting (counted once) */
+    size_t melted;    /**< bonds removed by melting (counted once; the whole run's) */
     bool any_table;   /**< some material has youngs_modulus_table */
     double *kscale;   /**< per half-bond E(T)/E_ref (only with a table) */
 };
@@ -400,7 +400,10 @@ int lattice_thermal_step(struct model *m, struct sim *sim, double dt, struct spa
             }
         }
     }
-    th->melted += melted;
+    /* distributed: each rank counted the bonds it owns the lower end of;
+     * the total (one integer sum) keeps th->melted the whole run's on every
+     * rank, which the checkpoint stores once */
+    th->melted += sim->par ? (size_t)par_sum_u64(melted) : melted;
     return SPALL_OK;
 }
 
@@ -414,25 +417,27 @@ int lattice_thermal_register_fields(struct model *m, struct field_registry *reg,
                                   err);
 }
 
-int lattice_thermal_register_state(struct model *m, struct field_state *fs,
+int lattice_thermal_register_state(struct model *m, size_t n_owned, struct field_state *fs,
                                    struct spall_error *err)
 {
     if (!lattice_thermal_enabled(m))
         return SPALL_OK;
     struct lattice_thermal *th = m->th;
-    size_t nh = m->bl->offset[m->bl->n];
-    /* temperatures, and what melting and E(T) change per half-bond; the
-     * rest lengths follow T by thermal expansion */
-    int rc = field_state_add_array(fs, "lattice.T", FIELD_F64, (void **)&th->T, th->n, 1, err);
+    /* temperatures, and what melting and E(T) change per half-bond (the
+     * rest lengths follow T by thermal expansion), per owned particle and
+     * per half-bond, so that a distributed run writes them by global ids;
+     * the melted count is the whole run's on every rank (lattice_thermal_step) */
+    int rc = field_state_add_particle_array(fs, "lattice.T", FIELD_F64, (void **)&th->T, n_owned,
+                                            1, err);
     if (!rc)
-        rc = field_state_add_array(fs, "lattice.conductance", FIELD_F64, (void **)&th->kappa, nh,
-                                   1, err);
+        rc = field_state_add_bond_array(fs, "lattice.conductance", FIELD_F64,
+                                        (void **)&th->kappa, m->bl, 1, err);
     if (!rc)
-        rc = field_state_add_array(fs, "lattice.heat", FIELD_F64, (void **)&th->heat, th->n, 1,
-                                   err);
+        rc = field_state_add_particle_array(fs, "lattice.heat", FIELD_F64, (void **)&th->heat,
+                                            n_owned, 1, err);
     if (!rc && th->kscale)
-        rc = field_state_add_array(fs, "lattice.kscale", FIELD_F64, (void **)&th->kscale, nh, 1,
-                                   err);
+        rc = field_state_add_bond_array(fs, "lattice.kscale", FIELD_F64, (void **)&th->kscale,
+                                        m->bl, 1, err);
     if (!rc)
         rc = field_state_add_values(fs, "lattice.melted", FIELD_I64, &th->melted, 1, err);
     return rc;
@@ -511,7 +516,6 @@ size_t lattice_thermal_history(const struct model *m, const struct sim *sim, con
         sum = out[0];
         mass = out[1];
         tmax = out[2];
-        melted = (size_t)par_sum_u64(th->melted);
     } else {
         for (size_t i = 0; i < sim->p->n_owned; i++) {
             sum += sim->p->mass[i] * th->T[i];

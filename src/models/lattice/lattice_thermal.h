@@ -60,7 +60,7 @@ int lattice_thermal_init(struct model *m, struct sim *sim, struct spall_error *e
 int lattice_thermal_step(struct model *m, struct sim *sim, double dt, struct spall_error *err);
 /** Register the `temperature` field. */
 /** Restart state of the thermal lattice (lattice_restart.c calls it). */
-int lattice_thermal_register_state(struct model *m, struct field_state *fs,
+int lattice_thermal_register_state(struct model *m, size_t n_owned, struct field_state *fs,
                                    struct spall_error *err);
 int lattice_thermal_register_fields(struct model *m, struct field_registry *reg,
                                     struct spall_error *err);

@@ -36,6 +36,7 @@
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
+#include "core/parallel/decomp.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -72,6 +73,9 @@ int pd_eps_forces(struct model *m, struct sim *sim)
     uint8_t *st = bl->state;
     const size_t *rev = bl->reverse;
     double *tb = L->tb, *ep = L->ep;
+    /* distributed: theta_j and j's return-map scale per particle (sent to
+     * the ghosts after pass 1), and per half-bond i's copy of e^dp_ji */
+    double *hs = L->hs, *epr = L->epr;
     const bool late = m->opt.break_late; /* next_step: pd_lps_break_late after the forces */
     /* pass 1, per particle (its own half-bonds only): breaking, dilatation,
      * return map, scalar force state t_ij / omega into tb */
@@ -103,6 +107,10 @@ int pd_eps_forces(struct model *m, struct sim *sim)
         const double wv = L->wvol[i];
         const double th = wv > 0.0 ? d * sum / wv : 0.0;
         L->theta[i] = th;
+        if (hs) {
+            hs[2 * i] = th;
+            hs[2 * i + 1] = 1.0;
+        }
         if (!(wv > 0.0))
             continue;
         const double al = L->alpha[i];
@@ -118,6 +126,8 @@ int pd_eps_forces(struct model *m, struct sim *sim)
         const double lim2 = d * (d + 2.0) * cd * mt->yield_stress * mt->yield_stress /
                             (2.0 * wv) * (L->afac ? L->afac[i] : 1.0);
         const double scale = nrm2 > lim2 ? sqrt(lim2 / nrm2) : 1.0;
+        if (hs)
+            hs[2 * i + 1] = scale;
         const double iso = (d * mt->kd / wv) * th; /* d k theta / m_i, times |xi| below */
         double work = 0.0;
         for (size_t s = s0; s < s1; s++) {
@@ -135,7 +145,17 @@ int pd_eps_forces(struct model *m, struct sim *sim)
         }
         m->diss[i] += work * p->volume[i];
     }
-    /* pass 2: F_i = V_i sum_j (t_ij + t_ji) beta V_j M_ij; t_ji from j's row */
+    /* distributed: the partner's half t_ji needs its whole family (the
+     * return map's scale), which a ghost's owner has.  Rather than the
+     * values t_ji themselves (one per bond that crosses ranks), its owner
+     * sends theta_j and the scale (two per ghost), and i repeats j's update
+     * of e^dp_ji on its copy epr: the same operations on the same operands
+     * (the length and rest length of a bond are bitwise symmetric), so the
+     * same bits (docs/parallel.md, "Elastic-plastic peridynamics") */
+    if (sim->par)
+        par_halo_values(sim, hs, 2);
+    /* pass 2: F_i = V_i sum_j (t_ij + t_ji) beta V_j M_ij; t_ji from j's row,
+     * or distributed from j's theta and scale */
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = 0; i < no; i++) {
         double fi[3] = {0.0, 0.0, 0.0};
@@ -148,8 +168,22 @@ int pd_eps_forces(struct model *m, struct sim *sim)
                 r[c] = p->x[c][j] - p->x[c][i];
                 l2 += r[c] * r[c];
             }
-            const double g = L->ob[s] * (tb[s] + tb[rev[s]]) * (p->volume[i] * p->volume[j]) /
-                             sqrt(l2);
+            double tji;
+            if (epr) { /* pass 1 of j for this half-bond, as j's owner runs it */
+                const double xi = bl->rest[s], e = sqrt(l2) - xi;
+                const double thj = hs[2 * j], scj = hs[2 * j + 1], alj = L->alpha[j];
+                const double ed = e - thj * xi / d;
+                double tau = alj * (ed - epr[s]);
+                if (scj < 1.0) {
+                    tau *= scj;
+                    const double dep = ed - tau / alj - epr[s];
+                    epr[s] += dep;
+                }
+                tji = (d * m->mat[p->material[j]].kd / L->wvol[j]) * thj * xi + tau;
+            } else {
+                tji = tb[rev[s]];
+            }
+            const double g = L->ob[s] * (tb[s] + tji) * (p->volume[i] * p->volume[j]) / sqrt(l2);
             for (int c = 0; c < dim; c++)
                 fi[c] += g * r[c];
         }

@@ -15,6 +15,9 @@
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
+#include "core/exact_sum.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/psum.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -237,9 +240,11 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
         return SPALL_OK;
     }
     if (m->opt.quasi == PD_QS_ADR) {
-        /* the engine zeroed f: keep the model's part of step n-1 for ADR */
+        /* the engine zeroed f: keep the model's part of step n-1 for ADR
+         * (f_prev[d][2 i] this step's, [2 i + 1] the previous one's) */
         for (int d = 0; d < p->dim; d++)
-            memcpy(m->f_prev[d] + n, m->f_prev[d], n * sizeof(double));
+            for (size_t i = 0; i < n; i++)
+                m->f_prev[d][2 * i + 1] = m->f_prev[d][2 * i];
     }
     switch (p->dim) {
     case 1:
@@ -248,6 +253,10 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     case 2:
         if (m->mixed) {
             pd_mixed_update(m, sim);
+            /* distributed: a ghost's family is on its owner, and so is its
+             * factor, which the thresholds of its bonds read */
+            if (sim->par)
+                par_halo_values(sim, m->mm_g, 1);
             PD_KERNEL(2, 1)
         } else {
             PD_KERNEL_SPLIT(2)
@@ -268,28 +277,34 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
  * damping coefficient c_n = 2 sqrt(u^T K u / u^T u) (1/s), which the engine
  * takes (pd_damping, model_ops.damping) for its mass-proportional damping
  * F = -c m v.  Model forces only (loads
- * and grips are not part of the stiffness). */
+ * and grips are not part of the stiffness).  The two sums are exact
+ * (core/exact_sum.h; over all ranks when distributed, parallel/psum.h), so
+ * every rank takes the same coefficient, the serial one. */
 void pd_adr_update(struct model *m, const struct sim *sim)
 {
     const struct particles *p = sim->p;
     const size_t n = p->n_owned;
-    double num = 0.0, den = 0.0;
+    struct xsum acc[2]; /* num, den */
+    xsum_init(&acc[0]);
+    xsum_init(&acc[1]);
     for (int d = 0; d < p->dim; d++) {
-        const double *fp = m->f_prev[d] + n; /* previous */
-        double *fc = m->f_prev[d];           /* current, stored next */
+        double *fc = m->f_prev[d]; /* [2 i]: current, stored; [2 i + 1]: previous */
         for (size_t i = 0; i < n; i++) {
             double fi = p->f[d][i];
             double u = p->x[d][i] - p->x0[d][i];
             double v = p->v[d][i];
             const double h = sim_step_dt(sim); /* the position change is v h */
             if (sim->step > 0 && h > 0.0 && fabs(v) * h > 1e-9 * fabs(u)) {
-                double k = -(fi - fp[i]) / (p->mass[i] * h * v);
-                num += u * k * u;
+                double k = -(fi - fc[2 * i + 1]) / (p->mass[i] * h * v);
+                xsum_add(&acc[0], u * k * u);
             }
-            den += u * u;
-            fc[i] = fi;
+            xsum_add(&acc[1], u * u);
+            fc[2 * i] = fi;
         }
     }
+    double sums[2];
+    par_xsum_finish(sim, acc, 2, sums);
+    const double num = sums[0], den = sums[1];
     /* Near convergence v and the force change are round-off and the estimate
      * is noise: keep the previous coefficient when it is not positive, and
      * never exceed 0.2 / dt (explicit damping stays far below its 2 / dt

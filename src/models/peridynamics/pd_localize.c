@@ -21,49 +21,114 @@
 
 /* formulation lps: the per-particle state of owned particles and ghosts
  * (a ghost's alpha, bcoef and, refreshed by the halo each force call,
- * theta enter t_ji of pd_lps_forces) and the per-half-bond influence. */
+ * theta enter t_ji of pd_lps_forces) and the per-half-bond influence; eps
+ * adds per half-bond the plastic extension state and the scalar force
+ * state (scratch of each force call, kept the size of the rows) and the
+ * copy of the reverse half's plastic extension; per particle the dilatation
+ * and return-map scale its owner sends to the ghosts (pd_eps.c). */
 static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, const size_t *oh,
                         size_t nh, struct spall_error *err)
 {
     /* afac (surface correction) is NULL without it */
     double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
     const int npp = L->afac ? 5 : 4;
-    double *np[5] = {NULL, NULL, NULL, NULL, NULL};
+    double **bb[4] = {&L->ob, &L->ep, &L->tb, &L->epr};
+    const int nbb = L->ep ? 4 : 1;
+    double *np[5] = {NULL, NULL, NULL, NULL, NULL}, *nb[4] = {NULL, NULL, NULL, NULL};
     int bad = 0;
     for (int k = 0; k < npp; k++)
         bad |= !(np[k] = array_gather(*pp[k], sizeof(double), keep, n_keep));
-    double *ob = array_gather(L->ob, sizeof *ob, oh, nh);
-    if (bad || !ob) {
+    for (int k = 0; k < nbb; k++)
+        bad |= !(nb[k] = array_gather(*bb[k], sizeof(double), oh, nh));
+    double *hs = NULL; /* eps: theta and scale per particle, filled by each force call */
+    if (L->ep)
+        bad |= !(hs = calloc(2 * (n_keep ? n_keep : 1), sizeof *hs));
+    if (bad) {
         for (int k = 0; k < npp; k++)
             free(np[k]);
-        free(ob);
+        for (int k = 0; k < nbb; k++)
+            free(nb[k]);
+        free(hs);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the LPS state");
     }
+    free(L->hs);
+    L->hs = hs;
     for (int k = 0; k < npp; k++) {
         free(*pp[k]);
         *pp[k] = np[k];
     }
-    free(L->ob);
-    L->ob = ob;
+    for (int k = 0; k < nbb; k++) {
+        free(*bb[k]);
+        *bb[k] = nb[k];
+    }
+    return SPALL_OK;
+}
+
+/* quasi_static adr: each owned particle's model force of this and of the
+ * previous step (pd_adr_update) */
+static int adr_localize(struct model *m, int dim, const size_t *keep, size_t n_keep,
+                        struct spall_error *err)
+{
+    double *nf[3] = {NULL, NULL, NULL};
+    int bad = 0;
+    for (int d = 0; d < dim; d++)
+        bad |= !(nf[d] = array_gather(m->f_prev[d], 2 * sizeof(double), keep, n_keep));
+    if (bad) {
+        for (int d = 0; d < dim; d++)
+            free(nf[d]);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the ADR forces");
+    }
+    for (int d = 0; d < dim; d++) {
+        free(m->f_prev[d]);
+        m->f_prev[d] = nf[d];
+    }
+    return SPALL_OK;
+}
+
+/* laminae, mixed mode: each particle's factor on the matrix critical
+ * stretch and its mode mix (a ghost's factor, refreshed by the halo after
+ * each update, enters the threshold of its bonds to owned particles) */
+static int mixed_localize(struct model *m, const size_t *keep, size_t n_keep,
+                          struct spall_error *err)
+{
+    double *g = array_gather(m->mm_g, sizeof *g, keep, n_keep);
+    double *b = array_gather(m->mm_beta, sizeof *b, keep, n_keep);
+    if (!g || !b) {
+        free(g);
+        free(b);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the mode mix");
+    }
+    free(m->mm_g);
+    m->mm_g = g;
+    free(m->mm_beta);
+    m->mm_beta = b;
     return SPALL_OK;
 }
 
 int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
-    (void)sim;
-    const char *what = m->opt.eps                  ? "formulation eps is"
-                       : m->opt.quasi == PD_QS_ADR ? "quasi-static adr is"
-                       : m->ortho || m->mixed      ? "laminae (orthotropic materials) are"
-                       : m->fresh || m->twin       ? "matrix_crack: fiber_plane is"
-                                                   : NULL;
-    if (what)
+    /* the fiber-parallel crack rule breaks a bond's twin on the same
+     * interface (pd_plane.c), a half-bond index that may name another
+     * rank's row */
+    if (m->fresh || m->twin)
         return spall_error_set(err, SPALL_ERR_INPUT,
-                               "distributed runs: peridynamics' %s not distributed yet; run on "
-                               "one rank (without mpirun), see docs/parallel.md",
-                               what);
+                               "distributed runs: peridynamics' matrix_crack: fiber_plane is not "
+                               "distributed yet; run on one rank (without mpirun), see "
+                               "docs/parallel.md");
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
+    /* eps: each half-bond i->j gets i's copy of e^dp_ji (pd_eps.c), read
+     * through the reverse slots of the whole body's rows, which
+     * bond_list_localize drops */
+    struct pd_lps *L = &m->lps;
+    if (L->ep && !L->epr) {
+        const size_t nf = m->bl->offset[m->bl->n];
+        if (!(L->epr = malloc((nf ? nf : 1) * sizeof *L->epr)))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+        for (size_t s = 0; s < nf; s++)
+            L->epr[s] = L->ep[m->bl->reverse[s]];
+    }
     size_t *oh = NULL, nh = 0;
     int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
     if (rc)
@@ -76,6 +141,10 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
     if (!rc && m->opt.lps)
         rc = lps_localize(&m->lps, keep, n_keep, oh, nh, err);
+    if (!rc && m->f_prev[0])
+        rc = adr_localize(m, sim->dim, keep, n_keep, err);
+    if (!rc && m->mm_g)
+        rc = mixed_localize(m, keep, n_keep, err);
     free(oh);
     if (rc || (m->coef && !coef) || (m->kind && !kind) || !n_init || !n_init_f || !diss) {
         free(coef);
@@ -103,7 +172,10 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
  * the initial bond counts (damage = 1 - intact / initial) and the
  * dissipated energy travel with a particle; with LPS also its weighted
  * volume, dilatation and coefficients, and the influence of each half-bond
- * (a ghost's alpha, bcoef and theta enter its partners' forces). */
+ * (a ghost's alpha, bcoef and theta enter its partners' forces); with eps
+ * the plastic extension, force state and reverse half's plastic extension
+ * of each half-bond and the halo's theta and scale; with ADR the
+ * particle's model forces of the last two steps. */
 int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
     (void)err; /* every option that distributes can migrate */
@@ -135,8 +207,26 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
             a->particle[a->n_particle] = (void **)pp[k];
             a->particle_size[a->n_particle++] = sizeof(double);
         }
-        a->bond[a->n_bond] = (void **)&L->ob;
-        a->bond_size[a->n_bond++] = sizeof *L->ob;
+        double **bb[4] = {&L->ob, &L->ep, &L->tb, &L->epr};
+        for (int k = 0; k < (L->ep ? 4 : 1); k++) {
+            a->bond[a->n_bond] = (void **)bb[k];
+            a->bond_size[a->n_bond++] = sizeof(double);
+        }
+        if (L->hs) {
+            a->particle[a->n_particle] = (void **)&L->hs;
+            a->particle_size[a->n_particle++] = 2 * sizeof *L->hs;
+        }
+    }
+    if (m->mm_g) { /* laminae, mixed mode */
+        a->particle[a->n_particle] = (void **)&m->mm_g;
+        a->particle_size[a->n_particle++] = sizeof *m->mm_g;
+        a->particle[a->n_particle] = (void **)&m->mm_beta;
+        a->particle_size[a->n_particle++] = sizeof *m->mm_beta;
+    }
+    /* quasi_static adr: this and the previous step's model force, per axis */
+    for (int d = 0; d < 3 && m->f_prev[d]; d++) {
+        a->particle[a->n_particle] = (void **)&m->f_prev[d];
+        a->particle_size[a->n_particle++] = 2 * sizeof(double);
     }
     return SPALL_OK;
 }

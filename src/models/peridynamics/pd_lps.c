@@ -57,6 +57,8 @@ void pd_lps_free(struct pd_lps *L)
     free(L->afac);
     free(L->ep);
     free(L->tb);
+    free(L->epr);
+    free(L->hs);
 }
 
 /* Cubic harmonic of the unit bond n in the lattice frame (2D: rotated by the

@@ -37,6 +37,9 @@ struct pd_lps {
     /* formulation eps (pd_eps.c); NULL for lps */
     double *ep;     /**< per half-bond: plastic deviatoric extension e^dp [m] */
     double *tb;     /**< per half-bond: scalar force state t_ij / omega of the last call */
+    /* distributed eps only (pd_localize.c; NULL otherwise) */
+    double *epr;    /**< per half-bond i->j: i's copy of e^dp of j->i, kept by the same update */
+    double *hs;     /**< per particle (owned and ghosts): theta, return-map scale of the call */
 };
 
 /** Allocate and fill the LPS arrays (after the bond list and materials). */

@@ -28,22 +28,24 @@ int pd_register_state(struct model *m, struct sim *sim, struct field_state *fs,
     if (!rc)
         rc = field_state_add_particle_array(fs, "pd.dissipated", FIELD_F64, (void **)&m->diss, n,
                                             1, err);
-    /* the rest is not distributed yet (pd_localize refuses it): local order */
+    /* matrix_crack: fiber_plane is not distributed (pd_localize refuses it): local order */
     if (!rc && m->fresh)
         rc = field_state_add_array(fs, "pd.fresh", FIELD_U8, (void **)&m->fresh, nh, 1, err);
     if (!rc && m->mm_g)
-        rc = field_state_add_array(fs, "pd.mixed_g", FIELD_F64, (void **)&m->mm_g, n, 1, err);
+        rc = field_state_add_particle_array(fs, "pd.mixed_g", FIELD_F64, (void **)&m->mm_g, n,
+                                            1, err);
     if (!rc && m->mm_beta)
-        rc = field_state_add_array(fs, "pd.mixed_beta", FIELD_F64, (void **)&m->mm_beta, n, 1,
-                                   err);
+        rc = field_state_add_particle_array(fs, "pd.mixed_beta", FIELD_F64,
+                                            (void **)&m->mm_beta, n, 1, err);
     if (!rc && m->lps.ep) /* formulation eps: the plastic extension state */
-        rc = field_state_add_array(fs, "pd.eps_plastic", FIELD_F64, (void **)&m->lps.ep, nh, 1,
-                                   err);
+        rc = field_state_add_bond_array(fs, "pd.eps_plastic", FIELD_F64, (void **)&m->lps.ep,
+                                        m->bl, 1, err);
     char nm[FIELD_STATE_NAME_LEN];
     for (int d = 0; d < sim->dim && !rc; d++)
         if (m->f_prev[d]) { /* ADR: this step's and the previous step's forces */
-            snprintf(nm, sizeof nm, "pd.adr_f_prev.%d", d);
-            rc = field_state_add_array(fs, nm, FIELD_F64, (void **)&m->f_prev[d], 2 * n, 1, err);
+            snprintf(nm, sizeof nm, "pd.adr_forces.%d", d);
+            rc = field_state_add_particle_array(fs, nm, FIELD_F64, (void **)&m->f_prev[d], n, 2,
+                                                err);
         }
     if (!rc)
         rc = field_state_add_values(fs, "pd.adr_damping", FIELD_F64, &m->adr_damping, 1, err);
