@@ -4,6 +4,7 @@
  */
 #include "io/run_par.h"
 
+#include "core/fields.h"
 #include "core/fragments.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
@@ -37,6 +38,14 @@ int run_par_setup(const struct sim *s, const struct run_output *ro, int rc,
         return rc;
     if (!rc && s)
         rc = par_check_supported(s, err);
+    for (size_t k = 0; !rc && s && ro && k < ro->n_fields; k++) {
+        const struct field_desc *f = field_registry_find(s->fields, ro->fields[k]);
+        if (f && (f->flags & FIELD_SERIAL))
+            rc = spall_error_set_key(err, SPALL_ERR_INPUT, "output.fields",
+                                     "distributed runs (%d MPI ranks): field '%s' is computed on "
+                                     "one rank only; run without mpirun or leave it out",
+                                     par_size(), f->name);
+    }
     if (!rc && s)
         rc = run_balance_check(s, &ro->parallel, err);
     return par_agree(rc, err);

@@ -43,9 +43,10 @@ refused() { # name deck-text expected-substring
         cat stderr.txt; fail=1
     fi
 }
-refused "model not distributed" "$(sed 's/^  end_time: .*/  steps: 3/' \
+refused "field on one rank only" "$(sed 's/^  end_time: .*/  steps: 3/;
+    s/^  fields: \[position, /  fields: [slip_vector, position, /' \
     "$src/examples/macro_rod_tension/macro_rod_tension.yaml")
-" "model 'macroparticle' is not distributed yet"
+" "field 'slip_vector' is computed on one rank only"
 refused "pd eps" "model: {type: peridynamics, formulation: eps}
 $(echo "$base" | sed 's/failure_strain: 0.05/fracture_energy: 100, yield_stress: 1.0e8/')
 " "formulation eps is not distributed yet"

@@ -5,6 +5,7 @@
  */
 #include "core/parallel/decomp.h"
 #include "core/parallel/decomp_internal.h"
+#include "core/parallel/spatial.h"
 
 #include "core/bond_list.h"
 #include "core/fields.h"
@@ -46,6 +47,7 @@ void par_decomp_destroy(struct par_decomp **dp)
     free(d->probe_owner);
     free(d->probe_local);
     par_balance_free(d);
+    par_spatial_free(d);
     free(d);
     *dp = NULL;
 }
@@ -94,9 +96,7 @@ int par_check_supported(const struct sim *s, struct spall_error *err)
     if (rc)
         return rc;
     const char *what = NULL;
-    if (s->pcontact)
-        what = "particle contact is";
-    else if (s->integrator != INTEGRATOR_VERLET || s->adaptive_dt)
+    if (s->integrator != INTEGRATOR_VERLET || s->adaptive_dt)
         what = "this time integration is";
     if (!what)
         return SPALL_OK;
@@ -399,7 +399,8 @@ static int build_halo(struct par_decomp *d, const struct bond_list *bl, const in
         for (size_t k = 0; k < n_owned; k++) {
             size_t i = keep[k];
             memset(seen, 0, (size_t)size);
-            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            /* no bond list: spatial ghosts only (spatial.c sets the lists) */
+            for (size_t s = bl ? bl->offset[i] : 0; bl && s < bl->offset[i + 1]; s++) {
                 int r = owner[bl->partner[s]];
                 if (r == rank || seen[r])
                     continue;
@@ -494,7 +495,7 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
     const struct bond_list *bl = s->ops->halo_bonds ? s->ops->halo_bonds(s->model)
                                  : s->ops->bonds    ? s->ops->bonds(s->model)
                                                     : NULL;
-    if (!bl)
+    if (!bl && !s->ops->spatial_ghosts)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "distributed runs: model '%s' has no bond list", s->ops->name);
     const size_t n = s->p->n_owned;
@@ -522,7 +523,7 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
             }
         n_owned = n_keep;
         /* ghosts: bond partners held elsewhere, marked, then taken by gid */
-        for (size_t k = 0; k < n_owned; k++)
+        for (size_t k = 0; k < n_owned && bl; k++)
             for (size_t q = bl->offset[keep[k]]; q < bl->offset[keep[k] + 1]; q++) {
                 size_t j = (size_t)bl->partner[q];
                 if (owner[j] != rank)
@@ -566,7 +567,13 @@ int par_distribute(struct sim *s, struct spall_error *err)
         return rc;
     }
     s->par = d;
-    return SPALL_OK;
+    /* a model with a neighbour search: its first spatial ghosts */
+    rc = par_spatial_init(s, err);
+    if (rc) {
+        par_decomp_destroy(&d);
+        s->par = NULL;
+    }
+    return rc;
 }
 
 void par_describe(const struct sim *s, char *buf, size_t len)
