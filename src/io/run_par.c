@@ -6,8 +6,10 @@
 
 #include "core/fields.h"
 #include "core/fragments.h"
+#include "core/model.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/spatial.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -95,4 +97,7 @@ void run_par_log_end(const struct sim *s, FILE *log)
     double secs = 0.0;
     par_halo_stats(s, &calls, &secs);
     fprintf(log, "halo_exchanges: %ld (rank 0: %.3f s exchanging ghost positions)\n", calls, secs);
+    if (s->ops->spatial_ghosts) /* docs/parallel.md: how often the neighbour search moved */
+        fprintf(log, "spatial_ghost_rebuilds: %ld in %ld steps\n", par_spatial_rebuilds(s),
+                s->step);
 }
