@@ -594,7 +594,10 @@ void par_describe(const struct sim *s, char *buf, size_t len)
     } while (0)
     PUT("mpi_ranks: %d\nranks_x_threads: %d x %d\n", size, size, omp_get_max_threads());
     PUT("decomposition: Zoltan RCB on the reference positions, weight 1 + bonds per particle; "
-        "ghosts = bond partners on other ranks (set-up %.3g s)\n", d->setup_seconds);
+        "ghosts = %s (set-up %.3g s)\n",
+        d->sg ? "the particles of other ranks within range + skin (spatial ghosts)"
+              : "bond partners on other ranks",
+        d->setup_seconds);
     PUT("decomposition_per_rank: |\n");
     for (int r = 0; r < size; r++)
         PUT("  rank %d: %llu owned, %llu ghosts, %llu particles sent per halo exchange (%llu "
