@@ -11,6 +11,12 @@
 #include "core/field_state.h"
 
 #include "core/bond_list.h"
+#include "core/exact_sum.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/migrate.h"
+#include "core/parallel/psum.h"
+#include "core/parallel/sghost.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "core/model.h"
@@ -41,6 +47,25 @@ struct particle_contact {
     size_t rebuilds;
     double energy;
     size_t pairs;
+    /* distributed runs: the particles of other ranks within d + skin of the
+     * owned ones (core/parallel/sghost.h), seen through a combined view
+     * (owned [0, n_owned), then these ghosts in ascending gid) */
+    struct par_sghost *sg;
+    double *vx[3];       /* view positions */
+    int64_t *vgid;
+    int32_t *vbody;
+    double *gbody;       /* scratch: bodies as doubles for the exchange */
+    size_t vcap;
+    long rebalances;     /* the rebalances seen at the last build */
+};
+
+/* The particles contact sees: on one rank the particle arrays; on a
+ * distributed run the owned particles and the spatial ghosts of c->sg. */
+struct cview {
+    size_t n, no;
+    double *x[3];
+    const int32_t *body;
+    const int64_t *gid;
 };
 
 int particle_contact_create(struct particle_contact **out,
@@ -86,6 +111,12 @@ void particle_contact_destroy(struct particle_contact **pc)
         free(c->xref[d]);
     free(c->off);
     free(c->nbr);
+    par_sghost_destroy(&c->sg);
+    for (int d = 0; d < 3; d++)
+        free(c->vx[d]);
+    free(c->vgid);
+    free(c->vbody);
+    free(c->gbody);
     free(c);
     *pc = NULL;
 }
@@ -137,15 +168,32 @@ static int reserve(struct particle_contact *c, size_t n, size_t ncell, struct sp
 
 /* True when i and j are bonded in the model's list (any state: a broken
  * bond's repulsion is the model's).  Rows hold a dozen partners or so. */
-static inline int bonded(const struct bond_list *bl, size_t i, size_t j)
+static inline int bonded(const struct bond_list *bl, const int64_t *pgid, size_t i, int64_t gj)
 {
     if (!bl || i >= bl->n)
         return 0;
-    const int32_t jj = (int32_t)j;
     for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++)
-        if (bl->partner[k] == jj)
+        if (pgid[bl->partner[k]] == gj)
             return 1;
     return 0;
+}
+
+/* Row i of the candidate lists in the serial order: ascending cell, then
+ * ascending gid within a cell (one rank: the stable counting sort's
+ * ascending index, which is the gid).  Distributed runs hold the ghosts
+ * after the owned particles, so their rows are sorted into that order. */
+static void sort_row(int32_t *r, size_t len, const size_t *cell, const int64_t *gid)
+{
+    for (size_t k = 1; k < len; k++) {
+        int32_t v = r[k];
+        size_t q = k;
+        while (q > 0 && (cell[r[q - 1]] > cell[v] ||
+                         (cell[r[q - 1]] == cell[v] && gid[r[q - 1]] > gid[v]))) {
+            r[q] = r[q - 1];
+            q--;
+        }
+        r[q] = v;
+    }
 }
 
 /* Candidate lists (CSR over owned particles): every eligible partner j
@@ -153,25 +201,34 @@ static inline int bonded(const struct bond_list *bl, size_t i, size_t j)
  * model's bond list (fixed for the run, so the eligibility of a pair never
  * changes) and, for models without one, of another body.  Built with a cell list of edge
  * >= d + skin over the current bounding box (cells <= 4 n + 64), two passes
- * (count, fill) gathered per particle: the same lists for any thread count. */
+ * (count, fill) gathered per particle: the same lists for any thread count.
+ * A distributed run takes the bounding box and n of the whole body, so the
+ * cells and hence every row's order are the serial ones. */
 static int build_candidates(struct particle_contact *c, const struct sim *s,
-                            struct spall_error *err)
+                            const struct cview *v, struct spall_error *err)
 {
     const struct particles *p = s->p;
     const int dim = s->dim;
-    const size_t n = p->n, no = p->n_owned;
+    const size_t n = v->n, no = v->no;
     const double reach = c->prm.distance + c->skin;
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    int finite = 1;
     for (int d = 0; d < dim; d++) {
         lo[d] = INFINITY;
         hi[d] = -INFINITY;
-        for (size_t i = 0; i < n; i++) {
-            lo[d] = fmin(lo[d], p->x[d][i]);
-            hi[d] = fmax(hi[d], p->x[d][i]);
+        for (size_t i = 0; i < no; i++) {
+            lo[d] = fmin(lo[d], v->x[d][i]);
+            hi[d] = fmax(hi[d], v->x[d][i]);
         }
-        if (!isfinite(lo[d]) || !isfinite(hi[d]))
-            return SPALL_OK; /* the integrator reports the non-finite particle */
+        if (s->par) { /* collective: every rank takes the same branch below */
+            lo[d] = par_min_double(lo[d]);
+            hi[d] = par_max_double(hi[d]);
+        }
+        finite &= isfinite(lo[d]) && isfinite(hi[d]);
     }
+    if (!finite)
+        return SPALL_OK; /* the integrator reports the non-finite particle */
+    const size_t n_all = s->par ? par_n_global(s) : n;
     double h = reach;
     size_t nc[3] = {1, 1, 1}, ncell = 1;
     for (;;) {
@@ -180,7 +237,7 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
             nc[d] = (size_t)floor((hi[d] - lo[d]) / h) + 1;
             ncell *= nc[d];
         }
-        if (ncell <= 4 * n + 64)
+        if (ncell <= 4 * n_all + 64)
             break;
         h *= 2.0;
     }
@@ -191,7 +248,8 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
     for (size_t i = 0; i < n; i++) {
         size_t id = 0;
         for (int d = dim - 1; d >= 0; d--) {
-            size_t q = (size_t)floor((p->x[d][i] - lo[d]) / h);
+            double f = floor((v->x[d][i] - lo[d]) / h);
+            size_t q = f > 0.0 ? (size_t)f : 0; /* a ghost may lie off the box: clamped */
             if (q >= nc[d])
                 q = nc[d] - 1;
             id = id * nc[d] + q;
@@ -205,7 +263,8 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
     memcpy(c->fill, c->start, ncell * sizeof *c->fill);
     for (size_t i = 0; i < n; i++)
         c->order[c->fill[c->cell[i]]++] = i;
-    const int32_t *body = p->body;
+    const int32_t *body = v->body;
+    const int64_t *gid = v->gid;
     const struct bond_list *bl = s->ops && s->ops->bonds ? s->ops->bonds(s->model) : NULL;
     const double r2max = reach * reach;
     for (int pass = 0; pass < 2; pass++) {
@@ -227,7 +286,7 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
         for (size_t i = 0; i < no; i++) {
             size_t ci[3] = {0, 0, 0}, c0[3] = {0, 0, 0}, c1[3] = {0, 0, 0};
             for (int d = 0; d < dim; d++) {
-                size_t q = (size_t)floor((p->x[d][i] - lo[d]) / h);
+                size_t q = (size_t)floor((v->x[d][i] - lo[d]) / h);
                 ci[d] = q >= nc[d] ? nc[d] - 1 : q;
                 c0[d] = ci[d] > 0 ? ci[d] - 1 : 0;
                 c1[d] = ci[d] + 1 < nc[d] ? ci[d] + 1 : ci[d];
@@ -245,7 +304,7 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
                                 continue;
                             double r2 = 0.0;
                             for (int d = 0; d < dim; d++) {
-                                double dx = p->x[d][j] - p->x[d][i];
+                                double dx = v->x[d][j] - v->x[d][i];
                                 r2 += dx * dx;
                             }
                             if (!(r2 < r2max))
@@ -255,7 +314,7 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
                              * model's; unbonded ones of one body only in
                              * bonded models */
                             const int32_t bj = body ? body[j] : 0;
-                            if ((bi == bj && !bl) || bonded(bl, i, j))
+                            if ((bi == bj && !bl) || bonded(bl, p->gid, i, gid[j]))
                                 continue;
                             if (pass)
                                 c->nbr[w++] = (int32_t)j;
@@ -263,36 +322,118 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
                         }
                     }
             c->npart[i] = cnt;
+            if (pass && s->par)
+                sort_row(c->nbr + c->off[i], cnt, c->cell, gid);
         }
     }
     for (int d = 0; d < dim; d++)
-        memcpy(c->xref[d], p->x[d], n * sizeof(double));
-    c->n_built = n;
+        memcpy(c->xref[d], v->x[d], no * sizeof(double));
+    c->n_built = no;
     return SPALL_OK;
 }
 
 /* True when some particle moved more than skin/2 since the lists were built
- * (then a pair could have come from beyond d + skin to within d).  max is
- * exact, so the answer does not depend on the thread count. */
-static int needs_rebuild(const struct particle_contact *c, const struct sim *s)
+ * (then a pair could have come from beyond d + skin to within d), on any
+ * rank.  max is exact, so the answer does not depend on the thread or rank
+ * count.  A rebalance (new owned particles) rebuilds too. */
+static int needs_rebuild(struct particle_contact *c, const struct sim *s)
 {
     const struct particles *p = s->p;
-    if (c->n_built != p->n)
-        return 1;
+    long reb = 0;
+    unsigned long long moved = 0;
+    par_balance_stats(s, &reb, &moved);
     const double lim = 0.25 * c->skin * c->skin;
     double m2 = 0.0;
-    const size_t n = p->n;
+    const size_t no = p->n_owned;
     const int dim = s->dim;
-#pragma omp parallel for schedule(static) reduction(max : m2) if (n > SPALL_OMP_MIN_PARTICLES)
-    for (size_t i = 0; i < n; i++) {
-        double r2 = 0.0;
-        for (int d = 0; d < dim; d++) {
-            double dx = p->x[d][i] - c->xref[d][i];
-            r2 += dx * dx;
+    if (c->n_built != no || reb != c->rebalances) {
+        m2 = INFINITY;
+    } else {
+#pragma omp parallel for schedule(static) reduction(max : m2) if (no > SPALL_OMP_MIN_PARTICLES)
+        for (size_t i = 0; i < no; i++) {
+            double r2 = 0.0;
+            for (int d = 0; d < dim; d++) {
+                double dx = p->x[d][i] - c->xref[d][i];
+                r2 += dx * dx;
+            }
+            m2 = r2 > m2 ? r2 : m2;
         }
-        m2 = r2 > m2 ? r2 : m2;
     }
+    if (s->par)
+        m2 = par_max_double(m2 != m2 ? INFINITY : m2);
+    c->rebalances = reb;
     return !(m2 <= lim); /* a NaN forces a rebuild */
+}
+
+/* Room for a view of @p n particles. */
+static int view_reserve(struct particle_contact *c, size_t n, struct spall_error *err)
+{
+    if (n <= c->vcap)
+        return SPALL_OK;
+    int bad = 0;
+    for (int d = 0; d < 3; d++) {
+        double *x = realloc(c->vx[d], n * sizeof *x);
+        if (x)
+            c->vx[d] = x;
+        bad |= !x;
+    }
+    int64_t *g = realloc(c->vgid, n * sizeof *g);
+    if (g)
+        c->vgid = g;
+    int32_t *b = realloc(c->vbody, n * sizeof *b);
+    if (b)
+        c->vbody = b;
+    double *gb = realloc(c->gbody, n * sizeof *gb);
+    if (gb)
+        c->gbody = gb;
+    if (bad || !g || !b || !gb)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "contact: out of memory for %zu particles",
+                               n);
+    c->vcap = n;
+    return SPALL_OK;
+}
+
+/* The distributed view: owned particles, then the spatial ghosts (rebuilt
+ * with the lists: @p rebuild; else their positions refreshed).  Collective;
+ * errors agreed. */
+static int dist_view(struct particle_contact *c, struct sim *s, int rebuild, struct cview *v,
+                     struct spall_error *err)
+{
+    struct particles *p = s->p;
+    const int dim = s->dim;
+    const size_t no = p->n_owned;
+    int rc = SPALL_OK;
+    if (!c->sg)
+        rc = par_sghost_create(&c->sg, dim, c->prm.distance, c->skin, err);
+    if ((rc = par_agree(rc, err)))
+        return rc;
+    const double *x[3] = {p->x[0], dim > 1 ? p->x[1] : NULL, dim > 2 ? p->x[2] : NULL};
+    if (rebuild) {
+        if ((rc = par_sghost_build(c->sg, no, x, p->gid, err)))
+            return rc;
+    } else {
+        par_sghost_update(c->sg, x);
+    }
+    const size_t ng = par_sghost_count(c->sg), n = no + ng;
+    rc = view_reserve(c, n, err);
+    if ((rc = par_agree(rc, err)))
+        return rc;
+    for (int d = 0; d < dim; d++) {
+        memcpy(c->vx[d], p->x[d], no * sizeof(double));
+        memcpy(c->vx[d] + no, par_sghost_x(c->sg, d), ng * sizeof(double));
+    }
+    if (rebuild) {
+        memcpy(c->vgid, p->gid, no * sizeof(int64_t));
+        memcpy(c->vgid + no, par_sghost_gid(c->sg), ng * sizeof(int64_t));
+        for (size_t i = 0; i < no; i++)
+            c->gbody[i] = p->body ? (double)p->body[i] : 0.0;
+        if ((rc = par_sghost_values(c->sg, c->gbody, c->gbody + no, 1, err)))
+            return rc;
+        for (size_t i = 0; i < n; i++)
+            c->vbody[i] = (int32_t)c->gbody[i];
+    }
+    *v = (struct cview){n, no, {c->vx[0], c->vx[1], c->vx[2]}, c->vbody, c->vgid};
+    return SPALL_OK;
 }
 
 int particle_contact_forces(struct sim *s, struct spall_error *err)
@@ -302,22 +443,36 @@ int particle_contact_forces(struct sim *s, struct spall_error *err)
         return SPALL_OK;
     struct particles *p = s->p;
     const int dim = s->dim;
-    const size_t n = p->n, no = p->n_owned;
+    const size_t no = p->n_owned;
     c->energy = 0.0;
     c->pairs = 0;
-    if (n < 2)
+    if ((s->par ? par_n_global(s) : p->n) < 2)
         return SPALL_OK;
-    if (needs_rebuild(c, s)) {
-        int rc = reserve(c, n, 0, err);
-        if (rc || (rc = build_candidates(c, s, err)))
+    const int rebuild = needs_rebuild(c, s);
+    struct cview v = {p->n, no, {p->x[0], p->x[1], p->x[2]}, p->body, p->gid};
+    int rc = s->par ? dist_view(c, s, rebuild, &v, err) : SPALL_OK;
+    if (rc)
+        return rc;
+    if (rebuild) {
+        rc = reserve(c, v.n, 0, err);
+        if (!rc)
+            rc = build_candidates(c, s, &v, err);
+        if (s->par)
+            rc = par_agree(rc, err);
+        if (rc)
             return rc;
         c->rebuilds++;
     }
-    if (c->n_built != n)
-        return SPALL_OK; /* non-finite positions: the integrator reports them */
+    /* non-finite positions (the lists were not built): the integrator reports them */
+    int skip = c->n_built != no;
+    if (s->par)
+        skip = par_max_double(skip) > 0.0;
+    if (skip)
+        return SPALL_OK;
     const double dc = c->prm.distance, k = c->prm.stiffness, ex = c->prm.exponent;
     const double d2 = dc * dc;
     const double rn1 = 1.0 / (ex + 1.0);
+    double *const *x = v.x;
 #pragma omp parallel for schedule(static) if (no > SPALL_OMP_MIN_PARTICLES)
     for (size_t i = 0; i < no; i++) {
         double fi[3] = {0, 0, 0}, e = 0.0;
@@ -326,7 +481,7 @@ int particle_contact_forces(struct sim *s, struct spall_error *err)
             size_t j = (size_t)c->nbr[q];
             double dx[3] = {0, 0, 0}, r2 = 0.0;
             for (int d = 0; d < dim; d++) {
-                dx[d] = p->x[d][j] - p->x[d][i];
+                dx[d] = x[d][j] - x[d][i];
                 r2 += dx[d] * dx[d];
             }
             if (!(r2 < d2) || r2 == 0.0)
@@ -345,15 +500,19 @@ int particle_contact_forces(struct sim *s, struct spall_error *err)
         c->epart[i] = e;
         c->npart[i] = np;
     }
-    /* fixed-order sums: diagnostics identical for any thread count */
-    double etot = 0.0;
-    size_t npairs = 0;
+    /* exact sums and integer counts: diagnostics identical for any thread
+     * and rank count (collective when distributed) */
+    struct xsum acc;
+    xsum_init(&acc);
+    uint64_t npairs = 0;
     for (size_t i = 0; i < no; i++) {
-        etot += c->epart[i];
+        xsum_add(&acc, c->epart[i]);
         npairs += c->npart[i];
     }
-    c->energy = etot;
-    c->pairs = npairs / 2;
+    par_xsum_finish(s, &acc, 1, &c->energy);
+    if (s->par)
+        npairs = par_sum_u64(npairs);
+    c->pairs = (size_t)(npairs / 2);
     return SPALL_OK;
 }
 

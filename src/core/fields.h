@@ -26,7 +26,9 @@ enum field_flags {
     FIELD_DEFAULT = 1u << 1,    /**< written when the deck lists no fields */
     FIELD_RESTART = 1u << 2,    /**< needed to restart a run */
     FIELD_GHOST = 1u << 3,      /**< copied to ghosts every step */
-    FIELD_MIGRATE = 1u << 4     /**< travels with a particle to another rank */
+    FIELD_MIGRATE = 1u << 4,    /**< travels with a particle to another rank */
+    FIELD_SERIAL = 1u << 5      /**< computed from partners a distributed run does not hold:
+                                     refused as output on more than one rank */
 };
 
 #define FIELD_NAME_LEN 48

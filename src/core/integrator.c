@@ -27,6 +27,7 @@
 #include "core/parallel/comm.h"
 #include "core/parallel/psum.h"
 #include "core/parallel/step.h"
+#include "core/parallel/spatial.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -332,12 +333,14 @@ static void reflect_axis(struct sim *s)
 static int compute_all_forces(struct sim *s, double state_dt, struct spall_error *err)
 {
     particles_zero_forces(s->p);
-    if (s->par) /* ghosts take their owners' drifted positions */
-        par_halo_x(s);
+    int rc = SPALL_OK;
+    /* ghosts take their owners' drifted positions (spatial ghosts rebuilt first when due) */
+    if (s->par && (rc = par_ghosts_step(s, err)))
+        return rc;
     if (s->axisymmetric)
         reflect_axis(s);
-    int rc = state_dt > 0.0 ? s->ops->compute_forces_kick(s->model, s, state_dt, err)
-                            : s->ops->compute_forces(s->model, s, err);
+    rc = state_dt > 0.0 ? s->ops->compute_forces_kick(s->model, s, state_dt, err)
+                        : s->ops->compute_forces(s->model, s, err);
     if (rc)
         return rc;
     double c;

@@ -47,6 +47,7 @@ struct deck_node;
 struct field_registry;
 struct field_state;
 struct par_model_arrays;
+struct par_spatial_model;
 struct precrack;
 struct sim;
 struct spall_error;
@@ -212,6 +213,21 @@ struct model_ops {
      *  rebuild what the model derives from them (e.g. SPH's reference list
      *  and the split of its rows).  A failure stops every rank. */
     int (*migrated)(struct model *m, struct sim *sim, struct spall_error *err);
+    /** Optional (distributed runs, core/parallel/spatial.h): the model
+     *  finds its partners by a neighbour search, not through fixed bonds.
+     *  It names its interaction range and skin, the positions its partner
+     *  list was built at, and its per-particle arrays that ghosts carry;
+     *  the engine then keeps as ghosts the particles of other ranks within
+     *  range + skin of the owned ones and rebuilds that set (with
+     *  spatial_rebuilt) when a particle has moved skin/2 since. */
+    int (*spatial_ghosts)(struct model *m, struct par_spatial_model *sp);
+    /** Optional, with spatial_ghosts: the ghosts were rebuilt and the
+     *  local arrays re-laid out (owned particles unchanged, then the new
+     *  ghosts in ascending global id, with their owners' records).  The
+     *  model rebuilds its partner list from the build positions; @p moved
+     *  false: the positions are those of its last build (after the
+     *  partition), so the list is not a new one. */
+    int (*spatial_rebuilt)(struct model *m, struct sim *sim, bool moved, struct spall_error *err);
 };
 
 #endif

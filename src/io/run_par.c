@@ -4,9 +4,12 @@
  */
 #include "io/run_par.h"
 
+#include "core/fields.h"
 #include "core/fragments.h"
+#include "core/model.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/spatial.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -37,6 +40,14 @@ int run_par_setup(const struct sim *s, const struct run_output *ro, int rc,
         return rc;
     if (!rc && s)
         rc = par_check_supported(s, err);
+    for (size_t k = 0; !rc && s && ro && k < ro->n_fields; k++) {
+        const struct field_desc *f = field_registry_find(s->fields, ro->fields[k]);
+        if (f && (f->flags & FIELD_SERIAL))
+            rc = spall_error_set_key(err, SPALL_ERR_INPUT, "output.fields",
+                                     "distributed runs (%d MPI ranks): field '%s' is computed on "
+                                     "one rank only; run without mpirun or leave it out",
+                                     par_size(), f->name);
+    }
     if (!rc && s)
         rc = run_balance_check(s, &ro->parallel, err);
     return par_agree(rc, err);
@@ -86,4 +97,7 @@ void run_par_log_end(const struct sim *s, FILE *log)
     double secs = 0.0;
     par_halo_stats(s, &calls, &secs);
     fprintf(log, "halo_exchanges: %ld (rank 0: %.3f s exchanging ghost positions)\n", calls, secs);
+    if (s->ops->spatial_ghosts) /* docs/parallel.md: how often the neighbour search moved */
+        fprintf(log, "spatial_ghost_rebuilds: %ld in %ld steps\n", par_spatial_rebuilds(s),
+                s->step);
 }

@@ -9,6 +9,7 @@
  * bond count at set-up that weights the first partition.
  */
 #include "core/parallel/migrate.h"
+#include "core/parallel/spatial.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/decomp_internal.h"
 
@@ -115,6 +116,8 @@ int par_rebalance(struct sim *s, double *before, double *after, unsigned long lo
     if (!(rc = par_agree(rc, err)))
         rc = par_migrate(s, dest, moved, err);
     free(dest);
+    if (!rc) /* a model on spatial ghosts: its ghosts around the new owned set */
+        rc = par_spatial_init(s, err);
     if (rc)
         return rc;
     d->rebalances++;

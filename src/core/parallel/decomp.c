@@ -6,6 +6,7 @@
 #include "core/parallel/decomp.h"
 #include "core/parallel/decomp_internal.h"
 #include "core/parallel/bhalo.h"
+#include "core/parallel/spatial.h"
 
 #include "core/bond_list.h"
 #include "core/fields.h"
@@ -48,6 +49,7 @@ void par_decomp_destroy(struct par_decomp **dp)
     free(d->probe_local);
     par_balance_free(d);
     par_bhalo_free(d);
+    par_spatial_free(d);
     free(d);
     *dp = NULL;
 }
@@ -92,18 +94,8 @@ int par_check_supported(const struct sim *s, struct spall_error *err)
                                "distributed runs (%d MPI ranks): model '%s' is not distributed "
                                "yet; run it on one rank (without mpirun), see docs/parallel.md",
                                n, s->ops->name);
-    int rc = s->ops->localize(s->model, (struct sim *)s, NULL, 0, 0, NULL, err);
-    if (rc)
-        return rc;
-    const char *what = NULL;
-    if (s->pcontact)
-        what = "particle contact is";
-    if (!what)
-        return SPALL_OK;
-    return spall_error_set(err, SPALL_ERR_INPUT,
-                           "distributed runs (%d MPI ranks): %s not distributed yet; run on one "
-                           "rank (without mpirun), see docs/parallel.md",
-                           n, what);
+    /* the model names what of its configuration it cannot distribute */
+    return s->ops->localize(s->model, (struct sim *)s, NULL, 0, 0, NULL, err);
 }
 
 #ifdef SPALL_HAVE_MPI
@@ -399,7 +391,8 @@ static int build_halo(struct par_decomp *d, const struct bond_list *bl, const in
         for (size_t k = 0; k < n_owned; k++) {
             size_t i = keep[k];
             memset(seen, 0, (size_t)size);
-            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            /* no bond list: spatial ghosts only (spatial.c sets the lists) */
+            for (size_t s = bl ? bl->offset[i] : 0; bl && s < bl->offset[i + 1]; s++) {
                 int r = owner[bl->partner[s]];
                 if (r == rank || seen[r])
                     continue;
@@ -494,7 +487,7 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
     const struct bond_list *bl = s->ops->halo_bonds ? s->ops->halo_bonds(s->model)
                                  : s->ops->bonds    ? s->ops->bonds(s->model)
                                                     : NULL;
-    if (!bl)
+    if (!bl && !s->ops->spatial_ghosts)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "distributed runs: model '%s' has no bond list", s->ops->name);
     const size_t n = s->p->n_owned;
@@ -522,7 +515,7 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
             }
         n_owned = n_keep;
         /* ghosts: bond partners held elsewhere, marked, then taken by gid */
-        for (size_t k = 0; k < n_owned; k++)
+        for (size_t k = 0; k < n_owned && bl; k++)
             for (size_t q = bl->offset[keep[k]]; q < bl->offset[keep[k] + 1]; q++) {
                 size_t j = (size_t)bl->partner[q];
                 if (owner[j] != rank)
@@ -566,7 +559,13 @@ int par_distribute(struct sim *s, struct spall_error *err)
         return rc;
     }
     s->par = d;
-    return SPALL_OK;
+    /* a model with a neighbour search: its first spatial ghosts */
+    rc = par_spatial_init(s, err);
+    if (rc) {
+        par_decomp_destroy(&d);
+        s->par = NULL;
+    }
+    return rc;
 }
 
 void par_describe(const struct sim *s, char *buf, size_t len)
@@ -587,7 +586,10 @@ void par_describe(const struct sim *s, char *buf, size_t len)
     } while (0)
     PUT("mpi_ranks: %d\nranks_x_threads: %d x %d\n", size, size, omp_get_max_threads());
     PUT("decomposition: Zoltan RCB on the reference positions, weight 1 + bonds per particle; "
-        "ghosts = bond partners on other ranks (set-up %.3g s)\n", d->setup_seconds);
+        "ghosts = %s (set-up %.3g s)\n",
+        d->sg ? "the particles of other ranks within range + skin (spatial ghosts)"
+              : "bond partners on other ranks",
+        d->setup_seconds);
     PUT("decomposition_per_rank: |\n");
     for (int r = 0; r < size; r++)
         PUT("  rank %d: %llu owned, %llu ghosts, %llu particles sent per halo exchange (%llu "

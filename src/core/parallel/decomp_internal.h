@@ -30,6 +30,9 @@ struct par_decomp {
     long rebalances;
     unsigned long long migrated;
     void *bhalo; /**< per-half-bond halo plan (bhalo.c), built on first use; NULL */
+    /* spatial ghosts (spatial.c) of a model with spatial_ghosts */
+    struct par_sghost *sg;
+    long sg_rebuilds;      /**< rebuilds in the step (the one after the partition not counted) */
 };
 
 struct sim;
@@ -67,6 +70,9 @@ struct Zoltan_Struct;
 struct Zoltan_Struct *par_zoltan_rcb(int reuse);
 /** Install the query functions over @p z (kept by address) in @p zz. */
 void par_zoltan_queries(struct Zoltan_Struct *zz, struct par_zobjs *z);
+
+/** Release the spatial ghosts (spatial.c). */
+void par_spatial_free(struct par_decomp *d);
 
 /** Release the rebalancing state (balance.c). */
 void par_balance_free(struct par_decomp *d);

@@ -114,6 +114,12 @@ long par_sghost_builds(const struct par_sghost *g)
     return g->builds;
 }
 
+void par_sghost_lists(const struct par_sghost *g, struct par_sghost_lists *out)
+{
+    *out = (struct par_sghost_lists){g->scount, g->sdispl, g->rcount,  g->rdispl,
+                                     g->send_idx, g->recv_idx, g->n_send, g->n_recv};
+}
+
 int par_sghost_check(const struct par_sghost *g, const double *const x[3], int *rebuild,
                      struct spall_error *err)
 {
@@ -354,7 +360,57 @@ void par_sghost_update(struct par_sghost *g, const double *const x[3])
             g->gx[d][g->recv_idx[k]] = g->rbuf[k * (size_t)dim + (size_t)d];
 }
 
+int par_sghost_values(struct par_sghost *g, const double *owned, double *ghost, int ncomp,
+                      struct spall_error *err)
+{
+    const int size = par_size();
+    if (size == 1 || !par_active())
+        return SPALL_OK;
+    const size_t w = (size_t)ncomp;
+    double *sb = malloc((g->n_send ? g->n_send : 1) * w * sizeof *sb);
+    double *rb = malloc((g->n_recv ? g->n_recv : 1) * w * sizeof *rb);
+    int *cnt = malloc(4 * (size_t)size * sizeof *cnt);
+    int rc = sb && rb && cnt ? SPALL_OK
+                             : spall_error_set(err, SPALL_ERR_NOMEM,
+                                               "out of memory (spatial ghost values)");
+    if ((rc = par_agree(rc, err))) {
+        free(sb);
+        free(rb);
+        free(cnt);
+        return rc;
+    }
+    for (size_t k = 0; k < g->n_send; k++)
+        for (size_t c = 0; c < w; c++)
+            sb[k * w + c] = owned[g->send_idx[k] * w + c];
+    for (int r = 0; r < size; r++) {
+        cnt[r] = g->scount[r] * ncomp;
+        cnt[size + r] = g->sdispl[r] * ncomp;
+        cnt[2 * size + r] = g->rcount[r] * ncomp;
+        cnt[3 * size + r] = g->rdispl[r] * ncomp;
+    }
+    MPI_Alltoallv(sb, cnt, cnt + size, MPI_DOUBLE, rb, cnt + 2 * size, cnt + 3 * size,
+                  MPI_DOUBLE, MPI_COMM_WORLD);
+    for (size_t k = 0; k < g->n_recv; k++)
+        for (size_t c = 0; c < w; c++)
+            ghost[g->recv_idx[k] * w + c] = rb[k * w + c];
+    free(sb);
+    free(rb);
+    free(cnt);
+    return SPALL_OK;
+}
+
 #else /* serial build: one rank, no ghosts */
+
+int par_sghost_values(struct par_sghost *g, const double *owned, double *ghost, int ncomp,
+                      struct spall_error *err)
+{
+    (void)g;
+    (void)owned;
+    (void)ghost;
+    (void)ncomp;
+    (void)err;
+    return SPALL_OK;
+}
 
 int par_sghost_build(struct par_sghost *g, size_t n, const double *const x[3],
                      const int64_t *gid, struct spall_error *err)

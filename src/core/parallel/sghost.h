@@ -47,6 +47,12 @@ int par_sghost_build(struct par_sghost *g, size_t n, const double *const x[3],
  *  into the ghosts.  Collective. */
 void par_sghost_update(struct par_sghost *g, const double *const x[3]);
 
+/** Copy @p ncomp doubles per particle from the owners (owned[i * ncomp + c],
+ *  same owned order as at the build) into the ghosts (ghost[q * ncomp + c],
+ *  q in ascending gid).  Collective; errors agreed. */
+int par_sghost_values(struct par_sghost *g, const double *owned, double *ghost, int ncomp,
+                      struct spall_error *err);
+
 /** Has any particle (on any rank) moved more than skin/2 since the build?
  *  *rebuild = 1 then.  A particle that moved more than the whole skin fails
  *  (SPALL_ERR_UNSTABLE, the smallest such global id named, on every rank).
@@ -63,5 +69,18 @@ const double *par_sghost_x(const struct par_sghost *g, int d);
 const int *par_sghost_owner(const struct par_sghost *g);
 /** Builds so far (for run.log). */
 long par_sghost_builds(const struct par_sghost *g);
+
+/** The exchange lists of the last build, for a caller that refreshes more
+ *  than positions (core/parallel/spatial.c): per rank r, scount[r]
+ *  particles sent from sdispl[r] of send_idx (owned indices, ascending gid)
+ *  and rcount[r] received from rdispl[r], the k-th received being ghost
+ *  recv_idx[k].  Arrays of par_size() entries; NULL before a build on a
+ *  distributed run, and always on one rank. */
+struct par_sghost_lists {
+    const int *scount, *sdispl, *rcount, *rdispl;
+    const size_t *send_idx, *recv_idx;
+    size_t n_send, n_recv;
+};
+void par_sghost_lists(const struct par_sghost *g, struct par_sghost_lists *out);
 
 #endif

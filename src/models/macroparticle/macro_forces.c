@@ -10,8 +10,9 @@
  * (then no pair can have crossed r_c unseen).  Macro-particles may slip and
  * meet new partners; a pair's plastic state lives in per-slot arrays and is
  * carried to the new list by merging the old and new partner lists of each
- * particle (both sorted by partner index; the engine never reorders
- * particles, so the index pair identifies the gid pair for the whole run).
+ * particle, both sorted by the partner's global id (on one rank the index;
+ * on a distributed run the rows are sorted by gid, so every particle sums
+ * its partners in the serial order, docs/parallel.md).
  * A pair that leaves the list (r > r_c + skin) forgets its plastic offset.
  *
  * Each particle gathers over its full list (both ends of a pair evaluate it
@@ -51,30 +52,108 @@
  * do not depend on it (each particle's sums run in a fixed order). */
 #define MACRO_OMP_MIN 2048
 
-/** Move the per-slot plastic state from list @p old to list @p nw. */
-static void carry_state(const struct neighbor_list *old, const double *odr, const double *oka,
-                        const uint8_t *oen, const struct neighbor_list *nw, double *ndr,
-                        double *nka, uint8_t *nen)
+/* The partner's global id of slot @p s: the slot's key when the list keeps
+ * them (distributed runs), else the index (one rank: index = gid). */
+static inline int64_t slot_gid(const struct neighbor_list *nl, const int64_t *pg, size_t s)
 {
-    const size_t n = nw->n;
-#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
-    for (size_t i = 0; i < n; i++) {
+    return pg ? pg[s] : (int64_t)nl->idx[s];
+}
+
+/** Move the per-slot plastic state from list @p old to list @p nw, for the
+ *  rows [0, rows) (the same particles in both: owned particles keep their
+ *  index between re-layouts).  Both lists' rows ascend in the partner's
+ *  global id, which identifies the pair across rebuilds and re-layouts. */
+static void carry_state(const struct neighbor_list *old, const int64_t *opg, const double *odr,
+                        const double *oka, const uint8_t *oen, const struct neighbor_list *nw,
+                        const int64_t *npg, size_t rows, double *ndr, double *nka, uint8_t *nen)
+{
+#pragma omp parallel for schedule(static) if (rows >= MACRO_OMP_MIN)
+    for (size_t i = 0; i < rows; i++) {
         size_t a = old->offset[i], ae = old->offset[i + 1];
         for (size_t s = nw->offset[i]; s < nw->offset[i + 1]; s++) {
-            int32_t j = nw->idx[s];
-            while (a < ae && old->idx[a] < j)
+            const int64_t j = slot_gid(nw, npg, s);
+            while (a < ae && slot_gid(old, opg, a) < j)
                 a++;
-            if (a < ae && old->idx[a] == j) {
+            if (a < ae && slot_gid(old, opg, a) == j) {
                 ndr[s] = odr[a];
                 nka[s] = oka[a];
                 nen[s] = oen[a];
-            } else {
-                ndr[s] = 0.0;
-                nka[s] = 0.0;
-                nen[s] = 0;
             }
         }
     }
+}
+
+/* Row i ascending in the partners' global ids (distributed runs: ghosts
+ * follow the owned particles locally; on one rank index = gid already).
+ * Rows are short (12 partners in the first FCC shell): insertion sort. */
+static void sort_rows_by_gid(struct neighbor_list *nl, const int64_t *gid)
+{
+    const size_t n = nl->n;
+#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
+    for (size_t i = 0; i < n; i++) {
+        int32_t *r = nl->idx + nl->offset[i];
+        const size_t len = nl->offset[i + 1] - nl->offset[i];
+        for (size_t k = 1; k < len; k++) {
+            int32_t v = r[k];
+            size_t q = k;
+            while (q > 0 && gid[r[q - 1]] > gid[v]) {
+                r[q] = r[q - 1];
+                q--;
+            }
+            r[q] = v;
+        }
+    }
+}
+
+int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_error *err)
+{
+    struct particles *p = sim->p;
+    const size_t n = p->n;
+    const double skin = m->skin_ratio * m->pp.r0;
+    /* one rank: from the current positions; distributed: from the build
+     * positions the engine set (core/parallel/spatial.c) */
+    const bool dist = sim->par != NULL;
+    struct neighbor_list *nl = NULL;
+    int rc = neighbor_list_build(&nl, sim->dim, n, dist ? m->xb : p->x, m->pp.r_c + skin, err);
+    if (rc)
+        return rc;
+    if (dist)
+        sort_rows_by_gid(nl, p->gid);
+    size_t ns = nl->offset[n];
+    double *ndr = calloc(ns ? ns : 1, sizeof *ndr), *nka = calloc(ns ? ns : 1, sizeof *nka);
+    uint8_t *nen = calloc(ns ? ns : 1, 1);
+    int64_t *npg = dist ? malloc((ns ? ns : 1) * sizeof *npg) : NULL;
+    if (!ndr || !nka || !nen || (dist && !npg)) {
+        free(ndr);
+        free(nka);
+        free(nen);
+        free(npg);
+        neighbor_list_destroy(&nl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for macro-particle pairs");
+    }
+    for (size_t s = 0; s < ns && npg; s++)
+        npg[s] = p->gid[nl->idx[s]];
+    if (m->nl) {
+        size_t rows = p->n_owned < m->nl->n ? p->n_owned : m->nl->n;
+        carry_state(m->nl, m->pgid, m->dr0, m->kappa, m->engaged, nl, npg, rows, ndr, nka, nen);
+    }
+    macro_par_release(m); /* a list lent to a migration probe is not kept */
+    neighbor_list_destroy(&m->nl);
+    free(m->dr0);
+    free(m->kappa);
+    free(m->engaged);
+    free(m->pgid);
+    m->engaged = nen;
+    m->nl = nl;
+    m->dr0 = ndr;
+    m->kappa = nka;
+    m->pgid = npg;
+    if (!dist)
+        for (int d = 0; d < sim->dim; d++)
+            memcpy(m->xb[d], p->x[d], n * sizeof(double));
+    if (count)
+        m->n_builds++;
+    return SPALL_OK;
 }
 
 int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err)
@@ -82,6 +161,8 @@ int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct 
     struct particles *p = sim->p;
     const size_t n = p->n;
     const double skin = m->skin_ratio * m->pp.r0;
+    if (!force && sim->par)
+        return SPALL_OK; /* distributed: the engine's test, over all ranks (spatial.c) */
     if (!force && m->nl && m->nl->n == n) {
         double d2max = 0.0;
         for (size_t i = 0; i < n; i++) {
@@ -95,34 +176,7 @@ int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct 
         if (4.0 * d2max < skin * skin)
             return SPALL_OK;
     }
-    struct neighbor_list *nl = NULL;
-    int rc = neighbor_list_build(&nl, sim->dim, n, p->x, m->pp.r_c + skin, err);
-    if (rc)
-        return rc;
-    size_t ns = nl->offset[n];
-    double *ndr = calloc(ns ? ns : 1, sizeof *ndr), *nka = calloc(ns ? ns : 1, sizeof *nka);
-    uint8_t *nen = calloc(ns ? ns : 1, 1);
-    if (!ndr || !nka || !nen) {
-        free(ndr);
-        free(nka);
-        free(nen);
-        neighbor_list_destroy(&nl);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for macro-particle pairs");
-    }
-    if (m->nl && m->nl->n == n)
-        carry_state(m->nl, m->dr0, m->kappa, m->engaged, nl, ndr, nka, nen);
-    neighbor_list_destroy(&m->nl);
-    free(m->dr0);
-    free(m->kappa);
-    free(m->engaged);
-    m->engaged = nen;
-    m->nl = nl;
-    m->dr0 = ndr;
-    m->kappa = nka;
-    for (int d = 0; d < sim->dim; d++)
-        memcpy(m->xb[d], p->x[d], n * sizeof(double));
-    m->n_builds++;
-    return SPALL_OK;
+    return macro_list_build(m, sim, true, err);
 }
 
 int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)

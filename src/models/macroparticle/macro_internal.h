@@ -5,6 +5,7 @@
 #ifndef SPALL_MACRO_INTERNAL_H
 #define SPALL_MACRO_INTERNAL_H
 
+#include "core/bond_list.h"
 #include "models/macroparticle/macro_calib.h"
 #include "models/macroparticle/macro_pair.h"
 
@@ -53,7 +54,10 @@ struct model {
     /* neighbours */
     struct neighbor_list *nl;
     struct neighbor_list *nl0; /**< reference nearest neighbours (x0, 1.1 r0): slip fields */
-    double *xb[3];         /**< positions at the last build */
+    double *xb[3];         /**< positions at the last build (the list is built from them) */
+    int64_t *pgid;         /**< per slot: the partner's global id (rows ascend in it) */
+    struct bond_list mbl;  /**< the list lent to a migration (macro_par.c) */
+    size_t n_half;         /**< its slots */
     double *dr0;           /**< per full-list slot: plastic offset [m] */
     double *kappa;         /**< per slot: accumulated plastic slip [m] */
     uint8_t *engaged;      /**< per slot: 1 once the pair was inside its yield surface */
@@ -65,7 +69,10 @@ struct model {
     double *wdiss;         /**< per particle dissipated energy [J] (Langevin + plastic) */
     /* strain gauge */
     size_t *lo_idx, *hi_idx, *mid_idx;
-    size_t n_lo, n_hi, n_mid;
+    size_t n_lo, n_hi, n_mid;  /**< owned members (all of them on one rank) */
+    size_t n_lo_all, n_hi_all, n_mid_all; /**< members over all ranks */
+    uint8_t *gflag;        /**< per particle: 1 low layer, 2 high layer, 4 middle band
+                                (travels with it; the index lists follow, macro_par.c) */
     double gauge0, spread0;
     double volume;         /**< sum of particle volumes [m^3] */
     bool initialised;
@@ -89,5 +96,16 @@ int macro_register_state(struct model *m, struct sim *sim, struct field_state *f
                          struct spall_error *err);
 int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);
 int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err);
+
+/* macro_par.c: distributed runs (core/parallel/spatial.h) */
+struct par_spatial_model;
+int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_error *err);
+int macro_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
+                   size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
+int macro_spatial_ghosts(struct model *m, struct par_spatial_model *sp);
+int macro_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spall_error *err);
+struct par_model_arrays;
+int macro_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
+void macro_par_release(struct model *m);
 
 #endif

@@ -62,8 +62,12 @@
 #include "models/macroparticle/macro_internal.h"
 #include "models/macroparticle/macro_slip.h"
 
+#include "core/exact_sum.h"
 #include "core/fields.h"
 #include "core/neighbor.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/psum.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "core/options.h"
@@ -80,6 +84,7 @@ static void macro_destroy(struct model **pm)
     if (!pm || !*pm)
         return;
     struct model *m = *pm;
+    macro_par_release(m);
     free(m->mat);
     neighbor_list_destroy(&m->nl);
     neighbor_list_destroy(&m->nl0);
@@ -88,12 +93,14 @@ static void macro_destroy(struct model **pm)
     free(m->dr0);
     free(m->kappa);
     free(m->engaged);
+    free(m->pgid);
     free(m->epot);
     free(m->sig);
     free(m->wdiss);
     free(m->lo_idx);
     free(m->hi_idx);
     free(m->mid_idx);
+    free(m->gflag);
     free(m);
     *pm = NULL;
 }
@@ -229,39 +236,72 @@ static int gauge_init(struct model *m, const struct sim *sim, struct spall_error
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the strain gauge");
     const double tol = 0.25 * m->pp.r0, mid = 0.5 * (lo + hi), quarter = 0.25 * (hi - lo);
     m->n_lo = m->n_hi = m->n_mid = 0;
+    free(m->gflag);
+    m->gflag = calloc(p->n ? p->n : 1, 1);
+    if (!m->gflag)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the strain gauge");
     for (size_t i = 0; i < n; i++) {
-        if (z[i] < lo + tol)
+        if (z[i] < lo + tol) {
             m->lo_idx[m->n_lo++] = i;
-        if (z[i] > hi - tol)
+            m->gflag[i] |= 1;
+        }
+        if (z[i] > hi - tol) {
             m->hi_idx[m->n_hi++] = i;
-        if (fabs(z[i] - mid) <= quarter)
+            m->gflag[i] |= 2;
+        }
+        if (fabs(z[i] - mid) <= quarter) {
             m->mid_idx[m->n_mid++] = i;
+            m->gflag[i] |= 4;
+        }
     }
+    m->n_lo_all = m->n_lo;
+    m->n_hi_all = m->n_hi;
+    m->n_mid_all = m->n_mid;
     return SPALL_OK;
 }
 
-static double layer_mean(const double *z, const size_t *idx, size_t n)
+/* Exact sum of z over the owned members of a gauge set (completed over
+ * the ranks by the caller): the same mean on every rank count. */
+static void layer_sum(struct xsum *acc, const double *z, const size_t *idx, size_t n)
 {
-    double s = 0.0;
+    xsum_init(acc);
     for (size_t k = 0; k < n; k++)
-        s += z[idx[k]];
-    return n ? s / (double)n : 0.0;
+        xsum_add(acc, z[idx[k]]);
 }
 
-static double band_spread(const struct model *m, double *const x[3], int dim)
+/* The gauge: end layer means along the axis and the middle band's mean
+ * transverse position (exact sums over all ranks; collective when
+ * distributed), then the band's RMS spread about it. */
+static void gauge_read(const struct model *m, const struct sim *sim, double *const x[3],
+                       double *len, double *spread)
 {
+    const int dim = sim->dim, a = m->axis;
+    struct xsum acc[5];
+    double v[5] = {0, 0, 0, 0, 0};
+    layer_sum(&acc[0], x[a], m->lo_idx, m->n_lo);
+    layer_sum(&acc[1], x[a], m->hi_idx, m->n_hi);
+    for (int d = 0; d < 3; d++)
+        layer_sum(&acc[2 + d], d < dim && d != a ? x[d] : x[a], m->mid_idx,
+                  d < dim && d != a ? m->n_mid : 0);
+    par_xsum_finish(sim, acc, 5, v);
+    double lo = m->n_lo_all ? v[0] / (double)m->n_lo_all : 0.0;
+    double hi = m->n_hi_all ? v[1] / (double)m->n_hi_all : 0.0;
+    *len = hi - lo;
     double c[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++)
-        if (d != m->axis)
-            c[d] = layer_mean(x[d], m->mid_idx, m->n_mid);
-    double s = 0.0;
+        if (d != a && m->n_mid_all)
+            c[d] = v[2 + d] / (double)m->n_mid_all;
+    struct xsum s2;
+    xsum_init(&s2);
     for (size_t k = 0; k < m->n_mid; k++)
         for (int d = 0; d < dim; d++)
-            if (d != m->axis) {
+            if (d != a) {
                 double u = x[d][m->mid_idx[k]] - c[d];
-                s += u * u;
+                xsum_add(&s2, u * u);
             }
-    return m->n_mid ? sqrt(s / (double)m->n_mid) : 0.0;
+    double s = 0.0;
+    par_xsum_finish(sim, &s2, 1, &s);
+    *spread = m->n_mid_all ? sqrt(s / (double)m->n_mid_all) : 0.0;
 }
 
 static int macro_init(struct model *m, struct sim *sim, struct spall_error *err)
@@ -334,9 +374,7 @@ static int macro_init(struct model *m, struct sim *sim, struct spall_error *err)
     if ((rc = macro_neighbors_update(m, sim, true, err)) || (rc = gauge_init(m, sim, err)) ||
         (rc = neighbor_list_build(&m->nl0, 3, p->n_owned, p->x0, 1.1 * c->r0, err)))
         return rc;
-    m->gauge0 = layer_mean(p->x0[m->axis], m->hi_idx, m->n_hi) -
-                layer_mean(p->x0[m->axis], m->lo_idx, m->n_lo);
-    m->spread0 = band_spread(m, p->x0, sim->dim);
+    gauge_read(m, sim, p->x0, &m->gauge0, &m->spread0); /* set-up: one rank's view */
     m->initialised = true;
     return SPALL_OK;
 }
@@ -380,12 +418,22 @@ static void field_csp(const void *ctx, size_t n, double *out)
 static void field_slip_vector(const void *ctx, size_t n, double *out)
 {
     const struct model *m = ctx;
+    if (!m->nl0) { /* distributed: refused before the run (FIELD_SERIAL) */
+        for (size_t i = 0; i < 3 * n; i++)
+            out[i] = NAN;
+        return;
+    }
     macro_slip_vectors(n, m->sim->p->x, m->sim->p->x0, m->nl0, 0.25 * m->pp.r0, out, NULL, NULL);
 }
 
 static void field_slip_normal(const void *ctx, size_t n, double *out)
 {
     const struct model *m = ctx;
+    if (!m->nl0) {
+        for (size_t i = 0; i < 3 * n; i++)
+            out[i] = NAN;
+        return;
+    }
     macro_slip_vectors(n, m->sim->p->x, m->sim->p->x0, m->nl0, 0.25 * m->pp.r0, NULL, out, NULL);
 }
 
@@ -400,9 +448,10 @@ static int macro_register_fields(struct model *m, struct sim *sim, struct field_
         (rc = field_registry_add_computed(reg, "plastic_slip", "m", 1, FIELD_OUTPUT, field_slip, m, err)) ||
         (rc = field_registry_add_computed(reg, "centro_symmetry", "1", 1, FIELD_OUTPUT, field_csp, m,
                                           err)) ||
-        (rc = field_registry_add_computed(reg, "slip_vector", "m", 3, FIELD_OUTPUT,
+        /* reference neighbours of the whole body: one rank only */
+        (rc = field_registry_add_computed(reg, "slip_vector", "m", 3, FIELD_OUTPUT | FIELD_SERIAL,
                                           field_slip_vector, m, err)) ||
-        (rc = field_registry_add_computed(reg, "slip_normal", "1", 3, FIELD_OUTPUT,
+        (rc = field_registry_add_computed(reg, "slip_normal", "1", 3, FIELD_OUTPUT | FIELD_SERIAL,
                                           field_slip_normal, m, err)))
         return rc;
     return SPALL_OK;
@@ -454,16 +503,21 @@ static int macro_end_step(struct model *m, struct sim *sim, struct spall_error *
 static void macro_energy_fn(const struct model *m, const struct sim *sim,
                             struct model_energy *out)
 {
-    double e = 0.0, w = 0.0;
+    /* exact sums: the same on every rank count (collective when distributed) */
+    struct xsum acc[2];
+    xsum_init(&acc[0]);
+    xsum_init(&acc[1]);
     for (size_t i = 0; i < sim->p->n_owned; i++) {
-        e += m->epot[i];
-        w += m->wdiss[i];
+        xsum_add(&acc[0], m->epot[i]);
+        xsum_add(&acc[1], m->wdiss[i]);
     }
+    double ew[2];
+    par_xsum_finish(sim, acc, 2, ew);
     /* strain energy relative to the perfect bulk lattice (-6 D per
      * particle): a bulk particle at rest reads 0, a surface particle the
      * depth of its missing bonds (a constant for the run) */
-    out->strain = e + 6.0 * m->pp.D * (double)sim->p->n_owned;
-    out->dissipated = w;
+    out->strain = ew[0] + 6.0 * m->pp.D * (double)par_n_global(sim);
+    out->dissipated = ew[1];
 }
 
 static size_t macro_history(const struct model *m, const struct sim *sim, const char **names,
@@ -471,23 +525,35 @@ static size_t macro_history(const struct model *m, const struct sim *sim, const 
 {
     const struct particles *p = sim->p;
     const int a = m->axis;
-    double s[6] = {0, 0, 0, 0, 0, 0};
-    for (size_t i = 0; i < p->n_owned; i++)
+    /* exact sums and integer counts: history.csv does not depend on the
+     * rank count (collectives when distributed: every rank calls this) */
+    struct xsum acc[7];
+    double s[7];
+    for (int k = 0; k < 7; k++)
+        xsum_init(&acc[k]);
+    for (size_t i = 0; i < p->n_owned; i++) {
         for (int k = 0; k < 6; k++)
-            s[k] += m->sig[6 * i + k];
-    double len = layer_mean(p->x[a], m->hi_idx, m->n_hi) - layer_mean(p->x[a], m->lo_idx, m->n_lo);
-    double ke = 0.0, pairs = 0.0;
-    for (size_t i = 0; i < p->n_owned; i++)
-        ke += p->mass[i] * (p->v[0][i] * p->v[0][i] + p->v[1][i] * p->v[1][i] +
-                            p->v[2][i] * p->v[2][i]);
+            xsum_add(&acc[k], m->sig[6 * i + k]);
+        xsum_add(&acc[6], p->mass[i] * (p->v[0][i] * p->v[0][i] + p->v[1][i] * p->v[1][i] +
+                                        p->v[2][i] * p->v[2][i]));
+    }
+    par_xsum_finish(sim, acc, 7, s);
+    const double ke = s[6];
+    double len, spread;
+    gauge_read(m, sim, p->x, &len, &spread);
+    uint64_t npl = 0;
     if (m->nl)
         for (size_t q = 0; q < m->nl->offset[p->n_owned]; q++)
-            pairs += m->kappa[q] > 0.0;
+            npl += m->kappa[q] > 0.0;
+    if (sim->par)
+        npl = par_sum_u64(npl);
+    const double pairs = (double)npl;
+    const size_t n_all = par_n_global(sim);
     size_t k = 0;
     names[k] = "strain";
     values[k++] = m->gauge0 > 0.0 ? len / m->gauge0 - 1.0 : 0.0;
     names[k] = "lateral_strain";
-    values[k++] = m->spread0 > 0.0 ? band_spread(m, p->x, sim->dim) / m->spread0 - 1.0 : 0.0;
+    values[k++] = m->spread0 > 0.0 ? spread / m->spread0 - 1.0 : 0.0;
     names[k] = "stress_axial";
     values[k++] = s[a] / m->volume;
     names[k] = "stress_nominal";
@@ -499,7 +565,7 @@ static size_t macro_history(const struct model *m, const struct sim *sim, const 
     names[k] = "stress_zz";
     values[k++] = s[2] / m->volume;
     names[k] = "kinetic_temperature";
-    values[k++] = p->n_owned ? ke / (3.0 * (double)p->n_owned * MACRO_KB) : 0.0;
+    values[k++] = n_all ? ke / (3.0 * (double)n_all * MACRO_KB) : 0.0;
     names[k] = "plastic_pairs";
     values[k++] = 0.5 * pairs;
     names[k] = "neighbor_builds";
@@ -553,4 +619,8 @@ const struct model_ops macroparticle_model_ops = {
     .destroy = macro_destroy,
     .interactions = macro_interactions,
     .fixtures = macro_fixtures,
+    .localize = macro_localize,
+    .spatial_ghosts = macro_spatial_ghosts,
+    .spatial_rebuilt = macro_spatial_rebuilt,
+    .migrate_arrays = macro_migrate_arrays,
 };

@@ -64,6 +64,11 @@ int macro_register_state(struct model *m, struct sim *sim, struct field_state *f
 {
     _Static_assert(sizeof(size_t) == 8 && sizeof(long) == 8, "counters are saved as int64");
     size_t n = sim->p->n;
+    if (sim->par) /* a signal's checkpoint; a deck's checkpoints are refused before the run */
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "distributed runs: the macro-particle pair lists cannot be "
+                               "checkpointed across ranks yet; run on one rank (without mpirun) "
+                               "to checkpoint, see docs/parallel.md");
     if (!m->nl || m->nl->n != n || sim->p->n != sim->p->n_owned)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle list not built");
     int rc = field_state_add_array(fs, "macro.list_offset", FIELD_I64, (void **)&m->nl->offset,

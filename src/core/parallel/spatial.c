@@ -1,0 +1,251 @@
+/**
+ * @file spatial.c
+ * @brief Spatial ghosts in the step (spatial.h): the rebuild test, the
+ *        re-layout of the local arrays around a new ghost set, and the
+ *        halo lists that refresh it.
+ */
+#include "core/parallel/spatial.h"
+
+#include "core/model.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/decomp_internal.h"
+#include "core/parallel/sghost.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef SPALL_HAVE_MPI
+#include <mpi.h>
+#endif
+
+void par_spatial_free(struct par_decomp *d)
+{
+    par_sghost_destroy(&d->sg);
+}
+
+long par_spatial_rebuilds(const struct sim *s)
+{
+    return s->par ? s->par->sg_rebuilds : 0;
+}
+
+#ifdef SPALL_HAVE_MPI
+
+/* The model's declaration and every per-particle array a ghost carries. */
+static int ghost_arrays(struct sim *s, struct par_spatial_model *sm, struct par_slots *sl,
+                        size_t *rec, struct spall_error *err)
+{
+    memset(sm, 0, sizeof *sm);
+    int rc = s->ops->spatial_ghosts(s->model, sm);
+    if (rc)
+        return spall_error_set(err, SPALL_ERR_INTERNAL,
+                               "spatial ghosts: model '%s' gave no range", s->ops->name);
+    int bad = par_particle_slots(s, sl);
+    for (int k = 0; k < sm->n_particle && !bad; k++)
+        bad = par_slot_add(sl, sm->particle[k], sm->particle_size[k]);
+    if (bad)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "spatial ghosts: too many arrays");
+    *rec = 0;
+    for (size_t k = 0; k < sl->n; k++)
+        *rec += sl->esize[k];
+    return SPALL_OK;
+}
+
+/* The halo lists of par_halo_x (positions and velocities, counts in
+ * doubles) from the ghost build's lists. */
+static int halo_from_lists(struct par_decomp *d, const struct par_sghost_lists *L, size_t n_owned,
+                           int dim)
+{
+    const int size = par_size(), w = 2 * dim;
+    size_t *si = malloc((L->n_send ? L->n_send : 1) * sizeof *si);
+    size_t *ri = malloc((L->n_recv ? L->n_recv : 1) * sizeof *ri);
+    double *sb = malloc((L->n_send ? L->n_send : 1) * (size_t)w * sizeof *sb);
+    double *rb = malloc((L->n_recv ? L->n_recv : 1) * (size_t)w * sizeof *rb);
+    if (!si || !ri || !sb || !rb) {
+        free(si);
+        free(ri);
+        free(sb);
+        free(rb);
+        return -1;
+    }
+    for (size_t k = 0; k < L->n_send; k++)
+        si[k] = L->send_idx[k];
+    for (size_t k = 0; k < L->n_recv; k++)
+        ri[k] = n_owned + L->recv_idx[k];
+    for (int r = 0; r < size; r++) {
+        d->send_counts[r] = L->scount[r] * w;
+        d->send_displs[r] = L->sdispl[r] * w;
+        d->recv_counts[r] = L->rcount[r] * w;
+        d->recv_displs[r] = L->rdispl[r] * w;
+    }
+    free(d->send_idx);
+    free(d->recv_idx);
+    free(d->sbuf);
+    free(d->rbuf);
+    d->send_idx = si;
+    d->recv_idx = ri;
+    d->sbuf = sb;
+    d->rbuf = rb;
+    d->n_send = L->n_send;
+    d->n_recv = L->n_recv;
+    return 0;
+}
+
+/* Byte counts per rank of @p cnt particles of @p rec bytes; -1 past INT_MAX. */
+static int byte_counts(const int *cnt, size_t rec, int size, int *bc, int *bd)
+{
+    size_t at = 0;
+    for (int r = 0; r < size; r++) {
+        size_t b = (size_t)cnt[r] * rec;
+        if (b > (size_t)INT_MAX || at > (size_t)INT_MAX)
+            return -1;
+        bc[r] = (int)b;
+        bd[r] = (int)at;
+        at += b;
+    }
+    return at > (size_t)INT_MAX ? -1 : 0;
+}
+
+/* Rebuild the ghosts around the owned build positions (moved: the owned
+ * particles' current positions become the build positions first) and
+ * re-lay out the local arrays: owned [0, n_owned) unchanged, then the
+ * ghosts in ascending gid with their owners' records. */
+static int relayout(struct sim *s, bool moved, struct spall_error *err)
+{
+    struct par_decomp *d = s->par;
+    struct particles *p = s->p;
+    const int dim = p->dim, size = par_size();
+    const size_t no = p->n_owned;
+    struct par_spatial_model sm;
+    struct par_slots sl;
+    size_t rec = 0;
+    int rc = ghost_arrays(s, &sm, &sl, &rec, err);
+    if (!rc && !d->sg)
+        rc = par_sghost_create(&d->sg, dim, sm.range, sm.skin, err);
+    if ((rc = par_agree(rc, err)))
+        return rc;
+    if (moved)
+        for (int c = 0; c < dim; c++)
+            memcpy(sm.xb[c], p->x[c], no * sizeof(double));
+    const double *xb[3] = {NULL, NULL, NULL};
+    for (int c = 0; c < dim; c++)
+        xb[c] = sm.xb[c];
+    if ((rc = par_sghost_build(d->sg, no, xb, p->gid, err)))
+        return rc;
+    struct par_sghost_lists L;
+    par_sghost_lists(d->sg, &L);
+    const size_t ng = par_sghost_count(d->sg), nn = no + ng;
+    int *bc = malloc(4 * (size_t)size * sizeof *bc);
+    char *sbuf = malloc((L.n_send ? L.n_send : 1) * rec);
+    char *rbuf = malloc((L.n_recv ? L.n_recv : 1) * rec);
+    rc = !bc || !sbuf || !rbuf ? SPALL_ERR_NOMEM : SPALL_OK;
+    if (!rc && (byte_counts(L.scount, rec, size, bc, bc + size) ||
+                byte_counts(L.rcount, rec, size, bc + 2 * size, bc + 3 * size)))
+        rc = SPALL_ERR_NOMEM;
+    if (!rc) {
+        char *b = sbuf;
+        for (size_t k = 0; k < L.n_send; k++)
+            for (size_t q = 0; q < sl.n; q++) {
+                size_t e = sl.esize[q];
+                memcpy(b, (const char *)*sl.ptr[q] + L.send_idx[k] * e, e);
+                b += e;
+            }
+    }
+    /* the new arrays: the owned rows stay where they are */
+    for (size_t q = 0; q < sl.n && !rc; q++) {
+        void *a = realloc(*sl.ptr[q], (nn ? nn : 1) * sl.esize[q]);
+        if (a)
+            *sl.ptr[q] = a;
+        else
+            rc = SPALL_ERR_NOMEM;
+    }
+    if (!rc && halo_from_lists(d, &L, no, dim))
+        rc = SPALL_ERR_NOMEM;
+    if (rc)
+        spall_error_set(err, rc, "out of memory (spatial ghosts: %zu ghosts)", ng);
+    if ((rc = par_agree(rc, err))) {
+        free(bc);
+        free(sbuf);
+        free(rbuf);
+        return rc;
+    }
+    MPI_Alltoallv(sbuf, bc, bc + size, MPI_BYTE, rbuf, bc + 2 * size, bc + 3 * size, MPI_BYTE,
+                  MPI_COMM_WORLD);
+    const char *b = rbuf;
+    for (size_t k = 0; k < L.n_recv; k++) {
+        const size_t i = no + L.recv_idx[k];
+        for (size_t q = 0; q < sl.n; q++) {
+            size_t e = sl.esize[q];
+            memcpy((char *)*sl.ptr[q] + i * e, b, e);
+            b += e;
+        }
+    }
+    free(bc);
+    free(sbuf);
+    free(rbuf);
+    p->n = nn;
+    p->cap = nn;
+    d->n_ghost = ng;
+    if (moved)
+        d->sg_rebuilds++;
+    return par_agree(s->ops->spatial_rebuilt(s->model, s, moved, err), err);
+}
+
+int par_spatial_init(struct sim *s, struct spall_error *err)
+{
+    if (!s->ops->spatial_ghosts)
+        return SPALL_OK;
+    return relayout(s, false, err);
+}
+
+int par_ghosts_step(struct sim *s, struct spall_error *err)
+{
+    struct par_decomp *d = s->par;
+    if (d->sg) {
+        /* the serial model's test (e.g. macro_neighbors_update), over the
+         * owned particles of every rank: the same steps rebuild */
+        struct par_spatial_model sm;
+        memset(&sm, 0, sizeof sm);
+        s->ops->spatial_ghosts(s->model, &sm);
+        const struct particles *p = s->p;
+        double d2max = 0.0;
+        for (size_t i = 0; i < p->n_owned; i++) {
+            double d2 = 0.0;
+            for (int c = 0; c < s->dim; c++) {
+                double u = p->x[c][i] - sm.xb[c][i];
+                d2 += u * u;
+            }
+            d2max = d2 > d2max ? d2 : d2max;
+        }
+        d2max = par_max_double(d2max);
+        if (!(4.0 * d2max < sm.skin * sm.skin)) {
+            int rc = relayout(s, true, err);
+            if (rc)
+                return rc;
+        }
+    }
+    par_halo_x(s);
+    return SPALL_OK;
+}
+
+#else /* serial build: no ranks, no ghosts */
+
+int par_spatial_init(struct sim *s, struct spall_error *err)
+{
+    (void)s;
+    (void)err;
+    return SPALL_OK;
+}
+
+int par_ghosts_step(struct sim *s, struct spall_error *err)
+{
+    (void)s;
+    (void)err;
+    return SPALL_OK;
+}
+
+#endif

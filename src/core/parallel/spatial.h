@@ -1,0 +1,57 @@
+/**
+ * @file spatial.h
+ * @brief Spatial ghosts in the step (issue 22): the engine side of a model
+ *        whose partners come from a neighbour search (model_ops
+ *        spatial_ghosts and spatial_rebuilt), on the building block
+ *        core/parallel/sghost.h.
+ *
+ * After the partition, and whenever an owned particle has moved half the
+ * skin since the model's last list build, every rank keeps as ghosts the
+ * particles of other ranks within range + skin of its owned particles'
+ * build positions (sghost.h), re-lays out its arrays (owned particles
+ * unchanged, then the ghosts in ascending global id, each with its owner's
+ * record: every per-particle array of the engine, the field registry and
+ * the model) and lets the model rebuild its list.  Between rebuilds the
+ * halo (decomp.h, par_halo_x) refreshes the ghosts' positions and
+ * velocities from their owners before every force call, along the lists
+ * of the last build.
+ *
+ * The rebuild test is the serial model's own, |x - x_build|^2 * 4 >= skin^2
+ * for some particle, taken over the owned particles of all ranks: the
+ * lists are rebuilt in the same steps, from the same positions, as on one
+ * rank, so each owned particle's list holds the serial partners.  Every
+ * function is collective.
+ */
+#ifndef SPALL_CORE_PARALLEL_SPATIAL_H
+#define SPALL_CORE_PARALLEL_SPATIAL_H
+
+#include <stddef.h>
+
+struct sim;
+struct spall_error;
+
+#define PAR_SPATIAL_MAX_ARRAYS 8
+
+/** What a model with spatial ghosts tells the engine (model_ops.spatial_ghosts). */
+struct par_spatial_model {
+    double range;  /**< interaction range [m] */
+    double skin;   /**< Verlet skin [m]: the list covers range + skin */
+    double **xb;   /**< the model's array pointers xb[0..dim): positions at its last list build */
+    int n_particle;
+    void **particle[PAR_SPATIAL_MAX_ARRAYS]; /**< per-particle arrays ghosts carry (xb among them) */
+    size_t particle_size[PAR_SPATIAL_MAX_ARRAYS];
+};
+
+/** Right after the partition (decomp.c): the first ghost set, built at the
+ *  model's build positions (no new list: spatial_rebuilt with moved false). */
+int par_spatial_init(struct sim *s, struct spall_error *err);
+
+/** Before every force call of a distributed run: rebuild the spatial
+ *  ghosts when needed, then refresh the ghosts' positions and velocities
+ *  (par_halo_x).  For bond models the halo alone. */
+int par_ghosts_step(struct sim *s, struct spall_error *err);
+
+/** Spatial ghost rebuilds in the step so far (0 without spatial ghosts). */
+long par_spatial_rebuilds(const struct sim *s);
+
+#endif
