@@ -199,7 +199,10 @@ MACRO_CLONES static void macro_chunk_pair(const struct macro_pair *w, size_t nb,
         t[6][k] = 0.5 * c * dx[0] * dx[1];
         t[7][k] = 0.5 * c * dx[1] * dx[2];
         t[8][k] = 0.5 * c * dx[2] * dx[0];
-        ok[k] = !(r2[k] >= rlist2 || r2[k] == 0.0) && !(re[k] >= r_c || re[k] <= 0.0);
+        /* the loop's skip tests, without short circuits (they would keep the
+         * vectoriser off): NaN distances count, as they did */
+        ok[k] = (unsigned char)(!(r2[k] >= rlist2) & (r2[k] != 0.0) & !(re[k] >= r_c) &
+                                !(re[k] <= 0.0));
     }
 }
 
