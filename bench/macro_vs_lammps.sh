@@ -45,18 +45,8 @@ CHECK=0
 if [ "${1:-}" = "--check" ]; then CHECK=1; shift; fi
 SPALL=${1:-build/spall}
 NPHI=${2:-16}; NH=${3:-64}; STEPS=${4:-1000}
-LMP=$(command -v lmp || true)
-if [ -z "$LMP" ]; then
-    if [ $CHECK = 1 ]; then
-        echo "macro_vs_lammps skipped: LAMMPS (lmp) not installed (scripts/install-test-deps.sh installs Debian's lammps)"
-        exit 77
-    fi
-    apt-get install -y lammps >/dev/null
-    LMP=$(command -v lmp)
-fi
-SPALL=$(cd "$(dirname "$SPALL")" && pwd)/$(basename "$SPALL")
-W=$(mktemp -d /tmp/macro_vs_lammps.XXXX)
-echo "work dir: $W"
+NAME=macro_vs_lammps
+. "$(dirname "$0")/lammps_setup.sh"
 export OMP_NUM_THREADS=1
 python3 - "$W" "$NPHI" "$NH" "$STEPS" <<'PY'
 import sys, math
