@@ -115,22 +115,38 @@ static inline void macro_mie_chunk(const struct macro_pair *w, size_t nb,
 {
     double s[MACRO_CHUNK], sp[MACRO_CHUNK], sq[MACRO_CHUNK];
     const double r0 = w->r0, p = w->p, q = w->q, r_on = w->r_on, r_c = w->r_c;
-    for (size_t k = 0; k < nb; k++)
-        s[k] = r0 / r[k];
-    if (w->ip > 0) {
-        macro_ipow_chunk(nb, s, w->ip, sp);
-        macro_ipow_chunk(nb, s, w->iq, sq);
+    const double a = w->D / (q - p);
+    /* One loop with the powers in registers for exponents known here (with a
+     * constant n, macro_ipow unrolls into the same multiplications); other
+     * integer exponents power array by array, non-integer ones call pow(). */
+#define MACRO_MIE_FIXED(P, Q)                                                                   \
+    for (size_t k = 0; k < nb; k++) {                                                           \
+        const double sk = r0 / r[k], spk = macro_ipow(sk, P), sqk = macro_ipow(sk, Q);          \
+        phi[k] = a * (p * sqk - q * spk);                                                       \
+        fr[k] = a * p * q * (sqk - spk) / r[k];                                                 \
+    }
+    if (w->ip == 4 && w->iq == 9) { /* [Saitoh]'s aluminium, every shipped material */
+        MACRO_MIE_FIXED(4, 9)
+    } else if (w->ip == 6 && w->iq == 12) { /* Lennard-Jones */
+        MACRO_MIE_FIXED(6, 12)
     } else {
+        for (size_t k = 0; k < nb; k++)
+            s[k] = r0 / r[k];
+        if (w->ip > 0) {
+            macro_ipow_chunk(nb, s, w->ip, sp);
+            macro_ipow_chunk(nb, s, w->iq, sq);
+        } else {
+            for (size_t k = 0; k < nb; k++) {
+                sp[k] = pow(s[k], p);
+                sq[k] = pow(s[k], q);
+            }
+        }
         for (size_t k = 0; k < nb; k++) {
-            sp[k] = pow(s[k], p);
-            sq[k] = pow(s[k], q);
+            phi[k] = a * (p * sq[k] - q * sp[k]);
+            fr[k] = a * p * q * (sq[k] - sp[k]) / r[k];
         }
     }
-    const double a = w->D / (q - p);
-    for (size_t k = 0; k < nb; k++) {
-        phi[k] = a * (p * sq[k] - q * sp[k]);
-        fr[k] = a * p * q * (sq[k] - sp[k]) / r[k];
-    }
+#undef MACRO_MIE_FIXED
     for (size_t k = 0; k < nb; k++)
         if (r[k] > r_on && r[k] < r_c)
             macro_taper(w, r[k], &phi[k], &fr[k]);
