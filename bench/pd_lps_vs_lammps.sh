@@ -36,18 +36,8 @@ CHECK=0
 if [ "${1:-}" = "--check" ]; then CHECK=1; shift; fi
 SPALL=${1:-build/spall}
 NX=${2:-36}; NY=${3:-24}; NZ=${4:-24}; STEPS=${5:-200}
-LMP=$(command -v lmp || command -v lmp_serial || true)
-if [ -z "$LMP" ]; then
-    if [ $CHECK = 1 ]; then
-        echo "pd_lps_vs_lammps skipped: LAMMPS (lmp) not installed (scripts/install-test-deps.sh installs Debian's lammps)"
-        exit 77
-    fi
-    apt-get install -y lammps >/dev/null
-    LMP=$(command -v lmp)
-fi
-SPALL=$(cd "$(dirname "$SPALL")" && pwd)/$(basename "$SPALL")
-W=$(mktemp -d /tmp/pd_lps_vs_lammps.XXXX)
-echo "work dir: $W"
+NAME=pd_lps_vs_lammps
+. "$(dirname "$0")/lammps_setup.sh"
 python3 - "$W" "$NX" "$NY" "$NZ" "$STEPS" <<'PY'
 import sys, math
 W, nx, ny, nz, steps = sys.argv[1], *map(int, sys.argv[2:6])

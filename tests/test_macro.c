@@ -91,6 +91,50 @@ static void test_mie_kernel(void **state)
     assert_true(fabs(e1 - e2) < 1e-12 && fabs(f1 - f2) < 1e-12);
 }
 
+/* The chunked pair law of the force loop (macro_mie_chunk) gives the bits
+ * of macro_mie at every distance inside the cut-off, taper included, on
+ * each of its paths (4-9 and 6-12 unrolled, other integers, non-integer
+ * exponents) and a partial chunk. */
+static void test_mie_chunk_bitwise(void **state)
+{
+    (void)state;
+    struct macro_pair w = {.D = 0.914277, .p = 4, .q = 9, .r0 = 6.187e-4, .r_on = 1.2 * 6.187e-4,
+                           .r_c = 1.35 * 6.187e-4, .e_y = INFINITY, .h = 0.0, .ip = 4, .iq = 9};
+    for (int variant = 0; variant < 4; variant++) {
+        struct macro_pair v = w;
+        if (variant == 1) { /* non-integer exponents: pow() in both */
+            v.p = 4.5;
+            v.q = 9.25;
+            v.ip = v.iq = 0;
+        } else if (variant == 2) { /* Lennard-Jones' exponents (their own loop) */
+            v.p = 6;
+            v.q = 12;
+            v.ip = 6;
+            v.iq = 12;
+        } else if (variant == 3) { /* other integers: powers array by array */
+            v.p = 4;
+            v.q = 10;
+            v.ip = 4;
+            v.iq = 10;
+        }
+        const size_t nb = MACRO_CHUNK - 3;
+        double r[MACRO_CHUNK], phi[MACRO_CHUNK], fr[MACRO_CHUNK];
+        int tapered = 0;
+        for (size_t k = 0; k < nb; k++) {
+            r[k] = v.r0 * (0.85 + 0.4999 * (double)k / (double)nb);
+            tapered += r[k] > v.r_on;
+        }
+        assert_true(tapered > 5);
+        macro_mie_chunk(&v, nb, r, phi, fr);
+        for (size_t k = 0; k < nb; k++) {
+            double e1, f1;
+            macro_mie(&v, r[k], &e1, &f1);
+            assert_memory_equal(&e1, &phi[k], sizeof e1);
+            assert_memory_equal(&f1, &fr[k], sizeof f1);
+        }
+    }
+}
+
 static void test_gauss(void **state)
 {
     (void)state;
@@ -226,6 +270,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_calibration),
         cmocka_unit_test(test_mie_kernel),
+        cmocka_unit_test(test_mie_chunk_bitwise),
         cmocka_unit_test(test_gauss),
         cmocka_unit_test(test_threads_bitwise),
         cmocka_unit_test(test_deck_errors),

@@ -179,6 +179,87 @@ int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct 
     return macro_list_build(m, sim, true, err);
 }
 
+/* The pair loop of macro_compute_forces runs over each particle's list in
+ * chunks of MACRO_CHUNK slots, in passes: the geometry (gathers, r^2, sqrt)
+ * and the pair law (macro_mie_chunk: divisions and powers; c = -f/r; the
+ * force and virial terms) with no dependence between slots, which the
+ * compiler vectorises; between them,
+ * when plasticity or pairwise damping is on, a scalar pass over the slots
+ * in list order updates the plastic state and adds the pairwise Langevin
+ * forces; last, a scalar pass adds energy, force and virial terms in list
+ * order.
+ * Every operation and the order of every sum are those of the one-pass
+ * loop (a slot's values are computed exactly as there), so the results do
+ * not change, bit for bit.  Two versions picked once at load time by the
+ * CPU (GCC function multi-versioning, as pd_forces.c): x86-64-v3 (four
+ * doubles a vector) and the build's baseline; the file is compiled without
+ * FP contraction (ISO C mode), so both round alike. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
+    !defined(SPALL_NO_CLONES)
+#define MACRO_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define MACRO_CLONES
+#endif
+
+/** Pair vectors x_j - x_i, squared distances and distances of nb slots. */
+MACRO_CLONES static void macro_chunk_geom(size_t nb, int dim, const double xi[3],
+                                          double *const *restrict x,
+                                          const int32_t *restrict idx, double *restrict gx,
+                                          double *restrict gy, double *restrict gz,
+                                          double *restrict r2, double *restrict r)
+{
+    const double *restrict x0 = x[0], *restrict x1 = dim > 1 ? x[1] : x[0];
+    const double *restrict x2 = dim > 2 ? x[2] : x[0];
+    const double xi0 = xi[0], xi1 = xi[1], xi2 = xi[2];
+    for (size_t k = 0; k < nb; k++) {
+        const size_t j = (size_t)idx[k];
+        const double ex = x0[j] - xi0;
+        const double ey = dim > 1 ? x1[j] - xi1 : 0.0;
+        const double ez = dim > 2 ? x2[j] - xi2 : 0.0;
+        gx[k] = ex;
+        gy[k] = ey;
+        gz[k] = ez;
+        r2[k] = ex * ex + ey * ey + ez * ez;
+        r[k] = sqrt(r2[k]);
+    }
+}
+
+/** Pair energy ph, force on i t[0..2] = c (x_j - x_i) (c > 0: attraction),
+ *  virial terms t[3..8] (xx yy zz xy yz zx, halved per end) and ok =
+ *  whether the slot counts (inside the list radius, not at zero distance,
+ *  elastic distance re in (0, r_c)). */
+MACRO_CLONES static void macro_chunk_pair(const struct macro_pair *w, size_t nb,
+                                          const double *restrict gx,
+                                          const double *restrict gy,
+                                          const double *restrict gz,
+                                          const double *restrict r2,
+                                          const double *restrict rd,
+                                          const double *restrict re, double rlist2,
+                                          double *restrict ph, double (*restrict t)[MACRO_CHUNK],
+                                          unsigned char *restrict ok)
+{
+    double fk[MACRO_CHUNK];
+    const double r_c = w->r_c;
+    macro_mie_chunk(w, nb, re, ph, fk);
+    for (size_t k = 0; k < nb; k++) {
+        const double r = rd[k], fr = fk[k], dx[3] = {gx[k], gy[k], gz[k]};
+        const double c = -fr / r; /* force on i along dx (attraction > 0) */
+        t[0][k] = c * dx[0];
+        t[1][k] = c * dx[1];
+        t[2][k] = c * dx[2];
+        t[3][k] = 0.5 * c * dx[0] * dx[0];
+        t[4][k] = 0.5 * c * dx[1] * dx[1];
+        t[5][k] = 0.5 * c * dx[2] * dx[2];
+        t[6][k] = 0.5 * c * dx[0] * dx[1];
+        t[7][k] = 0.5 * c * dx[1] * dx[2];
+        t[8][k] = 0.5 * c * dx[2] * dx[0];
+        /* the loop's skip tests, without short circuits (they would keep the
+         * vectoriser off): NaN distances count, as they did */
+        ok[k] = (unsigned char)(!(r2[k] >= rlist2) & (r2[k] != 0.0) & !(re[k] >= r_c) &
+                                !(re[k] <= 0.0));
+    }
+}
+
 int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
     int rc = macro_neighbors_update(m, sim, false, err);
@@ -211,66 +292,72 @@ int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *e
             vi[d] = v[d][i];
         }
         double e = 0.0, s6[6] = {0, 0, 0, 0, 0, 0}, wplast = 0.0;
-        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
-            const size_t j = (size_t)nl->idx[s];
-            double dx[3] = {0, 0, 0}, r2 = 0.0;
-            for (int d = 0; d < dim; d++) {
-                dx[d] = x[d][j] - xi[d];
-                r2 += dx[d] * dx[d];
-            }
-            if (r2 >= rlist2 || r2 == 0.0)
-                continue;
-            const double r = sqrt(r2);
-            double re = r;
-            if (plastic) {
-                double el = r - w.r0 - dr0[s];
-                double lim = w.e_y + w.h * kap[s];
-                double a = fabs(el);
-                if (!eng[s]) {
-                    /* a pair met at a large stretch (a second neighbour
-                     * sliding in) stays elastic until it enters the yield
-                     * surface: it cannot be "welded" at a wrong spacing */
-                    if (a <= lim)
-                        eng[s] = 1;
-                } else if (r >= w.r_c) {
-                    /* separated: the pair forgets its plastic history */
-                    dr0[s] = 0.0;
-                    kap[s] = 0.0;
-                    eng[s] = 0;
-                } else if (a > lim) {
-                    double dd = (a - lim) / (1.0 + w.h);
-                    double sgn = el > 0.0 ? 1.0 : -1.0;
-                    dr0[s] += sgn * dd;
-                    kap[s] += dd;
-                    double ph, fr;
-                    macro_mie(&w, w.r0 + sgn * (lim + w.h * dd), &ph, &fr);
-                    wplast += 0.5 * fabs(fr) * dd; /* half per end of the pair */
+        for (size_t s0 = nl->offset[i]; s0 < nl->offset[i + 1]; s0 += MACRO_CHUNK) {
+            const size_t nb = nl->offset[i + 1] - s0 < MACRO_CHUNK ? nl->offset[i + 1] - s0
+                                                                   : MACRO_CHUNK;
+            double gx[MACRO_CHUNK], gy[MACRO_CHUNK], gz[MACRO_CHUNK], rr2[MACRO_CHUNK];
+            double rr[MACRO_CHUNK], rre[MACRO_CHUNK], phk[MACRO_CHUNK], t[9][MACRO_CHUNK];
+            unsigned char ok[MACRO_CHUNK];
+            macro_chunk_geom(nb, dim, xi, x, nl->idx + s0, gx, gy, gz, rr2, rr);
+            const double *re_k = rr;
+            if (plastic || mu > 0.0) {
+                for (size_t k = 0; k < nb; k++) {
+                    const size_t s = s0 + k, j = (size_t)nl->idx[s];
+                    const double r = rr[k];
+                    double re = r;
+                    rre[k] = re;
+                    if (rr2[k] >= rlist2 || rr2[k] == 0.0)
+                        continue;
+                    if (plastic) {
+                        double el = r - w.r0 - dr0[s];
+                        double lim = w.e_y + w.h * kap[s];
+                        double a = fabs(el);
+                        if (!eng[s]) {
+                            /* a pair met at a large stretch (a second neighbour
+                             * sliding in) stays elastic until it enters the yield
+                             * surface: it cannot be "welded" at a wrong spacing */
+                            if (a <= lim)
+                                eng[s] = 1;
+                        } else if (r >= w.r_c) {
+                            /* separated: the pair forgets its plastic history */
+                            dr0[s] = 0.0;
+                            kap[s] = 0.0;
+                            eng[s] = 0;
+                        } else if (a > lim) {
+                            double dd = (a - lim) / (1.0 + w.h);
+                            double sgn = el > 0.0 ? 1.0 : -1.0;
+                            dr0[s] += sgn * dd;
+                            kap[s] += dd;
+                            double ph, fr;
+                            macro_mie(&w, w.r0 + sgn * (lim + w.h * dd), &ph, &fr);
+                            wplast += 0.5 * fabs(fr) * dd; /* half per end of the pair */
+                        }
+                        re = r - dr0[s];
+                        rre[k] = re;
+                    }
+                    if (mu > 0.0 && r < w.r_c) {
+                        double xr[3] = {0, 0, 0};
+                        uint64_t ga = (uint64_t)gid[i], gb = (uint64_t)gid[j];
+                        double sgn = ga < gb ? 1.0 : -1.0;
+                        if (sp > 0.0)
+                            macro_gauss3(seed, step, ga < gb ? ga : gb, ga < gb ? gb : ga, xr);
+                        for (int d = 0; d < dim; d++)
+                            fl[d] += mu * (v[d][j] - vi[d]) + sgn * sp * xr[d];
+                    }
                 }
-                re = r - dr0[s];
+                re_k = rre;
             }
-            if (mu > 0.0 && r < w.r_c) {
-                double xr[3] = {0, 0, 0};
-                uint64_t ga = (uint64_t)gid[i], gb = (uint64_t)gid[j];
-                double sgn = ga < gb ? 1.0 : -1.0;
-                if (sp > 0.0)
-                    macro_gauss3(seed, step, ga < gb ? ga : gb, ga < gb ? gb : ga, xr);
+            macro_chunk_pair(&w, nb, gx, gy, gz, rr2, rr, re_k, rlist2, phk, t, ok);
+            for (size_t k = 0; k < nb; k++) {
+                if (!ok[k])
+                    continue;
+                const double phi = phk[k];
+                e += 0.5 * phi;
                 for (int d = 0; d < dim; d++)
-                    fl[d] += mu * (v[d][j] - vi[d]) + sgn * sp * xr[d];
+                    fi[d] += t[d][k];
+                for (int c = 0; c < 6; c++)
+                    s6[c] += t[3 + c][k];
             }
-            if (re >= w.r_c || re <= 0.0)
-                continue;
-            double phi, fr;
-            macro_mie(&w, re, &phi, &fr);
-            e += 0.5 * phi;
-            const double c = -fr / r; /* force on i along dx (attraction > 0) */
-            for (int d = 0; d < dim; d++)
-                fi[d] += c * dx[d];
-            s6[0] += 0.5 * c * dx[0] * dx[0];
-            s6[1] += 0.5 * c * dx[1] * dx[1];
-            s6[2] += 0.5 * c * dx[2] * dx[2];
-            s6[3] += 0.5 * c * dx[0] * dx[1];
-            s6[4] += 0.5 * c * dx[1] * dx[2];
-            s6[5] += 0.5 * c * dx[2] * dx[0];
         }
         if (g > 0.0) {
             double xr[3] = {0, 0, 0};

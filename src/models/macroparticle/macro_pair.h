@@ -12,6 +12,7 @@
 
 #include <Random123/philox.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 
 /** Pair constants of one material (one material per run: mixed pairs use
@@ -26,9 +27,7 @@ struct macro_pair {
 
 /* ---- Mie pair with a C1 taper --------------------------------------------------- */
 
-/** Mie energy and force magnitude -dphi/dr at distance r for the shifted
- *  elastic coordinate; smooth cubic switch S(r) between r_on and r_c (the
- *  product phi S and its derivative vanish at r_c). */
+/** s^n for an integer n >= 0 by binary powering. */
 static inline double macro_ipow(double s, int n)
 {
     double r = 1.0, b = s;
@@ -41,6 +40,22 @@ static inline double macro_ipow(double s, int n)
     return r;
 }
 
+/** The cubic switch of macro_mie applied to the plain Mie energy @p pe and
+ *  force @p pf at r > r_on (one place for the pair loop and macro_mie). */
+static inline void macro_taper(const struct macro_pair *w, double r, double *pe, double *pf)
+{
+    double e = *pe, f = *pf;
+    const double L = w->r_c - w->r_on, t = (r - w->r_on) / L;
+    const double S = 1.0 - t * t * (3.0 - 2.0 * t), dS = -6.0 * t * (1.0 - t) / L;
+    f = f * S - e * dS;
+    e *= S;
+    *pe = e;
+    *pf = f;
+}
+
+/** Mie energy and force magnitude -dphi/dr at distance r for the shifted
+ *  elastic coordinate; smooth cubic switch S(r) between r_on and r_c (the
+ *  product phi S and its derivative vanish at r_c). */
 static inline void macro_mie(const struct macro_pair *w, double r, double *phi, double *fr)
 {
     const double s = w->r0 / r;
@@ -55,14 +70,86 @@ static inline void macro_mie(const struct macro_pair *w, double r, double *phi, 
     const double a = w->D / (w->q - w->p);
     double e = a * (w->p * sq - w->q * sp);
     double f = a * w->p * w->q * (sq - sp) / r; /* -dphi/dr: > 0 repulsive */
-    if (r > w->r_on) {
-        const double L = w->r_c - w->r_on, t = (r - w->r_on) / L;
-        const double S = 1.0 - t * t * (3.0 - 2.0 * t), dS = -6.0 * t * (1.0 - t) / L;
-        f = f * S - e * dS;
-        e *= S;
-    }
+    if (r > w->r_on)
+        macro_taper(w, r, &e, &f);
     *phi = e;
     *fr = f;
+}
+
+/* ---- the same pair law over a chunk of pairs ---------------------------------- */
+
+/** Pairs per chunk of the pair loop (macro_forces.c): the chunk's arrays
+ *  stay in L1. */
+#define MACRO_CHUNK 64
+
+/** out[k] = s[k]^n for k < nb, n >= 1, by the multiplications of macro_ipow
+ *  in the same order (the same bits), with n the same for every k so that
+ *  the loops over k vectorise. */
+static inline void macro_ipow_chunk(size_t nb, const double *restrict s, int n,
+                                    double *restrict out)
+{
+    double b[MACRO_CHUNK];
+    for (size_t k = 0; k < nb; k++) {
+        out[k] = 1.0;
+        b[k] = s[k];
+    }
+    while (n) {
+        if (n & 1)
+            for (size_t k = 0; k < nb; k++)
+                out[k] *= b[k];
+        n >>= 1;
+        if (n)
+            for (size_t k = 0; k < nb; k++)
+                b[k] *= b[k];
+    }
+}
+
+/** macro_mie for nb <= MACRO_CHUNK distances r[k] in (0, r_c): energy
+ *  phi[k] and force fr[k], bit for bit those of macro_mie (the same
+ *  operations in the same order; the taper, rare in a crystal, in a scalar
+ *  pass).  Loops without dependences between k, for the vectoriser.  At
+ *  r[k] >= r_c (list slots the pair loop skips) the untapered values. */
+static inline void macro_mie_chunk(const struct macro_pair *w, size_t nb,
+                                   const double *restrict r, double *restrict phi,
+                                   double *restrict fr)
+{
+    double s[MACRO_CHUNK], sp[MACRO_CHUNK], sq[MACRO_CHUNK];
+    const double r0 = w->r0, p = w->p, q = w->q, r_on = w->r_on, r_c = w->r_c;
+    const double a = w->D / (q - p);
+    /* One loop with the powers in registers for exponents known here (with a
+     * constant n, macro_ipow unrolls into the same multiplications); other
+     * integer exponents power array by array, non-integer ones call pow(). */
+#define MACRO_MIE_FIXED(P, Q)                                                                   \
+    for (size_t k = 0; k < nb; k++) {                                                           \
+        const double sk = r0 / r[k], spk = macro_ipow(sk, P), sqk = macro_ipow(sk, Q);          \
+        phi[k] = a * (p * sqk - q * spk);                                                       \
+        fr[k] = a * p * q * (sqk - spk) / r[k];                                                 \
+    }
+    if (w->ip == 4 && w->iq == 9) { /* [Saitoh]'s aluminium, every shipped material */
+        MACRO_MIE_FIXED(4, 9)
+    } else if (w->ip == 6 && w->iq == 12) { /* Lennard-Jones */
+        MACRO_MIE_FIXED(6, 12)
+    } else {
+        for (size_t k = 0; k < nb; k++)
+            s[k] = r0 / r[k];
+        if (w->ip > 0) {
+            macro_ipow_chunk(nb, s, w->ip, sp);
+            macro_ipow_chunk(nb, s, w->iq, sq);
+        } else {
+            for (size_t k = 0; k < nb; k++) {
+                sp[k] = pow(s[k], p);
+                sq[k] = pow(s[k], q);
+            }
+        }
+        for (size_t k = 0; k < nb; k++) {
+            phi[k] = a * (p * sq[k] - q * sp[k]);
+            fr[k] = a * p * q * (sq[k] - sp[k]) / r[k];
+        }
+    }
+#undef MACRO_MIE_FIXED
+    for (size_t k = 0; k < nb; k++)
+        if (r[k] > r_on && r[k] < r_c)
+            macro_taper(w, r[k], &phi[k], &fr[k]);
 }
 
 /** Three standard normal numbers for key (seed, step, a, b), from the
