@@ -137,5 +137,9 @@ void sph_set_cspm(struct model *m, bool on);
  *  loops (tests/test_sph_fused.c, test_sph_tlsph.c, `spall bench
  *  sph_taylor_cu_tl_split`).  Call after the simulation is built. */
 void sph_set_split_loops(struct model *m);
+/** Verification only: the fused loop's scalar rows instead of its vector
+ *  rows (Wendland kernel without artificial stress, sph_fused.c); bitwise
+ *  the same results (tests/test_sph_fused.c).  Call after the build. */
+void sph_set_scalar_rows(struct model *m);
 
 #endif
