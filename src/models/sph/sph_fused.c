@@ -202,10 +202,10 @@ static inline void fused_pass(struct model *m, struct sim *s, const struct sph_p
  * arithmetic as fused_pass, split so that the pair terms vectorise.
  * fused_pass spends most of its time on two unpredictable branches (the
  * support test, r < 2 h over a list with a 20 % skin; the AV's v.x < 0) and
- * on spills of its 16 running sums.  Here one branch-free loop over the row
- * evaluates every listed pair's terms into per-thread arrays (a pair
- * outside the support or receding gets the exact +0 the skipped branch
- * meant), and a second loop adds them in list order.  Every term is formed
+ * on spills of its 16 running sums.  Here a first loop keeps the partners
+ * within the support, a branch-free vector loop evaluates their terms into
+ * per-thread arrays (a receding pair gets the exact +0 the skipped AV
+ * branch meant), and a third loop adds them in list order.  Every term is formed
  * by the same operations as in fused_pass (no FMA: this file is compiled
  * with ISO C's fp-contract=off, also in the x86-64-v3 clone), and a sum
  * that starts at +0 is unchanged by adding +0 or -0, so the result is
@@ -230,12 +230,12 @@ struct fused_vec {
 #define FUSED_INLINE static inline
 #endif
 
-/* Row i's pair terms into t[c * cap + k] (c < FT_N) and their sums (list
- * order) into sum[c]. */
+/* Row i: its partners within the support into cj, their pair terms into
+ * t[c * cap + k] (c < FT_N), and the terms' sums in list order into sum[c]. */
 FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *restrict t,
-                                 size_t cap, double sum[FT_N], const int dim)
+                                int32_t *restrict cj, size_t cap, double sum[FT_N], const int dim)
 {
-    const size_t k0 = fv->off[i], len = fv->off[i + 1] - k0;
+    const size_t k0 = fv->off[i], row = fv->off[i + 1] - k0;
     const int32_t *restrict nb = fv->nb + k0;
     const double *restrict X0 = fv->X[0], *restrict X1 = fv->X[1], *restrict X2 = fv->X[2];
     const double *restrict V0 = fv->V[0], *restrict V1 = fv->V[1], *restrict V2 = fv->V[2];
@@ -260,21 +260,30 @@ FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *re
                      *restrict ta2 = t + (FT_A + 2) * cap, *restrict tde = t + FT_DE * cap;
     double *restrict tx0 = t + FT_XV * cap, *restrict tx1 = t + (FT_XV + 1) * cap,
                      *restrict tx2 = t + (FT_XV + 2) * cap;
+    /* The partners within the support, in list order (the list carries a
+     * skin: about 40 % of the listed pairs of the Taylor bar lie outside),
+     * by fused_pass's test; a store and a count, no branch. */
+    size_t len = 0;
+    for (size_t k = 0; k < row; k++) {
+        const int32_t j = nb[k];
+        const double x0 = xi0 - X0[j], x1 = xi1 - X1[j], x2 = dim == 3 ? xi2 - X2[j] : 0.0;
+        const double r2 = x0 * x0 + x1 * x1 + x2 * x2;
+        const double hj = Hs[j];
+        const double hb = hj == hi ? hi : 0.5 * (hi + hj);
+        cj[len] = j;
+        len += !(r2 >= q2max * hb * hb);
+    }
     /* no reductions in this loop, only independent lanes: simd is a
      * statement about aliasing (the term arrays are not the state) */
 #pragma omp simd
     for (size_t k = 0; k < len; k++) {
-        const int32_t j = nb[k]; /* an int index: the vectoriser gathers by it */
+        const int32_t j = cj[k]; /* an int index: the vectoriser gathers by it */
         const double x0 = xi0 - X0[j], x1 = xi1 - X1[j], x2 = dim == 3 ? xi2 - X2[j] : 0.0;
         const double r2 = x0 * x0 + x1 * x1 + x2 * x2;
         const double hj = Hs[j];
         const bool same_h = hj == hi;
         const double hm = 0.5 * (hi + hj);
         const double hb = same_h ? hi : hm;
-        /* 1 inside the support, 0 outside: a product, not a branch, so
-         * that the compiler does not sink the loads into one (masked
-         * gathers); x 1 is exact, x 0 gives the +-0 the sums ignore */
-        const double in = r2 >= q2max * hb * hb ? 0.0 : 1.0;
         /* every value is formed whether or not it is used, so that the
          * loop has no branch: 1 / hb is fused_pass's ihi when h_j = h_i */
         const double ihb = 1.0 / hb;
@@ -290,18 +299,18 @@ FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *re
         const double VF = mj / rhoj * F;
         const double g0 = -v0 * VF, g1 = -v1 * VF, g2 = -v2 * VF;
         const double p00 = g0 * x0, p01 = g0 * x1, p10 = g1 * x0, p11 = g1 * x1;
-        tg0[k] = in * p00;
-        tg1[k] = in * p01;
-        tg3[k] = in * p10;
-        tg4[k] = in * p11;
+        tg0[k] = p00;
+        tg1[k] = p01;
+        tg3[k] = p10;
+        tg4[k] = p11;
         if (dim == 3) {
             const double p02 = g0 * x2, p12 = g1 * x2, p20 = g2 * x0, p21 = g2 * x1,
                          p22 = g2 * x2;
-            tg2[k] = in * p02;
-            tg5[k] = in * p12;
-            tg6[k] = in * p20;
-            tg7[k] = in * p21;
-            tg8[k] = in * p22;
+            tg2[k] = p02;
+            tg5[k] = p12;
+            tg6[k] = p20;
+            tg7[k] = p21;
+            tg8[k] = p22;
         }
         const double vx = v0 * x0 + v1 * x1 + v2 * x2;
         const double lb = lav > 0.0 ? lav : hb;
@@ -327,13 +336,13 @@ FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *re
             mF * (v0 * (ua0 + 0.5 * uc0) + v1 * (ua1 + 0.5 * uc1) + v2 * (ua2 + 0.5 * uc2));
         const double w = 2.0 * mj / (rhoi + rhoj) * W;
         const double w0 = w * v0, w1 = w * v1, w2 = w * v2;
-        ta0[k] = in * f0;
-        ta1[k] = in * f1;
-        ta2[k] = in * f2;
-        tde[k] = in * pw;
-        tx0[k] = in * w0;
-        tx1[k] = in * w1;
-        tx2[k] = in * w2;
+        ta0[k] = f0;
+        ta1[k] = f1;
+        ta2[k] = f2;
+        tde[k] = pw;
+        tx0[k] = w0;
+        tx1[k] = w1;
+        tx2[k] = w2;
     }
     /* the sums in list order, as fused_pass adds them */
     double G[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -372,15 +381,15 @@ FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *re
 /* One out-of-line function per dimension and CPU version (AVX2 gathers in
  * the x86-64-v3 one): every row runs the same machine code on any thread. */
 FUSED_CLONES static void fused_vec_row3(const struct fused_vec *fv, size_t i, double *t,
-                                        size_t cap, double sum[FT_N])
+                                        int32_t *cj, size_t cap, double sum[FT_N])
 {
-    fused_vec_row(fv, i, t, cap, sum, 3);
+    fused_vec_row(fv, i, t, cj, cap, sum, 3);
 }
 
 FUSED_CLONES static void fused_vec_row2(const struct fused_vec *fv, size_t i, double *t,
-                                        size_t cap, double sum[FT_N])
+                                        int32_t *cj, size_t cap, double sum[FT_N])
 {
-    fused_vec_row(fv, i, t, cap, sum, 2);
+    fused_vec_row(fv, i, t, cj, cap, sum, 2);
 }
 
 /* fused_pass for the Wendland kernel without artificial stress, by rows of
@@ -422,19 +431,20 @@ static int fused_pass_vec(struct model *m, struct sim *s, const struct sph_pair_
 #pragma omp parallel
     {
         double *t = aligned_alloc(64, FT_N * cap * sizeof(double));
-        if (!t) {
+        int32_t *cj = malloc(cap * sizeof *cj);
+        if (!t || !cj) {
 #pragma omp atomic write
             nomem = 1;
         }
 #pragma omp for schedule(static)
         for (size_t i = 0; i < n; i++) {
-            if (!t || sph_skip(m, i, SPH_FORM_UPDATED))
+            if (!t || !cj || sph_skip(m, i, SPH_FORM_UPDATED))
                 continue; /* a TLSPH particle of a mixed run (sph_forms.c) */
             double sum[FT_N];
             if (dim == 3)
-                fused_vec_row3(&fv, i, t, cap, sum);
+                fused_vec_row3(&fv, i, t, cj, cap, sum);
             else
-                fused_vec_row2(&fv, i, t, cap, sum);
+                fused_vec_row2(&fv, i, t, cj, cap, sum);
             p->f[0][i] += p->mass[i] * sum[FT_A];
             p->f[1][i] += p->mass[i] * sum[FT_A + 1];
             m->xv[0][i] = xs * sum[FT_XV];
@@ -455,6 +465,7 @@ static int fused_pass_vec(struct model *m, struct sim *s, const struct sph_pair_
             m->dh[i] = m->opt.kern.variable_h ? m->h[i] * trp / dim : 0.0;
         }
         free(t);
+        free(cj);
     }
     if (nomem)
         return spall_error_set(err, SPALL_ERR_NOMEM,
