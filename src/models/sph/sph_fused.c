@@ -447,11 +447,13 @@ static int fused_pass_vec(struct model *m, struct sim *s, const struct sph_pair_
                 fused_vec_row2(&fv, i, t, cj, cap, sum);
             p->f[0][i] += p->mass[i] * sum[FT_A];
             p->f[1][i] += p->mass[i] * sum[FT_A + 1];
-            m->xv[0][i] = xs * sum[FT_XV];
-            m->xv[1][i] = xs * sum[FT_XV + 1];
+            /* without XSPH fused_pass's sums stay +0 */
+            const double *xv = xs > 0.0 ? sum + FT_XV : (const double[3]){0.0, 0.0, 0.0};
+            m->xv[0][i] = xs * xv[0];
+            m->xv[1][i] = xs * xv[1];
             if (dim == 3) {
                 p->f[2][i] += p->mass[i] * sum[FT_A + 2];
-                m->xv[2][i] = xs * sum[FT_XV + 2];
+                m->xv[2][i] = xs * xv[2];
             }
             m->de[i] = sum[FT_DE];
             for (int c = 0; c < 9; c++) {
