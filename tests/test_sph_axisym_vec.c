@@ -36,17 +36,6 @@ static const char *ROD =
     "initial_velocity: [{group: all, value: [0, -221.0]}]\n"
     "run: {steps: 120, dt_factor: 0.3}\n";
 
-static void run(struct sim *s)
-{
-    struct spall_error err = {0};
-    while (!sim_done(s)) {
-        int rc = sim_step(s, &err);
-        if (rc)
-            print_error("%s\n", err.msg);
-        assert_int_equal(rc, 0);
-    }
-}
-
 static void vec_vs_scalar(const char *variable_h, int threads)
 {
     char y[2048];
@@ -57,8 +46,8 @@ static void vec_vs_scalar(const char *variable_h, int threads)
     assert_non_null(a);
     assert_non_null(b);
     sph_set_scalar_rows(b->model);
-    run(a);
-    run(b);
+    test_run_to_end(a);
+    test_run_to_end(b);
     double moved = 0.0;
     for (size_t i = 0; i < a->p->n; i++)
         moved = fmax(moved, fabs(a->p->x[0][i] - a->p->x0[0][i]));

@@ -28,17 +28,6 @@
 #include <stdio.h>
 #include <string.h>
 
-static void run(struct sim *s)
-{
-    struct spall_error err = {0};
-    while (!sim_done(s)) {
-        int rc = sim_step(s, &err);
-        if (rc)
-            print_error("%s\n", err.msg);
-        assert_int_equal(rc, 0);
-    }
-}
-
 /* Max |x_a - x_b| over particles with the same index. */
 static double max_diff(const struct sim *a, const struct sim *b)
 {
@@ -68,8 +57,8 @@ static void test_fused_vs_split_2d(void **state)
     assert_non_null(a);
     assert_non_null(b);
     sph_set_split_loops(b->model);
-    run(a);
-    run(b);
+    test_run_to_end(a);
+    test_run_to_end(b);
     double d = max_diff(a, b);
     double moved = fabs(a->p->x[0][0] - a->p->x0[0][0]);
     assert_true(moved > 1e-6); /* something happened */
@@ -105,8 +94,8 @@ static void test_fused_vs_split_3d(void **state)
     assert_non_null(a);
     assert_non_null(b);
     sph_set_split_loops(b->model);
-    run(a);
-    run(b);
+    test_run_to_end(a);
+    test_run_to_end(b);
     print_message("3D fused vs split: max |dx| = %.3g m\n", max_diff(a, b));
     assert_true(max_diff(a, b) < 1e-12 * 0.012);
     sim_destroy(&a);
@@ -124,8 +113,8 @@ static void test_quarter_symmetry(void **state)
     assert_non_null(full);
     assert_non_null(q);
     assert_int_equal(q->p->n * 4, full->p->n);
-    run(full);
-    run(q);
+    test_run_to_end(full);
+    test_run_to_end(q);
     /* match each quarter particle to the full bar's particle with the same
      * initial position */
     double d = 0.0;
@@ -160,11 +149,11 @@ static void test_symmetry_threads(void **state)
     omp_set_num_threads(1);
     struct sim *a = test_build(y);
     assert_non_null(a);
-    run(a);
+    test_run_to_end(a);
     omp_set_num_threads(2);
     struct sim *b = test_build(y);
     assert_non_null(b);
-    run(b);
+    test_run_to_end(b);
     assert_true(max_diff(a, b) == 0.0);
     sim_destroy(&a);
     sim_destroy(&b);
@@ -187,8 +176,8 @@ static void vec_vs_scalar(const char *yaml, const char *what)
     assert_non_null(a);
     assert_non_null(b);
     sph_set_scalar_rows(b->model);
-    run(a);
-    run(b);
+    test_run_to_end(a);
+    test_run_to_end(b);
     double moved = 0.0;
     for (int k = 0; k < a->dim; k++)
         for (size_t i = 0; i < a->p->n; i++)

@@ -34,6 +34,34 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Particle i's rates from its pair sums: force, XSPH velocity, de, the
+ * plain velocity gradient G (no CSPM on the fused path), and from it the
+ * stress rate, continuity (Eq. 3.18) and dh. */
+static inline void fused_store(struct model *m, struct particles *p, size_t i, const int dim,
+                               const double a[3], const double xv[3], double de,
+                               const double G[9])
+{
+    const double xs = m->opt.visc.xsph;
+    p->f[0][i] += p->mass[i] * a[0];
+    p->f[1][i] += p->mass[i] * a[1];
+    m->xv[0][i] = xs * xv[0];
+    m->xv[1][i] = xs * xv[1];
+    if (dim == 3) {
+        p->f[2][i] += p->mass[i] * a[2];
+        m->xv[2][i] = xs * xv[2];
+    }
+    m->de[i] = de;
+    for (int c = 0; c < 9; c++) {
+        m->L[c][i] = G[c];
+        m->Bi[c][i] = (c % 4 == 0) ? 1.0 : 0.0;
+    }
+    double trD;
+    sph_stress_rate(m, i, &trD);
+    m->drho[i] = m->opt.kern.density == SPH_DENSITY_SUMMATION ? 0.0 : -m->rho[i] * trD;
+    double trp = m->L[0][i] + m->L[4][i] + (dim == 3 ? m->L[8][i] : 0.0);
+    m->dh[i] = m->opt.kern.variable_h ? m->h[i] * trp / dim : 0.0;
+}
+
 /* The pair loop.  dim and wendland are literal at every call site so the
  * compiler emits four specialised copies. */
 static inline void fused_pass(struct model *m, struct sim *s, const struct sph_pair_src *src,
@@ -49,7 +77,6 @@ static inline void fused_pass(struct model *m, struct sim *s, const struct sph_p
     const double lav = m->opt.visc.av_length;
     const bool av = qa > 0.0 || qb > 0.0, as = zeta > 0.0;
     const double xs = m->opt.visc.xsph;
-    const bool summ = m->opt.kern.density == SPH_DENSITY_SUMMATION;
     const double *const X0 = src->x[0], *const X1 = src->x[1], *const X2 = src->x[2];
     const double *const V0 = src->v[0], *const V1 = src->v[1], *const V2 = src->v[2];
     const double *const Hs = src->h, *const Rho = src->rho, *const Cs = src->c,
@@ -177,24 +204,8 @@ static inline void fused_pass(struct model *m, struct sim *s, const struct sph_p
                 xv2 -= w * v2;
             }
         }
-        p->f[0][i] += p->mass[i] * a0;
-        p->f[1][i] += p->mass[i] * a1;
-        m->xv[0][i] = xs * xv0;
-        m->xv[1][i] = xs * xv1;
-        if (dim == 3) {
-            p->f[2][i] += p->mass[i] * a2;
-            m->xv[2][i] = xs * xv2;
-        }
-        m->de[i] = de;
-        for (int c = 0; c < 9; c++) {
-            m->L[c][i] = G[c]; /* plain gradient (no CSPM on this path) */
-            m->Bi[c][i] = (c % 4 == 0) ? 1.0 : 0.0;
-        }
-        double trD;
-        sph_stress_rate(m, i, &trD);
-        m->drho[i] = summ ? 0.0 : -m->rho[i] * trD; /* Eq. 3.18 */
-        double trp = m->L[0][i] + m->L[4][i] + (dim == 3 ? m->L[8][i] : 0.0);
-        m->dh[i] = m->opt.kern.variable_h ? m->h[i] * trp / dim : 0.0;
+        const double a[3] = {a0, a1, a2}, xv[3] = {xv0, xv1, xv2};
+        fused_store(m, p, i, dim, a, xv, de, G);
     }
 }
 
@@ -426,7 +437,6 @@ static int fused_pass_vec(struct model *m, struct sim *s, const struct sph_pair_
             cap = fv.off[i + 1] - fv.off[i];
     cap = (cap + 7) & ~(size_t)7; /* each term array 64-byte aligned */
     const double xs = m->opt.visc.xsph;
-    const bool summ = m->opt.kern.density == SPH_DENSITY_SUMMATION;
     int nomem = 0;
 #pragma omp parallel
     {
@@ -445,26 +455,9 @@ static int fused_pass_vec(struct model *m, struct sim *s, const struct sph_pair_
                 fused_vec_row3(&fv, i, t, cj, cap, sum);
             else
                 fused_vec_row2(&fv, i, t, cj, cap, sum);
-            p->f[0][i] += p->mass[i] * sum[FT_A];
-            p->f[1][i] += p->mass[i] * sum[FT_A + 1];
             /* without XSPH fused_pass's sums stay +0 */
             const double *xv = xs > 0.0 ? sum + FT_XV : (const double[3]){0.0, 0.0, 0.0};
-            m->xv[0][i] = xs * xv[0];
-            m->xv[1][i] = xs * xv[1];
-            if (dim == 3) {
-                p->f[2][i] += p->mass[i] * sum[FT_A + 2];
-                m->xv[2][i] = xs * xv[2];
-            }
-            m->de[i] = sum[FT_DE];
-            for (int c = 0; c < 9; c++) {
-                m->L[c][i] = sum[FT_G + c]; /* plain gradient (no CSPM on this path) */
-                m->Bi[c][i] = (c % 4 == 0) ? 1.0 : 0.0;
-            }
-            double trD;
-            sph_stress_rate(m, i, &trD);
-            m->drho[i] = summ ? 0.0 : -m->rho[i] * trD; /* Eq. 3.18 */
-            double trp = m->L[0][i] + m->L[4][i] + (dim == 3 ? m->L[8][i] : 0.0);
-            m->dh[i] = m->opt.kern.variable_h ? m->h[i] * trp / dim : 0.0;
+            fused_store(m, p, i, dim, sum + FT_A, xv, sum[FT_DE], sum + FT_G);
         }
         free(t);
         free(cj);
