@@ -17,6 +17,7 @@
 #include <cmocka.h>
 
 #include "tests/test_support.h"
+#include "tests/test_sph_rows.h"
 
 #include <math.h>
 #include <omp.h>
@@ -36,44 +37,26 @@ static const char *ROD =
     "initial_velocity: [{group: all, value: [0, -221.0]}]\n"
     "run: {steps: 120, dt_factor: 0.3}\n";
 
-static void vec_vs_scalar(const char *variable_h, int threads)
+static void vec_vs_scalar_rod(const char *variable_h, int threads)
 {
-    char y[2048];
+    char y[2048], what[64];
     snprintf(y, sizeof y, ROD, variable_h);
+    snprintf(what, sizeof what, "rod, variable_h %s, %d thread(s)", variable_h, threads);
     omp_set_num_threads(threads);
-    struct sim *a = test_build(y);
-    struct sim *b = test_build(y);
-    assert_non_null(a);
-    assert_non_null(b);
-    sph_set_scalar_rows(b->model);
-    test_run_to_end(a);
-    test_run_to_end(b);
-    double moved = 0.0;
-    for (size_t i = 0; i < a->p->n; i++)
-        moved = fmax(moved, fabs(a->p->x[0][i] - a->p->x0[0][i]));
-    print_message("variable_h %s, %d thread(s): radial motion up to %.3g m\n", variable_h,
-                  threads, moved);
-    assert_true(moved > 1e-6); /* the foot spread */
-    assert_int_equal(a->p->n, b->p->n);
-    for (int k = 0; k < 2; k++) {
-        assert_memory_equal(a->p->x[k], b->p->x[k], a->p->n * sizeof(double));
-        assert_memory_equal(a->p->v[k], b->p->v[k], a->p->n * sizeof(double));
-    }
-    sim_destroy(&a);
-    sim_destroy(&b);
+    vec_vs_scalar(y, what);
 }
 
 static void test_fixed_h(void **state)
 {
     (void)state;
-    vec_vs_scalar("false", 1);
-    vec_vs_scalar("false", 2);
+    vec_vs_scalar_rod("false", 1);
+    vec_vs_scalar_rod("false", 2);
 }
 
 static void test_variable_h(void **state)
 {
     (void)state;
-    vec_vs_scalar("true", 2);
+    vec_vs_scalar_rod("true", 2);
 }
 
 int main(void)

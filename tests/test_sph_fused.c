@@ -22,6 +22,7 @@
 #include <cmocka.h>
 
 #include "tests/test_support.h"
+#include "tests/test_sph_rows.h"
 
 #include <math.h>
 #include <omp.h>
@@ -155,36 +156,6 @@ static void test_symmetry_threads(void **state)
     assert_non_null(b);
     test_run_to_end(b);
     assert_true(max_diff(a, b) == 0.0);
-    sim_destroy(&a);
-    sim_destroy(&b);
-}
-
-/* Positions and velocities of two runs bit for bit. */
-static void assert_bitwise(const struct sim *a, const struct sim *b)
-{
-    assert_int_equal(a->p->n, b->p->n);
-    for (int k = 0; k < a->dim; k++) {
-        assert_memory_equal(a->p->x[k], b->p->x[k], a->p->n * sizeof(double));
-        assert_memory_equal(a->p->v[k], b->p->v[k], a->p->n * sizeof(double));
-    }
-}
-
-static void vec_vs_scalar(const char *yaml, const char *what)
-{
-    struct sim *a = test_build(yaml);
-    struct sim *b = test_build(yaml);
-    assert_non_null(a);
-    assert_non_null(b);
-    sph_set_scalar_rows(b->model);
-    test_run_to_end(a);
-    test_run_to_end(b);
-    double moved = 0.0;
-    for (int k = 0; k < a->dim; k++)
-        for (size_t i = 0; i < a->p->n; i++)
-            moved = fmax(moved, fabs(a->p->x[k][i] - a->p->x0[k][i]));
-    print_message("%s vector vs scalar rows: moved up to %.3g m\n", what, moved);
-    assert_true(moved > 1e-6); /* something happened */
-    assert_bitwise(a, b);
     sim_destroy(&a);
     sim_destroy(&b);
 }
