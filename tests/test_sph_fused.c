@@ -6,7 +6,10 @@
  *        stress and the generic kernel path and in 3D with the Wendland fast
  *        path; and symmetry planes: a quarter Taylor bar with mirror planes
  *        x = 0, y = 0 reproduces the full bar's quarter (1e-9 of the size),
- *        bitwise the same on 1 and 2 threads.
+ *        bitwise the same on 1 and 2 threads.  The vector rows of the
+ *        fused loop (Wendland, no artificial stress) against its scalar rows
+ *        (sph_set_scalar_rows): bitwise the same positions and velocities,
+ *        in 3D with fixed h and in 2D with variable h (pairs of unequal h).
  */
 #include "core/particles.h"
 #include "core/sim.h"
@@ -19,22 +22,12 @@
 #include <cmocka.h>
 
 #include "tests/test_support.h"
+#include "tests/test_sph_rows.h"
 
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <string.h>
-
-static void run(struct sim *s)
-{
-    struct spall_error err = {0};
-    while (!sim_done(s)) {
-        int rc = sim_step(s, &err);
-        if (rc)
-            print_error("%s\n", err.msg);
-        assert_int_equal(rc, 0);
-    }
-}
 
 /* Max |x_a - x_b| over particles with the same index. */
 static double max_diff(const struct sim *a, const struct sim *b)
@@ -65,8 +58,8 @@ static void test_fused_vs_split_2d(void **state)
     assert_non_null(a);
     assert_non_null(b);
     sph_set_split_loops(b->model);
-    run(a);
-    run(b);
+    test_run_to_end(a);
+    test_run_to_end(b);
     double d = max_diff(a, b);
     double moved = fabs(a->p->x[0][0] - a->p->x0[0][0]);
     assert_true(moved > 1e-6); /* something happened */
@@ -102,8 +95,8 @@ static void test_fused_vs_split_3d(void **state)
     assert_non_null(a);
     assert_non_null(b);
     sph_set_split_loops(b->model);
-    run(a);
-    run(b);
+    test_run_to_end(a);
+    test_run_to_end(b);
     print_message("3D fused vs split: max |dx| = %.3g m\n", max_diff(a, b));
     assert_true(max_diff(a, b) < 1e-12 * 0.012);
     sim_destroy(&a);
@@ -121,8 +114,8 @@ static void test_quarter_symmetry(void **state)
     assert_non_null(full);
     assert_non_null(q);
     assert_int_equal(q->p->n * 4, full->p->n);
-    run(full);
-    run(q);
+    test_run_to_end(full);
+    test_run_to_end(q);
     /* match each quarter particle to the full bar's particle with the same
      * initial position */
     double d = 0.0;
@@ -157,14 +150,39 @@ static void test_symmetry_threads(void **state)
     omp_set_num_threads(1);
     struct sim *a = test_build(y);
     assert_non_null(a);
-    run(a);
+    test_run_to_end(a);
     omp_set_num_threads(2);
     struct sim *b = test_build(y);
     assert_non_null(b);
-    run(b);
+    test_run_to_end(b);
     assert_true(max_diff(a, b) == 0.0);
     sim_destroy(&a);
     sim_destroy(&b);
+}
+
+static void test_vec_rows_3d(void **state)
+{
+    (void)state;
+    char y[2048];
+    snprintf(y, sizeof y, BAR3D, "none", FULL);
+    vec_vs_scalar(y, "3D bar");
+}
+
+/* 2D Wendland, variable h (h_i != h_j pairs), AV with a fixed length, XSPH */
+static const char *BLOCK2D_VH =
+    "model: {type: sph, kernel: wendland, h_factor: 1.3, viscosity: [1.0, 1.0],\n"
+    "        viscosity_length: 1.2e-3, xsph: 0.5, plane: strain, variable_h: true}\n"
+    "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
+    "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
+    "body: {geometry: {box: {min: [0, 0], max: [0.012, 0.008]}}, material: m}\n"
+    "groups: {left: {box: {min: [0, 0], max: [0.004, 1]}}}\n"
+    "initial_velocity: [{group: left, value: [40.0, 10.0]}]\n"
+    "run: {steps: 60}\n";
+
+static void test_vec_rows_2d(void **state)
+{
+    (void)state;
+    vec_vs_scalar(BLOCK2D_VH, "2D variable h");
 }
 
 int main(void)
@@ -174,6 +192,8 @@ int main(void)
         cmocka_unit_test(test_fused_vs_split_3d),
         cmocka_unit_test(test_quarter_symmetry),
         cmocka_unit_test(test_symmetry_threads),
+        cmocka_unit_test(test_vec_rows_3d),
+        cmocka_unit_test(test_vec_rows_2d),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

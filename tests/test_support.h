@@ -39,6 +39,18 @@ static inline struct sim *test_build_ok(const char *yaml)
     return s;
 }
 
+/** Step @p s to its end; the test fails (cause printed) on an error. */
+static inline void test_run_to_end(struct sim *s)
+{
+    struct spall_error err = {0};
+    while (!sim_done(s)) {
+        int rc = sim_step(s, &err);
+        if (rc)
+            print_error("%s\n", err.msg);
+        assert_int_equal(rc, 0);
+    }
+}
+
 /** @p yaml must be refused as bad input (SPALL_ERR_INPUT, no simulation)
  *  with a message that contains @p needle. */
 static inline void test_deck_refused(const char *yaml, const char *needle)

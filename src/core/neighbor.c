@@ -13,6 +13,13 @@
  * fill into the slot given by the serial prefix sum) and sorted ascending, so
  * the CSR is bitwise identical for any thread count, and identical to the
  * brute-force twin because both use pair_r2() for the distance test.
+ *
+ * The fill goes cell by cell: the candidates of a cell (the particles of
+ * the 3^dim cells around it) are sorted by index once, and each particle of
+ * the cell keeps the candidates within the radius in that order, so its
+ * row comes out ascending without a sort of its own.  Sorting the rows one
+ * by one was ~ 40 % of a build in 3D SPH (~ 45 particles a cell, rows of
+ * 140-200 partners: the cell's ~ 1 200 candidates once instead of 45 rows).
  */
 #include "core/neighbor.h"
 
@@ -269,6 +276,102 @@ static size_t grid_query(const struct cell_grid *g, size_t i, double *const x[3]
     }
 }
 
+/** The candidates of one cell: particle indices ascending and their
+ *  positions in that order. */
+struct cell_cands {
+    int32_t *id;
+    double *xs[3];
+    size_t cap;
+};
+
+static void cands_free(struct cell_cands *cc)
+{
+    free(cc->id);
+    for (int d = 0; d < 3; d++)
+        free(cc->xs[d]);
+    memset(cc, 0, sizeof *cc);
+}
+
+static int cands_reserve(struct cell_cands *cc, int dim, size_t m)
+{
+    if (m <= cc->cap)
+        return 0;
+    size_t cap = m + m / 2 + 64;
+    int32_t *id = realloc(cc->id, cap * sizeof *id);
+    if (!id)
+        return -1;
+    cc->id = id;
+    for (int d = 0; d < dim; d++) {
+        double *v = realloc(cc->xs[d], cap * sizeof *v);
+        if (!v)
+            return -1;
+        cc->xs[d] = v;
+    }
+    cc->cap = cap;
+    return 0;
+}
+
+/** Fill the rows of the particles of cell @p c (offsets known) from the
+ *  cell's sorted candidates; -1 when out of memory. */
+static inline int grid_fill_cell_dim(const struct cell_grid *g, const int dim, size_t c,
+                                     double *const x[3], double r2max, const size_t *off,
+                                     int32_t *idx, struct cell_cands *cc)
+{
+    const size_t s0 = g->start[c], s1 = g->start[c + 1];
+    if (s0 == s1)
+        return 0;
+    const size_t nx = (size_t)g->nc[0], ny = (size_t)g->nc[1];
+    const long c0 = (long)(c % nx), c1 = (long)((c / nx) % ny), c2 = (long)(c / (nx * ny));
+    const long x0 = c0 > 0 ? c0 - 1 : 0, x1 = c0 + 1 < g->nc[0] ? c0 + 1 : g->nc[0] - 1;
+    const long y0 = dim > 1 && c1 > 0 ? c1 - 1 : c1;
+    const long y1 = dim > 1 && c1 + 1 < g->nc[1] ? c1 + 1 : c1;
+    const long z0 = dim > 2 && c2 > 0 ? c2 - 1 : c2;
+    const long z1 = dim > 2 && c2 + 1 < g->nc[2] ? c2 + 1 : c2;
+    size_t m = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass && cands_reserve(cc, dim, m))
+            return -1;
+        m = 0;
+        for (long cz = z0; cz <= z1; cz++)
+            for (long cy = y0; cy <= y1; cy++) {
+                size_t row = ((size_t)cz * ny + (size_t)cy) * nx;
+                size_t k0 = g->start[row + (size_t)x0], k1 = g->start[row + (size_t)x1 + 1];
+                if (pass)
+                    memcpy(cc->id + m, g->order + k0, (k1 - k0) * sizeof *cc->id);
+                m += k1 - k0;
+            }
+    }
+    sort_row(cc->id, m);
+    for (int d = 0; d < dim; d++)
+        for (size_t q = 0; q < m; q++)
+            cc->xs[d][q] = x[d][cc->id[q]];
+    for (size_t k = s0; k < s1; k++) {
+        const int32_t self = g->order[k];
+        double xi[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++)
+            xi[d] = g->xs[d][k];
+        int32_t *outv = idx + off[self];
+        size_t w = 0;
+        for (size_t q = 0; q < m; q++)
+            if (pair_r2(dim, xi, cc->xs, q) < r2max && cc->id[q] != self)
+                outv[w++] = cc->id[q];
+    }
+    return 0;
+}
+
+static int grid_fill_cell(const struct cell_grid *g, size_t c, double *const x[3], double r2max,
+                          const size_t *off, int32_t *idx, struct cell_cands *cc)
+{
+    switch (g->dim) {
+    case 1:
+        return grid_fill_cell_dim(g, 1, c, x, r2max, off, idx, cc);
+    case 2:
+        return grid_fill_cell_dim(g, 2, c, x, r2max, off, idx, cc);
+    default:
+        return grid_fill_cell_dim(g, 3, c, x, r2max, off, idx, cc);
+    }
+}
+
 int neighbor_list_build(struct neighbor_list **out, int dim, size_t n, double *const x[3],
                         double radius, struct spall_error *err)
 {
@@ -302,11 +405,20 @@ int neighbor_list_build(struct neighbor_list **out, int dim, size_t n, double *c
     rc = list_finish_offsets(nl, err);
     if (!rc) {
         int32_t *idx = nl->idx;
-#pragma omp parallel for schedule(dynamic, 2048)
-        for (size_t i = 0; i < n; i++) {
-            size_t m = grid_query(&g, i, x, r2max, idx + off[i]);
-            sort_row(idx + off[i], m);
+        const size_t ncell = (size_t)g.nc[0] * (size_t)g.nc[1] * (size_t)g.nc[2];
+        int nomem = 0;
+#pragma omp parallel reduction(| : nomem)
+        {
+            struct cell_cands cc = {0};
+#pragma omp for schedule(dynamic, 16)
+            for (size_t c = 0; c < ncell; c++)
+                if (!nomem && grid_fill_cell(&g, c, x, r2max, off, idx, &cc))
+                    nomem = 1;
+            cands_free(&cc);
         }
+        if (nomem)
+            rc = spall_error_set(err, SPALL_ERR_NOMEM,
+                                 "out of memory for the neighbour candidates of a cell");
     }
     grid_free(&g);
     if (rc) {

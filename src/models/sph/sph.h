@@ -137,5 +137,10 @@ void sph_set_cspm(struct model *m, bool on);
  *  loops (tests/test_sph_fused.c, test_sph_tlsph.c, `spall bench
  *  sph_taylor_cu_tl_split`).  Call after the simulation is built. */
 void sph_set_split_loops(struct model *m);
+/** Verification only: the scalar rows of the fused loop and of the
+ *  axisymmetric passes instead of their vector rows (Wendland kernel;
+ *  sph_fused.c, sph_axisym_vec.c); bitwise the same results
+ *  (tests/test_sph_fused.c, test_sph_axisym_vec.c).  Call after the build. */
+void sph_set_scalar_rows(struct model *m);
 
 #endif

@@ -103,6 +103,11 @@ void sph_set_split_loops(struct model *m)
     m->loops.tl_split = true;
 }
 
+void sph_set_scalar_rows(struct model *m)
+{
+    m->loops.scalar_rows = true;
+}
+
 void sph_refresh_pressure(struct model *m, struct sim *s)
 {
     sph_update_pressure(m, s, SPH_FORM_ALL);

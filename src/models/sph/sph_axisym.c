@@ -150,6 +150,15 @@ static void axis_masses(struct model *m, const struct sim *s)
         m->m2[i] = p->mass[i] / (SPALL_TWO_PI * hoop_radius(m, p->x[0], i));
 }
 
+/* The pair sums as vector rows (sph_axisym_vec.c): Wendland kernel, no
+ * Balsara switch (its factor is not in the rows), not switched off for a
+ * verification (sph_set_scalar_rows). */
+static bool axi_vec(const struct model *m)
+{
+    return m->opt.kern.kernel == SPH_KERNEL_WENDLAND && !m->opt.visc.av_balsara &&
+           !m->loops.scalar_rows;
+}
+
 /* Planar corrected (CSPM, Eqs. 3.10-3.11) velocity gradient with the axis
  * images, hoop rate into L[8]; returns the number of CSPM fallbacks. */
 static size_t pass_gradient_axi(struct model *m, struct sim *s)
@@ -160,14 +169,30 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
     const int32_t *nb = m->nl->idx;
     const struct sph_support sp = sph_support_of(m);
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
+    const bool vec = axi_vec(m);
+    const size_t cap = vec ? sph_axi_vec_cap(m) : 0;
     size_t fallbacks = 0;
-#pragma omp parallel for schedule(static) firstprivate(sp) reduction(+ : fallbacks)
+#pragma omp parallel firstprivate(sp) reduction(+ : fallbacks)
+    {
+    /* the vector rows (sph_axisym_vec.c) where the scratch is there, else
+     * the scalar loop: bitwise the same sums */
+    struct sph_axi_scratch sc = {0};
+    const bool vrow = vec && !sph_axi_vec_alloc(&sc, cap);
+#pragma omp for schedule(static)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i];
         double G[4] = {0, 0, 0, 0}; /* rr rz zr zz */
         double B[9] = {0, 0, 0, 0, 0, 0, 0, 0, 1};
-        /* own image first (j = i), then the listed neighbours and theirs */
-        for (size_t k = off[i]; k <= off[i + 1]; k++) {
+        if (vrow) {
+            double Bs[4];
+            sph_axi_grad_row(m, p, i, &sc, G, Bs);
+            B[0] = Bs[0];
+            B[1] = Bs[1];
+            B[3] = Bs[2];
+            B[4] = Bs[3];
+        }
+        /* the listed neighbours and their images, then the own image (j = i) */
+        for (size_t k = off[i]; !vrow && k <= off[i + 1]; k++) {
             const bool self = k == off[i + 1];
             const size_t j = self ? i : (size_t)nb[k];
             const double hb = 0.5 * (hi + m->h[j]);
@@ -217,6 +242,8 @@ static size_t pass_gradient_axi(struct model *m, struct sim *s)
         m->L[3][i] = G[2] * Bi[0] + G[3] * Bi[3];
         m->L[4][i] = G[2] * Bi[1] + G[3] * Bi[4];
         m->L[8][i] = VR[i] / hoop_radius(m, X, i); /* D_tt = v_r / r */
+    }
+    sph_axi_vec_free(&sc);
     }
     return fallbacks;
 }
@@ -346,14 +373,31 @@ static void pass_forces_axi(struct model *m, struct sim *s)
     const double *X = p->x[0], *Z = p->x[1], *VR = p->v[0], *VZ = p->v[1];
     const double *Srr = m->sig[SXX], *Szz = m->sig[SYY], *Stt = m->sig[SZZ], *Srz = m->sig[SXY];
     const double *lam = m->ax.axl;
-#pragma omp parallel for schedule(static) firstprivate(sp)
+    const bool vec = axi_vec(m);
+    const size_t cap = vec ? sph_axi_vec_cap(m) : 0;
+#pragma omp parallel firstprivate(sp)
+    {
+    struct sph_axi_scratch sc = {0};
+    const bool vrow = vec && !sph_axi_vec_alloc(&sc, cap);
+#pragma omp for schedule(static)
     for (size_t i = 0; i < n; i++) {
         const double hi = m->h[i], rhoi = m->rho[i];
         const double ri2 = 1.0 / (rhoi * rhoi);
         const double Ri = hoop_radius(m, X, i), iRi = 1.0 / Ri;
         const double Srri = (1.0 - lam[i]) * Srr[i];
         double ar = 0.0, az = 0.0, de = 0.0, xr = 0.0, xz = 0.0;
-        for (size_t k = off[i]; k <= off[i + 1]; k++) {
+        if (vrow) {
+            double o[5];
+            sph_axi_force_row(m, p, i, &sc, o);
+            ar = o[0];
+            az = o[1];
+            de = o[2];
+            if (xs > 0.0) { /* else the scalar loop's +0 */
+                xr = o[3];
+                xz = o[4];
+            }
+        }
+        for (size_t k = off[i]; !vrow && k <= off[i + 1]; k++) {
             const bool self = k == off[i + 1];
             const size_t j = self ? i : (size_t)nb[k];
             const double hb = 0.5 * (hi + m->h[j]);
@@ -412,6 +456,8 @@ static void pass_forces_axi(struct model *m, struct sim *s)
         m->xv[0][i] = xs * xr;
         m->xv[1][i] = xs * xz;
         m->de[i] = de;
+    }
+    sph_axi_vec_free(&sc);
     }
 }
 

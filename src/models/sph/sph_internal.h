@@ -257,6 +257,28 @@ int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err);
 /** End of a step: re-reference when model.reference_update says so. */
 int sph_tlsph_reref_step(struct model *m, struct sim *s, struct spall_error *err);
 
+/* sph_axisym_vec.c: the axisymmetric pair sums as vector rows (Wendland
+ * kernel, no Balsara switch); bitwise those of sph_axisym.c's loops */
+#define SPH_AXI_TERMS 8
+struct sph_axi_scratch {
+    double *t;   /**< SPH_AXI_TERMS term arrays of cap entries */
+    double *sg;  /**< +1 a pair, -1 an axis image */
+    int32_t *cj; /**< partner of each entry */
+    size_t cap;
+};
+/** Entries of the longest row (pairs, their images, the own image). */
+size_t sph_axi_vec_cap(const struct model *m);
+/** Allocate one thread's scratch; -1 when out of memory (free it anyway). */
+int sph_axi_vec_alloc(struct sph_axi_scratch *sc, size_t cap);
+void sph_axi_vec_free(struct sph_axi_scratch *sc);
+/** pass_gradient_axi's sums of row i: G (rr rz zr zz) and the amounts to
+ *  subtract from B (rr rz zr zz). */
+void sph_axi_grad_row(const struct model *m, const struct particles *p, size_t i,
+                      struct sph_axi_scratch *sc, double G[4], double Bs[4]);
+/** pass_forces_axi's pair sums of row i: a_r, a_z, de, and the XSPH sums. */
+void sph_axi_force_row(const struct model *m, const struct particles *p, size_t i,
+                       struct sph_axi_scratch *sc, double out[5]);
+
 /* sph_axisym.c */
 /** Ring masses M = 2 pi r A rho0, planar masses, the surface; flags the sim. */
 void sph_axisym_init(struct model *m, struct sim *s);

@@ -116,6 +116,7 @@ struct sph_options {
 struct sph_loops {
     bool split_pairs;       /**< the two-pass loops of sph_rates.c */
     bool tl_split;          /**< TLSPH: stages one after the other, not pipelined */
+    bool scalar_rows;       /**< fused loop: the scalar rows, not the vector rows */
 };
 
 /** What sph_options_parse reads besides the options. */
