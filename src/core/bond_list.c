@@ -101,6 +101,102 @@ int bond_list_build(struct bond_list **out, const struct particles *p, double ra
     return SPALL_OK;
 }
 
+/** Rest lengths of a built list (partners and offsets set, rest and
+ *  rest_idx NULL) as a 16-bit index into their distinct values, computed
+ *  row by row without the 8-byte array: the index and table that
+ *  bond_list_compact_rest would make of the doubles (serial, in slot order,
+ *  so the table's order is that of bond_list_compact_rest on any thread
+ *  count).  More distinct lengths than an index holds: the doubles. */
+static int rest_fill_compact(struct bond_list *bl, const struct particles *p,
+                             struct spall_error *err)
+{
+    const size_t n = bl->n, m = bl->offset[n];
+    struct distinct16 *d = NULL;
+    int rc = distinct16_create(&d, sizeof(double), 65536u, err);
+    if (rc)
+        return rc;
+    uint16_t *idx = malloc((m ? m : 1) * sizeof *idx);
+    if (!idx) {
+        distinct16_destroy(&d);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
+    }
+    bool fits = true;
+    for (size_t i = 0; i < n && fits; i++)
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1] && fits; k++) {
+            const double r = ref_length(p, i, (size_t)bl->partner[k]);
+            unsigned char key[sizeof r];
+            memcpy(key, &r, sizeof r);
+            const int32_t row = distinct16_add(d, key);
+            fits = row >= 0;
+            idx[k] = (uint16_t)(fits ? row : 0);
+        }
+    double *tab = fits ? distinct16_take_table(d, &bl->n_rest) : NULL;
+    distinct16_destroy(&d);
+    if (tab) {
+        bl->rest_idx = idx;
+        bl->rest_tab = tab;
+        return SPALL_OK;
+    }
+    free(idx);
+    bl->n_rest = 0;
+    bl->rest = malloc((m ? m : 1) * sizeof *bl->rest);
+    if (!bl->rest)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++)
+            bl->rest[k] = ref_length(p, i, (size_t)bl->partner[k]);
+    return SPALL_OK;
+}
+
+int bond_list_build_compact(struct bond_list **out, const struct particles *p, double radius,
+                            struct spall_error *err)
+{
+    *out = NULL;
+    struct neighbor_list *nl = NULL;
+    int rc = search_reference(&nl, p, radius, err);
+    if (rc)
+        return rc;
+    struct bond_list *bl = calloc(1, sizeof *bl);
+    const size_t m = nl->offset[p->n];
+    if (!bl || !(bl->state = calloc(m ? m : 1, sizeof *bl->state))) {
+        free(bl);
+        neighbor_list_destroy(&nl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
+    }
+    bl->n = p->n;
+    bl->offset = nl->offset;
+    bl->partner = nl->idx;
+    nl->offset = NULL;
+    nl->idx = NULL;
+    neighbor_list_destroy(&nl);
+    if ((rc = rest_fill_compact(bl, p, err))) {
+        bond_list_destroy(&bl);
+        return rc;
+    }
+    *out = bl;
+    return SPALL_OK;
+}
+
+int bond_list_expand_rest(struct bond_list *bl, struct spall_error *err)
+{
+    if (!bl || !bl->rest_idx)
+        return SPALL_OK;
+    const size_t m = bl->offset[bl->n];
+    double *rest = malloc((m ? m : 1) * sizeof *rest);
+    if (!rest)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu rest lengths", m);
+    for (size_t k = 0; k < m; k++)
+        rest[k] = bl->rest_tab[bl->rest_idx[k]];
+    free(bl->rest_idx);
+    free(bl->rest_tab);
+    bl->rest_idx = NULL;
+    bl->rest_tab = NULL;
+    bl->n_rest = 0;
+    bl->rest = rest;
+    return SPALL_OK;
+}
+
 /** Shell of a pair at distance r: the first s with r_lo[s] <= r < r_hi[s], or -1. */
 static inline int shell_of(double r, int n_shells, const double *r_lo, const double *r_hi)
 {
