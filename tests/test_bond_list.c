@@ -314,6 +314,24 @@ static void test_build_compact(void **state)
     bond_list_destroy(&a);
     bond_list_destroy(&b);
     free(before);
+
+    /* shells: the types as well */
+    const double slo[2] = {0.99 * R0, 0.99 * sqrt(3.0) * R0};
+    const double shi[2] = {1.01 * R0, 1.01 * sqrt(3.0) * R0};
+    a = two_shells(p);
+    assert_int_equal(bond_list_compact_rest(a, &err), SPALL_OK);
+    assert_int_equal(bond_list_build_shells_compact(&b, p, 2, slo, shi, &err), SPALL_OK);
+    const size_t ms = a->offset[a->n];
+    assert_memory_equal(a->offset, b->offset, (a->n + 1) * sizeof *a->offset);
+    assert_memory_equal(a->partner, b->partner, ms * sizeof *a->partner);
+    assert_memory_equal(a->type, b->type, ms * sizeof *a->type);
+    assert_null(b->rest);
+    assert_int_equal(b->n_rest, a->n_rest);
+    assert_memory_equal(b->rest_tab, a->rest_tab, a->n_rest * sizeof *a->rest_tab);
+    assert_memory_equal(b->rest_idx, a->rest_idx, ms * sizeof *a->rest_idx);
+    assert_int_equal(bond_list_bytes(b), bond_list_bytes(a));
+    bond_list_destroy(&a);
+    bond_list_destroy(&b);
     particles_destroy(&p);
 
     struct particles *q = NULL;

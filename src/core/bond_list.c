@@ -37,21 +37,21 @@ static inline double ref_length(const struct particles *p, size_t i, size_t j)
 
 /** Allocate a list of @p n particles and @p m half-bonds; offset is zeroed. */
 static int bond_list_alloc(struct bond_list **out, size_t n, size_t m, bool with_partner,
-                           struct spall_error *err)
+                           bool with_rest, struct spall_error *err)
 {
     struct bond_list *bl = calloc(1, sizeof *bl);
     if (!bl)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for a bond list");
     bl->n = n;
     size_t mm = m ? m : 1;
-    bl->rest = malloc(mm * sizeof *bl->rest);
+    bl->rest = with_rest ? malloc(mm * sizeof *bl->rest) : NULL;
     bl->state = calloc(mm, sizeof *bl->state);
     bl->type = calloc(mm, sizeof *bl->type);
     if (with_partner) {
         bl->offset = calloc(n + 1, sizeof *bl->offset);
         bl->partner = malloc(mm * sizeof *bl->partner);
     }
-    if (!bl->rest || !bl->state || !bl->type || (with_partner && (!bl->offset || !bl->partner))) {
+    if ((with_rest && !bl->rest) || !bl->state || !bl->type || (with_partner && (!bl->offset || !bl->partner))) {
         bond_list_destroy(&bl);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
     }
@@ -80,7 +80,7 @@ int bond_list_build(struct bond_list **out, const struct particles *p, double ra
     if (rc)
         return rc;
     struct bond_list *bl = NULL;
-    rc = bond_list_alloc(&bl, p->n, nl->offset[p->n], false, err);
+    rc = bond_list_alloc(&bl, p->n, nl->offset[p->n], false, true, err);
     if (rc) {
         neighbor_list_destroy(&nl);
         return rc;
@@ -206,8 +206,9 @@ static inline int shell_of(double r, int n_shells, const double *r_lo, const dou
     return -1;
 }
 
-int bond_list_build_shells(struct bond_list **out, const struct particles *p, int n_shells,
-                           const double *r_lo, const double *r_hi, struct spall_error *err)
+static int build_shells(struct bond_list **out, const struct particles *p, int n_shells,
+                        const double *r_lo, const double *r_hi, bool compact,
+                        struct spall_error *err)
 {
     *out = NULL;
     if (n_shells < 1 || n_shells > 256)
@@ -245,7 +246,7 @@ int bond_list_build_shells(struct bond_list **out, const struct particles *p, in
     for (size_t i = 0; i < n; i++)
         cnt[i + 1] += cnt[i];
     struct bond_list *bl = NULL;
-    rc = bond_list_alloc(&bl, n, cnt[n], true, err);
+    rc = bond_list_alloc(&bl, n, cnt[n], true, !compact, err);
     if (rc) {
         free(cnt);
         neighbor_list_destroy(&nl);
@@ -262,14 +263,32 @@ int bond_list_build_shells(struct bond_list **out, const struct particles *p, in
             if (s < 0 || p->body[i] != p->body[nl->idx[k]]) /* bonds never cross bodies */
                 continue;
             bl->partner[w] = nl->idx[k];
-            bl->rest[w] = r;
+            if (!compact)
+                bl->rest[w] = r;
             bl->type[w] = (uint8_t)s;
             w++;
         }
     }
     neighbor_list_destroy(&nl);
+    if (compact && (rc = rest_fill_compact(bl, p, err))) {
+        bond_list_destroy(&bl);
+        return rc;
+    }
     *out = bl;
     return SPALL_OK;
+}
+
+int bond_list_build_shells(struct bond_list **out, const struct particles *p, int n_shells,
+                           const double *r_lo, const double *r_hi, struct spall_error *err)
+{
+    return build_shells(out, p, n_shells, r_lo, r_hi, false, err);
+}
+
+int bond_list_build_shells_compact(struct bond_list **out, const struct particles *p,
+                                   int n_shells, const double *r_lo, const double *r_hi,
+                                   struct spall_error *err)
+{
+    return build_shells(out, p, n_shells, r_lo, r_hi, true, err);
 }
 
 void bond_list_destroy(struct bond_list **pbl)

@@ -97,6 +97,12 @@ int bond_list_expand_rest(struct bond_list *bl, struct spall_error *err);
  *  shells [r_lo[s], r_hi[s]); type = s.  Used for lattice neighbour layers. */
 int bond_list_build_shells(struct bond_list **out, const struct particles *p, int n_shells,
                            const double *r_lo, const double *r_hi, struct spall_error *err);
+/** bond_list_build_shells with the rest lengths compact from the start, as
+ *  bond_list_build_compact (types kept): for lists whose lengths never
+ *  change. */
+int bond_list_build_shells_compact(struct bond_list **out, const struct particles *p,
+                                   int n_shells, const double *r_lo, const double *r_hi,
+                                   struct spall_error *err);
 void bond_list_destroy(struct bond_list **bl);
 
 /** Build the reverse-slot index (needed by angular springs). */
