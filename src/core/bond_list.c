@@ -456,6 +456,16 @@ void bond_list_replace(struct bond_list *bl, size_t n, size_t *offset, int32_t *
     bl->reverse = NULL;
 }
 
+/** array_gather of @p old (NULL: nothing), which is freed; *ok false once
+ *  out of memory (then NULL, and nothing more is gathered). */
+static void *gather_free(void *old, size_t size, const size_t *idx, size_t n, int *ok)
+{
+    void *kept = old && *ok ? array_gather(old, size, idx, n) : NULL;
+    *ok = *ok && (!old || kept);
+    free(old);
+    return kept;
+}
+
 int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, size_t n_owned,
                        const int64_t *new_of_old, size_t **old_half, size_t *n_half,
                        struct spall_error *err)
@@ -482,14 +492,28 @@ int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, 
             }
         offset[k + 1] = w;
     }
-    /* the rest lengths as they are stored: doubles, the compact index (the
-     * table stays: it holds every value a kept index can name) or neither (a
-     * model that keeps them elsewhere); type may be NULL likewise */
-    double *rest = bl->rest ? array_gather(bl->rest, sizeof *rest, oh, nh) : NULL;
-    uint16_t *ridx = bl->rest_idx ? array_gather(bl->rest_idx, sizeof *ridx, oh, nh) : NULL;
-    uint8_t *state = array_gather(bl->state, sizeof *state, oh, nh);
-    uint8_t *type = bl->type ? array_gather(bl->type, sizeof *type, oh, nh) : NULL;
-    if ((bl->rest && !rest) || (bl->rest_idx && !ridx) || !state || (bl->type && !type)) {
+    /* The old arrays go one by one as their kept parts are copied, so that
+     * a distributed set-up (every rank holds the whole body until here)
+     * never holds the whole list and the kept one at once: the old partners
+     * first, then each array right after its gather.  The rest lengths as
+     * they are stored: doubles, the compact index (the table stays: it
+     * holds every value a kept index can name) or neither (a model that
+     * keeps them elsewhere); type may be NULL likewise.  Out of memory
+     * leaves a list the run can only destroy. */
+    free(bl->partner);
+    free(bl->reverse);
+    bl->partner = NULL;
+    bl->reverse = NULL;
+    int ok = 1;
+    double *rest = gather_free(bl->rest, sizeof *rest, oh, nh, &ok);
+    uint16_t *ridx = gather_free(bl->rest_idx, sizeof *ridx, oh, nh, &ok);
+    uint8_t *state = gather_free(bl->state, sizeof *state, oh, nh, &ok);
+    uint8_t *type = gather_free(bl->type, sizeof *type, oh, nh, &ok);
+    bl->rest = NULL;
+    bl->rest_idx = NULL;
+    bl->state = NULL;
+    bl->type = NULL;
+    if (!ok || !state) {
         free(offset);
         free(oh);
         free(partner);
