@@ -37,7 +37,7 @@ static inline double ref_length(const struct particles *p, size_t i, size_t j)
 
 /** Allocate a list of @p n particles and @p m half-bonds; offset is zeroed. */
 static int bond_list_alloc(struct bond_list **out, size_t n, size_t m, bool with_partner,
-                           bool with_rest, struct spall_error *err)
+                           bool with_rest, bool with_type, struct spall_error *err)
 {
     struct bond_list *bl = calloc(1, sizeof *bl);
     if (!bl)
@@ -46,12 +46,13 @@ static int bond_list_alloc(struct bond_list **out, size_t n, size_t m, bool with
     size_t mm = m ? m : 1;
     bl->rest = with_rest ? malloc(mm * sizeof *bl->rest) : NULL;
     bl->state = calloc(mm, sizeof *bl->state);
-    bl->type = calloc(mm, sizeof *bl->type);
+    bl->type = with_type ? calloc(mm, sizeof *bl->type) : NULL;
     if (with_partner) {
         bl->offset = calloc(n + 1, sizeof *bl->offset);
         bl->partner = malloc(mm * sizeof *bl->partner);
     }
-    if ((with_rest && !bl->rest) || !bl->state || !bl->type || (with_partner && (!bl->offset || !bl->partner))) {
+    if ((with_rest && !bl->rest) || !bl->state || (with_type && !bl->type) ||
+        (with_partner && (!bl->offset || !bl->partner))) {
         bond_list_destroy(&bl);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
     }
@@ -71,33 +72,16 @@ static int search_reference(struct neighbor_list **nl, const struct particles *p
     return rc;
 }
 
-int bond_list_build(struct bond_list **out, const struct particles *p, double radius,
-                    struct spall_error *err)
+/** Rest lengths of a built list (partners and offsets set) as doubles. */
+static int rest_fill(struct bond_list *bl, const struct particles *p, struct spall_error *err)
 {
-    *out = NULL;
-    struct neighbor_list *nl = NULL;
-    int rc = search_reference(&nl, p, radius, err);
-    if (rc)
-        return rc;
-    struct bond_list *bl = NULL;
-    rc = bond_list_alloc(&bl, p->n, nl->offset[p->n], false, true, err);
-    if (rc) {
-        neighbor_list_destroy(&nl);
-        return rc;
-    }
-    /* The neighbour list already is the CSR we need: take its arrays. */
-    bl->offset = nl->offset;
-    bl->partner = nl->idx;
-    nl->offset = NULL;
-    nl->idx = NULL;
-    neighbor_list_destroy(&nl);
-
-    size_t n = p->n;
+    const size_t n = bl->n, m = bl->offset[n];
+    if (!bl->rest && !(bl->rest = malloc((m ? m : 1) * sizeof *bl->rest)))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++)
         for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++)
             bl->rest[k] = ref_length(p, i, (size_t)bl->partner[k]);
-    *out = bl;
     return SPALL_OK;
 }
 
@@ -139,43 +123,49 @@ static int rest_fill_compact(struct bond_list *bl, const struct particles *p,
     }
     free(idx);
     bl->n_rest = 0;
-    bl->rest = malloc((m ? m : 1) * sizeof *bl->rest);
-    if (!bl->rest)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++)
-        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++)
-            bl->rest[k] = ref_length(p, i, (size_t)bl->partner[k]);
-    return SPALL_OK;
+    return rest_fill(bl, p, err);
 }
 
-int bond_list_build_compact(struct bond_list **out, const struct particles *p, double radius,
-                            struct spall_error *err)
+/* bond_list_build(_compact): the neighbour list already is the CSR we
+ * need, so the list takes its arrays. */
+static int build_radius(struct bond_list **out, const struct particles *p, double radius,
+                        bool compact, struct spall_error *err)
 {
     *out = NULL;
     struct neighbor_list *nl = NULL;
     int rc = search_reference(&nl, p, radius, err);
     if (rc)
         return rc;
-    struct bond_list *bl = calloc(1, sizeof *bl);
-    const size_t m = nl->offset[p->n];
-    if (!bl || !(bl->state = calloc(m ? m : 1, sizeof *bl->state))) {
-        free(bl);
+    struct bond_list *bl = NULL;
+    /* compact: no types either, the caller (pd_compact_build) keys them */
+    rc = bond_list_alloc(&bl, p->n, nl->offset[p->n], false, !compact, !compact, err);
+    if (rc) {
         neighbor_list_destroy(&nl);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
+        return rc;
     }
-    bl->n = p->n;
     bl->offset = nl->offset;
     bl->partner = nl->idx;
     nl->offset = NULL;
     nl->idx = NULL;
     neighbor_list_destroy(&nl);
-    if ((rc = rest_fill_compact(bl, p, err))) {
+    if ((rc = compact ? rest_fill_compact(bl, p, err) : rest_fill(bl, p, err))) {
         bond_list_destroy(&bl);
         return rc;
     }
     *out = bl;
     return SPALL_OK;
+}
+
+int bond_list_build(struct bond_list **out, const struct particles *p, double radius,
+                    struct spall_error *err)
+{
+    return build_radius(out, p, radius, false, err);
+}
+
+int bond_list_build_compact(struct bond_list **out, const struct particles *p, double radius,
+                            struct spall_error *err)
+{
+    return build_radius(out, p, radius, true, err);
 }
 
 int bond_list_expand_rest(struct bond_list *bl, struct spall_error *err)
@@ -246,7 +236,7 @@ static int build_shells(struct bond_list **out, const struct particles *p, int n
     for (size_t i = 0; i < n; i++)
         cnt[i + 1] += cnt[i];
     struct bond_list *bl = NULL;
-    rc = bond_list_alloc(&bl, n, cnt[n], true, !compact, err);
+    rc = bond_list_alloc(&bl, n, cnt[n], true, !compact, true, err);
     if (rc) {
         free(cnt);
         neighbor_list_destroy(&nl);

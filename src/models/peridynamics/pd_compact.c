@@ -131,8 +131,7 @@ int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err)
         return rc;
     }
     m->kind = kind;
-    /* the compact family holds the lengths: the list keeps none, as after
-     * pd_compact */
+    /* the compact family holds the lengths (k_rest): the list keeps none */
     free(bl->rest);
     free(bl->rest_idx);
     free(bl->rest_tab);

@@ -2,7 +2,8 @@
 first and last frame, the number of points and cells ParaView reads and the
 bounds of the points; exits 1 when a frame has no points or fewer cells than
 points (ParaView's default Surface view draws cells).  Run by pvbatch under a
-virtual X server (tests/client/pvbatch.sh, or xvfb-run -a pvbatch):
+virtual X server (tests/client/pvbatch.sh, or xvfb-run -a pvbatch), e.g. by
+bench/impact_block_3d.sh:
 
     pvbatch pv_points.py RUN/fields.xdmf
 """
