@@ -10,11 +10,12 @@
  *        The table holds the very doubles the arrays would hold, so every
  *        result is bit for bit that of `bond_storage: full`.  The set-up
  *        builds the rows directly, one half-bond at a time, and never holds
- *        the arrays: its peak memory stays near the run's (issue 25 item 2).  Formulations with more per-bond data
- *        (lps, eps) and orthotropic laminae (their calibration rebuilds the
- *        coefficients of a built model; the mixed-mode and fiber-plane rules)
- *        keep the arrays, as does a problem with more than 65 535 distinct
- *        triples (e.g. a surface-corrected irregular body).
+ *        the arrays: its peak memory stays near the run's (issue 25 item
+ *        2).  Formulations with more per-bond data (lps, eps) and
+ *        orthotropic laminae (their calibration rebuilds the coefficients
+ *        of a built model; the mixed-mode and fiber-plane rules) keep the
+ *        arrays, as does a problem with more than 65 535 distinct triples
+ *        (e.g. a surface-corrected irregular body).
  */
 #include "models/peridynamics/pd_internal.h"
 
@@ -49,7 +50,8 @@ bool pd_compact_predicted(const struct model *m)
     return !m->opt.full_bonds && !m->opt.lps && !m->opt.eps && !m->opt.fiber_plane && !ortho;
 }
 
-/* Store the (length, coefficient, type) rows of kind_key from the table. */
+/* The model's (length, coefficient, type) rows from the table of keys
+ * (PD_KIND_KEY bytes each; @p tab is freed). */
 static int kinds_from_table(struct model *m, unsigned char *tab, size_t nk,
                             struct spall_error *err)
 {
@@ -90,11 +92,11 @@ int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err)
     uint16_t *kind = rc ? NULL : malloc((nh ? nh : 1) * sizeof *kind);
     if (!rc && !kind)
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
-    /* The keys of kind_key in slot order, as pd_build_coefficients, the
-     * bond types of pd_init (isotropic: no fiber bit) and
-     * pd_interfaces_apply would have stored them, so the table and rows are
-     * those pd_compact makes of the arrays. */
-    bool fits = nh > 0; /* no bonds: the arrays, as pd_compact leaves them */
+    /* The keys in slot order, each from the values pd_build_coefficients,
+     * the bond types of pd_init (isotropic: no fiber bit) and
+     * pd_interfaces_apply store in the arrays, so that every row holds the
+     * doubles `bond_storage: full` uses. */
+    bool fits = nh > 0; /* no bonds: the (empty) arrays, no table */
     for (size_t i = 0; !rc && i < n && fits; i++)
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1] && fits; s++) {
             const size_t j = (size_t)bl->partner[s];
