@@ -262,6 +262,102 @@ static void test_compact_rest(void **state)
     particles_destroy(&p);
 }
 
+/* bond_list_build_compact: the bonds of bond_list_build and the index and
+ * table bond_list_compact_rest makes of its doubles, without the doubles
+ * ever existing; bond_list_expand_rest gives the doubles back.  With more
+ * distinct lengths than an index holds (a jittered plate) the doubles, bit
+ * for bit those of bond_list_build. */
+static void same_bonds(const struct bond_list *a, const struct bond_list *b)
+{
+    assert_int_equal(a->n, b->n);
+    assert_memory_equal(a->offset, b->offset, (a->n + 1) * sizeof *a->offset);
+    const size_t m = a->offset[a->n];
+    assert_memory_equal(a->partner, b->partner, m * sizeof *a->partner);
+    for (size_t k = 0; k < m; k++)
+        assert_int_equal(b->state[k], 0);
+    assert_null(b->type);
+}
+
+/* splitmix64's finaliser: neighbouring sites get unrelated jitters */
+static uint64_t mix64(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+static void test_build_compact(void **state)
+{
+    (void)state;
+    struct spall_error err = {0};
+    struct particles *p = plate();
+    const double radius = 1.01 * sqrt(3.0) * R0; /* two shells */
+    struct bond_list *a = NULL, *b = NULL;
+    assert_int_equal(bond_list_build(&a, p, radius, &err), SPALL_OK);
+    const size_t m = a->offset[a->n];
+    double *before = malloc(m * sizeof *before);
+    assert_non_null(before);
+    memcpy(before, a->rest, m * sizeof *before);
+    assert_int_equal(bond_list_compact_rest(a, &err), SPALL_OK);
+    assert_int_equal(bond_list_build_compact(&b, p, radius, &err), SPALL_OK);
+    same_bonds(a, b);
+    assert_null(b->rest);
+    assert_int_equal(b->n_rest, a->n_rest);
+    assert_memory_equal(b->rest_tab, a->rest_tab, a->n_rest * sizeof *a->rest_tab);
+    assert_memory_equal(b->rest_idx, a->rest_idx, m * sizeof *a->rest_idx);
+    assert_int_equal(bond_list_expand_rest(b, &err), SPALL_OK);
+    assert_null(b->rest_idx);
+    assert_null(b->rest_tab);
+    assert_memory_equal(b->rest, before, m * sizeof *before);
+    assert_int_equal(bond_list_expand_rest(b, &err), SPALL_OK); /* again: nothing to do */
+    assert_memory_equal(b->rest, before, m * sizeof *before);
+    bond_list_destroy(&a);
+    bond_list_destroy(&b);
+    free(before);
+
+    /* shells: the types as well */
+    const double slo[2] = {0.99 * R0, 0.99 * sqrt(3.0) * R0};
+    const double shi[2] = {1.01 * R0, 1.01 * sqrt(3.0) * R0};
+    a = two_shells(p);
+    assert_int_equal(bond_list_compact_rest(a, &err), SPALL_OK);
+    assert_int_equal(bond_list_build_shells_compact(&b, p, 2, slo, shi, &err), SPALL_OK);
+    const size_t ms = a->offset[a->n];
+    assert_memory_equal(a->offset, b->offset, (a->n + 1) * sizeof *a->offset);
+    assert_memory_equal(a->partner, b->partner, ms * sizeof *a->partner);
+    assert_memory_equal(a->type, b->type, ms * sizeof *a->type);
+    assert_null(b->rest);
+    assert_int_equal(b->n_rest, a->n_rest);
+    assert_memory_equal(b->rest_tab, a->rest_tab, a->n_rest * sizeof *a->rest_tab);
+    assert_memory_equal(b->rest_idx, a->rest_idx, ms * sizeof *a->rest_idx);
+    assert_int_equal(bond_list_bytes(b), bond_list_bytes(a));
+    bond_list_destroy(&a);
+    bond_list_destroy(&b);
+    particles_destroy(&p);
+
+    struct particles *q = NULL;
+    assert_int_equal(particles_create(&q, 2, 0, &err), SPALL_OK);
+    const double lo[3] = {0, 0, 0}, hi[3] = {200 * R0, 200 * R0, 0};
+    struct geom *box = geom_box(lo, hi);
+    struct lattice_spec sp = {.kind = LATTICE_TRIANGULAR, .spacing = R0};
+    size_t nq = 0;
+    assert_int_equal(lattice_fill(q, &sp, box, 0, &nq, &err), SPALL_OK);
+    geom_destroy(&box);
+    for (size_t i = 0; i < nq; i++) /* hashed, in [0, 1e-5 R0): the same neighbours */
+        for (int d = 0; d < 2; d++)
+            q->x0[d][i] += 1e-5 * R0 * 0x1p-53 * (double)(mix64(2 * i + (size_t)d) >> 11);
+    assert_int_equal(bond_list_build(&a, q, 1.01 * R0, &err), SPALL_OK);
+    assert_int_equal(bond_list_build_compact(&b, q, 1.01 * R0, &err), SPALL_OK);
+    const size_t mq = a->offset[a->n];
+    assert_true(mq > 2 * 65536); /* each bond's two halves share a length */
+    same_bonds(a, b);
+    assert_null(b->rest_idx);
+    assert_non_null(b->rest);
+    assert_memory_equal(b->rest, a->rest, mq * sizeof *a->rest);
+    bond_list_destroy(&a);
+    bond_list_destroy(&b);
+    particles_destroy(&q);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -285,6 +381,7 @@ int main(void)
         cmocka_unit_test(test_reverse),
         cmocka_unit_test(test_precrack),
         cmocka_unit_test(test_compact_rest),
+        cmocka_unit_test(test_build_compact),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -37,21 +37,22 @@ static inline double ref_length(const struct particles *p, size_t i, size_t j)
 
 /** Allocate a list of @p n particles and @p m half-bonds; offset is zeroed. */
 static int bond_list_alloc(struct bond_list **out, size_t n, size_t m, bool with_partner,
-                           struct spall_error *err)
+                           bool with_rest, bool with_type, struct spall_error *err)
 {
     struct bond_list *bl = calloc(1, sizeof *bl);
     if (!bl)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for a bond list");
     bl->n = n;
     size_t mm = m ? m : 1;
-    bl->rest = malloc(mm * sizeof *bl->rest);
+    bl->rest = with_rest ? malloc(mm * sizeof *bl->rest) : NULL;
     bl->state = calloc(mm, sizeof *bl->state);
-    bl->type = calloc(mm, sizeof *bl->type);
+    bl->type = with_type ? calloc(mm, sizeof *bl->type) : NULL;
     if (with_partner) {
         bl->offset = calloc(n + 1, sizeof *bl->offset);
         bl->partner = malloc(mm * sizeof *bl->partner);
     }
-    if (!bl->rest || !bl->state || !bl->type || (with_partner && (!bl->offset || !bl->partner))) {
+    if ((with_rest && !bl->rest) || !bl->state || (with_type && !bl->type) ||
+        (with_partner && (!bl->offset || !bl->partner))) {
         bond_list_destroy(&bl);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
     }
@@ -71,8 +72,64 @@ static int search_reference(struct neighbor_list **nl, const struct particles *p
     return rc;
 }
 
-int bond_list_build(struct bond_list **out, const struct particles *p, double radius,
-                    struct spall_error *err)
+/** Rest lengths of a built list (partners and offsets set) as doubles. */
+static int rest_fill(struct bond_list *bl, const struct particles *p, struct spall_error *err)
+{
+    const size_t n = bl->n, m = bl->offset[n];
+    if (!bl->rest && !(bl->rest = malloc((m ? m : 1) * sizeof *bl->rest)))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++)
+            bl->rest[k] = ref_length(p, i, (size_t)bl->partner[k]);
+    return SPALL_OK;
+}
+
+/** Rest lengths of a built list (partners and offsets set, rest and
+ *  rest_idx NULL) as a 16-bit index into their distinct values, computed
+ *  row by row without the 8-byte array: the index and table that
+ *  bond_list_compact_rest would make of the doubles (serial, in slot order,
+ *  so the table's order is that of bond_list_compact_rest on any thread
+ *  count).  More distinct lengths than an index holds: the doubles. */
+static int rest_fill_compact(struct bond_list *bl, const struct particles *p,
+                             struct spall_error *err)
+{
+    const size_t n = bl->n, m = bl->offset[n];
+    struct distinct16 *d = NULL;
+    int rc = distinct16_create(&d, sizeof(double), 65536u, err);
+    if (rc)
+        return rc;
+    uint16_t *idx = malloc((m ? m : 1) * sizeof *idx);
+    if (!idx) {
+        distinct16_destroy(&d);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu half-bonds", m);
+    }
+    bool fits = true;
+    for (size_t i = 0; i < n && fits; i++)
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1] && fits; k++) {
+            const double r = ref_length(p, i, (size_t)bl->partner[k]);
+            unsigned char key[sizeof r];
+            memcpy(key, &r, sizeof r);
+            const int32_t row = distinct16_add(d, key);
+            fits = row >= 0;
+            idx[k] = (uint16_t)(fits ? row : 0);
+        }
+    double *tab = fits ? distinct16_take_table(d, &bl->n_rest) : NULL;
+    distinct16_destroy(&d);
+    if (tab) {
+        bl->rest_idx = idx;
+        bl->rest_tab = tab;
+        return SPALL_OK;
+    }
+    free(idx);
+    bl->n_rest = 0;
+    return rest_fill(bl, p, err);
+}
+
+/* bond_list_build(_compact): the neighbour list already is the CSR we
+ * need, so the list takes its arrays. */
+static int build_radius(struct bond_list **out, const struct particles *p, double radius,
+                        bool compact, struct spall_error *err)
 {
     *out = NULL;
     struct neighbor_list *nl = NULL;
@@ -80,24 +137,53 @@ int bond_list_build(struct bond_list **out, const struct particles *p, double ra
     if (rc)
         return rc;
     struct bond_list *bl = NULL;
-    rc = bond_list_alloc(&bl, p->n, nl->offset[p->n], false, err);
+    /* compact: no types either, the caller (pd_compact_build) keys them */
+    rc = bond_list_alloc(&bl, p->n, nl->offset[p->n], false, !compact, !compact, err);
     if (rc) {
         neighbor_list_destroy(&nl);
         return rc;
     }
-    /* The neighbour list already is the CSR we need: take its arrays. */
     bl->offset = nl->offset;
     bl->partner = nl->idx;
     nl->offset = NULL;
     nl->idx = NULL;
     neighbor_list_destroy(&nl);
-
-    size_t n = p->n;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++)
-        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++)
-            bl->rest[k] = ref_length(p, i, (size_t)bl->partner[k]);
+    if ((rc = compact ? rest_fill_compact(bl, p, err) : rest_fill(bl, p, err))) {
+        bond_list_destroy(&bl);
+        return rc;
+    }
     *out = bl;
+    return SPALL_OK;
+}
+
+int bond_list_build(struct bond_list **out, const struct particles *p, double radius,
+                    struct spall_error *err)
+{
+    return build_radius(out, p, radius, false, err);
+}
+
+int bond_list_build_compact(struct bond_list **out, const struct particles *p, double radius,
+                            struct spall_error *err)
+{
+    return build_radius(out, p, radius, true, err);
+}
+
+int bond_list_expand_rest(struct bond_list *bl, struct spall_error *err)
+{
+    if (!bl || !bl->rest_idx)
+        return SPALL_OK;
+    const size_t m = bl->offset[bl->n];
+    double *rest = malloc((m ? m : 1) * sizeof *rest);
+    if (!rest)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu rest lengths", m);
+    for (size_t k = 0; k < m; k++)
+        rest[k] = bl->rest_tab[bl->rest_idx[k]];
+    free(bl->rest_idx);
+    free(bl->rest_tab);
+    bl->rest_idx = NULL;
+    bl->rest_tab = NULL;
+    bl->n_rest = 0;
+    bl->rest = rest;
     return SPALL_OK;
 }
 
@@ -110,8 +196,9 @@ static inline int shell_of(double r, int n_shells, const double *r_lo, const dou
     return -1;
 }
 
-int bond_list_build_shells(struct bond_list **out, const struct particles *p, int n_shells,
-                           const double *r_lo, const double *r_hi, struct spall_error *err)
+static int build_shells(struct bond_list **out, const struct particles *p, int n_shells,
+                        const double *r_lo, const double *r_hi, bool compact,
+                        struct spall_error *err)
 {
     *out = NULL;
     if (n_shells < 1 || n_shells > 256)
@@ -149,7 +236,7 @@ int bond_list_build_shells(struct bond_list **out, const struct particles *p, in
     for (size_t i = 0; i < n; i++)
         cnt[i + 1] += cnt[i];
     struct bond_list *bl = NULL;
-    rc = bond_list_alloc(&bl, n, cnt[n], true, err);
+    rc = bond_list_alloc(&bl, n, cnt[n], true, !compact, true, err);
     if (rc) {
         free(cnt);
         neighbor_list_destroy(&nl);
@@ -166,14 +253,32 @@ int bond_list_build_shells(struct bond_list **out, const struct particles *p, in
             if (s < 0 || p->body[i] != p->body[nl->idx[k]]) /* bonds never cross bodies */
                 continue;
             bl->partner[w] = nl->idx[k];
-            bl->rest[w] = r;
+            if (!compact)
+                bl->rest[w] = r;
             bl->type[w] = (uint8_t)s;
             w++;
         }
     }
     neighbor_list_destroy(&nl);
+    if (compact && (rc = rest_fill_compact(bl, p, err))) {
+        bond_list_destroy(&bl);
+        return rc;
+    }
     *out = bl;
     return SPALL_OK;
+}
+
+int bond_list_build_shells(struct bond_list **out, const struct particles *p, int n_shells,
+                           const double *r_lo, const double *r_hi, struct spall_error *err)
+{
+    return build_shells(out, p, n_shells, r_lo, r_hi, false, err);
+}
+
+int bond_list_build_shells_compact(struct bond_list **out, const struct particles *p,
+                                   int n_shells, const double *r_lo, const double *r_hi,
+                                   struct spall_error *err)
+{
+    return build_shells(out, p, n_shells, r_lo, r_hi, true, err);
 }
 
 void bond_list_destroy(struct bond_list **pbl)
@@ -341,6 +446,16 @@ void bond_list_replace(struct bond_list *bl, size_t n, size_t *offset, int32_t *
     bl->reverse = NULL;
 }
 
+/** array_gather of @p old (NULL: nothing), which is freed; *ok false once
+ *  out of memory (then NULL, and nothing more is gathered). */
+static void *gather_free(void *old, size_t size, const size_t *idx, size_t n, int *ok)
+{
+    void *kept = old && *ok ? array_gather(old, size, idx, n) : NULL;
+    *ok = *ok && (!old || kept);
+    free(old);
+    return kept;
+}
+
 int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, size_t n_owned,
                        const int64_t *new_of_old, size_t **old_half, size_t *n_half,
                        struct spall_error *err)
@@ -367,14 +482,28 @@ int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, 
             }
         offset[k + 1] = w;
     }
-    /* the rest lengths as they are stored: doubles, the compact index (the
-     * table stays: it holds every value a kept index can name) or neither (a
-     * model that keeps them elsewhere); type may be NULL likewise */
-    double *rest = bl->rest ? array_gather(bl->rest, sizeof *rest, oh, nh) : NULL;
-    uint16_t *ridx = bl->rest_idx ? array_gather(bl->rest_idx, sizeof *ridx, oh, nh) : NULL;
-    uint8_t *state = array_gather(bl->state, sizeof *state, oh, nh);
-    uint8_t *type = bl->type ? array_gather(bl->type, sizeof *type, oh, nh) : NULL;
-    if ((bl->rest && !rest) || (bl->rest_idx && !ridx) || !state || (bl->type && !type)) {
+    /* The old arrays go one by one as their kept parts are copied, so that
+     * a distributed set-up (every rank holds the whole body until here)
+     * never holds the whole list and the kept one at once: the old partners
+     * first, then each array right after its gather.  The rest lengths as
+     * they are stored: doubles, the compact index (the table stays: it
+     * holds every value a kept index can name) or neither (a model that
+     * keeps them elsewhere); type may be NULL likewise.  Out of memory
+     * leaves a list the run can only destroy. */
+    free(bl->partner);
+    free(bl->reverse);
+    bl->partner = NULL;
+    bl->reverse = NULL;
+    int ok = 1;
+    double *rest = gather_free(bl->rest, sizeof *rest, oh, nh, &ok);
+    uint16_t *ridx = gather_free(bl->rest_idx, sizeof *ridx, oh, nh, &ok);
+    uint8_t *state = gather_free(bl->state, sizeof *state, oh, nh, &ok);
+    uint8_t *type = gather_free(bl->type, sizeof *type, oh, nh, &ok);
+    bl->rest = NULL;
+    bl->rest_idx = NULL;
+    bl->state = NULL;
+    bl->type = NULL;
+    if (!ok || !state) {
         free(offset);
         free(oh);
         free(partner);

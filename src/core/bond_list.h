@@ -83,10 +83,26 @@ void *array_gather(const void *a, size_t size, const size_t *idx, size_t n);
  *  @p radius (cell list search).  type = 0 for all. */
 int bond_list_build(struct bond_list **out, const struct particles *p, double radius,
                     struct spall_error *err);
+/** bond_list_build with the rest lengths stored compact from the start
+ *  (rest_idx and rest_tab as bond_list_compact_rest makes them, the doubles
+ *  when there are more than 65 536 distinct lengths) and no type array: the
+ *  set-up never holds the 8-byte lengths (peak memory, docs/performance.md
+ *  "Set-up peak memory").  The same bonds, lengths and table. */
+int bond_list_build_compact(struct bond_list **out, const struct particles *p, double radius,
+                            struct spall_error *err);
+/** Back to one double per half-bond (rest) from a compact list; nothing to
+ *  do on a list that has its doubles. */
+int bond_list_expand_rest(struct bond_list *bl, struct spall_error *err);
 /** Build bonds only for pairs whose reference distance lies in one of the
  *  shells [r_lo[s], r_hi[s]); type = s.  Used for lattice neighbour layers. */
 int bond_list_build_shells(struct bond_list **out, const struct particles *p, int n_shells,
                            const double *r_lo, const double *r_hi, struct spall_error *err);
+/** bond_list_build_shells with the rest lengths compact from the start, as
+ *  bond_list_build_compact (types kept): for lists whose lengths never
+ *  change. */
+int bond_list_build_shells_compact(struct bond_list **out, const struct particles *p,
+                                   int n_shells, const double *r_lo, const double *r_hi,
+                                   struct spall_error *err);
 void bond_list_destroy(struct bond_list **bl);
 
 /** Build the reverse-slot index (needed by angular springs). */

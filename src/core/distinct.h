@@ -14,6 +14,9 @@
 
 struct spall_error;
 
+/** Longest key, in bytes. */
+#define DISTINCT_MAX_KEY 64
+
 /** Writes key @p k (key_size bytes) into @p out. */
 typedef void (*distinct_key_fn)(const void *ctx, size_t k, unsigned char *out);
 
@@ -25,5 +28,20 @@ typedef void (*distinct_key_fn)(const void *ctx, size_t k, unsigned char *out);
 int distinct_index16(distinct_key_fn key, const void *ctx, size_t n, size_t key_size,
                      size_t max_distinct, uint16_t *idx, void **table, size_t *n_distinct,
                      struct spall_error *err);
+
+/** The same index built one key at a time, for callers that compute their
+ *  keys on the fly instead of holding them in arrays (the set-up's compact
+ *  bond storage, core/bond_list.c and peridynamics' pd_compact.c): adding
+ *  keys 0..n-1 in order gives the rows distinct_index16 gives. */
+struct distinct16;
+int distinct16_create(struct distinct16 **out, size_t key_size, size_t max_distinct,
+                      struct spall_error *err);
+/** Row of @p key (key_size bytes), added when new; -1 when it is new and the
+ *  table already holds max_distinct rows (nothing is added). */
+int32_t distinct16_add(struct distinct16 *d, const unsigned char *key);
+/** The table (malloc'd, *n_distinct rows; the caller frees it) taken from
+ *  @p d; NULL when out of memory (the table stays with @p d). */
+void *distinct16_take_table(struct distinct16 *d, size_t *n_distinct);
+void distinct16_destroy(struct distinct16 **d);
 
 #endif

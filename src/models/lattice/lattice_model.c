@@ -419,7 +419,12 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
         hi[s] = 1.05 * d;
     }
     bond_list_destroy(&m->bl);
-    int rc = bond_list_build_shells(&m->bl, p, layers, lo, hi, err);
+    /* rest lengths that never change (no thermal expansion) as an index
+     * into their distinct values from the start: 6 B less per half-bond,
+     * the same bits, and the set-up never holds the doubles */
+    const bool fixed_rest = !lattice_thermal_enabled(m);
+    int rc = fixed_rest ? bond_list_build_shells_compact(&m->bl, p, layers, lo, hi, err)
+                        : bond_list_build_shells(&m->bl, p, layers, lo, hi, err);
     if (rc)
         return rc;
     m->n_half = m->bl->offset[m->bl->n];
@@ -435,10 +440,6 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
     if (m->angular && (rc = build_angles(m, p, err)))
         return rc;
     if ((rc = lattice_thermal_init(m, sim, err)))
-        return rc;
-    /* rest lengths that never change (no thermal expansion) as an index
-     * into their distinct values: 6 B less per half-bond, the same bits */
-    if (!lattice_thermal_enabled(m) && (rc = bond_list_compact_rest(m->bl, err)))
         return rc;
     m->initialised = true;
     return SPALL_OK;

@@ -7,17 +7,21 @@
  *        regular lattice of one material a family has a few distinct
  *        lengths, and every particle's rows repeat them: at delta = 3.015 dx
  *        in 3D the family storage falls from 22 to 7 bytes per half-bond.
- *        The table holds the very doubles the arrays held, so every result
- *        stays bit for bit the same.  Formulations with more per-bond data
- *        (lps, eps) and orthotropic laminae (their calibration rebuilds the
- *        coefficients of a built model; the mixed-mode and fiber-plane rules)
- *        keep the arrays, as does a problem with more than 65 535 distinct
- *        triples (e.g. a surface-corrected irregular body).
+ *        The table holds the very doubles the arrays would hold, so every
+ *        result is bit for bit that of `bond_storage: full`.  The set-up
+ *        builds the rows directly, one half-bond at a time, and never holds
+ *        the arrays: its peak memory stays near the run's (issue 25 item
+ *        2).  Formulations with more per-bond data (lps, eps) and
+ *        orthotropic laminae (their calibration rebuilds the coefficients
+ *        of a built model; the mixed-mode and fiber-plane rules) keep the
+ *        arrays, as does a problem with more than 65 535 distinct triples
+ *        (e.g. a surface-corrected irregular body).
  */
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
 #include "core/distinct.h"
+#include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
 
@@ -26,17 +30,9 @@
 
 #define PD_KIND_MAX 65535u
 
-/* The key of half-bond k: the bit patterns of its reference length and
+/* The key of a half-bond: the bit patterns of its reference length and
  * coefficient, then its type (17 bytes, compared as bytes). */
 #define PD_KIND_KEY (2 * sizeof(double) + 1)
-
-static void kind_key(const void *ctx, size_t k, unsigned char *out)
-{
-    const struct model *m = ctx;
-    memcpy(out, &m->bl->rest[k], sizeof(double));
-    memcpy(out + sizeof(double), &m->coef[k], sizeof(double));
-    out[2 * sizeof(double)] = m->bl->type[k];
-}
 
 bool pd_compact_eligible(const struct model *m)
 {
@@ -44,51 +40,107 @@ bool pd_compact_eligible(const struct model *m)
            !m->fresh && !m->twin && m->coef && m->bl->rest && m->bl->type;
 }
 
-int pd_compact(struct model *m, struct spall_error *err)
+bool pd_compact_predicted(const struct model *m)
 {
-    struct bond_list *bl = m->bl;
-    const size_t nh = bl->offset[bl->n];
-    if (!pd_compact_eligible(m) || nh == 0)
-        return SPALL_OK;
-    uint16_t *kind = malloc(nh * sizeof *kind);
-    if (!kind)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
-    void *tab = NULL;
-    size_t nk = 0;
-    int rc = distinct_index16(kind_key, m, nh, PD_KIND_KEY, PD_KIND_MAX, kind, &tab, &nk, err);
-    if (rc || !tab) { /* more distinct triples than a row index holds: keep the arrays */
-        free(kind);
-        return rc;
-    }
-    double *k_rest = malloc(nk * sizeof *k_rest);
-    double *k_coef = malloc(nk * sizeof *k_coef);
-    uint8_t *k_type = malloc(nk * sizeof *k_type);
+    /* pd_compact_eligible before the model exists: no lamina (so no mixed
+     * mode, fiber plane or fiber bonds), and the options */
+    bool ortho = false;
+    for (size_t k = 0; k < m->n_mat; k++)
+        ortho |= m->mat[k].ortho;
+    return !m->opt.full_bonds && !m->opt.lps && !m->opt.eps && !m->opt.fiber_plane && !ortho;
+}
+
+/* The model's (length, coefficient, type) rows from the table of keys
+ * (PD_KIND_KEY bytes each; @p tab is freed). */
+static int kinds_from_table(struct model *m, unsigned char *tab, size_t nk,
+                            struct spall_error *err)
+{
+    double *k_rest = malloc((nk ? nk : 1) * sizeof *k_rest);
+    double *k_coef = malloc((nk ? nk : 1) * sizeof *k_coef);
+    uint8_t *k_type = malloc((nk ? nk : 1) * sizeof *k_type);
     if (!k_rest || !k_coef || !k_type) {
         free(tab);
-        free(kind);
         free(k_rest);
         free(k_coef);
         free(k_type);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
     }
     for (size_t q = 0; q < nk; q++) {
-        const unsigned char *r = (const unsigned char *)tab + q * PD_KIND_KEY;
+        const unsigned char *r = tab + q * PD_KIND_KEY;
         memcpy(&k_rest[q], r, sizeof k_rest[q]);
         memcpy(&k_coef[q], r + sizeof(double), sizeof k_coef[q]);
         k_type[q] = r[2 * sizeof(double)];
     }
     free(tab);
-    free(bl->rest);
-    free(bl->type);
-    free(m->coef);
-    bl->rest = NULL;
-    bl->type = NULL;
-    m->coef = NULL;
-    m->kind = kind;
     m->k_rest = k_rest;
     m->k_coef = k_coef;
     m->k_type = k_type;
     m->n_kind = nk;
+    return SPALL_OK;
+}
+
+int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct bond_list *bl = m->bl;
+    const struct particles *p = sim->p;
+    const size_t n = bl->n, nh = bl->offset[n], nm = m->n_mat;
+    double *g = NULL;
+    struct distinct16 *d = NULL;
+    int rc = pd_surface_factors(m, sim, &g, err);
+    if (!rc)
+        rc = distinct16_create(&d, PD_KIND_KEY, PD_KIND_MAX, err);
+    uint16_t *kind = rc ? NULL : malloc((nh ? nh : 1) * sizeof *kind);
+    if (!rc && !kind)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
+    /* The keys in slot order, each from the values pd_build_coefficients,
+     * the bond types of pd_init (isotropic: no fiber bit) and
+     * pd_interfaces_apply store in the arrays, so that every row holds the
+     * doubles `bond_storage: full` uses. */
+    bool fits = nh > 0; /* no bonds: the (empty) arrays, no table */
+    for (size_t i = 0; !rc && i < n && fits; i++)
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1] && fits; s++) {
+            const size_t j = (size_t)bl->partner[s];
+            const uint8_t type = (uint8_t)(((size_t)p->material[i] * nm +
+                                            (size_t)p->material[j]) * 2);
+            const double rest = bond_rest(bl, s);
+            const double coef = pd_interface_scale(m, sim, type, pd_bond_coef(m, sim, g, i, s));
+            unsigned char key[PD_KIND_KEY];
+            memcpy(key, &rest, sizeof rest);
+            memcpy(key + sizeof rest, &coef, sizeof coef);
+            key[2 * sizeof(double)] = type;
+            const int32_t row = distinct16_add(d, key);
+            fits = row >= 0;
+            kind[s] = (uint16_t)(fits ? row : 0);
+        }
+    free(g);
+    size_t nk = 0;
+    unsigned char *tab = (!rc && fits) ? distinct16_take_table(d, &nk) : NULL;
+    distinct16_destroy(&d);
+    if (rc) {
+        free(kind);
+        return rc;
+    }
+    if (!tab) { /* more than PD_KIND_MAX distinct triples: the arrays, as pd_init builds them */
+        free(kind);
+        if ((rc = bond_list_expand_rest(bl, err)))
+            return rc;
+        if (!(bl->type = calloc(nh ? nh : 1, sizeof *bl->type)))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
+        return SPALL_OK;
+    }
+    if ((rc = kinds_from_table(m, tab, nk, err))) {
+        free(kind);
+        return rc;
+    }
+    m->kind = kind;
+    /* the compact family holds the lengths (k_rest): the list keeps none */
+    free(bl->rest);
+    free(bl->rest_idx);
+    free(bl->rest_tab);
+    bl->rest = NULL;
+    bl->rest_idx = NULL;
+    bl->rest_tab = NULL;
+    bl->n_rest = 0;
     return SPALL_OK;
 }
 

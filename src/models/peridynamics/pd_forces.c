@@ -358,7 +358,7 @@ static double bond_c(const struct model *m, const struct sim *sim, size_t i, siz
         return 2.0 * a->c * b->c / (a->c + b->c); /* springs in series */
     const struct pd_material *o = a->ortho ? a : b;
     double ex = p->x0[0][j] - p->x0[0][i], ey = sim->dim > 1 ? p->x0[1][j] - p->x0[1][i] : 0.0;
-    double cphi = fabs(ex * cos(o->fiber_angle) + ey * sin(o->fiber_angle)) / bl->rest[s];
+    double cphi = fabs(ex * cos(o->fiber_angle) + ey * sin(o->fiber_angle)) / bond_rest(bl, s);
     if (m->opt.fiber_model == PD_FIBER_ANGULAR)
         return o->c_m + o->c_f * pow(cphi * cphi, (double)m->opt.fiber_power);
     return cphi > 0.9999 ? o->c_f : o->c_m;
@@ -374,7 +374,7 @@ static double family_energy(const struct model *m, const struct sim *sim, size_t
     double w = 0.0;
     for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
         size_t j = (size_t)bl->partner[s];
-        double xi = bl->rest[s];
+        double xi = bond_rest(bl, s);
         double cd = (p->x0[d][j] - p->x0[d][i]) / xi;
         double st = cd * cd; /* stretch per unit eps */
         w += 0.25 * st * st * xi * p->volume[j] * pd_beta(xi, m->delta, m->dx);
@@ -392,48 +392,66 @@ static double family_energy_bulk(int dim, double delta, double thickness)
     }
 }
 
+int pd_surface_factors(const struct model *m, const struct sim *sim, double **out,
+                       struct spall_error *err)
+{
+    *out = NULL;
+    const size_t n = sim->p->n;
+    const int dim = sim->dim;
+    if (!m->opt.surface_correction || m->opt.variant == PD_PDLM)
+        return SPALL_OK;
+    double *g = malloc((n ? n : 1) * 3 * sizeof *g);
+    if (!g)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for surface factors");
+    const double wb = family_energy_bulk(dim, m->delta, sim->thickness);
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 3; d++) {
+            double w = d < dim ? family_energy(m, sim, i, d) : 0.0;
+            g[3 * i + (size_t)d] = w > 0.0 ? wb / w : 1.0;
+        }
+    *out = g;
+    return SPALL_OK;
+}
+
+double pd_bond_coef(const struct model *m, const struct sim *sim, const double *g, size_t i,
+                    size_t s)
+{
+    const struct particles *p = sim->p;
+    const struct bond_list *bl = m->bl;
+    const bool pdlm = m->opt.variant == PD_PDLM;
+    const size_t j = (size_t)bl->partner[s];
+    const double xi = bond_rest(bl, s);
+    double beta = (m->opt.partial_volume && !pdlm) ? pd_beta(xi, m->delta, m->dx) : 1.0;
+    double corr = 1.0;
+    if (g) {
+        /* Madenci & Oterkus 2014 Eq. 4.31: ellipsoidal interpolation of the
+         * directional factors, each the mean of both ends */
+        double q = 0.0;
+        for (int d = 0; d < sim->dim; d++) {
+            double nd = (p->x0[d][j] - p->x0[d][i]) / xi;
+            double gd = 0.5 * (g[3 * i + (size_t)d] + g[3 * j + (size_t)d]);
+            q += (nd / gd) * (nd / gd);
+        }
+        corr = q > 0.0 ? 1.0 / sqrt(q) : 1.0;
+    }
+    return bond_c(m, sim, i, s) * (p->volume[i] * p->volume[j]) * beta * corr / xi;
+}
+
 int pd_build_coefficients(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    struct particles *p = sim->p;
-    struct bond_list *bl = m->bl;
-    const size_t n = p->n, nh = bl->offset[n];
-    const int dim = sim->dim;
+    const struct bond_list *bl = m->bl;
+    const size_t n = sim->p->n, nh = bl->offset[n];
     free(m->coef);
     m->coef = malloc((nh ? nh : 1) * sizeof *m->coef);
-    double *g = NULL;
     if (!m->coef)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
-    const bool pdlm = m->opt.variant == PD_PDLM;
-    if (m->opt.surface_correction && !pdlm) {
-        g = malloc((n ? n : 1) * 3 * sizeof *g);
-        if (!g)
-            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for surface factors");
-        const double wb = family_energy_bulk(dim, m->delta, sim->thickness);
-        for (size_t i = 0; i < n; i++)
-            for (int d = 0; d < 3; d++) {
-                double w = d < dim ? family_energy(m, sim, i, d) : 0.0;
-                g[3 * i + (size_t)d] = w > 0.0 ? wb / w : 1.0;
-            }
-    }
+    double *g = NULL;
+    int rc = pd_surface_factors(m, sim, &g, err);
+    if (rc)
+        return rc;
     for (size_t i = 0; i < n; i++)
-        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
-            size_t j = (size_t)bl->partner[s];
-            double xi = bl->rest[s];
-            double beta = (m->opt.partial_volume && !pdlm) ? pd_beta(xi, m->delta, m->dx) : 1.0;
-            double corr = 1.0;
-            if (g) {
-                /* Madenci & Oterkus 2014 Eq. 4.31: ellipsoidal interpolation of the
-                 * directional factors, each the mean of both ends */
-                double q = 0.0;
-                for (int d = 0; d < dim; d++) {
-                    double nd = (p->x0[d][j] - p->x0[d][i]) / xi;
-                    double gd = 0.5 * (g[3 * i + (size_t)d] + g[3 * j + (size_t)d]);
-                    q += (nd / gd) * (nd / gd);
-                }
-                corr = q > 0.0 ? 1.0 / sqrt(q) : 1.0;
-            }
-            m->coef[s] = bond_c(m, sim, i, s) * (p->volume[i] * p->volume[j]) * beta * corr / xi;
-        }
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+            m->coef[s] = pd_bond_coef(m, sim, g, i, s);
     free(g);
     return SPALL_OK;
 }

@@ -115,10 +115,27 @@ int pd_interfaces_apply(struct model *m, struct sim *sim, struct spall_error *er
         if (q->stiffness != 1.0 && !m->opt.lps) {
             const uint8_t t1 = (uint8_t)(((size_t)ia * nm + (size_t)ib) * 2);
             const uint8_t t2 = (uint8_t)(((size_t)ib * nm + (size_t)ia) * 2);
-            for (size_t s = 0; s < bl->offset[bl->n]; s++)
+            for (size_t s = 0; m->coef && s < bl->offset[bl->n]; s++)
                 if ((bl->type[s] & ~1u) == t1 || (bl->type[s] & ~1u) == t2)
                     m->coef[s] *= q->stiffness;
         }
     }
     return SPALL_OK;
+}
+
+double pd_interface_scale(const struct model *m, const struct sim *sim, uint8_t type,
+                          double coef)
+{
+    const size_t nm = m->n_mat;
+    for (size_t k = 0; k < m->n_ifc; k++) {
+        const struct pd_interface *q = &m->ifc[k];
+        const int ia = sim_find_material(sim, q->a), ib = sim_find_material(sim, q->b);
+        if (ia < 0 || ib < 0 || q->stiffness == 1.0 || m->opt.lps)
+            continue; /* pd_interfaces_apply reports the unknown name */
+        const uint8_t t1 = (uint8_t)(((size_t)ia * nm + (size_t)ib) * 2);
+        const uint8_t t2 = (uint8_t)(((size_t)ib * nm + (size_t)ia) * 2);
+        if ((type & ~1u) == t1 || (type & ~1u) == t2)
+            coef *= q->stiffness;
+    }
+    return coef;
 }

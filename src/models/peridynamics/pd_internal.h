@@ -77,7 +77,7 @@ struct model {
 
     struct bond_list *bl;    /**< family (type = (ma*n_mat+mb)*2 + fiber) */
     double *coef;            /**< per half-bond: c V_i V_j beta G / xi [N/m]; NULL when compact */
-    /* compact families (pd_compact.c): bl->rest, bl->type and coef replaced by a
+    /* compact families (pd_compact.c): bl->rest, bl->type and coef never built; a
      * 16-bit row per half-bond of a table of the distinct triples; read them
      * through pd_rest, pd_coef, pd_type */
     uint16_t *kind;          /**< per half-bond: row of the table, or NULL (arrays kept) */
@@ -122,11 +122,19 @@ static inline unsigned pd_type(const struct model *m, size_t s)
 }
 
 /* pd_compact.c */
-/** Whether the bond-based kernel may drop the per-half-bond arrays. */
+/** Whether the built model could have compact families (false once it has
+ *  them): run.log says why it has none. */
 bool pd_compact_eligible(const struct model *m);
-/** Switch to compact families where eligible and the table fits (else a no-op);
- *  called once the coefficients, types and thresholds are final. */
-int pd_compact(struct model *m, struct spall_error *err);
+/** Whether pd_compact_build applies: the deck asks for nothing that needs
+ *  per-half-bond arrays (known before any bond exists). */
+bool pd_compact_predicted(const struct model *m);
+/** The compact families built directly, one half-bond at a time, on a list
+ *  from bond_list_build_compact, never holding the 8-byte lengths and
+ *  coefficients (set-up peak memory): the table of the distinct triples in
+ *  first-seen slot order.  Needs the material constants.  When the
+ *  table overflows, leaves the arrays pd_build_coefficients expects (rest
+ *  lengths and a zeroed type array) and m->kind NULL. */
+int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err);
 /** Bytes of the model's own arrays (families, coefficients, per-particle state)
  *  for @p n particles: the memory report of pd_describe. */
 size_t pd_model_bytes(const struct model *m, size_t n);
@@ -139,6 +147,10 @@ int pd_interfaces_parse(struct model *m, const struct deck_node *params,
 /** Resolve the names and apply the laws to s0_tab and the pair coefficients
  *  (after the default table and the coefficients exist). */
 int pd_interfaces_apply(struct model *m, struct sim *sim, struct spall_error *err);
+/** Coefficient @p coef of a bond of @p type scaled as pd_interfaces_apply
+ *  scales the coefficient array (for pd_compact_build). */
+double pd_interface_scale(const struct model *m, const struct sim *sim, uint8_t type,
+                          double coef);
 
 /* pd_localize.c (distributed runs) */
 struct model_energy;
@@ -172,6 +184,14 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
 double pd_stable_dt(const struct model *m, const struct sim *sim);
 /** Per-half-bond coefficients from the current c tables (beta, surface factor). */
 int pd_build_coefficients(struct model *m, struct sim *sim, struct spall_error *err);
+/** Directional surface-correction factors, 3 per particle (malloc'd), or
+ *  NULL when the correction is off ([MadenciOterkus2014] Eq. 4.31). */
+int pd_surface_factors(const struct model *m, const struct sim *sim, double **g,
+                       struct spall_error *err);
+/** Coefficient c V_i V_j beta corr / xi of half-bond @p s of particle @p i
+ *  (@p g from pd_surface_factors); rest lengths in either storage. */
+double pd_bond_coef(const struct model *m, const struct sim *sim, const double *g, size_t i,
+                    size_t s);
 /** Adaptive dynamic relaxation damping update (Kilic & Madenci 2010 Eq. 19):
  *  the new estimate in m->adr_damping, which the engine takes through the
  *  model's damping hook right after the force call. */

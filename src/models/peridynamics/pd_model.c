@@ -398,21 +398,8 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
         radius = m->opt.partial_volume && !m->opt.family_at_delta ? m->delta + 0.5 * m->dx
                                                                    : m->delta * (1.0 + 1e-12);
     }
-    int rc = bond_list_build(&m->bl, p, radius, err);
-    if (rc)
-        return rc;
-    struct bond_list *bl = m->bl;
-    m->n_half = bl->offset[n];
-    m->n_init = calloc(n ? n : 1, sizeof *m->n_init);
-    m->n_init_f = calloc(n ? n : 1, sizeof *m->n_init_f);
-    m->diss = calloc(n ? n : 1, sizeof *m->diss);
-    if (!m->n_init || !m->n_init_f || !m->diss)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in the PD model");
-    if (m->opt.quasi == PD_QS_ADR)
-        for (int d = 0; d < sim->dim; d++)
-            if (!(m->f_prev[d] = calloc(2 * (n ? n : 1), sizeof(double))))
-                return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for ADR");
     /* isotropic constants */
+    int rc;
     const double t = sim->thickness;
     for (size_t k = 0; k < nm; k++) {
         struct pd_material *mt = &m->mat[k];
@@ -440,23 +427,49 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
         if (mt->s0_given > 0.0)
             mt->s0 = mt->s0_given;
     }
-    /* bond types: (ma * nm + mb) * 2 + fiber */
-    for (size_t i = 0; i < n; i++)
-        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
-            size_t j = (size_t)bl->partner[s];
-            bl->type[s] = (uint8_t)(((size_t)p->material[i] * nm + (size_t)p->material[j]) * 2 +
-                                    (size_t)is_fiber(m, sim, i, s));
-        }
-    for (size_t k = 0; k < nm; k++)
-        if (m->mat[k].ortho) {
-            double ach[4];
-            if ((rc = pd_calibrate_ortho(m, sim, (int)k, ach, err))) {
-                spall_error_prefix(err, "material '%s': ", sim->materials[k].name);
-                spall_error_default_key(err, "materials.%s", sim->materials[k].name);
-                return rc;
+    /* where the deck allows compact families the set-up builds them
+     * directly and never holds the per-half-bond lengths, coefficients and
+     * types (pd_compact.c; docs/performance.md "Set-up peak memory") */
+    const bool direct = pd_compact_predicted(m);
+    rc = direct ? bond_list_build_compact(&m->bl, p, radius, err)
+                : bond_list_build(&m->bl, p, radius, err);
+    if (rc)
+        return rc;
+    struct bond_list *bl = m->bl;
+    m->n_half = bl->offset[n];
+    m->n_init = calloc(n ? n : 1, sizeof *m->n_init);
+    m->n_init_f = calloc(n ? n : 1, sizeof *m->n_init_f);
+    m->diss = calloc(n ? n : 1, sizeof *m->diss);
+    if (!m->n_init || !m->n_init_f || !m->diss)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in the PD model");
+    if (m->opt.quasi == PD_QS_ADR)
+        for (int d = 0; d < sim->dim; d++)
+            if (!(m->f_prev[d] = calloc(2 * (n ? n : 1), sizeof(double))))
+                return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for ADR");
+    if (direct && (rc = pd_compact_build(m, sim, err)))
+        return rc;
+    if (!m->kind) {
+        /* bond types: (ma * nm + mb) * 2 + fiber */
+        for (size_t i = 0; i < n; i++)
+            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+                size_t j = (size_t)bl->partner[s];
+                bl->type[s] = (uint8_t)(((size_t)p->material[i] * nm +
+                                         (size_t)p->material[j]) * 2 +
+                                        (size_t)is_fiber(m, sim, i, s));
             }
-        }
-    if ((rc = pd_build_coefficients(m, sim, err)) || (rc = pd_mixed_init(m, sim, err)) ||
+        for (size_t k = 0; k < nm; k++)
+            if (m->mat[k].ortho) {
+                double ach[4];
+                if ((rc = pd_calibrate_ortho(m, sim, (int)k, ach, err))) {
+                    spall_error_prefix(err, "material '%s': ", sim->materials[k].name);
+                    spall_error_default_key(err, "materials.%s", sim->materials[k].name);
+                    return rc;
+                }
+            }
+        if ((rc = pd_build_coefficients(m, sim, err)))
+            return rc;
+    }
+    if ((rc = pd_mixed_init(m, sim, err)) ||
         (rc = pd_plane_init(m, sim, err)) || (m->opt.lps && (rc = pd_lps_init(m, sim, err))) ||
         (m->opt.eps && (rc = pd_eps_init(m, sim, err))))
         return rc;
@@ -473,10 +486,8 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
     for (size_t i = 0; i < n; i++) {
         m->n_init[i] = bl->offset[i + 1] - bl->offset[i];
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
-            m->n_init_f[i] += bl->type[s] & 1u;
+            m->n_init_f[i] += pd_type(m, s) & 1u;
     }
-    if ((rc = pd_compact(m, err)))
-        return rc;
     m->initialised = true;
     return SPALL_OK;
 }
