@@ -51,9 +51,9 @@ $(echo "$base" | sed 's/failure_strain: 0.05/fracture_energy: 100, yield_stress:
 " "formulation eps is not distributed yet"
 refused "angular springs" "model: {type: lattice, angular: on}
 ${base}" "angular springs are not distributed yet"
-$launch "$spall" validate --quick >stdout.txt 2>stderr.txt; rc=$?
+$launch "$spall" penetrate --help >stdout.txt 2>stderr.txt; rc=$?
 if [ $rc -ne 2 ] || [ "$(wc -l < stderr.txt)" -ne 1 ] || ! grep -q "does not run distributed" stderr.txt; then
-    echo "FAIL validate on 2 ranks: exit $rc"; cat stderr.txt; fail=1
+    echo "FAIL penetrate on 2 ranks: exit $rc"; cat stderr.txt; fail=1
 fi
 # one rank's instability stops both: one message, exit 3, output kept
 cat > unstable.yaml <<'YAML'

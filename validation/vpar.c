@@ -1,0 +1,107 @@
+/**
+ * @file vpar.c
+ * @brief `spall validate` under mpirun (vpar.h).
+ */
+#include "validation/vpar.h"
+
+#include "core/parallel/comm.h"
+#include "core/parallel/gather.h"
+#include "core/sim.h"
+#include "io/run_par.h"
+#include "spall/error.h"
+#include "validation/validation.h"
+
+#include <stdio.h>
+#include <string.h>
+
+/* The cases that run distributed: their models run distributed
+ * (docs/parallel.md) and their measurements read particles by global id
+ * (vpar_at, vpar_gather, probes).  A case whose sims turn out to be refused
+ * still runs correctly (serially, with the refusal as its note). */
+static const char *const distributed_cases[] = {
+    "lattice-chain-break", "lattice-waves", "pd-waves", "pd-bimaterial-bar", "pd-lps-waves",
+};
+
+/* Why the other cases run on rank 0 alone, by name prefix (first match). */
+static const struct {
+    const char *prefix, *reason;
+} serial_reasons[] = {
+    {"sph-", "SPH does not run distributed yet"},
+    {"pen-sph", "SPH does not run distributed yet"},
+    {"pen-", "no particle run (analytical models and data)"},
+    {"macro-", "macro-particles do not run distributed yet"},
+    {"", "its measurements read particle arrays by local index (not adapted to a distributed "
+         "run yet)"},
+};
+
+const char *vpar_serial_reason(const char *name)
+{
+    for (size_t k = 0; k < sizeof distributed_cases / sizeof distributed_cases[0]; k++)
+        if (strcmp(name, distributed_cases[k]) == 0)
+            return NULL;
+    size_t k = 0;
+    while (strncmp(name, serial_reasons[k].prefix, strlen(serial_reasons[k].prefix)) != 0)
+        k++;
+    return serial_reasons[k].reason;
+}
+
+static void note_serial(struct vreport *r, const char *reason)
+{
+    if (r->par->noted)
+        return;
+    r->par->noted = true;
+    if (par_rank() == 0 && r->log)
+        fprintf(r->log, "  serial: %s\n", reason);
+}
+
+bool vpar_begin_case(struct vreport *r, const struct vcase *c)
+{
+    struct vpar *v = r->par;
+    memset(v, 0, sizeof *v);
+    const char *why = vpar_serial_reason(c->name);
+    v->all_ranks = why == NULL;
+    if (!v->all_ranks) {
+        v->serial = true;
+        note_serial(r, why);
+    }
+    return v->all_ranks || par_rank() == 0;
+}
+
+int vpar_distribute(struct vreport *r, struct sim *s, struct spall_error *err)
+{
+    struct vpar *v = r->par;
+    if (!v || v->serial) /* one rank, or the case continues serially on rank 0 */
+        return SPALL_OK;
+    char why[SPALL_ERROR_MSG_LEN];
+    int rc = run_par_distribute_sim(s, why, sizeof why, err);
+    if (rc || !why[0]) {
+        v->distributed = v->distributed || !rc;
+        return rc;
+    }
+    /* refused: the case goes on with this sim whole.  Before any sim of it
+     * was distributed, rank 0 runs the rest alone (no collective is left
+     * to pair with); afterwards the case may still step its distributed
+     * sims, so every rank runs this one as one rank does. */
+    char note[SPALL_ERROR_MSG_LEN + 64];
+    snprintf(note, sizeof note, "%s%s", why,
+             v->distributed ? " (this sim runs whole on every rank)" : "");
+    note_serial(r, note);
+    if (v->distributed)
+        return SPALL_OK;
+    v->serial = true;
+    if (par_rank() == 0)
+        return SPALL_OK;
+    v->left = true;
+    return spall_error_set(err, SPALL_ERR_INTERNAL, "rank %d leaves the serial case", par_rank());
+}
+
+double vpar_at(const struct sim *s, const double *local, int64_t gid)
+{
+    return par_value_at(s, local, gid);
+}
+
+int vpar_gather(const struct sim *s, const double *local, double *global,
+                struct spall_error *err)
+{
+    return par_gather_by_gid(s, local, global, err);
+}
