@@ -63,7 +63,8 @@ int lattice_case_chain_break(struct vreport *r, struct spall_error *err)
         goto done;
     const struct particles *p = s->p;
     /* global ids: the ends stay readable after distribution (vpar.h) */
-    const int64_t il = p->gid[s->groups[gl].idx[0]], ir = p->gid[s->groups[gr].idx[0]];
+    const int64_t ends[2] = {p->gid[s->groups[gl].idx[0]], p->gid[s->groups[gr].idx[0]]};
+    const int64_t il = ends[0], ir = ends[1];
     const size_t n_particles = p->n;
     const double len0 = p->x0[0][ir] - p->x0[0][il];
     if ((rc = vpar_distribute(r, s, err)))
@@ -75,7 +76,9 @@ int lattice_case_chain_break(struct vreport *r, struct spall_error *err)
     while (s->t < t_stop) {
         if ((rc = sim_step(s, err)))
             goto done;
-        double eps = (vpar_at(s, p->x[0], ir) - vpar_at(s, p->x[0], il)) / len0 - 1.0;
+        double x_end[2];
+        vpar_values(s, p->x[0], ends, 2, x_end);
+        double eps = (x_end[1] - x_end[0]) / len0 - 1.0;
         broken = vlat_history(s, "bonds_broken");
         if (!isfinite(broken)) {
             rc = spall_error_set(err, SPALL_ERR_INTERNAL,

@@ -5,6 +5,7 @@
 #include "validation/vpar.h"
 
 #include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
 #include "core/parallel/gather.h"
 #include "core/sim.h"
 #include "io/run_par.h"
@@ -12,6 +13,7 @@
 #include "validation/validation.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The cases that run distributed: their models run distributed
@@ -19,7 +21,9 @@
  * (vpar_at, vpar_gather, probes).  A case whose sims turn out to be refused
  * still runs correctly (serially, with the refusal as its note). */
 static const char *const distributed_cases[] = {
-    "lattice-chain-break", "lattice-waves", "pd-waves", "pd-bimaterial-bar", "pd-lps-waves",
+    "lattice-chain-break", "lattice-waves",   "thermal-conduction", "thermal-expansion",
+    "pd-waves",            "pd-bimaterial-bar", "pd-lps-waves",       "pd-branching",
+    "pd-kalthoff",         "lattice-threads",
 };
 
 /* Why the other cases run on rank 0 alone, by name prefix (first match). */
@@ -100,8 +104,36 @@ double vpar_at(const struct sim *s, const double *local, int64_t gid)
     return par_value_at(s, local, gid);
 }
 
+void vpar_values(const struct sim *s, const double *local, const int64_t *gid, size_t k,
+                 double *out)
+{
+    par_values_at(s, local, gid, k, out);
+}
+
 int vpar_gather(const struct sim *s, const double *local, double *global,
                 struct spall_error *err)
 {
     return par_gather_by_gid(s, local, global, err);
+}
+
+size_t vpar_n(const struct sim *s)
+{
+    return par_n_global(s);
+}
+
+double *vpar_whole(const struct sim *s, const double *local, struct spall_error *err)
+{
+    const size_t n = par_n_global(s);
+    double *w = malloc((n ? n : 1) * sizeof *w);
+    int rc = w ? SPALL_OK
+               : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu particle values", n);
+    if (s->par)
+        rc = par_agree(rc, err); /* every rank takes part in the gather, or none */
+    if (!rc)
+        rc = par_gather_by_gid(s, local, w, err);
+    if (rc) {
+        free(w);
+        return NULL;
+    }
+    return w;
 }

@@ -20,6 +20,7 @@
 #define SPALL_VALIDATION_VPAR_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 struct sim;
@@ -53,9 +54,21 @@ int vpar_distribute(struct vreport *r, struct sim *s, struct spall_error *err);
  *  with global id @p gid, on every rank (collective when distributed). */
 double vpar_at(const struct sim *s, const double *local, int64_t gid);
 
+/** The same for the @p k particles @p gid into @p out (one collective). */
+void vpar_values(const struct sim *s, const double *local, const int64_t *gid, size_t k,
+                 double *out);
+
 /** The whole run's values of @p local by global id into @p global
  *  (par_n_global entries) on every rank (collective when distributed). */
 int vpar_gather(const struct sim *s, const double *local, double *global,
                 struct spall_error *err);
+
+/** A new array (free() it) of par_n_global(s) values of @p local by
+ *  global id, on every rank; NULL with @p err set on every rank when one
+ *  is out of memory (collective when distributed). */
+double *vpar_whole(const struct sim *s, const double *local, struct spall_error *err);
+
+/** Particles of the whole run (par_n_global). */
+size_t vpar_n(const struct sim *s);
 
 #endif

@@ -125,30 +125,31 @@ void par_values_at(const struct sim *s, const double *local, const int64_t *gid,
         return;
     }
 #ifdef SPALL_HAVE_MPI
+    /* k is a handful of particles: one fixed-size MPI_Allgather of
+     * (owned?, value) per particle and rank; the owner's value is taken */
+    enum { CHUNK = 32 };
+    const int size = par_size();
+    double mine[2 * CHUNK];
+    double *all = malloc((size_t)size * 2 * CHUNK * sizeof *all);
+    int ok = all != NULL, all_ok = 0;
+    MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
     for (size_t j = 0; j < k; j++) /* what stays if a rank ran out of memory */
         out[j] = NAN;
-    /* k is a handful of particles: the pairs of the owned ones, keyed by j */
-    int64_t key[64];
-    double val[64];
-    for (size_t j0 = 0; j0 < k; j0 += 64) {
-        size_t m = 0, j1 = j0 + 64 < k ? j0 + 64 : k;
-        for (size_t j = j0; j < j1; j++) {
-            size_t i = par_owned_index(s, gid[j]);
-            if (i != SIZE_MAX) {
-                key[m] = (int64_t)j;
-                val[m++] = local[i];
-            }
+    for (size_t j0 = 0; all_ok && j0 < k; j0 += CHUNK) {
+        const size_t m = k - j0 < CHUNK ? k - j0 : CHUNK;
+        for (size_t j = 0; j < m; j++) {
+            size_t i = par_owned_index(s, gid[j0 + j]);
+            mine[2 * j] = i != SIZE_MAX ? 1.0 : 0.0;
+            mine[2 * j + 1] = i != SIZE_MAX ? local[i] : 0.0;
         }
-        int64_t *g = NULL;
-        double *v = NULL;
-        size_t t = 0;
-        if (allgather_pairs(key, val, m, &g, &v, &t) == 0) {
-            for (size_t q = 0; q < t; q++)
-                out[g[q]] = v[q];
-            free(g);
-            free(v);
-        }
+        MPI_Allgather(mine, (int)(2 * m), MPI_DOUBLE, all, (int)(2 * m), MPI_DOUBLE,
+                      MPI_COMM_WORLD);
+        for (int r = 0; r < size; r++)
+            for (size_t j = 0; j < m; j++)
+                if (all[(size_t)r * 2 * m + 2 * j] != 0.0)
+                    out[j0 + j] = all[(size_t)r * 2 * m + 2 * j + 1];
     }
+    free(all);
 #endif
 }
 
