@@ -23,7 +23,7 @@
 static const char *const distributed_cases[] = {
     "lattice-chain-break", "lattice-waves",   "thermal-conduction", "thermal-expansion",
     "pd-waves",            "pd-bimaterial-bar", "pd-lps-waves",       "pd-branching",
-    "pd-kalthoff",         "lattice-threads",
+    "pd-kalthoff",         "lattice-threads",   "impact-nylon",       "impact-vinylester",
 };
 
 /* Why the other cases run on rank 0 alone, by name prefix (first match). */

@@ -29,7 +29,10 @@ static void validate_usage(FILE *out)
                  "                also write FILE, the validation reference (docs/validation.md):\n"
                  "                one section per registered case with its checks; without\n"
                  "                named cases it runs the gate (as --quick), and the cases\n"
-                 "                outside it get their registry entry only\n");
+                 "                outside it get their registry entry only\n"
+                 "Under mpirun the cases whose model runs distributed run on every rank with\n"
+                 "the numbers of one rank; the others run on rank 0 with a 'serial:' note\n"
+                 "(docs/parallel.md).\n");
 }
 
 static void json_string(FILE *f, const char *s)
