@@ -26,7 +26,6 @@
 #include "core/fields.h"
 #include "core/particles.h"
 #include "core/sim.h"
-#include "io/run_par.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -206,17 +205,8 @@ int pd_case_lps_waves(struct vreport *r, struct spall_error *err)
     while (s->t < t_end && !rc)
         rc = sim_step(s, err);
     double c_meas = NAN;
-    if (!rc) { /* the probes by global id (vpar.h) */
-        const struct particles *p = s->p;
-        double uq[3], uh[3], v[3];
-        run_probe(s, 0, uq, v);
-        run_probe(s, 1, uh, v);
-        double ta_q = s->t - uq[0] / LPW_V;
-        double ta_h = s->t - uh[0] / LPW_V;
-        c_meas = (vpar_at(s, p->x0[0], (int64_t)s->probes[1].particle) -
-                  vpar_at(s, p->x0[0], (int64_t)s->probes[0].particle)) /
-                 (ta_h - ta_q);
-    }
+    if (!rc) /* the probes by global id (vpar.h) */
+        c_meas = vpar_probe_wave_speed(s, LPW_V);
     sim_destroy(&s);
     if (rc)
         return rc;

@@ -20,12 +20,10 @@
 
 #include "core/particles.h"
 #include "core/sim.h"
-#include "io/run_par.h"
 #include "spall/error.h"
 #include "validation/vpar.h"
 
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 
 #define PDW_E 200e9
@@ -86,18 +84,8 @@ static int pdw_run(struct vreport *r, int dim, int surf, double *c_meas, size_t 
     while (s->t < t_end)
         if ((rc = sim_step(s, err)))
             break;
-    if (!rc) {
-        /* the probes by global id (vpar.h): the serial values on any rank count */
-        const struct particles *p = s->p;
-        double uq[3], uh[3], v[3];
-        run_probe(s, 0, uq, v);
-        run_probe(s, 1, uh, v);
-        double ta_q = s->t - uq[0] / PDW_V;
-        double ta_h = s->t - uh[0] / PDW_V;
-        *c_meas = (vpar_at(s, p->x0[0], (int64_t)s->probes[1].particle) -
-                   vpar_at(s, p->x0[0], (int64_t)s->probes[0].particle)) /
-                  (ta_h - ta_q);
-    }
+    if (!rc) /* the probes by global id (vpar.h): the serial values on any rank count */
+        *c_meas = vpar_probe_wave_speed(s, PDW_V);
     sim_destroy(&s);
     return rc;
 }

@@ -7,6 +7,7 @@
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/gather.h"
+#include "core/particles.h"
 #include "core/sim.h"
 #include "io/run_par.h"
 #include "spall/error.h"
@@ -136,4 +137,16 @@ double *vpar_whole(const struct sim *s, const double *local, struct spall_error 
         return NULL;
     }
     return w;
+}
+
+double vpar_probe_wave_speed(const struct sim *s, double v_behind)
+{
+    double uq[3], uh[3], v[3];
+    run_probe(s, 0, uq, v);
+    run_probe(s, 1, uh, v);
+    double ta_q = s->t - uq[0] / v_behind;
+    double ta_h = s->t - uh[0] / v_behind;
+    return (vpar_at(s, s->p->x0[0], (int64_t)s->probes[1].particle) -
+            vpar_at(s, s->p->x0[0], (int64_t)s->probes[0].particle)) /
+           (ta_h - ta_q);
 }

@@ -68,6 +68,13 @@ int vpar_gather(const struct sim *s, const double *local, double *global,
  *  is out of memory (collective when distributed). */
 double *vpar_whole(const struct sim *s, const double *local, struct spall_error *err);
 
+/** Mean-arrival wave speed between probes 0 (q) and 1 (h) of @p s driven
+ *  at particle velocity @p v_behind: once the front has passed a probe,
+ *  u = v_behind (t - t_a) on average, so t_a = t - u / v_behind, and the
+ *  speed is (x0_h - x0_q) / (t_a,h - t_a,q).  Probes from their owners
+ *  (collective when distributed). */
+double vpar_probe_wave_speed(const struct sim *s, double v_behind);
+
 /** Particles of the whole run (par_n_global). */
 size_t vpar_n(const struct sim *s);
 
