@@ -1,6 +1,7 @@
 #include "cli/cli.h"
 
 #include "core/parallel/comm.h"
+#include "core/parallel/gather.h"
 #include "spall/error.h"
 #include "validation/validation.h"
 #include "validation/vpar.h"
@@ -216,6 +217,8 @@ int cli_validate(int argc, char **argv)
                rep.quick ? " (quick)" : "");
         if (cases[c].status)
             printf("  status: %s\n", cases[c].status);
+        if (rep.par) /* the ranks start each case together; an idle rank sleeps */
+            par_barrier_idle();
         if (rep.par && !vpar_begin_case(&rep, &cases[c]))
             continue; /* a serial case: rank 0 runs it */
         fflush(stdout);
@@ -233,6 +236,8 @@ int cli_validate(int argc, char **argv)
             print_check(&rep.checks[k]);
         fflush(stdout);
     }
+    if (rep.par)
+        par_barrier_idle(); /* rank 0 may still run a serial case */
     size_t pass = 0, fail = 0;
     for (size_t k = 0; k < rep.n; k++)
         rep.checks[k].pass ? pass++ : fail++;

@@ -18,6 +18,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <time.h>
 
 #ifdef SPALL_HAVE_MPI
 #include <mpi.h>
@@ -173,4 +174,19 @@ void par_halo_volume(const struct sim *s, struct par_halo_volume *out)
     out->bytes = d->n_send * 2u * (size_t)s->dim * sizeof(double);
     out->exchanges = d->halo_calls;
     out->seconds = d->comm_seconds;
+}
+
+void par_barrier_idle(void)
+{
+#ifdef SPALL_HAVE_MPI
+    if (!par_active() || par_size() == 1)
+        return;
+    MPI_Request req;
+    MPI_Ibarrier(MPI_COMM_WORLD, &req);
+    int done = 0;
+    const struct timespec ms = {0, 1000000};
+    for (MPI_Test(&req, &done, MPI_STATUS_IGNORE); !done;
+         MPI_Test(&req, &done, MPI_STATUS_IGNORE))
+        nanosleep(&ms, NULL);
+#endif
 }

@@ -42,6 +42,12 @@ void par_values_at(const struct sim *s, const double *local, const int64_t *gid,
 /** The same for one particle. */
 double par_value_at(const struct sim *s, const double *local, int64_t gid);
 
+/** Barrier that sleeps while it waits (1 ms polls) instead of spinning in
+ *  MPI: for a rank that idles while rank 0 runs something alone
+ *  (`spall validate`'s serial cases), so that it leaves its core to the
+ *  work.  No-op without MPI or on one rank. */
+void par_barrier_idle(void);
+
 /** This rank's share of a distributed run's halo (what `spall bench`
  *  reports; all zero when serial). */
 struct par_halo_volume {
