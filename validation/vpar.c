@@ -35,8 +35,8 @@ static const struct {
     {"pen-sph", "SPH does not run distributed yet"},
     {"pen-", "no particle run (analytical models and data)"},
     {"macro-", "macro-particles do not run distributed yet"},
-    {"", "its measurements read particle arrays by local index (not adapted to a distributed "
-         "run yet)"},
+    {"", "not adapted to a distributed run yet (it reads particle arrays, bonds or model "
+         "state by local index)"},
 };
 
 const char *vpar_serial_reason(const char *name)
