@@ -17,11 +17,11 @@ mpiexec="$3"
 # shellcheck source=lib/mpi_env.bash
 source "$2/tests/cli/lib/mpi_env.bash"
 fail=0
-launch() { OMP_NUM_THREADS=1 timeout 300 "$mpiexec" --allow-run-as-root --oversubscribe -q "$@"; }
+launch() { OMP_NUM_THREADS=1 timeout 900 "$mpiexec" --allow-run-as-root --oversubscribe -q "$@"; }
 
 cases="lattice-waves pd-bimaterial-bar pd-lps-waves thermal-expansion pen-check-value"
 # shellcheck disable=SC2086
-OMP_NUM_THREADS=1 timeout 300 "$spall" validate $cases --quick --json one.json > one.txt 2>&1
+OMP_NUM_THREADS=1 timeout 900 "$spall" validate $cases --quick --json one.json > one.txt 2>&1
 rc1=$?
 # shellcheck disable=SC2086
 launch -np 2 "$spall" validate $cases --quick --json two.json > two.txt 2> two.err
@@ -44,7 +44,7 @@ grep -q "serial: " one.txt && { echo "FAIL validate: serial notes on one rank"; 
 diff <(grep -v "^  serial: " two.txt) one.txt > /dev/null ||
     { echo "FAIL validate: 2-rank report differs from 1 rank"; diff one.txt two.txt | head; fail=1; }
 
-OMP_NUM_THREADS=1 timeout 300 "$spall" bench lattice2d pd3d --scale 0.02 --threads 1 \
+OMP_NUM_THREADS=1 timeout 900 "$spall" bench lattice2d pd3d --scale 0.02 --threads 1 \
     --json b1.json > b1.txt 2>&1 || { echo "FAIL bench on one rank"; cat b1.txt; fail=1; }
 launch -np 2 "$spall" bench lattice2d pd3d --scale 0.02 --threads 1 --json b2.json > b2.txt 2>&1 ||
     { echo "FAIL bench on 2 ranks"; cat b2.txt; fail=1; }
