@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 
+struct sim;
 struct spall_error;
 
 struct bench_result {
@@ -20,7 +21,16 @@ struct bench_result {
     double cpu_seconds;         /**< CPU time of the process (all threads) in the loop */
     double particle_steps_per_s;
     double bond_steps_per_s;
-    double bytes_per_particle;  /**< resident memory growth / particles */
+    double bytes_per_particle;  /**< resident memory growth / particles held (distributed:
+                                     summed over the ranks, owned + ghosts, after the
+                                     partition) */
+    /* under mpirun (bench_par.c; serial: ranks 1, the rest 0) */
+    int ranks;
+    size_t ghosts;              /**< ghost particles summed over the ranks */
+    double halo_bytes_per_step; /**< position-halo bytes sent per step, all ranks */
+    double halo_seconds_per_step; /**< wall seconds per step in the halo, largest rank */
+    double setup_bytes_per_particle; /**< a rank's growth while building the whole body
+                                          (replicated set-up) / particles of the body */
     char note[384];
 };
 
@@ -66,6 +76,21 @@ extern const size_t bench_pen_n_cases;
  *  fills out->note. */
 int bench_run_deck(const char *name, const char *yaml, int threads, long max_steps,
                    struct bench_result *out, struct spall_error *err);
+
+/** Under mpirun: partition the built @p s over the ranks (no-op on one
+ *  rank); a case whose model cannot run distributed is an error naming the
+ *  reason.  Collective. */
+int bench_distribute(struct sim *s, const char *name, struct spall_error *err);
+
+/** Fill @p out's totals for the whole run from this rank's measurements
+ *  (collective under mpirun): particles and bonds of the body (@p n_body,
+ *  @p bonds_body, counted before the partition), the slowest rank's loop
+ *  time @p wall, the CPU time of all ranks, memory (resident sizes before
+ *  the build @p rss0, after it @p rss_built and after the partition
+ *  @p rss_held) and the halo. */
+void bench_fill(const struct sim *s, const char *name, int threads, size_t n_body,
+                size_t bonds_body, double wall, double cpu, double rss0, double rss_built,
+                double rss_held, struct bench_result *out);
 
 /** CPU seconds of this process, all threads (CLOCK_PROCESS_CPUTIME_ID). */
 double bench_cpu_seconds(void);

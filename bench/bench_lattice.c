@@ -10,6 +10,7 @@
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "core/model.h"
+#include "core/parallel/comm.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -56,21 +57,18 @@ int bench_run_deck(const char *name, const char *yaml, int threads, long max_ste
         return rc;
     }
     double rss1 = bench_rss_bytes();
+    /* the whole body's counts, before a partition makes them local */
+    const size_t n_body = s->p->n_owned;
+    const size_t bonds = s->ops->interactions ? s->ops->interactions(s->model, s) : 0;
+    rc = bench_distribute(s, name, err); /* mpirun: owned + ghosts; no-op on one rank */
+    double rss2 = par_size() > 1 ? bench_rss_bytes() : rss1;
+    par_barrier(); /* the loop starts together on every rank */
     double t0 = omp_get_wtime(), c0 = bench_cpu_seconds();
-    while (!sim_done(s) && !rc && (max_steps <= 0 || s->step < max_steps))
+    while (!rc && !sim_done(s) && (max_steps <= 0 || s->step < max_steps))
         rc = sim_step(s, err);
     double wall = omp_get_wtime() - t0, cpu = bench_cpu_seconds() - c0;
-    memset(out, 0, sizeof *out);
-    snprintf(out->name, sizeof out->name, "%s", name);
-    out->threads = threads;
-    out->particles = s->p->n_owned;
-    out->bonds = s->ops->interactions ? s->ops->interactions(s->model, s) : 0;
-    out->steps = s->step;
-    out->seconds = wall;
-    out->cpu_seconds = cpu;
-    out->particle_steps_per_s = wall > 0 ? (double)out->particles * (double)out->steps / wall : 0;
-    out->bond_steps_per_s = wall > 0 ? (double)out->bonds * (double)out->steps / wall : 0;
-    out->bytes_per_particle = (rss1 - rss0) / (double)out->particles;
+    if (!rc)
+        bench_fill(s, name, threads, n_body, bonds, wall, cpu, rss0, rss1, rss2, out);
     sim_destroy(&s);
     deck_destroy(&d);
     return rc;

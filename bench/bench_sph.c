@@ -17,6 +17,7 @@
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "core/model.h"
+#include "core/parallel/comm.h"
 #include "models/sph/sph.h"
 #include "spall/error.h"
 
@@ -53,8 +54,17 @@ static int sph_bench_run(const char *name, const char *yaml, int threads, bool s
     if (!rc)
         rc = deck_build_sim(d, &s, &ro, err);
     deck_destroy(&d);
-    if (rc)
+    if (!rc && par_size() > 1) /* it reads this rank's particle arrays (bench_par.c) */
+        rc = bench_distribute(s, name, err);
+    if (!rc && s->par)
+        rc = spall_error_set(err, SPALL_ERR_INPUT,
+                             "'%s' does not run distributed yet: its measurements read the "
+                             "particle arrays of one rank",
+                             name);
+    if (rc) {
+        sim_destroy(&s);
         return rc;
+    }
     if (split)
         sph_set_split_loops(s->model);
     double rss = bench_rss_bytes();

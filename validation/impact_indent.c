@@ -27,6 +27,7 @@
 #include "validation/impact_cases.h"
 #include "validation/lattice_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/particles.h"
 #include "core/rigid.h"
@@ -102,6 +103,11 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
     int rc = vlat_build(m->name, deck, &s, err);
     if (rc)
         return rc;
+    const size_t n_particles = s->p->n;
+    if ((rc = vpar_distribute(r, s, err))) { /* mpirun: every rank moves the tup alike */
+        sim_destroy(&s);
+        return rc;
+    }
     const struct impactor *tup = &s->rigid->im[0];
     size_t cap = (size_t)s->n_steps + 2, n = 0;
     double *t = malloc(cap * sizeof *t), *f = malloc(cap * sizeof *f), *u = malloc(cap * sizeof *u);
@@ -185,7 +191,7 @@ static int run_indent(struct vreport *r, const struct indent_material *m, struct
     vreport_info(r, "%s: %zu particles, dt = %.3g s, %ld steps; smoothed peak load %.1f N at "
                     "%.4g ms, deflection %.4g mm; absorbed %.4g J; bonds broken %g; energy "
                     "balance %.3g J",
-                 m->name, s->p->n, s->dt, s->step, best, t_peak * 1e3, d_peak * 1e3, absorbed,
+                 m->name, n_particles, s->dt, s->step, best, t_peak * 1e3, d_peak * 1e3, absorbed,
                  broken, s->energy.balance);
 done:
     free(t);

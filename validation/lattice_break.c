@@ -18,12 +18,14 @@
  */
 #include "validation/lattice_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #define BREAK_E 3.0e9
@@ -60,8 +62,13 @@ int lattice_case_chain_break(struct vreport *r, struct spall_error *err)
     if ((rc = vlat_group(s, "left", &gl, err)) || (rc = vlat_group(s, "right", &gr, err)))
         goto done;
     const struct particles *p = s->p;
-    const size_t il = s->groups[gl].idx[0], ir = s->groups[gr].idx[0];
+    /* global ids: the ends stay readable after distribution (vpar.h) */
+    const int64_t ends[2] = {p->gid[s->groups[gl].idx[0]], p->gid[s->groups[gr].idx[0]]};
+    const int64_t il = ends[0], ir = ends[1];
+    const size_t n_particles = p->n;
     const double len0 = p->x0[0][ir] - p->x0[0][il];
+    if ((rc = vpar_distribute(r, s, err)))
+        goto done;
     const double eps_max = BREAK_SIGMA / BREAK_E;
     /* break expected at t = T_ramp / 2 + eps_max L / V; allow 50 % more */
     const double t_stop = 1.5 * (0.5 * BREAK_RAMP + eps_max * len0 / BREAK_V);
@@ -69,7 +76,9 @@ int lattice_case_chain_break(struct vreport *r, struct spall_error *err)
     while (s->t < t_stop) {
         if ((rc = sim_step(s, err)))
             goto done;
-        double eps = (p->x[0][ir] - p->x[0][il]) / len0 - 1.0;
+        double x_end[2];
+        vpar_values(s, p->x[0], ends, 2, x_end);
+        double eps = (x_end[1] - x_end[0]) / len0 - 1.0;
         broken = vlat_history(s, "bonds_broken");
         if (!isfinite(broken)) {
             rc = spall_error_set(err, SPALL_ERR_INTERNAL,
@@ -92,7 +101,7 @@ int lattice_case_chain_break(struct vreport *r, struct spall_error *err)
         vreport_info(r, "%zu particles, dt = %.4g s: first break at t = %.5g s (step %ld), overall "
                      "strain %.6g (previous step %.6g), eps_max = %.6g (%+.3f %%), %g bond(s) "
                      "broken in that step",
-                     p->n, s->dt, t_break, s->step, eps_break, eps_prev, eps_max,
+                     n_particles, s->dt, t_break, s->step, eps_break, eps_prev, eps_max,
                      100.0 * (eps_break / eps_max - 1.0), broken);
 done:
     sim_destroy(&s);

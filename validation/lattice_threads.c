@@ -16,6 +16,7 @@
  */
 #include "validation/lattice_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/particles.h"
 #include "core/sim.h"
@@ -67,7 +68,7 @@ static void threads_result_free(struct threads_result *t)
     t->x[0] = t->x[1] = NULL;
 }
 
-static int threads_run(int nthreads, long steps, struct threads_result *res,
+static int threads_run(struct vreport *r, int nthreads, long steps, struct threads_result *res,
                        struct spall_error *err)
 {
     memset(res, 0, sizeof *res);
@@ -82,22 +83,21 @@ static int threads_run(int nthreads, long steps, struct threads_result *res,
     int rc = vlat_build("threads_plate", THREADS_DECK, &s, err);
     if (rc)
         return rc;
+    if ((rc = vpar_distribute(r, s, err))) /* mpirun: R ranks x 1 and x 2 threads */
+        goto done;
     for (long k = 0; k < steps; k++)
         if ((rc = sim_step(s, err)))
             goto done;
     sim_update_energy(s);
-    res->n = s->p->n;
+    res->n = vpar_n(s);
     res->steps = steps;
     res->broken = vlat_history(s, "bonds_broken");
     res->energy_total = s->energy.kinetic + s->energy.strain + s->energy.model_dissipated;
-    for (int d = 0; d < 2; d++) {
-        res->x[d] = malloc(res->n * sizeof *res->x[d]);
-        if (!res->x[d]) {
-            rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory in lattice-threads");
+    for (int d = 0; d < 2; d++) /* the whole plate by global id (vpar.h) */
+        if (!(res->x[d] = vpar_whole(s, s->p->x[d], err))) {
+            rc = err->code;
             goto done;
         }
-        memcpy(res->x[d], s->p->x[d], res->n * sizeof *res->x[d]);
-    }
 done:
     sim_destroy(&s);
     return rc;
@@ -114,9 +114,9 @@ int lattice_case_threads(struct vreport *r, struct spall_error *err)
 #endif
     struct threads_result a, b;
     memset(&b, 0, sizeof b);
-    int rc = threads_run(1, steps, &a, err);
+    int rc = threads_run(r, 1, steps, &a, err);
     if (!rc)
-        rc = threads_run(2, steps, &b, err);
+        rc = threads_run(r, 2, steps, &b, err);
 #ifdef _OPENMP
     omp_set_num_threads(saved);
 #endif

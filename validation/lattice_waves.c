@@ -52,10 +52,12 @@
  */
 #include "validation/lattice_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/lattice_gen.h"
 #include "core/particles.h"
 #include "core/sim.h"
+#include "io/run_par.h"
 #include "models/lattice/lattice_calib.h"
 #include "spall/error.h"
 
@@ -188,6 +190,19 @@ static int wave_attach(struct vreport *r, const struct wave_run *w, const char *
     return rc;
 }
 
+/* x-velocity and displacement of the probes q and h, from their owners
+ * (run_probe: the serial values on any rank count) */
+static void probe_pair(const struct sim *s, double *vq, double *vh, double *uq, double *uh)
+{
+    double u[3], v[3];
+    run_probe(s, 0, u, v);
+    *vq = v[0];
+    *uq = u[0];
+    run_probe(s, 1, u, v);
+    *vh = v[0];
+    *uh = u[0];
+}
+
 static int wave_one(struct wave_run *w, struct vreport *r, const char *label,
                     struct spall_error *err)
 {
@@ -229,6 +244,8 @@ static int wave_one(struct wave_run *w, struct vreport *r, const char *label,
     const size_t iq = s->probes[0].particle, ih = s->probes[1].particle;
     w->x_q = p->x0[0][iq];
     w->x_h = p->x0[0][ih];
+    if ((rc = vpar_distribute(r, s, err))) /* mpirun: the probes by global id below */
+        goto done;
     /* stop at L / c: after the L/2 arrival (0.5 L/c), well before the wave
      * reflected at the fixed end can come back to L/2 (1.5 L/c) */
     w->t_end = WAVE_L / w->c_ref;
@@ -244,18 +261,12 @@ static int wave_one(struct wave_run *w, struct vreport *r, const char *label,
     }
     long k = 0;
     tt[k] = s->t;
-    vq[k] = p->v[0][iq];
-    vh[k] = p->v[0][ih];
-    uq[k] = p->x[0][iq] - p->x0[0][iq];
-    uh[k] = p->x[0][ih] - p->x0[0][ih];
+    probe_pair(s, &vq[k], &vh[k], &uq[k], &uh[k]);
     for (k = 1; k < n && s->t < w->t_end; k++) {
         if ((rc = sim_step(s, err)))
             goto done;
         tt[k] = s->t;
-        vq[k] = p->v[0][iq];
-        vh[k] = p->v[0][ih];
-        uq[k] = p->x[0][iq] - p->x0[0][iq];
-        uh[k] = p->x[0][ih] - p->x0[0][ih];
+        probe_pair(s, &vq[k], &vh[k], &uq[k], &uh[k]);
     }
     w->steps = k - 1;
     if ((rc = wave_attach(r, w, label, tt, uq, uh, k, err)))
@@ -265,8 +276,8 @@ static int wave_one(struct wave_run *w, struct vreport *r, const char *label,
      * the centroid of the velocity rise; the oscillations behind the front
      * integrate out (the first moment of the Airy function is zero) */
     {
-        double ta_q = s->t - (p->x[0][iq] - p->x0[0][iq]) / w->v_behind;
-        double ta_h = s->t - (p->x[0][ih] - p->x0[0][ih]) / w->v_behind;
+        double ta_q = s->t - uq[k - 1] / w->v_behind;
+        double ta_h = s->t - uh[k - 1] / w->v_behind;
         w->c_mean = (w->x_h - w->x_q) / (ta_h - ta_q);
         /* in the wide plate, relief waves from the free edges change the
          * state behind the front before the end: not applicable there */

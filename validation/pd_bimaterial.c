@@ -21,9 +21,11 @@
 #include "validation/lattice_cases.h"
 #include "validation/pd_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/particles.h"
 #include "core/sim.h"
+#include "io/run_par.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -55,6 +57,8 @@ int pd_case_bimaterial(struct vreport *r, struct spall_error *err)
              BM_RA, BM_EA, BM_RB, BM_EB);
     struct sim *s = NULL;
     int rc = vlat_build("pd_bimaterial", deck, &s, err);
+    if (!rc && (rc = vpar_distribute(r, s, err))) /* mpirun: probes from their owners */
+        sim_destroy(&s);
     if (rc)
         return rc;
     const double ca = sqrt(BM_EA / BM_RA), cb = sqrt(BM_EB / BM_RB);
@@ -69,7 +73,6 @@ int pd_case_bimaterial(struct vreport *r, struct spall_error *err)
     const double tw[6] = {t_q_in + g, t_q_ref - g, t_q_ref + g, t_q_back - g, t_h_tr + g,
                           t_h_back - g};
     double u[6];
-    const size_t iq = s->probes[0].particle, ih = s->probes[1].particle;
     /* the windows' ends in time order (the transmitted window opens before
      * the reflected one closes) */
     int order[6] = {0, 1, 2, 3, 4, 5};
@@ -83,8 +86,9 @@ int pd_case_bimaterial(struct vreport *r, struct spall_error *err)
         const int w = order[k];
         while (s->t < tw[w] && !rc)
             rc = sim_step(s, err);
-        const size_t i = w < 4 ? iq : ih;
-        u[w] = s->p->x[0][i] - s->p->x0[0][i];
+        double uw[3], vw[3];
+        run_probe(s, w < 4 ? 0 : 1, uw, vw); /* probe q, then h */
+        u[w] = uw[0];
     }
     sim_destroy(&s);
     if (rc)

@@ -31,26 +31,43 @@
 #include "core/mathconst.h"
 #include "core/particles.h"
 #include "core/sim.h"
+#include "core/parallel/comm.h"
 #include "core/model.h"
 #include "spall/error.h"
+#include "validation/vpar.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-/* the registered damage field (the same values as the output) */
+/* the registered damage field (the same values as the output) of the whole
+ * run, by global id (vpar.h: the serial order on any rank count) */
 static int damage_field(struct sim *s, double **out, struct spall_error *err)
 {
-    const size_t n = s->p->n;
-    double *d = realloc(*out, (n ? n : 1) * sizeof *d);
-    if (!d)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for damage");
-    *out = d;
+    const size_t n = s->p->n_owned;
+    double *d = malloc((n ? n : 1) * sizeof *d);
     const struct field_desc *f = field_registry_find(s->fields, "damage");
-    if (!f)
-        return spall_error_set(err, SPALL_ERR_INTERNAL, "the model has no damage field");
-    field_gather_f64(f, n, d);
-    return SPALL_OK;
+    int rc = !d ? spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for damage")
+             : !f ? spall_error_set(err, SPALL_ERR_INTERNAL, "the model has no damage field")
+                  : SPALL_OK;
+    if (!rc)
+        field_gather_f64(f, n, d);
+    if (s->par)
+        rc = par_agree(rc, err);
+    free(*out);
+    *out = rc ? NULL : vpar_whole(s, d, err);
+    free(d);
+    return rc ? rc : (*out ? SPALL_OK : err->code);
+}
+
+/* Distribute @p s (mpirun) and gather its reference positions by global id. */
+static int whole_x0(struct vreport *r, struct sim *s, double *x0[2], struct spall_error *err)
+{
+    int rc = vpar_distribute(r, s, err);
+    for (int d = 0; d < 2 && !rc; d++)
+        if (!(x0[d] = vpar_whole(s, s->p->x0[d], err)))
+            rc = err->code;
+    return rc;
 }
 
 int pd_case_branching(struct vreport *r, struct spall_error *err)
@@ -77,7 +94,9 @@ int pd_case_branching(struct vreport *r, struct spall_error *err)
     int rc = vlat_build("pd_branching", deck, &s, err);
     if (rc)
         return rc;
-    struct particles *p = s->p;
+    const size_t n = s->p->n;
+    double *x0[2] = {NULL, NULL};
+    rc = whole_x0(r, s, x0, err);
     double *phi = NULL, v_max = 0.0, d_prev = 0.0, t_prev = 0.0, t_init = NAN;
     const double tip_x = 0.05, tip_y = yc, window = 2e-6;
     while (!sim_done(s) && !rc) {
@@ -88,9 +107,9 @@ int pd_case_branching(struct vreport *r, struct spall_error *err)
         if ((rc = damage_field(s, &phi, err)))
             break;
         double dmax = 0.0;
-        for (size_t i = 0; i < p->n; i++)
-            if (phi[i] >= 0.35 && p->x0[0][i] > tip_x)
-                dmax = fmax(dmax, hypot(p->x0[0][i] - tip_x, p->x0[1][i] - tip_y));
+        for (size_t i = 0; i < n; i++)
+            if (phi[i] >= 0.35 && x0[0][i] > tip_x)
+                dmax = fmax(dmax, hypot(x0[0][i] - tip_x, x0[1][i] - tip_y));
         if (dmax > 1e-3 && isnan(t_init))
             t_init = s->t;
         if (d_prev > 1e-3)
@@ -105,9 +124,9 @@ int pd_case_branching(struct vreport *r, struct spall_error *err)
         for (int col = 165; col < 298; col++) {
             int bands = 0, in = 0;
             unsigned char dmg_row[121] = {0};
-            for (size_t i = 0; i < p->n; i++)
-                if (fabs(p->x0[0][i] - col * dx) < 0.1 * dx && phi[i] >= 0.35) {
-                    long row = lround(p->x0[1][i] / dx);
+            for (size_t i = 0; i < n; i++)
+                if (fabs(x0[0][i] - col * dx) < 0.1 * dx && phi[i] >= 0.35) {
+                    long row = lround(x0[1][i] / dx);
                     if (row >= 0 && row <= 120)
                         dmg_row[row] = 1;
                 }
@@ -138,9 +157,11 @@ int pd_case_branching(struct vreport *r, struct spall_error *err)
         vreport_info(r, "pd-branching: %zu particles, %ld steps; crack starts at %.3g us; max "
                      "tip speed %.0f m/s (2 us windows) = %.2f c_R (c_R = %.0f m/s); up to %d "
                      "damaged bands, at x = %.1f mm",
-                     p->n, s->step, t_init * 1e6, v_max, v_max / cr, cr, bands_max,
+                     n, s->step, t_init * 1e6, v_max, v_max / cr, cr, bands_max,
                      x_bands * 1e3);
     free(phi);
+    free(x0[0]);
+    free(x0[1]);
     sim_destroy(&s);
     return rc;
 }
@@ -165,15 +186,17 @@ int pd_case_kalthoff(struct vreport *r, struct spall_error *err)
     int rc = vlat_build("pd_kalthoff", deck, &s, err);
     if (rc)
         return rc;
-    while (!sim_done(s) && !rc)
+    const size_t n = s->p->n;
+    double *x0[2] = {NULL, NULL};
+    rc = whole_x0(r, s, x0, err);
+    while (!rc && !sim_done(s))
         rc = sim_step(s, err);
     double *phi = NULL, ang = NAN, far = 0.0;
     size_t nd = 0;
-    struct particles *p = s->p;
     if (!rc && (rc = damage_field(s, &phi, err)) == 0) {
         const double tx = 0.0505, ty = 0.0255;
-        for (size_t i = 0; i < p->n; i++) {
-            double dxx = p->x0[0][i] - tx, dyy = p->x0[1][i] - ty;
+        for (size_t i = 0; i < n; i++) {
+            double dxx = x0[0][i] - tx, dyy = x0[1][i] - ty;
             if (phi[i] < 0.35 || dyy < 2e-3 || dxx < -5e-3)
                 continue;
             nd++;
@@ -192,8 +215,10 @@ int pd_case_kalthoff(struct vreport *r, struct spall_error *err)
     if (!rc)
         vreport_info(r, "pd-kalthoff: %zu particles, %ld steps; %zu damaged particles above "
                      "the upper notch tip, farthest %.1f mm away at %.1f deg",
-                     p->n, s->step, nd, far * 1e3, ang);
+                     n, s->step, nd, far * 1e3, ang);
     free(phi);
+    free(x0[0]);
+    free(x0[1]);
     sim_destroy(&s);
     return rc;
 }

@@ -21,6 +21,7 @@
 #include "validation/lattice_cases.h"
 #include "validation/pd_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/fields.h"
 #include "core/particles.h"
@@ -194,6 +195,9 @@ int pd_case_lps_waves(struct vreport *r, struct spall_error *err)
              LPW_RHO, LPW_E, LPW_NU, LPW_V);
     struct sim *s = NULL;
     int rc = vlat_build("pd_lps_wave", deck, &s, err);
+    size_t np = s ? s->p->n : 0;
+    if (!rc && (rc = vpar_distribute(r, s, err))) /* mpirun: probes from their owners */
+        sim_destroy(&s);
     if (rc)
         return rc;
     const double c_ref = sqrt(LPW_E / (LPW_RHO * (1 - LPW_NU * LPW_NU)));
@@ -201,14 +205,8 @@ int pd_case_lps_waves(struct vreport *r, struct spall_error *err)
     while (s->t < t_end && !rc)
         rc = sim_step(s, err);
     double c_meas = NAN;
-    size_t np = s->p->n;
-    if (!rc) {
-        struct particles *p = s->p;
-        size_t iq = s->probes[0].particle, ih = s->probes[1].particle;
-        double ta_q = s->t - (p->x[0][iq] - p->x0[0][iq]) / LPW_V;
-        double ta_h = s->t - (p->x[0][ih] - p->x0[0][ih]) / LPW_V;
-        c_meas = (p->x0[0][ih] - p->x0[0][iq]) / (ta_h - ta_q);
-    }
+    if (!rc) /* the probes by global id (vpar.h) */
+        c_meas = vpar_probe_wave_speed(s, LPW_V);
     sim_destroy(&s);
     if (rc)
         return rc;

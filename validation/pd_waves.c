@@ -21,6 +21,7 @@
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
+#include "validation/vpar.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -29,7 +30,8 @@
 #define PDW_RHO 7850.0
 #define PDW_V 1.0
 
-static int pdw_run(int dim, int surf, double *c_meas, size_t *np, struct spall_error *err)
+static int pdw_run(struct vreport *r, int dim, int surf, double *c_meas, size_t *np,
+                   struct spall_error *err)
 {
     char deck[2048];
     if (dim == 1)
@@ -71,20 +73,19 @@ static int pdw_run(int dim, int surf, double *c_meas, size_t *np, struct spall_e
     int rc = vlat_build(dim == 1 ? "pd_wave_1d" : "pd_wave_2d", deck, &s, err);
     if (rc)
         return rc;
+    *np = s->p->n;
+    if ((rc = vpar_distribute(r, s, err))) {
+        sim_destroy(&s);
+        return rc;
+    }
     const double nu = 1.0 / 3.0;
     const double c_ref = dim == 1 ? sqrt(PDW_E / PDW_RHO) : sqrt(PDW_E / (PDW_RHO * (1 - nu * nu)));
     const double t_end = 0.1 / c_ref * 1.6; /* front past L/2, reflection (at 0.3 / c) not back */
     while (s->t < t_end)
         if ((rc = sim_step(s, err)))
             break;
-    if (!rc) {
-        struct particles *p = s->p;
-        size_t iq = s->probes[0].particle, ih = s->probes[1].particle;
-        double ta_q = s->t - (p->x[0][iq] - p->x0[0][iq]) / PDW_V;
-        double ta_h = s->t - (p->x[0][ih] - p->x0[0][ih]) / PDW_V;
-        *c_meas = (p->x0[0][ih] - p->x0[0][iq]) / (ta_h - ta_q);
-        *np = p->n;
-    }
+    if (!rc) /* the probes by global id (vpar.h): the serial values on any rank count */
+        *c_meas = vpar_probe_wave_speed(s, PDW_V);
     sim_destroy(&s);
     return rc;
 }
@@ -97,7 +98,7 @@ int pd_case_waves(struct vreport *r, struct spall_error *err)
     for (int dim = 1; dim <= 2; dim++) {
         double c_sc = 0.0, c_no = 0.0;
         size_t np = 0;
-        if ((rc = pdw_run(dim, 1, &c_sc, &np, err)))
+        if ((rc = pdw_run(r, dim, 1, &c_sc, &np, err)))
             return rc;
         const double ref = dim == 1 ? c1 : c2;
         char q[96];
@@ -109,7 +110,7 @@ int pd_case_waves(struct vreport *r, struct spall_error *err)
                                 "2 %: issue 4; mean-arrival (centroid) timing removes the "
                                 "dispersive smearing of the PD front", err)))
             return rc;
-        if (!r->quick && (rc = pdw_run(dim, 0, &c_no, &np, err)))
+        if (!r->quick && (rc = pdw_run(r, dim, 0, &c_no, &np, err)))
             return rc;
         vreport_info(r, "pd-waves %dD: %zu particles; c = %.2f m/s with surface correction "
                      "(%+.2f %%), %.2f m/s without (%+.2f %%; full run only), ref %.2f m/s",

@@ -18,6 +18,7 @@
 #include "spall/error.h"
 
 struct spall_error;
+struct vpar;
 
 /** What a case (or one of its checks) is compared against, so that the
  *  summary does not count a regression number as evidence of physics. */
@@ -77,6 +78,7 @@ struct vreport {
     int quick;         /**< reduced sizes for the test suite */
     const char *current_case;
     enum vkind current_kind; /**< kind given to the checks recorded next */
+    struct vpar *par;  /**< under mpirun: how the current case runs (vpar.h); NULL: one rank */
 };
 
 /** Record a check; error = |measured - reference| (/|reference| if relative);

@@ -1,6 +1,7 @@
 #include "cli/cli.h"
 
 #include "bench/bench.h"
+#include "core/parallel/comm.h"
 #include "spall/error.h"
 
 #include <stdio.h>
@@ -16,7 +17,11 @@ static void bench_usage(FILE *out)
                  "and resident memory per particle.  Default threads: 1 and 2.\n"
                  "--scale S in (0, 16] multiplies the problem size (particle count; the\n"
                  "spacing of the lattice cases shrinks as S^(-1/dim)): S < 1 for quick\n"
-                 "runs, S > 1 for resolution studies of the cases run to rest.\n");
+                 "runs, S > 1 for resolution studies of the cases run to rest.\n"
+                 "Under mpirun (mpirun -np N spall bench lattice2d pd3d) the cases whose\n"
+                 "model runs distributed are partitioned as in spall run; the rates are the\n"
+                 "whole run's (slowest rank's time), with the halo's bytes and seconds per\n"
+                 "step and the memory per particle held, ghosts included (docs/parallel.md).\n");
 }
 
 int cli_bench(int argc, char **argv)
@@ -88,6 +93,12 @@ int cli_bench(int argc, char **argv)
                 wanted[n_wanted++] = a;
         }
     }
+    /* under mpirun rank 0 alone prints and writes the JSON */
+    if (par_size() > 1 && par_rank() != 0) {
+        json = NULL;
+        if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr))
+            return 4;
+    }
     FILE *jf = NULL;
     if (json && !(jf = fopen(json, "w"))) {
         fprintf(stderr, "spall bench: cannot write '%s'\n", json);
@@ -117,6 +128,14 @@ int cli_bench(int argc, char **argv)
             printf("%-12s %7d %10zu %10zu %6ld %9.3f %14.4g %14.4g %10.1f\n", r.name, r.threads,
                    r.particles, r.bonds, r.steps, r.seconds, r.particle_steps_per_s,
                    r.bond_steps_per_s, r.bytes_per_particle);
+            if (r.ranks > 1)
+                printf("    mpi: %d ranks x %d threads; %zu ghosts (%.2f %% of the particles); "
+                       "halo %.4g bytes/step, %.3g s/step (slowest rank); %.1f B/particle held "
+                       "after the partition, %.1f B/particle while building the whole body\n",
+                       r.ranks, r.threads, r.ghosts,
+                       100.0 * (double)r.ghosts / (double)(r.particles ? r.particles : 1),
+                       r.halo_bytes_per_step, r.halo_seconds_per_step, r.bytes_per_particle,
+                       r.setup_bytes_per_particle);
             if (r.note[0])
                 printf("    %s\n", r.note);
             fflush(stdout);
@@ -125,10 +144,13 @@ int cli_bench(int argc, char **argv)
                         "%s  {\"case\": \"%s\", \"threads\": %d, \"particles\": %zu, \"bonds\": %zu, "
                         "\"steps\": %ld, \"seconds\": %.6g, \"cpu_seconds\": %.6g, "
                         "\"particle_steps_per_s\": %.6g, "
-                        "\"bond_steps_per_s\": %.6g, \"bytes_per_particle\": %.1f}",
+                        "\"bond_steps_per_s\": %.6g, \"bytes_per_particle\": %.1f, "
+                        "\"ranks\": %d, \"ghosts\": %zu, \"halo_bytes_per_step\": %.6g, "
+                        "\"halo_seconds_per_step\": %.6g, \"setup_bytes_per_particle\": %.1f}",
                         first ? "" : ",\n", r.name, r.threads, r.particles, r.bonds, r.steps,
                         r.seconds, r.cpu_seconds, r.particle_steps_per_s, r.bond_steps_per_s,
-                        r.bytes_per_particle);
+                        r.bytes_per_particle, r.ranks, r.ghosts, r.halo_bytes_per_step,
+                        r.halo_seconds_per_step, r.setup_bytes_per_particle);
                 first = 0;
             }
         }
@@ -137,5 +159,6 @@ int cli_bench(int argc, char **argv)
         fprintf(jf, "\n]\n");
         fclose(jf);
     }
+    par_bcast(&status, sizeof status, 0); /* one exit status on every rank */
     return status;
 }

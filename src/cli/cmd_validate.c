@@ -1,7 +1,10 @@
 #include "cli/cli.h"
 
+#include "core/parallel/comm.h"
+#include "core/parallel/gather.h"
 #include "spall/error.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -27,7 +30,10 @@ static void validate_usage(FILE *out)
                  "                also write FILE, the validation reference (docs/validation.md):\n"
                  "                one section per registered case with its checks; without\n"
                  "                named cases it runs the gate (as --quick), and the cases\n"
-                 "                outside it get their registry entry only\n");
+                 "                outside it get their registry entry only\n"
+                 "Under mpirun the cases whose model runs distributed run on every rank with\n"
+                 "the numbers of one rank; the others run on rank 0 with a 'serial:' note\n"
+                 "(docs/parallel.md).\n");
 }
 
 static void json_string(FILE *f, const char *s)
@@ -185,7 +191,15 @@ int cli_validate(int argc, char **argv)
         fprintf(stderr, "spall validate: out of memory\n");
         return 4;
     }
+    /* under mpirun rank 0 alone prints and writes files (validation/vpar.h) */
+    struct vpar vp;
+    memset(&vp, 0, sizeof vp);
+    if (par_size() > 1 && par_rank() != 0 && !freopen("/dev/null", "w", stdout)) {
+        free(md);
+        return 4;
+    }
     struct vreport rep = {0};
+    rep.par = par_size() > 1 ? &vp : NULL;
     rep.log = stdout;
     rep.quick = quick;
     rep.keep_series = report != NULL;
@@ -203,10 +217,16 @@ int cli_validate(int argc, char **argv)
                rep.quick ? " (quick)" : "");
         if (cases[c].status)
             printf("  status: %s\n", cases[c].status);
+        if (rep.par) /* the ranks start each case together; an idle rank sleeps */
+            par_barrier_idle();
+        if (rep.par && !vpar_begin_case(&rep, &cases[c]))
+            continue; /* a serial case: rank 0 runs it */
         fflush(stdout);
         size_t first = rep.n;
         struct spall_error err = {0};
         int rc = cases[c].run(&rep, &err);
+        if (rc && rep.par && vp.left) /* this rank left a case that went serial */
+            rc = SPALL_OK;
         if (rc) {
             printf("  ERROR: %s\n", err.msg);
             snprintf(md[c].error, sizeof md[c].error, "%s", err.msg);
@@ -216,6 +236,8 @@ int cli_validate(int argc, char **argv)
             print_check(&rep.checks[k]);
         fflush(stdout);
     }
+    if (rep.par)
+        par_barrier_idle(); /* rank 0 may still run a serial case */
     size_t pass = 0, fail = 0;
     for (size_t k = 0; k < rep.n; k++)
         rep.checks[k].pass ? pass++ : fail++;
@@ -224,6 +246,8 @@ int cli_validate(int argc, char **argv)
     int status = fail ? 1 : 0;
     struct spall_error err = {0};
     int rc = SPALL_OK;
+    if (par_rank() != 0) /* files and the status are rank 0's */
+        json = markdown = report = NULL;
     if (json && write_json(json, &rep) != 0) {
         fprintf(stderr, "spall validate: cannot write '%s'\n", json);
         status = 4;
@@ -249,5 +273,6 @@ int cli_validate(int argc, char **argv)
     }
     vreport_free(&rep);
     free(md);
+    par_bcast(&status, sizeof status, 0); /* one exit status on every rank */
     return status;
 }

@@ -91,6 +91,11 @@ static int dispatch(int argc, char **argv)
     }
     if (strcmp(cmd, "run") == 0)
         return cli_run(argc - 1, argv + 1);
+    /* validate and bench distribute what can be (docs/parallel.md) */
+    if (strcmp(cmd, "validate") == 0)
+        return cli_validate(argc - 1, argv + 1);
+    if (strcmp(cmd, "bench") == 0)
+        return cli_bench(argc - 1, argv + 1);
     if (par_size() > 1) { /* one line, once, and the same status on every rank */
         if (par_rank() == 0)
             fprintf(stderr, "spall: error: 'spall %s' does not run distributed yet (%d MPI "
@@ -98,10 +103,6 @@ static int dispatch(int argc, char **argv)
                     cmd, par_size());
         return 2;
     }
-    if (strcmp(cmd, "validate") == 0)
-        return cli_validate(argc - 1, argv + 1);
-    if (strcmp(cmd, "bench") == 0)
-        return cli_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "calibrate") == 0)
         return cli_calibrate(argc - 1, argv + 1);
     if (strcmp(cmd, "penetrate") == 0)

@@ -18,6 +18,8 @@
 #include "spall/error.h"
 #include "spall/spall.h"
 
+#include <stdio.h>
+
 bool run_par_on(void)
 {
     return par_size() > 1;
@@ -69,6 +71,20 @@ int run_par_distribute(struct sim *s, FILE *log, struct spall_error *err)
         fflush(log);
     }
     return SPALL_OK;
+}
+
+int run_par_distribute_sim(struct sim *s, char *why, size_t len, struct spall_error *err)
+{
+    if (len)
+        why[0] = '\0';
+    if (!run_par_on())
+        return SPALL_OK;
+    struct spall_error refused = {0};
+    if (par_check_supported(s, &refused)) { /* the same decision on every rank */
+        snprintf(why, len, "%s", refused.msg);
+        return SPALL_OK;
+    }
+    return run_par_distribute(s, NULL, err);
 }
 
 void run_probe(const struct sim *s, size_t k, double u[3], double v[3])

@@ -32,6 +32,13 @@ int run_par_agree(int rc, struct spall_error *err);
 /** Partition and localise the prepared run and record the decomposition
  *  in @p log (rank 0; NULL elsewhere).  Serial: nothing. */
 int run_par_distribute(struct sim *s, FILE *log, struct spall_error *err);
+/** For library callers that build and step a sim themselves (`spall
+ *  validate`, `spall bench`): partition the prepared @p s over the ranks
+ *  (run_par_distribute, no log).  What cannot run distributed is not an
+ *  error here: @p s stays whole on every rank and @p why receives the
+ *  refusal (par_check_supported); "" when distributed or on one rank.
+ *  Collective (every rank decides the same). */
+int run_par_distribute_sim(struct sim *s, char *why, size_t len, struct spall_error *err);
 /** Displacement @p u and velocity @p v of probe @p k (collective when distributed). */
 void run_probe(const struct sim *s, size_t k, double u[3], double v[3]);
 /** Fragments of the whole run (collective when distributed; rank 0 holds them). */

@@ -58,9 +58,9 @@ geometry:
 body: {geometry: plate, material: t700}
 run: {steps: 5}
 " "matrix_crack: fiber_plane is not distributed yet"
-$launch "$spall" validate --quick >stdout.txt 2>stderr.txt; rc=$?
+$launch "$spall" penetrate --help >stdout.txt 2>stderr.txt; rc=$?
 if [ $rc -ne 2 ] || [ "$(wc -l < stderr.txt)" -ne 1 ] || ! grep -q "does not run distributed" stderr.txt; then
-    echo "FAIL validate on 2 ranks: exit $rc"; cat stderr.txt; fail=1
+    echo "FAIL penetrate on 2 ranks: exit $rc"; cat stderr.txt; fail=1
 fi
 # one rank's instability stops both: one message, exit 3, output kept
 cat > unstable.yaml <<'YAML'
