@@ -348,6 +348,10 @@ static void md_tiers(FILE *f, const struct vmd_case *m, const struct vcase *case
                                                                    : "the standard tier";
     fprintf(f, "This run: %s, %zu cases, **%.1f min wall** (%.0f s; %.0f s CPU)", cfg, n_ran,
             run->wall_s / 60.0, run->wall_s, run->cpu_s);
+    if (run->n_done < run->n_selected)
+        fprintf(f, " so far: **in progress, %zu of the %zu selected cases done** when this page "
+                   "was written",
+                run->n_done, run->n_selected);
     if (run->load[0] >= 0.0 && run->load[1] >= 0.0)
         fprintf(f, ", 1-min load average %.2f at the start and %.2f at the end", run->load[0],
                 run->load[1]);

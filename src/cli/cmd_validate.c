@@ -137,6 +137,18 @@ static void print_check(const struct vcheck *c)
         printf("      note: %s\n", c->note);
 }
 
+/* whether this run selects case @p c; *named: the user named it */
+static bool run_case(const struct vcase *c, const char *const *wanted, size_t n_wanted, int quick,
+                     int full, bool *named)
+{
+    bool nm = false;
+    for (size_t w = 0; w < n_wanted; w++)
+        nm |= strcmp(wanted[w], c->name) == 0;
+    if (named)
+        *named = nm;
+    return n_wanted ? nm : vtier_selected(c, false, quick, full);
+}
+
 int cli_validate(int argc, char **argv)
 {
     size_t n_cases = 0;
@@ -219,14 +231,18 @@ int cli_validate(int argc, char **argv)
     const char *omp = getenv("OMP_NUM_THREADS");
     struct vmd_run run = {.load = {vclock_load(), -1.0}, .threads = omp ? atoi(omp) : 0};
     double t_run = vclock_wall(), cpu_run = vclock_cpu();
+    char command[512] = "spall validate";
+    for (int k = 1; k < argc; k++) {
+        size_t len = strlen(command);
+        snprintf(command + len, sizeof command - len, " %s", argv[k]);
+    }
+    for (size_t c = 0; c < n_cases; c++)
+        run.n_selected += run_case(&cases[c], wanted, n_wanted, quick, full, NULL);
     for (size_t c = 0; c < n_cases; c++) {
         bool named = false;
-        for (size_t w = 0; w < n_wanted; w++)
-            named |= strcmp(wanted[w], cases[c].name) == 0;
-        if (n_wanted ? !named : !vtier_selected(&cases[c], false, quick, full))
+        if (!run_case(&cases[c], wanted, n_wanted, quick, full, &named))
             continue;
         vreport_begin_tier(&rep, &cases[c], named, quick, full);
-        md[c].ran = 1;
         md[c].quick = rep.quick;
         md[c].full = rep.full;
         printf("== %s: %s (%s)%s\n", cases[c].name, cases[c].title, vkind_name(cases[c].kind),
@@ -249,6 +265,17 @@ int cli_validate(int argc, char **argv)
             print_check(&rep.checks[k]);
         printf("  wall: %.1f s, CPU %.1f s\n", md[c].wall_s, md[c].cpu_s);
         fflush(stdout);
+        md[c].ran = 1;
+        /* a long run keeps its reference page current: the cases done so
+         * far, marked in progress (the last write below is the whole run) */
+        if (markdown && ++run.n_done < run.n_selected) {
+            run.wall_s = vclock_wall() - t_run;
+            run.cpu_s = vclock_cpu() - cpu_run;
+            run.load[1] = vclock_load();
+            struct spall_error perr = {0};
+            if (vreport_write_markdown(&rep, md, n_cases, &run, markdown, command, &perr))
+                fprintf(stderr, "spall validate: %s\n", perr.msg);
+        }
     }
     run.wall_s = vclock_wall() - t_run;
     run.cpu_s = vclock_cpu() - cpu_run;
@@ -267,11 +294,7 @@ int cli_validate(int argc, char **argv)
         status = 4;
     }
     if (status != 4 && markdown) {
-        char command[512] = "spall validate";
-        for (int k = 1; k < argc; k++) {
-            size_t len = strlen(command);
-            snprintf(command + len, sizeof command - len, " %s", argv[k]);
-        }
+        run.n_done = run.n_selected;
         rc = vreport_write_markdown(&rep, md, n_cases, &run, markdown, command, &err);
         if (rc == SPALL_OK)
             printf("markdown: %s\n", markdown);
