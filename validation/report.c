@@ -34,14 +34,14 @@ static void md(FILE *f, const char *s)
         fputs(*s == '|' ? "\\|" : (char[2]){*s, 0}, f);
 }
 
-/* the registry's maturity note of a case (NULL if none or not a registered case) */
-static const char *case_status(const char *name)
+/* the registry's entry of a case (NULL if not a registered case) */
+static const struct vcase *find_case(const char *name)
 {
     size_t n = 0;
     const struct vcase *cases = validation_cases(&n);
     for (size_t k = 0; k < n; k++)
         if (strcmp(cases[k].name, name) == 0)
-            return cases[k].status;
+            return &cases[k];
     return NULL;
 }
 
@@ -134,10 +134,16 @@ int vreport_write_report(const struct vreport *r, const char *dir, struct spall_
             continue;
         last_case = c->case_name;
         fprintf(f, "\n## %s\n\n", c->case_name);
-        const char *status = case_status(c->case_name);
-        if (status) {
+        const struct vcase *vc = find_case(c->case_name);
+        if (vc && vc->status) {
             fprintf(f, "Status: ");
-            md(f, status);
+            md(f, vc->status);
+            fprintf(f, "\n\n");
+        }
+        /* beside a reduced standard run: the full tier's last recorded values */
+        if (vc && vc->full_note) {
+            fprintf(f, "Full tier (`--full`), last recorded: ");
+            md(f, vc->full_note);
             fprintf(f, "\n\n");
         }
         for (size_t j = k; j < r->n && strcmp(r->checks[j].case_name, c->case_name) == 0; j++) {
