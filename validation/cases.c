@@ -199,7 +199,7 @@ static const struct vcase cases[] = {
     {"sph-debris-cloud", "SPH: Al sphere 10 mm on a 4 mm Al plate at 6.18 km/s, debris-cloud "
      "length / width, hole (axisymmetric)",
      VKIND_VALIDATION, VGATE_QUICK, NULL, sph_case_debris,
-     TIER_REDUCED(0.0,
+     TIER_REDUCED(429.0,
          "d/20, d/40, d/60 with the convergence checks; last full values: d/60 (5734 "
          "particles) hole 27.41 mm (-11.6 %, gap), L/W 1.134 (-18.4 % against the experiment, "
          "gap; +2.2 % against ref. [73] SPH), d/40 -> d/60 change 0.65 % (length) and 0.42 % "
@@ -216,7 +216,7 @@ static const struct vcase cases[] = {
     {"pen-sph-sebs-convergence", "axisymmetric SPH: two SEBS shots at d/10-d/20 (fixed AV "
      "length, contact offset) vs Modified-CG",
      VKIND_VALIDATION, VGATE_OFF, NULL, pen_case_sph_sebs_convergence,
-     TIER_FULL_ONLY(0.0,
+     TIER_FULL_ONLY(3000.0,
          "a convergence study (d/10, d/15, d/20); last full values: 20 um shot 59.14 / 61.50 /"
          " 62.75 um, order 0.85; 12 um shot 156.25 / 162.10 / 163.13 um; d/20 -15.1 % (gap) "
          "and +2.1 % against MCG + d/2.")},
