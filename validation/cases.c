@@ -161,12 +161,13 @@ static const struct vcase cases[] = {
          "each note.")},
     {"sph-beam", "SPH: cantilever beam 1.75 kN, six kernels vs 33.59 mm ([Meng2021] Table 3.4)",
      VKIND_VALIDATION, VGATE_OFF, NULL, sph_case_beam,
-     TIER_FULL_ONLY(522.0,
-         "15 beam runs (six kernels, fixed and mirrored clamp, TLSPH) at dx = 1 mm, the "
-         "working resolution, each about half a minute: no subset is defined yet; last full "
-         "values: fixed clamp cubic 34.05, Gaussian 35.96, Wendland 35.56, double cosine "
+     TIER_REDUCED(522.0,
+         "all 15 beam runs (six kernels, fixed and mirrored clamp, TLSPH) at dx = 1 mm; last "
+         "full values: fixed clamp cubic 34.05, Gaussian 35.96, Wendland 35.56, double cosine "
          "34.83, hyperbolic 34.20 mm, quintic blows up (averaged AS 36.30 mm, gap), TLSPH "
-         "32.69 mm; 12 of 15 pass.")},
+         "32.69 mm; mirrored clamp 33.03-34.99 mm; 12 of 15 pass. Standard tier: the type 1 "
+         "(cubic) and TLSPH rows with the fixed clamp at the same dx, so the same values as in"
+         " the full run (34.05 mm, +1.37 %; 32.69 mm, -2.68 %).")},
     {"sph-beam-large", "SPH: cantilever 17.5 kN, six kernels + TLSPH vs 81.1 mm, cracking",
      VKIND_VALIDATION, VGATE_OFF, NULL, sph_case_beam_large,
      TIER_FULL_ONLY(4140.0,
