@@ -346,7 +346,7 @@ static void md_tiers(FILE *f, const struct vmd_case *m, const struct vcase *case
         if (cases[k].full_wall_s > 0.0)
             full_est += cases[k].full_wall_s;
         else if (m[k].ran && !m[k].quick && (m[k].full || cases[k].tier == VTIER_ALL))
-            full_est += m[k].wall_s;
+            full_est += m[k].cpu_s; /* the wall time of an idle machine, one thread */
         else
             n_unknown++;
     }
@@ -368,8 +368,8 @@ static void md_tiers(FILE *f, const struct vmd_case *m, const struct vcase *case
     if (!any_full)
         fprintf(f, "The full tier (`--full`) was not run end to end for this page. Estimate "
                    "(not a measurement): %.1f h, the sum of the last recorded full wall times "
-                   "of the registry (measured on the shared machine) and of this run's times "
-                   "for the cases whose full run is their standard run%s.\n\n",
+                   "of the registry (measured on the shared machine) and of this run's CPU "
+                   "times for the cases whose full run is their standard run%s.\n\n",
                 full_est / 3600.0, n_unknown ? " (cases with no recorded time are left out)"
                                              : "");
 }
