@@ -350,8 +350,12 @@ static void md_tiers(FILE *f, const struct vmd_case *m, const struct vcase *case
         else
             n_unknown++;
     }
-    const char *cfg = any_quick ? "the gate (`--quick`)" : any_full ? "the full tier"
-                                                                   : "the standard tier";
+    /* a reduced standard-tier case runs its quick configuration: the CLI
+     * names the run, the configurations alone cannot */
+    const char *cfg = run->what ? run->what
+                      : any_quick ? "the gate (`--quick`)"
+                      : any_full  ? "the full tier"
+                                  : "the standard tier";
     fprintf(f, "This run: %s, %zu cases, **%.1f min wall** (%.0f s; %.0f s CPU)", cfg, n_ran,
             run->wall_s / 60.0, run->wall_s, run->cpu_s);
     if (run->n_done < run->n_selected)

@@ -173,6 +173,7 @@ struct vmd_run {
     double cpu_s;      /**< CPU time of the process (all threads) over them, s */
     double load[2];    /**< 1-min load average at the start and the end (< 0: unknown) */
     int threads;       /**< OMP_NUM_THREADS (0: unset) */
+    const char *what;  /**< which run: "the standard tier", "the gate (`--quick`)", ... */
     size_t n_selected; /**< cases the run selected */
     size_t n_done;     /**< of them done when the page was written (< n_selected: in progress) */
 };

@@ -230,6 +230,10 @@ int cli_validate(int argc, char **argv)
     int failed_to_run = 0;
     const char *omp = getenv("OMP_NUM_THREADS");
     struct vmd_run run = {.load = {vclock_load(), -1.0}, .threads = omp ? atoi(omp) : 0};
+    run.what = n_wanted ? "named cases"
+               : quick  ? "the gate (`--quick`)"
+               : full   ? "the full tier (`--full`)"
+                        : "the standard tier";
     double t_run = vclock_wall(), cpu_run = vclock_cpu();
     char command[512] = "spall validate";
     for (int k = 1; k < argc; k++) {

@@ -32,7 +32,7 @@ need "pen-ode summary" '^\| \[pen-ode\]\(#pen-ode\) \| verification \| reduced \
 need "pen-ode section" '^Kind: verification\. Gate: reduced \(`--quick`\)\. Tier: standard\. Measured here in the reduced configuration: PASS \([0-9]+ checks, [0-9]+ s wall, [0-9]+ s CPU\)\.$'
 grep -Eq '^  wall: [0-9.]+ s, CPU [0-9.]+ s$' log.txt || { echo "FAIL no per-case wall time printed"; fail=1; }
 # the run's wall time, and the full tier's estimate (labelled as such)
-need "run time" '^This run: the gate \(`--quick`\), 2 cases, \*\*[0-9.]+ min wall\*\* \([0-9]+ s; [0-9]+ s CPU\)'
+need "run time" '^This run: named cases, 2 cases, \*\*[0-9.]+ min wall\*\* \([0-9]+ s; [0-9]+ s CPU\)'
 need "full estimate" '^The full tier \(`--full`\) was not run end to end for this page\. Estimate \(not a measurement\): [0-9.]+ h'
 # a case whose standard tier is its reduced configuration: its full values
 need "full note" '^Full tier \(`--full`\): n = 16, 32, 48 with the Richardson estimate'
