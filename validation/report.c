@@ -34,14 +34,14 @@ static void md(FILE *f, const char *s)
         fputs(*s == '|' ? "\\|" : (char[2]){*s, 0}, f);
 }
 
-/* the registry's maturity note of a case (NULL if none or not a registered case) */
-static const char *case_status(const char *name)
+/* the registry's entry of a case (NULL if not a registered case) */
+static const struct vcase *find_case(const char *name)
 {
     size_t n = 0;
     const struct vcase *cases = validation_cases(&n);
     for (size_t k = 0; k < n; k++)
         if (strcmp(cases[k].name, name) == 0)
-            return cases[k].status;
+            return &cases[k];
     return NULL;
 }
 
@@ -134,10 +134,16 @@ int vreport_write_report(const struct vreport *r, const char *dir, struct spall_
             continue;
         last_case = c->case_name;
         fprintf(f, "\n## %s\n\n", c->case_name);
-        const char *status = case_status(c->case_name);
-        if (status) {
+        const struct vcase *vc = find_case(c->case_name);
+        if (vc && vc->status) {
             fprintf(f, "Status: ");
-            md(f, status);
+            md(f, vc->status);
+            fprintf(f, "\n\n");
+        }
+        /* beside a reduced standard run: the full tier's last recorded values */
+        if (vc && vc->full_note) {
+            fprintf(f, "Full tier (`--full`), last recorded: ");
+            md(f, vc->full_note);
             fprintf(f, "\n\n");
         }
         for (size_t j = k; j < r->n && strcmp(r->checks[j].case_name, c->case_name) == 0; j++) {
@@ -268,6 +274,11 @@ static void md_case_notes(FILE *f, const struct vreport *r, size_t first, size_t
     }
 }
 
+static const char *run_config(const struct vmd_case *m)
+{
+    return m->quick ? "reduced" : m->full ? "full" : "standard";
+}
+
 static void md_case(FILE *f, const struct vreport *r, const struct vcase *c,
                     const struct vmd_case *m)
 {
@@ -275,15 +286,25 @@ static void md_case(FILE *f, const struct vreport *r, const struct vcase *c,
     case_checks(r, c->name, &first, &end);
     fprintf(f, "\n### %s\n\n", c->name);
     md(f, c->title);
-    fprintf(f, ".\n\nKind: %s. Gate: %s. ", vkind_name(c->kind), gate_text[c->gate]);
+    fprintf(f, ".\n\nKind: %s. Gate: %s. Tier: %s. ", vkind_name(c->kind), gate_text[c->gate],
+            vtier_name(c->tier));
     if (m->ran)
-        fprintf(f, "Measured here in the %s configuration: %s (%zu checks).\n",
-                m->quick ? "reduced" : "full", case_result(m, r, first, end), end - first);
+        fprintf(f, "Measured here in the %s configuration: %s (%zu checks, %.0f s wall, %.0f s "
+                   "CPU).\n",
+                run_config(m), case_result(m, r, first, end), end - first, m->wall_s, m->cpu_s);
     else
         fprintf(f, "Not run for this page (%s): run it with `spall validate %s` (Release build); "
                    "its last recorded measurements are in "
                    "[notes/validation-log.md](notes/validation-log.md).\n",
-                c->gate == VGATE_OFF ? "too slow for the gate" : "not selected", c->name);
+                c->tier == VTIER_FULL_ONLY ? "full tier only" : "not selected", c->name);
+    if (c->full_note) {
+        fputs("\nFull tier (`--full`): ", f);
+        md(f, c->full_note);
+        if (c->full_wall_s > 0.0)
+            fprintf(f, " Last recorded wall time of the full configuration: %.0f min (shared "
+                       "machine, an upper bound).", c->full_wall_s / 60.0);
+        fputs("\n", f);
+    }
     if (c->status) {
         fputs("\nStatus: ", f);
         md(f, c->status);
@@ -301,8 +322,65 @@ static void md_case(FILE *f, const struct vreport *r, const struct vcase *c,
     }
 }
 
+/* the tiers, this run's wall time and load, and the estimate of --full */
+static void md_tiers(FILE *f, const struct vmd_case *m, const struct vcase *cases, size_t n,
+                     const struct vmd_run *run)
+{
+    fprintf(f, "Tiers: `spall validate --quick` is the ctest gate (reduced configurations); "
+               "`spall validate` is the standard tier, every case at its working resolution, "
+               "each meant to take at most 3 min on 2 cores, with the same references and "
+               "tolerances as the full run (a check that misses its reference only at the "
+               "standard resolution is a known gap of that tier, with the cause); "
+               "`spall validate --full` adds the convergence studies and the largest "
+               "resolutions. A case whose standard value differs from its full value gives "
+               "both: the table shows the standard run, \"Full tier\" the last full values "
+               "with their resolution.\n\n");
+    int any_quick = 0, any_full = 0;
+    size_t n_ran = 0;
+    double full_est = 0.0;
+    size_t n_unknown = 0;
+    for (size_t k = 0; k < n; k++) {
+        n_ran += m[k].ran != 0;
+        any_quick |= m[k].ran && m[k].quick;
+        any_full |= m[k].ran && m[k].full;
+        if (cases[k].full_wall_s > 0.0)
+            full_est += cases[k].full_wall_s;
+        else if (m[k].ran && !m[k].quick && (m[k].full || cases[k].tier == VTIER_ALL))
+            full_est += m[k].cpu_s; /* the wall time of an idle machine, one thread */
+        else
+            n_unknown++;
+    }
+    /* a reduced standard-tier case runs its quick configuration: the CLI
+     * names the run, the configurations alone cannot */
+    const char *cfg = run->what ? run->what
+                      : any_quick ? "the gate (`--quick`)"
+                      : any_full  ? "the full tier"
+                                  : "the standard tier";
+    fprintf(f, "This run: %s, %zu cases, **%.1f min wall** (%.0f s; %.0f s CPU)", cfg, n_ran,
+            run->wall_s / 60.0, run->wall_s, run->cpu_s);
+    if (run->n_done < run->n_selected)
+        fprintf(f, " so far: **in progress, %zu of the %zu selected cases done** when this page "
+                   "was written",
+                run->n_done, run->n_selected);
+    if (run->load[0] >= 0.0 && run->load[1] >= 0.0)
+        fprintf(f, ", 1-min load average %.2f at the start and %.2f at the end", run->load[0],
+                run->load[1]);
+    if (run->threads > 0)
+        fprintf(f, ", OMP_NUM_THREADS=%d", run->threads);
+    fprintf(f, ". Wall times are measured on the machine that generated this page; on a "
+               "shared machine they are upper bounds.\n\n");
+    if (!any_full)
+        fprintf(f, "The full tier (`--full`) was not run end to end for this page. Estimate "
+                   "(not a measurement): %.1f h, the sum of the last recorded full wall times "
+                   "of the registry (measured on the shared machine) and of this run's CPU "
+                   "times for the cases whose full run is their standard run%s.\n\n",
+                full_est / 3600.0, n_unknown ? " (cases with no recorded time are left out)"
+                                             : "");
+}
+
 int vreport_write_markdown(const struct vreport *r, const struct vmd_case *md_cases, size_t n,
-                           const char *path, const char *command, struct spall_error *err)
+                           const struct vmd_run *run, const char *path, const char *command,
+                           struct spall_error *err)
 {
     size_t n_reg = 0;
     const struct vcase *cases = validation_cases(&n_reg);
@@ -332,20 +410,24 @@ int vreport_write_markdown(const struct vreport *r, const struct vmd_case *md_ca
             "value, error, tolerance, result and source, with the reason for the tolerance or "
             "the cause of a known gap. A known gap counts as a failure of `spall validate`; the "
             "gate (`spall validate --quick`, ctest `validation_*`) accepts it by name only. "
-            "Cases in the reduced configuration measure a smaller problem than the full run "
-            "(`spall validate NAME`); the dated investigations behind the cases are in "
-            "[notes/validation-log.md](notes/validation-log.md).\n\n"
-            "%zu of %zu cases measured here, %zu checks: %zu pass, %zu fail.\n\n",
-            n_ran, n, r->n, pass, r->n - pass);
-    fprintf(f, "| case | kind | gate | checks | result |\n|---|---|---|---|---|\n");
+            "The dated investigations behind the cases are in "
+            "[notes/validation-log.md](notes/validation-log.md).\n\n");
+    md_tiers(f, md_cases, cases, n, run);
+    fprintf(f, "%zu of %zu cases measured here, %zu checks: %zu pass, %zu fail.\n\n", n_ran, n,
+            r->n, pass, r->n - pass);
+    fprintf(f, "| case | kind | gate | tier | checks | wall (CPU) [s] | result |\n"
+               "|---|---|---|---|---|---|---|\n");
     for (size_t k = 0; k < n; k++) {
         size_t first, end;
         case_checks(r, cases[k].name, &first, &end);
-        char n_checks[24] = "-";
-        if (md_cases[k].ran)
+        char n_checks[24] = "-", wall[48] = "-";
+        if (md_cases[k].ran) {
             snprintf(n_checks, sizeof n_checks, "%zu", end - first);
-        fprintf(f, "| [%s](#%s) | %s | %s | %s | %s%s |\n", cases[k].name, cases[k].name,
-                vkind_name(cases[k].kind), gate_text[cases[k].gate], n_checks,
+            snprintf(wall, sizeof wall, "%.1f (%.1f)", md_cases[k].wall_s, md_cases[k].cpu_s);
+        }
+        fprintf(f, "| [%s](#%s) | %s | %s | %s | %s | %s | %s%s |\n", cases[k].name,
+                cases[k].name, vkind_name(cases[k].kind), gate_text[cases[k].gate],
+                vtier_name(cases[k].tier), n_checks, wall,
                 case_result(&md_cases[k], r, first, end), cases[k].status ? " (see status)" : "");
     }
     fprintf(f, "\n## Cases\n");

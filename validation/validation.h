@@ -76,6 +76,8 @@ struct vreport {
     int keep_series;        /**< set by `--report`: cases record their time histories */
     FILE *log;         /**< extra lines printed by cases (may be NULL) */
     int quick;         /**< reduced sizes for the test suite */
+    int full;          /**< `--full`: also the convergence studies and largest resolutions
+                            that a VTIER_REDUCED case leaves out of its standard tier */
     const char *current_case;
     enum vkind current_kind; /**< kind given to the checks recorded next */
     struct vpar *par;  /**< under mpirun: how the current case runs (vpar.h); NULL: one rank */
@@ -122,6 +124,21 @@ enum vgate {
     VGATE_FULL = 2   /**< fast enough as it is: the full configuration, r->quick = 0 */
 };
 
+/** What `spall validate` without flags (the standard tier: every case at its
+ *  working resolution, each in <= 3 min on 2 cores) runs of a case; `--full`
+ *  runs every case completely (r->full = 1). */
+enum vtier {
+    VTIER_ALL = 0,      /**< the whole case fits the standard tier: --full adds nothing */
+    VTIER_REDUCED = 1,  /**< the standard tier runs its reduced configuration (r->quick = 1:
+                             the working resolution, no convergence levels); --full runs it
+                             complete */
+    VTIER_FULL_ONLY = 2 /**< a convergence study, or no configuration of it fits 3 min:
+                             --full (or naming the case) only */
+};
+
+/** "standard", "standard (reduced)" or "full only". */
+const char *vtier_name(enum vtier tier);
+
 struct vcase {
     const char *name;   /**< e.g. "lattice-patch" */
     const char *title;  /**< one line */
@@ -131,6 +148,14 @@ struct vcase {
      *  pass that holds at one resolution only); NULL if none. */
     const char *status;
     int (*run)(struct vreport *r, struct spall_error *err);
+    enum vtier tier;    /**< what the standard tier runs of it */
+    /** Last recorded wall time of the full configuration (s; an upper bound,
+     *  measured on the shared machine; 0: not recorded or = the standard tier). */
+    double full_wall_s;
+    /** VTIER_REDUCED / VTIER_FULL_ONLY: what --full adds and its last measured
+     *  values with their resolution and date, so that both the standard and the
+     *  full values are in the case; NULL for VTIER_ALL. */
+    const char *full_note;
 };
 
 /** What the Markdown reference (vreport_write_markdown) knows about one
@@ -138,15 +163,45 @@ struct vcase {
 struct vmd_case {
     int ran;        /**< 0: not run, the reference gives its registry entry only */
     int quick;      /**< it ran in its reduced configuration (r->quick) */
+    int full;       /**< it ran in its full configuration (r->full) */
+    double wall_s;  /**< its wall time in this run, s */
+    double cpu_s;   /**< the CPU time of the process (all threads) during it, s */
     char error[SPALL_ERROR_MSG_LEN]; /**< the case stopped with this error ("" if none) */
 };
+
+/** What the Markdown reference says about the whole run. */
+struct vmd_run {
+    double wall_s;     /**< wall time of all the cases run, s */
+    double cpu_s;      /**< CPU time of the process (all threads) over them, s */
+    double load[2];    /**< 1-min load average at the start and the end (< 0: unknown) */
+    int threads;       /**< OMP_NUM_THREADS (0: unset) */
+    const char *what;  /**< which run: "the standard tier", "the gate (`--quick`)", ... */
+    size_t n_selected; /**< cases the run selected */
+    size_t n_done;     /**< of them done when the page was written (< n_selected: in progress) */
+};
+
+/** Wall clock for the per-case times, s (monotonic). */
+double vclock_wall(void);
+/** CPU time of the process, all threads, s (what a loaded machine does not
+ *  inflate as it does the wall time). */
+double vclock_cpu(void);
+/** The 1-minute load average (/proc/loadavg), or -1 where unknown. */
+double vclock_load(void);
+/** Whether `spall validate` runs case @p c: @p named (the user named it),
+ *  @p quick (--quick: the gate), @p full (--full: everything). */
+bool vtier_selected(const struct vcase *c, bool named, bool quick, bool full);
+/** vreport_begin_case for a selected case, setting r->quick and r->full for
+ *  the run's tier (a named VTIER_FULL_ONLY case runs complete). */
+void vreport_begin_tier(struct vreport *r, const struct vcase *c, bool named, bool quick,
+                        bool full);
 
 /** Write @p path, the validation reference (docs/notes/validation-log.md): a header
  *  naming @p command and the git revision, a summary table and one section
  *  per registered case (@p md[k] describes validation_cases()[k], @p n of
  *  them) with its checks: reference, measured, tolerance, source, note. */
 int vreport_write_markdown(const struct vreport *r, const struct vmd_case *md, size_t n,
-                           const char *path, const char *command, struct spall_error *err);
+                           const struct vmd_run *run, const char *path, const char *command,
+                           struct spall_error *err);
 
 /** All built-in cases (registry in validation/cases.c). */
 const struct vcase *validation_cases(size_t *n);

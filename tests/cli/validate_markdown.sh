@@ -2,8 +2,9 @@
 # spall validate --markdown FILE writes the validation reference: a header
 # naming the command and the revision, a summary row and a section for every
 # registered case, the check tables of the cases it ran and the run command
-# of those it did not.  Two fast cases only (the gate itself is ctest's
-# validation_* tests).  Usage: validate_markdown.sh SPALL SRC
+# of those it did not, each case's tier and wall time, the run's wall time
+# and the estimate of the full tier.  Two fast cases only (the gate itself
+# is ctest's validation_* tests).  Usage: validate_markdown.sh SPALL SRC
 set -u
 spall="$1"
 fail=0
@@ -27,7 +28,14 @@ while read -r c; do
     grep -Fxq "### $c" out.md || { echo "FAIL no section for $c"; fail=1; }
 done < cases.txt
 # the cases that ran: measured in the reduced configuration, a check table with passing rows
-need "pen-ode summary" '^\| \[pen-ode\]\(#pen-ode\) \| verification \| reduced \(`--quick`\) \| [1-9][0-9]* \| PASS \|$'
+need "pen-ode summary" '^\| \[pen-ode\]\(#pen-ode\) \| verification \| reduced \(`--quick`\) \| standard \| [1-9][0-9]* \| [0-9.]+ \([0-9.]+\) \| PASS \|$'
+need "pen-ode section" '^Kind: verification\. Gate: reduced \(`--quick`\)\. Tier: standard\. Measured here in the reduced configuration: PASS \([0-9]+ checks, [0-9]+ s wall, [0-9]+ s CPU\)\.$'
+grep -Eq '^  wall: [0-9.]+ s, CPU [0-9.]+ s$' log.txt || { echo "FAIL no per-case wall time printed"; fail=1; }
+# the run's wall time, and the full tier's estimate (labelled as such)
+need "run time" '^This run: named cases, 2 cases, \*\*[0-9.]+ min wall\*\* \([0-9]+ s; [0-9]+ s CPU\)'
+need "full estimate" '^The full tier \(`--full`\) was not run end to end for this page\. Estimate \(not a measurement\): [0-9.]+ h'
+# a case whose standard tier is its reduced configuration: its full values
+need "full note" '^Full tier \(`--full`\): n = 16, 32, 48 with the Richardson estimate'
 need "check table" '^\| quantity \| unit \| reference \| measured \| error \| tolerance \| result \| source \|$'
 n_pass=$(grep -c '^| .* | PASS | .* |$' out.md)
 n_checks=$(grep -Eo '^[0-9]+ of [0-9]+ cases measured here, [0-9]+ checks' out.md | awk '{print $(NF-1)}')
@@ -35,7 +43,10 @@ n_checks=$(grep -Eo '^[0-9]+ of [0-9]+ cases measured here, [0-9]+ checks' out.m
     { echo "FAIL $n_pass passing check rows, $n_checks checks recorded"; fail=1; }
 need "count line" '^2 of [0-9]+ cases measured here'
 # a case not run: its registry entry and how to run it
-need "not run" 'Not run for this page \(too slow for the gate\): run it with `spall validate impact-punch`'
-need "not-run summary" '^\| \[impact-punch\]\(#impact-punch\) \| validation \| full runs only \| - \| not run \|$'
+need "not run" 'Not run for this page \(full tier only\): run it with `spall validate impact-punch`'
+need "not-run summary" '^\| \[impact-punch\]\(#impact-punch\) \| validation \| full runs only \| full only \| - \| - \| not run \|$'
+# the tiers' flags: --quick and --full exclude each other
+"$spall" validate --quick --full pen-ode > /dev/null 2>&1
+[ $? -eq 2 ] || { echo "FAIL --quick --full accepted"; fail=1; }
 [ "$fail" -eq 0 ] && echo "validate_markdown: all checks passed"
 exit "$fail"
