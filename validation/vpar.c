@@ -31,10 +31,15 @@ static const char *const distributed_cases[] = {
 static const struct {
     const char *prefix, *reason;
 } serial_reasons[] = {
-    {"sph-", "SPH does not run distributed yet"},
-    {"pen-sph", "SPH does not run distributed yet"},
+    /* the model runs distributed (or in part: SPH's total-Lagrangian form,
+     * docs/parallel.md), the case's measurements do not yet */
+    {"sph-", "its measurements read SPH particles by local index (and SPH's updated form "
+             "does not run distributed yet)"},
+    {"pen-sph", "its measurements read SPH particles by local index (and SPH's updated form "
+                "does not run distributed yet)"},
     {"pen-", "no particle run (analytical models and data)"},
-    {"macro-", "macro-particles do not run distributed yet"},
+    {"macro-", "macro-particles run distributed, but the case's measurements read them by "
+               "local index"},
     {"", "not adapted to a distributed run yet (it reads particle arrays, bonds or model "
          "state by local index)"},
 };
