@@ -37,14 +37,16 @@ serial tl
 for n in $counts; do
     ranks tl "$n"
 done
-checkpoints_same tl2 "checkpoints written by 2 ranks"
+w="${counts%% *}" # the checkpoints of the first rank count (2; 3 under ASan)
+checkpoints_same "tl$w" "checkpoints written by $w ranks"
 rebalanced tl 3
-for n in 3 1; do # restarts from the 2-rank checkpoint of step 50
+for n in 3 1; do # restarts from that run's checkpoint of step 50, on another count
+    [ "$n" = "$w" ] && continue
     launch=(timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$n")
     [ "$n" = 1 ] && launch=(timeout 120)
-    OMP_NUM_THREADS=1 "${launch[@]}" "$spall" run tl.yaml --restart tl2/checkpoint_0000000050.h5 \
+    OMP_NUM_THREADS=1 "${launch[@]}" "$spall" run tl.yaml --restart "tl$w/checkpoint_0000000050.h5" \
         -o "restart$n" --quiet --no-progress || { echo "FAIL restart on $n: exit $?"; fail=1; }
-    same_as_serial tl_serial "restart$n" "written by 2 ranks, restarted on $n"
+    same_as_serial tl_serial "restart$n" "written by $w ranks, restarted on $n"
     checkpoints_same "restart$n" "restarted on $n"
 done
 # the bar must deform plastically, or the test shows little
