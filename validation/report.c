@@ -258,7 +258,7 @@ static void md_case_notes(FILE *f, const struct vreport *r, size_t first, size_t
             seen = strcmp(r->checks[j].note, c->note) == 0;
         if (!c->note[0] || seen)
             continue;
-        fputs(any++ ? "" : "\nNotes:\n\n", f);
+        fputs(any++ ? "" : "\nNotes:\n", f); /* a list may start right after a line */
         fputs("- ", f);
         int gap = 0, n_q = 0;
         for (size_t j = k; j < end; j++) {
@@ -290,15 +290,17 @@ static void md_case(FILE *f, const struct vreport *r, const struct vcase *c,
             vtier_name(c->tier));
     if (m->ran)
         fprintf(f, "Measured here in the %s configuration: %s (%zu checks, %.0f s wall, %.0f s "
-                   "CPU).\n",
+                   "CPU).",
                 run_config(m), case_result(m, r, first, end), end - first, m->wall_s, m->cpu_s);
     else
         fprintf(f, "Not run for this page (%s): run it with `spall validate %s` (Release build); "
                    "its last recorded measurements are in "
-                   "[notes/validation-log.md](notes/validation-log.md).\n",
+                   "[notes/validation-log.md](notes/validation-log.md).",
                 c->tier == VTIER_FULL_ONLY ? "full tier only" : "not selected", c->name);
+    /* the full tier in the same paragraph: the page stays short (issue 19) */
+    fputs(c->full_note ? "" : "\n", f);
     if (c->full_note) {
-        fputs("\nFull tier (`--full`): ", f);
+        fputs(" Full tier (`--full`): ", f);
         md(f, c->full_note);
         if (c->full_wall_s > 0.0)
             fprintf(f, " Last recorded wall time of the full configuration: %.0f min (shared "

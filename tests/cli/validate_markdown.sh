@@ -35,7 +35,7 @@ grep -Eq '^  wall: [0-9.]+ s, CPU [0-9.]+ s$' log.txt || { echo "FAIL no per-cas
 need "run time" '^This run: named cases, 2 cases, \*\*[0-9.]+ min wall\*\* \([0-9]+ s; [0-9]+ s CPU\)'
 need "full estimate" '^The full tier \(`--full`\) was not run end to end for this page\. Estimate \(not a measurement\): [0-9.]+ h'
 # a case whose standard tier is its reduced configuration: its full values
-need "full note" '^Full tier \(`--full`\): n = 16, 32, 48 with the Richardson estimate'
+need "full note" '^Kind: .* Full tier \(`--full`\): n = 16, 32, 48 with the Richardson estimate'
 need "check table" '^\| quantity \| unit \| reference \| measured \| error \| tolerance \| result \| source \|$'
 n_pass=$(grep -c '^| .* | PASS | .* |$' out.md)
 n_checks=$(grep -Eo '^[0-9]+ of [0-9]+ cases measured here, [0-9]+ checks' out.md | awk '{print $(NF-1)}')
