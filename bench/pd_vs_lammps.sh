@@ -19,6 +19,8 @@
 # the x displacement of a probe particle, loop wall time -> bond-steps/s on
 # 1 and 2 threads (spall: OpenMP threads; LAMMPS: MPI ranks, the Debian
 # build has no OPENMP package), and the peak resident memory per particle.
+# SPALL_RANKS=1: spall's 2-core run is 2 MPI ranks x 1 thread as well (rank
+# for rank with LAMMPS; memory = the sum of the ranks' peaks).
 # Differences to keep in mind: LAMMPS's PMB also runs its short-range
 # contact loop every step (inactive here: the block is pulled); it applies a
 # bond's force in the step it breaks, which spall does with break_order:
@@ -101,8 +103,15 @@ YML
 echo "work dir: $W"
 printf "%-8s %-8s %12s %14s %14s %14s %12s\n" code threads wall_s bond_steps/s damage_sum probe_ux_m rss_B/part
 for T in 1 2; do
-  sed "s/THREADS/$T/" "$W/pmb.yaml" > "$W/pmb_$T.yaml"
-  ( cd "$W" && /usr/bin/time -f "%M" -o "spall_$T.mem" "$OLDPWD/$SPALL" run "pmb_$T.yaml" > "spall_$T.out" 2>&1 )
+  if [ "${SPALL_RANKS:-0}" = 1 ] && [ "$T" -gt 1 ]; then
+    sed "s/THREADS/1/" "$W/pmb.yaml" > "$W/pmb_$T.yaml"
+    ( cd "$W" && OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np "$T" \
+        /usr/bin/time -f "%M" -a -o "spall_$T.mem" "$OLDPWD/$SPALL" run "pmb_$T.yaml" \
+        > "spall_$T.out" 2>&1 )
+  else
+    sed "s/THREADS/$T/" "$W/pmb.yaml" > "$W/pmb_$T.yaml"
+    ( cd "$W" && /usr/bin/time -f "%M" -o "spall_$T.mem" "$OLDPWD/$SPALL" run "pmb_$T.yaml" > "spall_$T.out" 2>&1 )
+  fi
   ( cd "$W" && OMP_NUM_THREADS=1 /usr/bin/time -f "%M" -o "lmp_$T.mem" mpirun --allow-run-as-root --oversubscribe -np $T lmp -in in.pmb -log "lmp_$T.log" > "lmp_$T.out" 2>&1 )
 done
 python3 - "$W" "$NX" "$NY" "$NZ" "$STEPS" <<'PY'
@@ -119,7 +128,8 @@ for T in (1, 2):
     last = rows[-1]
     ux = float([v for k, v in last.items() if k.startswith("p_ux")][0])
     ds = float(last["damage_sum"])
-    mem = float(open(f"{W}/spall_{T}.mem").read().split()[-1]) * 1024
+    # one peak per process (ranks append theirs): the run's memory is their sum
+    mem = sum(float(v) for v in open(f"{W}/spall_{T}.mem").read().split()) * 1024
     res[("spall", T)] = (wall, bonds * steps / wall, ds, ux, mem / n)
     ma = re.search(r"model arrays: (\d+) B, (\d+) B/particle \((\w+) families", log)
     if ma and T == 1:  # the model's own allocations (pd_model_bytes), not the process' RSS
