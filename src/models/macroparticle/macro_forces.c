@@ -137,23 +137,29 @@ int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_
         size_t rows = p->n_owned < m->nl->n ? p->n_owned : m->nl->n;
         carry_state(m->nl, m->pgid, m->dr0, m->kappa, m->engaged, nl, npg, rows, ndr, nka, nen);
     }
-    macro_par_release(m); /* a list lent to a migration probe is not kept */
-    neighbor_list_destroy(&m->nl);
-    free(m->dr0);
-    free(m->kappa);
-    free(m->engaged);
-    free(m->pgid);
-    m->engaged = nen;
-    m->nl = nl;
-    m->dr0 = ndr;
-    m->kappa = nka;
-    m->pgid = npg;
+    macro_adopt_pairs(m, nl, npg, ndr, nka, nen);
     if (!dist)
         for (int d = 0; d < sim->dim; d++)
             memcpy(m->xb[d], p->x[d], n * sizeof(double));
     if (count)
         m->n_builds++;
     return SPALL_OK;
+}
+
+void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid, double *dr0,
+                       double *kappa, uint8_t *engaged)
+{
+    macro_par_release(m); /* a list lent to a migration probe is not kept */
+    neighbor_list_destroy(&m->nl);
+    free(m->pgid);
+    free(m->dr0);
+    free(m->kappa);
+    free(m->engaged);
+    m->nl = nl;
+    m->pgid = pgid;
+    m->dr0 = dr0;
+    m->kappa = kappa;
+    m->engaged = engaged;
 }
 
 int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err)

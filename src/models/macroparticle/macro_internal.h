@@ -107,5 +107,9 @@ int macro_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct s
 struct par_model_arrays;
 int macro_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 void macro_par_release(struct model *m);
+/** Replace the pair list and its per-pair state (partner gids, plastic
+ *  offsets, hardening, engagement flags) by new ones, freeing the old. */
+void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid, double *dr0,
+                       double *kappa, uint8_t *engaged);
 
 #endif

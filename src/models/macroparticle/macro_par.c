@@ -101,20 +101,10 @@ int macro_localize(struct model *m, struct sim *sim, const size_t *keep, size_t 
         free(nl);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising macro-particles");
     }
-    macro_par_release(m);
-    neighbor_list_destroy(&m->nl);
-    free(m->pgid);
-    free(m->dr0);
-    free(m->kappa);
-    free(m->engaged);
     nl->n = n_keep;
     nl->offset = off;
     nl->idx = idx;
-    m->nl = nl;
-    m->pgid = pg;
-    m->dr0 = dr0;
-    m->kappa = kap;
-    m->engaged = eng;
+    macro_adopt_pairs(m, nl, pg, dr0, kap, eng);
     gauge_from_flags(m, n_owned);
     /* the reference neighbours (slip fields) name particles of the whole
      * body; a distributed run refuses those fields (macro_model.c) */
