@@ -124,7 +124,7 @@ static int sph_bench_run(const char *name, const char *yaml, int threads, bool s
     return rc;
 }
 
-/* The copper bar deck: @p form "updated" or "total", h = @p hf dx,
+/* The copper bar deck: @p form "updated" (model sph) or "total" (tlsph), h = @p hf dx,
  * viscosity [q_a, q_b]; dx = 0.4 mm / scale^(1/3). */
 static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *form, double hf,
                             double qa, double qb, long steps, const char *extra)
@@ -136,8 +136,8 @@ static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *f
         snprintf(run, sizeof run, "run: {end_time: 8.0e-5, max_particles: 1e9}\n");
     const double dx = 0.4e-3 / cbrt(scale > 0.0 ? scale : 1.0);
     snprintf(yaml, size,
-             "model: {type: sph, kernel: wendland, h_factor: %.17g, viscosity: [%g, %g],\n"
-             "        formulation: %s, adaptive_dt: %s,%s\n"
+             "model: {type: %s, kernel: wendland, h_factor: %.17g, viscosity: [%g, %g],\n"
+             "        adaptive_dt: %s,%s\n"
              "        wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
              "materials:\n"
              "  copper: {density: 8930, youngs_modulus: 117.0e9, poisson_ratio: 0.35,\n"
@@ -147,7 +147,8 @@ static void sph_taylor_deck(char *yaml, size_t size, double scale, const char *f
              "radius: 0.0032}}, material: copper}\n"
              "initial_velocity: [{group: all, value: [0, 0, -227.0]}]\n"
              "%s",
-             hf, qa, qb, form, steps > 0 ? "false" : "true", extra, dx, 0.5 * dx, 0.5 * dx, 0.5 * dx,
+             strcmp(form, "total") == 0 ? "tlsph" : "sph", hf, qa, qb, steps > 0 ? "false" : "true",
+             extra, dx, 0.5 * dx, 0.5 * dx, 0.5 * dx,
              run);
 }
 

@@ -177,8 +177,7 @@ static void test_total_lagrangian(void **state)
 {
     (void)state;
     size_t nc;
-    const double e = spin_error("{type: sph, kernel: wendland, h_factor: 1.3, adaptive_dt: false, "
-                                "formulation: total}",
+    const double e = spin_error("{type: tlsph, kernel: wendland, h_factor: 1.3, adaptive_dt: false}",
                                 0.0, &nc);
     assert_int_equal(nc, 144);
     assert_true(e < SPIN_TOL);

@@ -48,7 +48,7 @@ static void test_pk_forces_compressed(void **state)
     (void)state;
     const double dx = 1.0e-3, W0 = 0.012, H0 = 0.008;
     struct sim *s = test_build_ok(
-        "model: {type: sph, kernel: wendland, h_factor: 1.3, formulation: total,"
+        "model: {type: tlsph, kernel: wendland, h_factor: 1.3,"
         " viscosity: [0, 0]}\n"
         "materials: {m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3}}\n"
         "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"

@@ -22,7 +22,7 @@ static void test_names_find_their_models(void **state)
         assert_non_null(ops);
         assert_string_equal(ops->name, *name);
     }
-    assert_int_equal(n, 4); /* lattice, peridynamics, macroparticle, sph */
+    assert_int_equal(n, 5); /* lattice, peridynamics, macroparticle, sph, tlsph */
     assert_null(model_find("no_such_model"));
 }
 

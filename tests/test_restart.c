@@ -52,9 +52,10 @@ struct restart_case {
     "  - {group: bottom, type: velocity, components: [x, y], value: [0, -20.0]}\n"               \
     "  - {group: top, type: velocity, components: [x, y], value: [0, 20.0]}\n"
 
-#define SPH_ROD(MODEL_EXTRA, XSPH)                                                              \
+#define SPH_ROD(MODEL_EXTRA, XSPH) SPH_ROD_OF("sph", MODEL_EXTRA, XSPH)
+#define SPH_ROD_OF(TYPE, MODEL_EXTRA, XSPH)                                                     \
     "model:\n"                                                                                   \
-    "  type: sph\n"                                                                              \
+    "  type: " TYPE "\n"                                                                         \
     "  kernel: wendland\n"                                                                       \
     "  h_factor: 1.5\n"                                                                          \
     "  viscosity: [1.0, 1.0]\n" XSPH MODEL_EXTRA                                                 \
@@ -217,7 +218,7 @@ static const struct restart_case k_cases[] = {
      "  - {group: rod_g, value: [0, -300]}\n",
      300, NULL},
     {"sph-total",
-     SPH_ROD("  formulation: total\n  reference_update: {every: 70}\n", ""), 300, NULL},
+     SPH_ROD_OF("tlsph", "  reference_update: {every: 70}\n", ""), 300, NULL},
     /* more than SPALL_OMP_MIN_PARTICLES: the restart's one thread and the
      * first run's two threads both really run */
     {"lattice-threads",

@@ -37,10 +37,11 @@ static int build(const char *yaml, struct sim **s, struct spall_error *err)
 }
 
 /* A rubber cantilever 30 x 6 mm, dx = 1 mm, clamp of 8 columns behind x = 0. */
-static void deck(char *buf, size_t len, const char *clamp, const char *extra)
+static void deck_of(char *buf, size_t len, const char *type, const char *clamp,
+                    const char *extra)
 {
     snprintf(buf, len,
-             "model: {type: sph, kernel: cubic_spline, h_factor: 1.5, plane: strain,\n"
+             "model: {type: %s, kernel: cubic_spline, h_factor: 1.5, plane: strain,\n"
              "        time_integration: leapfrog, cspm: true, viscosity: [0, 0]%s%s}\n"
              "materials: {r: {density: 1000, youngs_modulus: 2.0e6, poisson_ratio: 0.3975}}\n"
              "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005], "
@@ -50,7 +51,12 @@ static void deck(char *buf, size_t len, const char *clamp, const char *extra)
              "groups: {clamp: {box: {min: [-1, -1], max: [0, 1]}}}\n"
              "boundary_conditions: [{group: clamp, type: fixed}]\n"
              "run: {steps: 1500}\n",
-             clamp, extra);
+             type, clamp, extra);
+}
+
+static void deck(char *buf, size_t len, const char *clamp, const char *extra)
+{
+    deck_of(buf, len, "sph", clamp, extra);
 }
 
 static const char *const MIRROR = ",\n        clamp: {group: clamp, point: [0, 0], normal: [1, 0]}";
@@ -135,25 +141,25 @@ static void test_clamp_energy(void **state)
 static void test_clamp_refused(void **state)
 {
     (void)state;
-    static const char *const bad[][2] = {
-        {",\n        clamp: {group: nope, point: [0, 0], normal: [1, 0]}", "no group"},
-        {",\n        clamp: {group: clamp, point: [0.0003, 0], normal: [1, 0]}",
+    static const char *const bad[][3] = {
+        {"sph", ",\n        clamp: {group: nope, point: [0, 0], normal: [1, 0]}", "no group"},
+        {"sph", ",\n        clamp: {group: clamp, point: [0.0003, 0], normal: [1, 0]}",
          "mirror image"},
-        {",\n        clamp: {group: clamp, point: [0, 0], normal: [0, 0]}", "normal is zero"},
-        {",\n        clamp: {group: clamp, point: [0, 0], normal: [1, 0]}, "
-         "formulation: total",
+        {"sph", ",\n        clamp: {group: clamp, point: [0, 0], normal: [0, 0]}",
+         "normal is zero"},
+        {"tlsph", ",\n        clamp: {group: clamp, point: [0, 0], normal: [1, 0]}",
          "plain fixed group"}, /* TLSPH: pointed at the fixed-group clamp */
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         char yaml[2048];
-        deck(yaml, sizeof yaml, bad[k][0], "");
+        deck_of(yaml, sizeof yaml, bad[k][0], bad[k][1], "");
         struct sim *s = NULL;
         struct spall_error err = {0};
         int rc = build(yaml, &s, &err);
         assert_int_not_equal(rc, 0);
-        if (!strstr(err.msg, bad[k][1]))
-            print_error("expected '%s' in: %s\n", bad[k][1], err.msg);
-        assert_non_null(strstr(err.msg, bad[k][1]));
+        if (!strstr(err.msg, bad[k][2]))
+            print_error("expected '%s' in: %s\n", bad[k][2], err.msg);
+        assert_non_null(strstr(err.msg, bad[k][2]));
         sim_destroy(&s);
     }
     /* a clamp group without a fixed boundary condition */

@@ -4,7 +4,7 @@
  *        updated-form block and a TLSPH block collide head-on through the
  *        interface (momentum to round-off, energy within 1 %, no
  *        interpenetration); every body marked total is the run-level
- *        `formulation: total` bitwise; a TLSPH body that meets nothing
+ *        `type: tlsph` bitwise; a TLSPH body that meets nothing
  *        evolves bitwise as when it is alone; mixed runs without the
  *        interface and unknown body names are refused.
  */
@@ -39,9 +39,10 @@ static struct sph_stats stats(const struct model *m)
 /* Head-on run of two_bodies with @p model_extra; @p n_tl_expect TLSPH
  * particles.  Momentum to round-off, energy balance within 1 %, no
  * interpenetration, the top block stopped and compressed. */
-static void run_head_on(const char *label, const char *model_extra, size_t n_tl_expect)
+static void run_head_on(const char *label, const char *type, const char *model_extra,
+                        size_t n_tl_expect)
 {
-    struct sim *s = test_two_bodies(model_extra, 10.0, 0.0);
+    struct sim *s = test_two_bodies(type, model_extra, 10.0, 0.0);
     assert_non_null(s);
     const struct model *m = s->model;
     const uint8_t *form = sph_formulations(m);
@@ -89,24 +90,24 @@ static void test_mixed_head_on(void **state)
 {
     (void)state;
     /* updated target on the fused loop, TLSPH projectile */
-    run_head_on("updated (fused) + TLSPH",
+    run_head_on("updated (fused) + TLSPH", "sph",
                 ",\n        interface: bodies, body_formulation: {proj: total}", 36);
     /* the two-pass loops: CSPM, and the leapfrog (state advanced inside
      * both formulations' force passes) */
-    run_head_on("updated (cspm, split) + TLSPH",
+    run_head_on("updated (cspm, split) + TLSPH", "sph",
                 ", cspm: true,\n        interface: bodies, body_formulation: {proj: total}", 36);
     /* Balsara's switch on both: TLSPH's stage 1 and the updated form's
      * two-pass loops (sph_rates.c) in one run */
-    run_head_on("updated (balsara) + TLSPH (balsara)",
+    run_head_on("updated (balsara) + TLSPH (balsara)", "sph",
                 ", viscosity_switch: balsara,\n        interface: bodies, "
                 "body_formulation: {proj: total}",
                 36);
-    run_head_on("updated (leapfrog) + TLSPH",
+    run_head_on("updated (leapfrog) + TLSPH", "sph",
                 ", time_integration: leapfrog,\n        interface: bodies, "
                 "body_formulation: {proj: total}",
                 36);
     /* two TLSPH bodies through the interface (no updated particle) */
-    run_head_on("TLSPH + TLSPH", ", formulation: total, interface: bodies", 136);
+    run_head_on("TLSPH + TLSPH", "tlsph", ", interface: bodies", 136);
 }
 
 /* Positions and velocities after the run. */
@@ -128,8 +129,9 @@ static void test_all_total_is_run_total(void **state)
     (void)state;
     /* the two blocks glued through the kernel sums (no interface): the
      * run-level TLSPH path, reached by either key */
-    struct sim *a = test_two_bodies(", formulation: total", 0.0, -1.5e-3);
-    struct sim *b = test_two_bodies(", body_formulation: {proj: total, target: total}", 0.0, -1.5e-3);
+    struct sim *a = test_two_bodies("tlsph", "", 0.0, -1.5e-3);
+    struct sim *b = test_two_bodies("sph", ", body_formulation: {proj: total, target: total}", 0.0,
+                                    -1.5e-3);
     assert_non_null(a);
     assert_non_null(b);
     assert_null(sph_formulations(b->model));
@@ -139,9 +141,9 @@ static void test_all_total_is_run_total(void **state)
     final_state(a, xa, n);
     final_state(b, xb, n);
     assert_memory_equal(xa, xb, n * sizeof *xa);
-    /* with formulation: total, marking bodies updated splits the run */
+    /* in a tlsph run, marking bodies updated splits the run */
     sim_destroy(&b);
-    b = test_two_bodies(", formulation: total, interface: bodies, "
+    b = test_two_bodies("tlsph", ", interface: bodies, "
                    "body_formulation: {target: updated}", 0.0, 0.0);
     assert_non_null(b);
     assert_non_null(sph_formulations(b->model));
@@ -168,8 +170,8 @@ static void test_tlsph_body_unchanged(void **state)
         "initial_velocity: [{group: left, value: [-20, 5]}]\n"
         "run: {end_time: 1.0e-4, dt: 2.0e-7}\n";
     char ya[2048], yb[2048];
-    snprintf(ya, sizeof ya, fmt, ", formulation: total", "");
-    snprintf(yb, sizeof yb, fmt, ", interface: bodies, body_formulation: {proj: total}",
+    snprintf(ya, sizeof ya, fmt, "tlsph", "", "");
+    snprintf(yb, sizeof yb, fmt, "sph", ", interface: bodies, body_formulation: {proj: total}",
              "  - {name: far, geometry: {box: {min: [0.05, 0], max: [0.06, 0.01]}}, "
              "material: a,\n     lattice: {spacing: 1.0e-3, origin: [0.0505, 0.0005]}}\n");
     struct sim *a = test_build_ok(ya), *b = test_build_ok(yb);

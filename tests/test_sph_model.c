@@ -74,11 +74,11 @@ static void test_block_conservation_threads(void **state)
 static void test_taylor_paths(void **state)
 {
     (void)state;
-    static const char *const forms[2] = {"updated", "total"};
+    static const char *const forms[2] = {"sph", "tlsph"}; /* updated, total Lagrangian */
     for (int k = 0; k < 2; k++) {
         char yaml[2048];
         snprintf(yaml, sizeof yaml,
-                 "model: {type: sph, kernel: wendland, formulation: %s, viscosity: [1.5, 1.5],\n"
+                 "model: {type: %s, kernel: wendland, viscosity: [1.5, 1.5],\n"
                  "        xsph: 0.1, variable_h: true,\n"
                  "        wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
                  "materials:\n"

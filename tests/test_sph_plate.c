@@ -34,7 +34,7 @@ static void test_tlsph_fixed_clamp(void **state)
     struct spall_error err = {0};
     struct sph_plate_result res;
     int rc = sph_plate_run(6,
-                           "kernel: cubic_spline, h_factor: 1.5, formulation: total, "
+                           "type: tlsph, kernel: cubic_spline, h_factor: 1.5, "
                            "hourglass: 0.1, viscosity: [0.1, 0.1], time_integration: leapfrog",
                            SPH_PLATE_FIXED, true, &res, &err);
     assert_int_equal(rc, SPALL_OK);

@@ -32,7 +32,7 @@ static void test_free_block_conservation(void **state)
 {
     (void)state;
     static const char *yaml =
-        "model: {type: sph, kernel: wendland, h_factor: 1.005, formulation: total,\n"
+        "model: {type: tlsph, kernel: wendland, h_factor: 1.005,\n"
         "        viscosity: [0.5, 0.5]}\n"
         "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
         "lattice: {type: sc, spacing: 1.0e-3, origin: [0.0005, 0.0005, 0.0005]}\n"
@@ -126,7 +126,7 @@ static void guard_case(const char *extra, int map, const char *who, const char *
 {
     char yaml[1024];
     snprintf(yaml, sizeof yaml,
-             "model: {type: sph, plane: strain, formulation: total%s}\n"
+             "model: {type: tlsph, plane: strain%s}\n"
              "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
              "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
              "body: {geometry: {box: {min: [0, 0], max: [0.006, 0.006]}}, material: m}\n"
@@ -163,7 +163,7 @@ static void test_det_f_guard(void **state)
     for (int map = 0; map < 2; map++) {
         char yaml[1024];
         snprintf(yaml, sizeof yaml,
-                 "model: {type: sph, plane: strain, formulation: total}\n"
+                 "model: {type: tlsph, plane: strain}\n"
                  "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
                  "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
                  "body: {geometry: {box: {min: [0, 0], max: [0.006, 0.006]}}, material: m}\n"

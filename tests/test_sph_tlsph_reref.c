@@ -152,7 +152,7 @@ static double free_block(const char *extra)
 {
     char yaml[1024];
     snprintf(yaml, sizeof yaml,
-             "model: {type: sph, kernel: wendland, h_factor: 1.005, formulation: total,\n"
+             "model: {type: tlsph, kernel: wendland, h_factor: 1.005,\n"
              "        viscosity: [0.5, 0.5]%s}\n"
              "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
              "lattice: {type: sc, spacing: 1.0e-3, origin: [0.0005, 0.0005, 0.0005]}\n"
@@ -229,7 +229,7 @@ static int mapped_block(const char *extra, int map, long steps, double *jmin, do
 {
     char yaml[1024];
     snprintf(yaml, sizeof yaml,
-             "model: {type: sph, plane: strain, formulation: total%s}\n"
+             "model: {type: tlsph, plane: strain%s}\n"
              "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
              "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
              "body: {geometry: {box: {min: [0, 0], max: [0.006, 0.006]}}, material: m}\n"
@@ -311,7 +311,7 @@ static int stretched_block(const char *upd, size_t *grown, double *hmax, double 
 {
     char yaml[1024];
     snprintf(yaml, sizeof yaml,
-             "model: {type: sph, plane: strain, formulation: total, h_factor: 1.005,\n"
+             "model: {type: tlsph, plane: strain, h_factor: 1.005,\n"
              "        reference_update: {every: 1%s}}\n"
              "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
              "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
@@ -363,7 +363,7 @@ static void test_mixed_bodies(void **state)
 {
     (void)state;
     omp_set_num_threads(1);
-    struct sim *s = test_two_bodies(", interface: bodies, body_formulation: {proj: total},\n"
+    struct sim *s = test_two_bodies("sph", ", interface: bodies, body_formulation: {proj: total},\n"
                                     "        reference_update: {every: 50}",
                                     10.0, 0.0);
     assert_non_null(s);
@@ -394,22 +394,22 @@ static void test_mixed_bodies(void **state)
     sim_destroy(&s);
 }
 
-static void refused_form(const char *form, const char *model_extra, const char *needle)
+static void refused_form(const char *type, const char *model_extra, const char *needle)
 {
     char yaml[1024];
     snprintf(yaml, sizeof yaml,
-             "model: {type: sph, formulation: %s, plane: strain%s}\n"
+             "model: {type: %s, plane: strain%s}\n"
              "materials: {m: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}}\n"
              "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005]}\n"
              "body: {geometry: {box: {min: [0, 0], max: [0.004, 0.004]}}, material: m}\n"
              "run: {steps: 1}\n",
-             form, model_extra);
+             type, model_extra);
     test_deck_refused(yaml, needle);
 }
 
 static void refused(const char *model_extra, const char *needle)
 {
-    refused_form("total", model_extra, needle);
+    refused_form("tlsph", model_extra, needle);
 }
 
 static void test_refused(void **state)
@@ -425,8 +425,11 @@ static void test_refused(void **state)
     refused(", reference_update: {evry: 3}", "unknown key 'evry'");
     refused(", reference_update: {every: 3, isotropy: 1.5}", "isotropy");
     refused(", reference_update: 5", "every: N and/or distortion: k");
-    refused_form("updated", ", reference_update: {every: 5}",
+    refused_form("sph", ", reference_update: {every: 5}",
                  "re-references total-Lagrangian bodies");
+    /* the old key of the formulation names the two models that replace it */
+    refused_form("sph", ", formulation: total", "type: tlsph (total Lagrangian)");
+    refused_form("tlsph", ", formulation: updated", "type: sph (updated Lagrangian)");
     /* the position is named */
     refused(", reference_update: {distortion: 1}", "bad:1:");
 }

@@ -12,7 +12,7 @@
 /* The decks' head: plane-strain Wendland SPH with the model map's tail a
  * %s, materials a (soft) and b (stiff, dense), a 1 mm square lattice. */
 #define TEST_SPH_AB_HEAD                                                                           \
-    "model: {type: sph, kernel: wendland, h_factor: 1.3, viscosity: [0.5, 0.2],\n"                 \
+    "model: {type: %s, kernel: wendland, h_factor: 1.3, viscosity: [0.5, 0.2],\n"                  \
     "        plane: strain%s}\n"                                                                    \
     "materials:\n"                                                                                  \
     "  a: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3}\n"                             \
@@ -21,8 +21,10 @@
 
 /* Body 0 `target`: soft block 10 x 10 mm (material a); body 1 `proj`:
  * stiffer, denser block 6 x 6 mm, 2.5 mm above, at (vx, -50) m/s; dx =
- * 1 mm, plane strain.  @p model_extra is appended to the model map. */
-static inline struct sim *test_two_bodies(const char *model_extra, double vx, double gap_y)
+ * 1 mm, plane strain; model @p type (sph or tlsph), @p model_extra
+ * appended to the model map. */
+static inline struct sim *test_two_bodies(const char *type, const char *model_extra, double vx,
+                                          double gap_y)
 {
     char yaml[2048];
     snprintf(yaml, sizeof yaml,
@@ -38,7 +40,7 @@ static inline struct sim *test_two_bodies(const char *model_extra, double vx, do
              "groups: {top: g2}\n"
              "initial_velocity: [{group: top, value: [%g, -50]}]\n"
              "run: {end_time: 2.4e-4}\n",
-             model_extra, 0.0115 + gap_y, 0.0175 + gap_y, 0.012 + gap_y, vx);
+             type, model_extra, 0.0115 + gap_y, 0.0175 + gap_y, 0.012 + gap_y, vx);
     return test_build(yaml);
 }
 

@@ -16,7 +16,7 @@ static inline struct sim *test_tlsph_bar(const char *extra, long steps)
 {
     char yaml[1024];
     snprintf(yaml, sizeof yaml,
-             "model: {type: sph, kernel: wendland, h_factor: 1.005, formulation: total,%s\n"
+             "model: {type: tlsph, kernel: wendland, h_factor: 1.005,%s\n"
              "        viscosity: [1.0, 1.0], wall: {point: [0, 0, 0], normal: [0, 0, 1]}}\n"
              "materials:\n"
              "  copper: {density: 8930, youngs_modulus: 117.0e9, poisson_ratio: 0.35,\n"

@@ -39,7 +39,9 @@ enum sph_beam_clamp {
 void sph_beam_deck(const char *kernel, double force, double hfac, const char *extra,
                    enum sph_beam_clamp clamp, char *deck, size_t len);
 /** Run the beam with @p kernel, end load @p force [N], h = @p hfac dx,
- *  extra model keys @p extra (flow-mapping text) and clamp form @p clamp. */
+ *  extra model keys @p extra (flow-mapping text; the model is type: sph
+ *  unless @p extra starts with its own type, e.g. "type: tlsph, ") and
+ *  clamp form @p clamp. */
 int sph_beam_run(const char *kernel, double force, double hfac, const char *extra,
                  enum sph_beam_clamp clamp, struct sph_beam_result *out,
                  struct spall_error *err);

@@ -162,7 +162,7 @@ int sph_case_beam_large(struct vreport *r, struct spall_error *err)
     /* 4. total-Lagrangian SPH (fixed clamp; sph_clamp.c is updated-form only) */
     struct sph_beam_result res;
     if ((rc = sph_beam_run_or_note(r, "17.5 kN TLSPH wendland", "wendland", 17500.0, 1.4,
-                                   "viscosity: [0.5, 0.8], formulation: total, hourglass: 1.0",
+                                   "type: tlsph, viscosity: [0.5, 0.8], hourglass: 1.0",
                                    SPH_BEAM_FIXED, &res, err)) ||
         (rc = wendland_check(r, "17.5 kN TLSPH wendland", &res, "TLSPH went unstable", err)))
         return rc;

@@ -144,7 +144,7 @@ void sph_beam_deck(const char *kernel, double force, double hfac, const char *ex
     /* leapfrog: the predictor-corrector is unstable for these undamped
      * elastic beams at dt_factor 0.5 (sph_leapfrog.c) */
     snprintf(deck, len,
-             "model: {type: sph, kernel: %s, h_factor: %g, plane: stress,\n"
+             "model: {%skernel: %s, h_factor: %g, plane: stress,\n"
              "        time_integration: leapfrog, %s%s}\n"
              "materials: {steel: {density: 7800, youngs_modulus: 210.0e9, poisson_ratio: 0.3}}\n"
              "lattice: {type: square, spacing: 1.0e-3, origin: [0.0005, 0.0005], "
@@ -159,7 +159,8 @@ void sph_beam_deck(const char *kernel, double force, double hfac, const char *ex
              "  - {group: tip, type: force, components: [y], value: %.17g,\n"
              "     function: {type: quadratic_ramp, duration: 1.5e-3}}\n"
              "run: {end_time: 3.0e-3, dt_factor: 0.5}\n",
-             kernel, hfac, extra, ckey, xmin, -force);
+             strncmp(extra, "type:", 5) == 0 ? "" : "type: sph, ", kernel, hfac, extra, ckey,
+             xmin, -force);
 }
 
 int sph_beam_run(const char *kernel, double force, double hfac, const char *extra,
@@ -258,7 +259,7 @@ int sph_case_beam(struct vreport *r, struct spall_error *err)
         const char *cl = w->clamp == SPH_BEAM_MIRROR ? "mirrored clamp" : "fixed clamp";
         char extra[256];
         if (w->variant == 1)
-            snprintf(extra, sizeof extra, "viscosity: [0.1, 0.1], formulation: total, "
+            snprintf(extra, sizeof extra, "type: tlsph, viscosity: [0.1, 0.1], "
                                           "hourglass: 1.0");
         else
             snprintf(extra, sizeof extra, "%s%s", thesis,

@@ -65,7 +65,7 @@ int sph_plate_run(int rows, const char *model, enum sph_plate_clamp clamp, bool 
         snprintf(cl, sizeof cl, ",\n        clamp: {group: clamp, point: [0, 0], normal: [1, 0]}");
     if (clamp == SPH_PLATE_FREE)
         snprintf(deck, sizeof deck,
-                 "model: {type: sph, plane: strain, %s}\n"
+                 "model: {plane: strain, %s}\n"
                  "materials: {rubber: {density: 1000, youngs_modulus: 2.0e6, "
                  "poisson_ratio: 0.3975}}\n"
                  "lattice: {type: square, spacing: %.17g, origin: [%.17g, %.17g], "
@@ -76,7 +76,7 @@ int sph_plate_run(int rows, const char *model, enum sph_plate_clamp clamp, bool 
                  model, dx, 0.5 * dx, 0.5 * dx, -0.5 * H, L, 0.5 * H, 1.6 * T0);
     else
         snprintf(deck, sizeof deck,
-                 "model: {type: sph, plane: strain, %s%s}\n"
+                 "model: {plane: strain, %s%s}\n"
                  "materials: {rubber: {density: 1000, youngs_modulus: 2.0e6, "
                  "poisson_ratio: 0.3975}}\n"
                  "lattice: {type: square, spacing: %.17g, origin: [%.17g, %.17g], "
@@ -140,15 +140,16 @@ int sph_plate_run(int rows, const char *model, enum sph_plate_clamp clamp, bool 
  * 6 / 10 / 16 / 20 / 24 rows; insensitive to the hourglass coefficient,
  * the AV, the amplitude and the time integrator).  CSPM is built into its
  * corrected reference gradient. */
-static const char *const PLATE_TLSPH = "kernel: cubic_spline, h_factor: 1.5, formulation: total, "
+static const char *const PLATE_TLSPH = "type: tlsph, kernel: cubic_spline, h_factor: 1.5, "
                                        "hourglass: 0.1, viscosity: [0.1, 0.1], "
                                        "time_integration: leapfrog";
 /* Updated form (the thesis' method): CSPM, mirrored clamp (sph_clamp.c).
  * At 16 rows particles pair on the compressed side of the clamp corner
  * (measured: the cubic spline at h = 1.5 dx has its nearest neighbours at
  * the kernel's inflection point q = 2/3), so it is run at 10 rows. */
-static const char *const PLATE_UPDATED = "kernel: cubic_spline, h_factor: 1.5, cspm: true, "
-                                         "viscosity: [0.1, 0.1], time_integration: leapfrog";
+static const char *const PLATE_UPDATED = "type: sph, kernel: cubic_spline, h_factor: 1.5, "
+                                         "cspm: true, viscosity: [0.1, 0.1], "
+                                         "time_integration: leapfrog";
 
 static int plate_check(struct vreport *r, const char *what, int rows, const char *model,
                        enum sph_plate_clamp clamp, double T_ref, struct sph_plate_result *res,

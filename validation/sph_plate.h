@@ -30,9 +30,9 @@ struct sph_plate_result {
 
 /** First-mode period of the plate with @p rows particles over H; with
  *  @p half_only stop at the first down-crossing (period = NaN).
- *  @p model: the model keys after "type: sph, plane: strain" (flow-mapping
- *  text, e.g. "kernel: cubic_spline, h_factor: 1.5, cspm: true,
- *  time_integration: leapfrog, viscosity: [0.1, 0.1]"). */
+ *  @p model: the model keys besides "plane: strain", the type among them
+ *  (flow-mapping text, e.g. "type: sph, kernel: cubic_spline, h_factor: 1.5,
+ *  cspm: true, time_integration: leapfrog, viscosity: [0.1, 0.1]"). */
 int sph_plate_run(int rows, const char *model, enum sph_plate_clamp clamp, bool half_only,
                   struct sph_plate_result *out, struct spall_error *err);
 

@@ -67,7 +67,7 @@ int cli_calibrate(int argc, char **argv)
         return cli_calibrate_macroparticle(argc, argv);
     if (strcmp(argv[1], "peridynamics") == 0)
         return cli_calibrate_peridynamics(argc, argv);
-    if (strcmp(argv[1], "sph") == 0)
+    if (strcmp(argv[1], "sph") == 0 || strcmp(argv[1], "tlsph") == 0) /* one material law */
         return cli_calibrate_sph(argc, argv);
     if (strcmp(argv[1], "lattice") != 0) {
         size_t len = strlen(argv[1]);
@@ -82,7 +82,7 @@ int cli_calibrate(int argc, char **argv)
         }
         fprintf(stderr,
                 "spall calibrate: unknown model '%s'; expected a deck (.yaml) or one of "
-                "lattice, peridynamics, macroparticle, sph\n",
+                "lattice, peridynamics, macroparticle, sph (or tlsph)\n",
                 argv[1]);
         return 2;
     }

@@ -197,7 +197,8 @@ static int check_sph_planes(const struct deck *d, const struct sim *s, const boo
 {
     const struct deck_node *model = deck_peek(d->root, "model");
     const struct deck_node *type = deck_peek(model, "type");
-    if (!type || type->kind != DECK_SCALAR || strcmp(type->scalar, "sph") != 0)
+    if (!type || type->kind != DECK_SCALAR ||
+        (strcmp(type->scalar, "sph") != 0 && strcmp(type->scalar, "tlsph") != 0))
         return SPALL_OK;
     const struct particles *p = s->p;
     const double dx = s->lattice.spacing;

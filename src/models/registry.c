@@ -11,7 +11,7 @@
 /* Every model, by the name of its model_ops (<name>_model_ops, whose .name
  * is "<name>").  The extern declarations, the table and the name list below
  * are all derived from this one list, so they cannot disagree. */
-#define SPALL_MODELS(X) X(lattice) X(peridynamics) X(macroparticle) X(sph)
+#define SPALL_MODELS(X) X(lattice) X(peridynamics) X(macroparticle) X(sph) X(tlsph)
 
 #define SPALL_MODEL_EXTERN(n) extern const struct model_ops n##_model_ops;
 SPALL_MODELS(SPALL_MODEL_EXTERN)

@@ -173,7 +173,7 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
                        struct spall_error *err);
 
 /* sph_forms.c */
-/** Formulation of every deck body: @p run_form (model.formulation) unless
+/** Formulation of every deck body: @p run_form (the model: 1 for tlsph) unless
  *  model.body_formulation names the body (bodies[].name); *body_total has
  *  *n_bodies entries (free it). */
 int sph_forms_parse(const struct deck_node *params, int run_form, uint8_t **body_total,

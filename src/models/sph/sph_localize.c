@@ -33,9 +33,8 @@ static const char *not_distributed(const struct model *m)
 {
     const struct sph_options *o = &m->opt;
     if (!o->tl.total_lagrangian)
-        return "the updated-Lagrangian formulation (model.formulation: updated, the default) is "
-               "not distributed yet (its neighbour search needs the spatial ghosts; "
-               "formulation: total is);";
+        return "the updated-Lagrangian formulation (model type sph) is not distributed yet "
+               "(its neighbour search needs the spatial ghosts; type tlsph is);";
     if (o->tl.split_forms || m->form)
         return "bodies split by formulation (model.body_formulation) are not distributed yet;";
     if (o->kern.plane == SPH_PLANE_AXISYMMETRIC)

@@ -93,15 +93,21 @@ static void sph_destroy(struct model **pm)
     *pm = NULL;
 }
 
+/* Both plug-ins (sph: updated, tlsph: total Lagrangian) are built here:
+ * they share the kernels, EOS, strength models, interfaces and the state,
+ * and differ in their formulation's table of hooks (sph_internal.h,
+ * sph_form_updated / sph_form_total) and their own keys; @p base_form is
+ * the plug-in's formulation, which model.body_formulation can override
+ * per body. */
 static int sph_create(struct model **out, struct sim *sim, const struct deck_node *params,
-                      struct spall_error *err)
+                      int base_form, struct spall_error *err)
 {
     *out = NULL;
     if (sim->dim < 2)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "the sph model runs in 2D and 3D; use a 2D or 3D lattice");
     struct sph_parsed in; /* sph_options.c */
-    int rc = sph_options_parse(params, sim->dim, &in, err);
+    int rc = sph_options_parse(params, sim->dim, base_form, &in, err);
     if (rc)
         return rc;
     struct sph_options o = in.opt;
@@ -437,33 +443,60 @@ static size_t sph_planes(const struct model *m, const struct sim *sim, struct mo
     return k;
 }
 
-extern const struct model_fixture sph_fixtures[]; /* sph_fixture.c */
+static int sph_create_updated(struct model **out, struct sim *sim,
+                              const struct deck_node *params, struct spall_error *err)
+{
+    return sph_create(out, sim, params, 0, err);
+}
+
+static int sph_create_total(struct model **out, struct sim *sim, const struct deck_node *params,
+                            struct spall_error *err)
+{
+    return sph_create(out, sim, params, 1, err);
+}
+
+/* sph_fixture.c: each plug-in's bodies for the model contract test */
+extern const struct model_fixture sph_fixtures[], tlsph_fixtures[];
+
+/* The hooks both plug-ins share: one implementation, two registry lines. */
+#define SPH_SHARED_HOOKS \
+    .particle_volumes = true, \
+    .parse_material = sph_material_parse, \
+    .init = sph_init, \
+    .register_fields = sph_register_fields, \
+    .register_state = sph_register_state, \
+    .compute_forces = sph_forces, \
+    .stable_dt = sph_stable_dt, \
+    .end_step = sph_end_step, \
+    .energy = sph_energy, \
+    .history = sph_history, \
+    .describe = sph_describe, \
+    .destroy = sph_destroy, \
+    .advance_state = sph_advance_state, \
+    .compute_forces_kick = sph_forces_kick, \
+    .drift_velocity = sph_drift_velocity, \
+    .time_scheme = sph_time_scheme, \
+    .interactions = sph_interactions, \
+    .planes = sph_planes, \
+    .localize = sph_localize, \
+    .halo_bonds = sph_halo_bonds, \
+    .migrate_arrays = sph_migrate_arrays, \
+    .migrated = sph_migrated,
+
 const struct model_ops sph_model_ops = {
     .name = "sph",
-    .summary = "SPH for elastic-plastic solids: six kernels, CSPM, AV/AS/XSPH, JC, Mie-Grueneisen",
-    .particle_volumes = true,
-    .create = sph_create,
-    .parse_material = sph_material_parse,
-    .init = sph_init,
-    .precrack = NULL,
-    .register_fields = sph_register_fields,
-    .register_state = sph_register_state,
-    .compute_forces = sph_forces,
-    .stable_dt = sph_stable_dt,
-    .end_step = sph_end_step,
-    .energy = sph_energy,
-    .history = sph_history,
-    .describe = sph_describe,
-    .destroy = sph_destroy,
-    .advance_state = sph_advance_state,
-    .compute_forces_kick = sph_forces_kick,
-    .drift_velocity = sph_drift_velocity,
-    .time_scheme = sph_time_scheme,
-    .interactions = sph_interactions,
-    .planes = sph_planes,
+    .summary = "SPH for elastic-plastic solids, updated Lagrangian: six kernels, CSPM, "
+               "AV/AS/XSPH, JC, Mie-Grueneisen",
+    .create = sph_create_updated,
     .fixtures = sph_fixtures,
-    .localize = sph_localize,
-    .halo_bonds = sph_halo_bonds,
-    .migrate_arrays = sph_migrate_arrays,
-    .migrated = sph_migrated,
+    SPH_SHARED_HOOKS
+};
+
+const struct model_ops tlsph_model_ops = {
+    .name = "tlsph",
+    .summary = "SPH for elastic-plastic solids, total Lagrangian (reference kernel, "
+               "hourglass control, re-referencing): JC, Mie-Grueneisen",
+    .create = sph_create_total,
+    .fixtures = tlsph_fixtures,
+    SPH_SHARED_HOOKS
 };

@@ -7,7 +7,8 @@
  *
  * Deck keys (copied to docs/decks.md):
  *   model:
- *     type: sph
+ *     type: sph | tlsph                       the updated (sph) or total (tlsph) Lagrangian
+ *                                             formulation: two models sharing these keys
  *     kernel: cubic_spline | gaussian | quintic_spline | wendland |
  *             double_cosine | hyperbolic      (Fig. 3.1 types 1-6; default wendland)
  *     h_factor: h / dx (default 1.5)
@@ -31,10 +32,8 @@
  *     adaptive_dt: true                       Eq. 3.38 every step (dt_factor = c_s, default 0.3)
  *     time_integration: predictor_corrector | leapfrog   (sph_leapfrog.c; default
  *                                             predictor_corrector, Eqs. 3.35-3.37)
- *     formulation: updated | total            total: TLSPH (sph_tlsph.c), reference
- *                                             kernel, no AS/XSPH (default updated)
  *     body_formulation: {name: updated | total}  per body (bodies[].name) override of
- *                                             formulation (sph_forms.c); mixed runs need
+ *                                             the model's formulation (sph_forms.c); mixed runs need
  *                                             interface: bodies | materials
  *     hourglass: kappa                        TLSPH hourglass coefficient (default 0.1)
  *     det_f_range: [lo, hi]                   TLSPH guard: a particle's det F outside stops
@@ -87,6 +86,9 @@
 static const struct {
     const char *key, *why;
 } removed_keys[] = {
+    {"formulation", "model.formulation is no longer a key: the two SPH formulations are two "
+                    "models, type: sph (updated Lagrangian) and type: tlsph (total "
+                    "Lagrangian); model.body_formulation still sets single bodies"},
     {"pair_loop", "pair_loop is no longer a deck key: spall picks the fused or the two-pass "
                   "loops from the other options (same equations); remove it"},
 };
@@ -114,7 +116,7 @@ static int parse_reref(const struct deck_node *params, struct sph_opt_tlsph *o,
     if (!o->total_lagrangian)
         return deck_error_key(err, params, "reference_update",
                               "reference_update re-references total-Lagrangian bodies; this "
-                              "run has none (formulation: total or body_formulation)");
+                              "run has none (type: tlsph or body_formulation)");
     long every = 0;
     double k = 0.0, iso = 0.2;
     if ((rc = deck_long(r, "every", false, 1, LONG_MAX, &every, err)) ||
@@ -143,14 +145,13 @@ static int parse_reref(const struct deck_node *params, struct sph_opt_tlsph *o,
     return SPALL_OK;
 }
 
-int sph_options_parse(const struct deck_node *params, int dim, struct sph_parsed *out,
-                      struct spall_error *err)
+int sph_options_parse(const struct deck_node *params, int dim, int base_form,
+                      struct sph_parsed *out, struct spall_error *err)
 {
     static const char *const kernels[] = {"cubic_spline",  "gaussian",   "quintic_spline",
                                           "wendland",      "double_cosine", "hyperbolic", NULL};
     static const char *const dens[] = {"continuity", "summation", NULL};
     static const char *const planes[] = {"stress", "strain", "axisymmetric", NULL};
-    static const char *const forms[] = {"updated", "total", NULL};
     static const char *const syms[] = {"none", "x", "y", "xy", NULL};
     static const char *const tints[] = {"predictor_corrector", "leapfrog", NULL};
     static const char *const keys[] = {"type", "kernel", "h_factor", "density", "cspm",
@@ -158,7 +159,7 @@ int sph_options_parse(const struct deck_node *params, int dim, struct sph_parsed
                                        "artificial_stress", "artificial_stress_n",
                                        "artificial_stress_smoothing",
                                        "xsph", "variable_h", "plane", "skin", "adaptive_dt",
-                                       "formulation", "hourglass",
+                                       "hourglass",
                                        "wall", "symmetry",
                                        "cavity_depth", "time_integration", "interface",
                                        "interface_stiffness", "interface_distance", "clamp",
@@ -185,9 +186,11 @@ int sph_options_parse(const struct deck_node *params, int dim, struct sph_parsed
     o.iface.stiffness = 1.0;
     o.iface.distance = 1.0;
     bool adaptive = true;
+    o.tl.total_lagrangian = base_form == 1;
+    out->run_form = base_form;
     int rc = SPALL_OK;
     if (params) {
-        int kern = 3, den = 0, pl = 1, form = 0, sym = 0, tint = 0, ifc = 0, avs = 0;
+        int kern = 3, den = 0, pl = 1, form = base_form, sym = 0, tint = 0, ifc = 0, avs = 0;
         double av[2] = {o.visc.av_a, o.visc.av_b};
         if ((rc = refuse_removed(params, err)))
             return rc;
@@ -210,7 +213,6 @@ int sph_options_parse(const struct deck_node *params, int dim, struct sph_parsed
             (rc = deck_enum(params, "plane", false, planes, &pl, err)) ||
             (rc = deck_double(params, "skin", false, 0.0, 2.0, &o.kern.skin, err)) ||
             (rc = deck_bool(params, "adaptive_dt", false, &adaptive, err)) ||
-            (rc = deck_enum(params, "formulation", false, forms, &form, err)) ||
             (rc = deck_double(params, "hourglass", false, 0.0, 10.0, &o.tl.hourglass, err)) ||
             (rc = deck_vector(params, "det_f_range", false, 2, 2, o.tl.det_f_range, err)) ||
             (rc = deck_double(params, "max_distortion", false, 1.0, INFINITY, &o.tl.max_distortion,
@@ -356,7 +358,7 @@ int sph_options_parse(const struct deck_node *params, int dim, struct sph_parsed
             return deck_error_key(err, params, "clamp",
                                   "clamp works with the updated formulation's two-pass loops "
                                   "only: not with symmetry planes, plane: axisymmetric or "
-                                  "formulation: total (TLSPH needs none: a plain fixed "
+                                  "type: tlsph (TLSPH needs none: a plain fixed "
                                   "group clamps it, docs/validation.md sph-plate)");
         if ((rc = sph_clamp_parse(cl, dim, &out->clamp, err)))
             return rc;

@@ -123,14 +123,16 @@ struct sph_loops {
 struct sph_parsed {
     struct sph_options opt;
     struct sph_loops loops;
-    int run_form;           /**< model.formulation (1: total) before the per-body overrides */
+    int run_form;           /**< the model's formulation (1: total, type tlsph) before the
+                                 per-body overrides */
     struct sph_clamp *clamp; /**< model.clamp (NULL: none); the caller owns it */
 };
 
 /** Parse and cross-check the `model:` mapping @p params (NULL: defaults)
- *  of a @p dim-dimensional run into @p out; keys of removed verification
- *  switches are refused naming their replacement. */
-int sph_options_parse(const struct deck_node *params, int dim, struct sph_parsed *out,
-                      struct spall_error *err);
+ *  of a @p dim-dimensional run of the plug-in whose formulation is
+ *  @p base_form (0: sph, updated; 1: tlsph, total) into @p out; removed
+ *  keys are refused naming their replacement. */
+int sph_options_parse(const struct deck_node *params, int dim, int base_form,
+                      struct sph_parsed *out, struct spall_error *err);
 
 #endif
