@@ -2,7 +2,7 @@
 # Race and cross-check: the same 3D PMB problem in spall and in LAMMPS
 # (PERI package, pair_style peri/pmb).  Run by hand, not part of the suite:
 #     bench/pd_vs_lammps.sh [path/to/spall] [NX NY NZ STEPS]
-# Installs lammps (Debian package) if `lmp` is missing.
+# Installs lammps (Debian package) if `lmp` is missing (bench/lammps_setup.sh).
 #
 # Problem (identical in both codes):
 #   simple-cubic lattice, spacing dx = 1 mm, NX x NY x NZ sites (default
@@ -28,8 +28,8 @@
 set -euo pipefail
 SPALL=${1:-build/spall}
 NX=${2:-36}; NY=${3:-24}; NZ=${4:-24}; STEPS=${5:-200}
-command -v lmp >/dev/null || apt-get install -y lammps >/dev/null
-W=$(mktemp -d /tmp/pd_vs_lammps.XXXX)
+NAME=pd_vs_lammps CHECK=0
+. "$(dirname "$0")/lammps_setup.sh"
 DX=1.0e-3
 DELTA=$(python3 -c "print(3.015*$DX)")
 C=$(python3 -c "import math; print(repr(18*48e9/(math.pi*(3.015*$DX)**4)))")
@@ -100,17 +100,16 @@ probes:
 run: {dt: 5.0e-8, dt_override: true, steps: $STEPS, threads: THREADS}
 output: {history_every: $STEPS, field_interval: 1.0}
 YML
-echo "work dir: $W"
 printf "%-8s %-8s %12s %14s %14s %14s %12s\n" code threads wall_s bond_steps/s damage_sum probe_ux_m rss_B/part
 for T in 1 2; do
   if [ "${SPALL_RANKS:-0}" = 1 ] && [ "$T" -gt 1 ]; then
     sed "s/THREADS/1/" "$W/pmb.yaml" > "$W/pmb_$T.yaml"
     ( cd "$W" && OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np "$T" \
-        /usr/bin/time -f "%M" -a -o "spall_$T.mem" "$OLDPWD/$SPALL" run "pmb_$T.yaml" \
+        /usr/bin/time -f "%M" -a -o "spall_$T.mem" "$SPALL" run "pmb_$T.yaml" \
         > "spall_$T.out" 2>&1 )
   else
     sed "s/THREADS/$T/" "$W/pmb.yaml" > "$W/pmb_$T.yaml"
-    ( cd "$W" && /usr/bin/time -f "%M" -o "spall_$T.mem" "$OLDPWD/$SPALL" run "pmb_$T.yaml" > "spall_$T.out" 2>&1 )
+    ( cd "$W" && /usr/bin/time -f "%M" -o "spall_$T.mem" "$SPALL" run "pmb_$T.yaml" > "spall_$T.out" 2>&1 )
   fi
   ( cd "$W" && OMP_NUM_THREADS=1 /usr/bin/time -f "%M" -o "lmp_$T.mem" mpirun --allow-run-as-root --oversubscribe -np $T lmp -in in.pmb -log "lmp_$T.log" > "lmp_$T.out" 2>&1 )
 done

@@ -13,6 +13,7 @@
 #include "core/parallel/comm.h"
 #include "core/parallel/sghost.h"
 #include "spall/error.h"
+#include "tests/mpi/par_check.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -20,18 +21,6 @@
 #include <string.h>
 
 #define M 1500
-
-static int failures;
-
-#define CHECK(cond, ...)                                                                        \
-    do {                                                                                        \
-        if (!(cond)) {                                                                          \
-            fprintf(stderr, "rank %d: FAIL %s:%d: ", par_rank(), __FILE__, __LINE__);           \
-            fprintf(stderr, __VA_ARGS__);                                                       \
-            fputc('\n', stderr);                                                                \
-            failures++;                                                                         \
-        }                                                                                       \
-    } while (0)
 
 static uint64_t rng_state;
 

@@ -22,23 +22,12 @@
 #include "io/deck.h"
 #include "io/deck_build.h"
 #include "spall/error.h"
+#include "tests/mpi/par_check.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int failures;
-
-#define CHECK(cond, ...)                                                                        \
-    do {                                                                                        \
-        if (!(cond)) {                                                                          \
-            fprintf(stderr, "rank %d: FAIL %s:%d: ", par_rank(), __FILE__, __LINE__);           \
-            fprintf(stderr, __VA_ARGS__);                                                       \
-            fputc('\n', stderr);                                                                \
-            failures++;                                                                         \
-        }                                                                                       \
-    } while (0)
 
 static const char *deck_text =
     "model: {type: macroparticle}\n"
