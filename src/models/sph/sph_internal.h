@@ -255,10 +255,15 @@ void sph_neighbors_trim(struct model *m, double *const x[3], double skin_abs);
 enum sph_halo_set {
     SPH_HALO_DENSITY, /**< before the velocity gradient: rho, h */
     SPH_HALO_SPLIT,   /**< before pass_forces: rho, c, h, sigma (+ R, B^-1, L as used) */
-    SPH_HALO_FUSED    /**< before the fused loop: rho, c, h, sigma / rho^2 (+ R) */
+    SPH_HALO_FUSED,   /**< before the fused loop: rho, c, h, sigma / rho^2 (+ R) */
+    SPH_HALO_AXI_GRADIENT, /**< axisymmetric, before the gradient: rho, h, m2 */
+    SPH_HALO_AXI_FORCES    /**< axisymmetric, before the forces: rho, h, m2, c, lambda,
+                                sigma, the (r, z) block of B^-1 (+ L) */
 };
 /** Hand the ghosts their owners' values of @p set (collective). */
 int sph_par_halo(struct model *m, struct sim *s, enum sph_halo_set set, struct spall_error *err);
+/** The same for @p w arrays of one's choice (a[k]: the address of array k). */
+int sph_par_halo_arrays(struct sim *s, double **const *a, int w, struct spall_error *err);
 /** Doubles per ghost that sph_par_halo sends for @p set with the run's options. */
 int sph_par_halo_width(const struct model *m, enum sph_halo_set set);
 struct par_spatial_model;

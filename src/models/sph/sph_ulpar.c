@@ -44,8 +44,6 @@ const char *sph_ul_not_distributed(const struct model *m)
     const struct sph_options *o = &m->opt;
     if (o->tl.split_forms || m->form)
         return "bodies split by formulation (model.body_formulation) are not distributed yet;";
-    if (o->kern.plane == SPH_PLANE_AXISYMMETRIC)
-        return "axisymmetric runs (model.plane: axisymmetric) are not distributed yet;";
     if (o->bound.symmetry[0] || o->bound.symmetry[1] || o->bound.symmetry[2])
         return "symmetry planes (model.symmetry) are not distributed yet;";
     if (m->clamp)
@@ -71,6 +69,24 @@ static int halo_arrays(struct model *m, enum sph_halo_set set, double **a[40])
     a[k++] = &m->h;
     if (set == SPH_HALO_DENSITY)
         return k;
+    if (set == SPH_HALO_AXI_GRADIENT || set == SPH_HALO_AXI_FORCES)
+        a[k++] = &m->m2; /* the planar mass follows r (sph_axisym.c) */
+    if (set == SPH_HALO_AXI_GRADIENT)
+        return k;
+    if (set == SPH_HALO_AXI_FORCES) {
+        /* pass_forces_axi: sigma, B^-1, the axis weight, c (and L for
+         * Balsara's switch) of the partner */
+        a[k++] = &m->c;
+        a[k++] = &m->ax.axl;
+        for (int c = 0; c < 6; c++)
+            a[k++] = &m->sig[c];
+        for (int c = 0; c < 9; c++)
+            if (c % 3 < 2 && c / 3 < 2) /* the (r, z) block */
+                a[k++] = &m->Bi[c];
+        for (int c = 0; c < 9 && m->opt.visc.av_balsara; c++)
+            a[k++] = &m->L[c];
+        return k;
+    }
     a[k++] = &m->c;
     const bool as = m->opt.visc.as_zeta > 0.0;
     for (int c = 0; c < 6; c++)
@@ -96,6 +112,11 @@ int sph_par_halo(struct model *m, struct sim *s, enum sph_halo_set set, struct s
 {
     double **a[40];
     const int w = halo_arrays(m, set, a);
+    return sph_par_halo_arrays(s, a, w, err);
+}
+
+int sph_par_halo_arrays(struct sim *s, double **const *a, int w, struct spall_error *err)
+{
     const struct particles *p = s->p;
     const size_t n = p->n, no = p->n_owned;
     double *buf = malloc((n ? n : 1) * (size_t)w * sizeof *buf);
