@@ -255,6 +255,7 @@ void sph_neighbors_trim(struct model *m, double *const x[3], double skin_abs);
 enum sph_halo_set {
     SPH_HALO_DENSITY, /**< before the velocity gradient: rho, h */
     SPH_HALO_SPLIT,   /**< before pass_forces: rho, c, h, sigma (+ R, B^-1, L as used) */
+    SPH_HALO_AS_SMOOTH, /**< before the smoothing of R: rho, h, R */
     SPH_HALO_FUSED,   /**< before the fused loop: rho, c, h, sigma / rho^2 (+ R) */
     SPH_HALO_AXI_GRADIENT, /**< axisymmetric, before the gradient: rho, h, m2 */
     SPH_HALO_AXI_FORCES    /**< axisymmetric, before the forces: rho, h, m2, c, lambda,
@@ -270,7 +271,8 @@ struct par_spatial_model;
 /** model_ops.spatial_ghosts / spatial_rebuilt (> 0: a TLSPH run, no spatial ghosts). */
 int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp);
 int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spall_error *err);
-/** What a distributed updated-form run cannot do yet, or NULL. */
+/** What only the updated form cannot do distributed yet, or NULL (the
+ *  refusals of both forms: sph_localize.c). */
 const char *sph_ul_not_distributed(const struct model *m);
 /** localize (the list only: sph_localize gathers the arrays), migrate_arrays
  *  and migrated of the updated form. */

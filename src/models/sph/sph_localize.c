@@ -31,18 +31,18 @@
 static const char *not_distributed(const struct model *m)
 {
     const struct sph_options *o = &m->opt;
-    if (!o->tl.total_lagrangian)
-        return sph_ul_not_distributed(m); /* sph_ulpar.c */
     if (o->tl.split_forms || m->form)
         return "bodies split by formulation (model.body_formulation) are not distributed yet;";
-    if (o->kern.plane == SPH_PLANE_AXISYMMETRIC)
-        return "axisymmetric runs (model.plane: axisymmetric) are not distributed yet;";
     if (o->bound.symmetry[0] || o->bound.symmetry[1] || o->bound.symmetry[2])
         return "symmetry planes (model.symmetry) are not distributed yet;";
     if (m->clamp)
         return "the mirrored clamp (model.clamp) is not distributed yet;";
     if (o->iface.kind != SPH_IFACE_NONE)
         return "interfaces (model.interface) are not distributed yet;";
+    if (!o->tl.total_lagrangian)
+        return sph_ul_not_distributed(m); /* sph_ulpar.c */
+    if (o->kern.plane == SPH_PLANE_AXISYMMETRIC)
+        return "axisymmetric runs (model.plane: axisymmetric) are not distributed yet;";
     if (o->tl.reref_every || o->tl.reref_distortion > 0.0)
         return "reference updates (model.reference_update) are not distributed yet;";
     return NULL;

@@ -501,8 +501,12 @@ static int updated_rates(struct model *m, struct sim *s, double lfdt, struct spa
     }
     if (m->clamp)
         sph_clamp_stress(m); /* sph_clamp.c */
-    if (m->opt.visc.as_smooth && m->opt.visc.as_zeta > 0.0)
+    if (m->opt.visc.as_smooth && m->opt.visc.as_zeta > 0.0) {
+        /* distributed: the partners' R, rho and h of this call first */
+        if (s->par && (rc = sph_par_halo(m, s, SPH_HALO_AS_SMOOTH, err)))
+            return rc;
         sph_artificial_stress_smooth(m, s); /* sph_as_smooth.c */
+    }
     /* distributed: what pass_forces reads of a partner, from its owner */
     if (s->par && (rc = sph_par_halo(m, s, SPH_HALO_SPLIT, err)))
         return rc;

@@ -41,21 +41,10 @@
 
 const char *sph_ul_not_distributed(const struct model *m)
 {
-    const struct sph_options *o = &m->opt;
-    if (o->tl.split_forms || m->form)
-        return "bodies split by formulation (model.body_formulation) are not distributed yet;";
-    if (o->bound.symmetry[0] || o->bound.symmetry[1] || o->bound.symmetry[2])
-        return "symmetry planes (model.symmetry) are not distributed yet;";
-    if (m->clamp)
-        return "the mirrored clamp (model.clamp) is not distributed yet;";
-    if (o->iface.kind != SPH_IFACE_NONE)
-        return "interfaces (model.interface) are not distributed yet;";
-    if (o->kern.variable_h)
+    /* (what neither form distributes yet: sph_localize.c) */
+    if (m->opt.kern.variable_h)
         return "the updated form with a variable smoothing length (model.variable_h) is not "
                "distributed yet (the ghost range follows h_max);";
-    if (o->visc.as_smooth)
-        return "the smoothed artificial stress (model.artificial_stress_smooth) is not "
-               "distributed yet;";
     return NULL;
 }
 
@@ -69,6 +58,11 @@ static int halo_arrays(struct model *m, enum sph_halo_set set, double **a[40])
     a[k++] = &m->h;
     if (set == SPH_HALO_DENSITY)
         return k;
+    if (set == SPH_HALO_AS_SMOOTH) {
+        for (int c = 0; c < 6; c++)
+            a[k++] = &m->R[c];
+        return k;
+    }
     if (set == SPH_HALO_AXI_GRADIENT || set == SPH_HALO_AXI_FORCES)
         a[k++] = &m->m2; /* the planar mass follows r (sph_axisym.c) */
     if (set == SPH_HALO_AXI_GRADIENT)
