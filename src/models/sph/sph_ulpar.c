@@ -118,7 +118,8 @@ int sph_par_halo_arrays(struct sim *s, double **const *a, int w, struct spall_er
         for (size_t i = 0; i < no; i++)
             for (int k = 0; k < w; k++)
                 buf[i * (size_t)w + (size_t)k] = (*a[k])[i];
-    if (par_halo_block(s, buf, w) || !buf) { /* collective even without a buffer */
+    /* every rank learns of a failed allocation before the exchange */
+    if (par_sum_u64(!buf) || par_halo_block(s, buf, w)) {
         free(buf);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH halo, %d values)", w);
     }
@@ -213,32 +214,33 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
 {
     const struct particles *p = sim->p;
     const size_t n = p->n, no = p->n_owned;
-    if (resize_state(m, n))
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH state, %zu particles)",
-                               n);
     /* the serial build (sph_neighbors_update) at the build positions: the
-     * radius of the whole body's largest h, the trim at the same skin */
+     * radius of the whole body's largest h, the trim at the same skin.
+     * The collectives run on every rank whatever fails (the engine agrees
+     * on the error afterwards). */
     const double t0 = omp_get_wtime();
     double hmax = 0.0;
     for (size_t i = 0; i < no; i++)
         if (m->h[i] > hmax)
             hmax = m->h[i];
     hmax = par_max_double(hmax);
+    int rc = resize_state(m, n) ? spall_error_set(err, SPALL_ERR_NOMEM,
+                                                  "out of memory (SPH state, %zu particles)", n)
+                                : SPALL_OK;
     neighbor_list_destroy(&m->nl);
     m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
-    int rc = neighbor_list_build(&m->nl, m->dim, n, m->x_build, m->nl_radius, err);
-    if (rc)
-        return rc;
-    sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
-    if (merge_rows(m->nl, no, p->gid))
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
-    if (sph_ul_view(m))
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
-    m->n_pairs = (size_t)par_sum_u64((uint64_t)m->nl->offset[no]); /* the serial count */
+    if (!rc)
+        rc = neighbor_list_build(&m->nl, m->dim, n, m->x_build, m->nl_radius, err);
+    if (!rc) {
+        sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
+        if (merge_rows(m->nl, no, p->gid) || sph_ul_view(m))
+            rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
+    }
+    m->n_pairs = (size_t)par_sum_u64(rc ? 0 : (uint64_t)m->nl->offset[no]); /* the serial count */
     if (moved)
         m->n_builds++;
     m->t_neighbor += omp_get_wtime() - t0;
-    return SPALL_OK;
+    return rc;
 }
 
 /* ---- partition and migration ---- */
