@@ -49,6 +49,7 @@ struct sph_iface_state {
     double energy;         /**< penalty energy [J] */
     size_t pairs;          /**< pairs in contact at the last force evaluation */
     double omega2;         /**< largest contact omega^2 (stable step) */
+    size_t n_alloc;        /**< particles the per-particle arrays hold */
 };
 
 /** One formulation of the model ([Meng2021] ch. 3 updated Lagrangian;
@@ -265,6 +266,11 @@ enum sph_halo_set {
 int sph_par_halo(struct model *m, struct sim *s, enum sph_halo_set set, struct spall_error *err);
 /** The same for @p w arrays of one's choice (a[k]: the address of array k). */
 int sph_par_halo_arrays(struct sim *s, double **const *a, int w, struct spall_error *err);
+/** The interface's energy (summed in gid order, the serial order), contact
+ *  count and largest omega^2 of the whole body from this rank's
+ *  (collective; sph_interface_forces). */
+void sph_par_iface_totals(struct model *m, struct sim *s, double *energy, size_t *pairs,
+                          double *omega2);
 /** Doubles per ghost that sph_par_halo sends for @p set with the run's options. */
 int sph_par_halo_width(const struct model *m, enum sph_halo_set set);
 struct par_spatial_model;
@@ -337,7 +343,8 @@ size_t sph_axisym_history(const struct model *m, const struct sim *sim, const ch
 /** Move the pairs of different groups (bodies or materials) out of the
  *  kernel neighbour list into the interface list (kept within d_ij +
  *  @p skin_abs); called at each neighbour-list build. */
-int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct spall_error *err);
+int sph_interface_split(struct model *m, struct sim *s, double *const x[3], double skin_abs,
+                        struct spall_error *err);
 /** Stable step of the contact springs of the last evaluation (INFINITY: none). */
 double sph_interface_stable_dt(const struct model *m);
 

@@ -37,10 +37,10 @@ static const char *not_distributed(const struct model *m)
         return "symmetry planes (model.symmetry) are not distributed yet;";
     if (m->clamp)
         return "the mirrored clamp (model.clamp) is not distributed yet;";
-    if (o->iface.kind != SPH_IFACE_NONE)
-        return "interfaces (model.interface) are not distributed yet;";
     if (!o->tl.total_lagrangian)
         return sph_ul_not_distributed(m); /* sph_ulpar.c */
+    if (o->iface.kind != SPH_IFACE_NONE)
+        return "interfaces (model.interface) of TLSPH bodies are not distributed yet;";
     if (o->kern.plane == SPH_PLANE_AXISYMMETRIC)
         return "axisymmetric runs (model.plane: axisymmetric) are not distributed yet;";
     if (o->tl.reref_every || o->tl.reref_distortion > 0.0)

@@ -109,7 +109,7 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
         sph_neighbors_trim(m, p->x, m->nl_radius - m->qmax * hmax);
     /* interface between bodies: their pairs leave the kernel list */
     if (m->opt.iface.kind != SPH_IFACE_NONE &&
-        (rc = sph_interface_split(m, s, m->nl_radius - m->qmax * hmax, err)))
+        (rc = sph_interface_split(m, s, p->x, m->nl_radius - m->qmax * hmax, err)))
         return rc;
     for (int d = 0; d < dim; d++)
         memcpy(m->x_build[d], p->x[d], n * sizeof(double));

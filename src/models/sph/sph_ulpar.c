@@ -28,6 +28,7 @@
 #include "core/neighbor.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/gather.h"
 #include "core/parallel/migrate.h"
 #include "core/parallel/spatial.h"
 #include "core/particles.h"
@@ -128,6 +129,27 @@ int sph_par_halo_arrays(struct sim *s, double **const *a, int w, struct spall_er
             (*a[k])[i] = buf[i * (size_t)w + (size_t)k];
     free(buf);
     return SPALL_OK;
+}
+
+void sph_par_iface_totals(struct model *m, struct sim *s, double *energy, size_t *pairs,
+                          double *omega2)
+{
+    /* the energy enters the energy account: summed as one rank sums it,
+     * particle by particle in gid order, from the whole body's values */
+    struct spall_error err = {0};
+    double *e = malloc((par_n_global(s) ? par_n_global(s) : 1) * sizeof *e);
+    const int bad = par_sum_u64(!e) > 0;
+    if (!bad && !par_gather_by_gid(s, m->ifs.e, e, &err)) {
+        double t = 0.0;
+        for (size_t i = 0; i < par_n_global(s); i++)
+            t += e[i];
+        *energy = t;
+    } else {
+        *energy = NAN; /* out of memory: the energy account shows it */
+    }
+    free(e);
+    *pairs = (size_t)par_sum_u64((uint64_t)*pairs);
+    *omega2 = par_max_double(*omega2);
 }
 
 /* ---- spatial ghosts ---- */
@@ -233,9 +255,15 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
         rc = neighbor_list_build(&m->nl, m->dim, n, m->x_build, m->nl_radius, err);
     if (!rc) {
         sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
-        if (merge_rows(m->nl, no, p->gid) || sph_ul_view(m))
+        if (merge_rows(m->nl, no, p->gid))
             rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
     }
+    /* the interface pairs leave the kernel rows, as in the serial build
+     * (their rows follow the merged ones, so they are in gid order too) */
+    if (!rc && m->opt.iface.kind != SPH_IFACE_NONE)
+        rc = sph_interface_split(m, sim, m->x_build, m->nl_radius - m->qmax * hmax, err);
+    if (!rc && sph_ul_view(m))
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
     m->n_pairs = (size_t)par_sum_u64(rc ? 0 : (uint64_t)m->nl->offset[no]); /* the serial count */
     if (moved)
         m->n_builds++;
