@@ -67,8 +67,9 @@ struct sph_rings_result {
 };
 /** "sph-rings": two rubber rings collide and rebound (Gray et al. 2001). */
 int sph_case_rings(struct vreport *r, struct spall_error *err);
-/** One collision with spacing @p dx until @p end_time. */
-int sph_rings_run(double dx, double end_time, struct sph_rings_result *out,
+/** One collision with spacing @p dx until @p end_time (under mpirun
+ *  distributed over the ranks of @p r, vpar.h). */
+int sph_rings_run(struct vreport *r, double dx, double end_time, struct sph_rings_result *out,
                   struct spall_error *err);
 
 /** Outcome of one debris-cloud run (sph_debris.c), measured at the end time. */

@@ -26,6 +26,7 @@
 #include "validation/lattice_cases.h"
 #include "validation/sph_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -50,13 +51,11 @@ static size_t uf_root(size_t *par, size_t i)
 
 /* Connected components of particles closer than @p link; counts of all
  * components and of single particles. */
-static int ring_components(const struct sim *s, double link, size_t *n_comp, size_t *n_single,
-                           struct spall_error *err)
+static int ring_components(int dim, size_t n, double *const x[3], double link, size_t *n_comp,
+                           size_t *n_single, struct spall_error *err)
 {
-    const struct particles *p = s->p;
-    const size_t n = p->n_owned;
     struct neighbor_list *nl = NULL;
-    int rc = neighbor_list_build(&nl, s->dim, n, p->x, link, err);
+    int rc = neighbor_list_build(&nl, dim, n, x, link, err);
     if (rc)
         return rc;
     size_t *par = malloc(n * sizeof *par), *cnt = calloc(n, sizeof *cnt);
@@ -88,7 +87,7 @@ static int ring_components(const struct sim *s, double link, size_t *n_comp, siz
     return SPALL_OK;
 }
 
-int sph_rings_run(double dx, double end_time, struct sph_rings_result *out,
+int sph_rings_run(struct vreport *r, double dx, double end_time, struct sph_rings_result *out,
                   struct spall_error *err)
 {
     const double E = 1.0e7, nu = 0.3975, rho = 1000.0;
@@ -115,9 +114,10 @@ int sph_rings_run(double dx, double end_time, struct sph_rings_result *out,
              ri * (1.0 - 1e-6), v, -v, end_time);
     struct sim *s = NULL;
     int rc = vlat_build("sph_rings", deck, &s, err);
+    if (!rc && (rc = vpar_distribute(r, s, err))) /* mpirun: the sums by global id below */
+        sim_destroy(&s);
     if (rc)
         return rc;
-    const struct particles *p = s->p;
     sim_update_energy(s);
     const double e0 = s->energy.kinetic + s->energy.strain;
     double worst = 0.0, t0 = omp_get_wtime();
@@ -130,15 +130,25 @@ int sph_rings_run(double dx, double end_time, struct sph_rings_result *out,
         worst = fmax(worst, bal);
     }
     out->seconds = omp_get_wtime() - t0;
+    /* the whole body by global id on every rank (one rank: the arrays
+     * themselves), so the sums run in the serial order */
+    const struct particles *p = s->p;
+    const size_t n = vpar_n(s);
+    double *w[5] = {NULL, NULL, NULL, NULL, NULL};
+    const double *src[5] = {p->x0[0], p->mass, p->v[0], p->x[0], p->x[1]};
+    for (int k = 0; k < 5 && !rc; k++)
+        if (!(w[k] = vpar_whole(s, src[k], err)))
+            rc = err->code ? err->code : SPALL_ERR_NOMEM;
     if (!rc) {
+        const double *X0 = w[0], *M = w[1], *V = w[2];
         vl = vr = ml = mr = 0.0;
-        for (size_t i = 0; i < p->n_owned; i++) {
-            if (p->x0[0][i] < 0.0) {
-                vl += p->mass[i] * p->v[0][i];
-                ml += p->mass[i];
+        for (size_t i = 0; i < n; i++) {
+            if (X0[i] < 0.0) {
+                vl += M[i] * V[i];
+                ml += M[i];
             } else {
-                vr += p->mass[i] * p->v[0][i];
-                mr += p->mass[i];
+                vr += M[i] * V[i];
+                mr += M[i];
             }
         }
         out->v0 = v;
@@ -147,9 +157,12 @@ int sph_rings_run(double dx, double end_time, struct sph_rings_result *out,
         out->balance_max = worst;
         out->balance_end = fabs(s->energy.kinetic + s->energy.strain - e0) / e0;
         out->kinetic_end = s->energy.kinetic / e0;
-        out->particles = p->n_owned;
-        rc = ring_components(s, 1.5 * dx, &out->components, &out->singles, err);
+        out->particles = n;
+        double *const x[3] = {w[3], w[4], NULL};
+        rc = ring_components(s->dim, n, x, 1.5 * dx, &out->components, &out->singles, err);
     }
+    for (int k = 0; k < 5; k++)
+        free(w[k]);
     sim_destroy(&s);
     return rc;
 }
@@ -158,7 +171,7 @@ int sph_case_rings(struct vreport *r, struct spall_error *err)
 {
     struct sph_rings_result res;
     const double dx = 1.0e-3, end_time = SPH_RINGS_END_TIME;
-    int rc = sph_rings_run(dx, end_time, &res, err);
+    int rc = sph_rings_run(r, dx, end_time, &res, err);
     if (rc)
         return rc;
     vreport_info(r, "rings: %zu particles, dx = %.3g mm, %.3g ms (%.0f s); ring velocities %.4g / "

@@ -25,6 +25,7 @@ static const char *const distributed_cases[] = {
     "lattice-chain-break", "lattice-waves",   "thermal-conduction", "thermal-expansion",
     "pd-waves",            "pd-bimaterial-bar", "pd-lps-waves",       "pd-branching",
     "pd-kalthoff",         "lattice-threads",   "impact-nylon",       "impact-vinylester",
+    "sph-rings",
 };
 
 /* Why the other cases run on rank 0 alone, by name prefix (first match). */
@@ -33,10 +34,8 @@ static const struct {
 } serial_reasons[] = {
     /* the model runs distributed (or in part: SPH's total-Lagrangian form,
      * docs/parallel.md), the case's measurements do not yet */
-    {"sph-", "its measurements read SPH particles by local index (and SPH's updated form "
-             "does not run distributed yet)"},
-    {"pen-sph", "its measurements read SPH particles by local index (and SPH's updated form "
-                "does not run distributed yet)"},
+    {"sph-", "its measurements read SPH particles by local index"},
+    {"pen-sph", "its measurements read SPH particles by local index"},
     {"pen-", "no particle run (analytical models and data)"},
     {"macro-", "macro-particles run distributed, but the case's measurements read them by "
                "local index"},

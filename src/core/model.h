@@ -219,7 +219,9 @@ struct model_ops {
      *  list was built at, and its per-particle arrays that ghosts carry;
      *  the engine then keeps as ghosts the particles of other ranks within
      *  range + skin of the owned ones and rebuilds that set (with
-     *  spatial_rebuilt) when a particle has moved skin/2 since. */
+     *  spatial_rebuilt) when a particle has moved skin/2 since (or when
+     *  the model's own test, sp->rebuild_due, says so).  Returns > 0 when
+     *  this run has no spatial ghosts (e.g. SPH's total-Lagrangian form). */
     int (*spatial_ghosts)(struct model *m, struct par_spatial_model *sp);
     /** Optional, with spatial_ghosts: the ghosts were rebuilt and the
      *  local arrays re-laid out (owned particles unchanged, then the new

@@ -9,8 +9,8 @@
 #    serial one;
 #  - `spall bench lattice2d pd3d macro-rod` on 2 ranks reports the whole
 #    body's particles and bonds (the serial counts), ghosts and halo bytes; a
-#    case whose model is not distributed (sph-taylor-cu, the updated SPH
-#    form) is refused in one line.
+#    case that is not distributed (sph-taylor-cu: its measurements read one
+#    rank's particle arrays) is refused in one line.
 # Usage: mpi_validate.sh SPALL SRC MPIEXEC
 set -u
 spall="$1"

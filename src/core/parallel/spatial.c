@@ -199,6 +199,10 @@ int par_spatial_init(struct sim *s, struct spall_error *err)
 {
     if (!s->ops->spatial_ghosts)
         return SPALL_OK;
+    struct par_spatial_model sm;
+    memset(&sm, 0, sizeof sm);
+    if (s->ops->spatial_ghosts(s->model, &sm) > 0)
+        return SPALL_OK; /* not in this run (every rank answers alike) */
     return relayout(s, false, err);
 }
 
@@ -222,7 +226,9 @@ int par_ghosts_step(struct sim *s, struct spall_error *err)
             d2max = d2 > d2max ? d2 : d2max;
         }
         d2max = par_max_double(d2max);
-        if (!(4.0 * d2max < sm.skin * sm.skin)) {
+        const bool due = sm.rebuild_due ? sm.rebuild_due(s->model, s, d2max)
+                                        : !(4.0 * d2max < sm.skin * sm.skin);
+        if (due) {
             int rc = relayout(s, true, err);
             if (rc)
                 return rc;

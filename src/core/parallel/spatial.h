@@ -25,8 +25,10 @@
 #ifndef SPALL_CORE_PARALLEL_SPATIAL_H
 #define SPALL_CORE_PARALLEL_SPATIAL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
+struct model;
 struct sim;
 struct spall_error;
 
@@ -40,10 +42,19 @@ struct par_spatial_model {
     int n_particle;
     void **particle[PAR_SPATIAL_MAX_ARRAYS]; /**< per-particle arrays ghosts carry (xb among them) */
     size_t particle_size[PAR_SPATIAL_MAX_ARRAYS];
+    /** Optional: the serial model's own rebuild test, given the largest
+     *  squared move of an owned particle since the build over all ranks
+     *  (called on every rank: it may use collectives).  NULL: the test
+     *  4 d2max >= skin^2.  (SPH tests qmax h_max + 2 sqrt(d2max) against
+     *  its list radius, sph_rates.c: the same comparison, not an
+     *  equivalent one, keeps the rebuild steps bitwise the serial ones.) */
+    bool (*rebuild_due)(struct model *m, const struct sim *s, double d2max);
 };
 
 /** Right after the partition (decomp.c): the first ghost set, built at the
- *  model's build positions (no new list: spatial_rebuilt with moved false). */
+ *  model's build positions (no new list: spatial_rebuilt with moved false).
+ *  A model whose spatial_ghosts returns > 0 has no spatial ghosts in this
+ *  run (e.g. total-Lagrangian SPH, whose partners are fixed bonds). */
 int par_spatial_init(struct sim *s, struct spall_error *err);
 
 /** Before every force call of a distributed run: rebuild the spatial

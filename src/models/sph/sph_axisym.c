@@ -93,6 +93,7 @@
 #include "models/sph/sph_pairs.h"
 
 #include "core/neighbor.h"
+#include "core/parallel/comm.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -339,15 +340,24 @@ static void axis_weight_sweep(struct model *m, struct sim *s, const double *lin,
  * neighbour build; the radial velocity gradient of the stress update
  * becomes (1 - lam) L_rr + lam v_r / r (still exact for v_r = a r), whose
  * adjoint is in pass_forces_axi. */
-static void pass_axis_weights(struct model *m, struct sim *s)
+static int pass_axis_weights(struct model *m, struct sim *s, struct spall_error *err)
 {
     const size_t n = s->p->n_owned;
     if (m->ax.builds != m->n_builds) {
-        memset(m->ax.axl, 0, n * sizeof *m->ax.axl);
-        for (int it = 0; it < AXIS_SWEEPS; it++) {
-            double *in = (it % 2) ? m->ax.axl_s : m->ax.axl, *out = (it % 2) ? m->ax.axl : m->ax.axl_s;
-            axis_weight_sweep(m, s, in, out);
+        memset(m->ax.axl, 0, s->p->n * sizeof *m->ax.axl);
+        /* distributed (sph_ulpar.c): the partners' B^-1 of this call, then
+         * their previous iterate before each sweep */
+        double **bi[4] = {&m->Bi[0], &m->Bi[1], &m->Bi[3], &m->Bi[4]};
+        int rc = s->par ? sph_par_halo_arrays(s, bi, 4, err) : SPALL_OK;
+        for (int it = 0; it < AXIS_SWEEPS && !rc; it++) {
+            double **in = (it % 2) ? &m->ax.axl_s : &m->ax.axl;
+            double *out = (it % 2) ? m->ax.axl : m->ax.axl_s;
+            if (s->par && it > 0 && (rc = sph_par_halo_arrays(s, &in, 1, err)))
+                break;
+            axis_weight_sweep(m, s, *in, out);
         }
+        if (rc)
+            return rc;
         /* AXIS_SWEEPS is odd: the last iterate is in axl_s, the one before in axl */
 #pragma omp parallel for schedule(static)
         for (size_t i = 0; i < n; i++)
@@ -357,6 +367,7 @@ static void pass_axis_weights(struct model *m, struct sim *s)
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++)
         m->L[0][i] = (1.0 - m->ax.axl[i]) * m->L[0][i] + m->ax.axl[i] * m->L[8][i];
+    return SPALL_OK;
 }
 
 /* Momentum, energy, XSPH: the adjoint of the velocity gradient (file
@@ -468,9 +479,15 @@ int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err)
     int rc = sph_neighbors_update(m, s, false, err);
     if (rc)
         return rc;
-    m->n_pairs = m->nl->offset[n];
-    m->cspm_fallbacks += pass_gradient_axi(m, s);
-    pass_axis_weights(m, s);
+    if (!s->par) /* distributed: the whole body's count at each build (sph_ulpar.c) */
+        m->n_pairs = m->nl->offset[n];
+    /* distributed: the partners' density, h and planar mass of this call */
+    if (s->par && (rc = sph_par_halo(m, s, SPH_HALO_AXI_GRADIENT, err)))
+        return rc;
+    const size_t fb = pass_gradient_axi(m, s);
+    m->cspm_fallbacks += s->par ? par_sum_u64(fb) : fb; /* a count of the whole body */
+    if ((rc = pass_axis_weights(m, s, err)))
+        return rc;
     sph_update_pressure(m, s, SPH_FORM_ALL);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
@@ -487,6 +504,8 @@ int sph_axisym_rates(struct model *m, struct sim *s, struct spall_error *err)
         for (int c = 0; c < 6; c++)
             m->sig[c][i] = m->S[c][i] - (c < 3 ? m->P[i] : 0.0);
     }
+    if (s->par && (rc = sph_par_halo(m, s, SPH_HALO_AXI_FORCES, err)))
+        return rc;
     pass_forces_axi(m, s);
     return SPALL_OK;
 }
@@ -514,6 +533,10 @@ size_t sph_axisym_history(const struct model *m, const struct sim *sim, const ch
             r1 = r;
         if (!m->failed[i] && r < r2)
             r2 = r;
+    }
+    if (sim->par) { /* the smallest over all ranks: exact in any order */
+        r1 = -par_max_double(-r1);
+        r2 = -par_max_double(-r2);
     }
     names[0] = "cavity_D1 [m]";
     values[0] = isfinite(r1) ? 2.0 * r1 : 0.0;

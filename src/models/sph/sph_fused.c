@@ -502,7 +502,10 @@ int sph_rates_fused(struct model *m, struct sim *s, struct spall_error *err)
         if ((rc = sph_neighbors_update(m, s, false, err)))
             return rc;
         memset(&src, 0, sizeof src);
-        src.n_all = p->n_owned;
+        /* distributed: the partners' state of this call from their owners */
+        if (s->par && (rc = sph_par_halo(m, s, SPH_HALO_FUSED, err)))
+            return rc;
+        src.n_all = p->n;
         for (int d = 0; d < 3; d++) {
             src.x[d] = d < m->dim ? p->x[d] : NULL;
             src.v[d] = d < m->dim ? p->v[d] : NULL;
@@ -517,7 +520,8 @@ int sph_rates_fused(struct model *m, struct sim *s, struct spall_error *err)
             src.R[c] = m->R[c];
         }
     }
-    m->n_pairs = m->nl->offset[p->n_owned];
+    if (!s->par) /* distributed: the whole body's count at each build (sph_ulpar.c) */
+        m->n_pairs = m->nl->offset[p->n_owned];
     const bool wend = m->opt.kern.kernel == SPH_KERNEL_WENDLAND;
     if (wend && !(m->opt.visc.as_zeta > 0.0) && !m->loops.scalar_rows)
         return fused_pass_vec(m, s, &src, err);

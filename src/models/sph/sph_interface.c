@@ -108,23 +108,50 @@ static inline double mu0(const struct model *m, const struct particles *p, size_
     return m->mat[p->material[i]].rho0 * (m->dim == 2 ? d * d : d * d * d);
 }
 
-int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct spall_error *err)
+/* The per-particle arrays for @p n particles (a distributed run's local
+ * count changes with its ghosts at each build). */
+static int iface_arrays(struct model *m, size_t n)
+{
+    if (!m->ifs.c0) {
+        m->ifs.c0 = calloc(m->n_mat ? m->n_mat : 1, sizeof *m->ifs.c0);
+        if (!m->ifs.c0)
+            return -1;
+        for (size_t k = 0; k < m->n_mat; k++)
+            m->ifs.c0[k] = sph_sound_speed(&m->mat[k], m->mat[k].rho0, 0.0);
+    }
+    if (m->ifs.off && n <= m->ifs.n_alloc)
+        return 0;
+    size_t *off = realloc(m->ifs.off, (n + 1) * sizeof *off);
+    if (off)
+        m->ifs.off = off;
+    double *e = realloc(m->ifs.e, (n ? n : 1) * sizeof *e);
+    if (e)
+        m->ifs.e = e;
+    double *w = realloc(m->ifs.w, (n ? n : 1) * sizeof *w);
+    if (w)
+        m->ifs.w = w;
+    uint32_t *np = realloc(m->ifs.np, (n ? n : 1) * sizeof *np);
+    if (np)
+        m->ifs.np = np;
+    if (!off || !e || !w || !np)
+        return -1;
+    for (size_t i = m->ifs.n_alloc; i < n; i++) { /* as calloc'ed before a first force call */
+        e[i] = w[i] = 0.0;
+        np[i] = 0;
+    }
+    m->ifs.n_alloc = n;
+    return 0;
+}
+
+int sph_interface_split(struct model *m, struct sim *s, double *const x[3], double skin_abs,
+                        struct spall_error *err)
 {
     const struct particles *p = s->p;
     struct neighbor_list *nl = m->nl;
     const size_t n = nl->n;
     const int dim = m->dim;
-    if (!m->ifs.off) {
-        m->ifs.off = calloc(n + 1, sizeof *m->ifs.off);
-        m->ifs.c0 = calloc(m->n_mat ? m->n_mat : 1, sizeof *m->ifs.c0);
-        m->ifs.e = calloc(n ? n : 1, sizeof *m->ifs.e);
-        m->ifs.w = calloc(n ? n : 1, sizeof *m->ifs.w);
-        m->ifs.np = calloc(n ? n : 1, sizeof *m->ifs.np);
-        if (!m->ifs.off || !m->ifs.c0 || !m->ifs.e || !m->ifs.w || !m->ifs.np)
-            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph interface)");
-        for (size_t k = 0; k < m->n_mat; k++)
-            m->ifs.c0[k] = sph_sound_speed(&m->mat[k], m->mat[k].rho0, 0.0);
-    }
+    if (iface_arrays(m, n))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph interface)");
     const double fd = 0.5 * m->opt.iface.distance;
     size_t w = 0, wi = 0, start = 0;
     m->ifs.off[0] = 0;
@@ -149,7 +176,7 @@ int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct 
                     continue;
                 }
             }
-            const double r2 = sph_dist2(p->x, dim, i, j);
+            const double r2 = sph_dist2(x, dim, i, j);
             const double reach = fd * (m->dx[i] + m->dx[j]) + skin_abs;
             if (r2 > reach * reach)
                 continue;
@@ -232,6 +259,8 @@ void sph_interface_forces(struct model *m, struct sim *s)
         if (wi[i] > om2max)
             om2max = wi[i];
     }
+    if (s->par) /* the whole body's, in the serial order (sph_ulpar.c) */
+        sph_par_iface_totals(m, s, &etot, &npairs, &om2max);
     m->ifs.energy = etot;
     m->ifs.pairs = npairs / 2;
     m->ifs.omega2 = om2max;

@@ -49,6 +49,7 @@ struct sph_iface_state {
     double energy;         /**< penalty energy [J] */
     size_t pairs;          /**< pairs in contact at the last force evaluation */
     double omega2;         /**< largest contact omega^2 (stable step) */
+    size_t n_alloc;        /**< particles the per-particle arrays hold */
 };
 
 /** One formulation of the model ([Meng2021] ch. 3 updated Lagrangian;
@@ -143,6 +144,12 @@ struct model {
     uint8_t *form;         /**< per particle SPH_FORM_*: a run whose bodies are split
                                 by formulation (NULL: one formulation, no split) */
     size_t n_total;        /**< particles on TLSPH when form is set */
+    struct bond_list *ulmig; /**< distributed updated form: the empty bond list a
+                                  migration is lent (sph_ulpar.c; NULL: none) */
+    size_t ul_half;        /**< its half-bonds (none) */
+    struct bond_list *ulview; /**< distributed updated form: the neighbour list seen as
+                                   bonds (rows aliased, own zero states), the
+                                   partition's work 1 + partners (sph_halo_bonds) */
 };
 
 /** Formulation of a particle (m->form), and SPH_FORM_ALL for loops that
@@ -241,6 +248,51 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const X[3], cons
 /** Free the TLSPH state; sets *tl to NULL. */
 void sph_tlsph_destroy(struct sph_tlsph **tl);
 
+/* sph_ulpar.c (distributed updated form on spatial ghosts, core/parallel/spatial.h) */
+/** Drop the listed pairs beyond qmax max(h_i, h_j) + @p skin_abs at the
+ *  positions @p x of the build (sph_rates.c). */
+void sph_neighbors_trim(struct model *m, double *const x[3], double skin_abs);
+/** The per-particle values a pair loop reads of its partners, by loop. */
+enum sph_halo_set {
+    SPH_HALO_DENSITY, /**< before the velocity gradient: rho, h */
+    SPH_HALO_SPLIT,   /**< before pass_forces: rho, c, h, sigma (+ R, B^-1, L as used) */
+    SPH_HALO_AS_SMOOTH, /**< before the smoothing of R: rho, h, R */
+    SPH_HALO_FUSED,   /**< before the fused loop: rho, c, h, sigma / rho^2 (+ R) */
+    SPH_HALO_AXI_GRADIENT, /**< axisymmetric, before the gradient: rho, h, m2 */
+    SPH_HALO_AXI_FORCES    /**< axisymmetric, before the forces: rho, h, m2, c, lambda,
+                                sigma, the (r, z) block of B^-1 (+ L) */
+};
+/** Hand the ghosts their owners' values of @p set (collective). */
+int sph_par_halo(struct model *m, struct sim *s, enum sph_halo_set set, struct spall_error *err);
+/** The same for @p w arrays of one's choice (a[k]: the address of array k). */
+int sph_par_halo_arrays(struct sim *s, double **const *a, int w, struct spall_error *err);
+/** The interface's energy (summed in gid order, the serial order), contact
+ *  count and largest omega^2 of the whole body from this rank's
+ *  (collective; sph_interface_forces). */
+void sph_par_iface_totals(struct model *m, struct sim *s, double *energy, size_t *pairs,
+                          double *omega2);
+/** Doubles per ghost that sph_par_halo sends for @p set with the run's options. */
+int sph_par_halo_width(const struct model *m, enum sph_halo_set set);
+struct par_spatial_model;
+/** model_ops.spatial_ghosts / spatial_rebuilt (> 0: a TLSPH run, no spatial ghosts). */
+int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp);
+int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spall_error *err);
+/** What only the updated form cannot do distributed yet, or NULL (the
+ *  refusals of both forms: sph_localize.c). */
+const char *sph_ul_not_distributed(const struct model *m);
+/** localize (the list only: sph_localize gathers the arrays), migrate_arrays
+ *  and migrated of the updated form. */
+void sph_ul_localize(struct model *m);
+struct par_model_arrays;
+int sph_ul_migrate_arrays(struct model *m, struct sim *sim, struct par_model_arrays *a,
+                          struct spall_error *err);
+int sph_ul_migrated(struct model *m, struct spall_error *err);
+/** Free the migration's bond list and the list's bond view (sph_destroy). */
+void sph_ul_release(struct model *m);
+/** Point the bond view at the current neighbour list (runs on more than
+ *  one rank only); -1 when out of memory. */
+int sph_ul_view(struct model *m);
+
 /* sph_localize.c (distributed runs, core/parallel/decomp.h) */
 struct bond_list;
 /** model_ops.localize: total-Lagrangian runs; refuses the rest. */
@@ -291,7 +343,8 @@ size_t sph_axisym_history(const struct model *m, const struct sim *sim, const ch
 /** Move the pairs of different groups (bodies or materials) out of the
  *  kernel neighbour list into the interface list (kept within d_ij +
  *  @p skin_abs); called at each neighbour-list build. */
-int sph_interface_split(struct model *m, struct sim *s, double skin_abs, struct spall_error *err);
+int sph_interface_split(struct model *m, struct sim *s, double *const x[3], double skin_abs,
+                        struct spall_error *err);
 /** Stable step of the contact springs of the last evaluation (INFINITY: none). */
 double sph_interface_stable_dt(const struct model *m);
 

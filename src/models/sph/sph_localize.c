@@ -10,9 +10,8 @@
  *        ones; the force stage gathers (sph_tlsph.c, tl_rates_par) with the
  *        constants each pair has in its partner's row (prev).
  *
- * The updated-Lagrangian form finds its partners by a neighbour search,
- * which needs the spatial ghosts (core/parallel/sghost.h) that no SPH loop
- * uses yet: it stays on one rank, refused here with one line.
+ * The updated-Lagrangian form finds its partners by a neighbour search on
+ * the spatial ghosts (sph_ulpar.c); this file dispatches to it.
  */
 #include "models/sph/sph_internal.h"
 #include "models/sph/sph_tlsph_data.h"
@@ -32,19 +31,18 @@
 static const char *not_distributed(const struct model *m)
 {
     const struct sph_options *o = &m->opt;
-    if (!o->tl.total_lagrangian)
-        return "the updated-Lagrangian formulation (model type sph) is not distributed yet "
-               "(its neighbour search needs the spatial ghosts; type tlsph is);";
     if (o->tl.split_forms || m->form)
         return "bodies split by formulation (model.body_formulation) are not distributed yet;";
-    if (o->kern.plane == SPH_PLANE_AXISYMMETRIC)
-        return "axisymmetric runs (model.plane: axisymmetric) are not distributed yet;";
     if (o->bound.symmetry[0] || o->bound.symmetry[1] || o->bound.symmetry[2])
         return "symmetry planes (model.symmetry) are not distributed yet;";
     if (m->clamp)
         return "the mirrored clamp (model.clamp) is not distributed yet;";
+    if (!o->tl.total_lagrangian)
+        return sph_ul_not_distributed(m); /* sph_ulpar.c */
     if (o->iface.kind != SPH_IFACE_NONE)
-        return "interfaces (model.interface) are not distributed yet;";
+        return "interfaces (model.interface) of TLSPH bodies are not distributed yet;";
+    if (o->kern.plane == SPH_PLANE_AXISYMMETRIC)
+        return "axisymmetric runs (model.plane: axisymmetric) are not distributed yet;";
     if (o->tl.reref_every || o->tl.reref_distortion > 0.0)
         return "reference updates (model.reference_update) are not distributed yet;";
     return NULL;
@@ -89,7 +87,9 @@ static int halo_list(struct model *m, struct spall_error *err)
 
 const struct bond_list *sph_halo_bonds(const struct model *m)
 {
-    return m->tl ? m->tl->halo : NULL;
+    /* the updated form: its neighbour list, for the partition's work
+     * (1 + partners); its ghosts are the spatial ones (sph_ulpar.c) */
+    return m->tl ? m->tl->halo : m->ulview;
 }
 
 /* The array is a stored field of the registry (the engine compacts it). */
@@ -245,11 +245,15 @@ int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_
                  size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
     int rc = refuse(m, err);
-    if (!rc)
+    if (!rc && m->tl)
         rc = halo_list(m, err);
     if (rc || !keep) /* only asked whether it can (and for the halo list) */
         return rc;
-    if ((rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
+    /* the updated form's list is rebuilt around the spatial ghosts right
+     * after (sph_ulpar.c, par_spatial_init) */
+    if (!m->tl)
+        sph_ul_localize(m);
+    else if ((rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
         return rc;
     /* the model's own per-particle arrays (the registry's are the engine's) */
     double **a[SPH_N_ARRAYS];
@@ -270,6 +274,8 @@ int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall
     int rc = refuse(m, err);
     if (rc)
         return rc;
+    if (!m->tl)
+        return sph_ul_migrate_arrays(m, m->sim, a, err);
     struct sph_tl *t = m->tl->ref;
     a->bl = m->tl->halo;
     m->tl->n_half = t->nl->offset[t->nl->n];
@@ -299,5 +305,7 @@ int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall
  * scratch of the new owned + ghost particles. */
 int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err)
 {
+    if (!m->tl)
+        return sph_ul_migrated(m, err);
     return rebuild_list(m, sim->p->n, sim->p->gid, err);
 }

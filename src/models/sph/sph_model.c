@@ -76,6 +76,7 @@ static void sph_destroy(struct model **pm)
     for (size_t k = 0; k < na; k++)
         free(*a[k]);
     free(m->failed);
+    sph_ul_release(m);
     free(m->ifs.off);
     free(m->ifs.idx);
     free(m->ifs.c0);
@@ -481,7 +482,9 @@ extern const struct model_fixture sph_fixtures[], tlsph_fixtures[];
     .localize = sph_localize, \
     .halo_bonds = sph_halo_bonds, \
     .migrate_arrays = sph_migrate_arrays, \
-    .migrated = sph_migrated,
+    .migrated = sph_migrated, \
+    .spatial_ghosts = sph_spatial_ghosts, \
+    .spatial_rebuilt = sph_spatial_rebuilt,
 
 const struct model_ops sph_model_ops = {
     .name = "sph",

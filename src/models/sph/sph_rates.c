@@ -31,6 +31,7 @@
 
 #include "core/neighbor.h"
 #include "core/exact_sum.h"
+#include "core/parallel/comm.h"
 #include "core/parallel/psum.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -48,7 +49,7 @@
  * kernel of such a pair (support qmax (h_i + h_j)/2) stays zero until the
  * next rebuild, so results are unchanged.  Fixed h only (variable_h grows h
  * between builds).  Rows stay ascending; serial, O(pairs). */
-static void sph_neighbors_trim(struct model *m, const struct particles *p, double skin_abs)
+void sph_neighbors_trim(struct model *m, double *const x[3], double skin_abs)
 {
     struct neighbor_list *nl = m->nl;
     const size_t n = nl->n;
@@ -59,7 +60,7 @@ static void sph_neighbors_trim(struct model *m, const struct particles *p, doubl
         for (size_t k = start; k < end; k++) {
             size_t j = (size_t)nl->idx[k];
             double reach = m->qmax * (m->h[i] > m->h[j] ? m->h[i] : m->h[j]) + skin_abs;
-            if (sph_dist2(p->x, dim, i, j) <= reach * reach)
+            if (sph_dist2(x, dim, i, j) <= reach * reach)
                 nl->idx[w++] = nl->idx[k];
         }
         start = end;
@@ -91,6 +92,8 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
     for (size_t i = 0; i < n; i++)
         if (m->h[i] > hmax)
             hmax = m->h[i];
+    if (!force && s->par)
+        return SPALL_OK; /* distributed: the engine's test over all ranks (sph_ulpar.c) */
     if (!force && m->nl) {
         /* a pair can close in by at most twice the largest displacement */
         if (m->qmax * hmax + 2.0 * sqrt(sph_max_move2(m, p)) <= m->nl_radius)
@@ -103,13 +106,15 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
     if (rc)
         return rc;
     if (!m->opt.kern.variable_h)
-        sph_neighbors_trim(m, p, m->nl_radius - m->qmax * hmax);
+        sph_neighbors_trim(m, p->x, m->nl_radius - m->qmax * hmax);
     /* interface between bodies: their pairs leave the kernel list */
     if (m->opt.iface.kind != SPH_IFACE_NONE &&
-        (rc = sph_interface_split(m, s, m->nl_radius - m->qmax * hmax, err)))
+        (rc = sph_interface_split(m, s, p->x, m->nl_radius - m->qmax * hmax, err)))
         return rc;
     for (int d = 0; d < dim; d++)
         memcpy(m->x_build[d], p->x[d], n * sizeof(double));
+    if (sph_ul_view(m)) /* the partition's work, before a distributed run */
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
     m->n_builds++;
     m->t_neighbor += omp_get_wtime() - t0;
     return SPALL_OK;
@@ -132,8 +137,8 @@ static inline int inv_small(int dim, const double A[9], double out[9])
     return 1;
 }
 
-/* Pass B: summation density (optional), CSPM matrix, velocity gradient. */
-static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim)
+/* Pass B, first part: the summation density (when chosen). */
+static inline void pass_density(struct model *m, struct sim *s, const int dim)
 {
     const struct particles *p = s->p;
     const size_t n = p->n_owned;
@@ -142,9 +147,7 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
     const enum sph_kernel kern = m->opt.kern.kernel;
     const struct sph_support sp = sph_support_of(m);
     const double alpha = m->alpha;
-    const bool cspm = m->opt.kern.cspm, summ = m->opt.kern.density == SPH_DENSITY_SUMMATION;
-    size_t fallbacks = 0;
-    if (summ) {
+    if (m->opt.kern.density == SPH_DENSITY_SUMMATION) {
 #pragma omp parallel for schedule(static) firstprivate(sp)
         for (size_t i = 0; i < n; i++) {
             if (sph_skip(m, i, SPH_FORM_UPDATED))
@@ -163,6 +166,19 @@ static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim
             m->rho[i] = rho;
         }
     }
+}
+
+/* Pass B proper: CSPM matrix and velocity gradient (the partners' density
+ * of this call: summed by pass_density, or the continuity state). */
+static inline size_t pass_gradient(struct model *m, struct sim *s, const int dim)
+{
+    const struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const size_t *off = m->nl->offset;
+    const int32_t *nb = m->nl->idx;
+    const struct sph_support sp = sph_support_of(m);
+    const bool cspm = m->opt.kern.cspm;
+    size_t fallbacks = 0;
 #pragma omp parallel for schedule(static) firstprivate(sp) reduction(+ : fallbacks)
     for (size_t i = 0; i < n; i++) {
         if (sph_skip(m, i, SPH_FORM_UPDATED))
@@ -453,9 +469,18 @@ static int updated_rates(struct model *m, struct sim *s, double lfdt, struct spa
     int rc = sph_neighbors_update(m, s, false, err);
     if (rc)
         return rc;
-    m->n_pairs = m->nl->offset[n];
+    if (!s->par) /* distributed: the whole body's count at each build (sph_ulpar.c) */
+        m->n_pairs = m->nl->offset[n];
+    if (m->dim == 2)
+        pass_density(m, s, 2);
+    else
+        pass_density(m, s, 3);
+    /* distributed: the partners' density (summed, or advanced by the
+     * integrator) and h from their owners */
+    if (s->par && (rc = sph_par_halo(m, s, SPH_HALO_DENSITY, err)))
+        return rc;
     size_t fb = m->dim == 2 ? pass_gradient(m, s, 2) : pass_gradient(m, s, 3);
-    m->cspm_fallbacks += fb;
+    m->cspm_fallbacks += s->par ? par_sum_u64(fb) : fb; /* a count of the whole body */
     if (lfdt > 0.0) /* leapfrog: advance the state with this L */
         sph_leapfrog_advance(m, s, lfdt, SPH_FORM_UPDATED);
     sph_update_pressure(m, s, SPH_FORM_UPDATED);
@@ -476,8 +501,15 @@ static int updated_rates(struct model *m, struct sim *s, double lfdt, struct spa
     }
     if (m->clamp)
         sph_clamp_stress(m); /* sph_clamp.c */
-    if (m->opt.visc.as_smooth && m->opt.visc.as_zeta > 0.0)
+    if (m->opt.visc.as_smooth && m->opt.visc.as_zeta > 0.0) {
+        /* distributed: the partners' R, rho and h of this call first */
+        if (s->par && (rc = sph_par_halo(m, s, SPH_HALO_AS_SMOOTH, err)))
+            return rc;
         sph_artificial_stress_smooth(m, s); /* sph_as_smooth.c */
+    }
+    /* distributed: what pass_forces reads of a partner, from its owner */
+    if (s->par && (rc = sph_par_halo(m, s, SPH_HALO_SPLIT, err)))
+        return rc;
     if (m->dim == 2)
         pass_forces(m, s, lfdt, 2);
     else

@@ -40,3 +40,14 @@ ranks() { # deck n: run on n ranks into DECKn and compare with DECK_serial
         { echo "FAIL $1 on $2 ranks: exit $?"; fail=1; return; }
     same_as_serial "$1_serial" "$1$2" "$1, $2 ranks"
 }
+refused() { # name deck expected-substring: 2 ranks refuse the deck in one line, exit 2,
+    # no output directory
+    rm -rf out
+    timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np 2 "$spall" run "$2" -o out \
+        >stdout.txt 2>stderr.txt
+    local rc=$?
+    if [ $rc -ne 2 ] || [ -e out ] || [ "$(wc -l < stderr.txt)" -ne 1 ] ||
+        ! grep -q -- "$3" stderr.txt; then
+        echo "FAIL $1: exit $rc (expected 2)"; cat stderr.txt; fail=1
+    fi
+}

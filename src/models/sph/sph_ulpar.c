@@ -1,0 +1,358 @@
+/**
+ * @file sph_ulpar.c
+ * @brief The updated-Lagrangian SPH form distributed on spatial ghosts
+ *        (core/parallel/spatial.h; docs/parallel.md, "Updated-Lagrangian
+ *        SPH on spatial ghosts").
+ *
+ * The partition keeps each rank's owned particles with every per-particle
+ * array of the model; the engine then keeps as ghosts the particles of
+ * other ranks within the list radius (qmax h_max (1 + skin)) of the owned
+ * particles' build positions, carrying what the list build reads (x_build,
+ * h, dx, m2) and rho, c.  sph_spatial_rebuilt builds the list from the
+ * build positions, as the serial run built it from the same positions,
+ * and sorts each row by the partner's global id, the serial row order
+ * (one rank: index = gid), so each owned particle sums its pairs term for
+ * term as on one rank.  The rebuild test is the serial one (sph_rates.c,
+ * sph_neighbors_update) on the largest move and h over all ranks, so the
+ * lists are rebuilt in the same steps.
+ *
+ * Between rebuilds the halo of positions and velocities runs before every
+ * force call (par_halo_x); the pair loops read more of a partner than that
+ * (its density, sound speed, stress, ...), which its owner computes in the
+ * same force call: sph_par_halo hands those to the ghosts in one exchange
+ * per loop (the widths are sph_par_halo_width's).
+ */
+#include "models/sph/sph_internal.h"
+
+#include "core/bond_list.h"
+#include "core/neighbor.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/gather.h"
+#include "core/parallel/migrate.h"
+#include "core/parallel/spatial.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *sph_ul_not_distributed(const struct model *m)
+{
+    /* (what neither form distributes yet: sph_localize.c) */
+    if (m->opt.kern.variable_h)
+        return "the updated form with a variable smoothing length (model.variable_h) is not "
+               "distributed yet (the ghost range follows h_max);";
+    return NULL;
+}
+
+/* ---- the per-call halo of the pair loops' partner values ---- */
+
+/* The arrays of @p set with the run's options; returns their count. */
+static int halo_arrays(struct model *m, enum sph_halo_set set, double **a[40])
+{
+    int k = 0;
+    a[k++] = &m->rho;
+    a[k++] = &m->h;
+    if (set == SPH_HALO_DENSITY)
+        return k;
+    if (set == SPH_HALO_AS_SMOOTH) {
+        for (int c = 0; c < 6; c++)
+            a[k++] = &m->R[c];
+        return k;
+    }
+    if (set == SPH_HALO_AXI_GRADIENT || set == SPH_HALO_AXI_FORCES)
+        a[k++] = &m->m2; /* the planar mass follows r (sph_axisym.c) */
+    if (set == SPH_HALO_AXI_GRADIENT)
+        return k;
+    if (set == SPH_HALO_AXI_FORCES) {
+        /* pass_forces_axi: sigma, B^-1, the axis weight, c (and L for
+         * Balsara's switch) of the partner */
+        a[k++] = &m->c;
+        a[k++] = &m->ax.axl;
+        for (int c = 0; c < 6; c++)
+            a[k++] = &m->sig[c];
+        for (int c = 0; c < 9; c++)
+            if (c % 3 < 2 && c / 3 < 2) /* the (r, z) block */
+                a[k++] = &m->Bi[c];
+        for (int c = 0; c < 9 && m->opt.visc.av_balsara; c++)
+            a[k++] = &m->L[c];
+        return k;
+    }
+    a[k++] = &m->c;
+    const bool as = m->opt.visc.as_zeta > 0.0;
+    for (int c = 0; c < 6; c++)
+        a[k++] = set == SPH_HALO_FUSED ? &m->sr[c] : &m->sig[c];
+    for (int c = 0; c < 6 && as; c++)
+        a[k++] = &m->R[c];
+    if (set == SPH_HALO_SPLIT && m->opt.kern.cspm)
+        for (int c = 0; c < 9; c++)
+            a[k++] = &m->Bi[c];
+    if (set == SPH_HALO_SPLIT && m->opt.visc.av_balsara) /* the partner's switch */
+        for (int c = 0; c < 9; c++)
+            a[k++] = &m->L[c];
+    return k;
+}
+
+int sph_par_halo_width(const struct model *m, enum sph_halo_set set)
+{
+    double **a[40];
+    return halo_arrays((struct model *)m, set, a);
+}
+
+int sph_par_halo(struct model *m, struct sim *s, enum sph_halo_set set, struct spall_error *err)
+{
+    double **a[40];
+    const int w = halo_arrays(m, set, a);
+    return sph_par_halo_arrays(s, a, w, err);
+}
+
+int sph_par_halo_arrays(struct sim *s, double **const *a, int w, struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    const size_t n = p->n, no = p->n_owned;
+    double *buf = malloc((n ? n : 1) * (size_t)w * sizeof *buf);
+    if (buf) /* owned rows packed (the halo sends those on its lists) */
+        for (size_t i = 0; i < no; i++)
+            for (int k = 0; k < w; k++)
+                buf[i * (size_t)w + (size_t)k] = (*a[k])[i];
+    /* every rank learns of a failed allocation before the exchange */
+    if (par_sum_u64(!buf) || par_halo_block(s, buf, w)) {
+        free(buf);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH halo, %d values)", w);
+    }
+    for (size_t i = no; i < n; i++)
+        for (int k = 0; k < w; k++)
+            (*a[k])[i] = buf[i * (size_t)w + (size_t)k];
+    free(buf);
+    return SPALL_OK;
+}
+
+void sph_par_iface_totals(struct model *m, struct sim *s, double *energy, size_t *pairs,
+                          double *omega2)
+{
+    /* the energy enters the energy account: summed as one rank sums it,
+     * particle by particle in gid order, from the whole body's values */
+    struct spall_error err = {0};
+    double *e = malloc((par_n_global(s) ? par_n_global(s) : 1) * sizeof *e);
+    const int bad = par_sum_u64(!e) > 0;
+    if (!bad && !par_gather_by_gid(s, m->ifs.e, e, &err)) {
+        double t = 0.0;
+        for (size_t i = 0; i < par_n_global(s); i++)
+            t += e[i];
+        *energy = t;
+    } else {
+        *energy = NAN; /* out of memory: the energy account shows it */
+    }
+    free(e);
+    *pairs = (size_t)par_sum_u64((uint64_t)*pairs);
+    *omega2 = par_max_double(*omega2);
+}
+
+/* ---- spatial ghosts ---- */
+
+/* The serial rebuild test (sph_neighbors_update) on the whole body. */
+static bool rebuild_due(struct model *m, const struct sim *s, double d2max)
+{
+    double hmax = 0.0;
+    for (size_t i = 0; i < s->p->n_owned; i++)
+        if (m->h[i] > hmax)
+            hmax = m->h[i];
+    hmax = par_max_double(hmax);
+    return !(m->qmax * hmax + 2.0 * sqrt(d2max) <= m->nl_radius);
+}
+
+int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp)
+{
+    if (m->opt.tl.total_lagrangian)
+        return 1; /* the reference list's bond ghosts (sph_localize.c) */
+    /* range + skin covers the list radius, with a margin for the rounding
+     * of the box test: an extra ghost is never listed by an owned row
+     * farther than the list radius */
+    sp->range = m->nl_radius;
+    sp->skin = 1e-6 * m->nl_radius;
+    sp->xb = m->x_build;
+    sp->rebuild_due = rebuild_due;
+    int k = 0;
+    for (int d = 0; d < m->dim; d++) {
+        sp->particle[k] = (void **)&m->x_build[d];
+        sp->particle_size[k++] = sizeof(double);
+    }
+    double **a[] = {&m->h, &m->dx, &m->m2, &m->rho, &m->c};
+    for (size_t q = 0; q < sizeof a / sizeof a[0] && k < PAR_SPATIAL_MAX_ARRAYS; q++) {
+        sp->particle[k] = (void **)a[q];
+        sp->particle_size[k++] = sizeof(double);
+    }
+    sp->n_particle = k;
+    return 0;
+}
+
+/* Every per-particle array of the model sized for the n local particles
+ * (the engine re-laid out the carried ones; the rest keep their owned rows). */
+static int resize_state(struct model *m, size_t n)
+{
+    double **a[SPH_N_ARRAYS];
+    const size_t na = sph_state_arrays(m, a);
+    for (size_t k = 0; k < na; k++) {
+        double *b = realloc(*a[k], (n ? n : 1) * sizeof(double));
+        if (!b)
+            return -1;
+        *a[k] = b;
+    }
+    return 0;
+}
+
+/* Each row in ascending partner gid: a row of the cell list is ascending
+ * in local index, i.e. the owned partners (ascending gid) and then the
+ * ghosts (ascending gid); the two runs are merged. */
+static int merge_rows(struct neighbor_list *nl, size_t n_owned, const int64_t *gid)
+{
+    size_t longest = 0;
+    for (size_t i = 0; i < nl->n; i++)
+        if (nl->offset[i + 1] - nl->offset[i] > longest)
+            longest = nl->offset[i + 1] - nl->offset[i];
+    int32_t *tmp = malloc((longest ? longest : 1) * sizeof *tmp);
+    if (!tmp)
+        return -1;
+    for (size_t i = 0; i < nl->n; i++) {
+        int32_t *r = nl->idx + nl->offset[i];
+        const size_t len = nl->offset[i + 1] - nl->offset[i];
+        size_t g = 0;
+        while (g < len && (size_t)r[g] < n_owned)
+            g++;
+        size_t a = 0, b = g, w = 0;
+        while (a < g || b < len)
+            tmp[w++] = b == len || (a < g && gid[r[a]] < gid[r[b]]) ? r[a++] : r[b++];
+        memcpy(r, tmp, len * sizeof *r);
+    }
+    free(tmp);
+    return 0;
+}
+
+int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spall_error *err)
+{
+    const struct particles *p = sim->p;
+    const size_t n = p->n, no = p->n_owned;
+    /* the serial build (sph_neighbors_update) at the build positions: the
+     * radius of the whole body's largest h, the trim at the same skin.
+     * The collectives run on every rank whatever fails (the engine agrees
+     * on the error afterwards). */
+    const double t0 = omp_get_wtime();
+    double hmax = 0.0;
+    for (size_t i = 0; i < no; i++)
+        if (m->h[i] > hmax)
+            hmax = m->h[i];
+    hmax = par_max_double(hmax);
+    int rc = resize_state(m, n) ? spall_error_set(err, SPALL_ERR_NOMEM,
+                                                  "out of memory (SPH state, %zu particles)", n)
+                                : SPALL_OK;
+    neighbor_list_destroy(&m->nl);
+    m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
+    if (!rc)
+        rc = neighbor_list_build(&m->nl, m->dim, n, m->x_build, m->nl_radius, err);
+    if (!rc) {
+        sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
+        if (merge_rows(m->nl, no, p->gid))
+            rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
+    }
+    /* the interface pairs leave the kernel rows, as in the serial build
+     * (their rows follow the merged ones, so they are in gid order too) */
+    if (!rc && m->opt.iface.kind != SPH_IFACE_NONE)
+        rc = sph_interface_split(m, sim, m->x_build, m->nl_radius - m->qmax * hmax, err);
+    if (!rc && sph_ul_view(m))
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
+    m->n_pairs = (size_t)par_sum_u64(rc ? 0 : (uint64_t)m->nl->offset[no]); /* the serial count */
+    if (moved)
+        m->n_builds++;
+    m->t_neighbor += omp_get_wtime() - t0;
+    return rc;
+}
+
+/* ---- partition and migration ---- */
+
+/* Drop the bond view (its rows alias the list's). */
+static void view_drop(struct model *m)
+{
+    if (m->ulview)
+        free(m->ulview->state);
+    free(m->ulview);
+    m->ulview = NULL;
+}
+
+int sph_ul_view(struct model *m)
+{
+    if (par_size() < 2 || m->opt.tl.total_lagrangian || !m->nl)
+        return 0;
+    const size_t ns = m->nl->offset[m->nl->n];
+    struct bond_list *v = m->ulview ? m->ulview : calloc(1, sizeof *v);
+    uint8_t *st = v ? realloc(v->state, ns ? ns : 1) : NULL;
+    if (!st) {
+        if (v && v != m->ulview)
+            free(v);
+        return -1;
+    }
+    memset(st, 0, ns ? ns : 1); /* intact: each partner counts as work */
+    v->state = st;
+    v->n = m->nl->n;
+    v->offset = m->nl->offset;
+    v->partner = m->nl->idx;
+    m->ulview = v;
+    return 0;
+}
+
+void sph_ul_localize(struct model *m)
+{
+    view_drop(m);
+    neighbor_list_destroy(&m->nl);
+}
+
+void sph_ul_release(struct model *m)
+{
+    bond_list_destroy(&m->ulmig);
+    view_drop(m);
+}
+
+int sph_ul_migrate_arrays(struct model *m, struct sim *sim, struct par_model_arrays *a,
+                          struct spall_error *err)
+{
+    /* no pair carries state: the migration is lent a list of empty rows,
+     * and the list is rebuilt around the new ghosts (par_spatial_init) */
+    bond_list_destroy(&m->ulmig);
+    const size_t n = sim->p->n;
+    struct bond_list *bl = calloc(1, sizeof *bl);
+    if (bl) {
+        bl->n = n;
+        bl->offset = calloc(n + 1, sizeof *bl->offset);
+        bl->partner = malloc(sizeof *bl->partner);
+        bl->state = malloc(1);
+    }
+    if (!bl || !bl->offset || !bl->partner || !bl->state) {
+        bond_list_destroy(&bl);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH migration)");
+    }
+    m->ulmig = bl;
+    memset(a, 0, sizeof *a);
+    a->bl = bl;
+    m->ul_half = 0;
+    a->n_half = &m->ul_half;
+    double **arr[SPH_N_ARRAYS];
+    const size_t na = sph_state_arrays(m, arr);
+    if (na > PAR_MIGRATE_MAX_ARRAYS)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "SPH: %zu arrays to migrate", na);
+    for (size_t k = 0; k < na; k++) {
+        a->particle[a->n_particle] = (void **)arr[k];
+        a->particle_size[a->n_particle++] = sizeof(double);
+    }
+    return SPALL_OK;
+}
+
+int sph_ul_migrated(struct model *m, struct spall_error *err)
+{
+    (void)err;
+    sph_ul_release(m); /* the rows came back empty; the list follows the ghosts */
+    neighbor_list_destroy(&m->nl);
+    return SPALL_OK;
+}
