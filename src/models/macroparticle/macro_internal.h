@@ -57,6 +57,8 @@ struct model {
     double *xb[3];         /**< positions at the last build (the list is built from them) */
     int64_t *pgid;         /**< per slot: the partner's global id (rows ascend in it) */
     struct bond_list mbl;  /**< the list lent to a migration (macro_par.c) */
+    struct bond_list ckbl; /**< the owned rows of the list, as a checkpoint sees them */
+    int32_t *ck_gid;       /**< per slot: the partner's gid, for a distributed checkpoint */
     size_t n_half;         /**< its slots */
     double *dr0;           /**< per full-list slot: plastic offset [m] */
     double *kappa;         /**< per slot: accumulated plastic slip [m] */

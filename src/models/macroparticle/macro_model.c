@@ -94,6 +94,7 @@ static void macro_destroy(struct model **pm)
     free(m->kappa);
     free(m->engaged);
     free(m->pgid);
+    free(m->ck_gid);
     free(m->epot);
     free(m->sig);
     free(m->wdiss);
