@@ -109,6 +109,12 @@ int macro_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct s
 struct par_model_arrays;
 int macro_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 void macro_par_release(struct model *m);
+/** Slip vectors and normals (3 per owned particle, either may be NULL) of
+ *  a distributed run, equal to the one-rank values: the reference
+ *  neighbours come from a ghost set built on the reference positions.
+ *  Collective (every rank writes the frame); errors agreed. */
+int macro_slip_par(const struct model *m, const struct sim *sim, double *slip, double *normal,
+                   struct spall_error *err);
 /** Replace the pair list and its per-pair state (partner gids, plastic
  *  offsets, hardening, engagement flags) by new ones, freeing the old. */
 void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid, double *dr0,
