@@ -18,46 +18,20 @@ spall="$1"
 mpiexec="$3"
 # shellcheck source=lib/rank_compare.bash
 source "$2/tests/cli/lib/rank_compare.bash"
-sed -n '/^cat > spall.yaml/,/^YAML$/p' "$2/tests/cli/mpi_macro.sh" | sed '1d;$d' |
-    sed 's/^output: {\(.*\)$/output: {checkpoint: {every_steps: 100, keep: 5}, \1/' > spall.yaml
-grep -q "checkpoint: {every_steps: 100" spall.yaml && grep -q "^contact:" spall.yaml ||
-    { echo "FAIL: cannot take the contact deck of tests/cli/mpi_macro.sh"; exit 1; }
+deck_from "$2/tests/cli/mpi_macro.sh" spall 100
+grep -q "^contact:" spall.yaml || { echo "FAIL: the spall deck has no contact"; exit 1; }
 { cat spall.yaml; echo "parallel: {rebalance_every: 20, imbalance_threshold: 1.0}"; } > spall_rb.yaml
-mpi() { # ranks args...
-    local n="$1"
-    shift
-    OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$n" \
-        "$spall" "$@" --quiet --no-progress
-}
-checkpoints_same() { # ref out what [h5diff options]: every checkpoint OUT holds
-    local f
-    for f in "$2"/checkpoint_*.h5; do
-        [ -e "$f" ] || { echo "FAIL $3: no checkpoint"; fail=1; return; }
-        h5diff -q ${4:-} "$1/$(basename "$f")" "$f" ||
-            { echo "FAIL $3: $(basename "$f") differs"; fail=1; }
-    done
-}
 serial spall
-mpi 2 run spall.yaml -o spall2 || { echo "FAIL contact on 2 ranks: exit $?"; exit 1; }
-same_as_serial spall_serial spall2 "contact, 2 ranks"
-checkpoints_same spall_serial spall2 "contact, 2 ranks (checkpoints in the serial layout)"
-ck=spall2/checkpoint_0000000100.h5
-OMP_NUM_THREADS=1 timeout 120 "$spall" run spall.yaml --restart $ck -o spall_cont1 --quiet \
-    --no-progress || { echo "FAIL contact restarted without mpirun: exit $?"; fail=1; }
-same_as_serial spall_serial spall_cont1 "contact, written by 2 ranks, restarted on 1"
-checkpoints_same spall_serial spall_cont1 "contact, restarted on 1"
-mpi 3 run spall.yaml --restart $ck -o spall_cont3 || { echo "FAIL restart on 3: exit $?"; fail=1; }
-same_as_serial spall_serial spall_cont3 "contact, written by 2 ranks, restarted on 3"
-checkpoints_same spall_serial spall_cont3 "contact, restarted on 3"
+written_on_2 spall
+for n in 1 3; do
+    continued spall spall2/checkpoint_0000000100.h5 "$n"
+done
 # rebalanced: the deck differs by its parallel key (/deck and so /checksum)
 skip="--exclude-path /deck --exclude-path /checksum"
 mpi 3 run spall_rb.yaml -o spall_rb3 || { echo "FAIL rebalanced on 3: exit $?"; fail=1; }
 same_as_serial spall_serial spall_rb3 "contact rebalanced, 3 ranks"
 checkpoints_same spall_serial spall_rb3 "contact rebalanced, 3 ranks" "$skip"
-mpi 2 run spall_rb.yaml --restart spall_rb3/checkpoint_0000000100.h5 -o spall_rb_cont2 ||
-    { echo "FAIL rebalanced restart on 2: exit $?"; fail=1; }
-same_as_serial spall_serial spall_rb_cont2 "contact rebalanced on 3, restarted on 2"
-checkpoints_same spall_serial spall_rb_cont2 "contact rebalanced, restarted on 2" "$skip"
+continued spall_rb spall_rb3/checkpoint_0000000100.h5 2 "$skip"
 moved=$(sed -n 's/^rebalances: [0-9]* (\([0-9]*\) particles migrated).*/\1/p' spall_rb3/run.log)
 [ "${moved:-0}" -gt 0 ] || { echo "FAIL contact rebalanced: nothing migrated"; fail=1; }
 # contacts and fracture must go on after the checkpoint

@@ -16,41 +16,14 @@ spall="$1"
 mpiexec="$3"
 # shellcheck source=lib/rank_compare.bash
 source "$2/tests/cli/lib/rank_compare.bash"
-sed -n '/^cat > rod.yaml/,/^YAML$/p' "$2/tests/cli/mpi_macro.sh" | sed '1d;$d' |
-    sed 's/^output: {\(.*\)$/output: {checkpoint: {every_steps: 200, keep: 5}, \1/' > rod.yaml
-grep -q "checkpoint: {every_steps: 200" rod.yaml && grep -q "temperature: 300" rod.yaml ||
-    { echo "FAIL: cannot take the rod deck of tests/cli/mpi_macro.sh"; exit 1; }
-mpi() { # ranks args...
-    local n="$1"
-    shift
-    OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$n" \
-        "$spall" "$@" --quiet --no-progress
-}
-checkpoints_same() { # ref out what: every checkpoint OUT holds, under h5diff
-    local f
-    for f in "$2"/checkpoint_*.h5; do
-        [ -e "$f" ] || { echo "FAIL $3: no checkpoint"; fail=1; return; }
-        h5diff -q "$1/$(basename "$f")" "$f" || { echo "FAIL $3: $(basename "$f") differs"; fail=1; }
-    done
-}
+deck_from "$2/tests/cli/mpi_macro.sh" rod 200
+grep -q "temperature: 300" rod.yaml || { echo "FAIL: the rod deck's temperature changed"; exit 1; }
 serial rod
 ls rod_serial/checkpoint_0000000200.h5 rod_serial/checkpoint_0000000400.h5 > /dev/null ||
     { echo "FAIL: the serial run wrote no checkpoints"; exit 1; }
-mpi 2 run rod.yaml -o rod2 || { echo "FAIL rod on 2 ranks: exit $?"; exit 1; }
-same_as_serial rod_serial rod2 "rod, 2 ranks"
-checkpoints_same rod_serial rod2 "rod, 2 ranks (checkpoints in the serial layout)"
-ck=rod2/checkpoint_0000000200.h5
-OMP_NUM_THREADS=1 timeout 120 "$spall" run rod.yaml --restart $ck -o rod_cont1 --quiet \
-    --no-progress || { echo "FAIL rod restarted without mpirun: exit $?"; fail=1; }
-same_as_serial rod_serial rod_cont1 "rod, written by 2 ranks, restarted on 1"
-checkpoints_same rod_serial rod_cont1 "rod, restarted on 1"
-for n in ${SPALL_MPI_RANK_COUNTS:-3 4}; do
-    mpi "$n" run rod.yaml --restart $ck -o rod_cont"$n" ||
-        { echo "FAIL rod restarted on $n ranks: exit $?"; fail=1; continue; }
-    same_as_serial rod_serial rod_cont"$n" "rod, written by 2 ranks, restarted on $n"
-    checkpoints_same rod_serial rod_cont"$n" "rod, restarted on $n"
-    grep -q '^restart_step: 200$' rod_cont"$n"/run.log ||
-        { echo "FAIL rod on $n ranks: run.log: no restart"; fail=1; }
+written_on_2 rod
+for n in 1 ${SPALL_MPI_RANK_COUNTS:-3 4}; do
+    continued rod rod2/checkpoint_0000000200.h5 "$n"
 done
 # the state after step 200 must matter: more plastic pairs and a list rebuild
 awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) {if ($k == "plastic_pairs") p = k
