@@ -23,6 +23,7 @@
 #include "spall/error.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,7 +44,8 @@ struct particle_contact {
     size_t *off;         /* cap + 1: candidates of i are nbr[off[i] .. off[i+1]) */
     int32_t *nbr;
     size_t nbr_cap;
-    size_t n_built;      /* particles at the last build (0: never built) */
+    size_t n_built;      /* particles at the last build */
+    bool built;          /* the lists were built (on every rank alike: a collective build) */
     size_t rebuilds;
     double energy;
     size_t pairs;
@@ -325,7 +327,8 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
     /* the build positions are a per-particle array of the engine on a
      * distributed run (core/parallel/decomp.c): a partition or migration
      * replaces them by arrays of p->n rows, so they keep that length */
-    const size_t nx = p->n > no ? p->n : no;
+    size_t nx = p->n > no ? p->n : no;
+    nx = nx ? nx : 1; /* never NULL: the engine carries it (par_slot_add skips NULL) */
     for (int d = 0; d < dim; d++) {
         double *x = realloc(c->xref[d], nx * sizeof *x);
         if (!x)
@@ -335,6 +338,7 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
         memcpy(c->xref[d], v->x[d], no * sizeof(double));
     }
     c->n_built = no;
+    c->built = true;
     return SPALL_OK;
 }
 
@@ -348,7 +352,7 @@ enum rebuild { REBUILD_NONE, REBUILD_NOW, REBUILD_AT_REF };
  * does not make.  The same answer on every rank. */
 static bool relaid_out(const struct particle_contact *c, const struct sim *s, long reb)
 {
-    return s->par && c->n_built > 0 && c->xref[0] && (!c->sg || reb != c->rebalances);
+    return s->par && c->built && (!c->sg || reb != c->rebalances);
 }
 
 /* REBUILD_NOW when some particle moved more than skin/2 since the lists
@@ -367,7 +371,7 @@ static enum rebuild needs_rebuild(struct particle_contact *c, const struct sim *
     double m2 = 0.0;
     const size_t no = p->n_owned;
     const int dim = s->dim;
-    if (c->n_built == 0 || !c->xref[0] || (!relaid && c->n_built != no)) {
+    if (!c->built || (!relaid && c->n_built != no)) {
         m2 = INFINITY;
     } else {
 #pragma omp parallel for schedule(static) reduction(max : m2) if (no > SPALL_OMP_MIN_PARTICLES)
