@@ -4,7 +4,8 @@
  *        kind report their rows and data, names are unique, a load into a
  *        slot of another length is refused naming the slot, and a list
  *        slot's set_rows resizes the owner's storage; each slot records
- *        the layout a distributed checkpoint writes it by.
+ *        the layout a distributed checkpoint writes it by (pair lists from a
+ *        neighbour search: offsets and resizable pair rows).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -139,9 +140,53 @@ static void test_layouts(void **state)
     free(loc);
 }
 
+/* A pair list from a neighbour search (macro-particles, contact): its
+ * offsets are placed per owned particle plus the total, its pairs by the
+ * rows of the list itself, and a load resizes the pair arrays. */
+static void test_pair_list(void **state)
+{
+    (void)state;
+    struct field_state *fs = NULL;
+    struct spall_error err = {0};
+    assert_int_equal(field_state_create(&fs, &err), 0);
+    size_t *offset = malloc(4 * sizeof *offset);
+    assert_non_null(offset);
+    offset[0] = 0;
+    offset[1] = 3;
+    offset[2] = 3;
+    offset[3] = 4;
+    struct bond_list bl = {.n = 3, .offset = offset};
+    struct owner o = {.list = calloc(4, sizeof(int32_t)), .n = 4};
+    assert_non_null(o.list);
+    assert_int_equal(field_state_add_offsets(fs, "off", (void **)&offset, &bl, &err), 0);
+    assert_int_equal(field_state_add_bond_list(fs, "pairs", FIELD_I32, (void **)&o.list, &bl, 1,
+                                               owner_set_rows, &o, &err),
+                     0);
+    const struct field_state_slot *so = field_state_find(fs, "off");
+    const struct field_state_slot *sl = field_state_find(fs, "pairs");
+    assert_int_equal(so->layout, FIELD_STATE_OFFSETS);
+    assert_int_equal(so->type, FIELD_I64);
+    assert_int_equal(field_state_slot_rows(so), 4); /* n + 1 */
+    assert_ptr_equal(so->bonds, &bl);
+    assert_ptr_equal(field_state_slot_data(so), offset);
+    assert_int_equal(sl->layout, FIELD_STATE_HALF_BOND);
+    assert_int_equal(field_state_slot_rows(sl), 4); /* offset[n] at registration */
+    assert_ptr_equal(sl->bonds, &bl);
+    /* the offsets' length is fixed by the particles; the pairs' is not */
+    assert_int_equal(field_state_slot_resize(so, 5, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "'off'"));
+    assert_int_equal(field_state_slot_resize(sl, 9, &err), 0);
+    assert_int_equal(o.n, 9);
+    assert_ptr_equal(field_state_slot_data(sl), o.list);
+    field_state_destroy(&fs);
+    free(offset);
+    free(o.list);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_slots),
-                                       cmocka_unit_test(test_layouts)};
+                                       cmocka_unit_test(test_layouts),
+                                       cmocka_unit_test(test_pair_list)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -23,6 +23,7 @@
 #include "spall/error.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,7 +44,8 @@ struct particle_contact {
     size_t *off;         /* cap + 1: candidates of i are nbr[off[i] .. off[i+1]) */
     int32_t *nbr;
     size_t nbr_cap;
-    size_t n_built;      /* particles at the last build (0: never built) */
+    size_t n_built;      /* particles at the last build */
+    bool built;          /* the lists were built (on every rank alike: a collective build) */
     size_t rebuilds;
     double energy;
     size_t pairs;
@@ -57,6 +59,8 @@ struct particle_contact {
     double *gbody;       /* scratch: bodies as doubles for the exchange */
     size_t vcap;
     long rebalances;     /* the rebalances seen at the last build */
+    struct bond_list ckbl; /* the owned rows of the lists, as a checkpoint sees them */
+    int32_t *ck_gid;     /* distributed checkpoint: the candidates' global ids */
 };
 
 /* The particles contact sees: on one rank the particle arrays; on a
@@ -117,6 +121,7 @@ void particle_contact_destroy(struct particle_contact **pc)
     free(c->vgid);
     free(c->vbody);
     free(c->gbody);
+    free(c->ck_gid);
     free(c);
     *pc = NULL;
 }
@@ -139,14 +144,7 @@ static int reserve(struct particle_contact *c, size_t n, size_t ncell, struct sp
         size_t *o = realloc(c->off, (n + 1) * sizeof *o);
         if (o)
             c->off = o;
-        int bad = !a || !b || !e || !q || !o;
-        for (int d = 0; d < 3; d++) {
-            double *x = realloc(c->xref[d], n * sizeof *x);
-            if (x)
-                c->xref[d] = x;
-            bad |= !x;
-        }
-        if (bad)
+        if (!a || !b || !e || !q || !o)
             return spall_error_set(err, SPALL_ERR_NOMEM, "contact: out of memory for %zu particles",
                                    n);
         c->cap = n;
@@ -326,27 +324,54 @@ static int build_candidates(struct particle_contact *c, const struct sim *s,
                 sort_row(c->nbr + c->off[i], cnt, c->cell, gid);
         }
     }
-    for (int d = 0; d < dim; d++)
+    /* the build positions are a per-particle array of the engine on a
+     * distributed run (core/parallel/decomp.c): a partition or migration
+     * replaces them by arrays of p->n rows, so they keep that length */
+    size_t nx = p->n > no ? p->n : no;
+    nx = nx ? nx : 1; /* never NULL: the engine carries it (par_slot_add skips NULL) */
+    for (int d = 0; d < dim; d++) {
+        double *x = realloc(c->xref[d], nx * sizeof *x);
+        if (!x)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "contact: out of memory for %zu particles",
+                                   nx);
+        c->xref[d] = x;
         memcpy(c->xref[d], v->x[d], no * sizeof(double));
+    }
     c->n_built = no;
+    c->built = true;
     return SPALL_OK;
 }
 
-/* True when some particle moved more than skin/2 since the lists were built
- * (then a pair could have come from beyond d + skin to within d), on any
- * rank.  max is exact, so the answer does not depend on the thread or rank
- * count.  A rebalance (new owned particles) rebuilds too. */
-static int needs_rebuild(struct particle_contact *c, const struct sim *s)
+enum rebuild { REBUILD_NONE, REBUILD_NOW, REBUILD_AT_REF };
+
+/* A distributed run whose owned set changed since the lists were built
+ * (the partition, also after a restart, or a rebalance) while the build
+ * positions travelled with the particles: the lists are rebuilt from those
+ * positions, which gives the serial lists of the last build (the same
+ * pairs, the same cells, the same order) without a rebuild the serial run
+ * does not make.  The same answer on every rank. */
+static bool relaid_out(const struct particle_contact *c, const struct sim *s, long reb)
+{
+    return s->par && c->built && (!c->sg || reb != c->rebalances);
+}
+
+/* REBUILD_NOW when some particle moved more than skin/2 since the lists
+ * were built (then a pair could have come from beyond d + skin to within
+ * d), on any rank; max is exact, so the answer does not depend on the
+ * thread or rank count.  Else REBUILD_AT_REF after a re-layout
+ * (relaid_out). */
+static enum rebuild needs_rebuild(struct particle_contact *c, const struct sim *s)
 {
     const struct particles *p = s->p;
     long reb = 0;
     unsigned long long moved = 0;
     par_balance_stats(s, &reb, &moved);
+    const bool relaid = relaid_out(c, s, reb);
     const double lim = 0.25 * c->skin * c->skin;
     double m2 = 0.0;
     const size_t no = p->n_owned;
     const int dim = s->dim;
-    if (c->n_built != no || reb != c->rebalances) {
+    if (!c->built || (!relaid && c->n_built != no)) {
         m2 = INFINITY;
     } else {
 #pragma omp parallel for schedule(static) reduction(max : m2) if (no > SPALL_OMP_MIN_PARTICLES)
@@ -362,7 +387,9 @@ static int needs_rebuild(struct particle_contact *c, const struct sim *s)
     if (s->par)
         m2 = par_max_double(m2 != m2 ? INFINITY : m2);
     c->rebalances = reb;
-    return !(m2 <= lim); /* a NaN forces a rebuild */
+    if (!(m2 <= lim)) /* a NaN forces a rebuild */
+        return REBUILD_NOW;
+    return relaid ? REBUILD_AT_REF : REBUILD_NONE;
 }
 
 /* Room for a view of @p n particles. */
@@ -394,10 +421,12 @@ static int view_reserve(struct particle_contact *c, size_t n, struct spall_error
 }
 
 /* The distributed view: owned particles, then the spatial ghosts (rebuilt
- * with the lists: @p rebuild; else their positions refreshed).  Collective;
- * errors agreed. */
-static int dist_view(struct particle_contact *c, struct sim *s, int rebuild, struct cview *v,
-                     struct spall_error *err)
+ * with the lists: @p rebuild; else their positions refreshed); @p at the
+ * owned positions (the current ones, or the build positions of a
+ * re-layout, whose ghosts then come with theirs).  Collective; errors
+ * agreed. */
+static int dist_view(struct particle_contact *c, struct sim *s, int rebuild, double *const *at,
+                     struct cview *v, struct spall_error *err)
 {
     struct particles *p = s->p;
     const int dim = s->dim;
@@ -407,7 +436,7 @@ static int dist_view(struct particle_contact *c, struct sim *s, int rebuild, str
         rc = par_sghost_create(&c->sg, dim, c->prm.distance, c->skin, err);
     if ((rc = par_agree(rc, err)))
         return rc;
-    const double *x[3] = {p->x[0], dim > 1 ? p->x[1] : NULL, dim > 2 ? p->x[2] : NULL};
+    const double *x[3] = {at[0], dim > 1 ? at[1] : NULL, dim > 2 ? at[2] : NULL};
     if (rebuild) {
         if ((rc = par_sghost_build(c->sg, no, x, p->gid, err)))
             return rc;
@@ -419,7 +448,7 @@ static int dist_view(struct particle_contact *c, struct sim *s, int rebuild, str
     if ((rc = par_agree(rc, err)))
         return rc;
     for (int d = 0; d < dim; d++) {
-        memcpy(c->vx[d], p->x[d], no * sizeof(double));
+        memcpy(c->vx[d], at[d], no * sizeof(double));
         memcpy(c->vx[d] + no, par_sghost_x(c->sg, d), ng * sizeof(double));
     }
     if (rebuild) {
@@ -436,6 +465,23 @@ static int dist_view(struct particle_contact *c, struct sim *s, int rebuild, str
     return SPALL_OK;
 }
 
+/* REBUILD_AT_REF: the lists of the last build from the build positions
+ * (not counted as a build: the serial run made none), then the view at
+ * the current positions (@p v).  Collective; errors agreed. */
+static int rebuild_at_ref(struct particle_contact *c, struct sim *s, struct cview *v,
+                          struct spall_error *err)
+{
+    int rc = dist_view(c, s, 1, c->xref, v, err);
+    if (rc)
+        return rc;
+    rc = reserve(c, v->n, 0, err);
+    if (!rc)
+        rc = build_candidates(c, s, v, err);
+    if ((rc = par_agree(rc, err)))
+        return rc;
+    return dist_view(c, s, 0, s->p->x, v, err);
+}
+
 int particle_contact_forces(struct sim *s, struct spall_error *err)
 {
     struct particle_contact *c = s->pcontact;
@@ -448,12 +494,14 @@ int particle_contact_forces(struct sim *s, struct spall_error *err)
     c->pairs = 0;
     if ((s->par ? par_n_global(s) : p->n) < 2)
         return SPALL_OK;
-    const int rebuild = needs_rebuild(c, s);
+    const enum rebuild rebuild = needs_rebuild(c, s);
     struct cview v = {p->n, no, {p->x[0], p->x[1], p->x[2]}, p->body, p->gid};
-    int rc = s->par ? dist_view(c, s, rebuild, &v, err) : SPALL_OK;
+    int rc = rebuild == REBUILD_AT_REF ? rebuild_at_ref(c, s, &v, err)
+             : s->par                  ? dist_view(c, s, rebuild == REBUILD_NOW, p->x, &v, err)
+                                       : SPALL_OK;
     if (rc)
         return rc;
-    if (rebuild) {
+    if (rebuild == REBUILD_NOW) {
         rc = reserve(c, v.n, 0, err);
         if (!rc)
             rc = build_candidates(c, s, &v, err);
@@ -564,25 +612,63 @@ static int cand_set_rows(void *ctx, size_t rows, struct spall_error *err)
                                                   rows, cand_rows(c));
 }
 
+void **particle_contact_built_at(struct particle_contact *c, int d)
+{
+    return (void **)&c->xref[d];
+}
+
+/* A distributed checkpoint: the lists must be those of the owned set (a
+ * rebalance may have just moved particles), and the candidates are written
+ * by global id (the serial file's candidate of a row is its index there,
+ * which is the gid).  Collective. */
+static int dist_checkpoint_lists(struct particle_contact *c, struct sim *s,
+                                 struct spall_error *err)
+{
+    long reb = 0;
+    unsigned long long moved = 0;
+    par_balance_stats(s, &reb, &moved);
+    int rc = SPALL_OK;
+    if (relaid_out(c, s, reb)) {
+        struct cview v;
+        rc = rebuild_at_ref(c, s, &v, err);
+        c->rebalances = reb;
+    }
+    if (rc)
+        return rc;
+    const size_t no = s->p->n_owned, ns = c->n_built == no ? c->off[no] : 0;
+    int32_t *g = realloc(c->ck_gid, (ns ? ns : 1) * sizeof *g);
+    if (!g)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (contact checkpoint)");
+    else
+        c->ck_gid = g;
+    for (size_t q = 0; q < ns && !rc; q++)
+        c->ck_gid[q] = (int32_t)c->vgid[c->nbr[q]];
+    return par_agree(rc, err);
+}
+
 int particle_contact_register_state(struct sim *s, struct field_state *fs, struct spall_error *err)
 {
     struct particle_contact *c = s->pcontact;
     if (!c)
         return SPALL_OK;
+    int rc = s->par ? dist_checkpoint_lists(c, s, err) : SPALL_OK;
+    if (rc)
+        return rc;
     /* the candidate lists with the positions they were built at: a list
      * rebuilt at another step would order the pair sums differently */
-    if (c->n_built != s->p->n)
+    const size_t no = s->p->n_owned;
+    if (c->n_built != no)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "contact lists not built");
-    size_t n = c->n_built;
-    int rc = field_state_add_array(fs, "contact.offset", FIELD_I64, (void **)&c->off, n + 1, 1,
-                                   err);
+    c->ckbl = (struct bond_list){.n = no, .offset = c->off, .partner = c->nbr};
+    rc = field_state_add_offsets(fs, "contact.offset", (void **)&c->off, &c->ckbl, err);
     if (!rc)
-        rc = field_state_add_list(fs, "contact.candidates", FIELD_I32, (void **)&c->nbr, 1,
-                                  cand_rows, cand_set_rows, c, err);
+        rc = field_state_add_bond_list(fs, "contact.candidates", FIELD_I32,
+                                       s->par ? (void **)&c->ck_gid : (void **)&c->nbr, &c->ckbl,
+                                       1, cand_set_rows, c, err);
     char nm[FIELD_STATE_NAME_LEN];
     for (int d = 0; d < s->dim && !rc; d++) {
         snprintf(nm, sizeof nm, "contact.built_at.%d", d);
-        rc = field_state_add_array(fs, nm, FIELD_F64, (void **)&c->xref[d], n, 1, err);
+        rc = field_state_add_particle_array(fs, nm, FIELD_F64, (void **)&c->xref[d], no, 1, err);
     }
     if (!rc)
         rc = field_state_add_values(fs, "contact.rebuilds", FIELD_I64, &c->rebuilds, 1, err);

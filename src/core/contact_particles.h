@@ -71,4 +71,10 @@ size_t particle_contact_pairs(const struct sim *s);
 int particle_contact_register_state(struct sim *s, struct field_state *fs,
                                     struct spall_error *err);
 
+/** The address of the positions the candidate lists were built at,
+ *  component @p d: a per-particle array the distributed engine keeps with
+ *  the particles (partition, migration, ghosts; core/parallel/decomp.c),
+ *  so that a re-laid-out run rebuilds the lists of the last build. */
+void **particle_contact_built_at(struct particle_contact *c, int d);
+
 #endif

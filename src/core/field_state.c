@@ -13,6 +13,7 @@
 #include "core/sim.h"
 #include "spall/error.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,6 +94,29 @@ int field_state_add_bond_array(struct field_state *fs, const char *name, enum fi
     struct field_state_slot s = {.type = type, .width = width, .data = data,
                                  .rows_fixed = bonds->offset[bonds->n],
                                  .layout = FIELD_STATE_HALF_BOND, .bonds = bonds};
+    snprintf(s.name, sizeof s.name, "%s", name);
+    return add_slot(fs, &s, err);
+}
+
+int field_state_add_bond_list(struct field_state *fs, const char *name, enum field_type type,
+                              void **data, const struct bond_list *bonds, size_t width,
+                              field_state_set_rows_fn set_rows, void *ctx,
+                              struct spall_error *err)
+{
+    struct field_state_slot s = {.type = type, .width = width, .data = data,
+                                 .rows_fixed = bonds->offset[bonds->n], .set_rows = set_rows,
+                                 .ctx = ctx, .layout = FIELD_STATE_HALF_BOND, .bonds = bonds};
+    snprintf(s.name, sizeof s.name, "%s", name);
+    return add_slot(fs, &s, err);
+}
+
+int field_state_add_offsets(struct field_state *fs, const char *name, void **data,
+                            const struct bond_list *bonds, struct spall_error *err)
+{
+    _Static_assert(sizeof(size_t) == sizeof(int64_t), "offsets are saved as int64");
+    struct field_state_slot s = {.type = FIELD_I64, .width = 1, .data = data,
+                                 .rows_fixed = bonds->n + 1, .layout = FIELD_STATE_OFFSETS,
+                                 .bonds = bonds};
     snprintf(s.name, sizeof s.name, "%s", name);
     return add_slot(fs, &s, err);
 }

@@ -43,7 +43,10 @@ enum field_state_layout {
     FIELD_STATE_GLOBAL = 0,  /**< the same values on every rank (scalars, counters) */
     FIELD_STATE_LOCAL,       /**< rows in the rank's own order: serial runs only */
     FIELD_STATE_PARTICLE,    /**< one row per owned particle, in local order */
-    FIELD_STATE_HALF_BOND    /**< one row per half-bond of @c bonds' owned rows */
+    FIELD_STATE_HALF_BOND,   /**< one row per half-bond of @c bonds' owned rows */
+    FIELD_STATE_OFFSETS      /**< @c bonds' row offsets (owned rows + 1): a distributed
+                                  checkpoint writes the serial ones, a particle's row at
+                                  its global id */
 };
 
 /** Rows currently held by the owner. */
@@ -91,6 +94,20 @@ int field_state_add_particle_array(struct field_state *fs, const char *name,
 int field_state_add_bond_array(struct field_state *fs, const char *name, enum field_type type,
                                void **data, const struct bond_list *bonds, size_t width,
                                struct spall_error *err);
+
+/** As field_state_add_bond_array for a list whose rows change during the
+ *  run (a pair list rebuilt from a neighbour search): @p set_rows resizes
+ *  the array before a load. */
+int field_state_add_bond_list(struct field_state *fs, const char *name, enum field_type type,
+                              void **data, const struct bond_list *bonds, size_t width,
+                              field_state_set_rows_fn set_rows, void *ctx,
+                              struct spall_error *err);
+
+/** Register the row offsets of @p bonds (int64, bonds->n + 1 values, the
+ *  array at *@p data): in a serial file the offsets themselves, from a
+ *  distributed run the serial ones (FIELD_STATE_OFFSETS). */
+int field_state_add_offsets(struct field_state *fs, const char *name, void **data,
+                            const struct bond_list *bonds, struct spall_error *err);
 
 /** Register a variable-length array: @p rows gives its current length and
  *  @p set_rows (may be NULL when the length cannot change) resizes it. */

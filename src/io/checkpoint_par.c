@@ -281,6 +281,35 @@ static int state_bonds(struct pck *c, const char *name, const struct field_state
     return rc;
 }
 
+/* Row offsets of a list (FIELD_STATE_OFFSETS): the serial offset of each
+ * owned particle's row at its global id, the total after the last (rank 0). */
+static int state_offsets(struct pck *c, const char *name, const struct field_state_slot *sl)
+{
+    int rc = serial_offsets(c, sl->bonds);
+    if (rc)
+        return rc;
+    const size_t ng = par_n_global(c->s);
+    int64_t *buf = malloc((c->n + 1) * sizeof *buf);
+    if (!buf)
+        return spall_error_set(c->err, SPALL_ERR_NOMEM, "out of memory writing a checkpoint");
+    c->n_runs = 0;
+    size_t at = 0;
+    int bad = 0;
+    for (size_t k = 0; k < c->n && !bad; k++) {
+        const int64_t g = c->s->p->gid[c->ord[k]];
+        buf[at++] = (int64_t)c->soff[g];
+        bad = run_add(c, (size_t)g, 1);
+    }
+    if (!bad && par_rank() == 0) {
+        buf[at++] = (int64_t)c->soff[ng];
+        bad = run_add(c, ng, 1);
+    }
+    rc = bad ? spall_error_set(c->err, SPALL_ERR_NOMEM, "out of memory writing a checkpoint")
+             : pck_write(c, name, FIELD_I64, ng + 1, buf);
+    free(buf);
+    return rc;
+}
+
 int checkpoint_par_check(const struct field_state *fs, struct spall_error *err)
 {
     for (size_t k = 0; k < fs->n; k++)
@@ -306,6 +335,9 @@ static int state_slots(struct pck *c, const struct field_state *fs)
             break;
         case FIELD_STATE_HALF_BOND:
             rc = state_bonds(c, name, sl);
+            break;
+        case FIELD_STATE_OFFSETS:
+            rc = state_offsets(c, name, sl);
             break;
         case FIELD_STATE_GLOBAL:
         case FIELD_STATE_LOCAL:

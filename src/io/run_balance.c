@@ -43,10 +43,6 @@ int run_balance_check(const struct sim *s, const struct par_balance_opts *o,
                                    "distributed runs: model '%s' cannot migrate particles; "
                                    "leave parallel.rebalance_every at 0",
                                    s->ops->name);
-    if (s->pcontact) /* its lists would be rebuilt off the serial steps (docs/parallel.md) */
-        return spall_error_set_key(err, SPALL_ERR_INPUT, "parallel.rebalance_every",
-                                   "distributed runs: particle contact (contact:) cannot be "
-                                   "rebalanced yet; leave parallel.rebalance_every at 0");
     /* do the model's options allow it (the thermal lattice does not)? */
     struct par_model_arrays probe;
     memset(&probe, 0, sizeof probe);

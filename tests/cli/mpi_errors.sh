@@ -43,10 +43,6 @@ refused() { # name deck-text expected-substring
         cat stderr.txt; fail=1
     fi
 }
-refused "field on one rank only" "$(sed 's/^  end_time: .*/  steps: 3/;
-    s/^  fields: \[position, /  fields: [slip_vector, position, /' \
-    "$src/examples/macro_rod_tension/macro_rod_tension.yaml")
-" "field 'slip_vector' is computed on one rank only"
 refused "pd fiber_plane" "model: {type: peridynamics, variant: pdlm, matrix_crack: fiber_plane}
 materials:
   t700: {density: 1550, fiber_modulus: 130.0e9, transverse_modulus: 8.5e9, shear_modulus: 4.5e9,

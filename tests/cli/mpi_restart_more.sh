@@ -21,19 +21,6 @@ for d in thermal:thermal penalty:shatter noslip:tup; do
     grep -q "checkpoint: {every_steps: 100" "${d%%:*}.yaml" ||
         { echo "FAIL: cannot add checkpoints to tests/cli/decks/mpi_${d#*:}.yaml"; exit 1; }
 done
-mpi() { # ranks args...
-    local n="$1"
-    shift
-    OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$n" \
-        "$spall" "$@" --quiet --no-progress
-}
-checkpoints_same() { # ref out what: every checkpoint OUT holds, under h5diff
-    local f
-    for f in "$2"/checkpoint_*.h5; do
-        [ -e "$f" ] || { echo "FAIL $3: no checkpoint"; fail=1; return; }
-        h5diff -q "$1/$(basename "$f")" "$f" || { echo "FAIL $3: $(basename "$f") differs"; fail=1; }
-    done
-}
 for d in thermal penalty noslip; do
     serial $d
     mpi 2 run $d.yaml -o ${d}2 || { echo "FAIL $d on 2 ranks: exit $?"; fail=1; continue; }

@@ -9,6 +9,7 @@
 #include "core/parallel/spatial.h"
 
 #include "core/bond_list.h"
+#include "core/contact_particles.h"
 #include "core/fields.h"
 #include "core/model.h"
 #include "core/parallel/comm.h"
@@ -286,6 +287,8 @@ int par_particle_slots(struct sim *s, struct par_slots *sl)
     bad |= par_slot_add(sl, (void **)&p->material, sizeof(int32_t));
     bad |= par_slot_add(sl, (void **)&p->body, sizeof(int32_t));
     bad |= par_slot_add(sl, (void **)&s->no_drift_velocity, sizeof(uint8_t));
+    for (int d = 0; d < p->dim && s->pcontact; d++) /* contact's build positions */
+        bad |= par_slot_add(sl, particle_contact_built_at(s->pcontact, d), sizeof(double));
     const struct field_registry *reg = s->fields;
     for (size_t k = 0; k < reg->n && !bad; k++) {
         const struct field_desc *f = &reg->fields[k];

@@ -57,6 +57,8 @@ struct model {
     double *xb[3];         /**< positions at the last build (the list is built from them) */
     int64_t *pgid;         /**< per slot: the partner's global id (rows ascend in it) */
     struct bond_list mbl;  /**< the list lent to a migration (macro_par.c) */
+    struct bond_list ckbl; /**< the owned rows of the list, as a checkpoint sees them */
+    int32_t *ck_gid;       /**< per slot: the partner's gid, for a distributed checkpoint */
     size_t n_half;         /**< its slots */
     double *dr0;           /**< per full-list slot: plastic offset [m] */
     double *kappa;         /**< per slot: accumulated plastic slip [m] */
@@ -107,6 +109,12 @@ int macro_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct s
 struct par_model_arrays;
 int macro_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 void macro_par_release(struct model *m);
+/** Slip vectors and normals (3 per owned particle, either may be NULL) of
+ *  a distributed run, equal to the one-rank values: the reference
+ *  neighbours come from a ghost set built on the reference positions.
+ *  Collective (every rank writes the frame); errors agreed. */
+int macro_slip_par(const struct model *m, const struct sim *sim, double *slip, double *normal,
+                   struct spall_error *err);
 /** Replace the pair list and its per-pair state (partner gids, plastic
  *  offsets, hardening, engagement flags) by new ones, freeing the old. */
 void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid, double *dr0,

@@ -94,6 +94,7 @@ static void macro_destroy(struct model **pm)
     free(m->kappa);
     free(m->engaged);
     free(m->pgid);
+    free(m->ck_gid);
     free(m->epot);
     free(m->sig);
     free(m->wdiss);
@@ -414,27 +415,32 @@ static void field_csp(const void *ctx, size_t n, double *out)
 }
 
 /* slip threshold 0.25 r0: above elastic relative displacements (a few % of
- * r0), below a partial Burgers vector r0/sqrt3 */
-static void field_slip_vector(const void *ctx, size_t n, double *out)
+ * r0), below a partial Burgers vector r0/sqrt3.  A distributed run holds
+ * no reference list of the whole body (macro_localize drops it): it finds
+ * the reference neighbours anew for each frame (macro_slip_par). */
+static void slip_fields(const struct model *m, size_t n, double *slip, double *normal)
 {
-    const struct model *m = ctx;
-    if (!m->nl0) { /* distributed: refused before the run (FIELD_SERIAL) */
-        for (size_t i = 0; i < 3 * n; i++)
-            out[i] = NAN;
+    if (m->nl0) {
+        macro_slip_vectors(n, m->sim->p->x, m->sim->p->x0, m->nl0, 0.25 * m->pp.r0, slip, normal,
+                           NULL);
         return;
     }
-    macro_slip_vectors(n, m->sim->p->x, m->sim->p->x0, m->nl0, 0.25 * m->pp.r0, out, NULL, NULL);
+    struct spall_error err = {0};
+    if (macro_slip_par(m, m->sim, slip, normal, &err)) {
+        double *out = slip ? slip : normal; /* out of memory on some rank: no values */
+        for (size_t i = 0; i < 3 * n; i++)
+            out[i] = NAN;
+    }
+}
+
+static void field_slip_vector(const void *ctx, size_t n, double *out)
+{
+    slip_fields(ctx, n, out, NULL);
 }
 
 static void field_slip_normal(const void *ctx, size_t n, double *out)
 {
-    const struct model *m = ctx;
-    if (!m->nl0) {
-        for (size_t i = 0; i < 3 * n; i++)
-            out[i] = NAN;
-        return;
-    }
-    macro_slip_vectors(n, m->sim->p->x, m->sim->p->x0, m->nl0, 0.25 * m->pp.r0, NULL, out, NULL);
+    slip_fields(ctx, n, NULL, out);
 }
 
 static int macro_register_fields(struct model *m, struct sim *sim, struct field_registry *reg,
@@ -448,10 +454,10 @@ static int macro_register_fields(struct model *m, struct sim *sim, struct field_
         (rc = field_registry_add_computed(reg, "plastic_slip", "m", 1, FIELD_OUTPUT, field_slip, m, err)) ||
         (rc = field_registry_add_computed(reg, "centro_symmetry", "1", 1, FIELD_OUTPUT, field_csp, m,
                                           err)) ||
-        /* reference neighbours of the whole body: one rank only */
-        (rc = field_registry_add_computed(reg, "slip_vector", "m", 3, FIELD_OUTPUT | FIELD_SERIAL,
+        /* distributed: collective (every rank writes the frame) */
+        (rc = field_registry_add_computed(reg, "slip_vector", "m", 3, FIELD_OUTPUT,
                                           field_slip_vector, m, err)) ||
-        (rc = field_registry_add_computed(reg, "slip_normal", "1", 3, FIELD_OUTPUT | FIELD_SERIAL,
+        (rc = field_registry_add_computed(reg, "slip_normal", "1", 3, FIELD_OUTPUT,
                                           field_slip_normal, m, err)))
         return rc;
     return SPALL_OK;

@@ -15,10 +15,13 @@
  * gid, so each owned particle sums its pairs in the serial order.
  */
 #include "models/macroparticle/macro_internal.h"
+#include "models/macroparticle/macro_slip.h"
 
 #include "core/bond_list.h"
 #include "core/neighbor.h"
+#include "core/parallel/comm.h"
 #include "core/parallel/migrate.h"
+#include "core/parallel/sghost.h"
 #include "core/parallel/spatial.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -201,4 +204,122 @@ int macro_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spa
     }
     a->n_bond = 4;
     return SPALL_OK;
+}
+
+/* ---- slip fields of a distributed run ------------------------------------ */
+
+struct slip_set {
+    size_t n;         /**< owned + reference ghosts, in ascending gid */
+    double *x[3], *x0[3];
+    size_t *owned_at; /**< where each owned particle lies in the set */
+    double *out;      /**< 3 per particle of the set */
+    double *xo, *xg;  /**< current positions of the owned (3 each) and the ghosts */
+};
+
+static void slip_set_free(struct slip_set *t)
+{
+    for (int d = 0; d < 3; d++) {
+        free(t->x[d]);
+        free(t->x0[d]);
+    }
+    free(t->owned_at);
+    free(t->out);
+    free(t->xo);
+    free(t->xg);
+}
+
+static int cmp_gid_idx(const void *a, const void *b, const int64_t *gid)
+{
+    int64_t x = gid[*(const size_t *)a], y = gid[*(const size_t *)b];
+    return (x > y) - (x < y);
+}
+
+/* Owned indices by ascending gid (they already are, after the partition
+ * and every migration; insertion sort keeps that cheap and certain). */
+static void owned_by_gid(size_t *o, size_t n, const int64_t *gid)
+{
+    for (size_t i = 0; i < n; i++) {
+        size_t k = i;
+        while (k > 0 && cmp_gid_idx(&o[k - 1], &i, gid) > 0) {
+            o[k] = o[k - 1];
+            k--;
+        }
+        o[k] = i;
+    }
+}
+
+int macro_slip_par(const struct model *m, const struct sim *sim, double *slip, double *normal,
+                   struct spall_error *err)
+{
+    const struct particles *p = sim->p;
+    const size_t no = p->n_owned;
+    const double r0 = m->pp.r0;
+    struct par_sghost *g = NULL;
+    struct slip_set t;
+    memset(&t, 0, sizeof t);
+    /* the reference neighbours (x0 within 1.1 r0) of every owned particle
+     * are ghosts of a set built on the reference positions, wherever the
+     * particles are now (the skin only widens the box test) */
+    int rc = par_agree(par_sghost_create(&g, 3, 1.1 * r0, 0.05 * r0, err), err);
+    const double *x0[3] = {p->x0[0], p->x0[1], p->x0[2]};
+    if (!rc)
+        rc = par_sghost_build(g, no, x0, p->gid, err);
+    const size_t ng = rc ? 0 : par_sghost_count(g), n = no + ng;
+    int bad = 0;
+    if (!rc) {
+        t.n = n;
+        t.xo = malloc(3 * (no ? no : 1) * sizeof *t.xo);
+        t.xg = malloc(3 * (ng ? ng : 1) * sizeof *t.xg);
+        t.owned_at = malloc((no ? no : 1) * sizeof *t.owned_at);
+        t.out = malloc(3 * (n ? n : 1) * sizeof *t.out);
+        bad = !t.xo || !t.xg || !t.owned_at || !t.out;
+        for (int d = 0; d < 3 && !bad; d++) {
+            t.x[d] = malloc((n ? n : 1) * sizeof(double));
+            t.x0[d] = malloc((n ? n : 1) * sizeof(double));
+            bad = !t.x[d] || !t.x0[d];
+        }
+        for (size_t i = 0; i < no && !bad; i++)
+            for (int d = 0; d < 3; d++)
+                t.xo[3 * i + d] = p->x[d][i];
+        rc = par_agree(bad ? spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (slip fields)")
+                           : SPALL_OK,
+                       err);
+    }
+    if (!rc)
+        rc = par_sghost_values(g, t.xo, t.xg, 3, err);
+    size_t *ord = rc ? NULL : malloc((no ? no : 1) * sizeof *ord);
+    if (!rc && !ord)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (slip fields)");
+    struct neighbor_list *ref = NULL;
+    if (!rc) {
+        /* one set in ascending gid: each list row then holds its partners
+         * in the serial order, so the sums are the one-rank ones */
+        owned_by_gid(ord, no, p->gid);
+        const int64_t *ggid = par_sghost_gid(g);
+        for (size_t a = 0, b = 0, k = 0; k < n; k++) {
+            const bool own = b >= ng || (a < no && p->gid[ord[a]] < ggid[b]);
+            for (int d = 0; d < 3; d++) {
+                t.x0[d][k] = own ? p->x0[d][ord[a]] : par_sghost_x(g, d)[b];
+                t.x[d][k] = own ? p->x[d][ord[a]] : t.xg[3 * b + d];
+            }
+            if (own)
+                t.owned_at[ord[a++]] = k;
+            else
+                b++;
+        }
+        rc = neighbor_list_build(&ref, 3, n, t.x0, 1.1 * r0, err);
+    }
+    for (int w = 0; w < 2 && !rc; w++) {
+        double *dst = w ? normal : slip;
+        if (!dst)
+            continue;
+        macro_slip_vectors(n, t.x, t.x0, ref, 0.25 * r0, w ? NULL : t.out, w ? t.out : NULL, NULL);
+        for (size_t i = 0; i < no; i++)
+            memcpy(dst + 3 * i, t.out + 3 * t.owned_at[i], 3 * sizeof(double));
+    }
+    neighbor_list_destroy(&ref);
+    free(ord);
+    slip_set_free(&t);
+    par_sghost_destroy(&g);
+    return rc;
 }

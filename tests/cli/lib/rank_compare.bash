@@ -1,6 +1,7 @@
-# Shared by tests/cli/mpi_impact.sh and mpi_models.sh (sourced, not a test):
+# Shared by the MPI rank tests tests/cli/mpi_*.sh (sourced, not a test):
 # the MPI environment of the suite's rank tests, a scratch directory, and
-# the comparison of a distributed run's output with the serial reference.
+# the comparison of a distributed run's output (and checkpoints) with the
+# serial reference, the launch on N ranks, decks taken from other scripts.
 # Expects $spall and $mpiexec; sets $fail (0) and changes into the scratch
 # directory.
 # shellcheck source=mpi_env.bash
@@ -50,4 +51,45 @@ refused() { # name deck expected-substring: 2 ranks refuse the deck in one line,
         ! grep -q -- "$3" stderr.txt; then
         echo "FAIL $1: exit $rc (expected 2)"; cat stderr.txt; fail=1
     fi
+}
+mpi() { # ranks args...: spall on that many ranks, quiet
+    local n="$1"
+    shift
+    OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$n" \
+        "$spall" "$@" --quiet --no-progress
+}
+checkpoints_same() { # ref out what [h5diff options]: every checkpoint OUT holds, under h5diff
+    local f
+    for f in "$2"/checkpoint_*.h5; do
+        [ -e "$f" ] || { echo "FAIL $3: no checkpoint"; fail=1; return; }
+        # shellcheck disable=SC2086 # the options are words
+        h5diff -q ${4:-} "$1/$(basename "$f")" "$f" ||
+            { echo "FAIL $3: $(basename "$f") differs"; fail=1; }
+    done
+}
+deck_from() { # script deck checkpoint-every: DECK.yaml of the heredoc `cat > DECK.yaml`
+    # in tests/cli/SCRIPT, with a checkpoint every N steps added to its output map
+    sed -n "/^cat > $2.yaml/,/^YAML\$/p" "$1" | sed '1d;$d' |
+        sed "s/^output: {\(.*\)\$/output: {checkpoint: {every_steps: $3, keep: 5}, \1/" > "$2.yaml"
+    grep -q "checkpoint: {every_steps: $3" "$2.yaml" ||
+        { echo "FAIL: cannot take deck $2 of $1"; exit 1; }
+}
+written_on_2() { # deck: DECK on 2 ranks into DECK2, outputs and checkpoints as DECK_serial's
+    mpi 2 run "$1.yaml" -o "${1}2" || { echo "FAIL $1 on 2 ranks: exit $?"; exit 1; }
+    same_as_serial "$1_serial" "${1}2" "$1, 2 ranks"
+    checkpoints_same "$1_serial" "${1}2" "$1, 2 ranks (checkpoints in the serial layout)"
+}
+continued() { # deck checkpoint n [h5diff options]: DECK continued from CHECKPOINT on n
+    # ranks (1: without mpirun) into DECK_contN; outputs and later checkpoints as DECK_serial's
+    local out="$1_cont$3" what="$1 continued from $2 on $3 ranks"
+    if [ "$3" -eq 1 ]; then
+        OMP_NUM_THREADS=1 timeout 120 "$spall" run "$1.yaml" --restart "$2" -o "$out" --quiet \
+            --no-progress
+    else
+        mpi "$3" run "$1.yaml" --restart "$2" -o "$out"
+    fi || { echo "FAIL $what: exit $?"; fail=1; return; }
+    same_as_serial "${1%_rb}_serial" "$out" "$what"
+    checkpoints_same "${1%_rb}_serial" "$out" "$what" "${4:-}"
+    grep -q "^restart_from: .*$(basename "$2")\$" "$out/run.log" ||
+        { echo "FAIL $what: run.log: no restart"; fail=1; }
 }
