@@ -13,11 +13,7 @@
 #include <cmocka.h>
 
 #include "core/model.h"
-#include "core/particles.h"
-#include "core/sim.h"
-#include "io/deck.h"
-#include "io/deck_build.h"
-#include "spall/error.h"
+#include "tests/test_support.h"
 
 #include <omp.h>
 #include <stdio.h>
@@ -57,17 +53,8 @@ static void run(const char *model_keys, const char *material_keys, const char *l
     snprintf(keys, sizeof keys, "%s, pair_loop: %s", model_keys, loop);
     snprintf(text, sizeof text, BLOCK, keys, material_keys);
     omp_set_num_threads(threads);
-    struct spall_error err = {0};
-    struct deck *d = NULL;
-    struct sim *s = NULL;
-    struct run_output ro;
-    assert_int_equal(deck_load_string(&d, "half", text, &err), SPALL_OK);
-    int rc = deck_build_sim(d, &s, &ro, &err);
-    if (rc)
-        fprintf(stderr, "%s\n", err.msg);
-    assert_int_equal(rc, SPALL_OK);
-    while (!sim_done(s))
-        assert_int_equal(sim_step(s, &err), SPALL_OK);
+    struct sim *s = test_build_ok(text);
+    test_run_to_end(s);
     const size_t n = s->p->n_owned;
     out->n = n;
     out->xvf = malloc(9 * n * sizeof(double));
@@ -84,7 +71,6 @@ static void run(const char *model_keys, const char *material_keys, const char *l
             assert_true(out->hist[k] > 1.0); /* the list was rebuilt during the run */
     }
     sim_destroy(&s);
-    deck_destroy(&d);
 }
 
 static void assert_same(const struct result *a, const struct result *b)
