@@ -15,10 +15,12 @@
  * its partners in the serial order, docs/parallel.md).
  * A pair that leaves the list (r > r_c + skin) forgets its plastic offset.
  *
- * Each particle gathers over its full list (both ends of a pair evaluate it
- * with the same numbers, so the two slots of a pair evolve identically) and
- * writes only its own force, energy and state: no atomics, and the result is
- * bitwise independent of the thread count.
+ * Each particle sums over its full list in list order and writes only its
+ * own force, energy and state: no atomics, and the result is bitwise
+ * independent of the thread count.  The default loop (macro_half.c)
+ * evaluates each pair once and hands both ends the same numbers; the
+ * reference loop here (deck pair_loop: full) evaluates it from both ends
+ * (the two slots of a pair evolve identically).
  *
  * Plasticity (Eq. 16 leaves the route open; our choice): the elastic stretch
  * of a pair is e = r - r0 - dr0.  While |e| <= e_y + h kappa the pair is
@@ -47,10 +49,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Below this many particles a parallel region costs more than the loop
- * (thousands of steps of a few hundred particles in the tests); results
- * do not depend on it (each particle's sums run in a fixed order). */
-#define MACRO_OMP_MIN 2048
+static void macro_forces_full(struct model *m, struct sim *sim);
 
 /* The partner's global id of slot @p s: the slot's key when the list keeps
  * them (distributed runs), else the index (one rank: index = gid). */
@@ -150,6 +149,7 @@ void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid,
                        double *kappa, uint8_t *engaged)
 {
     macro_par_release(m); /* a list lent to a migration probe is not kept */
+    m->half_ok = false;
     neighbor_list_destroy(&m->nl);
     free(m->pgid);
     free(m->dr0);
@@ -185,7 +185,7 @@ int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct 
     return macro_list_build(m, sim, true, err);
 }
 
-/* The pair loop of macro_compute_forces runs over each particle's list in
+/* The reference pair loop (macro_forces_full) runs over each particle's list in
  * chunks of MACRO_CHUNK slots, in passes: the geometry (gathers, r^2, sqrt)
  * and the pair law (macro_mie_chunk: divisions and powers; c = -f/r; the
  * force and virial terms) with no dependence between slots, which the
@@ -196,23 +196,14 @@ int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct 
  * order.
  * Every operation and the order of every sum are those of the one-pass
  * loop (a slot's values are computed exactly as there), so the results do
- * not change, bit for bit.  Two versions picked once at load time by the
- * CPU (GCC function multi-versioning, as pd_forces.c): x86-64-v3 (four
- * doubles a vector) and the build's baseline; the file is compiled without
- * FP contraction (ISO C mode), so both round alike. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
-    !defined(SPALL_NO_CLONES)
-#define MACRO_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define MACRO_CLONES
-#endif
-
+ * not change, bit for bit.  The kernels are cloned (MACRO_CLONES,
+ * macro_internal.h).  The default loop, macro_half.c, evaluates each pair
+ * once and gives these same bits. */
 /** Pair vectors x_j - x_i, squared distances and distances of nb slots. */
-MACRO_CLONES static void macro_chunk_geom(size_t nb, int dim, const double xi[3],
-                                          double *const *restrict x,
-                                          const int32_t *restrict idx, double *restrict gx,
-                                          double *restrict gy, double *restrict gz,
-                                          double *restrict r2, double *restrict r)
+MACRO_CLONES void macro_chunk_geom(size_t nb, int dim, const double xi[3],
+                                   double *const *restrict x, const int32_t *restrict idx,
+                                   double *restrict gx, double *restrict gy, double *restrict gz,
+                                   double *restrict r2, double *restrict r)
 {
     const double *restrict x0 = x[0], *restrict x1 = dim > 1 ? x[1] : x[0];
     const double *restrict x2 = dim > 2 ? x[2] : x[0];
@@ -271,6 +262,16 @@ int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *e
     int rc = macro_neighbors_update(m, sim, false, err);
     if (rc)
         return rc;
+    if (!m->pair_full)
+        return macro_forces_half(m, sim, err);
+    macro_forces_full(m, sim);
+    return SPALL_OK;
+}
+
+/** The reference loop (deck pair_loop: full): every pair evaluated from
+ *  both ends, each end keeping its own slot's state. */
+static void macro_forces_full(struct model *m, struct sim *sim)
+{
     struct particles *p = sim->p;
     const struct neighbor_list *nl = m->nl;
     const struct macro_pair w = m->pp;
@@ -315,30 +316,7 @@ int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *e
                     if (rr2[k] >= rlist2 || rr2[k] == 0.0)
                         continue;
                     if (plastic) {
-                        double el = r - w.r0 - dr0[s];
-                        double lim = w.e_y + w.h * kap[s];
-                        double a = fabs(el);
-                        if (!eng[s]) {
-                            /* a pair met at a large stretch (a second neighbour
-                             * sliding in) stays elastic until it enters the yield
-                             * surface: it cannot be "welded" at a wrong spacing */
-                            if (a <= lim)
-                                eng[s] = 1;
-                        } else if (r >= w.r_c) {
-                            /* separated: the pair forgets its plastic history */
-                            dr0[s] = 0.0;
-                            kap[s] = 0.0;
-                            eng[s] = 0;
-                        } else if (a > lim) {
-                            double dd = (a - lim) / (1.0 + w.h);
-                            double sgn = el > 0.0 ? 1.0 : -1.0;
-                            dr0[s] += sgn * dd;
-                            kap[s] += dd;
-                            double ph, fr;
-                            macro_mie(&w, w.r0 + sgn * (lim + w.h * dd), &ph, &fr);
-                            wplast += 0.5 * fabs(fr) * dd; /* half per end of the pair */
-                        }
-                        re = r - dr0[s];
+                        re = macro_plastic_update(&w, r, &dr0[s], &kap[s], &eng[s], &wplast);
                         rre[k] = re;
                     }
                     if (mu > 0.0 && r < w.r_c) {
@@ -382,5 +360,4 @@ int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *e
             sig[6 * i + k] = s6[k];
         wd[i] += wplast - pw * dt;
     }
-    return SPALL_OK;
 }

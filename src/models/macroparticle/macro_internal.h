@@ -64,6 +64,22 @@ struct model {
     double *kappa;         /**< per slot: accumulated plastic slip [m] */
     uint8_t *engaged;      /**< per slot: 1 once the pair was inside its yield surface */
     long n_calls;          /**< force evaluations so far (random-stream counter) */
+    /* the once-per-pair loop (macro_half.c): its pair list is made again
+     * after each change of the neighbour list (half_ok cleared by
+     * macro_adopt_pairs and a restart) */
+    bool pair_full;        /**< deck pair_loop: full (both ends evaluate a pair) */
+    bool half_ok;          /**< the arrays below describe the current list */
+    size_t half_pairs, half_pair_cap, half_slot_cap; /**< pairs, allocated pairs, slots */
+    size_t *hoff;          /**< per owned row + 1: its pairs are [hoff[i], hoff[i+1]) */
+    int32_t *hpi, *hpj;    /**< per pair: the end that computes it and the partner */
+    size_t *hps, *hprs;    /**< per pair: its slot in row hpi and in row hpj (SIZE_MAX:
+                                a ghost's row), plastic runs only */
+    size_t *pid;           /**< per slot of the owned rows: its pair */
+    double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i) */
+    double *pphi;          /**< per pair: its energy phi */
+    uint8_t *pok;          /**< per pair: 1 when it counts */
+    double *pwp;           /**< per pair: half its plastic work of this call (plastic runs) */
+    double *pfl;           /**< 3 per pair: pairwise Langevin force on hpi (pairwise damping) */
     size_t n_builds;
     /* per-particle outputs of the last force evaluation */
     double *epot;          /**< J */
@@ -98,6 +114,66 @@ int macro_register_state(struct model *m, struct sim *sim, struct field_state *f
                          struct spall_error *err);
 int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);
 int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err);
+
+/* The pair loops' vectorised kernels come in two versions picked once at
+ * load time by the CPU (GCC function multi-versioning, as pd_forces.c):
+ * x86-64-v3 (four doubles a vector) and the build's baseline; the files are
+ * compiled without FP contraction (ISO C mode), so both round alike. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
+    !defined(SPALL_NO_CLONES)
+#define MACRO_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define MACRO_CLONES
+#endif
+
+/** Below this many particles a parallel region costs more than the pair
+ *  loop (thousands of steps of a few hundred particles in the tests);
+ *  results do not depend on it (each particle's sums run in a fixed order). */
+#define MACRO_OMP_MIN 2048
+
+/** Pair vectors x_j - x_i of the nb partners idx[k] of the particle at
+ *  @p xi, their squared lengths and lengths (macro_forces.c). */
+MACRO_CLONES void macro_chunk_geom(size_t nb, int dim, const double xi[3],
+                                   double *const *restrict x, const int32_t *restrict idx,
+                                   double *restrict gx, double *restrict gy, double *restrict gz,
+                                   double *restrict r2, double *restrict r);
+
+/* macro_half.c: each pair evaluated once, the sums in the order of the
+ * full loop (the same bits) */
+int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err);
+void macro_half_free(struct model *m);
+
+/** The plastic update of one pair slot (Eq. 16, see macro_forces.c) at
+ *  distance @p r; returns the elastic distance r - dr0 and adds the half of
+ *  the plastic work that one end books to *wplast. */
+static inline double macro_plastic_update(const struct macro_pair *w, double r, double *dr0,
+                                          double *kap, uint8_t *eng, double *wplast)
+{
+    double el = r - w->r0 - *dr0;
+    double lim = w->e_y + w->h * *kap;
+    double a = fabs(el);
+    if (!*eng) {
+        /* a pair met at a large stretch (a second neighbour sliding in)
+         * stays elastic until it enters the yield surface: it cannot be
+         * "welded" at a wrong spacing */
+        if (a <= lim)
+            *eng = 1;
+    } else if (r >= w->r_c) {
+        /* separated: the pair forgets its plastic history */
+        *dr0 = 0.0;
+        *kap = 0.0;
+        *eng = 0;
+    } else if (a > lim) {
+        double dd = (a - lim) / (1.0 + w->h);
+        double sgn = el > 0.0 ? 1.0 : -1.0;
+        *dr0 += sgn * dd;
+        *kap += dd;
+        double ph, fr;
+        macro_mie(w, w->r0 + sgn * (lim + w->h * dd), &ph, &fr);
+        *wplast += 0.5 * fabs(fr) * dd; /* half per end of the pair */
+    }
+    return r - *dr0;
+}
 
 /* macro_par.c: distributed runs (core/parallel/spatial.h) */
 struct par_spatial_model;

@@ -30,6 +30,9 @@
  *             so that E_[100] of the FCC lattice (Cauchy-Born sum over every
  *             shell inside the cut-off) equals the material's youngs_modulus,
  *             default Eq. 15's E (macro_lattice.c)
+ *     pair_loop: half | full (default half).  half: each pair evaluated
+ *             once (macro_half.c); full: from both ends (the reference loop
+ *             of macro_forces.c).  The same results, bit for bit.
  *
  *   materials:
  *     <name>:
@@ -85,6 +88,7 @@ static void macro_destroy(struct model **pm)
         return;
     struct model *m = *pm;
     macro_par_release(m);
+    macro_half_free(m);
     free(m->mat);
     neighbor_list_destroy(&m->nl);
     neighbor_list_destroy(&m->nl0);
@@ -111,8 +115,9 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
 {
     static const char *const keys[] = {"type", "cutoff", "taper", "skin", "damping",
                                        "temperature", "gamma", "mu", "zeta_cg", "eta_cg", "axis",
-                                       "calibration", NULL};
+                                       "calibration", "pair_loop", NULL};
     static const char *const cals[] = {"eq15", "lattice", NULL};
+    static const char *const loops[] = {"half", "full", NULL};
     static const char *const damps[] = {"none", "absolute", "pairwise", NULL};
     static const char *const axes[] = {"x", "y", "z", NULL};
     (void)sim;
@@ -127,7 +132,7 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
     m->zeta_cg = 1.0;
     m->eta_cg = 1.0;
     m->axis = 2;
-    int damp = 0, ax = 2, cal = 0, rc = 0;
+    int damp = 0, ax = 2, cal = 0, loop = 0, rc = 0;
     if (params) {
         if ((rc = deck_double(params, "cutoff", false, 1.05, 3.0, &m->cutoff_ratio, err)) ||
             (rc = deck_double(params, "taper", false, 1.0, 3.0, &m->taper_ratio, err)) ||
@@ -140,6 +145,7 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
             (rc = deck_double_pos(params, "eta_cg", false, &m->eta_cg, err)) ||
             (rc = deck_enum(params, "axis", false, axes, &ax, err)) ||
             (rc = deck_enum(params, "calibration", false, cals, &cal, err)) ||
+            (rc = deck_enum(params, "pair_loop", false, loops, &loop, err)) ||
             (rc = deck_check_unused(params, "model", keys, err))) {
             macro_destroy(&m);
             return rc;
@@ -160,6 +166,7 @@ static int macro_create(struct model **out, struct sim *sim, const struct deck_n
     }
     m->damping = (enum macro_damping)damp;
     m->axis = ax;
+    m->pair_full = loop == 1;
     m->calibration = cal ? MACRO_CAL_LATTICE : MACRO_CAL_EQ15;
     *out = m;
     return SPALL_OK;

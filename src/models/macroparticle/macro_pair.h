@@ -78,6 +78,14 @@ static inline void macro_mie(const struct macro_pair *w, double r, double *phi, 
 
 /* ---- the same pair law over a chunk of pairs ---------------------------------- */
 
+/* Forced inline: the pair loops' kernels are cloned per CPU level
+ * (MACRO_CLONES); a call out of a clone would run the baseline code. */
+#if defined(__GNUC__)
+#define MACRO_PAIR_INLINE static inline __attribute__((always_inline))
+#else
+#define MACRO_PAIR_INLINE static inline
+#endif
+
 /** Pairs per chunk of the pair loop (macro_forces.c): the chunk's arrays
  *  stay in L1. */
 #define MACRO_CHUNK 64
@@ -109,7 +117,7 @@ static inline void macro_ipow_chunk(size_t nb, const double *restrict s, int n,
  *  operations in the same order; the taper, rare in a crystal, in a scalar
  *  pass).  Loops without dependences between k, for the vectoriser.  At
  *  r[k] >= r_c (list slots the pair loop skips) the untapered values. */
-static inline void macro_mie_chunk(const struct macro_pair *w, size_t nb,
+MACRO_PAIR_INLINE void macro_mie_chunk(const struct macro_pair *w, size_t nb,
                                    const double *restrict r, double *restrict phi,
                                    double *restrict fr)
 {

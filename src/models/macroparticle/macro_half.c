@@ -1,0 +1,446 @@
+/**
+ * @file macro_half.c
+ * @brief The macro-particle pair loop evaluating each pair once, with every
+ *        particle's sums in the order of the full loop (macro_forces.c), so
+ *        the results are the same bits for any thread and rank count.
+ *
+ * The neighbour list stays full (each pair in both rows, rows ascending in
+ * the partner's key: the index on one rank, the global id on a distributed
+ * run).  The end with the smaller key computes a pair, and so does an owned
+ * particle whose partner is a ghost (the ghost's row is not summed here).
+ * After each list change a flat pair list is made from it: per pair the
+ * computing end and the partner, per slot of the owned rows the pair it
+ * holds.  Pass 1 runs over the pairs (long vectorisable chunks): distance,
+ * plastic update, pairwise Langevin force, the Mie law, and stores c = -f/r,
+ * phi and whether the pair counts.  Pass 2 sums every row over all its slots
+ * in list order, as the full loop does, reading its pairs' values.
+ *
+ * Why the bits agree: x_i - x_j is exactly -(x_j - x_i) (IEEE subtraction),
+ * so both ends of a pair compute the same r, re, phi and c; each end forms
+ * its force term c (x_j - x_i) and virial terms 0.5 c dx dx from its own dx
+ * with the full loop's operations; the pairwise Langevin term of the other
+ * end is the exact negation (mu (v_i - v_j) and -sgn sp xi), subtracted; the
+ * plastic update runs once and both slots take its state (the full loop
+ * evolved them identically).  A pair that adds no Langevin force or plastic
+ * work stores +0.0 where the full loop added nothing: sums that start at
+ * +0.0 are never -0.0 in round-to-nearest, so adding a zero changes no bit.
+ *
+ * One thread on one rank: rows in blocks, pass 1 of the block's pairs then
+ * pass 2 of its rows (a row's other pairs belong to rows with smaller
+ * indices, done in this block or an earlier one), so the pair values are
+ * read back while in cache.  Threads or a distributed run: pass 1 over all
+ * pairs, then pass 2.
+ */
+#include "models/macroparticle/macro_internal.h"
+
+#include "core/neighbor.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* Rows per block of the fused one-thread loop: the block's pair values
+ * (about 150 B a row) stay in L2 between the passes. */
+#define HALF_BLOCK 512
+#define NO_SLOT SIZE_MAX
+
+void macro_half_free(struct model *m)
+{
+    free(m->hoff);
+    free(m->hpi);
+    free(m->hpj);
+    free(m->hps);
+    free(m->hprs);
+    free(m->pid);
+    free(m->pc);
+    free(m->pphi);
+    free(m->pok);
+    free(m->pwp);
+    free(m->pfl);
+    m->hoff = m->hps = m->hprs = m->pid = NULL;
+    m->hpi = m->hpj = NULL;
+    m->pc = m->pphi = m->pwp = m->pfl = NULL;
+    m->pok = NULL;
+    m->half_pairs = m->half_pair_cap = m->half_slot_cap = 0;
+    m->half_ok = false;
+}
+
+/* *a holds @p count elements of @p size bytes: (re)allocated when it
+ * grows or is missing (contents not kept). */
+static bool need(void **a, size_t count, size_t size, bool grows)
+{
+    if (*a && !grows)
+        return true;
+    free(*a);
+    *a = malloc((count ? count : 1) * size);
+    return *a != NULL;
+}
+
+/* First slot of row i whose partner's key exceeds the particle's own. */
+static size_t half_start(const struct neighbor_list *nl, const int64_t *pg, const int64_t *gid,
+                         size_t i)
+{
+    const int64_t ki = pg ? gid[i] : (int64_t)i;
+    size_t h = nl->offset[i];
+    while (h < nl->offset[i + 1] && (pg ? pg[h] : (int64_t)nl->idx[h]) < ki)
+        h++;
+    return h;
+}
+
+/* The pairs row i computes: its suffix and its ghost partners before it. */
+static size_t half_count(const struct neighbor_list *nl, size_t h, size_t i, size_t n)
+{
+    size_t c = nl->offset[i + 1] - h;
+    for (size_t s = nl->offset[i]; s < h; s++)
+        c += (size_t)nl->idx[s] >= n;
+    return c;
+}
+
+/* Fill the pair list; returns the gid of a particle that a partner does
+ * not list back (an asymmetric list), or -1. */
+static int64_t half_fill(struct model *m, const struct particles *p, size_t n)
+{
+    const struct neighbor_list *nl = m->nl;
+    const size_t *off = nl->offset;
+    const int32_t *idx = nl->idx;
+    int64_t bad = -1;
+#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
+    for (size_t i = 0; i < n; i++) {
+        const size_t h = half_start(nl, m->pgid, p->gid, i);
+        size_t q = m->hoff[i];
+        for (size_t s = off[i]; s < off[i + 1]; s++) {
+            const size_t j = (size_t)idx[s];
+            if (s < h && j < n)
+                continue; /* the partner computes this pair */
+            size_t t = NO_SLOT;
+            if (j < n) {
+                t = off[j];
+                while (t < off[j + 1] && (size_t)idx[t] != i)
+                    t++;
+                if (t == off[j + 1]) {
+#pragma omp critical(macro_half_fill)
+                    bad = p->gid[i];
+                    continue;
+                }
+                m->pid[t] = q;
+            }
+            m->pid[s] = q;
+            m->hpi[q] = (int32_t)i;
+            m->hpj[q] = (int32_t)j;
+            if (m->hps) {
+                m->hps[q] = s;
+                m->hprs[q] = t;
+            }
+            q++;
+        }
+    }
+    return bad;
+}
+
+static int half_prepare(struct model *m, const struct particles *p, size_t n, bool plastic,
+                        bool pairwise, struct spall_error *err)
+{
+    const struct neighbor_list *nl = m->nl;
+    size_t *cnt = malloc((n + 1) * sizeof *cnt);
+    if (!cnt)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
+#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
+    for (size_t i = 0; i < n; i++)
+        cnt[i] = half_count(nl, half_start(nl, m->pgid, p->gid, i), i, n);
+    size_t np = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t c = cnt[i];
+        cnt[i] = np;
+        np += c;
+    }
+    cnt[n] = np;
+    const size_t ns = nl->offset[n];
+    const bool pg = np > m->half_pair_cap, sg = ns > m->half_slot_cap;
+    const size_t pn = pg ? np : m->half_pair_cap, sn = sg ? ns : m->half_slot_cap;
+    bool ok = need((void **)&m->hpi, pn, sizeof *m->hpi, pg) &&
+              need((void **)&m->hpj, pn, sizeof *m->hpj, pg) &&
+              need((void **)&m->pc, pn, sizeof *m->pc, pg) &&
+              need((void **)&m->pphi, pn, sizeof *m->pphi, pg) &&
+              need((void **)&m->pok, pn, sizeof *m->pok, pg) &&
+              (!plastic || (need((void **)&m->hps, pn, sizeof *m->hps, pg) &&
+                            need((void **)&m->hprs, pn, sizeof *m->hprs, pg) &&
+                            need((void **)&m->pwp, pn, sizeof *m->pwp, pg))) &&
+              (!pairwise || need((void **)&m->pfl, 3 * pn, sizeof *m->pfl, pg)) &&
+              need((void **)&m->pid, sn, sizeof *m->pid, sg);
+    free(m->hoff);
+    m->hoff = cnt;
+    if (!ok) {
+        macro_half_free(m);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the macro-particle "
+                               "pair loop (%zu pairs)", np);
+    }
+    m->half_pair_cap = pn;
+    m->half_slot_cap = sn;
+    m->half_pairs = np;
+    int64_t bad = half_fill(m, p, n);
+    if (bad >= 0) {
+        macro_half_free(m);
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle pair list not symmetric "
+                               "(a partner of particle %lld does not list it)", (long long)bad);
+    }
+    m->half_ok = true;
+    return SPALL_OK;
+}
+
+/* Everything one force call shares between the rows. */
+struct half_ctx {
+    struct model *m;
+    const struct macro_pair *w;
+    const struct neighbor_list *nl;
+    double *const *x, *const *v, *const *f;
+    const int64_t *gid;
+    int dim;
+    size_t n;
+    bool plastic;
+    double mu, sp, g, sg, dt, rlist2;
+    uint64_t seed, step;
+};
+
+/** Distances of the nb pairs (pi[k], pj[k]): r^2 and r, with x_j - x_i as
+ *  the computing end forms it. */
+MACRO_CLONES static void half_chunk_dist(size_t nb, int dim, double *const *restrict x,
+                                         const int32_t *restrict pi,
+                                         const int32_t *restrict pj, double *restrict r2,
+                                         double *restrict r)
+{
+    const double *restrict x0 = x[0], *restrict x1 = dim > 1 ? x[1] : x[0];
+    const double *restrict x2 = dim > 2 ? x[2] : x[0];
+    for (size_t k = 0; k < nb; k++) {
+        const size_t i = (size_t)pi[k], j = (size_t)pj[k];
+        const double ex = x0[j] - x0[i];
+        const double ey = dim > 1 ? x1[j] - x1[i] : 0.0;
+        const double ez = dim > 2 ? x2[j] - x2[i] : 0.0;
+        r2[k] = ex * ex + ey * ey + ez * ez;
+        r[k] = sqrt(r2[k]);
+    }
+}
+
+/** Pair law of nb pairs at distances rd (squared r2) and elastic distances
+ *  re: phi, c = -f/r and whether the pair counts (the full loop's tests,
+ *  without short circuits for the vectoriser; NaN distances count). */
+MACRO_CLONES static void half_chunk_law(const struct macro_pair *w, size_t nb,
+                                        const double *restrict r2, const double *restrict rd,
+                                        const double *restrict re, double rlist2,
+                                        double *restrict ph, double *restrict c,
+                                        uint8_t *restrict ok)
+{
+    double fk[MACRO_CHUNK];
+    const double r_c = w->r_c;
+    macro_mie_chunk(w, nb, re, ph, fk);
+    for (size_t k = 0; k < nb; k++) {
+        c[k] = -fk[k] / rd[k]; /* force on i along dx (attraction > 0) */
+        ok[k] = (uint8_t)(!(r2[k] >= rlist2) & (r2[k] != 0.0) & !(re[k] >= r_c) &
+                          !(re[k] <= 0.0));
+    }
+}
+
+/* Pass 1 over the pairs [q0, q0 + nb), nb <= MACRO_CHUNK. */
+static void half_compute(const struct half_ctx *h, size_t q0, size_t nb)
+{
+    struct model *m = h->m;
+    const struct macro_pair *w = h->w;
+    double rr2[MACRO_CHUNK], rr[MACRO_CHUNK], rre[MACRO_CHUNK];
+    half_chunk_dist(nb, h->dim, h->x, m->hpi + q0, m->hpj + q0, rr2, rr);
+    const double *re_k = rr;
+    if (h->plastic || h->mu > 0.0) {
+        for (size_t k = 0; k < nb; k++) {
+            const size_t q = q0 + k, i = (size_t)m->hpi[q], j = (size_t)m->hpj[q];
+            const double r = rr[k];
+            double wp = 0.0, fl[3] = {0, 0, 0};
+            rre[k] = r;
+            if (!(rr2[k] >= h->rlist2 || rr2[k] == 0.0)) {
+                if (h->plastic) {
+                    const size_t s = m->hps[q], rs = m->hprs[q];
+                    rre[k] = macro_plastic_update(w, r, &m->dr0[s], &m->kappa[s],
+                                                  &m->engaged[s], &wp);
+                    if (rs != NO_SLOT) {
+                        m->dr0[rs] = m->dr0[s];
+                        m->kappa[rs] = m->kappa[s];
+                        m->engaged[rs] = m->engaged[s];
+                    }
+                }
+                if (h->mu > 0.0 && r < w->r_c) {
+                    double xr[3] = {0, 0, 0};
+                    uint64_t ga = (uint64_t)h->gid[i], gb = (uint64_t)h->gid[j];
+                    double sgn = ga < gb ? 1.0 : -1.0;
+                    if (h->sp > 0.0)
+                        macro_gauss3(h->seed, h->step, ga < gb ? ga : gb, ga < gb ? gb : ga, xr);
+                    for (int d = 0; d < h->dim; d++)
+                        fl[d] = h->mu * (h->v[d][j] - h->v[d][i]) + sgn * h->sp * xr[d];
+                }
+            }
+            if (h->plastic)
+                m->pwp[q] = wp;
+            if (h->mu > 0.0)
+                for (int d = 0; d < 3; d++)
+                    m->pfl[3 * q + (size_t)d] = fl[d];
+        }
+        re_k = rre;
+    }
+    half_chunk_law(w, nb, rr2, rr, re_k, h->rlist2, m->pphi + q0, m->pc + q0, m->pok + q0);
+}
+
+static void half_pass1(const struct half_ctx *h, size_t q0, size_t q1)
+{
+    for (size_t q = q0; q < q1; q += MACRO_CHUNK)
+        half_compute(h, q, q1 - q < MACRO_CHUNK ? q1 - q : MACRO_CHUNK);
+}
+
+#if defined(__GNUC__)
+/* Lane-wise sums: each lane is its own scalar sum, in the same order (a
+ * vector add rounds every lane as the scalar add does). */
+typedef double half_v4 __attribute__((vector_size(32)));
+typedef double half_v2 __attribute__((vector_size(16)));
+#endif
+
+/* Pass 2 of rows [i0, i1): each row's sums over all its slots in list
+ * order (energy, force and virial, then plastic work and Langevin force). */
+MACRO_CLONES static void half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
+{
+    struct model *m = h->m;
+    const struct neighbor_list *nl = h->nl;
+    const int dim = h->dim;
+    const double *x0 = h->x[0], *x1 = dim > 1 ? h->x[1] : h->x[0];
+    const double *x2 = dim > 2 ? h->x[2] : h->x[0];
+    const double *pc = m->pc, *pphi = m->pphi;
+    const uint8_t *pok = m->pok;
+    const size_t *pid = m->pid;
+    for (size_t i = i0; i < i1; i++) {
+        double vi[3] = {0, 0, 0}, fl[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++)
+            vi[d] = h->v[d][i];
+        const double xi0 = x0[i], xi1 = dim > 1 ? x1[i] : 0.0, xi2 = dim > 2 ? x2[i] : 0.0;
+        double e, fi[3], s6[6];
+#if defined(__GNUC__)
+        /* lanes: A = force xyz and energy, B = virial xx yy zz xy, C = yz zx */
+        half_v4 A = {0, 0, 0, 0}, B = {0, 0, 0, 0};
+        half_v2 C = {0, 0};
+        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+            const size_t q = pid[s], j = (size_t)nl->idx[s];
+            if (!pok[q])
+                continue;
+            const double dx = x0[j] - xi0, dy = dim > 1 ? x1[j] - xi1 : 0.0;
+            const double dz = dim > 2 ? x2[j] - xi2 : 0.0;
+            const double c = pc[q], hc = 0.5 * c;
+            A += (half_v4){c, c, c, 0.5} * (half_v4){dx, dy, dz, pphi[q]};
+            B += (half_v4){hc, hc, hc, hc} * (half_v4){dx, dy, dz, dx} *
+                 (half_v4){dx, dy, dz, dy};
+            C += (half_v2){hc, hc} * (half_v2){dy, dz} * (half_v2){dz, dx};
+        }
+        fi[0] = A[0];
+        fi[1] = A[1];
+        fi[2] = A[2];
+        e = A[3];
+        for (int k = 0; k < 4; k++)
+            s6[k] = B[k];
+        s6[4] = C[0];
+        s6[5] = C[1];
+#else
+        e = fi[0] = fi[1] = fi[2] = 0.0;
+        for (int k = 0; k < 6; k++)
+            s6[k] = 0.0;
+        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+            const size_t q = pid[s], j = (size_t)nl->idx[s];
+            if (!pok[q])
+                continue;
+            const double dx[3] = {x0[j] - xi0, dim > 1 ? x1[j] - xi1 : 0.0,
+                                  dim > 2 ? x2[j] - xi2 : 0.0};
+            const double c = pc[q];
+            e += 0.5 * pphi[q];
+            for (int d = 0; d < 3; d++)
+                fi[d] += c * dx[d];
+            for (int d = 0; d < 3; d++)
+                s6[d] += 0.5 * c * dx[d] * dx[d];
+            s6[3] += 0.5 * c * dx[0] * dx[1];
+            s6[4] += 0.5 * c * dx[1] * dx[2];
+            s6[5] += 0.5 * c * dx[2] * dx[0];
+        }
+#endif
+        double wplast = 0.0;
+        if (h->plastic)
+            for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++)
+                wplast += m->pwp[pid[s]];
+        if (h->mu > 0.0)
+            for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+                const size_t q = pid[s];
+                const bool own = (size_t)m->hpi[q] == i; /* else the partner's term, negated */
+                for (int d = 0; d < dim; d++)
+                    fl[d] = own ? fl[d] + m->pfl[3 * q + (size_t)d]
+                                : fl[d] - m->pfl[3 * q + (size_t)d];
+            }
+        if (h->g > 0.0) {
+            double xr[3] = {0, 0, 0};
+            if (h->sg > 0.0)
+                macro_gauss3(h->seed, h->step, (uint64_t)h->gid[i], UINT64_MAX, xr);
+            for (int d = 0; d < dim; d++)
+                fl[d] += -h->g * vi[d] + h->sg * xr[d];
+        }
+        double pw = 0.0;
+        for (int d = 0; d < dim; d++) {
+            h->f[d][i] += fi[d] + fl[d];
+            pw += fl[d] * vi[d];
+        }
+        m->epot[i] = e;
+        for (int k = 0; k < 6; k++)
+            m->sig[6 * i + k] = s6[k];
+        m->wdiss[i] += wplast - pw * h->dt;
+    }
+}
+
+int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct particles *p = sim->p;
+    const size_t n = p->n_owned;
+    const struct macro_pair w = m->pp;
+    const bool plastic = isfinite(w.e_y);
+    const double dt = sim_step_dt(sim) > 0.0 ? sim_step_dt(sim) : 1.0; /* this step's noise */
+    const double kT = MACRO_KB * m->temperature;
+    const double g = m->damping == MACRO_DAMP_ABSOLUTE ? m->gamma_used : 0.0;
+    const double mu = m->damping == MACRO_DAMP_PAIRWISE ? m->mu_used : 0.0;
+    if (!m->half_ok) {
+        int rc = half_prepare(m, p, n, plastic, mu > 0.0, err);
+        if (rc)
+            return rc;
+    }
+    const double rl = w.r_c + m->skin_ratio * w.r0;
+    const struct half_ctx h = {
+        .m = m, .w = &w, .nl = m->nl, .x = p->x, .v = p->v, .f = p->f, .gid = p->gid,
+        .dim = sim->dim, .n = n, .plastic = plastic, .mu = mu, .g = g, .dt = dt,
+        .sp = m->eta_cg * sqrt(2.0 * mu * kT / dt), .sg = m->eta_cg * sqrt(2.0 * g * kT / dt),
+        .rlist2 = rl * rl, .seed = sim->seed, .step = (uint64_t)m->n_calls};
+    m->n_calls++;
+    bool threads = false;
+#ifdef _OPENMP
+    threads = n >= MACRO_OMP_MIN && omp_get_max_threads() > 1;
+#endif
+    if (!threads && !m->pgid) {
+        for (size_t b = 0; b < n; b += HALF_BLOCK) {
+            const size_t be = n - b < HALF_BLOCK ? n : b + HALF_BLOCK;
+            half_pass1(&h, m->hoff[b], m->hoff[be]);
+            half_pass2(&h, b, be);
+        }
+        return SPALL_OK;
+    }
+    const size_t nq = m->half_pairs, nc = (nq + MACRO_CHUNK - 1) / MACRO_CHUNK;
+#pragma omp parallel if (threads)
+    {
+#pragma omp for schedule(static)
+        for (size_t k = 0; k < nc; k++)
+            half_pass1(&h, k * MACRO_CHUNK, k * MACRO_CHUNK + MACRO_CHUNK < nq
+                                                ? k * MACRO_CHUNK + MACRO_CHUNK : nq);
+#pragma omp for schedule(dynamic, 256)
+        for (size_t i = 0; i < n; i++)
+            half_pass2(&h, i, i + 1);
+    }
+    return SPALL_OK;
+}

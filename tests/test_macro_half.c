@@ -1,0 +1,124 @@
+/* The macro-particle pair loop that evaluates each pair once
+ * (model.pair_loop: half, src/models/macroparticle/macro_half.c) against the
+ * reference loop that evaluates every pair from both ends (pair_loop: full):
+ * positions, velocities, forces and every history value bit for bit equal,
+ * on one and two threads, with pair plasticity, pairwise and absolute
+ * Langevin forces at a temperature, the second FCC shell inside the
+ * cut-off, and neighbour-list rebuilds during the run. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "core/model.h"
+#include "tests/test_support.h"
+
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* An aluminium block (above the loop's threading threshold of 2048
+ * particles), its top pulled, its bottom fixed; %s: extra model keys. */
+static const char *const BLOCK =
+    "model: {type: macroparticle, %s}\n"
+    "materials:\n"
+    "  al: {density: 2700, atomic_mass_u: 26.98, cohesive_energy_ev: 3.39, exponents: [4, 9],\n"
+    "       debye_temperature: 428%s}\n"
+    "lattice: {type: fcc, spacing: 1.0e-3}\n"
+    "geometry:\n"
+    "  block: {box: {min: [0, 0, 0], max: [11.3e-3, 11.3e-3, 14.1e-3]}}\n"
+    "body: {geometry: block, material: al}\n"
+    "groups:\n"
+    "  top: {box: {min: [-1, -1, 13.2e-3], max: [1, 1, 1]}}\n"
+    "  bottom: {box: {min: [-1, -1, -1], max: [1, 1, 0.3e-3]}}\n"
+    "boundary_conditions:\n"
+    "  - {group: top, type: velocity, components: [z], value: 40.0}\n"
+    "  - {group: bottom, type: fixed}\n"
+    "run: {steps: 120, seed: 7}\n";
+
+struct result {
+    size_t n;
+    double *xvf;  /* x, v, f: 9 n values */
+    double hist[MODEL_HISTORY_MAX];
+    size_t nh;
+};
+
+static void run(const char *model_keys, const char *material_keys, const char *loop,
+                int threads, struct result *out)
+{
+    char keys[256], text[2048];
+    snprintf(keys, sizeof keys, "%s, pair_loop: %s", model_keys, loop);
+    snprintf(text, sizeof text, BLOCK, keys, material_keys);
+    omp_set_num_threads(threads);
+    struct sim *s = test_build_ok(text);
+    test_run_to_end(s);
+    const size_t n = s->p->n_owned;
+    out->n = n;
+    out->xvf = malloc(9 * n * sizeof(double));
+    assert_non_null(out->xvf);
+    for (int c = 0; c < 3; c++) {
+        memcpy(out->xvf + c * n, s->p->x[c], n * sizeof(double));
+        memcpy(out->xvf + (3 + c) * n, s->p->v[c], n * sizeof(double));
+        memcpy(out->xvf + (6 + c) * n, s->p->f[c], n * sizeof(double));
+    }
+    const char *names[MODEL_HISTORY_MAX];
+    out->nh = s->ops->history(s->model, s, names, out->hist);
+    for (size_t k = 0; k < out->nh; k++) {
+        if (strcmp(names[k], "neighbor_builds") == 0)
+            assert_true(out->hist[k] > 1.0); /* the list was rebuilt during the run */
+    }
+    sim_destroy(&s);
+}
+
+static void assert_same(const struct result *a, const struct result *b)
+{
+    assert_int_equal(a->n, b->n);
+    assert_memory_equal(a->xvf, b->xvf, 9 * a->n * sizeof(double));
+    assert_int_equal(a->nh, b->nh);
+    assert_memory_equal(a->hist, b->hist, a->nh * sizeof(double));
+}
+
+static void compare(const char *model_keys, const char *material_keys)
+{
+    struct result full, half1, half2;
+    run(model_keys, material_keys, "full", 1, &full);
+    assert_true(full.n >= 2048);
+    run(model_keys, material_keys, "half", 1, &half1);
+    run(model_keys, material_keys, "half", 2, &half2);
+    assert_same(&full, &half1);
+    assert_same(&full, &half2);
+    free(full.xvf);
+    free(half1.xvf);
+    free(half2.xvf);
+}
+
+/* Pair plasticity and pairwise Langevin forces (random, keyed by the
+ * pair): the plastic state and the negated partner term. */
+static void test_plastic_pairwise(void **state)
+{
+    (void)state;
+    compare("damping: pairwise, mu: 2.0e-3, temperature: 1.0e12",
+            ", yield_strain: 0.002, hardening: 0.1");
+}
+
+/* The second shell inside the cut-off (the race deck's cutoff 1.5 and
+ * taper 1.45), a thin skin, absolute Langevin forces. */
+static void test_second_shell_absolute(void **state)
+{
+    (void)state;
+    compare("cutoff: 1.5, taper: 1.45, skin: 0.05, damping: absolute, gamma: 1.0e-3, "
+            "temperature: 1.0e12",
+            "");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_plastic_pairwise),
+        cmocka_unit_test(test_second_shell_absolute),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
