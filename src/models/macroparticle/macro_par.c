@@ -147,6 +147,7 @@ static void adopt_migrated(struct model *m)
     m->nl->n = m->mbl.n;
     m->nl->offset = m->mbl.offset;
     m->nl->idx = m->mbl.partner;
+    m->half_ok = false; /* the once-per-pair arrays (macro_half.c) describe the old list */
     free(m->mbl.state);
     memset(&m->mbl, 0, sizeof m->mbl);
 }
