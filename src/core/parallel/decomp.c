@@ -298,7 +298,7 @@ int par_particle_slots(struct sim *s, struct par_slots *sl)
 }
 
 /* Every per-particle array of the engine and the registry, compacted once. */
-static int compact_particles(struct sim *s, const size_t *keep, size_t n_keep, size_t n_owned,
+int par_compact_particles(struct sim *s, const size_t *keep, size_t n_keep, size_t n_owned,
                              struct spall_error *err)
 {
     struct particles *p = s->p;
@@ -356,7 +356,7 @@ static int localize_sets(struct sim *s, struct par_decomp *d, const int *owner,
  * holds as ghosts (ascending gid), and my ghosts by owner (ascending gid: the
  * order of `keep`).  Bonds are symmetric, so both sides derive the same lists
  * without talking. */
-static int build_halo(struct par_decomp *d, const struct bond_list *bl, const int *owner,
+int par_build_halo(struct par_decomp *d, const struct bond_list *bl, const int *owner,
                       const size_t *keep, size_t n_owned, size_t n_keep, int dim,
                       struct spall_error *err)
 {
@@ -530,7 +530,7 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
         d->n_ghost = n_keep - n_owned;
         /* per particle: position and velocity (the models' force calls may
          * read a partner's drift velocity, sim_drift_velocities) */
-        rc = build_halo(d, bl, owner, keep, n_owned, n_keep, 2 * s->dim, err);
+        rc = par_build_halo(d, bl, owner, keep, n_owned, n_keep, 2 * s->dim, err);
     }
     if (!rc)
         rc = localize_sets(s, d, owner, new_of_old, err);
@@ -538,7 +538,7 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
     if (!rc)
         rc = s->ops->localize(s->model, s, keep, n_keep, n_owned, new_of_old, err);
     if (!rc)
-        rc = compact_particles(s, keep, n_keep, n_owned, err);
+        rc = par_compact_particles(s, keep, n_keep, n_owned, err);
     free(owner);
     free(new_of_old);
     free(keep);

@@ -71,6 +71,16 @@ struct Zoltan_Struct *par_zoltan_rcb(int reuse);
 /** Install the query functions over @p z (kept by address) in @p zz. */
 void par_zoltan_queries(struct Zoltan_Struct *zz, struct par_zobjs *z);
 
+/* The steps of par_distribute (decomp.c), also used by the distributed
+ * set-up (setup_dist.c) on a rank's own block and its halo: keep[0, n_keep)
+ * (old indices, the first n_owned owned), new_of_old, owner[old index]. */
+struct spall_error;
+int par_build_halo(struct par_decomp *d, const struct bond_list *bl, const int *owner,
+                   const size_t *keep, size_t n_owned, size_t n_keep, int dim,
+                   struct spall_error *err);
+int par_compact_particles(struct sim *s, const size_t *keep, size_t n_keep, size_t n_owned,
+                          struct spall_error *err);
+
 /** Release the spatial ghosts (spatial.c). */
 void par_spatial_free(struct par_decomp *d);
 
