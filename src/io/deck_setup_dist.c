@@ -32,6 +32,17 @@ static const char *unsupported(const struct deck_node *root)
         return "the thermal lattice (model.thermal)";
     if (model && model->kind == DECK_MAPPING && deck_peek(model, "quasi_static"))
         return "adaptive dynamic relaxation (model.quasi_static)";
+    /* the state-based stable time step reads the weighted volumes of the
+     * partners' partners, which the edge of a window leaves too small */
+    const struct deck_node *f = model && model->kind == DECK_MAPPING
+                                    ? deck_peek(model, "formulation") : NULL;
+    if (f && f->kind == DECK_SCALAR && strcmp(f->scalar, "bond") != 0)
+        return "state-based peridynamics (model.formulation)";
+    /* a lamina's calibration fits its constants on the built body */
+    const struct deck_node *mats = deck_peek(root, "materials");
+    for (size_t k = 0; mats && mats->kind == DECK_MAPPING && k < mats->n; k++)
+        if (mats->items[k]->kind == DECK_MAPPING && deck_peek(mats->items[k], "fiber_modulus"))
+            return "orthotropic laminae (fiber_modulus)";
     return NULL;
 }
 

@@ -78,6 +78,10 @@ int run_par_distribute(struct sim *s, FILE *log, struct spall_error *err)
         return rc;
     char buf[8192] = "";
     par_describe(s, buf, sizeof buf);
+    if (log && s->setup) /* the distributed set-up's blocks to the partition */
+        fprintf(log, "setup_partition: blocks of layers (imbalance %.4g) -> Zoltan RCB (%.4g), "
+                "%llu particles migrated\n", s->setup->imbalance[0], s->setup->imbalance[1],
+                s->setup->moved);
     if (log) {
         fputs(buf, log);
         fflush(log);

@@ -337,17 +337,6 @@ static int localize_window(struct sim *s, struct par_decomp *d, uint64_t counts[
             keep[n_keep++] = i;
         }
         n_owned = n_keep;
-        for (size_t k = 0; k < n_owned; k++)
-            for (size_t q = bl->offset[keep[k]]; q < bl->offset[keep[k] + 1]; q++) {
-                size_t j = (size_t)bl->partner[q];
-                if (owner[j] != ps->rank)
-                    new_of_old[j] = -2;
-            }
-        for (size_t j = 0; j < n; j++)
-            if (new_of_old[j] == -2) {
-                new_of_old[j] = (int64_t)n_keep;
-                keep[n_keep++] = j;
-            }
         /* pre-cut and all half-bonds of the block's rows (the halo's rows
          * are incomplete and counted by their own blocks) */
         for (size_t k = 0; k < n_owned && bonds; k++)
@@ -355,16 +344,12 @@ static int localize_window(struct sim *s, struct par_decomp *d, uint64_t counts[
                 counts[0] += (bonds->state[q] & BOND_PRECUT) != 0;
                 counts[1]++;
             }
-        d->n_owned = n_owned;
-        d->n_ghost = n_keep - n_owned;
-        rc = par_build_halo(d, bl, owner, keep, n_owned, n_keep, 2 * s->dim, err);
+        rc = par_keep_ghosts(s, d, bl, owner, new_of_old, keep, n_owned, n, &n_keep, err);
     }
     /* collective inside: every rank takes part even after a failure */
     rc = localize_sets(s, d, new_of_old, rc, err);
     if (!rc)
-        rc = s->ops->localize(s->model, s, keep, n_keep, n_owned, new_of_old, err);
-    if (!rc)
-        rc = par_compact_particles(s, keep, n_keep, n_owned, err);
+        rc = par_localize_kept(s, keep, n_keep, n_owned, new_of_old, err);
     free(owner);
     free(new_of_old);
     free(keep);
@@ -402,10 +387,20 @@ int par_setup_distribute(struct sim *s, struct spall_error *err)
     rc = rigid_par_prepare(s, err); /* impactors: contact rows of the block */
     if ((rc = par_agree(rc ? rc : sim_initial_forces(s, err), err)))
         return rc;
-    /* to the final decomposition: Zoltan RCB weighted by bond count */
+    /* to the final decomposition: Zoltan RCB weighted by bond count, its
+     * first cut across the blocks' layers (z in 3D, y in 2D), so that on 2
+     * ranks few particles move and on more the moves stay within a block
+     * pair (the migration's peak memory); the run's rebalancing keeps it */
+    struct Zoltan_Struct *zz = par_zoltan_rcb(1);
+    if (zz && s->dim > 1)
+        Zoltan_Set_Param(zz, "RCB_SET_DIRECTIONS", s->dim == 3 ? "5" : "3"); /* zxy, yzx */
+    d->zz = zz;
     double before = 1.0, after = 1.0;
     unsigned long long moved = 0;
     rc = par_rebalance(s, &before, &after, &moved, err);
+    ps->moved = moved;
+    ps->imbalance[0] = before;
+    ps->imbalance[1] = after;
     d->rebalances = 0; /* the run's rebalancing statistics start here */
     d->migrated = 0;
     d->setup_seconds = MPI_Wtime() - t0;

@@ -48,6 +48,8 @@ struct par_setup {
     int64_t *probe_gid;  /**< per probe: its particle's global id */
     double *probe_d2;    /**< per probe: squared distance to it [m^2] */
     size_t n_probes;
+    unsigned long long moved; /**< particles that left their block for the partition */
+    double imbalance[2];      /**< the blocks' work imbalance, the partition's */
 };
 
 /** A window for this rank with @p halo metres each side. */
