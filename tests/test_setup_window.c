@@ -49,14 +49,12 @@ static struct geom *region_of(const struct fill_case *c)
 static void check_case(const struct fill_case *c, double halo)
 {
     struct spall_error err = {0};
-    struct spec_holder {
-        struct lattice_spec s;
-    } sh = {{c->kind, R0, {0, 0, 0}, c->angle}};
+    const struct lattice_spec spec = {c->kind, R0, {0, 0, 0}, c->angle};
     struct geom *g = region_of(c);
     struct particles *serial = NULL;
     size_t n_serial = 0;
     assert_int_equal(particles_create(&serial, c->dim, 0, &err), SPALL_OK);
-    assert_int_equal(lattice_fill(serial, &sh.s, g, 0, &n_serial, &err), SPALL_OK);
+    assert_int_equal(lattice_fill(serial, &spec, g, 0, &n_serial, &err), SPALL_OK);
     assert_true(n_serial > 20);
     for (int size = 1; size <= 5; size++) {
         size_t *own = calloc((size_t)size, sizeof *own);
@@ -66,7 +64,7 @@ static void check_case(const struct fill_case *c, double halo)
             struct particles *p = NULL;
             assert_int_equal(particles_create(&p, c->dim, 0, &err), SPALL_OK);
             struct lattice_window w = {r, size, halo, 0, 0, 0, 0};
-            assert_int_equal(lattice_fill_window(p, &sh.s, g, 0, &w, &err), SPALL_OK);
+            assert_int_equal(lattice_fill_window(p, &spec, g, 0, &w, &err), SPALL_OK);
             assert_int_equal(w.n_total, n_serial);
             /* the window is a run of the serial order */
             assert_true(w.gid_first >= 0);
@@ -100,7 +98,6 @@ static void check_case(const struct fill_case *c, double halo)
         assert_int_equal(first[size], (int64_t)n_serial);
         for (int r = 0; r < size; r++)
             assert_int_equal(first[r], start[r]);
-        /* balanced by count: no block larger than its share plus one layer */
         free(own);
         free(first);
         free(start);

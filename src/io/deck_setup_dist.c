@@ -38,6 +38,13 @@ static const char *unsupported(const struct deck_node *root)
                                     ? deck_peek(model, "formulation") : NULL;
     if (f && f->kind == DECK_SCALAR && strcmp(f->scalar, "bond") != 0)
         return "state-based peridynamics (model.formulation)";
+    /* the corrected coefficients of a window's edge are not monotone in
+     * its missing bonds, so the minimum of the windows' stable steps is
+     * not proven to be the serial one */
+    const struct deck_node *sc = model && model->kind == DECK_MAPPING
+                                     ? deck_peek(model, "surface_correction") : NULL;
+    if (sc && sc->kind == DECK_SCALAR && strcmp(sc->scalar, "false") != 0)
+        return "surface correction (model.surface_correction)";
     /* a lamina's calibration fits its constants on the built body */
     const struct deck_node *mats = deck_peek(root, "materials");
     for (size_t k = 0; mats && mats->kind == DECK_MAPPING && k < mats->n; k++)

@@ -356,6 +356,34 @@ static int localize_window(struct sim *s, struct par_decomp *d, uint64_t counts[
     return rc;
 }
 
+/* The blocks to the final decomposition: Zoltan RCB on the reference
+ * positions weighted by 1 + bonds (as par_distribute), its first cut across
+ * the blocks' layers (z in 3D, y in 2D) so that on 2 ranks nothing moves
+ * and on more the moves stay within a block pair; the object is kept for
+ * the run's rebalancing.  The migration, which holds the moving particles
+ * twice, runs only when a particle changes rank. */
+static int setup_partition(struct sim *s, unsigned long long *moved, struct spall_error *err)
+{
+    struct par_decomp *d = s->par;
+    struct Zoltan_Struct *zz = par_zoltan_rcb(1);
+    if (zz && s->dim > 1)
+        Zoltan_Set_Param(zz, "RCB_SET_DIRECTIONS", s->dim == 3 ? "5" : "3"); /* zxy, yzx */
+    d->zz = zz;
+    int rc = zz ? SPALL_OK : spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
+    if ((rc = par_agree(rc, err)))
+        return rc;
+    struct par_zobjs z = {0, s->p->n_owned, s->p->gid, s->p->x0, s->dim, halo_list(s), 0};
+    int *dest = NULL;
+    size_t out = 0;
+    rc = par_rcb_dest(zz, &z, &dest, &out, err);
+    const uint64_t leaving = par_sum_u64((uint64_t)out);
+    *moved = 0;
+    if (!(rc = par_agree(rc, err)) && leaving)
+        rc = par_migrate(s, dest, moved, err);
+    free(dest);
+    return rc;
+}
+
 int par_setup_distribute(struct sim *s, struct spall_error *err)
 {
     struct par_setup *ps = s->setup;
@@ -387,22 +415,10 @@ int par_setup_distribute(struct sim *s, struct spall_error *err)
     rc = rigid_par_prepare(s, err); /* impactors: contact rows of the block */
     if ((rc = par_agree(rc ? rc : sim_initial_forces(s, err), err)))
         return rc;
-    /* to the final decomposition: Zoltan RCB weighted by bond count, its
-     * first cut across the blocks' layers (z in 3D, y in 2D), so that on 2
-     * ranks few particles move and on more the moves stay within a block
-     * pair (the migration's peak memory); the run's rebalancing keeps it */
-    struct Zoltan_Struct *zz = par_zoltan_rcb(1);
-    if (zz && s->dim > 1)
-        Zoltan_Set_Param(zz, "RCB_SET_DIRECTIONS", s->dim == 3 ? "5" : "3"); /* zxy, yzx */
-    d->zz = zz;
-    double before = 1.0, after = 1.0;
-    unsigned long long moved = 0;
-    rc = par_rebalance(s, &before, &after, &moved, err);
-    ps->moved = moved;
-    ps->imbalance[0] = before;
-    ps->imbalance[1] = after;
-    d->rebalances = 0; /* the run's rebalancing statistics start here */
-    d->migrated = 0;
+    ps->imbalance[0] = par_imbalance(s);
+    rc = setup_partition(s, &ps->moved, err);
+    ps->imbalance[1] = rc ? 0.0 : par_imbalance(s);
+    d->migrated = 0; /* the run's rebalancing statistics start here */
     d->setup_seconds = MPI_Wtime() - t0;
     return rc;
 }
