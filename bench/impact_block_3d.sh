@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The 4.2 M-particle 3D problem of issue 20 on 2 ranks (bench/impact_block_3d.yaml:
 # FCC cube struck by a rigid sphere), run by hand, not part of the suite:
+#     [HALF=0.072] [SETUP=distributed|replicated] \
 #     bench/impact_block_3d.sh [path/to/spall] [STEPS] [RANKS]
 # Prints per rank the peak resident memory (/usr/bin/time %M) and, sampled
 # every 0.5 s, the resident memory during the time loop (the median of the
@@ -14,7 +15,14 @@ STEPS=${2:-100}
 RANKS=${3:-2}
 HERE=$(cd "$(dirname "$0")" && pwd)
 W=$(mktemp -d /tmp/impact_block_3d.XXXX)
-sed "s/steps: 100,/steps: $STEPS,/" "$HERE/impact_block_3d.yaml" > "$W/deck.yaml"
+# HALF: half the cube's side [m] (0.072: 4.2 M particles; 0.104: 12.6 M);
+# SETUP: parallel.setup (distributed, the default, or replicated)
+HALF=${HALF:-0.072}
+sed -e "s/steps: 100,/steps: $STEPS,/" -e "s/max_particles: 1e7/max_particles: 1e8/" \
+    -e "s/0\.072/$HALF/g" -e "s/0\.144/$(python3 -c "print(2 * $HALF)")/" \
+    -e "s/0\.159/$(python3 -c "print(round(2 * $HALF + 0.015, 6))")/" \
+    "$HERE/impact_block_3d.yaml" > "$W/deck.yaml"
+[ -n "${SETUP:-}" ] && echo "parallel: {setup: $SETUP}" >> "$W/deck.yaml"
 cat > "$W/rank.sh" <<'SH'
 #!/bin/bash
 exec /usr/bin/time -f "%M %e %U" -o "mem_rank${OMPI_COMM_WORLD_RANK}.txt" "$@"

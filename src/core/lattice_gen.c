@@ -22,6 +22,7 @@
 #include "spall/error.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /** Largest lattice index from the origin (the (long) conversion must be defined). */
@@ -155,11 +156,22 @@ static double estimate_sites(const struct lattice_spec *spec, const struct geom 
     return tried > 0.0 ? candidates * hit / tried : candidates;
 }
 
-int lattice_fill(struct particles *p, const struct lattice_spec *spec, const struct geom *region,
-                 int32_t material, size_t *n_added, struct spall_error *err)
+/* The index box of a fill: everything lattice_fill needs before it
+ * enumerates (checked spacing and region, steps, rotation, index ranges). */
+struct fill_box {
+    int ldim, dim;
+    double step[3];
+    bool rotated;
+    double ca, sa;
+    long imin[3], imax[3];
+    double candidates, limit;
+};
+
+/* The checks every fill starts with; the region's bounding box. */
+static int fill_bounds(const struct particles *p, const struct lattice_spec *spec,
+                       const struct geom *region, double lo[3], double hi[3],
+                       struct spall_error *err)
 {
-    if (n_added)
-        *n_added = 0;
     int ldim = lattice_kind_dim(spec->kind);
     if (ldim == 0)
         return spall_error_set(err, SPALL_ERR_INPUT, "unknown lattice kind %d", (int)spec->kind);
@@ -170,36 +182,40 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "%s lattice is %dD but the particles are %dD",
                                lattice_kind_name(spec->kind), ldim, p->dim);
-    int dim = p->dim;
-    double lo[3], hi[3];
-    if (!geom_bounds(region, dim, lo, hi))
+    if (!geom_bounds(region, p->dim, lo, hi))
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "region is unbounded (intersect a half-space with a bounded shape)");
-    for (int d = 0; d < dim; d++)
+    for (int d = 0; d < p->dim; d++)
         if (!isfinite(lo[d]) || !isfinite(hi[d]))
             return spall_error_set(err, SPALL_ERR_INPUT, "region has a non-finite bounding box");
-    double limit = p->max_n ? (double)p->max_n : SPALL_MAX_PARTICLES_DEFAULT;
-    if (lattice_kind_is_polar(spec->kind)) {
-        size_t polar_added = 0;
-        int rc = lattice_polar_fill(p, spec, region, lo, hi, limit, material, &polar_added, err);
-        if (n_added)
-            *n_added = polar_added;
-        return rc;
-    }
+    return SPALL_OK;
+}
 
-    double step[3];
-    lattice_steps(spec, step);
-    bool rotated = ldim == 2 && spec->angle != 0.0;
-    double ca = rotated ? cos(spec->angle) : 1.0, sa = rotated ? sin(spec->angle) : 0.0;
+static int fill_box_make(const struct particles *p, const struct lattice_spec *spec,
+                         const struct geom *region, struct fill_box *b, struct spall_error *err)
+{
+    memset(b, 0, sizeof *b);
+    double lo[3], hi[3];
+    int rc = fill_bounds(p, spec, region, lo, hi, err);
+    if (rc)
+        return rc;
+    int ldim = lattice_kind_dim(spec->kind);
+    b->ldim = ldim;
+    b->dim = p->dim;
+    b->limit = p->max_n ? (double)p->max_n : SPALL_MAX_PARTICLES_DEFAULT;
+    lattice_steps(spec, b->step);
+    b->rotated = ldim == 2 && spec->angle != 0.0;
+    b->ca = b->rotated ? cos(spec->angle) : 1.0;
+    b->sa = b->rotated ? sin(spec->angle) : 0.0;
 
     /* Bounding box in the lattice frame: map the corners of the spatial box
      * (only x,y rotate; for 1D/3D lattices this is a plain shift). */
     double llo[3] = {0, 0, 0}, lhi[3] = {0, 0, 0};
-    if (rotated) {
+    if (b->rotated) {
         for (int c = 0; c < 4; c++) {
             double X = ((c & 1) ? hi[0] : lo[0]) - spec->origin[0];
             double Y = ((c & 2) ? hi[1] : lo[1]) - spec->origin[1];
-            double u = ca * X + sa * Y, v = -sa * X + ca * Y; /* R(-angle) */
+            double u = b->ca * X + b->sa * Y, v = -b->sa * X + b->ca * Y; /* R(-angle) */
             llo[0] = c ? fmin(llo[0], u) : u;
             lhi[0] = c ? fmax(lhi[0], u) : u;
             llo[1] = c ? fmin(llo[1], v) : v;
@@ -212,69 +228,201 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
         }
     }
     /* Index ranges padded by one step (the triangular row shift and rounding). */
-    long imin[3] = {0, 0, 0}, imax[3] = {0, 0, 0};
-    double candidates = 1.0;
+    b->candidates = 1.0;
     for (int d = 0; d < ldim; d++) {
-        double a = floor(llo[d] / step[d]) - 1.0, b = ceil(lhi[d] / step[d]) + 1.0;
-        if (!(b >= a)) /* an empty bounding box (disjoint intersection) */
+        double a = floor(llo[d] / b->step[d]) - 1.0, e = ceil(lhi[d] / b->step[d]) + 1.0;
+        if (!(e >= a)) /* an empty bounding box (disjoint intersection) */
             return spall_error_set(err, SPALL_ERR_INPUT,
                                    "contains no lattice site (%s, spacing %g m): its bounding box "
                                    "is empty",
                                    lattice_kind_name(spec->kind), spec->spacing);
-        if (!(fabs(a) < LATTICE_MAX_INDEX && fabs(b) < LATTICE_MAX_INDEX))
+        if (!(fabs(a) < LATTICE_MAX_INDEX && fabs(e) < LATTICE_MAX_INDEX))
             return spall_error_set(err, SPALL_ERR_INPUT,
                                    "lies %.3g lattice steps from the lattice origin (spacing %g m); "
                                    "expected at most %.0e",
-                                   fmax(fabs(a), fabs(b)), spec->spacing, LATTICE_MAX_INDEX);
-        if (!(b - a < LATTICE_MAX_CANDIDATES))
+                                   fmax(fabs(a), fabs(e)), spec->spacing, LATTICE_MAX_INDEX);
+        if (!(e - a < LATTICE_MAX_CANDIDATES))
             return spall_error_set(err, SPALL_ERR_INPUT,
                                    "region is too large for lattice spacing %g m", spec->spacing);
-        candidates *= b - a + 1.0;
-        imin[d] = (long)a;
-        imax[d] = (long)b;
+        b->candidates *= e - a + 1.0;
+        b->imin[d] = (long)a;
+        b->imax[d] = (long)e;
     }
-    if (candidates > LATTICE_MAX_CANDIDATES)
+    if (b->candidates > LATTICE_MAX_CANDIDATES)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "region would need %.3g lattice candidates at spacing %g m",
-                               candidates, spec->spacing);
+                               b->candidates, spec->spacing);
+    return SPALL_OK;
+}
 
-    /* Refuse a fill beyond the particle limit before allocating: the kept
-     * fraction of the candidates, estimated on a regular sub-grid. */
-    if ((double)p->n + candidates > limit) {
-        double est = estimate_sites(spec, region, dim, step, rotated, ca, sa, imin, imax,
-                                    candidates);
-        if ((double)p->n + est > limit)
-            return spall_error_set(err, SPALL_ERR_INPUT,
-                                   "would hold about %.3g particles at lattice spacing %g m, more "
-                                   "than the limit of %.3g (run.max_particles); coarsen the "
-                                   "spacing or raise the limit",
-                                   (double)p->n + est, spec->spacing, limit);
-    }
+static int limit_error(double n, const struct lattice_spec *spec, double limit,
+                       struct spall_error *err)
+{
+    return spall_error_set(err, SPALL_ERR_INPUT,
+                           "would hold about %.3g particles at lattice spacing %g m, more "
+                           "than the limit of %.3g (run.max_particles); coarsen the "
+                           "spacing or raise the limit",
+                           n, spec->spacing, limit);
+}
 
-    size_t added = 0;
-    for (long k = imin[2]; k <= imax[2]; k++) {
-        for (long j = imin[1]; j <= imax[1]; j++) {
-            for (long i = imin[0]; i <= imax[0]; i++) {
+/* Append the sites of the outer index layers [l0, l1) (layer = the last
+ * lattice axis's index - imin) in the generation order. */
+static int fill_layers(struct particles *p, const struct lattice_spec *spec,
+                       const struct geom *region, int32_t material, const struct fill_box *b,
+                       long l0, long l1, double limit, size_t *added, struct spall_error *err)
+{
+    const int od = b->ldim - 1; /* the outermost loop's axis */
+    long lo[3], hi[3];
+    memcpy(lo, b->imin, sizeof lo);
+    memcpy(hi, b->imax, sizeof hi);
+    lo[od] = b->imin[od] + l0;
+    hi[od] = b->imin[od] + l1 - 1;
+    for (long k = lo[2]; k <= hi[2]; k++) {
+        for (long j = lo[1]; j <= hi[1]; j++) {
+            for (long i = lo[0]; i <= hi[0]; i++) {
                 double pos[3];
-                if (!site_position(spec, step, rotated, ca, sa, i, j, k, pos) ||
-                    !geom_contains(region, pos, dim))
+                if (!site_position(spec, b->step, b->rotated, b->ca, b->sa, i, j, k, pos) ||
+                    !geom_contains(region, pos, b->dim))
                     continue;
                 int rc = lattice_append_site(p, pos, material, limit, spec->spacing, err);
-                if (rc) {
-                    if (n_added)
-                        *n_added = added;
+                if (rc)
                     return rc;
-                }
-                added++;
+                (*added)++;
             }
         }
     }
+    return SPALL_OK;
+}
+
+int lattice_fill(struct particles *p, const struct lattice_spec *spec, const struct geom *region,
+                 int32_t material, size_t *n_added, struct spall_error *err)
+{
+    if (n_added)
+        *n_added = 0;
+    struct fill_box b;
+    if (lattice_kind_is_polar(spec->kind)) {
+        double lo[3], hi[3];
+        int rc = fill_bounds(p, spec, region, lo, hi, err);
+        if (rc)
+            return rc;
+        double limit = p->max_n ? (double)p->max_n : SPALL_MAX_PARTICLES_DEFAULT;
+        size_t polar_added = 0;
+        rc = lattice_polar_fill(p, spec, region, lo, hi, limit, material, &polar_added, err);
+        if (n_added)
+            *n_added = polar_added;
+        return rc;
+    }
+    int rc = fill_box_make(p, spec, region, &b, err);
+    if (rc)
+        return rc;
+    /* Refuse a fill beyond the particle limit before allocating: the kept
+     * fraction of the candidates, estimated on a regular sub-grid. */
+    if ((double)p->n + b.candidates > b.limit) {
+        double est = estimate_sites(spec, region, b.dim, b.step, b.rotated, b.ca, b.sa, b.imin,
+                                    b.imax, b.candidates);
+        if ((double)p->n + est > b.limit)
+            return limit_error((double)p->n + est, spec, b.limit, err);
+    }
+    const int od = b.ldim - 1;
+    size_t added = 0;
+    rc = fill_layers(p, spec, region, material, &b, 0, b.imax[od] - b.imin[od] + 1, b.limit,
+                     &added, err);
     if (n_added)
         *n_added = added;
+    if (rc)
+        return rc;
     if (added == 0)
         return spall_error_set(err, SPALL_ERR_INPUT, "contains no lattice site (%s, spacing %g m)",
                                lattice_kind_name(spec->kind), spec->spacing);
     return SPALL_OK;
+}
+
+void lattice_split_layers(const size_t *cnt, size_t n_layers, int size, size_t *first)
+{
+    size_t total = 0;
+    for (size_t l = 0; l < n_layers; l++)
+        total += cnt[l];
+    /* rank r starts at the first layer whose preceding sites reach r N / P:
+     * contiguous blocks, balanced by count to within one layer */
+    size_t l = 0, acc = 0;
+    first[0] = 0;
+    for (int r = 1; r < size; r++) {
+        const double target = (double)total * (double)r / (double)size;
+        while (l < n_layers && (double)(acc + cnt[l]) <= target) {
+            acc += cnt[l];
+            l++;
+        }
+        first[r] = l;
+    }
+    first[size] = n_layers;
+}
+
+int lattice_fill_window(struct particles *p, const struct lattice_spec *spec,
+                        const struct geom *region, int32_t material, struct lattice_window *w,
+                        struct spall_error *err)
+{
+    w->gid_first = 0;
+    w->n_below = w->n_own = w->n_total = 0;
+    if (lattice_kind_is_polar(spec->kind) || w->size < 1 || w->rank < 0 || w->rank >= w->size)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "lattice window: not for %s lattices",
+                               lattice_kind_name(spec->kind));
+    struct fill_box b;
+    int rc = fill_box_make(p, spec, region, &b, err);
+    if (rc)
+        return rc;
+    const int od = b.ldim - 1;
+    const size_t nl = (size_t)(b.imax[od] - b.imin[od] + 1);
+    size_t *cnt = calloc(nl, sizeof *cnt), *first = malloc(((size_t)w->size + 1) * sizeof *first);
+    if (!cnt || !first) {
+        free(cnt);
+        free(first);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory counting lattice sites");
+    }
+    /* pass 1, on every rank: the sites of each outer layer (positions only,
+     * nothing stored), so every rank knows the whole split and each site's
+     * global id = its place in the serial generation order */
+    for (long k = b.imin[2]; k <= b.imax[2]; k++)
+        for (long j = b.imin[1]; j <= b.imax[1]; j++)
+            for (long i = b.imin[0]; i <= b.imax[0]; i++) {
+                double pos[3];
+                if (site_position(spec, b.step, b.rotated, b.ca, b.sa, i, j, k, pos) &&
+                    geom_contains(region, pos, b.dim)) {
+                    const long idx[3] = {i, j, k};
+                    cnt[idx[od] - b.imin[od]]++;
+                }
+            }
+    size_t total = 0;
+    for (size_t l = 0; l < nl; l++)
+        total += cnt[l];
+    w->n_total = total;
+    if (total == 0)
+        rc = spall_error_set(err, SPALL_ERR_INPUT, "contains no lattice site (%s, spacing %g m)",
+                             lattice_kind_name(spec->kind), spec->spacing);
+    else if ((double)p->n + (double)total > b.limit)
+        rc = limit_error((double)p->n + (double)total, spec, b.limit, err);
+    if (!rc) {
+        lattice_split_layers(cnt, nl, w->size, first);
+        /* the halo: whole layers within w->halo of the rank's own ones (a
+         * layer is step[od] thick, rotation included: rows stay rows) */
+        const size_t h = (size_t)ceil(w->halo / b.step[od]) + 1;
+        const size_t o0 = first[w->rank], o1 = first[w->rank + 1];
+        const size_t l0 = o0 > h ? o0 - h : 0, l1 = o1 + h < nl ? o1 + h : nl;
+        size_t before = 0;
+        for (size_t l = 0; l < l0; l++)
+            before += cnt[l];
+        for (size_t l = l0; l < o0; l++)
+            w->n_below += cnt[l];
+        for (size_t l = o0; l < o1; l++)
+            w->n_own += cnt[l];
+        w->gid_first = (int64_t)before;
+        size_t added = 0;
+        /* the limit is the whole body's (checked above), not this rank's */
+        rc = fill_layers(p, spec, region, material, &b, (long)l0, (long)l1, INFINITY, &added,
+                         err);
+    }
+    free(cnt);
+    free(first);
+    return rc;
 }
 
 int lattice_append_site(struct particles *p, const double pos[3], int32_t material, double limit,

@@ -63,6 +63,35 @@ int lattice_kind_dim(enum lattice_kind kind);
 int lattice_fill(struct particles *p, const struct lattice_spec *spec, const struct geom *region,
                  int32_t material, size_t *n_added, struct spall_error *err);
 
+/** Distributed set-up (core/parallel/setup_dist.h): one rank's share of a
+ *  fill.  The outer index layers of the generation (the last lattice
+ *  axis: k in 3D, rows j in 2D) are split into @p size contiguous blocks
+ *  balanced by site count; a rank generates its block plus @p halo metres
+ *  of whole layers on either side, in the serial generation order, so the
+ *  serial index of its first site is gid_first and its sites keep the
+ *  serial order. */
+struct lattice_window {
+    int rank, size;    /**< in: this rank, of how many */
+    double halo;       /**< in: halo depth [m] on either side of the block */
+    int64_t gid_first; /**< out: serial index of the first site appended */
+    size_t n_below;    /**< out: halo sites before the rank's own block */
+    size_t n_own;      /**< out: sites of the rank's own block */
+    size_t n_total;    /**< out: sites of the whole region */
+};
+
+/** Split @p n_layers layers of cnt[l] sites into @p size contiguous blocks
+ *  balanced by count: rank r holds layers [first[r], first[r+1]) (@p first
+ *  has size + 1 entries; first[0] = 0, first[size] = n_layers). */
+void lattice_split_layers(const size_t *cnt, size_t n_layers, int size, size_t *first);
+
+/** lattice_fill restricted to one rank's window (above); every rank counts
+ *  the whole region (positions only, nothing stored), so the particle
+ *  limit and "contains no lattice site" are decided on the whole body, the
+ *  same on every rank.  Not for rings and shells (SPALL_ERR_INTERNAL). */
+int lattice_fill_window(struct particles *p, const struct lattice_spec *spec,
+                        const struct geom *region, int32_t material, struct lattice_window *w,
+                        struct spall_error *err);
+
 /** Append one site at @p pos (for the fill implementations): refused once
  *  the run holds @p limit particles (run.max_particles). */
 int lattice_append_site(struct particles *p, const double pos[3], int32_t material, double limit,

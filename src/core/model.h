@@ -230,6 +230,16 @@ struct model_ops {
      *  false: the positions are those of its last build (after the
      *  partition), so the list is not a new one. */
     int (*spatial_rebuilt)(struct model *m, struct sim *sim, bool moved, struct spall_error *err);
+    /** Optional (distributed set-up, core/parallel/setup_dist.h): an upper
+     *  bound of the longest bond init will create [m], known after create;
+     *  each rank then builds its region with two such ranges of halo.
+     *  NULL: the model's set-up is replicated on every rank. */
+    double (*setup_range)(const struct model *m, const struct sim *sim);
+    /** Optional, with setup_range: after the distributed set-up's
+     *  localisation, make the model's tables of distinct per-bond values
+     *  the same on every rank (par_setup_merge_table), so that migrated
+     *  bonds name the same values.  Collective. */
+    int (*setup_tables)(struct model *m, struct sim *sim, struct spall_error *err);
 };
 
 #endif

@@ -14,6 +14,7 @@
 #include "core/particles.h"
 #include "core/model.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/setup_dist.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -66,6 +67,7 @@ void sim_destroy(struct sim **sp)
     rigid_set_destroy(&s->rigid);
     particle_contact_destroy(&s->pcontact);
     par_decomp_destroy(&s->par);
+    par_setup_destroy(&s->setup);
     free(s);
     *sp = NULL;
 }
@@ -330,6 +332,8 @@ int sim_prepare(struct sim *s, struct spall_error *err)
         return rc;
 
     s->dt_limit = fmin(s->ops->stable_dt(s->model, s), particle_contact_stable_dt(s));
+    if (s->setup) /* each rank built its window: the whole body's limit */
+        s->dt_limit = par_setup_dt_limit(s->dt_limit);
     if (!(s->dt_limit > 0.0) || !isfinite(s->dt_limit))
         return spall_error_set(err, SPALL_ERR_PHYSICS,
                                "model '%s' reports no finite stable time step (got %g s)",
@@ -381,5 +385,8 @@ int sim_prepare(struct sim *s, struct spall_error *err)
     s->step = 0;
     s->dt_rest = 0.0;
     s->n_split = 0;
-    return sim_initial_forces(s, err);
+    /* a window of the body (distributed set-up): the initial forces, BC
+     * reactions and energy need the whole body's groups and sums, so
+     * par_setup_distribute computes them once the window is partitioned */
+    return s->setup ? SPALL_OK : sim_initial_forces(s, err);
 }

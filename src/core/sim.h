@@ -159,6 +159,8 @@ struct sim {
     struct rigid_set *rigid; /**< rigid impactors / supports (core/rigid.h), may be NULL */
     struct particle_contact *pcontact; /**< particle-particle contact (core/contact_particles.h), may be NULL */
     struct par_decomp *par; /**< distributed run (core/parallel/decomp.h); NULL: serial */
+    struct par_setup *setup; /**< distributed set-up window (core/parallel/setup_dist.h);
+                                  NULL: the body built whole */
 };
 
 /** Empty context for a @p dim-dimensional run. */

@@ -19,6 +19,8 @@
 #include "io/deck_contact.h"
 #include "io/deck_impactors.h"
 #include "io/deck_inclusions.h"
+#include "io/deck_setup_dist.h"
+#include "core/parallel/setup_dist.h"
 #include "io/deck_time_function.h"
 #include "io/output.h"
 #include "io/run_balance.h"
@@ -224,7 +226,8 @@ static int fill_body(struct build_ctx *c, const struct deck_node *body,
                           lattice_kind_name(c->sim->lattice.kind));
     }
     size_t first = c->sim->p->n, added = 0;
-    rc = lattice_fill(c->sim->p, spec, g, mat, &added, err);
+    rc = c->sim->setup ? deck_setup_dist_fill(c->sim, spec, g, mat, &added, err)
+                       : lattice_fill(c->sim->p, spec, g, mat, &added, err);
     geom_destroy(&g);
     if (rc) {
         const struct deck_node *gn = deck_peek(body, "geometry");
@@ -319,7 +322,7 @@ static int parse_regions(struct build_ctx *c, const struct deck_node *root, stru
             return rc;
         }
         geom_destroy(&g);
-        if (n == 0) {
+        if (deck_setup_dist_count(c->sim, idx, n) == 0) {
             free(idx);
             return deck_error(err, r, "region contains no particle of the body");
         }
@@ -374,10 +377,11 @@ static int parse_groups(struct build_ctx *c, const struct deck_node *root, struc
             return rc;
         }
         char why[300] = ""; /* the likely cause: a region thinner than the spacing */
-        if (n == 0)
+        const bool empty = deck_setup_dist_count(c->sim, idx, n) == 0; /* the whole body's */
+        if (empty)
             setup_empty_group_hint(c->sim, g, why, sizeof why);
         geom_destroy(&g);
-        if (n == 0) {
+        if (empty) {
             free(idx);
             return deck_error_key(err, gs, gs->keys[k],
                                   "group '%s' contains no particle; %s", gs->keys[k],
@@ -529,7 +533,8 @@ static int parse_bcs(struct build_ctx *c, const struct deck_node *root, struct s
             const struct group *g = &c->sim->groups[b.group];
             /* default loaded area: each boundary particle carries the
              * cross-section of its lattice cell, volume / spacing */
-            b.area = (double)g->n * lattice_site_volume(&c->sim->lattice, c->sim->thickness) /
+            b.area = (double)deck_setup_dist_count(c->sim, g->idx, g->n) *
+                     lattice_site_volume(&c->sim->lattice, c->sim->thickness) /
                      c->sim->lattice.spacing;
             if ((rc = deck_double_pos(n, "area", false, &b.area, err)))
                 return rc;
@@ -593,6 +598,8 @@ static int parse_probes(struct build_ctx *c, const struct deck_node *root, struc
             return deck_error_key(err, n, "name", "probe name longer than %d characters",
                                   SPALL_NAME_LEN - 1);
         if ((rc = sim_add_probe(c->sim, name, pos, err)))
+            return rc;
+        if (c->sim->setup && (rc = par_setup_probe(c->sim, c->sim->n_probes - 1, err)))
             return rc;
     }
     return SPALL_OK;
@@ -678,6 +685,17 @@ static int parse_output(struct build_ctx *c, const struct deck_node *root, struc
 int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro,
                    struct spall_error *err)
 {
+    return deck_build_sim_setup(d, out, ro, false, NULL, 0, err);
+}
+
+int deck_build_sim_setup(const struct deck *d, struct sim **out, struct run_output *ro,
+                         bool distribute, char *note, size_t note_len, struct spall_error *err)
+{
+    char none[1];
+    if (!note || !note_len) {
+        note = none;
+        note_len = sizeof none;
+    }
     *out = NULL;
     memset(ro, 0, sizeof *ro);
     const struct deck_node *root = d->root;
@@ -706,7 +724,9 @@ int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro
     if ((rc = parse_lattice(&c, root, err)))
         goto fail;
     if ((rc = parse_model(&c, root, err)) || (rc = parse_materials(&c, root, err)) ||
-        (rc = parse_max_particles(&c, root, err)) || (rc = parse_body(&c, root, err)) ||
+        (rc = parse_max_particles(&c, root, err)) ||
+        (rc = deck_setup_dist_decide(c.sim, root, distribute, note, note_len, err)) ||
+        (rc = parse_body(&c, root, err)) ||
         (rc = parse_regions(&c, root, err)) ||
         (rc = deck_parse_inclusions(c.sim, root, c.geometry, c.dim, err)))
         goto fail;

@@ -6,6 +6,7 @@
 #ifndef SPALL_DECK_BUILD_H
 #define SPALL_DECK_BUILD_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "core/parallel/migrate.h"
@@ -35,5 +36,11 @@ struct run_output {
  *  (deck_build_sim does that too, so *out is ready to step). */
 int deck_build_sim(const struct deck *d, struct sim **out, struct run_output *ro,
                    struct spall_error *err);
+/** deck_build_sim for `spall run`: with @p distribute, on several MPI ranks
+ *  a deck the distributed set-up supports builds each rank's region only
+ *  (io/deck_setup_dist.h; run_par_distribute completes it); @p note (may be
+ *  NULL) gets run.log's line on the set-up (empty on one rank). */
+int deck_build_sim_setup(const struct deck *d, struct sim **out, struct run_output *ro,
+                         bool distribute, char *note, size_t note_len, struct spall_error *err);
 
 #endif

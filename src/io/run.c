@@ -217,7 +217,9 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     if (opt->threads > 0)
         omp_set_num_threads(opt->threads);
     struct setup_report setup = {0};
-    rc = deck_build_sim(d, &s, &ro, err);
+    char setup_note[256] = ""; /* distributed or replicated set-up, for run.log */
+    rc = deck_build_sim_setup(d, &s, &ro, !opt->restart, setup_note, sizeof setup_note, err);
+    rc = run_par_setup_window(s, rc, err); /* mpirun: each rank built its region */
     if (!rc)
         rc = setup_check_sim(d, s, &setup, err); /* set-ups that cannot be right */
     if ((rc = run_par_setup(s, &ro, rc, err))) { /* mpirun: refusals, agreed */
@@ -251,6 +253,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         goto done;
     if (!resume && log)
         write_log_header(log, opt, d, s, &ro);
+    if (log && setup_note[0])
+        fprintf(log, "%s\n", setup_note);
     if (run_par_root()) /* the warnings once, not per rank */
         setup_report_print(&setup, log, stderr);
     if (ck.restarted)

@@ -17,7 +17,9 @@
 int run_balance_parse(const struct deck_node *root, struct par_balance_opts *o,
                       struct spall_error *err)
 {
-    static const char *const keys[] = {"rebalance_every", "imbalance_threshold", NULL};
+    static const char *const keys[] = {"rebalance_every", "imbalance_threshold", "setup", NULL};
+    static const char *const setups[] = {"distributed", "replicated", NULL};
+    int setup = 0; /* read again by io/deck_setup_dist.c, which decides */
     o->rebalance_every = 0;
     o->imbalance_threshold = 1.1;
     const struct deck_node *m = deck_get(root, "parallel");
@@ -28,6 +30,7 @@ int run_balance_parse(const struct deck_node *root, struct par_balance_opts *o,
         (rc = deck_long(m, "rebalance_every", false, 0, 2000000000L, &o->rebalance_every, err)) ||
         (rc = deck_double(m, "imbalance_threshold", false, 1.0, INFINITY,
                           &o->imbalance_threshold, err)) ||
+        (rc = deck_enum(m, "setup", false, setups, &setup, err)) ||
         (rc = deck_check_unused(m, "parallel", keys, err)))
         return rc;
     return SPALL_OK;

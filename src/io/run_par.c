@@ -9,6 +9,7 @@
 #include "core/model.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/setup_dist.h"
 #include "core/parallel/spatial.h"
 #include "core/particles.h"
 #include "core/rigid.h"
@@ -55,17 +56,32 @@ int run_par_setup(const struct sim *s, const struct run_output *ro, int rc,
     return par_agree(rc, err);
 }
 
+int run_par_setup_window(struct sim *s, int rc, struct spall_error *err)
+{
+    if (!run_par_on())
+        return rc;
+    rc = par_agree(rc, err); /* the window's set-up is collective from here */
+    if (!rc && s->setup)
+        rc = par_agree(par_setup_distribute(s, err), err);
+    return rc;
+}
+
 int run_par_distribute(struct sim *s, FILE *log, struct spall_error *err)
 {
     if (!run_par_on())
         return SPALL_OK;
-    int rc = par_distribute(s, err);
+    /* a distributed set-up is partitioned already (run_par_setup_window) */
+    int rc = s->par ? SPALL_OK : par_distribute(s, err);
     if (!rc) /* impactors: contact rows of the owned particles */
         rc = par_agree(rigid_par_prepare(s, err), err);
     if (rc)
         return rc;
     char buf[8192] = "";
     par_describe(s, buf, sizeof buf);
+    if (log && s->setup) /* the distributed set-up's blocks to the partition */
+        fprintf(log, "setup_partition: blocks of layers (imbalance %.4g) -> Zoltan RCB (%.4g), "
+                "%llu particles migrated\n", s->setup->imbalance[0], s->setup->imbalance[1],
+                s->setup->moved);
     if (log) {
         fputs(buf, log);
         fflush(log);

@@ -31,6 +31,12 @@ int run_par_setup(const struct sim *s, const struct run_output *ro, int rc,
 int run_par_agree(int rc, struct spall_error *err);
 /** Partition and localise the prepared run and record the decomposition
  *  in @p log (rank 0; NULL elsewhere).  Serial: nothing. */
+/** After the deck is built (@p rc its status): agree on it and, when each
+ *  rank built only its region (sim->setup), partition that set-up
+ *  (core/parallel/setup_dist.h) so the run starts distributed.  Collective
+ *  under mpirun; returns @p rc on one rank. */
+int run_par_setup_window(struct sim *s, int rc, struct spall_error *err);
+
 int run_par_distribute(struct sim *s, FILE *log, struct spall_error *err);
 /** For library callers that build and step a sim themselves (`spall
  *  validate`, `spall bench`): partition the prepared @p s over the ranks

@@ -9,6 +9,7 @@
 
 #include "core/lattice_gen.h"
 #include "core/model.h"
+#include "core/parallel/decomp.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
@@ -20,9 +21,12 @@
 
 void run_summary_write(FILE *f, const struct sim *s)
 {
-    fprintf(f, "model: %s\ndimension: %d\nparticles: %zu\n", s->ops->name, s->dim, s->p->n);
+    /* the whole body's counts (a distributed set-up is partitioned here) */
+    fprintf(f, "model: %s\ndimension: %d\nparticles: %zu\n", s->ops->name, s->dim,
+            s->par ? par_n_global(s) : s->p->n);
     if (s->ops->interactions)
-        fprintf(f, "interactions: %zu\n", s->ops->interactions(s->model, s));
+        fprintf(f, "interactions: %zu\n",
+                par_interactions_global(s, s->ops->interactions(s->model, s)));
     fprintf(f, "lattice: %s, spacing %.6g m", lattice_kind_name(s->lattice.kind),
             s->lattice.spacing);
     /* 3D has no thickness; 1D a cross-section; the defaults are deck_build's */

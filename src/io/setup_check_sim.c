@@ -21,6 +21,8 @@
 #include "core/geometry.h"
 #include "core/model.h"
 #include "core/options.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/setup_dist.h"
 #include "core/particles.h"
 #include "core/rigid.h"
 #include "core/sim.h"
@@ -271,7 +273,9 @@ static int check_probes(const struct deck *d, const struct sim *s, const bool al
     for (size_t k = 0; k < s->n_probes; k++) {
         const struct probe *pr = &s->probes[k];
         double r2 = 0.0;
-        for (int c = 0; c < s->dim; c++) {
+        if (s->setup) /* each rank built its region: the whole body's nearest */
+            r2 = s->setup->probe_d2[k];
+        for (int c = 0; c < s->dim && !s->setup; c++) {
             double dd = s->p->x0[c][pr->particle] - pr->pos[c];
             r2 += dd * dd;
         }
@@ -342,7 +346,7 @@ static double frame_bytes(const struct sim *s, const struct run_output *ro)
             if (s->fields->fields[k].flags & FIELD_DEFAULT)
                 per += 8.0 * s->fields->fields[k].ncomp;
     }
-    return per * (double)s->p->n_owned;
+    return per * (double)par_n_global(s);
 }
 
 static void human_bytes(char *buf, size_t len, double b)
@@ -388,7 +392,7 @@ int setup_check_cost(const struct deck *d, const struct sim *s, const struct run
     if (yes)
         allow[check_index("cost")] = true;
     const double steps = (double)(s->n_steps > s->step ? s->n_steps - s->step : 0);
-    const double n = (double)s->p->n_owned;
+    const double n = (double)par_n_global(s); /* the whole body's */
     double frames;
     if (ro->field_interval > 0.0)
         frames = floor((s->end_time - s->t) / ro->field_interval) + 2.0;

@@ -78,6 +78,34 @@ static struct Zoltan_Struct *balancer(struct par_decomp *d)
     return zz;
 }
 
+int par_rcb_dest(struct Zoltan_Struct *zz, struct par_zobjs *z, int **dest, size_t *leaving,
+                 struct spall_error *err)
+{
+    par_zoltan_queries(zz, z);
+    int changes, ngid, nlid, nimp, nexp = 0;
+    ZOLTAN_ID_PTR imp_g = NULL, imp_l = NULL, exp_g = NULL, exp_l = NULL;
+    int *imp_p = NULL, *imp_parts = NULL, *exp_p = NULL, *exp_parts = NULL;
+    int zrc = Zoltan_LB_Partition(zz, &changes, &ngid, &nlid, &nimp, &imp_g, &imp_l, &imp_p,
+                                  &imp_parts, &nexp, &exp_g, &exp_l, &exp_p, &exp_parts);
+    const size_t n = z->hi - z->lo;
+    int rc = SPALL_OK;
+    *dest = malloc((n ? n : 1) * sizeof **dest);
+    if (zrc != ZOLTAN_OK)
+        rc = spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan RCB repartition failed (%d)", zrc);
+    else if (!*dest)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory rebalancing");
+    if (!rc) {
+        for (size_t i = 0; i < n; i++)
+            (*dest)[i] = par_rank();
+        for (int k = 0; k < nexp; k++)
+            (*dest)[exp_l[k]] = exp_parts[k];
+    }
+    *leaving = rc ? 0 : (size_t)nexp;
+    Zoltan_LB_Free_Part(&imp_g, &imp_l, &imp_p, &imp_parts);
+    Zoltan_LB_Free_Part(&exp_g, &exp_l, &exp_p, &exp_parts);
+    return rc;
+}
+
 int par_rebalance(struct sim *s, double *before, double *after, unsigned long long *moved,
                   struct spall_error *err)
 {
@@ -93,26 +121,9 @@ int par_rebalance(struct sim *s, double *before, double *after, unsigned long lo
     int rc = zz ? SPALL_OK : spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
     if ((rc = par_agree(rc, err)))
         return rc;
-    par_zoltan_queries(zz, &z);
-    int changes, ngid, nlid, nimp, nexp;
-    ZOLTAN_ID_PTR imp_g = NULL, imp_l = NULL, exp_g = NULL, exp_l = NULL;
-    int *imp_p = NULL, *imp_parts = NULL, *exp_p = NULL, *exp_parts = NULL;
-    int zrc = Zoltan_LB_Partition(zz, &changes, &ngid, &nlid, &nimp, &imp_g, &imp_l, &imp_p,
-                                  &imp_parts, &nexp, &exp_g, &exp_l, &exp_p, &exp_parts);
-    const size_t n = s->p->n_owned;
-    int *dest = malloc((n ? n : 1) * sizeof *dest);
-    if (zrc != ZOLTAN_OK)
-        rc = spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan RCB repartition failed (%d)", zrc);
-    else if (!dest)
-        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory rebalancing");
-    if (!rc) {
-        for (size_t i = 0; i < n; i++)
-            dest[i] = par_rank();
-        for (int k = 0; k < nexp; k++)
-            dest[exp_l[k]] = exp_parts[k];
-    }
-    Zoltan_LB_Free_Part(&imp_g, &imp_l, &imp_p, &imp_parts);
-    Zoltan_LB_Free_Part(&exp_g, &exp_l, &exp_p, &exp_parts);
+    int *dest = NULL;
+    size_t leaving = 0;
+    rc = par_rcb_dest(zz, &z, &dest, &leaving, err);
     if (!(rc = par_agree(rc, err)))
         rc = par_migrate(s, dest, moved, err);
     free(dest);

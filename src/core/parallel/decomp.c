@@ -485,6 +485,40 @@ void par_halo_x(struct sim *s)
     d->halo_calls++;
 }
 
+int par_keep_ghosts(struct sim *s, struct par_decomp *d, const struct bond_list *bl,
+                    const int *owner, int64_t *new_of_old, size_t *keep, size_t n_owned,
+                    size_t n, size_t *n_keep, struct spall_error *err)
+{
+    const int rank = par_rank();
+    /* ghosts: bond partners held elsewhere, marked, then taken by gid */
+    for (size_t k = 0; k < n_owned && bl; k++)
+        for (size_t q = bl->offset[keep[k]]; q < bl->offset[keep[k] + 1]; q++) {
+            size_t j = (size_t)bl->partner[q];
+            if (owner[j] != rank)
+                new_of_old[j] = -2;
+        }
+    size_t m = n_owned;
+    for (size_t j = 0; j < n; j++)
+        if (new_of_old[j] == -2) {
+            new_of_old[j] = (int64_t)m;
+            keep[m++] = j;
+        }
+    *n_keep = m;
+    d->n_owned = n_owned;
+    d->n_ghost = m - n_owned;
+    /* per particle: position and velocity (the models' force calls may
+     * read a partner's drift velocity, sim_drift_velocities) */
+    return build_halo(d, bl, owner, keep, n_owned, m, 2 * s->dim, err);
+}
+
+int par_localize_kept(struct sim *s, const size_t *keep, size_t n_keep, size_t n_owned,
+                      const int64_t *new_of_old, struct spall_error *err)
+{
+    /* the model renumbers its bond rows (which needs the old list) first */
+    int rc = s->ops->localize(s->model, s, keep, n_keep, n_owned, new_of_old, err);
+    return rc ? rc : compact_particles(s, keep, n_keep, n_owned, err);
+}
+
 static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *err)
 {
     const struct bond_list *bl = s->ops->halo_bonds ? s->ops->halo_bonds(s->model)
@@ -517,31 +551,12 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
                 keep[n_keep++] = i;
             }
         n_owned = n_keep;
-        /* ghosts: bond partners held elsewhere, marked, then taken by gid */
-        for (size_t k = 0; k < n_owned && bl; k++)
-            for (size_t q = bl->offset[keep[k]]; q < bl->offset[keep[k] + 1]; q++) {
-                size_t j = (size_t)bl->partner[q];
-                if (owner[j] != rank)
-                    new_of_old[j] = -2;
-            }
-        for (size_t j = 0; j < n; j++)
-            if (new_of_old[j] == -2) {
-                new_of_old[j] = (int64_t)n_keep;
-                keep[n_keep++] = j;
-            }
-        d->n_owned = n_owned;
-        d->n_ghost = n_keep - n_owned;
-        /* per particle: position and velocity (the models' force calls may
-         * read a partner's drift velocity, sim_drift_velocities) */
-        rc = build_halo(d, bl, owner, keep, n_owned, n_keep, 2 * s->dim, err);
+        rc = par_keep_ghosts(s, d, bl, owner, new_of_old, keep, n_owned, n, &n_keep, err);
     }
     if (!rc)
         rc = localize_sets(s, d, owner, new_of_old, err);
-    /* the model renumbers its bond rows (which needs the old list) first */
     if (!rc)
-        rc = s->ops->localize(s->model, s, keep, n_keep, n_owned, new_of_old, err);
-    if (!rc)
-        rc = compact_particles(s, keep, n_keep, n_owned, err);
+        rc = par_localize_kept(s, keep, n_keep, n_owned, new_of_old, err);
     free(owner);
     free(new_of_old);
     free(keep);

@@ -65,11 +65,30 @@ struct par_zobjs {
     int intact_only;
 };
 struct Zoltan_Struct;
+struct spall_error;
 /** A Zoltan RCB object with spall's parameters (NULL on failure); with
  *  @p reuse it keeps its cuts and starts each repartition from them. */
 struct Zoltan_Struct *par_zoltan_rcb(int reuse);
 /** Install the query functions over @p z (kept by address) in @p zz. */
 void par_zoltan_queries(struct Zoltan_Struct *zz, struct par_zobjs *z);
+/** Partition the objects of @p z with @p zz: *dest (malloc'd, one rank per
+ *  object) and *leaving, the objects this rank exports (balance.c). */
+int par_rcb_dest(struct Zoltan_Struct *zz, struct par_zobjs *z, int **dest, size_t *leaving,
+                 struct spall_error *err);
+
+/* The steps of par_distribute (decomp.c), also used by the distributed
+ * set-up (setup_dist.c) on a rank's own block and its halo: keep[0, n_keep)
+ * (old indices, the first n_owned owned), new_of_old, owner[old index]. */
+/** After the owned particles keep[0, n_owned) (new_of_old set for them, -1
+ *  for the rest of the @p n old ones): the partners of their rows held by
+ *  other ranks become the ghosts (ascending old index), *n_keep in all; the
+ *  halo plan of @p d. */
+int par_keep_ghosts(struct sim *s, struct par_decomp *d, const struct bond_list *bl,
+                    const int *owner, int64_t *new_of_old, size_t *keep, size_t n_owned,
+                    size_t n, size_t *n_keep, struct spall_error *err);
+/** The model's localize, then the engine's arrays compacted to keep. */
+int par_localize_kept(struct sim *s, const size_t *keep, size_t n_keep, size_t n_owned,
+                      const int64_t *new_of_old, struct spall_error *err);
 
 /** Release the spatial ghosts (spatial.c). */
 void par_spatial_free(struct par_decomp *d);

@@ -83,6 +83,7 @@
 #include "core/model.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/psum.h"
+#include "core/parallel/setup_dist.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -635,7 +636,9 @@ static void lattice_describe(const struct model *m, const struct sim *sim, char 
                 p, q, G, H, sd * r0, sd - 1.0, Fd, Fd / (r0 * r0), mt->E * Fd / (k1 * r0));
         }
     }
-    PUT("  stable dt = %g s (sqrt2 / max Omega, [Wang2010] Eq. 25)\n", lattice_stable_dt(m, sim));
+    /* distributed: the whole body's limit (a rank's rows alone cannot give it) */
+    PUT("  stable dt = %g s (sqrt2 / max Omega, [Wang2010] Eq. 25)\n",
+        sim->par ? sim->dt_limit : lattice_stable_dt(m, sim));
 #undef PUT
 }
 
@@ -645,6 +648,23 @@ static size_t lattice_interactions(const struct model *m, const struct sim *sim)
 {
     (void)sim;
     return m->bl ? bond_list_count(m->bl) : 0;
+}
+
+/* Distributed set-up: the longest bond init makes, the outermost shell's
+ * upper bound (layers not yet resolved: the second shell's, the most a
+ * lattice has). */
+static double lattice_setup_range(const struct model *m, const struct sim *sim)
+{
+    return 1.05 * lattice_shell_distance(&sim->lattice, m->opt.layers > 0 ? m->opt.layers : 2);
+}
+
+/* Distributed set-up: the compact rest lengths' table, the same on every rank */
+static int lattice_setup_tables(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    (void)sim;
+    struct bond_list *bl = m->bl;
+    return par_setup_merge_table((void **)&bl->rest_tab, sizeof(double), &bl->n_rest,
+                                 bl->rest_idx, bl->rest_idx ? bl->offset[bl->n] : 0, err);
 }
 
 /* for fragments (core/fragments.h) */
@@ -675,6 +695,8 @@ const struct model_ops lattice_model_ops = {
     .localize = lattice_localize,
     .migrate_arrays = lattice_migrate_arrays,
     .fixtures = lattice_fixtures,
+    .setup_range = lattice_setup_range,
+    .setup_tables = lattice_setup_tables,
 };
 
 const struct lattice_material *lattice_material_get(const struct model *m, int k)

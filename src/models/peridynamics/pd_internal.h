@@ -138,6 +138,9 @@ int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err);
 /** Bytes of the model's own arrays (families, coefficients, per-particle state)
  *  for @p n particles: the memory report of pd_describe. */
 size_t pd_model_bytes(const struct model *m, size_t n);
+/** Distributed set-up: the compact families' table the same on every rank
+ *  (pd_setup_dist.c; collective). */
+int pd_setup_tables(struct model *m, struct sim *sim, struct spall_error *err);
 
 /* pd_interface.c */
 struct deck_node;

@@ -684,10 +684,17 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
         PUT("  mixed-mode matrix failure: s0_m x sqrt(G_c(beta) / G_Ic), Benzeggagh-Kenane "
             "eta = %g\n", m->opt.bk_exponent);
     if (m->bl)
-        PUT("  stable dt = %g s (%s)\n", pd_dt(m, sim),
+        PUT("  stable dt = %g s (%s)\n", sim->par ? sim->dt_limit : pd_dt(m, sim),
             m->opt.lps ? "LPS: Gershgorin bound of the stiffness, pd_lps.c"
                        : "Silling & Askari 2005 Eq. 15");
 #undef PUT
+}
+
+/* Distributed set-up: the family radius of pd_init (its largest choice) */
+static double pd_setup_range(const struct model *m, const struct sim *sim)
+{
+    const double dx = sim->lattice.spacing;
+    return m->opt.variant == PD_PDLM ? 1.05 * dx : (m->opt.horizon_factor + 0.5) * dx;
 }
 
 static size_t pd_interactions(const struct model *m, const struct sim *sim)
@@ -725,6 +732,8 @@ const struct model_ops peridynamics_model_ops = {
     .describe = pd_describe,
     .destroy = pd_destroy,
     .interactions = pd_interactions,
+    .setup_range = pd_setup_range,
+    .setup_tables = pd_setup_tables,
     .damping = pd_damping,
     .localize = pd_localize,
     .migrate_arrays = pd_migrate_arrays,

@@ -1,0 +1,468 @@
+/**
+ * @file setup_dist.c
+ * @brief Distributed set-up: each rank builds its region (setup_dist.h).
+ */
+#include "core/parallel/setup_dist.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/decomp_internal.h"
+#include "core/parallel/migrate.h"
+#include "core/parallel/psum.h"
+
+#include "core/bond_list.h"
+#include "core/distinct.h"
+#include "core/lattice_gen.h"
+#include "core/model.h"
+#include "core/parallel/comm.h"
+#include "core/particles.h"
+#include "core/rigid.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef SPALL_HAVE_MPI
+#include <mpi.h>
+#include <zoltan.h>
+#endif
+
+int par_setup_create(struct par_setup **out, double halo, struct spall_error *err)
+{
+    *out = NULL;
+    struct par_setup *ps = calloc(1, sizeof *ps);
+    const int size = par_size();
+    if (ps)
+        ps->own_first = calloc((size_t)size + 1, sizeof *ps->own_first);
+    if (!ps || !ps->own_first) {
+        free(ps);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the distributed set-up");
+    }
+    ps->rank = par_rank();
+    ps->size = size;
+    ps->halo = halo;
+    *out = ps;
+    return SPALL_OK;
+}
+
+void par_setup_destroy(struct par_setup **pps)
+{
+    if (!pps || !*pps)
+        return;
+    free((*pps)->own_first);
+    free((*pps)->probe_owner);
+    free((*pps)->probe_gid);
+    free((*pps)->probe_d2);
+    free(*pps);
+    *pps = NULL;
+}
+
+void par_setup_offsets(const size_t *n_own, int size, int64_t *own_first)
+{
+    own_first[0] = 0;
+    for (int r = 0; r < size; r++)
+        own_first[r + 1] = own_first[r] + (int64_t)n_own[r];
+}
+
+/* The rank whose block holds global id @p g (blocks ascend with the rank). */
+static int block_of(const struct par_setup *ps, int64_t g)
+{
+    int a = 0, b = ps->size - 1;
+    while (a < b) { /* the last r with own_first[r] <= g */
+        int mid = (a + b + 1) / 2;
+        if (ps->own_first[mid] <= g)
+            a = mid;
+        else
+            b = mid - 1;
+    }
+    return a;
+}
+
+static bool in_block(const struct par_setup *ps, size_t i)
+{
+    return i >= ps->lo && i < ps->lo + ps->n_own;
+}
+
+double par_setup_dt_limit(double local)
+{
+    return par_min_double(local);
+}
+
+#ifdef SPALL_HAVE_MPI
+
+int par_setup_filled(struct sim *s, const struct lattice_window *w, struct spall_error *err)
+{
+    struct par_setup *ps = s->setup;
+    struct particles *p = s->p;
+    for (size_t i = 0; i < p->n; i++)
+        p->gid[i] = w->gid_first + (int64_t)i;
+    ps->gid_first = w->gid_first;
+    ps->lo = w->n_below;
+    ps->n_own = w->n_own;
+    /* the offsets from the counts (an exclusive prefix sum over the ranks)
+     * must be where the generator put the rank's first own site */
+    uint64_t mine = (uint64_t)w->n_own, before = 0, all = 0;
+    MPI_Exscan(&mine, &before, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    if (ps->rank == 0)
+        before = 0; /* MPI_Exscan leaves rank 0's result undefined */
+    size_t *counts = malloc((size_t)ps->size * sizeof *counts);
+    uint64_t *c64 = malloc((size_t)ps->size * sizeof *c64);
+    int rc = SPALL_OK;
+    if (!counts || !c64)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the distributed set-up");
+    MPI_Allgather(&mine, 1, MPI_UINT64_T, c64, 1, MPI_UINT64_T, MPI_COMM_WORLD);
+    if (!rc) {
+        for (int r = 0; r < ps->size; r++)
+            counts[r] = (size_t)c64[r];
+        par_setup_offsets(counts, ps->size, ps->own_first);
+        all = (uint64_t)ps->own_first[ps->size];
+        if ((int64_t)before != ps->own_first[ps->rank] ||
+            (int64_t)before != w->gid_first + (int64_t)w->n_below || all != w->n_total)
+            rc = spall_error_set(err, SPALL_ERR_INTERNAL,
+                                 "distributed set-up: rank %d's block starts at global id %lld "
+                                 "by the counts, %lld by the generator (%llu of %zu sites)",
+                                 ps->rank, (long long)before,
+                                 (long long)(w->gid_first + (int64_t)w->n_below),
+                                 (unsigned long long)all, w->n_total);
+    }
+    free(counts);
+    free(c64);
+    return par_agree(rc, err);
+}
+
+size_t par_setup_count(const struct sim *s, const size_t *idx, size_t n)
+{
+    uint64_t m = 0;
+    for (size_t q = 0; q < n; q++)
+        m += in_block(s->setup, idx[q]);
+    return (size_t)par_sum_u64(m);
+}
+
+int par_setup_probe(struct sim *s, size_t k, struct spall_error *err)
+{
+    struct par_setup *ps = s->setup;
+    struct probe *pr = &s->probes[k];
+    if (k >= ps->n_probes) {
+        int *o = realloc(ps->probe_owner, (k + 1) * sizeof *o);
+        if (o)
+            ps->probe_owner = o;
+        int64_t *g = realloc(ps->probe_gid, (k + 1) * sizeof *g);
+        if (g)
+            ps->probe_gid = g;
+        double *r2 = realloc(ps->probe_d2, (k + 1) * sizeof *r2);
+        if (r2)
+            ps->probe_d2 = r2;
+        if (!o || !g || !r2)
+            return par_agree(spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for probes"),
+                             err);
+        ps->n_probes = k + 1;
+    }
+    /* the serial search over this rank's block: the first of the nearest */
+    double best = INFINITY;
+    size_t at = 0;
+    for (size_t i = ps->lo; i < ps->lo + ps->n_own; i++) {
+        double d2 = 0.0;
+        for (int d = 0; d < s->dim; d++) {
+            double dx = s->p->x0[d][i] - pr->pos[d];
+            d2 += dx * dx;
+        }
+        if (d2 < best) {
+            best = d2;
+            at = i;
+        }
+    }
+    const double gbest = par_min_double(best);
+    const int64_t g = par_min_i64(ps->n_own && best == gbest ? s->p->gid[at] : INT64_MAX);
+    ps->probe_gid[k] = g;
+    ps->probe_d2[k] = gbest;
+    ps->probe_owner[k] = block_of(ps, g);
+    const int64_t loc = g - ps->gid_first;
+    pr->particle = loc >= 0 && (size_t)loc < s->p->n ? (size_t)loc : SIZE_MAX;
+    return SPALL_OK;
+}
+
+int par_setup_merge_table(void **table, size_t key_size, size_t *n_rows, uint16_t *idx,
+                          size_t n_idx, struct spall_error *err)
+{
+    const int size = par_size(), rank = par_rank();
+    /* a table on every rank or on none: the storage must agree */
+    const int64_t have = *table ? 1 : 0;
+    const int64_t lo = par_min_i64(have), hi = -par_min_i64(-have);
+    if (lo != hi)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "distributed set-up: the ranks' compact bond tables disagree "
+                               "(one rank's window holds more than 65 536 distinct values); "
+                               "set parallel.setup: replicated");
+    if (!have)
+        return SPALL_OK;
+    int mine = (int)(*n_rows * key_size);
+    int *cnt = malloc((size_t)size * sizeof *cnt), *dsp = malloc((size_t)size * sizeof *dsp);
+    uint16_t *remap = malloc((*n_rows ? *n_rows : 1) * sizeof *remap);
+    int rc = (cnt && dsp && remap) ? SPALL_OK
+                                   : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
+    if ((rc = par_agree(rc, err))) {
+        free(cnt);
+        free(dsp);
+        free(remap);
+        return rc;
+    }
+    MPI_Allgather(&mine, 1, MPI_INT, cnt, 1, MPI_INT, MPI_COMM_WORLD);
+    size_t total = 0;
+    for (int r = 0; r < size; r++) {
+        dsp[r] = (int)total;
+        total += (size_t)cnt[r];
+    }
+    unsigned char *all = malloc(total ? total : 1);
+    rc = all ? SPALL_OK : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
+    if (!(rc = par_agree(rc, err)))
+        MPI_Allgatherv(*table, mine, MPI_BYTE, all, cnt, dsp, MPI_BYTE, MPI_COMM_WORLD);
+    struct distinct16 *d = NULL;
+    if (!rc)
+        rc = distinct16_create(&d, key_size, 65536u, err);
+    /* the same walk on every rank: the same union, row for row */
+    for (int r = 0; !rc && r < size; r++)
+        for (size_t q = 0; !rc && q < (size_t)cnt[r] / key_size; q++) {
+            int32_t row = distinct16_add(d, all + (size_t)dsp[r] + q * key_size);
+            if (row < 0)
+                rc = spall_error_set(err, SPALL_ERR_INPUT,
+                                     "distributed set-up: more than 65 536 distinct bond values "
+                                     "over all ranks; set parallel.setup: replicated");
+            else if (r == rank)
+                remap[q] = (uint16_t)row;
+        }
+    size_t nm = 0;
+    void *merged = rc ? NULL : distinct16_take_table(d, &nm);
+    if (!rc && !merged)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
+    if (!rc) {
+        for (size_t k = 0; k < n_idx; k++)
+            idx[k] = remap[idx[k]];
+        free(*table);
+        *table = merged;
+        *n_rows = nm;
+    }
+    distinct16_destroy(&d);
+    free(all);
+    free(cnt);
+    free(dsp);
+    free(remap);
+    return rc;
+}
+
+/* Groups keep the members of the rank's block, each keyed by its position
+ * in the serial list (the members of lower blocks come first); probes go
+ * to the rank whose block holds them. */
+static int localize_sets(struct sim *s, struct par_decomp *d, const int64_t *new_of_old,
+                         int failed, struct spall_error *err)
+{
+    const struct par_setup *ps = s->setup;
+    d->n_groups = s->n_groups;
+    d->group_n = calloc(s->n_groups + 1, sizeof *d->group_n);
+    d->group_key = calloc(s->n_groups + 1, sizeof *d->group_key);
+    d->probe_owner = calloc(s->n_probes + 1, sizeof *d->probe_owner);
+    d->probe_local = calloc(s->n_probes + 1, sizeof *d->probe_local);
+    int rc = failed;
+    if (!rc && (!d->group_n || !d->group_key || !d->probe_owner || !d->probe_local))
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising groups");
+    for (size_t g = 0; g < s->n_groups; g++) {
+        struct group *gr = &s->groups[g];
+        uint64_t own = 0, before = 0, total = 0;
+        for (size_t q = 0; q < gr->n; q++)
+            own += in_block(ps, gr->idx[q]);
+        MPI_Exscan(&own, &before, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+        MPI_Allreduce(&own, &total, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+        if (ps->rank == 0)
+            before = 0;
+        if (rc)
+            continue; /* still in every collective */
+        d->group_n[g] = (size_t)total;
+        d->group_key[g] = malloc((gr->n ? gr->n : 1) * sizeof *d->group_key[g]);
+        if (!d->group_key[g]) {
+            rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising groups");
+            continue;
+        }
+        size_t m = 0;
+        for (size_t q = 0; q < gr->n; q++) {
+            size_t i = gr->idx[q];
+            if (!in_block(ps, i))
+                continue;
+            gr->idx[m] = (size_t)new_of_old[i];
+            d->group_key[g][m] = (int64_t)(before + m);
+            m++;
+        }
+        gr->n = m;
+    }
+    for (size_t k = 0; !rc && k < s->n_probes; k++) {
+        d->probe_owner[k] = ps->probe_owner[k];
+        size_t i = s->probes[k].particle;
+        d->probe_local[k] = ps->probe_owner[k] == ps->rank ? (size_t)new_of_old[i] : 0;
+        s->probes[k].particle = d->probe_local[k];
+    }
+    return rc;
+}
+
+static const struct bond_list *halo_list(const struct sim *s)
+{
+    return s->ops->halo_bonds ? s->ops->halo_bonds(s->model)
+           : s->ops->bonds    ? s->ops->bonds(s->model)
+                              : NULL;
+}
+
+/* The window as a decomposition: the block owned, its rows' partners in
+ * other blocks as ghosts; the whole body's bond counts. */
+static int localize_window(struct sim *s, struct par_decomp *d, uint64_t counts[2],
+                           struct spall_error *err)
+{
+    const struct par_setup *ps = s->setup;
+    const struct bond_list *bl = halo_list(s);
+    const struct bond_list *bonds = s->ops->bonds ? s->ops->bonds(s->model) : bl;
+    if (!bl)
+        return spall_error_set(err, SPALL_ERR_INTERNAL,
+                               "distributed set-up: model '%s' has no bond list", s->ops->name);
+    const size_t n = s->p->n;
+    int *owner = malloc((n ? n : 1) * sizeof *owner);
+    int64_t *new_of_old = malloc((n ? n : 1) * sizeof *new_of_old);
+    size_t *keep = malloc((n ? n : 1) * sizeof *keep);
+    int rc = SPALL_OK;
+    if (!owner || !new_of_old || !keep)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory partitioning");
+    size_t n_keep = 0, n_owned = 0;
+    if (!rc) {
+        for (size_t i = 0; i < n; i++) {
+            owner[i] = in_block(ps, i) ? ps->rank : block_of(ps, ps->gid_first + (int64_t)i);
+            new_of_old[i] = -1;
+        }
+        for (size_t i = ps->lo; i < ps->lo + ps->n_own; i++) {
+            new_of_old[i] = (int64_t)n_keep;
+            keep[n_keep++] = i;
+        }
+        n_owned = n_keep;
+        /* pre-cut and all half-bonds of the block's rows (the halo's rows
+         * are incomplete and counted by their own blocks) */
+        for (size_t k = 0; k < n_owned && bonds; k++)
+            for (size_t q = bonds->offset[keep[k]]; q < bonds->offset[keep[k] + 1]; q++) {
+                counts[0] += (bonds->state[q] & BOND_PRECUT) != 0;
+                counts[1]++;
+            }
+        rc = par_keep_ghosts(s, d, bl, owner, new_of_old, keep, n_owned, n, &n_keep, err);
+    }
+    /* collective inside: every rank takes part even after a failure */
+    rc = localize_sets(s, d, new_of_old, rc, err);
+    if (!rc)
+        rc = par_localize_kept(s, keep, n_keep, n_owned, new_of_old, err);
+    free(owner);
+    free(new_of_old);
+    free(keep);
+    return rc;
+}
+
+/* The blocks to the final decomposition: Zoltan RCB on the reference
+ * positions weighted by 1 + bonds (as par_distribute), its first cut across
+ * the blocks' layers (z in 3D, y in 2D) so that on 2 ranks nothing moves
+ * and on more the moves stay within a block pair; the object is kept for
+ * the run's rebalancing.  The migration, which holds the moving particles
+ * twice, runs only when a particle changes rank. */
+static int setup_partition(struct sim *s, unsigned long long *moved, struct spall_error *err)
+{
+    struct par_decomp *d = s->par;
+    struct Zoltan_Struct *zz = par_zoltan_rcb(1);
+    if (zz && s->dim > 1)
+        Zoltan_Set_Param(zz, "RCB_SET_DIRECTIONS", s->dim == 3 ? "5" : "3"); /* zxy, yzx */
+    d->zz = zz;
+    int rc = zz ? SPALL_OK : spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
+    if ((rc = par_agree(rc, err)))
+        return rc;
+    struct par_zobjs z = {0, s->p->n_owned, s->p->gid, s->p->x0, s->dim, halo_list(s), 0};
+    int *dest = NULL;
+    size_t out = 0;
+    rc = par_rcb_dest(zz, &z, &dest, &out, err);
+    const uint64_t leaving = par_sum_u64((uint64_t)out);
+    *moved = 0;
+    if (!(rc = par_agree(rc, err)) && leaving)
+        rc = par_migrate(s, dest, moved, err);
+    free(dest);
+    return rc;
+}
+
+int par_setup_distribute(struct sim *s, struct spall_error *err)
+{
+    struct par_setup *ps = s->setup;
+    struct par_decomp *d = calloc(1, sizeof *d);
+    if (!d)
+        return par_agree(spall_error_set(err, SPALL_ERR_NOMEM, "out of memory"), err);
+    double t0 = MPI_Wtime();
+    uint64_t counts[2] = {0, 0};
+    int rc = localize_window(s, d, counts, err);
+    par_sum_u64_array(counts, 2);
+    d->n_global = (size_t)ps->own_first[ps->size];
+    d->interactions = s->ops->interactions ? (size_t)(counts[1] / 2) : 0;
+    float ver = 0.0f;
+    if (!rc && Zoltan_Initialize(0, NULL, &ver) != ZOLTAN_OK)
+        rc = spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Initialize failed");
+    if ((rc = par_agree(rc, err))) {
+        par_decomp_destroy(&d);
+        return rc;
+    }
+    s->par = d;
+    if (s->ops->setup_tables) /* the same rows of distinct values everywhere */
+        rc = par_agree(s->ops->setup_tables(s->model, s, err), err);
+    if (rc)
+        return rc;
+    s->n_precut = (size_t)(counts[0] / 2);
+    /* the initial forces, BC reactions and energy account (sim_prepare
+     * leaves them to here): the whole body's group sizes and sums, and the
+     * block's rows are the serial ones, so this is the serial set-up */
+    rc = rigid_par_prepare(s, err); /* impactors: contact rows of the block */
+    if ((rc = par_agree(rc ? rc : sim_initial_forces(s, err), err)))
+        return rc;
+    ps->imbalance[0] = par_imbalance(s);
+    rc = setup_partition(s, &ps->moved, err);
+    ps->imbalance[1] = rc ? 0.0 : par_imbalance(s);
+    d->migrated = 0; /* the run's rebalancing statistics start here */
+    d->setup_seconds = MPI_Wtime() - t0;
+    return rc;
+}
+
+#else /* no MPI: never reached (the set-up distributes only on several ranks) */
+
+int par_setup_filled(struct sim *s, const struct lattice_window *w, struct spall_error *err)
+{
+    (void)s;
+    (void)w;
+    return spall_error_set(err, SPALL_ERR_INTERNAL, "distributed set-up in a build without MPI");
+}
+
+size_t par_setup_count(const struct sim *s, const size_t *idx, size_t n)
+{
+    (void)s;
+    (void)idx;
+    return n;
+}
+
+int par_setup_probe(struct sim *s, size_t k, struct spall_error *err)
+{
+    (void)s;
+    (void)k;
+    (void)err;
+    return SPALL_OK;
+}
+
+int par_setup_merge_table(void **table, size_t key_size, size_t *n_rows, uint16_t *idx,
+                          size_t n_idx, struct spall_error *err)
+{
+    (void)table;
+    (void)key_size;
+    (void)n_rows;
+    (void)idx;
+    (void)n_idx;
+    (void)err;
+    return SPALL_OK;
+}
+
+int par_setup_distribute(struct sim *s, struct spall_error *err)
+{
+    (void)s;
+    return spall_error_set(err, SPALL_ERR_INTERNAL, "distributed set-up in a build without MPI");
+}
+
+#endif
