@@ -6,7 +6,7 @@
  * previous step; these tests fail when the LPS path leaves it at zero (the
  * Rayleigh estimate then divides this step's whole force, not its change,
  * by m dt v, and the damping sat at its 0.2 / dt cap, ~5x critical, so
- * the bar crept: -22 % of the strain after 700 steps).  Checked after 800
+ * the bar crept: -15 % of the strain after 800 steps).  Checked after 800
  * steps: the centre-line strain between 25 % and 75 % of the length against
  * sigma / E (uniaxial stress), the residual kinetic energy, and the damping
  * of the transient against 2 omega_1 of the bar's lowest mode.
