@@ -18,32 +18,14 @@
 
 #include <cmocka.h>
 
-#include "core/fields.h"
+#include "tests/test_support.h"
+
 #include "core/mathconst.h"
-#include "core/model.h"
-#include "core/particles.h"
-#include "core/sim.h"
-#include "io/deck.h"
-#include "io/deck_build.h"
-#include "spall/error.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int build(const char *yaml, struct sim **s, struct spall_error *err)
-{
-    struct deck *d = NULL;
-    *s = NULL;
-    int rc = deck_load_string(&d, "test", yaml, err);
-    if (rc)
-        return rc;
-    struct run_output ro;
-    rc = deck_build_sim(d, s, &ro, err);
-    deck_destroy(&d);
-    return rc;
-}
 
 /* 40 x 8 mm bar, dx = 1 mm, surface correction on (its free edges keep E) */
 static void relax_bar(const char *formulation, double *strain_err, double *ke_ratio,
@@ -67,12 +49,9 @@ static void relax_bar(const char *formulation, double *strain_err, double *ke_ra
              formulation, E, strcmp(formulation, "eps") == 0 ? ", yield_stress: 1.0e9" : "",
              L + 1e-5, L - 0.0005, sigma);
     struct spall_error err = {0};
-    struct sim *s = NULL;
-    int rc = build(deck, &s, &err);
-    if (rc)
-        fprintf(stderr, "%s\n", err.msg);
-    assert_int_equal(rc, 0);
+    struct sim *s = test_build_ok(deck);
     struct particles *p = s->p;
+    int rc = SPALL_OK;
     /* critically damped, the bar settles in ~800 steps (dt = 0.54 us,
      * T_1 = 160 us); the damping of the transient is sampled half-way */
     for (int k = 0; k < 800 && !rc; k++) {
