@@ -42,7 +42,6 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include <string.h>
 
 int pd_plane_init(struct model *m, struct sim *sim, struct spall_error *err)
 {
