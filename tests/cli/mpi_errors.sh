@@ -43,17 +43,6 @@ refused() { # name deck-text expected-substring
         cat stderr.txt; fail=1
     fi
 }
-refused "pd fiber_plane" "model: {type: peridynamics, variant: pdlm, matrix_crack: fiber_plane}
-materials:
-  t700: {density: 1550, fiber_modulus: 130.0e9, transverse_modulus: 8.5e9, shear_modulus: 4.5e9,
-         major_poisson_ratio: 0.3, matrix_fracture_energy: 300, fiber_fracture_energy: 60.0e3,
-         fiber_angle: 0}
-lattice: {type: triangular, spacing: 1.0e-3, thickness: 1.0e-4}
-geometry:
-  plate: {box: {min: [0, 0], max: [0.01, 0.01]}}
-body: {geometry: plate, material: t700}
-run: {steps: 5}
-" "matrix_crack: fiber_plane is not distributed yet"
 $launch "$spall" penetrate --help >stdout.txt 2>stderr.txt; rc=$?
 if [ $rc -ne 2 ] || [ "$(wc -l < stderr.txt)" -ne 1 ] || ! grep -q "does not run distributed" stderr.txt; then
     echo "FAIL penetrate on 2 ranks: exit $rc"; cat stderr.txt; fail=1

@@ -15,6 +15,9 @@
 #  - an orthotropic PDLM lamina (fibers at 30 deg) with mixed-mode matrix
 #    failure (a ghost's factor on the matrix critical stretch comes with the
 #    halo) pulled apart across a pre-crack;
+#  - the same lamina with `matrix_crack: fiber_plane` (a stretch-broken
+#    matrix bond breaks its zigzag twins, named by gid through the halo when
+#    the twin's other end is another rank's; pd_plane.c);
 # each without mpirun and on 2 ranks, and on 3 with particles migrating (a
 # repartition every 20 steps):
 # history.csv, fields.xdmf byte for byte, every frame under h5diff.
@@ -58,7 +61,10 @@ boundary_conditions:
 run: {steps: 400}
 output: {field_every: 200, history_every: 10}
 YAML
-for d in eps adr ang lam; do
+sed 's/^model: {type: peridynamics, variant: pdlm}$/model: {type: peridynamics, variant: pdlm, matrix_crack: fiber_plane}/' \
+    lam.yaml > lamfp.yaml
+grep -q "matrix_crack: fiber_plane" lamfp.yaml || { echo "FAIL: cannot make lamfp.yaml"; exit 1; }
+for d in eps adr ang lam lamfp; do
     serial $d
 done
 # the references must break bonds, flow plastically and damp, else the test proves little
@@ -73,19 +79,23 @@ ang_broken=$(col ang_serial/history.csv bonds_broken)
 awk -v b="$ang_broken" 'BEGIN {exit !(b > 50)}' || { echo "FAIL ang broke $ang_broken bonds"; fail=1; }
 lam_broken=$(col lam_serial/history.csv bonds_broken)
 awk -v b="$lam_broken" 'BEGIN {exit !(b > 50)}' || { echo "FAIL lam broke $lam_broken bonds"; fail=1; }
+# the twins break too: more bonds than the plain stretch rule (195 against 118)
+fp_broken=$(col lamfp_serial/history.csv bonds_broken)
+awk -v b="$fp_broken" -v l="$lam_broken" 'BEGIN {exit !(b > l + 30)}' ||
+    { echo "FAIL lamfp broke $fp_broken bonds (plain rule: $lam_broken)"; fail=1; }
 counts="${SPALL_MPI_RANK_COUNTS:-2}"
 for n in $counts; do
-    for d in eps adr ang lam; do
+    for d in eps adr ang lam lamfp; do
         ranks $d "$n"
     done
 done
 # the plastic extension and force states per half-bond, ADR's last two
-# forces per particle, the angles per half-bond and the mode-mix factors
-# travel with migrating particles: still bitwise
-for d in eps adr ang lam; do
+# forces per particle, the angles per half-bond, the mode-mix factors and
+# the twin slots travel with migrating particles: still bitwise
+for d in eps adr ang lam lamfp; do
     rebalanced $d 3
 done
 [ $fail -eq 0 ] && echo "mpi_pd_more: identical on $counts ranks (eps: $eps_broken bonds broken," \
     "$yielded particles yielded; adr: final damping $adr_c 1/s; angular: $ang_broken," \
-    "lamina: $lam_broken bonds broken; rebalanced on 3)"
+    "lamina: $lam_broken bonds broken, $fp_broken with fiber_plane; rebalanced on 3)"
 [ $fail -eq 0 ]

@@ -239,13 +239,6 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
             pd_adr_update(m, sim);
         return SPALL_OK;
     }
-    if (m->opt.quasi == PD_QS_ADR) {
-        /* the engine zeroed f: keep the model's part of step n-1 for ADR
-         * (f_prev[d][2 i] this step's, [2 i + 1] the previous one's) */
-        for (int d = 0; d < p->dim; d++)
-            for (size_t i = 0; i < n; i++)
-                m->f_prev[d][2 * i + 1] = m->f_prev[d][2 * i];
-    }
     switch (p->dim) {
     case 1:
         PD_KERNEL_SPLIT(1)
@@ -290,6 +283,9 @@ void pd_adr_update(struct model *m, const struct sim *sim)
     for (int d = 0; d < p->dim; d++) {
         double *fc = m->f_prev[d]; /* [2 i]: current, stored; [2 i + 1]: previous */
         for (size_t i = 0; i < n; i++) {
+            /* step n-1's force becomes the previous one here, for every
+             * formulation (LPS/EPS return before the bond-based kernel) */
+            fc[2 * i + 1] = fc[2 * i];
             double fi = p->f[d][i];
             double u = p->x[d][i] - p->x0[d][i];
             double v = p->v[d][i];

@@ -97,8 +97,11 @@ struct model {
     double *mm_beta;         /**< mode-II energy share beta_i of the last step */
     uint8_t mm_type[256];    /**< 1: matrix bond of a lamina with G_IIc != G_Ic */
     /* fiber-parallel matrix cracks (pd_plane.c) */
-    size_t *twin;            /**< per half-bond: zigzag neighbour on the same interface */
+    uint8_t *twin;           /**< per half-bond: row slot of its zigzag neighbour on the
+                                  same interface (PD_NO_TWIN: none) */
     uint8_t *fresh;          /**< per half-bond: broken by stretch this step */
+    double *tw_gid;          /**< per particle, PD_PLANE_SLOTS: gids its twins name (scratch) */
+    size_t tw_cap;           /**< particles tw_gid holds */
     bool mixed;              /**< some bond type uses the mixed-mode threshold */
     bool ortho;              /**< some material is orthotropic */
     struct pd_lps lps;       /**< formulation lps (pd_lps.c) */
@@ -177,10 +180,13 @@ void pd_particle_eval(const struct model *m, const struct sim *sim, size_t i, do
 int pd_mixed_init(struct model *m, struct sim *sim, struct spall_error *err);
 
 /* pd_plane.c */
+#define PD_NO_TWIN 255u   /* m->twin: the half-bond has no twin */
+#define PD_PLANE_SLOTS 6  /* twins a particle names per step: a PDLM family has 6 bonds */
 /** Twin table of the fiber-parallel matrix-crack rule (no-op when off). */
 int pd_plane_init(struct model *m, struct sim *sim, struct spall_error *err);
-/** Break the twins of this step's stretch-broken matrix bonds (serial). */
-void pd_plane_end_step(struct model *m, const struct sim *sim);
+/** Break the twins of this step's stretch-broken matrix bonds (any rank
+ *  count: names the twins by gid through the halo; collective). */
+int pd_plane_end_step(struct model *m, const struct sim *sim, struct spall_error *err);
 
 /* pd_forces.c */
 int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);

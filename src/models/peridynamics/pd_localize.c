@@ -105,17 +105,27 @@ static int mixed_localize(struct model *m, const size_t *keep, size_t n_keep,
     return SPALL_OK;
 }
 
+/* matrix_crack: fiber_plane: per half-bond its twin's slot in the same row
+ * (rows keep their order) and the stretch-broken flag (pd_plane.c) */
+static int plane_localize(struct model *m, const size_t *oh, size_t nh,
+                          struct spall_error *err)
+{
+    uint8_t *t = array_gather(m->twin, 1, oh, nh), *f = array_gather(m->fresh, 1, oh, nh);
+    if (!t || !f) {
+        free(t);
+        free(f);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the twins");
+    }
+    free(m->twin);
+    m->twin = t;
+    free(m->fresh);
+    m->fresh = f;
+    return SPALL_OK;
+}
+
 int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                 size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
-    /* the fiber-parallel crack rule breaks a bond's twin on the same
-     * interface (pd_plane.c), a half-bond index that may name another
-     * rank's row */
-    if (m->fresh || m->twin)
-        return spall_error_set(err, SPALL_ERR_INPUT,
-                               "distributed runs: peridynamics' matrix_crack: fiber_plane is not "
-                               "distributed yet; run on one rank (without mpirun), see "
-                               "docs/parallel.md");
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
     /* eps: each half-bond i->j gets i's copy of e^dp_ji (pd_eps.c), read
@@ -145,6 +155,8 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
         rc = adr_localize(m, sim->dim, keep, n_keep, err);
     if (!rc && m->mm_g)
         rc = mixed_localize(m, keep, n_keep, err);
+    if (!rc && m->twin)
+        rc = plane_localize(m, oh, nh, err);
     free(oh);
     if (rc || (m->coef && !coef) || (m->kind && !kind) || !n_init || !n_init_f || !diss) {
         free(coef);
@@ -174,8 +186,9 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
  * volume, dilatation and coefficients, and the influence of each half-bond
  * (a ghost's alpha, bcoef and theta enter its partners' forces); with eps
  * the plastic extension, force state and reverse half's plastic extension
- * of each half-bond and the halo's theta and scale; with ADR the
- * particle's model forces of the last two steps. */
+ * of each half-bond and the halo's theta and scale; with fiber_plane each
+ * half-bond's twin slot and flag; with ADR the particle's model forces of
+ * the last two steps. */
 int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
     (void)err; /* every option that distributes can migrate */
@@ -222,6 +235,12 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
         a->particle_size[a->n_particle++] = sizeof *m->mm_g;
         a->particle[a->n_particle] = (void **)&m->mm_beta;
         a->particle_size[a->n_particle++] = sizeof *m->mm_beta;
+    }
+    if (m->twin) { /* matrix_crack: fiber_plane: twin slot and flag per half-bond */
+        a->bond[a->n_bond] = (void **)&m->twin;
+        a->bond_size[a->n_bond++] = 1;
+        a->bond[a->n_bond] = (void **)&m->fresh;
+        a->bond_size[a->n_bond++] = 1;
     }
     /* quasi_static adr: this and the previous step's model force, per axis */
     for (int d = 0; d < 3 && m->f_prev[d]; d++) {

@@ -115,6 +115,7 @@ static void pd_destroy(struct model **pm)
     free(m->mm_beta);
     free(m->twin);
     free(m->fresh);
+    free(m->tw_gid);
     pd_lps_free(&m->lps);
     for (int d = 0; d < 3; d++)
         free(m->f_prev[d]);
@@ -587,10 +588,8 @@ static double pd_dt(const struct model *m, const struct sim *sim)
 
 static int pd_end_step(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    (void)err; /* breaking is fused into the force loop; fiber-plane twins here */
-    if (m->fresh)
-        pd_plane_end_step(m, sim);
-    return SPALL_OK;
+    /* breaking is fused into the force loop; fiber-plane twins here */
+    return m->fresh ? pd_plane_end_step(m, sim, err) : SPALL_OK;
 }
 
 static void pd_energy(const struct model *m, const struct sim *sim, struct model_energy *out)

@@ -21,13 +21,20 @@
  * the crack still grows only where bonds are stretched past s0.  Their
  * stored energy is booked as dissipated.
  *
- * Determinism: the force kernel only flags stretch-broken half-bonds (each
- * by its own particle); this serial pass in index order marks the twins, so
- * the result is independent of the thread count.
+ * Determinism and ranks: the force kernel only flags stretch-broken
+ * half-bonds (each by its own particle).  At the end of the step each owned
+ * particle names, by global id, the partners of its flagged bonds' twins
+ * (a twin is in the same row, kept as a slot index, so localisation and
+ * migration, which keep each row's order, carry it); distributed, the
+ * names of a ghost come from its owner through the halo.  Then every owned
+ * particle breaks its own half of each intact bond named from either end
+ * and books that half's stored energy, walking its row in order: the same
+ * bonds and the same sums on any thread and rank count.
  */
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
+#include "core/parallel/decomp.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -35,7 +42,6 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include <string.h>
 
 int pd_plane_init(struct model *m, struct sim *sim, struct spall_error *err)
 {
@@ -48,16 +54,20 @@ int pd_plane_init(struct model *m, struct sim *sim, struct spall_error *err)
         return spall_error_set_key(err, SPALL_ERR_INPUT, "model.matrix_crack",
                                    "matrix_crack: fiber_plane needs variant "
                                    "pdlm, fiber_model lattice and an orthotropic lamina");
-    int rc = bl->reverse ? SPALL_OK : bond_list_build_reverse(bl, err);
-    if (rc)
-        return rc;
+    /* a particle names at most one twin per bond of its row (pd_plane_end_step) */
+    for (size_t i = 0; i < n; i++)
+        if (bl->offset[i + 1] - bl->offset[i] > PD_PLANE_SLOTS)
+            return spall_error_set_key(err, SPALL_ERR_INPUT, "model.matrix_crack",
+                                       "matrix_crack: fiber_plane: a family of %zu bonds "
+                                       "(the PDLM lattice's has at most %d)",
+                                       bl->offset[i + 1] - bl->offset[i], PD_PLANE_SLOTS);
     m->twin = malloc((nh ? nh : 1) * sizeof *m->twin);
     m->fresh = calloc(nh ? nh : 1, 1);
     if (!m->twin || !m->fresh)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for fiber-plane twins");
     for (size_t i = 0; i < n; i++)
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
-            m->twin[s] = SIZE_MAX;
+            m->twin[s] = PD_NO_TWIN;
             if (bl->type[s] & 1u)
                 continue;
             size_t j = (size_t)bl->partner[s];
@@ -81,37 +91,66 @@ int pd_plane_init(struct model *m, struct sim *sim, struct spall_error *err)
                 }
             }
             if (count == 1)
-                m->twin[s] = found;
+                m->twin[s] = (uint8_t)(found - bl->offset[i]);
         }
     return SPALL_OK;
 }
 
-/* break half-bond t and its reverse, booking the stored energy */
-static void break_pair(struct model *m, const struct sim *sim, size_t i, size_t t)
+/* whether the PD_PLANE_SLOTS names @p g hold global id @p id */
+static bool named(const double *g, double id)
+{
+    for (int q = 0; q < PD_PLANE_SLOTS; q++)
+        if (g[q] == id)
+            return true;
+    return false;
+}
+
+int pd_plane_end_step(struct model *m, const struct sim *sim, struct spall_error *err)
 {
     struct bond_list *bl = m->bl;
     const struct particles *p = sim->p;
-    if (bl->state[t] & BOND_BROKEN)
-        return;
-    size_t k = (size_t)bl->partner[t], r = bl->reverse[t];
-    double ex = p->x[0][k] - p->x[0][i], ey = p->x[1][k] - p->x[1][i];
-    double e0 = sqrt(ex * ex + ey * ey) - bl->rest[t];
-    bl->state[t] |= BOND_BROKEN;
-    bl->state[r] |= BOND_BROKEN;
-    m->diss[i] += 0.25 * m->coef[t] * e0 * e0;
-    m->diss[k] += 0.25 * m->coef[r] * e0 * e0;
-}
-
-void pd_plane_end_step(struct model *m, const struct sim *sim)
-{
-    struct bond_list *bl = m->bl;
-    const size_t n = sim->p->n;
-    for (size_t i = 0; i < n; i++)
+    const size_t n = p->n, no = p->n_owned;
+    if (n > m->tw_cap) {
+        double *g = realloc(m->tw_gid, n * PD_PLANE_SLOTS * sizeof *g);
+        if (!g)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for fiber-plane twins");
+        m->tw_gid = g;
+        m->tw_cap = n;
+    }
+    double *tg = m->tw_gid;
+    /* 1: each owned particle names the partners of its flagged bonds' twins
+     * (gids < 2^53 are exact doubles; -1: no name) */
+    for (size_t i = 0; i < no; i++) {
+        double *g = tg + i * PD_PLANE_SLOTS;
+        int c = 0;
+        for (int q = 0; q < PD_PLANE_SLOTS; q++)
+            g[q] = -1.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
             if (!m->fresh[s])
                 continue;
             m->fresh[s] = 0;
-            if (m->twin[s] != SIZE_MAX)
-                break_pair(m, sim, i, m->twin[s]);
+            if (m->twin[s] != PD_NO_TWIN)
+                g[c++] = (double)p->gid[bl->partner[bl->offset[i] + m->twin[s]]];
         }
+    }
+    if (sim->par && par_halo_block(sim, tg, PD_PLANE_SLOTS))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory sending fiber-plane twins");
+    /* 2: each owned particle breaks its half of every intact bond named
+     * from either end; its stored energy is dissipated */
+    for (size_t i = 0; i < no; i++) {
+        const double gi = (double)p->gid[i];
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            if (bl->state[s] & BOND_BROKEN)
+                continue;
+            const size_t k = (size_t)bl->partner[s];
+            if (!named(tg + i * PD_PLANE_SLOTS, (double)p->gid[k]) &&
+                !named(tg + k * PD_PLANE_SLOTS, gi))
+                continue;
+            double ex = p->x[0][k] - p->x[0][i], ey = p->x[1][k] - p->x[1][i];
+            double e0 = sqrt(ex * ex + ey * ey) - bl->rest[s];
+            bl->state[s] |= BOND_BROKEN;
+            m->diss[i] += 0.25 * m->coef[s] * e0 * e0;
+        }
+    }
+    return SPALL_OK;
 }

@@ -22,15 +22,16 @@ _Static_assert(sizeof(bool) == 1, "the ADR flag is saved as one byte");
 int pd_register_state(struct model *m, struct sim *sim, struct field_state *fs,
                       struct spall_error *err)
 {
-    size_t n = sim->p->n_owned, nh = m->bl->offset[m->bl->n];
+    size_t n = sim->p->n_owned;
     int rc = field_state_add_bond_array(fs, "pd.bond_state", FIELD_U8, (void **)&m->bl->state,
                                         m->bl, 1, err);
     if (!rc)
         rc = field_state_add_particle_array(fs, "pd.dissipated", FIELD_F64, (void **)&m->diss, n,
                                             1, err);
-    /* matrix_crack: fiber_plane is not distributed (pd_localize refuses it): local order */
+    /* matrix_crack: fiber_plane: per half-bond, by bond (any rank count) */
     if (!rc && m->fresh)
-        rc = field_state_add_array(fs, "pd.fresh", FIELD_U8, (void **)&m->fresh, nh, 1, err);
+        rc = field_state_add_bond_array(fs, "pd.fresh", FIELD_U8, (void **)&m->fresh, m->bl, 1,
+                                        err);
     if (!rc && m->mm_g)
         rc = field_state_add_particle_array(fs, "pd.mixed_g", FIELD_F64, (void **)&m->mm_g, n,
                                             1, err);
