@@ -91,28 +91,39 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
 #define PD_PRE (1.0 - 1e-12)
 
 /* Pass 1 over the nb half-bonds of one chunk of particle i's row (partner,
- * rest and coef start at the chunk) at (xi0, yi0, zi0), broken or not: the force components g e into gx, gy, gz and the
- * elongation l - r into el.  Only 32- and 64-bit data, so that the
- * vectoriser keeps to two doubles a vector. */
-static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0,
-                            double *const *restrict x, const int32_t *restrict partner,
-                            const double *restrict rest, const double *restrict coef,
-                            double *restrict gx, double *restrict gy, double *restrict gz,
-                            double *restrict el)
+ * rest, coef and thr start at the chunk) at (xi0, yi0, zi0): the force
+ * components g e into gx, gy, gz, exact zeros for a broken half-bond, and
+ * the elongation l - r into el.  thr holds the pre-test bound s0 r (1 -
+ * 1e-12) of an intact half-bond and NaN for a broken one (INFINITY is a
+ * bond that never breaks), so one array says both.  Returns whether some
+ * intact half-bond passes the pre-test, i.e. whether pass 2 must look at
+ * the chunk one half-bond at a time.  Only 64-bit data, so that the
+ * vectoriser keeps to one element size. */
+static inline __attribute__((always_inline)) int64_t
+pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0, double *const *restrict x,
+         const int32_t *restrict partner, const double *restrict rest,
+         const double *restrict coef, const double *restrict thr, double *restrict gx,
+         double *restrict gy, double *restrict gz, double *restrict el)
 {
     const double *restrict x0 = x[0], *restrict x1 = x[1], *restrict x2 = x[2];
+    int64_t any = 0;
     for (size_t k = 0; k < nb; k++) {
         const size_t j = (size_t)partner[k];
         const double ex = x0[j] - xi0;
         const double ey = dim > 1 ? x1[j] - yi0 : 0.0;
         const double ez = dim > 2 ? x2[j] - zi0 : 0.0;
         const double l = sqrt(ex * ex + ey * ey + ez * ez);
-        const double g = coef[k] * (l - rest[k]) / l;
-        gx[k] = g * ex;
-        gy[k] = g * ey;
-        gz[k] = g * ez;
-        el[k] = l - rest[k];
+        const double e = l - rest[k];
+        const double g = coef[k] * e / l;
+        const double hx = g * ex, hy = g * ey, hz = g * ez;
+        const int live = thr[k] == thr[k]; /* NaN: broken */
+        gx[k] = live ? hx : 0.0;
+        gy[k] = live ? hy : 0.0;
+        gz[k] = live ? hz : 0.0;
+        el[k] = e;
+        any |= (int64_t)(e > thr[k]);
     }
+    return any;
 }
 
 /* pd_chunk per dimension in two versions picked once at load time by the
@@ -127,15 +138,13 @@ static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t nb, d
 #define PD_CLONES
 #endif
 #define PD_CHUNK_DIM(DIM)                                                                       \
-    PD_CLONES static void pd_chunk##DIM(size_t nb,        double xi0, double yi0,          \
-                                        double zi0, double *const *restrict x,                  \
-                                        const int32_t *restrict partner,                        \
-                                        const double *restrict rest,                            \
-                                        const double *restrict coef, double *restrict gx,       \
-                                        double *restrict gy, double *restrict gz,               \
-                                        double *restrict el)                                    \
+    PD_CLONES static int64_t pd_chunk##DIM(                                                     \
+        size_t nb, double xi0, double yi0, double zi0, double *const *restrict x,              \
+        const int32_t *restrict partner, const double *restrict rest,                           \
+        const double *restrict coef, const double *restrict thr, double *restrict gx,           \
+        double *restrict gy, double *restrict gz, double *restrict el)                          \
     {                                                                                           \
-        pd_chunk(DIM, nb, xi0, yi0, zi0, x, partner, rest, coef, gx, gy, gz, el);           \
+        return pd_chunk(DIM, nb, xi0, yi0, zi0, x, partner, rest, coef, thr, gx, gy, gz, el);   \
     }
 PD_CHUNK_DIM(1)
 PD_CHUNK_DIM(2)
@@ -143,38 +152,57 @@ PD_CHUNK_DIM(3)
 
 /* The same PMB kernel without the mixed-mode threshold, split so that the
  * compiler vectorises the costly part (gathers, sqrt, division) of each
- * chunk of a row: pass 1 (pd_chunk) computes every half-bond with no
- * dependence between half-bonds; pass 2, in scalar code and in the row
- * order, skips the broken half-bonds, settles breaking with the exact test
- * (l - r) / r > s0 where the cheap pre-test l - r > s0 r (1 - 1e-12) lets
- * a bond through (it misses none: (l - r) / r > s0 in floating point needs
- * l - r > s0 r (1 - 2^-53)), and adds the components.  Every operation and
- * the order of the sums are those of PD_KERNEL: the result is bit for bit
- * the same. */
+ * chunk of a row: pass 0 gathers the chunk's lengths, coefficients and
+ * pre-test bounds (NaN: broken); pass 1 (pd_chunk) computes every
+ * half-bond with no dependence between half-bonds; pass 2 adds the
+ * components in the row order.  A chunk where no intact half-bond passes
+ * the cheap pre-test l - r > s0 r (1 - 1e-12) (it misses none: (l - r) / r
+ * > s0 in floating point needs l - r > s0 r (1 - 2^-53)) is a plain sum
+ * with no branch; otherwise each half-bond that passes is settled with the
+ * exact test (l - r) / r > s0.  A broken half-bond adds an exact +0.0,
+ * which leaves every partial sum as it was (it starts at +0.0, and a sum
+ * in round-to-nearest is -0.0 only when both terms are): every operation
+ * that reaches the result and the order of the sums are those of
+ * PD_KERNEL, so the result is bit for bit the same. */
 #define PD_KERNEL_SPLIT(DIM)                                                                    \
     _Pragma("omp parallel for schedule(dynamic, 256)")                                          \
     for (size_t i = 0; i < n; i++) {                                                            \
         double fx = 0.0, fy = 0.0, fz = 0.0, dd = 0.0;                                          \
         double gx[PD_CHUNK], gy[PD_CHUNK], gz[PD_CHUNK], el[PD_CHUNK];                          \
+        double rb[PD_CHUNK], cb[PD_CHUNK], tb[PD_CHUNK];                                        \
         const double xi0 = x[0][i];                                                             \
         const double yi0 = DIM > 1 ? x[1][i] : 0.0;                                             \
         const double zi0 = DIM > 2 ? x[2][i] : 0.0;                                             \
         for (size_t s0 = off[i]; s0 < off[i + 1]; s0 += PD_CHUNK) {                             \
             const size_t nb = off[i + 1] - s0 < PD_CHUNK ? off[i + 1] - s0 : PD_CHUNK;          \
-            /* compact families: the chunk's lengths and coefficients from the table */  \
-            double rb[PD_CHUNK], cb[PD_CHUNK];                                                  \
             const double *rr = rest ? rest + s0 : rb, *cc = coef ? coef + s0 : cb;              \
-            for (size_t k = 0; kind && k < nb; k++) {                                           \
-                rb[k] = k_rest[kind[s0 + k]];                                                   \
-                cb[k] = k_coef[kind[s0 + k]];                                                   \
+            if (kind) { /* compact families: the chunk's rows of the table */                   \
+                for (size_t k = 0; k < nb; k++) {                                               \
+                    const struct pd_kind_row *q = &ktab[kind[s0 + k]];                          \
+                    rb[k] = q->rest;                                                            \
+                    cb[k] = q->coef;                                                            \
+                    tb[k] = st[s0 + k] & BOND_BROKEN ? NAN : q->thr;                            \
+                }                                                                               \
+            } else {                                                                            \
+                for (size_t k = 0; k < nb; k++)                                                 \
+                    tb[k] = st[s0 + k] & BOND_BROKEN ? NAN                                      \
+                                                     : s0tab[type[s0 + k]] * rr[k] * PD_PRE;    \
             }                                                                                   \
-            pd_chunk##DIM(nb, xi0, yi0, zi0, x, partner + s0, rr, cc, gx, gy, gz, el);          \
+            if (!pd_chunk##DIM(nb, xi0, yi0, zi0, x, partner + s0, rr, cc, tb, gx, gy, gz,      \
+                               el)) {                                                           \
+                for (size_t k = 0; k < nb; k++) {                                               \
+                    fx += gx[k];                                                                \
+                    if (DIM > 1)                                                                \
+                        fy += gy[k];                                                            \
+                    if (DIM > 2)                                                                \
+                        fz += gz[k];                                                            \
+                }                                                                               \
+                continue;                                                                       \
+            }                                                                                   \
             for (size_t k = 0; k < nb; k++) {                                                   \
                 const size_t s = s0 + k;                                                        \
-                if (st[s] & BOND_BROKEN)                                                        \
-                    continue;                                                                   \
-                const unsigned ty = kind ? k_type[kind[s]] : type[s];                           \
-                if (el[k] > s0tab[ty] * rr[k] * PD_PRE && el[k] / rr[k] > s0tab[ty]) {          \
+                const unsigned ty = kind ? ktab[kind[s]].type : type[s];                        \
+                if (el[k] > tb[k] && el[k] / rr[k] > s0tab[ty]) {                               \
                     const size_t j = (size_t)partner[s];                                        \
                     const double ex = x[0][j] - xi0;                                            \
                     const double ey = DIM > 1 ? x[1][j] - yi0 : 0.0;                            \
@@ -202,9 +230,36 @@ PD_CHUNK_DIM(3)
         diss[i] += dd;                                                                          \
     }
 
+/* A row of the compact families' table as the kernel reads it: one cache
+ * line for the three doubles of a half-bond, and its pre-test bound. */
+struct pd_kind_row {
+    double rest, coef, thr;
+    unsigned type;
+};
+
+/* The kernel's table of the compact families for this step (NULL when
+ * the model keeps the arrays): thr = s0 r (1 - 1e-12) with the
+ * thresholds of now. */
+static int pd_kind_rows(const struct model *m, struct pd_kind_row **out, struct spall_error *err)
+{
+    *out = NULL;
+    if (!m->kind)
+        return SPALL_OK;
+    struct pd_kind_row *t = malloc((m->n_kind ? m->n_kind : 1) * sizeof *t);
+    if (!t)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
+    for (size_t q = 0; q < m->n_kind; q++) {
+        t[q].rest = m->k_rest[q];
+        t[q].coef = m->k_coef[q];
+        t[q].type = m->k_type[q];
+        t[q].thr = m->s0_tab[t[q].type] * t[q].rest * PD_PRE;
+    }
+    *out = t;
+    return SPALL_OK;
+}
+
 int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    (void)err;
     struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
     const size_t n = p->n_owned;
@@ -216,8 +271,6 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     const double *coef = m->coef;
     /* compact families (pd_compact.c): rest, type and coef are NULL */
     const uint16_t *kind = m->kind;
-    const double *k_rest = m->k_rest, *k_coef = m->k_coef;
-    const uint8_t *k_type = m->k_type;
     const double *s0tab = m->s0_tab;
     double *diss = m->diss;
     double *const *x = p->x;
@@ -246,6 +299,10 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
             for (size_t i = 0; i < n; i++)
                 m->f_prev[d][2 * i + 1] = m->f_prev[d][2 * i];
     }
+    struct pd_kind_row *ktab;
+    int rc = pd_kind_rows(m, &ktab, err);
+    if (rc)
+        return rc;
     switch (p->dim) {
     case 1:
         PD_KERNEL_SPLIT(1)
@@ -266,6 +323,7 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
         PD_KERNEL_SPLIT(3)
         break;
     }
+    free(ktab);
     if (m->opt.quasi == PD_QS_ADR)
         pd_adr_update(m, sim);
     return SPALL_OK;
