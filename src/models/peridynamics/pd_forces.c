@@ -43,7 +43,7 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
 }
 
 /* One kernel per dimension: the loop over j is the hot path (the mixed-mode
- * threshold; pd_kernel_split below for the others). */
+ * threshold; pd_kernel_block below for the others). */
 #define PD_KERNEL(DIM, MIXED)                                                                   \
     _Pragma("omp parallel for schedule(dynamic, 256)")                                          \
     for (size_t i = 0; i < n; i++) {                                                            \
@@ -195,9 +195,17 @@ struct pd_chunk_buf {
     double rb[PD_CHUNK], cb[PD_CHUNK], tb[PD_CHUNK];
 };
 
-/* The pre-test bound of half-bond s (pass 0): NaN when broken. */
-#define PD_THR(c, s, q, r)                                                                      \
-    ((c)->st[s] & BOND_BROKEN ? NAN : (c)->kind ? (q)->thr : (c)->s0tab[(c)->type[s]] * (r) * PD_PRE)
+/* A pre-test bound, or NaN when the half-bond is broken (state bit 0),
+ * without a branch: the bits of a quiet NaN or-ed into any double give a
+ * NaN. */
+static inline double pd_thr_or_nan(double thr, uint8_t state)
+{
+    uint64_t b;
+    memcpy(&b, &thr, sizeof b);
+    b |= ((uint64_t)0 - (uint64_t)(state & BOND_BROKEN)) & UINT64_C(0x7ff8000000000000);
+    memcpy(&thr, &b, sizeof thr);
+    return thr;
+}
 
 /* Pass 0 of chunk b: its lengths and coefficients (compact families: from
  * the table) and its pre-test bounds, NaN for a broken half-bond; and in
@@ -216,17 +224,7 @@ pd_chunk_gather(int dim, const struct pd_kctx *c, struct pd_chunk_buf *b,
     double dummy[3] = {0.0, 0.0, 0.0};
     double *ps = p ? sum[p->r] : dummy;
     double sx = ps[0], sy = ps[1], sz = ps[2];
-    /* half-bond k of b, then term k of p; GCC unswitches the layout test */
-#define PD_GATHER(k)                                                                            \
-    do {                                                                                        \
-        const size_t s = s0 + (k);                                                              \
-        const struct pd_kind_row *q = c->kind ? &c->ktab[c->kind[s]] : NULL;                    \
-        if (q) {                                                                                \
-            b->rb[k] = q->rest;                                                                 \
-            b->cb[k] = q->coef;                                                                 \
-        }                                                                                       \
-        b->tb[k] = PD_THR(c, s, q, b->rr[k]);                                                   \
-    } while (0)
+    /* half-bond k of b, then term k of p */
 #define PD_PSUM(k)                                                                              \
     do {                                                                                        \
         sx += p->gx[k];                                                                         \
@@ -235,16 +233,35 @@ pd_chunk_gather(int dim, const struct pd_kctx *c, struct pd_chunk_buf *b,
         if (dim > 2)                                                                            \
             sz += p->gz[k];                                                                     \
     } while (0)
-    for (size_t k = 0; k < m; k++) {
-        PD_GATHER(k);
-        PD_PSUM(k);
+#define PD_GATHER_KIND(k)                                                                       \
+    do {                                                                                        \
+        const struct pd_kind_row *q = &c->ktab[c->kind[s0 + (k)]];                              \
+        b->rb[k] = q->rest;                                                                     \
+        b->cb[k] = q->coef;                                                                     \
+        b->tb[k] = pd_thr_or_nan(q->thr, c->st[s0 + (k)]);                                      \
+    } while (0)
+#define PD_GATHER_FULL(k)                                                                       \
+    b->tb[k] = pd_thr_or_nan(c->s0tab[c->type[s0 + (k)]] * b->rr[k] * PD_PRE, c->st[s0 + (k)])
+    if (c->kind) {
+        for (size_t k = 0; k < m; k++) {
+            PD_GATHER_KIND(k);
+            PD_PSUM(k);
+        }
+        for (size_t k = m; k < nb; k++)
+            PD_GATHER_KIND(k);
+    } else {
+        for (size_t k = 0; k < m; k++) {
+            PD_GATHER_FULL(k);
+            PD_PSUM(k);
+        }
+        for (size_t k = m; k < nb; k++)
+            PD_GATHER_FULL(k);
     }
-    for (size_t k = m; k < nb; k++)
-        PD_GATHER(k);
     for (size_t k = m; k < np; k++)
         PD_PSUM(k);
-#undef PD_GATHER
 #undef PD_PSUM
+#undef PD_GATHER_KIND
+#undef PD_GATHER_FULL
     ps[0] = sx;
     ps[1] = sy;
     ps[2] = sz;
@@ -318,64 +335,77 @@ static inline __attribute__((always_inline)) int64_t pd_chunk_pass1(int dim,
  * partial sum as it was (it starts at +0.0, and a sum in round-to-nearest
  * is -0.0 only when both terms are).  Every operation that reaches a
  * particle's result and the order of its sums are those of PD_KERNEL, so
- * the result is bit for bit the same, for any thread count and blocking. */
+ * the result is bit for bit the same, for any thread count and blocking.
+ * One block of PD_BLOCK rows, its row sums in sum and dd. */
 static inline __attribute__((always_inline)) void
-pd_kernel_split(int dim, const struct pd_kctx *c, size_t n, double *const *f, double *diss)
+pd_kernel_block(int dim, const struct pd_kctx *c, size_t n, size_t q, struct pd_chunk_buf *buf,
+                double (*sum)[3], double *dd, double *const *f, double *diss)
 {
-    const size_t nblk = (n + PD_BLOCK - 1) / PD_BLOCK;
-#pragma omp parallel
-    {
-        struct pd_chunk_buf buf[2];
-        double sum[PD_BLOCK][3], dd[PD_BLOCK];
-#pragma omp for schedule(dynamic, 4)
-        for (size_t q = 0; q < nblk; q++) {
-            const size_t i0 = q * PD_BLOCK, i1 = i0 + PD_BLOCK < n ? i0 + PD_BLOCK : n;
-            struct pd_chunk_buf *p = NULL; /* the chunk whose plain sum is pending */
-            int next = 0;
-            for (size_t i = i0; i < i1; i++) {
-                const size_t r = i - i0;
-                sum[r][0] = sum[r][1] = sum[r][2] = dd[r] = 0.0;
-                for (size_t s0 = c->off[i]; s0 < c->off[i + 1]; s0 += PD_CHUNK) {
-                    struct pd_chunk_buf *b = &buf[next];
-                    next ^= 1;
-                    b->i = i;
-                    b->r = r;
-                    b->s = s0;
-                    b->nb = c->off[i + 1] - s0 < PD_CHUNK ? c->off[i + 1] - s0 : PD_CHUNK;
-                    b->xi0 = c->x[0][i];
-                    b->yi0 = dim > 1 ? c->x[1][i] : 0.0;
-                    b->zi0 = dim > 2 ? c->x[2][i] : 0.0;
-                    pd_chunk_gather(dim, c, b, p, sum);
-                    const int64_t any = pd_chunk_pass1(dim, c, b);
-                    p = NULL;
-                    if (any)
-                        pd_chunk_settle(dim, c, b, sum[r], &dd[r]);
-                    else
-                        p = b;
-                }
-            }
-            if (p) { /* the block's last plain sum */
-                double *ps = sum[p->r];
-                for (size_t k = 0; k < p->nb; k++) {
-                    ps[0] += p->gx[k];
-                    if (dim > 1)
-                        ps[1] += p->gy[k];
-                    if (dim > 2)
-                        ps[2] += p->gz[k];
-                }
-            }
-            for (size_t i = i0; i < i1; i++) {
-                const size_t r = i - i0;
-                f[0][i] += sum[r][0];
-                if (dim > 1)
-                    f[1][i] += sum[r][1];
-                if (dim > 2)
-                    f[2][i] += sum[r][2];
-                diss[i] += dd[r];
-            }
+    const size_t i0 = q * PD_BLOCK, i1 = i0 + PD_BLOCK < n ? i0 + PD_BLOCK : n;
+    struct pd_chunk_buf *p = NULL; /* the chunk whose plain sum is pending */
+    int next = 0;
+    for (size_t i = i0; i < i1; i++) {
+        const size_t r = i - i0;
+        sum[r][0] = sum[r][1] = sum[r][2] = dd[r] = 0.0;
+        for (size_t s0 = c->off[i]; s0 < c->off[i + 1]; s0 += PD_CHUNK) {
+            struct pd_chunk_buf *b = &buf[next];
+            next ^= 1;
+            b->i = i;
+            b->r = r;
+            b->s = s0;
+            b->nb = c->off[i + 1] - s0 < PD_CHUNK ? c->off[i + 1] - s0 : PD_CHUNK;
+            b->xi0 = c->x[0][i];
+            b->yi0 = dim > 1 ? c->x[1][i] : 0.0;
+            b->zi0 = dim > 2 ? c->x[2][i] : 0.0;
+            pd_chunk_gather(dim, c, b, p, sum);
+            const int64_t any = pd_chunk_pass1(dim, c, b);
+            p = NULL;
+            if (any)
+                pd_chunk_settle(dim, c, b, sum[r], &dd[r]);
+            else
+                p = b;
         }
     }
+    if (p) { /* the block's last plain sum */
+        double *ps = sum[p->r];
+        for (size_t k = 0; k < p->nb; k++) {
+            ps[0] += p->gx[k];
+            if (dim > 1)
+                ps[1] += p->gy[k];
+            if (dim > 2)
+                ps[2] += p->gz[k];
+        }
+    }
+    for (size_t i = i0; i < i1; i++) {
+        const size_t r = i - i0;
+        f[0][i] += sum[r][0];
+        if (dim > 1)
+            f[1][i] += sum[r][1];
+        if (dim > 2)
+            f[2][i] += sum[r][2];
+        diss[i] += dd[r];
+    }
 }
+
+/* The kernel per dimension, so that the dimension is a constant in the
+ * threads' code. */
+#define PD_KERNEL_SPLIT_DIM(DIM)                                                                \
+    static void pd_kernel_split##DIM(const struct pd_kctx *c, size_t n, double *const *f,      \
+                                     double *diss)                                              \
+    {                                                                                           \
+        const size_t nblk = (n + PD_BLOCK - 1) / PD_BLOCK;                                      \
+        _Pragma("omp parallel")                                                                 \
+        {                                                                                       \
+            struct pd_chunk_buf buf[2];                                                         \
+            double sum[PD_BLOCK][3], dd[PD_BLOCK];                                              \
+            _Pragma("omp for schedule(dynamic, 4)")                                             \
+            for (size_t q = 0; q < nblk; q++)                                                   \
+                pd_kernel_block(DIM, c, n, q, buf, sum, dd, f, diss);                           \
+        }                                                                                       \
+    }
+PD_KERNEL_SPLIT_DIM(1)
+PD_KERNEL_SPLIT_DIM(2)
+PD_KERNEL_SPLIT_DIM(3)
 
 /* The kernel's table of the compact families for this step (NULL when
  * the model keeps the arrays): thr = s0 r (1 - 1e-12) with the
@@ -447,7 +477,7 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
                                x, u, dt, late, fresh};
     switch (p->dim) {
     case 1:
-        pd_kernel_split(1, &kc, n, f, diss);
+        pd_kernel_split1(&kc, n, f, diss);
         break;
     case 2:
         if (m->mixed) {
@@ -458,11 +488,11 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
                 par_halo_values(sim, m->mm_g, 1);
             PD_KERNEL(2, 1)
         } else {
-            pd_kernel_split(2, &kc, n, f, diss);
+            pd_kernel_split2(&kc, n, f, diss);
         }
         break;
     default:
-        pd_kernel_split(3, &kc, n, f, diss);
+        pd_kernel_split3(&kc, n, f, diss);
         break;
     }
     free(ktab);
