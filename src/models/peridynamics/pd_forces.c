@@ -43,7 +43,7 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
 }
 
 /* One kernel per dimension: the loop over j is the hot path (the mixed-mode
- * threshold; PD_KERNEL_SPLIT below for the others). */
+ * threshold; pd_kernel_block below for the others). */
 #define PD_KERNEL(DIM, MIXED)                                                                   \
     _Pragma("omp parallel for schedule(dynamic, 256)")                                          \
     for (size_t i = 0; i < n; i++) {                                                            \
@@ -90,29 +90,47 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
 #define PD_CHUNK 64
 #define PD_PRE (1.0 - 1e-12)
 
-/* Pass 1 over the nb half-bonds of one chunk of particle i's row (partner,
- * rest and coef start at the chunk) at (xi0, yi0, zi0), broken or not: the force components g e into gx, gy, gz and the
- * elongation l - r into el.  Only 32- and 64-bit data, so that the
- * vectoriser keeps to two doubles a vector. */
-static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0,
-                            double *const *restrict x, const int32_t *restrict partner,
-                            const double *restrict rest, const double *restrict coef,
-                            double *restrict gx, double *restrict gy, double *restrict gz,
-                            double *restrict el)
+/* Pass 1 for half-bond k of a chunk of particle i's row (partner, rest,
+ * coef and thr start at the chunk) at (xi0, yi0, zi0): the force
+ * components g e into gx, gy, gz, exact zeros for a broken half-bond, and
+ * the elongation l - r into el.  thr holds the pre-test bound s0 r (1 -
+ * 1e-12) of an intact half-bond and NaN for a broken one (INFINITY is a
+ * bond that never breaks), so one array says both.  Returns whether the
+ * half-bond is intact and passes the pre-test into any. */
+#define PD_BOND(k)                                                                              \
+    do {                                                                                        \
+        const size_t j = (size_t)partner[k];                                                    \
+        const double ex = x0[j] - xi0;                                                          \
+        const double ey = dim > 1 ? x1[j] - yi0 : 0.0;                                          \
+        const double ez = dim > 2 ? x2[j] - zi0 : 0.0;                                          \
+        const double l = sqrt(ex * ex + ey * ey + ez * ez);                                     \
+        const double e = l - rest[k];                                                           \
+        const double g = coef[k] * e / l;                                                       \
+        const double hx = g * ex, hy = g * ey, hz = g * ez;                                     \
+        const int live = thr[k] == thr[k]; /* NaN: broken */                                    \
+        gx[k] = live ? hx : 0.0;                                                                \
+        gy[k] = live ? hy : 0.0;                                                                \
+        gz[k] = live ? hz : 0.0;                                                                \
+        el[k] = e;                                                                              \
+        any |= (int64_t)(e > thr[k]);                                                           \
+    } while (0)
+
+/* Pass 1 over the nb half-bonds of a chunk (PD_BOND), with no dependence
+ * between half-bonds.  Returns whether some intact half-bond of the chunk
+ * passes the pre-test, i.e. whether its pass 2 must look at it one
+ * half-bond at a time.  Only 64-bit data, so that the vectoriser keeps to
+ * one element size. */
+static inline __attribute__((always_inline)) int64_t
+pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0, double *const *restrict x,
+         const int32_t *restrict partner, const double *restrict rest,
+         const double *restrict coef, const double *restrict thr, double *restrict gx,
+         double *restrict gy, double *restrict gz, double *restrict el)
 {
     const double *restrict x0 = x[0], *restrict x1 = x[1], *restrict x2 = x[2];
-    for (size_t k = 0; k < nb; k++) {
-        const size_t j = (size_t)partner[k];
-        const double ex = x0[j] - xi0;
-        const double ey = dim > 1 ? x1[j] - yi0 : 0.0;
-        const double ez = dim > 2 ? x2[j] - zi0 : 0.0;
-        const double l = sqrt(ex * ex + ey * ey + ez * ez);
-        const double g = coef[k] * (l - rest[k]) / l;
-        gx[k] = g * ex;
-        gy[k] = g * ey;
-        gz[k] = g * ez;
-        el[k] = l - rest[k];
-    }
+    int64_t any = 0;
+    for (size_t k = 0; k < nb; k++)
+        PD_BOND(k);
+    return any;
 }
 
 /* pd_chunk per dimension in two versions picked once at load time by the
@@ -127,84 +145,291 @@ static inline __attribute__((always_inline)) void pd_chunk(int dim, size_t nb, d
 #define PD_CLONES
 #endif
 #define PD_CHUNK_DIM(DIM)                                                                       \
-    PD_CLONES static void pd_chunk##DIM(size_t nb,        double xi0, double yi0,          \
-                                        double zi0, double *const *restrict x,                  \
-                                        const int32_t *restrict partner,                        \
-                                        const double *restrict rest,                            \
-                                        const double *restrict coef, double *restrict gx,       \
-                                        double *restrict gy, double *restrict gz,               \
-                                        double *restrict el)                                    \
+    PD_CLONES static int64_t pd_chunk##DIM(                                                     \
+        size_t nb, double xi0, double yi0, double zi0, double *const *restrict x,              \
+        const int32_t *restrict partner, const double *restrict rest,                           \
+        const double *restrict coef, const double *restrict thr, double *restrict gx,           \
+        double *restrict gy, double *restrict gz, double *restrict el)                          \
     {                                                                                           \
-        pd_chunk(DIM, nb, xi0, yi0, zi0, x, partner, rest, coef, gx, gy, gz, el);           \
+        return pd_chunk(DIM, nb, xi0, yi0, zi0, x, partner, rest, coef, thr, gx, gy, gz, el);   \
     }
 PD_CHUNK_DIM(1)
 PD_CHUNK_DIM(2)
 PD_CHUNK_DIM(3)
 
-/* The same PMB kernel without the mixed-mode threshold, split so that the
- * compiler vectorises the costly part (gathers, sqrt, division) of each
- * chunk of a row: pass 1 (pd_chunk) computes every half-bond with no
- * dependence between half-bonds; pass 2, in scalar code and in the row
- * order, skips the broken half-bonds, settles breaking with the exact test
- * (l - r) / r > s0 where the cheap pre-test l - r > s0 r (1 - 1e-12) lets
- * a bond through (it misses none: (l - r) / r > s0 in floating point needs
- * l - r > s0 r (1 - 2^-53)), and adds the components.  Every operation and
- * the order of the sums are those of PD_KERNEL: the result is bit for bit
- * the same. */
-#define PD_KERNEL_SPLIT(DIM)                                                                    \
-    _Pragma("omp parallel for schedule(dynamic, 256)")                                          \
-    for (size_t i = 0; i < n; i++) {                                                            \
-        double fx = 0.0, fy = 0.0, fz = 0.0, dd = 0.0;                                          \
-        double gx[PD_CHUNK], gy[PD_CHUNK], gz[PD_CHUNK], el[PD_CHUNK];                          \
-        const double xi0 = x[0][i];                                                             \
-        const double yi0 = DIM > 1 ? x[1][i] : 0.0;                                             \
-        const double zi0 = DIM > 2 ? x[2][i] : 0.0;                                             \
-        for (size_t s0 = off[i]; s0 < off[i + 1]; s0 += PD_CHUNK) {                             \
-            const size_t nb = off[i + 1] - s0 < PD_CHUNK ? off[i + 1] - s0 : PD_CHUNK;          \
-            /* compact families: the chunk's lengths and coefficients from the table */  \
-            double rb[PD_CHUNK], cb[PD_CHUNK];                                                  \
-            const double *rr = rest ? rest + s0 : rb, *cc = coef ? coef + s0 : cb;              \
-            for (size_t k = 0; kind && k < nb; k++) {                                           \
-                rb[k] = k_rest[kind[s0 + k]];                                                   \
-                cb[k] = k_coef[kind[s0 + k]];                                                   \
-            }                                                                                   \
-            pd_chunk##DIM(nb, xi0, yi0, zi0, x, partner + s0, rr, cc, gx, gy, gz, el);          \
-            for (size_t k = 0; k < nb; k++) {                                                   \
-                const size_t s = s0 + k;                                                        \
-                if (st[s] & BOND_BROKEN)                                                        \
-                    continue;                                                                   \
-                const unsigned ty = kind ? k_type[kind[s]] : type[s];                           \
-                if (el[k] > s0tab[ty] * rr[k] * PD_PRE && el[k] / rr[k] > s0tab[ty]) {          \
-                    const size_t j = (size_t)partner[s];                                        \
-                    const double ex = x[0][j] - xi0;                                            \
-                    const double ey = DIM > 1 ? x[1][j] - yi0 : 0.0;                            \
-                    const double ez = DIM > 2 ? x[2][j] - zi0 : 0.0;                            \
-                    st[s] |= BOND_BROKEN;                                                       \
-                    if (fresh && !(ty & 1u))                                                    \
-                        fresh[s] = 1;                                                           \
-                    dd += pd_break_energy(DIM, ex, ey, ez, rr[k], el[k], cc[k], dt, u, i, j,    \
-                                          late);                                                \
-                    if (!late)                                                                  \
-                        continue;                                                               \
-                }                                                                               \
-                fx += gx[k];                                                                    \
-                if (DIM > 1)                                                                    \
-                    fy += gy[k];                                                                \
-                if (DIM > 2)                                                                    \
-                    fz += gz[k];                                                                \
-            }                                                                                   \
-        }                                                                                       \
-        f[0][i] += fx;                                                                          \
-        if (DIM > 1)                                                                            \
-            f[1][i] += fy;                                                                      \
-        if (DIM > 2)                                                                            \
-            f[2][i] += fz;                                                                      \
-        diss[i] += dd;                                                                          \
+/* A row of the compact families' table as the kernel reads it: one cache
+ * line for the three doubles of a half-bond, and its pre-test bound. */
+struct pd_kind_row {
+    double rest, coef, thr;
+    unsigned type;
+};
+
+/* What the split kernel reads and writes besides the particle's row. */
+struct pd_kctx {
+    const size_t *off;
+    const int32_t *partner;
+    const double *rest, *coef; /* NULL: compact families (ktab) */
+    const uint8_t *type;
+    uint8_t *st;
+    const uint16_t *kind;
+    const struct pd_kind_row *ktab;
+    const double *s0tab;
+    double *const *x, *const *u;
+    double dt;
+    bool late;
+    uint8_t *fresh;
+};
+
+/* Rows per block of the split kernel: a block is one thread's, its rows in
+ * turn, so that the plain sum of one chunk goes into pass 1 of the next
+ * one, across row ends. */
+#define PD_BLOCK 64
+
+/* One chunk of a row: half-bonds [s, s + nb) of particle i (row r of the
+ * block) at (xi0, yi0, zi0), and the buffers of passes 0 and 1. */
+struct pd_chunk_buf {
+    size_t i, r, s, nb;
+    double xi0, yi0, zi0;
+    const double *rr, *cc;
+    double gx[PD_CHUNK], gy[PD_CHUNK], gz[PD_CHUNK], el[PD_CHUNK];
+    double rb[PD_CHUNK], cb[PD_CHUNK], tb[PD_CHUNK];
+};
+
+/* A pre-test bound, or NaN when the half-bond is broken (state bit 0),
+ * without a branch: the bits of a quiet NaN or-ed into any double give a
+ * NaN. */
+static inline double pd_thr_or_nan(double thr, uint8_t state)
+{
+    uint64_t b;
+    memcpy(&b, &thr, sizeof b);
+    b |= ((uint64_t)0 - (uint64_t)(state & BOND_BROKEN)) & UINT64_C(0x7ff8000000000000);
+    memcpy(&thr, &b, sizeof thr);
+    return thr;
+}
+
+/* Pass 0 of chunk b: its lengths and coefficients (compact families: from
+ * the table) and its pre-test bounds, NaN for a broken half-bond; and in
+ * the same loop the plain row-order sum of the components of chunk p
+ * (NULL: none) into its row's sums.  The sum is a chain of dependent
+ * additions that would wait on the adder's latency alone; next to the
+ * loads of pass 0 it costs little. */
+static inline __attribute__((always_inline)) void
+pd_chunk_gather(int dim, const struct pd_kctx *c, struct pd_chunk_buf *b,
+                const struct pd_chunk_buf *p, double (*sum)[3])
+{
+    const size_t s0 = b->s, nb = b->nb, np = p ? p->nb : 0;
+    const size_t m = nb < np ? nb : np;
+    b->rr = c->rest ? c->rest + s0 : b->rb;
+    b->cc = c->coef ? c->coef + s0 : b->cb;
+    double dummy[3] = {0.0, 0.0, 0.0};
+    double *ps = p ? sum[p->r] : dummy;
+    double sx = ps[0], sy = ps[1], sz = ps[2];
+    /* half-bond k of b, then term k of p */
+#define PD_PSUM(k)                                                                              \
+    do {                                                                                        \
+        sx += p->gx[k];                                                                         \
+        if (dim > 1)                                                                            \
+            sy += p->gy[k];                                                                     \
+        if (dim > 2)                                                                            \
+            sz += p->gz[k];                                                                     \
+    } while (0)
+#define PD_GATHER_KIND(k)                                                                       \
+    do {                                                                                        \
+        const struct pd_kind_row *q = &c->ktab[c->kind[s0 + (k)]];                              \
+        b->rb[k] = q->rest;                                                                     \
+        b->cb[k] = q->coef;                                                                     \
+        b->tb[k] = pd_thr_or_nan(q->thr, c->st[s0 + (k)]);                                      \
+    } while (0)
+#define PD_GATHER_FULL(k)                                                                       \
+    b->tb[k] = pd_thr_or_nan(c->s0tab[c->type[s0 + (k)]] * b->rr[k] * PD_PRE, c->st[s0 + (k)])
+    if (c->kind) {
+        for (size_t k = 0; k < m; k++) {
+            PD_GATHER_KIND(k);
+            PD_PSUM(k);
+        }
+        for (size_t k = m; k < nb; k++)
+            PD_GATHER_KIND(k);
+    } else {
+        for (size_t k = 0; k < m; k++) {
+            PD_GATHER_FULL(k);
+            PD_PSUM(k);
+        }
+        for (size_t k = m; k < nb; k++)
+            PD_GATHER_FULL(k);
     }
+    for (size_t k = m; k < np; k++)
+        PD_PSUM(k);
+#undef PD_PSUM
+#undef PD_GATHER_KIND
+#undef PD_GATHER_FULL
+    ps[0] = sx;
+    ps[1] = sy;
+    ps[2] = sz;
+}
+
+/* Pass 2 of a chunk with a half-bond past the pre-test, in the row order:
+ * each such half-bond settled with the exact test (l - r) / r > s0; the
+ * sums into sum[0..2] and the released energy into *dd. */
+static inline __attribute__((always_inline)) void
+pd_chunk_settle(int dim, const struct pd_kctx *c, const struct pd_chunk_buf *b, double *sum,
+                double *dd)
+{
+    double sx = sum[0], sy = sum[1], sz = sum[2];
+    for (size_t k = 0; k < b->nb; k++) {
+        const size_t s = b->s + k;
+        const unsigned ty = c->kind ? c->ktab[c->kind[s]].type : c->type[s];
+        if (b->el[k] > b->tb[k] && b->el[k] / b->rr[k] > c->s0tab[ty]) {
+            const size_t i = b->i, j = (size_t)c->partner[s];
+            const double ex = c->x[0][j] - b->xi0;
+            const double ey = dim > 1 ? c->x[1][j] - b->yi0 : 0.0;
+            const double ez = dim > 2 ? c->x[2][j] - b->zi0 : 0.0;
+            c->st[s] |= BOND_BROKEN;
+            if (c->fresh && !(ty & 1u))
+                c->fresh[s] = 1;
+            *dd += pd_break_energy(dim, ex, ey, ez, b->rr[k], b->el[k], b->cc[k], c->dt, c->u, i,
+                                   j, c->late);
+            if (!c->late)
+                continue;
+        }
+        sx += b->gx[k];
+        if (dim > 1)
+            sy += b->gy[k];
+        if (dim > 2)
+            sz += b->gz[k];
+    }
+    sum[0] = sx;
+    sum[1] = sy;
+    sum[2] = sz;
+}
+
+/* Pass 1 of chunk b (pd_chunk). */
+static inline __attribute__((always_inline)) int64_t pd_chunk_pass1(int dim,
+                                                                    const struct pd_kctx *c,
+                                                                    struct pd_chunk_buf *b)
+{
+    switch (dim) {
+    case 1:
+        return pd_chunk1(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
+                         b->tb, b->gx, b->gy, b->gz, b->el);
+    case 2:
+        return pd_chunk2(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
+                         b->tb, b->gx, b->gy, b->gz, b->el);
+    default:
+        return pd_chunk3(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
+                         b->tb, b->gx, b->gy, b->gz, b->el);
+    }
+}
+
+/* The PMB kernel without the mixed-mode threshold, split so that the
+ * compiler vectorises the costly part (gathers, sqrt, division) of each
+ * chunk of a row: pass 0 gathers the chunk's lengths, coefficients and
+ * pre-test bounds (NaN: broken); pass 1 (pd_chunk) computes every
+ * half-bond with no dependence between half-bonds; pass 2 adds the
+ * components in the row order.  A chunk where no intact half-bond passes
+ * the cheap pre-test l - r > s0 r (1 - 1e-12) (it misses none: (l - r) / r
+ * > s0 in floating point needs l - r > s0 r (1 - 2^-53)) is a plain sum,
+ * done in the loop of the next chunk's pass 1; otherwise its pass 2
+ * settles each half-bond that passes with the exact test (l - r) / r > s0
+ * right after its pass 1 (the chunks before it in the row are summed by
+ * then).  A broken half-bond adds an exact +0.0, which leaves every
+ * partial sum as it was (it starts at +0.0, and a sum in round-to-nearest
+ * is -0.0 only when both terms are).  Every operation that reaches a
+ * particle's result and the order of its sums are those of PD_KERNEL, so
+ * the result is bit for bit the same, for any thread count and blocking.
+ * One block of PD_BLOCK rows, its row sums in sum and dd. */
+static inline __attribute__((always_inline)) void
+pd_kernel_block(int dim, const struct pd_kctx *c, size_t n, size_t q, struct pd_chunk_buf *buf,
+                double (*sum)[3], double *dd, double *const *f, double *diss)
+{
+    const size_t i0 = q * PD_BLOCK, i1 = i0 + PD_BLOCK < n ? i0 + PD_BLOCK : n;
+    struct pd_chunk_buf *p = NULL; /* the chunk whose plain sum is pending */
+    int next = 0;
+    for (size_t i = i0; i < i1; i++) {
+        const size_t r = i - i0;
+        sum[r][0] = sum[r][1] = sum[r][2] = dd[r] = 0.0;
+        for (size_t s0 = c->off[i]; s0 < c->off[i + 1]; s0 += PD_CHUNK) {
+            struct pd_chunk_buf *b = &buf[next];
+            next ^= 1;
+            b->i = i;
+            b->r = r;
+            b->s = s0;
+            b->nb = c->off[i + 1] - s0 < PD_CHUNK ? c->off[i + 1] - s0 : PD_CHUNK;
+            b->xi0 = c->x[0][i];
+            b->yi0 = dim > 1 ? c->x[1][i] : 0.0;
+            b->zi0 = dim > 2 ? c->x[2][i] : 0.0;
+            pd_chunk_gather(dim, c, b, p, sum);
+            const int64_t any = pd_chunk_pass1(dim, c, b);
+            p = NULL;
+            if (any)
+                pd_chunk_settle(dim, c, b, sum[r], &dd[r]);
+            else
+                p = b;
+        }
+    }
+    if (p) { /* the block's last plain sum */
+        double *ps = sum[p->r];
+        for (size_t k = 0; k < p->nb; k++) {
+            ps[0] += p->gx[k];
+            if (dim > 1)
+                ps[1] += p->gy[k];
+            if (dim > 2)
+                ps[2] += p->gz[k];
+        }
+    }
+    for (size_t i = i0; i < i1; i++) {
+        const size_t r = i - i0;
+        f[0][i] += sum[r][0];
+        if (dim > 1)
+            f[1][i] += sum[r][1];
+        if (dim > 2)
+            f[2][i] += sum[r][2];
+        diss[i] += dd[r];
+    }
+}
+
+/* The kernel per dimension, so that the dimension is a constant in the
+ * threads' code. */
+#define PD_KERNEL_SPLIT_DIM(DIM)                                                                \
+    static void pd_kernel_split##DIM(const struct pd_kctx *c, size_t n, double *const *f,      \
+                                     double *diss)                                              \
+    {                                                                                           \
+        const size_t nblk = (n + PD_BLOCK - 1) / PD_BLOCK;                                      \
+        _Pragma("omp parallel")                                                                 \
+        {                                                                                       \
+            struct pd_chunk_buf buf[2];                                                         \
+            double sum[PD_BLOCK][3], dd[PD_BLOCK];                                              \
+            _Pragma("omp for schedule(dynamic, 4)")                                             \
+            for (size_t q = 0; q < nblk; q++)                                                   \
+                pd_kernel_block(DIM, c, n, q, buf, sum, dd, f, diss);                           \
+        }                                                                                       \
+    }
+PD_KERNEL_SPLIT_DIM(1)
+PD_KERNEL_SPLIT_DIM(2)
+PD_KERNEL_SPLIT_DIM(3)
+
+/* The kernel's table of the compact families for this step (NULL when
+ * the model keeps the arrays): thr = s0 r (1 - 1e-12) with the
+ * thresholds of now. */
+static int pd_kind_rows(const struct model *m, struct pd_kind_row **out, struct spall_error *err)
+{
+    *out = NULL;
+    if (!m->kind)
+        return SPALL_OK;
+    struct pd_kind_row *t = malloc((m->n_kind ? m->n_kind : 1) * sizeof *t);
+    if (!t)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
+    for (size_t q = 0; q < m->n_kind; q++) {
+        t[q].rest = m->k_rest[q];
+        t[q].coef = m->k_coef[q];
+        t[q].type = m->k_type[q];
+        t[q].thr = m->s0_tab[t[q].type] * t[q].rest * PD_PRE;
+    }
+    *out = t;
+    return SPALL_OK;
+}
 
 int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    (void)err;
     struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
     const size_t n = p->n_owned;
@@ -216,8 +441,6 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     const double *coef = m->coef;
     /* compact families (pd_compact.c): rest, type and coef are NULL */
     const uint16_t *kind = m->kind;
-    const double *k_rest = m->k_rest, *k_coef = m->k_coef;
-    const uint8_t *k_type = m->k_type;
     const double *s0tab = m->s0_tab;
     double *diss = m->diss;
     double *const *x = p->x;
@@ -239,9 +462,15 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
             pd_adr_update(m, sim);
         return SPALL_OK;
     }
+    struct pd_kind_row *ktab;
+    int rc = pd_kind_rows(m, &ktab, err);
+    if (rc)
+        return rc;
+    const struct pd_kctx kc = {off, partner, rest, coef, type, st, kind, ktab, s0tab,
+                               x, u, dt, late, fresh};
     switch (p->dim) {
     case 1:
-        PD_KERNEL_SPLIT(1)
+        pd_kernel_split1(&kc, n, f, diss);
         break;
     case 2:
         if (m->mixed) {
@@ -252,13 +481,14 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
                 par_halo_values(sim, m->mm_g, 1);
             PD_KERNEL(2, 1)
         } else {
-            PD_KERNEL_SPLIT(2)
+            pd_kernel_split2(&kc, n, f, diss);
         }
         break;
     default:
-        PD_KERNEL_SPLIT(3)
+        pd_kernel_split3(&kc, n, f, diss);
         break;
     }
+    free(ktab);
     if (m->opt.quasi == PD_QS_ADR)
         pd_adr_update(m, sim);
     return SPALL_OK;
