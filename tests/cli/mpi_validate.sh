@@ -8,8 +8,10 @@
 #    case header and the summary are printed once; the exit status is the
 #    serial one;
 #  - `spall bench lattice2d pd3d macro-rod` on 2 ranks reports the whole
-#    body's particles and bonds (the serial counts), ghosts and halo bytes; a
-#    case that is not distributed (sph-taylor-cu: its measurements read one
+#    body's particles and bonds (the serial counts), ghosts and halo bytes;
+#    the SPH Taylor bars' timed loops (sph-taylor-cu, updated form, on the
+#    spatial ghosts) report the serial particle count on 2 ranks; a case
+#    that is not distributed (sph-taylor-cu-rest: its bar shape reads one
 #    rank's particle arrays) is refused in one line.
 # Usage: mpi_validate.sh SPALL SRC MPIEXEC
 set -u
@@ -69,8 +71,19 @@ for c in lattice2d pd3d macro-rod; do
         { echo "FAIL bench $c: no halo bytes or memory per particle on 2 ranks"; fail=1; }
     grep -q "^    mpi: 2 ranks x 1 threads" b2.txt || { echo "FAIL bench: no mpi line"; fail=1; }
 done
-launch -np 2 "$spall" bench sph-taylor-cu --scale 0.02 --threads 1 > m.txt 2> m.err; rc=$?
+"$spall" bench sph-taylor-cu --scale 0.02 --threads 1 --json u1.json > u1.txt 2>&1 ||
+    { echo "FAIL bench sph-taylor-cu on 1 rank"; cat u1.txt; fail=1; }
+launch -np 2 "$spall" bench sph-taylor-cu --scale 0.02 --threads 1 --json u2.json > u2.txt 2>&1 ||
+    { echo "FAIL bench sph-taylor-cu on 2 ranks"; cat u2.txt; fail=1; }
+for k in particles steps; do
+    [ -n "$(field u1.json sph-taylor-cu $k)" ] &&
+        [ "$(field u1.json sph-taylor-cu $k)" = "$(field u2.json sph-taylor-cu $k)" ] ||
+        { echo "FAIL bench sph-taylor-cu: $k $(field u1.json sph-taylor-cu $k) on 1 rank," \
+            "$(field u2.json sph-taylor-cu $k) on 2"; fail=1; }
+done
+[ "$(field u2.json sph-taylor-cu ranks)" = 2 ] || { echo "FAIL bench sph-taylor-cu: ranks"; fail=1; }
+launch -np 2 "$spall" bench sph-taylor-cu-rest --scale 0.02 --threads 1 > m.txt 2> m.err; rc=$?
 [ "$rc" -eq 2 ] && [ "$(wc -l < m.err)" -eq 1 ] && grep -q "does not run distributed" m.err ||
-    { echo "FAIL bench sph-taylor-cu on 2 ranks: exit $rc"; cat m.err; fail=1; }
+    { echo "FAIL bench sph-taylor-cu-rest on 2 ranks: exit $rc"; cat m.err; fail=1; }
 [ $fail -eq 0 ] && echo "validate and bench under mpirun: OK"
 exit $fail
