@@ -32,7 +32,6 @@
 
 /* The key of a half-bond: the bit patterns of its reference length and
  * coefficient, then its type (17 bytes, compared as bytes). */
-#define PD_KIND_KEY (2 * sizeof(double) + 1)
 
 bool pd_compact_eligible(const struct model *m)
 {
@@ -50,10 +49,8 @@ bool pd_compact_predicted(const struct model *m)
     return !m->opt.full_bonds && !m->opt.lps && !m->opt.eps && !m->opt.fiber_plane && !ortho;
 }
 
-/* The model's (length, coefficient, type) rows from the table of keys
- * (PD_KIND_KEY bytes each; @p tab is freed). */
-static int kinds_from_table(struct model *m, unsigned char *tab, size_t nk,
-                            struct spall_error *err)
+int pd_kinds_from_table(struct model *m, unsigned char *tab, size_t nk,
+                        struct spall_error *err)
 {
     double *k_rest = malloc((nk ? nk : 1) * sizeof *k_rest);
     double *k_coef = malloc((nk ? nk : 1) * sizeof *k_coef);
@@ -128,7 +125,7 @@ int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err)
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
         return SPALL_OK;
     }
-    if ((rc = kinds_from_table(m, tab, nk, err))) {
+    if ((rc = pd_kinds_from_table(m, tab, nk, err))) {
         free(kind);
         return rc;
     }

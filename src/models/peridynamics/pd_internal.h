@@ -138,6 +138,15 @@ bool pd_compact_predicted(const struct model *m);
  *  table overflows, leaves the arrays pd_build_coefficients expects (rest
  *  lengths and a zeroed type array) and m->kind NULL. */
 int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err);
+
+/** Bytes of one bond kind's key: rest length, coefficient (doubles), type. */
+#define PD_KIND_KEY (2 * sizeof(double) + 1)
+
+/** The model's kind arrays k_rest, k_coef, k_type (n_kind = @p nk) from a
+ *  table of @p nk keys of PD_KIND_KEY bytes; @p tab is freed.  The arrays
+ *  must be unset (NULL) on entry. */
+int pd_kinds_from_table(struct model *m, unsigned char *tab, size_t nk,
+                        struct spall_error *err);
 /** Bytes of the model's own arrays (families, coefficients, per-particle state)
  *  for @p n particles: the memory report of pd_describe. */
 size_t pd_model_bytes(const struct model *m, size_t n);
