@@ -89,6 +89,9 @@ for n in $counts; do
         ranks $d "$n"
     done
 done
+# ADR builds each rank's window only (the distributed set-up)
+grep -q "^setup: distributed" adr2/run.log 2>/dev/null || [ ! -d adr2 ] ||
+    { echo "FAIL adr on 2 ranks: not the distributed set-up"; grep "^setup" adr2/run.log; fail=1; }
 # the plastic extension and force states per half-bond, ADR's last two
 # forces per particle, the angles per half-bond, the mode-mix factors and
 # the twin slots travel with migrating particles: still bitwise
