@@ -27,9 +27,11 @@
 #include "validation/impact_cases.h"
 #include "validation/lattice_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/contact_particles.h"
 #include "core/fields.h"
+#include "core/parallel/comm.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -100,6 +102,60 @@ int impact_spall_deck_law(char *buf, size_t len, double flyer_width, double r0, 
     return n > 0 && (size_t)n < len ? SPALL_OK : SPALL_ERR_INTERNAL;
 }
 
+/* The run's particles by global id, on every rank (vpar.h): the serial
+ * order and values on any rank count, so every measurement below is the
+ * serial one.  x0, y0, body once; y (current) and the fracture density
+ * when measured. */
+struct spall_whole {
+    size_t n;
+    double *x0, *y0, *body, *y;
+};
+
+static void spall_whole_free(struct spall_whole *w)
+{
+    free(w->x0);
+    free(w->y0);
+    free(w->body);
+    free(w->y);
+    memset(w, 0, sizeof *w);
+}
+
+static int spall_whole_init(const struct sim *s, struct spall_whole *w, struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    memset(w, 0, sizeof *w);
+    w->n = vpar_n(s);
+    double *b = malloc((p->n ? p->n : 1) * sizeof *b);
+    int rc = b ? SPALL_OK : spall_error_set(err, SPALL_ERR_NOMEM, "impact-spall: out of memory");
+    if (s->par) /* every rank gathers, or none */
+        rc = par_agree(rc, err);
+    if (rc)
+        return rc;
+    for (size_t i = 0; i < p->n; i++)
+        b[i] = (double)p->body[i];
+    /* vpar_whole agrees over the ranks itself: all fail alike */
+    if ((w->x0 = vpar_whole(s, p->x0[0], err)) && (w->y0 = vpar_whole(s, p->x0[1], err)))
+        w->body = vpar_whole(s, b, err);
+    free(b);
+    return w->body ? SPALL_OK : err->code;
+}
+
+/* The fracture density of every particle by global id (collective). */
+static double *whole_field(const struct sim *s, const struct field_desc *f,
+                           struct spall_error *err)
+{
+    const size_t n = s->p->n;
+    double *local = malloc((n ? n : 1) * sizeof *local);
+    if (!local) {
+        spall_error_set(err, SPALL_ERR_NOMEM, "impact-spall: out of memory");
+        return NULL;
+    }
+    field_gather_f64(f, n, local);
+    double *w = vpar_whole(s, local, err);
+    free(local);
+    return w;
+}
+
 /* The opened spall crack, measured from the separation of the material on
  * either side of the crack row kc: per column of width r0 (reference x), the
  * mean vertical displacement of the target rows kc+3..kc+5 minus that of the
@@ -108,23 +164,23 @@ int impact_spall_deck_law(char *buf, size_t len, double flyer_width, double r0, 
  * Returns the length of the open stretch through the flyer's centre [m] and,
  * over that stretch, the spread (max - min) of the columns' crack row (the
  * damage-weighted mean row within +-4 rows of kc) in *row_spread. */
-static double open_crack(const struct particles *p, const double *fd, double r0, double row,
+static double open_crack(const struct spall_whole *w, const double *fd, double r0, double row,
                          int kc, double *row_spread)
 {
     enum { NB = 512 };
-    double up[NB] = {0}, dn[NB] = {0}, wk[NB] = {0}, w[NB] = {0};
+    double up[NB] = {0}, dn[NB] = {0}, wk[NB] = {0}, wt[NB] = {0};
     int nu[NB] = {0}, nd[NB] = {0};
     int nb = (int)floor(0.052 / r0) + 1;
     if (nb > NB)
         nb = NB;
-    for (size_t i = 0; i < p->n; i++) {
-        if (p->body[i] != 0)
+    for (size_t i = 0; i < w->n; i++) {
+        if (w->body[i] != 0.0)
             continue;
-        int k = (int)lround(p->x0[1][i] / row);
-        int b = (int)floor(p->x0[0][i] / r0);
+        int k = (int)lround(w->y0[i] / row);
+        int b = (int)floor(w->x0[i] / r0);
         if (b < 0 || b >= nb)
             continue;
-        double dy = p->x[1][i] - p->x0[1][i];
+        double dy = w->y[i] - w->y0[i];
         if (k >= kc + 3 && k <= kc + 5) {
             up[b] += dy;
             nu[b]++;
@@ -133,7 +189,7 @@ static double open_crack(const struct particles *p, const double *fd, double r0,
             nd[b]++;
         }
         if (fd[i] > 0.0 && abs(k - kc) <= 4) {
-            w[b] += fd[i];
+            wt[b] += fd[i];
             wk[b] += fd[i] * k;
         }
     }
@@ -153,9 +209,9 @@ static double open_crack(const struct particles *p, const double *fd, double r0,
 #undef SPALL_IS_OPEN
     double rmin = INFINITY, rmax = -INFINITY;
     for (int b = lo; b <= hi; b++)
-        if (w[b] > 0.0) {
-            rmin = fmin(rmin, wk[b] / w[b]);
-            rmax = fmax(rmax, wk[b] / w[b]);
+        if (wt[b] > 0.0) {
+            rmin = fmin(rmin, wk[b] / wt[b]);
+            rmax = fmax(rmax, wk[b] / wt[b]);
         }
     *row_spread = hi >= lo && rmax >= rmin ? rmax - rmin : INFINITY;
     return hi >= lo ? (hi - lo + 1) * r0 : 0.0;
@@ -170,24 +226,26 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
     if (impact_spall_deck_law(deck, sizeof deck, flyer_width, r0, 8.0e-6, law, fail_keys))
         return spall_error_set(err, SPALL_ERR_INTERNAL, "impact-spall: deck buffer too small");
     struct sim *s = NULL;
-    double *fd = NULL;
+    double *fd = NULL, *vy = NULL;
+    struct spall_whole w = {0};
     int *hist = NULL;
     double *t_first = NULL;
     int rc = vlat_build("impact-spall", deck, &s, err);
     if (rc)
         return rc;
+    /* mpirun: the measurements below read the particles by global id */
+    if ((rc = vpar_distribute(r, s, err)) || (rc = spall_whole_init(s, &w, err)))
+        goto done;
     const struct field_desc *f = field_registry_find(s->fields, "fracture_density");
     if (!f) {
         rc = spall_error_set(err, SPALL_ERR_INTERNAL, "impact-spall: no fracture_density field");
         goto done;
     }
-    const struct particles *p = s->p;
-    fd = malloc(p->n * sizeof *fd);
     int kt = (int)floor(SPALL_H_TARGET / row + 1e-9);
     int kf = (int)floor(SPALL_H_FLYER / row + 1e-9);
     hist = calloc((size_t)kt + 1, sizeof *hist);
     t_first = malloc(((size_t)kt + 1) * sizeof *t_first);
-    if (!fd || !hist || !t_first) {
+    if (!hist || !t_first) {
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "impact-spall: out of memory");
         goto done;
     }
@@ -203,28 +261,45 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
         if ((rc = sim_step(s, err)))
             goto done;
         if (isnan(v_flyer) && s->t >= 2.0 * hf / c_p && gf >= 0) {
-            const struct group *g = &s->groups[gf];
+            /* the flyer group is the flyer body (body 1): summed in
+             * global-id order, the group's own order */
+            if (!(vy = vpar_whole(s, s->p->v[1], err))) {
+                rc = err->code;
+                goto done;
+            }
             double sum = 0.0;
-            for (size_t q = 0; q < g->n; q++)
-                sum += p->v[1][g->idx[q]];
-            v_flyer = g->n ? sum / (double)g->n : 0.0;
+            size_t nf = 0;
+            for (size_t i = 0; i < w.n; i++)
+                if (w.body[i] == 1.0) {
+                    sum += vy[i];
+                    nf++;
+                }
+            v_flyer = nf ? sum / (double)nf : 0.0;
         }
         if (s->step % 5 == 0 && s->t < 4.0e-6) {
-            field_gather_f64(f, p->n, fd);
-            for (size_t i = 0; i < p->n; i++) {
-                int k = (int)lround(p->x0[1][i] / row);
+            free(fd);
+            if (!(fd = whole_field(s, f, err))) {
+                rc = err->code;
+                goto done;
+            }
+            for (size_t i = 0; i < w.n; i++) {
+                int k = (int)lround(w.y0[i] / row);
                 if (k >= 0 && k < kt && fd[i] > 0.0 && !isfinite(t_first[k]) &&
-                    fabs(p->x0[0][i] - 0.026) < 0.25 * flyer_width)
+                    fabs(w.x0[i] - 0.026) < 0.25 * flyer_width)
                     t_first[k] = s->t;
             }
         }
     }
-    field_gather_f64(f, p->n, fd);
+    free(fd);
+    if (!(fd = whole_field(s, f, err)) || !(w.y = vpar_whole(s, s->p->x[1], err))) {
+        rc = err->code;
+        goto done;
+    }
     sim_update_energy(s);
     /* damage of the target away from the impact face (whose bonds were cut) */
     size_t total = 0;
-    for (size_t i = 0; i < p->n; i++) {
-        int k = (int)lround(p->x0[1][i] / row);
+    for (size_t i = 0; i < w.n; i++) {
+        int k = (int)lround(w.y0[i] / row);
         if (k >= 0 && k < kt - 3 && fd[i] > 0.0) {
             hist[k]++;
             total++;
@@ -237,10 +312,10 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
     size_t near = 0, off_sides = 0, off_flyer_edges = 0;
     double xmin = INFINITY, xmax = -INFINITY;
     const double fx0 = 0.5 * (0.052 - flyer_width), fx1 = fx0 + flyer_width;
-    for (size_t i = 0; i < p->n; i++) {
-        int k = (int)lround(p->x0[1][i] / row);
+    for (size_t i = 0; i < w.n; i++) {
+        int k = (int)lround(w.y0[i] / row);
         if (k >= 0 && k < kt - 3 && fd[i] > 0.0 && abs(k - kc) > 2) {
-            double x = p->x0[0][i];
+            double x = w.x0[i];
             /* where the off-plane damage sits: the target's free sides or
              * below the short flyer's edges (corner releases, shear) */
             if (x < SPALL_EDGE_ZONE || x > 0.052 - SPALL_EDGE_ZONE)
@@ -251,10 +326,10 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
         }
         if (k >= 0 && k < kt - 3 && fd[i] > 0.0 && abs(k - kc) <= 2) {
             near++;
-            if (p->x0[0][i] < xmin)
-                xmin = p->x0[0][i];
-            if (p->x0[0][i] > xmax)
-                xmax = p->x0[0][i];
+            if (w.x0[i] < xmin)
+                xmin = w.x0[i];
+            if (w.x0[i] > xmax)
+                xmax = w.x0[i];
         }
     }
     /* spalled-layer thickness on the axis, where the 1D wave picture holds
@@ -262,10 +337,10 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
      * damaged particles there within +-2 rows of kc; the crack runs between
      * the two rows that share its broken bonds, i.e. at that mean + 1/2 row */
     double wsum = 0.0, wk = 0.0;
-    for (size_t i = 0; i < p->n; i++) {
-        int k = (int)lround(p->x0[1][i] / row);
+    for (size_t i = 0; i < w.n; i++) {
+        int k = (int)lround(w.y0[i] / row);
         if (k >= 0 && k < kt - 3 && fd[i] > 0.0 && abs(k - kc) <= 2 &&
-            fabs(p->x0[0][i] - 0.026) < 0.25 * flyer_width) {
+            fabs(w.x0[i] - 0.026) < 0.25 * flyer_width) {
             wsum += fd[i];
             wk += fd[i] * k;
         }
@@ -274,7 +349,7 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
     double share = total ? (double)near / (double)total : 0.0;
     double length = near ? xmax - xmin : 0.0;
     double spread = INFINITY;
-    double open_len = open_crack(p, fd, r0, row, kc, &spread);
+    double open_len = open_crack(&w, fd, r0, row, kc, &spread);
     /* 1D wave theory ([Wang2010] sec. 4.2): the flyer's release reaches the
      * interface, which cannot pull, at 2 h_f / c; the release from the far
      * face meets the flyer's at h_f from it at (h_t + h_f) / c.  h = rows x
@@ -337,7 +412,7 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
     vreport_info(r, "%s flyer %.1f cm: %zu particles, dt = %.3g s; damaged target particles %zu, "
                     "%.0f %% within +-2 rows of row %d (y = %.3f mm), spalled layer %.3f mm, "
                     "damage x-extent there %.2f cm; opened crack %.2f cm, its row spread %.2f rows",
-                 label, flyer_width * 100, p->n, s->dt, total, 100 * share, kc, kc * row * 1e3,
+                 label, flyer_width * 100, w.n, s->dt, total, 100 * share, kc, kc * row * 1e3,
                  thick * 1e3, length * 100, open_len * 100, spread);
     vreport_info(r, "%s: flyer's mean velocity at 2 h_f / c = %.3g us: %.1f m/s (1D equal "
                     "impedance: 0, from -260); spall plane first broken at %.3g us; energy "
@@ -350,6 +425,8 @@ static int run_spall(struct vreport *r, double flyer_width, const char *label, c
                  SPALL_EDGE_ZONE * 1e3, total - near - off_sides - off_flyer_edges);
 done:
     free(fd);
+    free(vy);
+    spall_whole_free(&w);
     free(hist);
     free(t_first);
     sim_destroy(&s);

@@ -71,7 +71,7 @@ static int rod_elastic_one(struct vreport *r, int n_phi, double n_h, enum macro_
     rod.eps_end = 2e-3;
     rod.transits = transits;
     rod.calibration = cal;
-    int rc = macro_rod_run(&rod, err);
+    int rc = macro_rod_run(r, &rod, err);
     if (rc) {
         macro_rod_free(&rod);
         return rc;

@@ -51,7 +51,9 @@ struct macro_rod {
     struct macro_slip_stats slip; /**< slip analysis at the end (threshold 0.25 r0, 10 deg) */
 };
 
-int macro_rod_run(struct macro_rod *rod, struct spall_error *err);
+/** Builds and runs the rod; under mpirun (r's vpar) distributed, its
+ *  measurements read the particles by global id (the serial values). */
+int macro_rod_run(struct vreport *r, struct macro_rod *rod, struct spall_error *err);
 void macro_rod_free(struct macro_rod *rod);
 /** Least-squares slope of y(x) over samples with lo <= |x| <= hi. */
 double macro_fit_slope(const double *x, const double *y, size_t n, double lo, double hi);

@@ -90,7 +90,7 @@ static int cutoff_sweep(struct vreport *r, bool *follows, struct spall_error *er
         c.transits = 80.0;
         c.cutoff = rc_list[k][0];
         c.taper = rc_list[k][1];
-        int rc = macro_rod_run(&c, err);
+        int rc = macro_rod_run(r, &c, err);
         if (rc) {
             macro_rod_free(&c);
             return rc;
@@ -128,7 +128,7 @@ static int loading_sweep(struct vreport *r, struct spall_error *err)
         c.eps_end = 0.1;
         c.transits = set[k].transits;
         c.clamp = set[k].clamp;
-        int rc = macro_rod_run(&c, err);
+        int rc = macro_rod_run(r, &c, err);
         if (rc) {
             macro_rod_free(&c);
             return rc;
@@ -159,9 +159,9 @@ static int tension_compression(struct vreport *r, int nphi, bool clamp, struct s
     t.clamp = clamp;
     c = t;
     c.sign = -1;
-    int rc = macro_rod_run(&t, err);
+    int rc = macro_rod_run(r, &t, err);
     if (!rc)
-        rc = macro_rod_run(&c, err);
+        rc = macro_rod_run(r, &c, err);
     if (rc)
         goto done;
     vreport_info(r, "n_phi = %d, %s (end layers driven along z; %s):", nphi, ends,
@@ -286,9 +286,9 @@ int macro_case_rod_plastic(struct vreport *r, struct spall_error *err)
     l.table = loop;
     l.n_table = 7;
     l.eps_end = 0.045;
-    int rc = macro_rod_run(&t, err);
+    int rc = macro_rod_run(r, &t, err);
     if (!rc)
-        rc = macro_rod_run(&l, err);
+        rc = macro_rod_run(r, &l, err);
     if (rc)
         goto done;
     print_curve(r, "plastic tension", &t);

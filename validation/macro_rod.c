@@ -20,6 +20,7 @@
 #include "validation/macro_cases.h"
 #include "validation/lattice_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -63,19 +64,20 @@ double macro_fit_slope(const double *x, const double *y, size_t n, double lo, do
     return c >= 2.0 && den > 0.0 ? (c * sxy - sx * sy) / den : NAN;
 }
 
-/** Count reference nearest-neighbour pairs now beyond 1.2 r0, by family. */
-static int count_broken(struct macro_rod *rod, const struct sim *s, struct spall_error *err)
+/** Count reference nearest-neighbour pairs now beyond 1.2 r0, by family,
+ *  over the @p n particles of the whole rod (x, x0 by global id). */
+static int count_broken(struct macro_rod *rod, size_t n, double *const x[3],
+                        double *const x0[3], struct spall_error *err)
 {
-    const struct particles *p = s->p;
     struct neighbor_list *nl = NULL;
-    int rc = neighbor_list_build(&nl, 3, p->n_owned, p->x0, 1.1 * rod->r0, err);
+    int rc = neighbor_list_build(&nl, 3, n, x0, 1.1 * rod->r0, err);
     if (rc)
         return rc;
     static const int fam[6][3] = {{1, 1, 0}, {1, -1, 0}, {1, 0, 1}, {1, 0, -1}, {0, 1, 1},
                                   {0, 1, -1}};
     memset(rod->broken, 0, sizeof rod->broken);
     rod->bonds0 = 0;
-    for (size_t i = 0; i < p->n_owned; i++)
+    for (size_t i = 0; i < n; i++)
         for (size_t q = nl->offset[i]; q < nl->offset[i + 1]; q++) {
             size_t j = (size_t)nl->idx[q];
             if (j <= i)
@@ -83,8 +85,8 @@ static int count_broken(struct macro_rod *rod, const struct sim *s, struct spall
             rod->bonds0++;
             double d0[3], r2 = 0.0;
             for (int d = 0; d < 3; d++) {
-                d0[d] = p->x0[d][j] - p->x0[d][i];
-                double u = p->x[d][j] - p->x[d][i];
+                d0[d] = x0[d][j] - x0[d][i];
+                double u = x[d][j] - x[d][i];
                 r2 += u * u;
             }
             if (r2 <= 1.44 * rod->r0 * rod->r0)
@@ -104,7 +106,30 @@ static int count_broken(struct macro_rod *rod, const struct sim *s, struct spall
     return SPALL_OK;
 }
 
-int macro_rod_run(struct macro_rod *rod, struct spall_error *err)
+/* The end-of-run measurements on the whole rod: positions by global id
+ * (vpar.h; plain copies on one rank), so that they are the serial ones. */
+static int measure_end(struct macro_rod *rod, const struct sim *s, double r0,
+                       struct spall_error *err)
+{
+    double *x[3] = {NULL, NULL, NULL}, *x0[3] = {NULL, NULL, NULL};
+    int rc = SPALL_OK;
+    for (int d = 0; d < 3 && !rc; d++)
+        if (!(x[d] = vpar_whole(s, s->p->x[d], err)) ||
+            !(x0[d] = vpar_whole(s, s->p->x0[d], err)))
+            rc = err->code;
+    const size_t n = vpar_n(s);
+    if (!rc)
+        rc = count_broken(rod, n, x, x0, err);
+    if (!rc)
+        rc = macro_slip_analyse(n, x, x0, r0, 0.25 * r0, 10.0, &rod->slip, err);
+    for (int d = 0; d < 3; d++) {
+        free(x[d]);
+        free(x0[d]);
+    }
+    return rc;
+}
+
+int macro_rod_run(struct vreport *r, struct macro_rod *rod, struct spall_error *err)
 {
     const double a = ROD_D / rod->n_phi, r0 = a / sqrt(2.0), L = rod->n_h * a;
     struct macro_calib c;
@@ -179,7 +204,11 @@ int macro_rod_run(struct macro_rod *rod, struct spall_error *err)
     struct sim *s = NULL;
     if ((rc = vlat_build("macro-rod", yaml, &s, err)))
         return rc;
-    rod->particles = s->p->n_owned;
+    if ((rc = vpar_distribute(r, s, err))) { /* mpirun: history values are global sums */
+        sim_destroy(&s);
+        return rc;
+    }
+    rod->particles = vpar_n(s);
     rod->end_time = T;
     size_t cap = 400, every = (size_t)(s->n_steps / 300 + 1);
     rod->strain = malloc(cap * sizeof(double));
@@ -201,10 +230,7 @@ int macro_rod_run(struct macro_rod *rod, struct spall_error *err)
         }
     }
     if (!rc)
-        rc = count_broken(rod, s, err);
-    if (!rc)
-        rc = macro_slip_analyse(s->p->n_owned, s->p->x, s->p->x0, r0, 0.25 * r0, 10.0,
-                                &rod->slip, err);
+        rc = measure_end(rod, s, r0, err);
     sim_destroy(&s);
     return rc;
 }
