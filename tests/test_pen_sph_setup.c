@@ -184,7 +184,7 @@ static void test_run_short(void **state)
     struct pen_sph_grid g = {.dx1_d = 0.34, .width = 1.0, .depth = 1.0, .t_end = 30e-9,
                              .cavity_depth = 0.0};
     struct pen_sph_outcome o;
-    assert_int_equal(pen_sph_setup_run(&t, &s, &g, &o, &e), SPALL_OK);
+    assert_int_equal(pen_sph_setup_run(NULL, &t, &s, &g, &o, &e), SPALL_OK);
     assert_false(o.at_rest);
     assert_true(o.nh > 2);
     assert_true(o.pmax > 1e-6 && o.pmax < 30e-9 * 215.0 + 1e-6);
@@ -207,11 +207,11 @@ static void test_run_rebound(void **state)
     struct pen_sph_grid g = {.dx1_d = 0.34, .width = 1.0, .depth = 1.0, .t_end = 400e-9,
                              .cavity_depth = 15e-6, .k_first_contact = 1};
     struct pen_sph_outcome a, b;
-    assert_int_equal(pen_sph_setup_run(&t, &s, &g, &a, &e), SPALL_OK);
+    assert_int_equal(pen_sph_setup_run(NULL, &t, &s, &g, &a, &e), SPALL_OK);
     assert_true(a.at_rest);
     assert_false(a.rebounded);
     g.t_rebound = 160e-9;
-    assert_int_equal(pen_sph_setup_run(&t, &s, &g, &b, &e), SPALL_OK);
+    assert_int_equal(pen_sph_setup_run(NULL, &t, &s, &g, &b, &e), SPALL_OK);
     assert_true(b.at_rest);
     assert_true(b.rebounded);
     /* same run up to rest: the same maximum */

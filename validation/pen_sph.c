@@ -75,13 +75,13 @@ void pen_sph_deck(char *buf, size_t len, double v0, double E, double dx1, double
         buf[0] = '\0'; /* an empty deck then fails to build, naming the deck */
 }
 
-static int pen_sph_run(double v0, double E, double dx1, double width, double t_end,
-                       struct pen_sph_outcome *o, struct spall_error *err)
+static int pen_sph_run(struct vreport *r, double v0, double E, double dx1, double width,
+                       double t_end, struct pen_sph_outcome *o, struct spall_error *err)
 {
     const struct pen_sph_target t = pen_sph_target_gelatin(E);
     const struct pen_sph_shot s = {PEN_D, PEN_RHO_P, v0};
     const struct pen_sph_grid g = gelatin_grid(dx1, width, t_end);
-    return pen_sph_setup_run(&t, &s, &g, o, err);
+    return pen_sph_setup_run(r, &t, &s, &g, o, err);
 }
 
 static int poncelet_nose(double v0, double *out, struct spall_error *err)
@@ -116,7 +116,7 @@ int pen_case_sph_gelatin(struct vreport *r, struct spall_error *err)
     const struct pen_sph_shot s = {PEN_D, PEN_RHO_P, 1290.0};
     struct pen_sph_grid g = gelatin_grid(0.75e-6, 1.0, 450.0e-9);
     g.t_rebound = PEN_REBOUND_END;
-    int rc = pen_sph_setup_run(&t, &s, &g, &o, err);
+    int rc = pen_sph_setup_run(r, &t, &s, &g, &o, err);
     if (rc)
         return rc;
     run_info(r, "1290 m/s, E = 20 MPa, dx1 = 0.75 um (d/10), run on to 320 ns", &o);
@@ -174,7 +174,7 @@ int pen_case_sph_sweep(struct vreport *r, struct spall_error *err)
     static const double tend[4] = {200e-9, 400e-9, 450e-9, 450e-9};
     for (int k = 0; k < 4; k++) {
         struct pen_sph_outcome o = {0};
-        int rc = pen_sph_run(v0s[k], 20.0e6, 0.75e-6, 1.0, tend[k], &o, err);
+        int rc = pen_sph_run(r, v0s[k], 20.0e6, 0.75e-6, 1.0, tend[k], &o, err);
         if (rc)
             return rc;
         char what[96], q[96];
@@ -201,7 +201,7 @@ int pen_case_sph_modulus(struct vreport *r, struct spall_error *err)
     double pm[4];
     for (int k = 0; k < 4; k++) {
         struct pen_sph_outcome o = {0};
-        int rc = pen_sph_run(1290.0, Es[k], 0.75e-6, 1.0, 450.0e-9, &o, err);
+        int rc = pen_sph_run(r, 1290.0, Es[k], 0.75e-6, 1.0, 450.0e-9, &o, err);
         if (rc)
             return rc;
         char what[96];
@@ -347,7 +347,7 @@ int pen_case_sph_convergence(struct vreport *r, struct spall_error *err)
         /* k = 4: d/15 with the two outer radial levels 1.5x wider (to 216 um) */
         struct pen_sph_grid g = gelatin_grid(conv_dx[k < 4 ? k : 1], k < 4 ? 1.0 : 1.5, 300.0e-9);
         g.surface_contact = 1;
-        rc = pen_sph_setup_run(&t, &s, &g, k < 4 ? &o[k] : &w, err);
+        rc = pen_sph_setup_run(r, &t, &s, &g, k < 4 ? &o[k] : &w, err);
     }
     if (rc)
         goto out;
@@ -422,7 +422,7 @@ int pen_case_sph_av_forms(struct vreport *r, struct spall_error *err)
         const struct pen_sph_shot s = {PEN_D, PEN_RHO_P, 1290.0};
         for (int k = 0; k < 3 && !rc; k++) {
             const struct pen_sph_grid g = gelatin_grid(conv_dx[k], 1.0, 450.0e-9);
-            rc = pen_sph_setup_run(&t, &s, &g, &o[k], err);
+            rc = pen_sph_setup_run(r, &t, &s, &g, &o[k], err);
         }
         if (!rc) {
             const int shrink = sequence_info(r, form[f], o, 3);

@@ -107,7 +107,7 @@ int pen_case_sph_sebs(struct vreport *r, struct spall_error *err)
             if (rc)
                 return rc;
             struct pen_sph_outcome o;
-            if ((rc = pen_sph_setup_run(&tgt, &shot, &g, &o, err)))
+            if ((rc = pen_sph_setup_run(r, &tgt, &shot, &g, &o, err)))
                 return rc;
             const double pref = ref.p_max + 0.5 * d;
             vreport_info(r,
@@ -179,7 +179,7 @@ int pen_case_sph_sebs_convergence(struct vreport *r, struct spall_error *err)
             g.dx1_d = 1.0 / N[l];
             g.surface_contact = 1;
             struct pen_sph_outcome o;
-            if ((rc = pen_sph_setup_run(&tgt, &shot, &g, &o, err)))
+            if ((rc = pen_sph_setup_run(r, &tgt, &shot, &g, &o, err)))
                 return rc;
             h[l] = g.dx1_d * d;
             f[l] = o.pmax;

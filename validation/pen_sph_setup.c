@@ -14,6 +14,7 @@
  */
 #include "validation/lattice_cases.h"
 #include "validation/pen_sph_setup.h"
+#include "validation/vpar.h"
 
 #include "core/mathconst.h"
 #include "core/particles.h"
@@ -256,9 +257,9 @@ static int history_push(struct pen_sph_outcome *o, size_t *cap, double t, double
     return 0;
 }
 
-int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot *s,
-                      const struct pen_sph_grid *g, struct pen_sph_outcome *o,
-                      struct spall_error *err)
+int pen_sph_setup_run(struct vreport *r, const struct pen_sph_target *t,
+                      const struct pen_sph_shot *s, const struct pen_sph_grid *g,
+                      struct pen_sph_outcome *o, struct spall_error *err)
 {
     char deck[4096];
     *o = (struct pen_sph_outcome){0};
@@ -268,6 +269,12 @@ int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot 
     struct sim *sim = NULL;
     if ((rc = vlat_build("pen_sph_setup", deck, &sim, err)))
         return rc;
+    /* mpirun: the impactor's state is the same on every rank, the cavity
+     * diameters and the energy are sums over all ranks (vpar.h) */
+    if ((rc = vpar_distribute(r, sim, err))) {
+        sim_destroy(&sim);
+        return rc;
+    }
     if (!sim->rigid || sim->rigid->n < 1) {
         sim_destroy(&sim);
         return spall_error_set(err, SPALL_ERR_INTERNAL, "pen_sph_setup: deck has no impactor");
@@ -277,7 +284,7 @@ int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot 
     const double e_in = 0.5 * im->mass * s->v0 * s->v0;
     size_t cap = 0;
     o->pmax = -INFINITY;
-    o->n = sim->p->n;
+    o->n = vpar_n(sim);
     double t0 = omp_get_wtime();
     while (!sim_done(sim) && !rc) {
         if ((rc = sim_step(sim, err)))

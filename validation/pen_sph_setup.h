@@ -97,14 +97,15 @@ struct pen_sph_outcome {
     size_t nh;
 };
 
-/** Build the deck, run until the sphere comes to rest (V <= 0 after
+/** Build the deck (distributed under mpirun when @p r's case runs
+ *  distributed, vpar.h; @p r may be NULL: one rank), run until the sphere comes to rest (V <= 0 after
  *  contact) or t_end; with g->t_rebound > 0 run on past rest to
  *  min(t_rebound after contact, t_end) and fill the rebound fields.
  *  P = depth of the tip below the initial surface, t counted from first
  *  contact.  Free with pen_sph_outcome_free. */
-int pen_sph_setup_run(const struct pen_sph_target *t, const struct pen_sph_shot *s,
-                      const struct pen_sph_grid *g, struct pen_sph_outcome *o,
-                      struct spall_error *err);
+int pen_sph_setup_run(struct vreport *r, const struct pen_sph_target *t,
+                      const struct pen_sph_shot *s, const struct pen_sph_grid *g,
+                      struct pen_sph_outcome *o, struct spall_error *err);
 void pen_sph_outcome_free(struct pen_sph_outcome *o);
 
 /** Richardson extrapolation of three results @p f at spacings @p h (h[0] >

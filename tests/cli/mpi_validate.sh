@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # `spall validate` and `spall bench` under mpirun (docs/parallel.md,
 # "validate and bench under mpirun"):
-#  - distributed cases (lattice-waves, pd-bimaterial-bar, pd-lps-waves) on
-#    2 ranks, and thermal-expansion (angular springs), write the same --json
+#  - distributed cases (lattice-waves, pd-bimaterial-bar, pd-lps-waves,
+#    impact-spall with particle contact between two bodies, macro-rod-large's
+#    reduced rods) on 2 ranks, and thermal-expansion (angular springs), write
+#    the same --json
 #    as one rank, byte for byte; a case that is not distributed
 #    (pen-check-value) runs on rank 0 alone with one "serial:" note; every
 #    case header and the summary are printed once; the exit status is the
@@ -22,7 +24,8 @@ source "$2/tests/cli/lib/mpi_env.bash"
 fail=0
 launch() { OMP_NUM_THREADS=1 timeout 900 "$mpiexec" --allow-run-as-root --oversubscribe -q "$@"; }
 
-cases="lattice-waves pd-bimaterial-bar pd-lps-waves thermal-expansion pen-check-value"
+cases="lattice-waves pd-bimaterial-bar pd-lps-waves thermal-expansion impact-spall macro-rod-large
+       pen-check-value"
 # shellcheck disable=SC2086
 OMP_NUM_THREADS=1 timeout 900 "$spall" validate $cases --quick --json one.json > one.txt 2>&1
 rc1=$?
