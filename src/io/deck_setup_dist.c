@@ -28,8 +28,6 @@ static const char *unsupported(const struct deck_node *root)
         return "inclusions";
     if (deck_peek(root, "contact"))
         return "particle contact (contact:)";
-    if (model && model->kind == DECK_MAPPING && deck_peek(model, "thermal"))
-        return "the thermal lattice (model.thermal)";
     /* the state-based stable time step reads the weighted volumes of the
      * partners' partners, which the edge of a window leaves too small */
     const struct deck_node *f = model && model->kind == DECK_MAPPING

@@ -86,6 +86,7 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
                      size_t n_owned, const int64_t *new_of_old, struct spall_error *err);
 struct par_model_arrays;
 int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
+int lattice_migrated(struct model *m, struct sim *sim, struct spall_error *err);
 struct model_energy;
 
 /* lattice_forces.c */

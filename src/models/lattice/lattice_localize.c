@@ -86,16 +86,14 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
 }
 
 /* model_ops.migrate_arrays: the bond rows, the dissipated energy per
- * particle and the softening history per half-bond travel with a particle.
- * The thermal lattice keeps per-particle and per-bond state whose owners
- * (th->n, m->kscale) a moved array would leave behind: refused.  Angular
- * springs: each half-bond's angle (second arm, reference angle, state). */
+ * particle and the softening history per half-bond travel with a particle;
+ * the thermal lattice's heating, heat capacity, conductances, reference
+ * rest lengths and E(T) factors too (lattice_thermal.c, whose caches of
+ * them lattice_migrated renews).  Angular springs: each half-bond's angle
+ * (second arm, reference angle, state). */
 int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
-    if (lattice_thermal_enabled(m))
-        return spall_error_set_key(err, SPALL_ERR_INPUT, "parallel.rebalance_every",
-                                   "distributed runs: the thermal lattice cannot migrate "
-                                   "particles yet; leave parallel.rebalance_every at 0");
+    (void)err;
     a->bl = m->bl;
     a->n_half = &m->n_half;
     a->n_particle = 1;
@@ -116,5 +114,14 @@ int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a, struct s
             a->bond_size[a->n_bond++] = sz[k];
         }
     }
+    lattice_thermal_migrate_arrays(m, a);
+    return SPALL_OK;
+}
+
+/* model_ops.migrated: the thermal lattice's particle count and E(T) view */
+int lattice_migrated(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    (void)err;
+    lattice_thermal_migrated(m, sim->p->n);
     return SPALL_OK;
 }

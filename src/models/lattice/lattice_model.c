@@ -694,6 +694,7 @@ const struct model_ops lattice_model_ops = {
     .register_state = lattice_register_state,
     .localize = lattice_localize,
     .migrate_arrays = lattice_migrate_arrays,
+    .migrated = lattice_migrated,
     .fixtures = lattice_fixtures,
     .setup_range = lattice_setup_range,
     .setup_tables = lattice_setup_tables,

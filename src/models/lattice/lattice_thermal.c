@@ -13,6 +13,7 @@
 #include "core/options.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/migrate.h"
 #include "models/lattice/lattice_internal.h"
 #include "spall/error.h"
 
@@ -547,4 +548,34 @@ void lattice_thermal_destroy(struct lattice_thermal **pth)
     free(th->kscale);
     free(th);
     *pth = NULL;
+}
+
+/* Distributed runs, migration (lattice_localize.c): the per-particle and
+ * per-half-bond state travels with its particle.  T is the registered field
+ * `temperature` (the engine moves it); T_new is scratch, lent only so that
+ * it keeps the particle count. */
+void lattice_thermal_migrate_arrays(struct model *m, struct par_model_arrays *a)
+{
+    struct lattice_thermal *th = m->th;
+    if (!lattice_thermal_enabled(m))
+        return;
+    double **part[3] = {&th->T_new, &th->heat, &th->inv_mC};
+    for (int k = 0; k < 3; k++) {
+        a->particle[a->n_particle] = (void **)part[k];
+        a->particle_size[a->n_particle++] = sizeof(double);
+    }
+    double **bond[3] = {&th->rest0, &th->kappa, &th->kscale};
+    for (int k = 0; k < 3; k++)
+        if (*bond[k]) { /* kscale: only with a youngs_modulus_table */
+            a->bond[a->n_bond] = (void **)bond[k];
+            a->bond_size[a->n_bond++] = sizeof(double);
+        }
+}
+
+void lattice_thermal_migrated(struct model *m, size_t n)
+{
+    if (!lattice_thermal_enabled(m))
+        return;
+    m->th->n = n;
+    m->kscale = m->th->kscale; /* the force loop's view of the moved array */
 }

@@ -68,6 +68,12 @@ int lattice_thermal_register_fields(struct model *m, struct field_registry *reg,
  *  @p keep (owned, then ghosts) and of the half-bonds @p oh. */
 int lattice_thermal_localize(struct model *m, const size_t *keep, size_t n_keep,
                              const size_t *oh, size_t nh, struct spall_error *err);
+struct par_model_arrays;
+/** Distributed runs, migration: lend the thermal state per particle and per
+ *  half-bond (appended to @p a), and after the move take the new count @p n
+ *  of local particles and the moved arrays. */
+void lattice_thermal_migrate_arrays(struct model *m, struct par_model_arrays *a);
+void lattice_thermal_migrated(struct model *m, size_t n);
 /** History columns (temperature_mean, temperature_max, melted bonds); returns
  *  how many were written at @p names / @p values. */
 size_t lattice_thermal_history(const struct model *m, const struct sim *sim, const char **names,
