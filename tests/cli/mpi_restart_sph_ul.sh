@@ -7,7 +7,9 @@
 # rings (fused loop, artificial stress, predictor-corrector), the copper bar
 # in the updated form with the two-pass loops (leapfrog, CSPM, Balsara,
 # XSPH, the artificial stress smoothed between the passes, the wall) and the
-# axisymmetric gelatin penetration (axis weights, rigid sphere, cavity).
+# axisymmetric gelatin penetration (axis weights, rigid sphere, cavity), and
+# the same with the sphere as an SPH body behind the penalty interface
+# (the interface list: written on 2 ranks, continued on 3).
 #  - written on 2 ranks, every checkpoint equals the serial run's (h5diff);
 #  - continued from the 2-rank checkpoint without mpirun and on 3 and 4
 #    ranks (the rings also on 2 ranks x 2 threads): history.csv and
@@ -37,16 +39,20 @@ sed -i 's/^  xsph: 0.5$/  xsph: 0.5\n  artificial_stress: 0.3\n  artificial_stre
     bar.yaml
 grep -q "artificial_stress_smoothing" bar.yaml || { echo "FAIL: cannot make bar.yaml"; exit 1; }
 cp "$2/tests/cli/decks/mpi_ul_gel.yaml" gel.yaml
-with_checkpoints rings 60
-with_checkpoints bar 60
-with_checkpoints gel 100
+# (the first half: ~400 steps, the sphere in contact throughout)
+sed 's/^run: {end_time: 1.0e-08}$/run: {end_time: 5.0e-09}/' "$2/tests/cli/decks/mpi_ul_def.yaml" > def.yaml
+grep -q "end_time: 5.0e-09" def.yaml || { echo "FAIL: cannot make def.yaml"; exit 1; }
+declare -A every=([rings]=60 [bar]=60 [gel]=100 [def]=200)
 counts=${SPALL_MPI_RANK_COUNTS:-3 4}
-for d in rings bar gel; do
+for d in rings bar gel def; do
+    ck=${every[$d]}
+    with_checkpoints "$d" "$ck"
     serial "$d"
     written_on_2 "$d"
-    ck=$( [ "$d" = gel ] && echo 100 || echo 60 )
     ckf=$(printf "checkpoint_%010d.h5" "$ck")
-    for n in 1 $counts; do
+    cont="1 $counts"
+    [ "$d" = def ] && cont=3 # (the interface list; one restart suffices)
+    for n in $cont; do
         continued "$d" "${d}2/$ckf" "$n"
     done
     # the lists must be rebuilt after the checkpoint, or the test shows little
@@ -55,6 +61,10 @@ for d in rings bar gel; do
                         $1 == s {b0 = $b} END {exit !($b > b0 && b0 > 1)}' \
         "${d}_serial/history.csv" || { echo "FAIL $d: no list rebuild after step $ck"; fail=1; }
 done
+# the deformable sphere's interface pairs must be in contact after the checkpoint
+awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "interface_pairs") c = k; next}
+         $1 > 200 && $c > 0 {n++} END {exit !(n > 3)}' def_serial/history.csv ||
+    { echo "FAIL def: no interface pairs after step 200"; fail=1; }
 # 2 ranks x 2 threads
 OMP_NUM_THREADS=2 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np 2 "$spall" \
     run rings.yaml --restart rings2/checkpoint_0000000060.h5 -o rings_t2 --quiet --no-progress ||
