@@ -7,6 +7,12 @@
  *        built at, the interface pair list, and after a TLSPH re-reference
  *        the new reference pair data ([Meng2021] ch. 3).  Without a
  *        re-reference the reference data are rebuilt by init from the deck.
+ *
+ * The lists are saved by global id, so a distributed run's checkpoint is
+ * the one-rank file (below).  With symmetry planes the list spans the
+ * mirror ghosts, which are not particles of the run: it is not saved but
+ * found again after the load from the build positions and list radius
+ * (sph_symmetry.c, sph_symmetry_restore).
  */
 #include "models/sph/sph_internal.h"
 
