@@ -29,7 +29,8 @@ mpiexec="$3"
 source "$2/tests/cli/lib/rank_compare.bash"
 with_checkpoints() { # deck every: a checkpoint every N steps added to the output map
     sed -i "s/^output: {\(.*\)\$/output: {checkpoint: {every_steps: $2, keep: 5}, \1/" "$1.yaml"
-    grep -q "checkpoint: {every_steps: $2" "$1.yaml" || { echo "FAIL: cannot make $1.yaml"; exit 1; }
+    grep -q "checkpoint: {every_steps: $2" "$1.yaml" ||
+        { echo "FAIL: cannot make $1.yaml"; exit 1; }
 }
 cp "$2/tests/cli/decks/mpi_ul.yaml" rings.yaml
 # the bar in the updated form, as mpi_sph_ul.sh makes it
@@ -40,7 +41,8 @@ sed -i 's/^  xsph: 0.5$/  xsph: 0.5\n  artificial_stress: 0.3\n  artificial_stre
 grep -q "artificial_stress_smoothing" bar.yaml || { echo "FAIL: cannot make bar.yaml"; exit 1; }
 cp "$2/tests/cli/decks/mpi_ul_gel.yaml" gel.yaml
 # (the first half: ~400 steps, the sphere in contact throughout)
-sed 's/^run: {end_time: 1.0e-08}$/run: {end_time: 5.0e-09}/' "$2/tests/cli/decks/mpi_ul_def.yaml" > def.yaml
+sed 's/^run: {end_time: 1.0e-08}$/run: {end_time: 5.0e-09}/' \
+    "$2/tests/cli/decks/mpi_ul_def.yaml" > def.yaml
 grep -q "end_time: 5.0e-09" def.yaml || { echo "FAIL: cannot make def.yaml"; exit 1; }
 declare -A every=([rings]=60 [bar]=60 [gel]=100 [def]=200)
 counts=${SPALL_MPI_RANK_COUNTS:-3 4}
@@ -74,7 +76,8 @@ checkpoints_same rings_serial rings_t2 "rings continued on 2 ranks x 2 threads"
 grep -q "^ranks_x_threads: 2 x 2" rings_t2/run.log ||
     { echo "FAIL rings on 2 ranks x 2 threads: run.log"; fail=1; }
 # rebalanced: the deck differs by its parallel key (/deck and so /checksum)
-{ cat rings.yaml; echo "parallel: {rebalance_every: 20, imbalance_threshold: 1.0}"; } > rings_rb.yaml
+{ cat rings.yaml; echo "parallel: {rebalance_every: 20, imbalance_threshold: 1.0}"; } \
+    > rings_rb.yaml
 skip="--exclude-path /deck --exclude-path /checksum"
 mpi 3 run rings_rb.yaml -o rings_rb3 || { echo "FAIL rings rebalanced on 3: exit $?"; fail=1; }
 same_as_serial rings_serial rings_rb3 "rings rebalanced, 3 ranks"
@@ -92,8 +95,9 @@ refused_restart() { # what dir deck expected-substring
     rc=$?
     after=$(cd "$2" && ls -l --time-style=+%s.%N && md5sum -- *)
     [ $rc -eq 2 ] || { echo "FAIL $1: exit $rc, expected 2"; fail=1; }
-    [ "$(wc -l < refused.err)" -eq 1 ] && grep -q -- "$4" refused.err ||
-        { echo "FAIL $1: message"; cat refused.err; fail=1; }
+    if [ "$(wc -l < refused.err)" -ne 1 ] || ! grep -q -- "$4" refused.err; then
+        echo "FAIL $1: message"; cat refused.err; fail=1
+    fi
     [ "$before" = "$after" ] || { echo "FAIL $1: $2 changed"; fail=1; }
 }
 mkdir cut
