@@ -219,6 +219,32 @@ static const struct restart_case k_cases[] = {
      300, NULL},
     {"sph-total",
      SPH_ROD_OF("tlsph", "  reference_update: {every: 70}\n", ""), 300, NULL},
+    /* symmetry planes: the mirror ghosts and their list are rebuilt after
+     * the load at the checkpoint's build positions (sph_symmetry_restore);
+     * the half rod of plane x = 0, and a reduced 3D quarter Taylor bar
+     * (examples/sph_taylor_3d: planes x = 0 and y = 0) whose list is
+     * rebuilt twice after the checkpoint */
+    {"sph-symmetry", SPH_ROD("  symmetry: x\n", "  xsph: 0.1\n"), 300, NULL},
+    {"sph-symmetry-3d",
+     "model:\n"
+     "  type: sph\n"
+     "  kernel: wendland\n"
+     "  h_factor: 1.5\n"
+     "  viscosity: [1.0, 1.0]\n"
+     "  xsph: 0.1\n"
+     "  symmetry: xy\n"
+     "  wall: {point: [0, 0, 0], normal: [0, 0, 1]}\n"
+     "materials:\n"
+     "  iron: {density: 7850, youngs_modulus: 208.0e9, poisson_ratio: 0.3,\n"
+     "         eos: mie_gruneisen, sound_speed: 3630, hugoniot_slope: 1.80, gruneisen: 1.80,\n"
+     "         yield: perfect, yield_stress: 600.0e6}\n"
+     "lattice: {type: sc, spacing: 2.38125e-4, origin: [1.190625e-4, 1.190625e-4, 1.190625e-4]}\n"
+     "body: {geometry: {intersection: [{cylinder: {base: [0, 0, 0], top: [0, 0, 0.003],\n"
+     "                                             radius: 0.0012}},\n"
+     "                                 {box: {min: [0, 0, -1], max: [1, 1, 1]}}]},\n"
+     "       material: iron}\n"
+     "initial_velocity: [{group: all, value: [0, 0, -221.0]}]\n",
+     200, NULL},
     /* more than SPALL_OMP_MIN_PARTICLES: the restart's one thread and the
      * first run's two threads both really run */
     {"lattice-threads",
@@ -520,39 +546,11 @@ static void test_restart_newer_format(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
-/* SPH with symmetry-plane ghosts has no restart yet: refused before the
- * run starts, not at its first checkpoint. */
-static void test_restart_refused_sph_symmetry(void **state)
-{
-    (void)state;
-    char tmp[] = "/tmp/spall_restart_XXXXXX";
-    assert_non_null(mkdtemp(tmp));
-    char deck[256], out[256];
-    snprintf(deck, sizeof deck, "%s/deck.yaml", tmp);
-    snprintf(out, sizeof out, "%s/out", tmp);
-    FILE *f = fopen(deck, "w");
-    assert_non_null(f);
-    fprintf(f, "%srun: {steps: 20}\noutput: {checkpoint: {every_steps: 10}}\n",
-            SPH_ROD("  symmetry: x\n", "  xsph: 0.1\n"));
-    fclose(f);
-    struct spall_run_options opt = {.deck_path = deck, .out_dir = out, .progress = 0,
-                                    .quiet = true};
-    struct spall_run_result res;
-    struct spall_error err = {0};
-    assert_int_equal(spall_run(&opt, &res, &err), SPALL_ERR_INPUT);
-    assert_non_null(strstr(err.msg, "symmetry planes (ghost particles) cannot be checkpointed"));
-    assert_int_equal(access(out, F_OK), -1);
-    char cmd[600];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
-    assert_int_equal(system(cmd), 0);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_restart_newer_format),
         cmocka_unit_test(test_restart_every_time),
-        cmocka_unit_test(test_restart_refused_sph_symmetry),
         cmocka_unit_test(test_restart_in_place),
         cmocka_unit_test(test_restart_models),
     };

@@ -496,6 +496,10 @@ int sph_rates_fused(struct model *m, struct sim *s, struct spall_error *err)
     struct sph_pair_src src;
     int rc;
     if (m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1]) {
+        /* after a restart: first the ghosts and list the checkpointed run had */
+        if (m->sym_restore && (rc = sph_symmetry_restore(m, s, err)))
+            return rc;
+        m->sym_restore = false;
         if ((rc = sph_symmetry_update(m, s, &src, err)))
             return rc;
     } else {

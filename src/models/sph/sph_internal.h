@@ -8,6 +8,7 @@
 #ifndef SPALL_SPH_INTERNAL_H
 #define SPALL_SPH_INTERNAL_H
 
+#include "core/bond_list.h"
 #include "models/sph/sph.h"
 #include "models/sph/sph_kernels.h"
 #include "models/sph/sph_options.h"
@@ -150,6 +151,15 @@ struct model {
     struct bond_list *ulview; /**< distributed updated form: the neighbour list seen as
                                    bonds (rows aliased, own zero states), the
                                    partition's work 1 + partners (sph_halo_bonds) */
+    /* restart state (sph_restart.c) */
+    struct bond_list ck_list;  /**< the owned rows of the neighbour list as bonds */
+    struct bond_list ck_iface; /**< the owned rows of the interface list as bonds */
+    int32_t *ck_gid, *ck_igid; /**< distributed runs: their partners by global id */
+    int64_t sym_ghosts;        /**< symmetry planes: mirror ghosts of the last build */
+    int64_t *sym_ghosts_at;    /**< &sym_ghosts (the registry keeps an array's address) */
+    bool sym_restore;          /**< a checkpoint was loaded: the next force call rebuilds
+                                    the ghosts and list of the last build
+                                    (sph_symmetry_restore) */
 };
 
 /** Formulation of a particle (m->form), and SPH_FORM_ALL for loops that
@@ -218,6 +228,13 @@ int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src
                         struct spall_error *err);
 /** Free the ghost state; sets *sym to NULL. */
 void sph_symmetry_destroy(struct sph_sym **sym);
+/** After a checkpoint was loaded: the ghosts and the real + ghost list of
+ *  the last build, found again at the build positions (m->x_build) with
+ *  the list radius of that build, exactly as sph_symmetry_update made them
+ *  then (not counted as a build). */
+int sph_symmetry_restore(struct model *m, struct sim *s, struct spall_error *err);
+/** Mirror ghosts of the last build (0 before the first). */
+size_t sph_symmetry_ghosts(const struct model *m);
 
 /* sph_clamp.c */
 /** Parse model.clamp {group, point, normal}. */

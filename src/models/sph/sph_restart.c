@@ -7,6 +7,12 @@
  *        built at, the interface pair list, and after a TLSPH re-reference
  *        the new reference pair data ([Meng2021] ch. 3).  Without a
  *        re-reference the reference data are rebuilt by init from the deck.
+ *
+ * The lists are saved by global id, so a distributed run's checkpoint is
+ * the one-rank file (below).  With symmetry planes the list spans the
+ * mirror ghosts, which are not particles of the run: it is not saved but
+ * found again after the load from the build positions and list radius
+ * (sph_symmetry.c, sph_symmetry_restore).
  */
 #include "models/sph/sph_internal.h"
 
@@ -29,29 +35,39 @@ static int grow(void **a, size_t rows, size_t size, struct spall_error *err)
     return SPALL_OK;
 }
 
-/* ---- the updated-Lagrangian neighbour list and the interface list ------- */
-
-static size_t nl_rows(const void *ctx)
-{
-    const struct neighbor_list *nl = ((const struct model *)ctx)->nl;
-    return nl ? nl->offset[nl->n] : 0;
-}
+/* ---- the updated-Lagrangian neighbour list and the interface list -------
+ *
+ * Both are registered as bond lists of the owned rows (offsets and
+ * partners), as macro_restart.c does with its Verlet list: a distributed
+ * run writes each owned row at its serial place with the partners by
+ * global id (io/checkpoint_par.c), and its rows are in the serial order
+ * (ascending partner gid, sph_ulpar.c), so the file is the one-rank file,
+ * whose partners are indices = global ids.  The slots and dataset names
+ * are those of format 1: one-rank checkpoints are unchanged.  A load always
+ * goes into the whole body (before any partition), where index = gid. */
 
 static int nl_set_rows(void *ctx, size_t rows, struct spall_error *err)
 {
-    struct neighbor_list *nl = ((struct model *)ctx)->nl;
-    return grow((void **)&nl->idx, rows, sizeof *nl->idx, err);
-}
-
-static size_t if_rows(const void *ctx)
-{
-    const struct model *m = ctx;
-    return m->ifs.off[m->sim->p->n_owned];
+    struct model *m = ctx;
+    struct neighbor_list *nl = m->nl;
+    if (nl->offset[m->ck_list.n] != rows) /* the offsets are read first */
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "sph neighbour list: %zu pairs, its offsets say %zu", rows,
+                               nl->offset[m->ck_list.n]);
+    int rc = grow((void **)&nl->idx, rows, sizeof *nl->idx, err);
+    /* the bond view of a run about to be partitioned aliases the rows */
+    if (!rc && sph_ul_view(m))
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph restart)");
+    return rc;
 }
 
 static int if_set_rows(void *ctx, size_t rows, struct spall_error *err)
 {
     struct model *m = ctx;
+    if (m->ifs.off[m->ck_iface.n] != rows)
+        return spall_error_set(err, SPALL_ERR_INPUT,
+                               "sph interface list: %zu pairs, its offsets say %zu", rows,
+                               m->ifs.off[m->ck_iface.n]);
     if (rows > m->ifs.cap) {
         int rc = grow((void **)&m->ifs.idx, rows, sizeof *m->ifs.idx, err);
         if (rc)
@@ -59,6 +75,42 @@ static int if_set_rows(void *ctx, size_t rows, struct spall_error *err)
         m->ifs.cap = rows;
     }
     return SPALL_OK;
+}
+
+/* Distributed runs: the partners of the owned rows of @p bl by global id
+ * into *gid. */
+static int partner_gids(const struct sim *s, const struct bond_list *bl, int32_t **gid,
+                        struct spall_error *err)
+{
+    const size_t ns = bl->offset[bl->n];
+    int rc = grow((void **)gid, ns, sizeof **gid, err);
+    for (size_t k = 0; k < ns && !rc; k++)
+        (*gid)[k] = (int32_t)s->p->gid[bl->partner[k]];
+    return rc;
+}
+
+/* Offsets and partners of the owned rows of a list as slots NAME_offset
+ * and NAME_partner. */
+static int register_rows(struct model *m, const struct sim *s, struct field_state *fs,
+                         const char *name, struct bond_list *bl, size_t **offset,
+                         int32_t **partner, int32_t **gid, field_state_set_rows_fn set_rows,
+                         struct spall_error *err)
+{
+    *bl = (struct bond_list){.n = s->p->n_owned, .offset = *offset, .partner = *partner};
+    void **data = (void **)partner;
+    int rc = SPALL_OK;
+    if (s->par) {
+        rc = partner_gids(s, bl, gid, err);
+        data = (void **)gid;
+    }
+    char nm[FIELD_STATE_NAME_LEN];
+    snprintf(nm, sizeof nm, "sph.%s_offset", name);
+    if (!rc)
+        rc = field_state_add_offsets(fs, nm, (void **)offset, bl, err);
+    snprintf(nm, sizeof nm, "sph.%s_partner", name);
+    if (!rc)
+        rc = field_state_add_bond_list(fs, nm, FIELD_I32, data, bl, 1, set_rows, m, err);
+    return rc;
 }
 
 /* ---- TLSPH reference after a re-reference -------------------------------- */
@@ -123,16 +175,48 @@ static int register_tl(struct model *m, size_t n, struct field_state *fs, struct
     return rc;
 }
 
+/* Symmetry planes: the mirror ghosts are rebuilt, not saved.  Their count
+ * at the last build is saved as a check; its load marks the rebuild
+ * (sph_symmetry_restore, at the next force call, after the whole load). */
+static int sym_set_rows(void *ctx, size_t rows, struct spall_error *err)
+{
+    struct model *m = ctx;
+    if (rows != 1)
+        return spall_error_set(err, SPALL_ERR_INPUT, "sph symmetry ghosts: %zu values", rows);
+    m->sym_restore = true;
+    return SPALL_OK;
+}
+
+static size_t one_row(const void *ctx)
+{
+    (void)ctx;
+    return 1;
+}
+
+static int register_symmetry(struct model *m, struct field_state *fs, struct spall_error *err)
+{
+    m->sym_ghosts = (int64_t)sph_symmetry_ghosts(m);
+    m->sym_ghosts_at = &m->sym_ghosts;
+    return field_state_add_list(fs, "sph.symmetry_ghosts", FIELD_I64,
+                                (void **)&m->sym_ghosts_at, 1, one_row, sym_set_rows, m, err);
+}
+
 int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
                        struct spall_error *err)
 {
     _Static_assert(sizeof(size_t) == 8 && sizeof(long) == 8 && sizeof(uint32_t) == 4,
                    "counters are saved as int64, contact counts as int32");
     const size_t n = s->p->n_owned;
-    if (m->sym || (s->p->n != n && !s->par)) /* a distributed run's are the ranks' ghosts */
+    const bool sym = m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1] ||
+                     m->opt.bound.symmetry[2];
+    if (sym && s->par)
         return spall_error_set(err, SPALL_ERR_INPUT,
-                               "sph: runs with symmetry planes (ghost particles) cannot be "
-                               "checkpointed yet");
+                               "sph: distributed runs with symmetry planes cannot be "
+                               "checkpointed yet; run on one rank (without mpirun)");
+    if (s->p->n != n && !s->par) /* a distributed run's are the ranks' spatial ghosts */
+        return spall_error_set(err, SPALL_ERR_INTERNAL,
+                               "sph: %zu particles beside the %zu owned cannot be checkpointed",
+                               s->p->n - n, n);
     double **a[SPH_N_ARRAYS];
     size_t na = sph_state_arrays(m, a);
     char nm[FIELD_STATE_NAME_LEN];
@@ -144,26 +228,23 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
     if (!rc)
         rc = field_state_add_particle_array(fs, "sph.failed", FIELD_U8, (void **)&m->failed, n, 1,
                                             err);
-    if (!rc && m->nl) {
-        rc = field_state_add_array(fs, "sph.list_offset", FIELD_I64, (void **)&m->nl->offset,
-                                   m->nl->n + 1, 1, err);
-        if (!rc)
-            rc = field_state_add_list(fs, "sph.list_partner", FIELD_I32, (void **)&m->nl->idx, 1,
-                                      nl_rows, nl_set_rows, m, err);
-    }
+    if (!rc && sym)
+        rc = register_symmetry(m, fs, err);
+    else if (!rc && m->nl)
+        rc = register_rows(m, s, fs, "list", &m->ck_list, &m->nl->offset, &m->nl->idx,
+                           &m->ck_gid, nl_set_rows, err);
     if (!rc && m->ifs.off) {
-        rc = field_state_add_array(fs, "sph.iface_offset", FIELD_I64, (void **)&m->ifs.off, n + 1,
-                                   1, err);
+        rc = register_rows(m, s, fs, "iface", &m->ck_iface, &m->ifs.off, &m->ifs.idx,
+                           &m->ck_igid, if_set_rows, err);
         if (!rc)
-            rc = field_state_add_list(fs, "sph.iface_partner", FIELD_I32, (void **)&m->ifs.idx, 1,
-                                      if_rows, if_set_rows, m, err);
+            rc = field_state_add_particle_array(fs, "sph.iface_e", FIELD_F64, (void **)&m->ifs.e,
+                                                n, 1, err);
         if (!rc)
-            rc = field_state_add_array(fs, "sph.iface_e", FIELD_F64, (void **)&m->ifs.e, n, 1, err);
+            rc = field_state_add_particle_array(fs, "sph.iface_w", FIELD_F64, (void **)&m->ifs.w,
+                                                n, 1, err);
         if (!rc)
-            rc = field_state_add_array(fs, "sph.iface_w", FIELD_F64, (void **)&m->ifs.w, n, 1, err);
-        if (!rc)
-            rc = field_state_add_array(fs, "sph.iface_np", FIELD_I32, (void **)&m->ifs.np, n, 1,
-                                       err);
+            rc = field_state_add_particle_array(fs, "sph.iface_np", FIELD_I32,
+                                                (void **)&m->ifs.np, n, 1, err);
     }
     double *dv[] = {&m->wall.energy, &m->ax.surface_z, &m->ifs.energy, &m->ifs.omega2,
                     &m->nl_radius};

@@ -221,3 +221,46 @@ int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src
     }
     return SPALL_OK;
 }
+
+int sph_symmetry_restore(struct model *m, struct sim *s, struct spall_error *err)
+{
+    if (!m->sym) {
+        m->sym = calloc(1, sizeof *m->sym);
+        if (!m->sym)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for sph symmetry");
+    }
+    struct sph_sym *g = m->sym;
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    const int dim = m->dim;
+    /* the build saw the positions it stored in x_build: the ghost search and
+     * the list read p->x, so they run once more with the particles at those
+     * positions (pointers swapped, nothing copied), with the radius of that
+     * build (m->nl_radius, restored; h may have changed since) */
+    double *now[3] = {NULL, NULL, NULL};
+    for (int d = 0; d < dim; d++) {
+        now[d] = p->x[d];
+        p->x[d] = m->x_build[d];
+    }
+    int rc = sym_find_ghosts(m, s, m->nl_radius, err);
+    if (!rc) {
+        sym_fill(m, s); /* the positions; the rest is refilled by the next update */
+        neighbor_list_destroy(&m->nl);
+        double *xb[3] = {g->buf[0], g->buf[1], dim == 3 ? g->buf[2] : NULL};
+        rc = neighbor_list_build(&m->nl, dim, n + g->n_ghost, xb, m->nl_radius, err);
+    }
+    for (int d = 0; d < dim; d++)
+        p->x[d] = now[d];
+    g->built = !rc;
+    if (!rc && (int64_t)g->n_ghost != m->sym_ghosts)
+        rc = spall_error_set(err, SPALL_ERR_INPUT,
+                             "sph symmetry: %zu mirror ghosts at the checkpoint's build "
+                             "positions, the checkpoint says %lld",
+                             g->n_ghost, (long long)m->sym_ghosts);
+    return rc;
+}
+
+size_t sph_symmetry_ghosts(const struct model *m)
+{
+    return m->sym ? m->sym->n_ghost : 0;
+}
