@@ -25,7 +25,7 @@ static const char *const distributed_cases[] = {
     "lattice-chain-break", "lattice-waves",   "thermal-conduction", "thermal-expansion",
     "pd-waves",            "pd-bimaterial-bar", "pd-lps-waves",       "pd-branching",
     "pd-kalthoff",         "lattice-threads",   "impact-nylon",       "impact-vinylester",
-    "sph-rings",
+    "sph-rings",           "sph-taylor-3d",
 };
 
 /* Why the other cases run on rank 0 alone, by name prefix (first match). */
