@@ -8,6 +8,7 @@
 #include "spall/error.h"
 
 #include <limits.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,7 +37,8 @@ int par_share_rows(size_t n, int w, const size_t *rows, size_t n_mine, const dou
         double *sb = malloc((n_mine ? n_mine : 1) * rw * sizeof *sb);
         double *rb = malloc((n ? n : 1) * rw * sizeof *rb);
         int *cnt = malloc(2 * (size_t)size * sizeof *cnt);
-        int bad = !sb || !rb || !cnt || n * rw > (size_t)INT_MAX;
+        unsigned char *seen = calloc(n ? n : 1, 1);
+        int bad = !sb || !rb || !cnt || !seen || n * rw > (size_t)INT_MAX;
         if (par_agree(bad ? spall_error_set(err, SPALL_ERR_NOMEM,
                                             "out of memory sharing %zu rows of %d values", n, w)
                           : SPALL_OK,
@@ -44,6 +46,7 @@ int par_share_rows(size_t n, int w, const size_t *rows, size_t n_mine, const dou
             free(sb);
             free(rb);
             free(cnt);
+            free(seen);
             return SPALL_ERR_NOMEM;
         }
         for (size_t q = 0; q < n_mine; q++) {
@@ -57,23 +60,28 @@ int par_share_rows(size_t n, int w, const size_t *rows, size_t n_mine, const dou
             cnt[size + r] = at;
             at += cnt[r];
         }
-        if ((size_t)at > (n ? n : 1) * rw) { /* a row known twice: every rank sees it */
-            free(sb);
-            free(rb);
-            free(cnt);
-            return spall_error_set(err, SPALL_ERR_INTERNAL,
-                                   "sharing %zu rows: %zu records (a row known to two ranks)", n,
-                                   (size_t)at / rw);
-        }
-        MPI_Allgatherv(sb, mine, MPI_DOUBLE, rb, cnt, cnt + size, MPI_DOUBLE, MPI_COMM_WORLD);
-        for (size_t q = 0; q < (size_t)at / rw; q++) {
-            const size_t k = (size_t)rb[q * rw];
-            if (k < n)
+        /* more records than rows: a row known twice (every rank sees the
+         * same counts, so every rank refuses alike) */
+        size_t dup = (size_t)at > (n ? n : 1) * rw ? n : SIZE_MAX;
+        if (dup == SIZE_MAX) {
+            MPI_Allgatherv(sb, mine, MPI_DOUBLE, rb, cnt, cnt + size, MPI_DOUBLE,
+                           MPI_COMM_WORLD);
+            for (size_t q = 0; q < (size_t)at / rw; q++) {
+                const size_t k = (size_t)rb[q * rw];
+                if (k >= n)
+                    continue;
+                if (seen[k]++) /* the same records on every rank: refused alike */
+                    dup = k;
                 memcpy(all + k * (size_t)w, rb + q * rw + 1, (size_t)w * sizeof *all);
+            }
         }
         free(sb);
         free(rb);
         free(cnt);
+        free(seen);
+        if (dup != SIZE_MAX)
+            return spall_error_set(err, SPALL_ERR_INTERNAL,
+                                   "sharing %zu rows: row %zu known to two ranks", n, dup);
         return SPALL_OK;
     }
 #endif

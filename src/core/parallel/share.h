@@ -20,10 +20,11 @@ struct spall_error;
 
 /** Row k of a table of @p n rows of @p w doubles (the same n and w on every
  *  rank) into all[k * w ..) on every rank.  This rank knows the @p n_mine
- *  rows rows[q] (values vals[q * w ..)); every row must be known by exactly
- *  one rank (a row nobody knows is left as it was in @p all).  Collective
- *  when distributed, errors agreed (out of memory); without MPI or on one
- *  rank a copy. */
+ *  rows rows[q] (values vals[q * w ..)); every row must be known by at
+ *  most one rank (a row nobody knows is left as it was in @p all; a row two
+ *  ranks know is refused on every rank alike, SPALL_ERR_INTERNAL).
+ *  Collective when distributed, errors agreed (out of memory); without MPI
+ *  or on one rank a copy. */
 int par_share_rows(size_t n, int w, const size_t *rows, size_t n_mine, const double *vals,
                    double *all, struct spall_error *err);
 
