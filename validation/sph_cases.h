@@ -32,9 +32,10 @@ int sph_case_taylor3d(struct vreport *r, struct spall_error *err);
  *  planes when @p quarter; @p power_law: yield a + b eps_p^n without rate
  *  and heating instead of Johnson-Cook): final length, mushroom radius,
  *  outer radius 0.5 mm above the face (@p r05, may be NULL) [m], particle
- *  count, wall seconds. */
-int sph_taylor3d_run(int n, bool quarter, bool power_law, double *len, double *rad, double *r05,
-                     size_t *np, double *secs, struct spall_error *err);
+ *  count, wall seconds.  Under mpirun the sim is distributed through
+ *  @p r (vpar.h) and the bar's shape read by global id. */
+int sph_taylor3d_run(struct vreport *r, int n, bool quarter, bool power_law, double *len,
+                     double *rad, double *r05, size_t *np, double *secs, struct spall_error *err);
 
 /** Outcome of one 2D Taylor-rod run (sph_taylor2d.c): [0] at t1, [1] at t2. */
 struct sph_taylor2d_result {

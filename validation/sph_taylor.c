@@ -25,6 +25,7 @@
 #include "validation/lattice_cases.h"
 #include "validation/sph_cases.h"
 #include "validation/validation.h"
+#include "validation/vpar.h"
 
 #include "core/particles.h"
 #include "core/profile.h"
@@ -36,6 +37,8 @@
 #include <omp.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 /* Finite-element reference of the bar with the power-law yield of the
  * same constants, isothermal and rate-independent (validation/fe/
@@ -50,8 +53,8 @@
  *  @p power_law: the yield sigma_y = a + b eps_p^n of the same constants
  *  without rate and temperature terms (the FE reference's material)
  *  instead of Johnson-Cook. */
-int sph_taylor3d_run(int n, bool quarter, bool power_law, double *len, double *rad, double *r05,
-                     size_t *np, double *secs, struct spall_error *err)
+int sph_taylor3d_run(struct vreport *r, int n, bool quarter, bool power_law, double *len,
+                     double *rad, double *r05, size_t *np, double *secs, struct spall_error *err)
 {
     const double D0 = 7.595e-3, dx = D0 / n, L0 = 5.0 * D0;
     char deck[3072], geom[512];
@@ -83,6 +86,8 @@ int sph_taylor3d_run(int n, bool quarter, bool power_law, double *len, double *r
              dx, 0.5 * dx, 0.5 * dx, 0.5 * dx, geom);
     struct sim *s = NULL;
     int rc = vlat_build("sph_taylor3d", deck, &s, err);
+    if (!rc && (rc = vpar_distribute(r, s, err))) /* mpirun: the bar's shape by global id below */
+        sim_destroy(&s);
     if (rc)
         return rc;
     double t0 = omp_get_wtime();
@@ -90,24 +95,42 @@ int sph_taylor3d_run(int n, bool quarter, bool power_law, double *len, double *r
         if ((rc = sim_step(s, err)))
             break;
     *secs = omp_get_wtime() - t0;
+    /* the whole bar by global id on every rank (one rank: copies of its
+     * arrays), so that every measure below is the serial one */
     const struct particles *p = s->p;
+    const size_t nw = vpar_n(s);
+    double *w[4] = {NULL, NULL, NULL, NULL};
+    const double *src[4] = {p->x[0], p->x[1], p->x[2], p->x0[2]};
+    for (int k = 0; k < 4 && !rc; k++)
+        if (!(w[k] = vpar_whole(s, src[k], err)))
+            rc = err->code ? err->code : SPALL_ERR_NOMEM;
     /* length = extent along the axis: the bar rebounds from the wall
      * (~20 m/s) and flies off, so its top alone keeps rising */
     double zmax = -INFINITY, zmin = INFINITY, rmax = 0.0;
-    for (size_t i = 0; i < p->n; i++) {
-        zmax = fmax(zmax, p->x[2][i]);
-        zmin = fmin(zmin, p->x[2][i]);
+    for (size_t i = 0; i < nw && !rc; i++) {
+        zmax = fmax(zmax, w[2][i]);
+        zmin = fmin(zmin, w[2][i]);
     }
-    for (size_t i = 0; i < p->n; i++)
-        if (p->x0[2][i] < 1.5 * dx) /* the impact face's particles */
-            rmax = fmax(rmax, hypot(p->x[0][i], p->x[1][i]));
+    for (size_t i = 0; i < nw && !rc; i++)
+        if (w[3][i] < 1.5 * dx) /* the impact face's particles */
+            rmax = fmax(rmax, hypot(w[0][i], w[1][i]));
     *len = zmax - zmin + dx;
     *rad = rmax + 0.5 * dx;
     /* the mushroom 0.5 mm above the impact face (its surface dx/2 below
-     * the lowest centre), where the FE radius converges (core/profile.h) */
-    if (!rc && r05)
-        rc = profile_radius(p, zmin - 0.5 * dx + 0.5e-3, dx, 0.5 * dx, r05, err);
-    *np = p->n;
+     * the lowest centre), where the FE radius converges (core/profile.h),
+     * on the whole bar's positions */
+    if (!rc && r05) {
+        struct particles whole;
+        memset(&whole, 0, sizeof whole);
+        whole.dim = 3;
+        whole.n = whole.n_owned = nw;
+        for (int d = 0; d < 3; d++)
+            whole.x[d] = w[d];
+        rc = profile_radius(&whole, zmin - 0.5 * dx + 0.5e-3, dx, 0.5 * dx, r05, err);
+    }
+    *np = nw;
+    for (int k = 0; k < 4; k++)
+        free(w[k]);
     sim_destroy(&s);
     return rc;
 }
@@ -120,7 +143,7 @@ int sph_case_taylor3d(struct vreport *r, struct spall_error *err)
     for (int k = first; k <= last; k++) {
         size_t np = 0;
         double secs = 0.0;
-        int rc = sph_taylor3d_run(series[k], true, false, &len[k], &rad[k], &r05[k], &np, &secs,
+        int rc = sph_taylor3d_run(r, series[k], true, false, &len[k], &rad[k], &r05[k], &np, &secs,
                                   err);
         if (rc)
             return rc;
@@ -154,7 +177,7 @@ int sph_case_taylor3d(struct vreport *r, struct spall_error *err)
      * that material; the issue's 2 % for both measures */
     double pl = 0.0, pr = 0.0, p05 = 0.0, secs = 0.0;
     size_t np = 0;
-    if ((rc = sph_taylor3d_run(series[last], true, true, &pl, &pr, &p05, &np, &secs, err)))
+    if ((rc = sph_taylor3d_run(r, series[last], true, true, &pl, &pr, &p05, &np, &secs, err)))
         return rc;
     vreport_info(r, "power-law yield (a + b eps_p^n, no rate or heating), %d across: final length "
                  "%.3f mm, face radius %.3f mm, outer radius 0.5 mm above the face %.3f mm "

@@ -28,6 +28,7 @@ static const char *const distributed_cases[] = {
     "sph-rings",           "impact-spall",      "macro-rod-elastic",  "macro-rod-large",
     "macro-rod-plastic",   "pen-sph-gelatin",   "pen-sph-gelatin-sweep", "pen-sph-gelatin-modulus",
     "pen-sph-gelatin-convergence", "pen-sph-gelatin-av", "pen-sph-sebs", "pen-sph-sebs-convergence",
+    "sph-taylor-3d",
 };
 
 /* Why the other cases run on rank 0 alone, by name prefix (first match). */

@@ -7,7 +7,12 @@
  * skin/2 no rebuild is asked for, the refreshed ghosts carry the owners'
  * new positions, and every cross-rank pair within the range has its
  * partner among the ghosts; a move past skin/2 asks for a rebuild; a move
- * past the skin stops every rank with the particle's id.
+ * past the skin stops every rank with the particle's id.  With mirror
+ * planes (par_sghost_set_mirror: SPH's symmetry planes), on a cloud that
+ * straddles them, the set is the brute-force set of the particles whose
+ * position or an image lies within range + skin of the box, and every image
+ * within the range of an owned particle has its source among the owned
+ * particles and the ghosts (some sources being ghosts by their image only).
  * Run: mpirun -np N test_par_sghost (N = 1 is valid: no ghosts).
  */
 #include "core/parallel/comm.h"
@@ -48,15 +53,24 @@ static void make_cloud(struct cloud *c, int dim, int interleave, int size)
     }
 }
 
-static double dist2_box(const struct cloud *c, int j, const double *lo, const double *hi)
+/* squared distance of particle j (or, with mirror planes, of the nearest of
+ * it and its images) to the box */
+static double dist2_box(const struct cloud *c, int j, const double *lo, const double *hi,
+                        unsigned mirror)
 {
-    double r2 = 0.0;
-    for (int d = 0; d < c->dim; d++) {
-        double p = c->x[d][j];
-        double u = p < lo[d] ? lo[d] - p : p > hi[d] ? p - hi[d] : 0.0;
-        r2 += u * u;
+    double best = INFINITY;
+    for (unsigned mk = 0; mk < 8; mk++) {
+        if (mk & ~mirror)
+            continue;
+        double r2 = 0.0;
+        for (int d = 0; d < c->dim; d++) {
+            double p = (mk >> d & 1u) ? -c->x[d][j] : c->x[d][j];
+            double u = p < lo[d] ? lo[d] - p : p > hi[d] ? p - hi[d] : 0.0;
+            r2 += u * u;
+        }
+        best = fmin(best, r2);
     }
-    return r2;
+    return best;
 }
 
 /* this rank's owned particles, ascending id (= index in the cloud) */
@@ -73,7 +87,8 @@ static size_t owned_of(const struct cloud *c, int rank, double *x[3], int64_t *g
 }
 
 static void check_against_brute_force(const struct cloud *c, const struct par_sghost *g,
-                                      double range, double skin, const char *what)
+                                      double range, double skin, unsigned mirror,
+                                      const char *what)
 {
     const int rank = par_rank();
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -90,7 +105,7 @@ static void check_against_brute_force(const struct cloud *c, const struct par_sg
     size_t q = 0, ng = par_sghost_count(g);
     const int64_t *gg = par_sghost_gid(g);
     for (int j = 0; j < M && any; j++) {
-        if (c->owner[j] == rank || dist2_box(c, j, lo, hi) > cut2)
+        if (c->owner[j] == rank || dist2_box(c, j, lo, hi, mirror) > cut2)
             continue;
         CHECK(q < ng && gg[q] == j, "%s: ghost %zu should be particle %d (got %lld)", what, q, j,
               q < ng ? (long long)gg[q] : -1LL);
@@ -123,7 +138,7 @@ static void run_case(int dim, int interleave)
     size_t n = owned_of(&c, rank, x, gid);
     rc = par_sghost_build(g, n, (const double *const *)x, gid, &err);
     CHECK(!rc, "build: %s", err.msg);
-    check_against_brute_force(&c, g, range, skin, what);
+    check_against_brute_force(&c, g, range, skin, 0, what);
     if (size > 1 && !interleave && M / size > 50)
         CHECK(par_sghost_count(g) > 0 && par_sghost_count(g) < M - n,
               "%s: ghosts %zu: expected some, not all", what, par_sghost_count(g));
@@ -187,7 +202,7 @@ static void run_case(int dim, int interleave)
     CHECK(!rc && rebuild == 1, "%s: move > skin/2: rc %d, rebuild %d", what, rc, rebuild);
     rc = par_sghost_build(g, n, (const double *const *)x, gid, &err);
     CHECK(!rc, "rebuild: %s", err.msg);
-    check_against_brute_force(&c, g, range, skin, what);
+    check_against_brute_force(&c, g, range, skin, 0, what);
     rc = par_sghost_check(g, (const double *const *)x, &rebuild, &err);
     CHECK(!rc && rebuild == 0, "%s: after the rebuild: rc %d, rebuild %d", what, rc, rebuild);
 
@@ -206,6 +221,79 @@ static void run_case(int dim, int interleave)
     free(gid);
 }
 
+/* Mirror planes through the origin (x = 0, and y = 0 in 3D) on a cloud
+ * centred on them, split in slabs along x: a rank far from the planes
+ * holds the sources of the images that reach it. */
+static void run_mirror_case(int dim)
+{
+    const int size = par_size(), rank = par_rank();
+    const unsigned mirror = dim == 3 ? 3u : 1u;
+    static struct cloud c;
+    make_cloud(&c, dim, 0, size);
+    for (int j = 0; j < M; j++)
+        for (int d = 0; d < dim; d++)
+            c.x[d][j] -= 0.5;
+    const double range = dim == 3 ? 0.08 : 0.04, skin = 0.3 * range;
+    char what[64];
+    snprintf(what, sizeof what, "%dD mirrored", dim);
+    double *x[3];
+    for (int d = 0; d < 3; d++)
+        x[d] = calloc(M, sizeof(double));
+    int64_t *gid = calloc(M, sizeof *gid);
+    struct par_sghost *g = NULL;
+    struct spall_error err = {0};
+    int rc = par_sghost_create(&g, dim, range, skin, &err);
+    CHECK(!rc, "create: %s", err.msg);
+    par_sghost_set_mirror(g, mirror);
+    size_t n = owned_of(&c, rank, x, gid);
+    rc = par_sghost_build(g, n, (const double *const *)x, gid, &err);
+    CHECK(!rc, "build: %s", err.msg);
+    check_against_brute_force(&c, g, range, skin, mirror, what);
+    /* every image within the range of an owned particle: its source held */
+    const int64_t *gg = par_sghost_gid(g);
+    const size_t ng = par_sghost_count(g);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < dim; d++) {
+            lo[d] = fmin(lo[d], x[d][i]);
+            hi[d] = fmax(hi[d], x[d][i]);
+        }
+    uint64_t by_image = 0; /* ghosts farther than range + skin from the box themselves */
+    for (size_t q = 0; q < ng; q++)
+        by_image += dist2_box(&c, (int)gg[q], lo, hi, 0) > (range + skin) * (range + skin);
+    for (size_t i = 0; i < n; i++)
+        for (int j = 0; j < M; j++)
+            for (unsigned mk = 1; mk < 8; mk++) {
+                if ((mk & ~mirror) || c.owner[j] == rank)
+                    continue;
+                double r2 = 0.0;
+                for (int d = 0; d < dim; d++) {
+                    double u = ((mk >> d & 1u) ? -c.x[d][j] : c.x[d][j]) - x[d][i];
+                    r2 += u * u;
+                }
+                if (r2 > range * range)
+                    continue;
+                size_t a = 0, b = ng;
+                while (a < b) {
+                    size_t mid = (a + b) / 2;
+                    if (gg[mid] < j)
+                        a = mid + 1;
+                    else
+                        b = mid;
+                }
+                CHECK(a < ng && gg[a] == j,
+                      "%s: image %u of %d within range of %lld, source not a ghost", what, mk, j,
+                      (long long)gid[i]);
+            }
+    if (size > 2)
+        CHECK(par_sum_u64(by_image) > 0,
+              "%s: no ghost held for its image alone: the test proves little", what);
+    par_sghost_destroy(&g);
+    for (int d = 0; d < 3; d++)
+        free(x[d]);
+    free(gid);
+}
+
 int main(int argc, char **argv)
 {
     if (par_world_init(&argc, &argv))
@@ -213,6 +301,8 @@ int main(int argc, char **argv)
     for (int dim = 2; dim <= 3; dim++)
         for (int inter = 0; inter <= 1; inter++)
             run_case(dim, inter);
+    for (int dim = 2; dim <= 3; dim++)
+        run_mirror_case(dim);
     int total = (int)par_sum_u64((uint64_t)failures);
     if (par_rank() == 0)
         printf("test_par_sghost: %d ranks, %s\n", par_size(), total ? "FAILED" : "ok");

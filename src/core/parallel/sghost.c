@@ -9,6 +9,7 @@
 #include "spall/error.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,6 +20,7 @@
 struct par_sghost {
     int dim;
     double range, skin;
+    unsigned mirror;  /**< bit d: also the images in the plane x_d = 0 (par_sghost_set_mirror) */
     size_t n_owned;
     double *x_build;  /**< owned positions at the build, n_owned * dim */
     int64_t *gid_own; /**< owned ids at the build (to name a particle) */
@@ -53,11 +55,13 @@ static void release_build(struct par_sghost *g)
     free(g->rbuf);
     const int dim = g->dim;
     const double range = g->range, skin = g->skin;
+    const unsigned mirror = g->mirror;
     const long builds = g->builds;
     memset(g, 0, sizeof *g);
     g->dim = dim;
     g->range = range;
     g->skin = skin;
+    g->mirror = mirror;
     g->builds = builds;
 }
 
@@ -112,6 +116,11 @@ const int *par_sghost_owner(const struct par_sghost *g)
 long par_sghost_builds(const struct par_sghost *g)
 {
     return g->builds;
+}
+
+void par_sghost_set_mirror(struct par_sghost *g, unsigned planes)
+{
+    g->mirror = planes & 7u;
 }
 
 void par_sghost_lists(const struct par_sghost *g, struct par_sghost_lists *out)
@@ -169,6 +178,24 @@ static double box_dist2(const double *p, const double *lo, const double *hi, int
     return r2;
 }
 
+/* Is @p p, or with mirror planes one of its images (every combination of
+ * the planes x_d = 0 in @p mirror), within sqrt(cut2) of the box [lo, hi]? */
+static bool near_box(unsigned mirror, const double *p, const double *lo, const double *hi,
+                     int dim, double cut2)
+{
+    for (unsigned mk = 0; mk < 8; mk++) {
+        if (mk & ~mirror)
+            continue;
+        double q[3] = {p[0], p[1], p[2]};
+        for (int d = 0; d < dim; d++)
+            if (mk >> d & 1u)
+                q[d] = -q[d];
+        if (box_dist2(q, lo, hi, dim) <= cut2)
+            return true;
+    }
+    return false;
+}
+
 struct gid_slot {
     int64_t gid;
     size_t k;
@@ -218,7 +245,7 @@ static int build_lists(struct par_sghost *g, size_t n, const double *const x[3],
                 double p[3] = {0.0, 0.0, 0.0};
                 for (int d = 0; d < dim; d++)
                     p[d] = x[d][i];
-                if (box_dist2(p, b, b + 3, dim) > cut2)
+                if (!near_box(g->mirror, p, b, b + 3, dim, cut2))
                     continue;
                 if (pass == 0) {
                     g->scount[r]++;

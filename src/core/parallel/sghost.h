@@ -37,6 +37,15 @@ int par_sghost_create(struct par_sghost **out, int dim, double range, double ski
                       struct spall_error *err);
 void par_sghost_destroy(struct par_sghost **g);
 
+/** Mirror planes through the origin (bit d: the plane x_d = 0) for the
+ *  builds that follow: a particle is also sent to a rank when one of its
+ *  images in these planes (each plane and each combination) lies within
+ *  range + skin of the rank's box, so that a model which mirrors every
+ *  particle it holds near a plane (SPH's symmetry planes) holds the source
+ *  of every image its owned particles can reach.  Default none.  Not
+ *  collective (every rank must set the same planes). */
+void par_sghost_set_mirror(struct par_sghost *g, unsigned planes);
+
 /** Build the ghost set from this rank's @p n owned particles (positions
  *  x[d][i], ids gid[i]); remembers the positions for par_sghost_check and
  *  the send lists for par_sghost_update.  Collective. */

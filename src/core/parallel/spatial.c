@@ -128,6 +128,7 @@ static int relayout(struct sim *s, bool moved, struct spall_error *err)
         rc = par_sghost_create(&d->sg, dim, sm.range, sm.skin, err);
     if ((rc = par_agree(rc, err)))
         return rc;
+    par_sghost_set_mirror(d->sg, sm.mirror_planes);
     if (moved)
         for (int c = 0; c < dim; c++)
             memcpy(sm.xb[c], p->x[c], no * sizeof(double));
@@ -215,6 +216,11 @@ int par_ghosts_step(struct sim *s, struct spall_error *err)
         struct par_spatial_model sm;
         memset(&sm, 0, sizeof sm);
         s->ops->spatial_ghosts(s->model, &sm);
+        if (sm.place) { /* prescribed particles first (SPH's mirrored clamp) */
+            int rc = par_agree(sm.place(s->model, s, err), err);
+            if (rc)
+                return rc;
+        }
         const struct particles *p = s->p;
         double d2max = 0.0;
         for (size_t i = 0; i < p->n_owned; i++) {

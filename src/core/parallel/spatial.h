@@ -49,6 +49,18 @@ struct par_spatial_model {
      *  its list radius, sph_rates.c: the same comparison, not an
      *  equivalent one, keeps the rebuild steps bitwise the serial ones.) */
     bool (*rebuild_due)(struct model *m, const struct sim *s, double d2max);
+    /** Mirror planes through the origin (bit d: x_d = 0) whose images of
+     *  its particles the model adds to its partners (SPH symmetry planes):
+     *  a particle is a ghost of a rank also when one of its images lies
+     *  within range + skin of it (sghost.h, par_sghost_set_mirror). */
+    unsigned mirror_planes;
+    /** Optional: before the rebuild test of every force call, the model
+     *  places the owned particles whose position and velocity it
+     *  prescribes for the force call (SPH's mirrored clamp), so that the
+     *  test, a rebuild and the halo see them where the serial force call
+     *  does.  Called on every rank (it may use collectives); errors are
+     *  agreed by the caller. */
+    int (*place)(struct model *m, struct sim *s, struct spall_error *err);
 };
 
 /** Right after the partition (decomp.c): the first ghost set, built at the

@@ -43,15 +43,28 @@
  * plane act on free particles).  Updated formulation, two-pass loops only.
  * The artificial viscosity and artificial stress across the plane are
  * not energy-paired (the AV still only damps in the measured runs).
+ *
+ * Distributed (docs/parallel.md, "Updated-Lagrangian SPH on spatial
+ * ghosts"): the pairs are kept by global id; a clamp particle and its
+ * image may be owned by different ranks, up to two list radii apart, so
+ * the images' owners hand their values to every rank (core/parallel/
+ * share.h: x and v before the rebuild test of each force call, the
+ * engine's place hook; rho, c, sigma, R and B^-1 after the stress pass),
+ * and each clamp particle's owner applies the serial formulas to them.
+ * The halos that follow carry the clamp particles' values to the ranks
+ * that hold them as ghosts.
  */
 #include "models/sph/sph_internal.h"
 
+#include "core/parallel/gather.h"
+#include "core/parallel/share.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "core/options.h"
 #include "spall/error.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -59,10 +72,20 @@ struct sph_clamp {
     char group[SPALL_NAME_LEN];
     double point[3], normal[3]; /**< plane; normal points out of the clamp */
     size_t n;                   /**< mirrored pairs */
-    size_t *ghost, *mirror;     /**< clamp particle, its mirror image */
-    size_t n_all;
-    const size_t *all;          /**< every clamp particle (the group's list, borrowed) */
+    size_t *ghost, *mirror;     /**< clamp particle, its mirror image (serial indices) */
+    int group_index;            /**< the clamp group (its owned members: s->groups) */
+    /* distributed runs: the pairs by global id, their owned ends and the
+     * table of the images' values (sph_clamp_localize) */
+    int64_t *ggid, *mgid;       /**< clamp particle, mirror image */
+    size_t *own_g, *own_m;      /**< owned index of each end or SIZE_MAX */
+    size_t *rows;               /**< pairs whose image this rank owns */
+    size_t n_rows;
+    double *vals, *tab;         /**< their values; the whole table */
 };
+
+/* Doubles per pair in the shared tables: x and v; rho, c, sigma, R, B^-1. */
+#define CLAMP_W_MOTION 6
+#define CLAMP_W_STRESS 23
 
 void sph_clamp_destroy(struct sph_clamp **pc)
 {
@@ -70,6 +93,13 @@ void sph_clamp_destroy(struct sph_clamp **pc)
         return;
     free((*pc)->ghost);
     free((*pc)->mirror);
+    free((*pc)->ggid);
+    free((*pc)->mgid);
+    free((*pc)->own_g);
+    free((*pc)->own_m);
+    free((*pc)->rows);
+    free((*pc)->vals);
+    free((*pc)->tab);
     free(*pc);
     *pc = NULL;
 }
@@ -125,12 +155,13 @@ int sph_clamp_init(struct model *m, struct sim *s, struct spall_error *err)
                                    "every component (the clamp particles rest between force calls)",
                                    c->group);
     const struct group *g = &s->groups[gi];
-    c->n_all = g->n;
-    c->all = g->idx;
+    c->group_index = gi;
     uint8_t *in = calloc(p->n_owned ? p->n_owned : 1, 1);
     c->ghost = malloc((g->n ? g->n : 1) * sizeof(size_t));
     c->mirror = malloc((g->n ? g->n : 1) * sizeof(size_t));
-    if (!in || !c->ghost || !c->mirror) {
+    c->ggid = malloc((g->n ? g->n : 1) * sizeof *c->ggid);
+    c->mgid = malloc((g->n ? g->n : 1) * sizeof *c->mgid);
+    if (!in || !c->ghost || !c->mirror || !c->ggid || !c->mgid) {
         free(in);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph clamp)");
     }
@@ -188,6 +219,8 @@ int sph_clamp_init(struct model *m, struct sim *s, struct spall_error *err)
                                      (long long)p->gid[i], -d, sqrt(b2));
         c->ghost[c->n] = i;
         c->mirror[c->n] = best;
+        c->ggid[c->n] = p->gid[i];
+        c->mgid[c->n] = best == (size_t)-1 ? -1 : p->gid[best];
         c->n++;
     }
     free(in);
@@ -213,31 +246,129 @@ void sph_clamp_begin(const struct model *m, struct sim *s)
     }
 }
 
-void sph_clamp_stress(const struct model *m)
+/* -R = 2 n n^T - I of the clamp plane. */
+static void minus_reflection(const struct sph_clamp *c, int dim, double mR[9])
 {
-    const struct sph_clamp *c = m->clamp;
     const double *n = c->normal;
-    const int dim = m->dim;
-    double mR[9] = {0}; /* -R = 2 n n^T - I */
+    memset(mR, 0, 9 * sizeof *mR);
     for (int a = 0; a < dim; a++)
         for (int b = 0; b < dim; b++)
             mR[a * 3 + b] = 2.0 * n[a] * n[b] - (a == b ? 1.0 : 0.0);
-    for (size_t k = 0; k < c->n; k++) {
-        size_t g = c->ghost[k], j = c->mirror[k];
-        m->rho[g] = m->rho[j];
-        m->c[g] = m->c[j];
-        for (int q = 0; q < 6; q++) {
-            m->sig[q][g] = m->sig[q][j];
-            m->R[q][g] = m->R[q][j];
-        }
-        for (int a = 0; a < dim; a++)
-            for (int b = 0; b < dim; b++) {
-                double acc = 0.0;
-                for (int q = 0; q < dim; q++)
-                    acc += mR[a * 3 + q] * m->Bi[q * 3 + b][j];
-                m->Bi[a * 3 + b][g] = acc;
-            }
+}
+
+/* Clamp particle g takes the stress state of its image: rho, c, sigma, R
+ * and B_g^-1 = -R B_m^-1, from the image's values @p u (23 doubles in the
+ * order of CLAMP_W_STRESS: rho, c, sigma 6, R 6, B^-1 9). */
+static void stress_from(const struct model *m, const double mR[9], size_t g, const double *u)
+{
+    const int dim = m->dim;
+    m->rho[g] = u[0];
+    m->c[g] = u[1];
+    for (int q = 0; q < 6; q++) {
+        m->sig[q][g] = u[2 + q];
+        m->R[q][g] = u[8 + q];
     }
+    for (int a = 0; a < dim; a++)
+        for (int b = 0; b < dim; b++) {
+            double acc = 0.0;
+            for (int q = 0; q < dim; q++)
+                acc += mR[a * 3 + q] * u[14 + q * 3 + b];
+            m->Bi[a * 3 + b][g] = acc;
+        }
+}
+
+/* The stress values of particle j, in the order stress_from reads them. */
+static void stress_of(const struct model *m, size_t j, double *u)
+{
+    u[0] = m->rho[j];
+    u[1] = m->c[j];
+    for (int q = 0; q < 6; q++) {
+        u[2 + q] = m->sig[q][j];
+        u[8 + q] = m->R[q][j];
+    }
+    for (int q = 0; q < 9; q++)
+        u[14 + q] = m->Bi[q][j];
+}
+
+int sph_clamp_stress(const struct model *m, struct sim *s, struct spall_error *err)
+{
+    const struct sph_clamp *c = m->clamp;
+    double mR[9];
+    minus_reflection(c, m->dim, mR);
+    if (!s->par) {
+        for (size_t k = 0; k < c->n; k++) {
+            double u[CLAMP_W_STRESS];
+            stress_of(m, c->mirror[k], u);
+            stress_from(m, mR, c->ghost[k], u);
+        }
+        return SPALL_OK;
+    }
+    for (size_t q = 0; q < c->n_rows; q++)
+        stress_of(m, c->own_m[c->rows[q]], c->vals + q * CLAMP_W_STRESS);
+    int rc = par_share_rows(c->n, CLAMP_W_STRESS, c->rows, c->n_rows, c->vals, c->tab, err);
+    if (rc)
+        return rc;
+    for (size_t k = 0; k < c->n; k++)
+        if (c->own_g[k] != SIZE_MAX)
+            stress_from(m, mR, c->own_g[k], c->tab + k * CLAMP_W_STRESS);
+    return SPALL_OK;
+}
+
+int sph_clamp_localize(struct model *m, struct sim *s, struct spall_error *err)
+{
+    struct sph_clamp *c = m->clamp;
+    const size_t n = c->n ? c->n : 1;
+    if (!c->own_g) {
+        c->own_g = malloc(n * sizeof *c->own_g);
+        c->own_m = malloc(n * sizeof *c->own_m);
+        c->rows = malloc(n * sizeof *c->rows);
+        c->vals = malloc(n * CLAMP_W_STRESS * sizeof *c->vals);
+        c->tab = malloc(n * CLAMP_W_STRESS * sizeof *c->tab);
+        if (!c->own_g || !c->own_m || !c->rows || !c->vals || !c->tab)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph clamp)");
+    }
+    c->n_rows = 0;
+    for (size_t k = 0; k < c->n; k++) {
+        c->own_g[k] = par_owned_index(s, c->ggid[k]);
+        c->own_m[k] = par_owned_index(s, c->mgid[k]);
+        if (c->own_m[k] != SIZE_MAX)
+            c->rows[c->n_rows++] = k;
+    }
+    return SPALL_OK;
+}
+
+int sph_clamp_place(struct model *m, struct sim *s, struct spall_error *err)
+{
+    const struct sph_clamp *c = m->clamp;
+    const double *n = c->normal, *P = c->point;
+    struct particles *p = s->p;
+    const int dim = m->dim;
+    for (size_t q = 0; q < c->n_rows; q++) {
+        const size_t j = c->own_m[c->rows[q]];
+        double *u = c->vals + q * CLAMP_W_MOTION;
+        for (int a = 0; a < 3; a++) {
+            u[a] = a < dim ? p->x[a][j] : 0.0;
+            u[3 + a] = a < dim ? p->v[a][j] : 0.0;
+        }
+    }
+    int rc = par_share_rows(c->n, CLAMP_W_MOTION, c->rows, c->n_rows, c->vals, c->tab, err);
+    if (rc)
+        return rc;
+    /* sph_clamp_begin's formulas on the image's x and v */
+    for (size_t k = 0; k < c->n; k++) {
+        const size_t g = c->own_g[k];
+        if (g == SIZE_MAX)
+            continue;
+        const double *xj = c->tab + k * CLAMP_W_MOTION, *vj = xj + 3;
+        double d = 0.0;
+        for (int a = 0; a < dim; a++)
+            d += (xj[a] - P[a]) * n[a];
+        for (int a = 0; a < dim; a++) {
+            p->v[a][g] = -vj[a];
+            p->x[a][g] = xj[a] - 2.0 * d * n[a];
+        }
+    }
+    return SPALL_OK;
 }
 
 void sph_clamp_end(const struct model *m, struct sim *s)
@@ -245,14 +376,18 @@ void sph_clamp_end(const struct model *m, struct sim *s)
     const struct sph_clamp *c = m->clamp;
     struct particles *p = s->p;
     for (size_t k = 0; k < c->n; k++) {
-        size_t g = c->ghost[k];
+        size_t g = s->par ? c->own_g[k] : c->ghost[k];
+        if (g == SIZE_MAX)
+            continue; /* distributed: owned by another rank */
         for (int a = 0; a < m->dim; a++) {
             p->v[a][g] = 0.0;
             p->x[a][g] = p->x0[a][g];
         }
     }
     /* the clamp does no work: its particles store no energy of their own
-     * (their rates, driven by mirrored neighbours, are not physical) */
-    for (size_t k = 0; k < c->n_all; k++)
-        m->e[c->all[k]] = 0.0;
+     * (their rates, driven by mirrored neighbours, are not physical); the
+     * group holds the owned members */
+    const struct group *gr = &s->groups[c->group_index];
+    for (size_t k = 0; k < gr->n; k++)
+        m->e[gr->idx[k]] = 0.0;
 }

@@ -495,7 +495,13 @@ int sph_rates_fused(struct model *m, struct sim *s, struct spall_error *err)
     fused_prepare(m, s);
     struct sph_pair_src src;
     int rc;
-    if (m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1]) {
+    if ((m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1]) && s->par) {
+        /* distributed: the list came with the ghosts (sph_ulpar.c); the
+         * partners' state of this call from their owners, then the images */
+        if ((rc = sph_par_halo(m, s, SPH_HALO_FUSED, err)))
+            return rc;
+        sph_symmetry_src(m, s, &src);
+    } else if (m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1]) {
         /* after a restart: first the ghosts and list the checkpointed run had */
         if (m->sym_restore && (rc = sph_symmetry_restore(m, s, err)))
             return rc;

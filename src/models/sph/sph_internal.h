@@ -160,6 +160,8 @@ struct model {
     bool sym_restore;          /**< a checkpoint was loaded: the next force call rebuilds
                                     the ghosts and list of the last build
                                     (sph_symmetry_restore) */
+    bool ulview_own;       /**< the view owns its rows (sph_ul_view_held: a serial
+                                list with symmetry-plane images, which it leaves out) */
 };
 
 /** Formulation of a particle (m->form), and SPH_FORM_ALL for loops that
@@ -235,6 +237,18 @@ void sph_symmetry_destroy(struct sph_sym **sym);
 int sph_symmetry_restore(struct model *m, struct sim *s, struct spall_error *err);
 /** Mirror ghosts of the last build (0 before the first). */
 size_t sph_symmetry_ghosts(const struct model *m);
+/** Distributed (sph_ulpar.c): the neighbour list over the held (owned and
+ *  spatial ghost) particles and the images of those near a plane, at the
+ *  build positions x_build with the radius m->nl_radius, images in
+ *  ascending (source gid, mask); @p moved: an engine rebuild (the first
+ *  one marks the ghosts built, as sph_symmetry_update's first call). */
+int sph_symmetry_list(struct model *m, struct sim *s, bool moved, struct spall_error *err);
+/** Distributed: the images refreshed from their sources (after the halo
+ *  of the fused loop); fill @p src. */
+void sph_symmetry_src(struct model *m, struct sim *s, struct sph_pair_src *src);
+/** Has the list over real and mirrored particles been built (the serial
+ *  first force call builds it)? */
+bool sph_symmetry_built(const struct model *m);
 
 /* sph_clamp.c */
 /** Parse model.clamp {group, point, normal}. */
@@ -244,8 +258,17 @@ int sph_clamp_parse(const struct deck_node *node, int dim, struct sph_clamp **ou
 int sph_clamp_init(struct model *m, struct sim *s, struct spall_error *err);
 /** Before a force call: clamp particles take -v and the mirrored position of their image. */
 void sph_clamp_begin(const struct model *m, struct sim *s);
-/** Mirror-consistent stress of the clamp particles (after the stress pass). */
-void sph_clamp_stress(const struct model *m);
+/** Distributed: the same before the rebuild test and the halo of every
+ *  force call (par_spatial_model.place), the images' x and v from their
+ *  owners (collective). */
+int sph_clamp_place(struct model *m, struct sim *s, struct spall_error *err);
+/** Distributed: which clamp pairs have their clamp particle or their
+ *  mirror among this rank's owned particles (after every partition and
+ *  migration). */
+int sph_clamp_localize(struct model *m, struct sim *s, struct spall_error *err);
+/** Mirror-consistent stress of the clamp particles (after the stress pass;
+ *  distributed: the images' values from their owners, collective). */
+int sph_clamp_stress(const struct model *m, struct sim *s, struct spall_error *err);
 /** After a force call: clamp particles back at rest at their reference positions. */
 void sph_clamp_end(const struct model *m, struct sim *s);
 /** Free; sets *pc to NULL. */
@@ -309,6 +332,10 @@ void sph_ul_release(struct model *m);
 /** Point the bond view at the current neighbour list (runs on more than
  *  one rank only); -1 when out of memory. */
 int sph_ul_view(struct model *m);
+/** The same with the partners of index below @p n_held only, rows copied
+ *  (the serial list over real and mirrored particles before the partition:
+ *  the images are not particles); -1 when out of memory. */
+int sph_ul_view_held(struct model *m, size_t n_held);
 
 /* sph_localize.c (distributed runs, core/parallel/decomp.h) */
 struct bond_list;

@@ -33,10 +33,6 @@ static const char *not_distributed(const struct model *m)
     const struct sph_options *o = &m->opt;
     if (o->tl.split_forms || m->form)
         return "bodies split by formulation (model.body_formulation) are not distributed yet;";
-    if (o->bound.symmetry[0] || o->bound.symmetry[1] || o->bound.symmetry[2])
-        return "symmetry planes (model.symmetry) are not distributed yet;";
-    if (m->clamp)
-        return "the mirrored clamp (model.clamp) is not distributed yet;";
     if (!o->tl.total_lagrangian)
         return sph_ul_not_distributed(m); /* sph_ulpar.c */
     if (o->iface.kind != SPH_IFACE_NONE)

@@ -237,8 +237,10 @@ static int sph_register_fields(struct model *m, struct sim *sim, struct field_re
  * lfdt between the velocity gradient and the forces (sph_leapfrog.c). */
 static int forces(struct model *m, struct sim *sim, double lfdt, struct spall_error *err)
 {
-    if (m->clamp)
-        sph_clamp_begin(m, sim); /* sph_clamp.c: mirrored clamp around the force call */
+    /* sph_clamp.c: mirrored clamp around the force call (distributed: the
+     * engine's place hook did this before the rebuild test and the halo) */
+    if (m->clamp && !sim->par)
+        sph_clamp_begin(m, sim);
     int rc = lfdt > 0.0 ? sph_compute_rates_kick(m, sim, lfdt, err) : sph_compute_rates(m, sim, err);
     if (m->clamp)
         sph_clamp_end(m, sim);

@@ -499,8 +499,8 @@ static int updated_rates(struct model *m, struct sim *s, double lfdt, struct spa
         if (m->opt.visc.as_zeta > 0.0)
             sph_artificial_stress(m, i);
     }
-    if (m->clamp)
-        sph_clamp_stress(m); /* sph_clamp.c */
+    if (m->clamp && (rc = sph_clamp_stress(m, s, err))) /* sph_clamp.c */
+        return rc;
     if (m->opt.visc.as_smooth && m->opt.visc.as_zeta > 0.0) {
         /* distributed: the partners' R, rho and h of this call first */
         if (s->par && (rc = sph_par_halo(m, s, SPH_HALO_AS_SMOOTH, err)))

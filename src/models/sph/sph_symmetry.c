@@ -25,6 +25,18 @@
  * support of a real particle: its image lies 2 d from it (d its distance
  * to the plane) and at least d from any particle on the real side, so
  * d < neighbour radius suffices.
+ *
+ * Distributed (sph_ulpar.c; docs/parallel.md, "Updated-Lagrangian SPH on
+ * spatial ghosts"): a rank mirrors every particle it holds, owned or
+ * spatial ghost, near a plane.  The engine's ghost set holds the source of
+ * every image within the list radius of an owned particle (its box test
+ * also tries the particles' images, par_sghost_set_mirror), and the images
+ * follow the owned and ghost particles in ascending (source gid, mask), as
+ * the serial ghosts follow the real particles in (index = gid, mask): each
+ * owned row, real partners merged by gid and then the images, is the
+ * serial row, summed term for term.  The list is built by
+ * sph_symmetry_list at the engine's rebuilds; each force call refreshes
+ * the images from their sources after the halo (sph_symmetry_src).
  */
 #include "models/sph/sph_internal.h"
 
@@ -87,18 +99,19 @@ static int sym_reserve(struct sph_sym *g, size_t need, struct spall_error *err)
 }
 
 /* Ghost list: every (particle, mirror mask) whose image may enter a real
- * particle's support before the next build. */
-static int sym_find_ghosts(struct model *m, struct sim *s, double radius, struct spall_error *err)
+ * particle's support before the next build, over the @p n particles taken
+ * in the order @p order (NULL: index order) at positions @p xs. */
+static int sym_find_ghosts(struct model *m, size_t n, const size_t *order,
+                           const double *const xs[3], double radius, struct spall_error *err)
 {
     struct sph_sym *g = m->sym;
-    const struct particles *p = s->p;
-    const size_t n = p->n_owned;
     const bool sx = m->opt.bound.symmetry[0], sy = m->opt.bound.symmetry[1];
     size_t ng = 0;
     for (int pass = 0; pass < 2; pass++) {
         ng = 0;
-        for (size_t j = 0; j < n; j++) {
-            bool nx = sx && fabs(p->x[0][j]) < radius, ny = sy && fabs(p->x[1][j]) < radius;
+        for (size_t q = 0; q < n; q++) {
+            const size_t j = order ? order[q] : q;
+            bool nx = sx && fabs(xs[0][j]) < radius, ny = sy && fabs(xs[1][j]) < radius;
             for (uint8_t mask = 1; mask <= 3; mask++) {
                 if (((mask & 1) && !nx) || ((mask & 2) && !ny))
                     continue;
@@ -119,12 +132,13 @@ static int sym_find_ghosts(struct model *m, struct sim *s, double radius, struct
     return SPALL_OK;
 }
 
-/* Copy the real particles' data and write the ghosts' mirrored data. */
-static void sym_fill(struct model *m, struct sim *s)
+/* Copy the data of the @p n particles held and write the ghosts' mirrored
+ * data after them. */
+static void sym_fill(struct model *m, struct sim *s, size_t n)
 {
     struct sph_sym *g = m->sym;
     const struct particles *p = s->p;
-    const size_t n = p->n_owned, ng = g->n_ghost;
+    const size_t ng = g->n_ghost;
     const int dim = m->dim;
     double **b = g->buf;
     const double *srcs[SYM_NARR] = {p->x[0], p->x[1], dim == 3 ? p->x[2] : NULL,
@@ -167,6 +181,81 @@ static void sym_fill(struct model *m, struct sim *s)
     }
 }
 
+/* The pair loop's view of the n held particles and their ghosts. */
+static void sym_src(const struct sph_sym *g, size_t n, int dim, struct sph_pair_src *src)
+{
+    memset(src, 0, sizeof *src);
+    src->n_all = n + g->n_ghost;
+    for (int d = 0; d < dim; d++) {
+        src->x[d] = g->buf[d];
+        src->v[d] = g->buf[3 + d];
+    }
+    src->h = g->buf[6];
+    src->rho = g->buf[7];
+    src->c = g->buf[8];
+    src->m2 = g->buf[9];
+    src->dx = g->buf[10];
+    for (int c = 0; c < 6; c++) {
+        src->sr[c] = g->buf[11 + c];
+        src->R[c] = g->buf[17 + c];
+    }
+}
+
+static int sym_create(struct model *m, struct spall_error *err)
+{
+    if (!m->sym && !(m->sym = calloc(1, sizeof *m->sym)))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for sph symmetry");
+    return SPALL_OK;
+}
+
+bool sph_symmetry_built(const struct model *m)
+{
+    return m->sym && m->sym->built;
+}
+
+int sph_symmetry_list(struct model *m, struct sim *s, bool moved, struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    const size_t n = p->n, no = p->n_owned;
+    const int dim = m->dim;
+    int rc = sym_create(m, err);
+    if (rc)
+        return rc;
+    struct sph_sym *g = m->sym;
+    /* the held particles in ascending gid: the owned run and the ghost
+     * run (each ascending) merged, the serial order of their images */
+    size_t *order = malloc((n ? n : 1) * sizeof *order);
+    if (!order)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for sph symmetry");
+    for (size_t a = 0, b = no, w = 0; w < n; w++)
+        order[w] = b == n || (a < no && p->gid[a] < p->gid[b]) ? a++ : b++;
+    const double *xs[3] = {m->x_build[0], m->x_build[1], dim == 3 ? m->x_build[2] : NULL};
+    rc = sym_find_ghosts(m, n, order, xs, m->nl_radius, err);
+    free(order);
+    if (rc)
+        return rc;
+    /* the build positions: the particles' and their images' */
+    for (int d = 0; d < dim; d++)
+        memcpy(g->buf[d], m->x_build[d], n * sizeof(double));
+    for (size_t k = 0; k < g->n_ghost; k++)
+        for (int d = 0; d < dim; d++)
+            g->buf[d][n + k] = field_reflect_sign(FIELD_VECTOR, d, g->gmask[k]) *
+                               m->x_build[d][g->gsrc[k]];
+    neighbor_list_destroy(&m->nl);
+    double *xb[3] = {g->buf[0], g->buf[1], dim == 3 ? g->buf[2] : NULL};
+    if ((rc = neighbor_list_build(&m->nl, dim, n + g->n_ghost, xb, m->nl_radius, err)))
+        return rc;
+    if (moved)
+        g->built = true;
+    return SPALL_OK;
+}
+
+void sph_symmetry_src(struct model *m, struct sim *s, struct sph_pair_src *src)
+{
+    sym_fill(m, s, s->p->n);
+    sym_src(m->sym, s->p->n, m->dim, src);
+}
+
 int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src,
                         struct spall_error *err)
 {
@@ -188,10 +277,11 @@ int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src
     int rc;
     if (rebuild) {
         m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
-        if ((rc = sym_find_ghosts(m, s, m->nl_radius, err)))
+        const double *xs[3] = {p->x[0], p->x[1], dim == 3 ? p->x[2] : NULL};
+        if ((rc = sym_find_ghosts(m, n, NULL, xs, m->nl_radius, err)))
             return rc;
     }
-    sym_fill(m, s);
+    sym_fill(m, s, n);
     if (rebuild) {
         double t0 = omp_get_wtime();
         neighbor_list_destroy(&m->nl);
@@ -200,25 +290,15 @@ int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src
             return rc;
         for (int d = 0; d < dim; d++)
             memcpy(m->x_build[d], p->x[d], n * sizeof(double));
+        /* before a partition (more than one rank): the work of the real
+         * partners (the view aliased the list just freed) */
+        if (sph_ul_view_held(m, n))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
         g->built = true;
         m->n_builds++;
         m->t_neighbor += omp_get_wtime() - t0;
     }
-    memset(src, 0, sizeof *src);
-    src->n_all = n + g->n_ghost;
-    for (int d = 0; d < dim; d++) {
-        src->x[d] = g->buf[d];
-        src->v[d] = g->buf[3 + d];
-    }
-    src->h = g->buf[6];
-    src->rho = g->buf[7];
-    src->c = g->buf[8];
-    src->m2 = g->buf[9];
-    src->dx = g->buf[10];
-    for (int c = 0; c < 6; c++) {
-        src->sr[c] = g->buf[11 + c];
-        src->R[c] = g->buf[17 + c];
-    }
+    sym_src(g, n, dim, src);
     return SPALL_OK;
 }
 

@@ -162,7 +162,17 @@ static bool rebuild_due(struct model *m, const struct sim *s, double d2max)
         if (m->h[i] > hmax)
             hmax = m->h[i];
     hmax = par_max_double(hmax);
+    /* symmetry planes: the serial run builds its list over real and
+     * mirrored particles at its first force call (sph_symmetry_update) */
+    if ((m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1]) && !sph_symmetry_built(m))
+        return true;
     return !(m->qmax * hmax + 2.0 * sqrt(d2max) <= m->nl_radius);
+}
+
+/* par_spatial_model.place: the mirrored clamp's particles (sph_clamp.c) */
+static int clamp_place(struct model *m, struct sim *s, struct spall_error *err)
+{
+    return sph_clamp_place(m, s, err);
 }
 
 int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp)
@@ -176,6 +186,9 @@ int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp)
     sp->skin = 1e-6 * m->nl_radius;
     sp->xb = m->x_build;
     sp->rebuild_due = rebuild_due;
+    /* symmetry planes x = 0, y = 0: their images' sources are ghosts too */
+    sp->mirror_planes = (m->opt.bound.symmetry[0] ? 1u : 0u) | (m->opt.bound.symmetry[1] ? 2u : 0u);
+    sp->place = m->clamp ? clamp_place : NULL;
     int k = 0;
     for (int d = 0; d < m->dim; d++) {
         sp->particle[k] = (void **)&m->x_build[d];
@@ -207,8 +220,10 @@ static int resize_state(struct model *m, size_t n)
 
 /* Each row in ascending partner gid: a row of the cell list is ascending
  * in local index, i.e. the owned partners (ascending gid) and then the
- * ghosts (ascending gid); the two runs are merged. */
-static int merge_rows(struct neighbor_list *nl, size_t n_owned, const int64_t *gid)
+ * ghosts (ascending gid); the two runs are merged.  Partners from @p n_held
+ * on (symmetry-plane images, already in the serial order) stay last. */
+static int merge_rows(struct neighbor_list *nl, size_t n_owned, size_t n_held,
+                      const int64_t *gid)
 {
     size_t longest = 0;
     for (size_t i = 0; i < nl->n; i++)
@@ -220,13 +235,15 @@ static int merge_rows(struct neighbor_list *nl, size_t n_owned, const int64_t *g
     for (size_t i = 0; i < nl->n; i++) {
         int32_t *r = nl->idx + nl->offset[i];
         const size_t len = nl->offset[i + 1] - nl->offset[i];
-        size_t g = 0;
+        size_t g = 0, e;
         while (g < len && (size_t)r[g] < n_owned)
             g++;
+        for (e = g; e < len && (size_t)r[e] < n_held;)
+            e++;
         size_t a = 0, b = g, w = 0;
-        while (a < g || b < len)
-            tmp[w++] = b == len || (a < g && gid[r[a]] < gid[r[b]]) ? r[a++] : r[b++];
-        memcpy(r, tmp, len * sizeof *r);
+        while (a < g || b < e)
+            tmp[w++] = b == e || (a < g && gid[r[a]] < gid[r[b]]) ? r[a++] : r[b++];
+        memcpy(r, tmp, e * sizeof *r);
     }
     free(tmp);
     return 0;
@@ -251,13 +268,22 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
                                 : SPALL_OK;
     neighbor_list_destroy(&m->nl);
     m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
+    /* symmetry planes: over the held particles and their images, untrimmed
+     * as the serial list of sph_symmetry_update (sph_symmetry.c) */
+    const bool sym = m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1];
     if (!rc)
-        rc = neighbor_list_build(&m->nl, m->dim, n, m->x_build, m->nl_radius, err);
+        rc = sym ? sph_symmetry_list(m, sim, moved, err)
+                 : neighbor_list_build(&m->nl, m->dim, n, m->x_build, m->nl_radius, err);
     if (!rc) {
-        sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
-        if (merge_rows(m->nl, no, p->gid))
+        if (!sym)
+            sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
+        if (merge_rows(m->nl, no, n, p->gid))
             rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
     }
+    /* the mirrored clamp's pairs among the owned particles (a partition
+     * or a migration may have changed them) */
+    if (!rc && m->clamp)
+        rc = sph_clamp_localize(m, sim, err);
     /* the interface pairs leave the kernel rows, as in the serial build
      * (their rows follow the merged ones, so they are in gid order too) */
     if (!rc && m->opt.iface.kind != SPH_IFACE_NONE)
@@ -276,16 +302,24 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
 /* Drop the bond view (its rows alias the list's). */
 static void view_drop(struct model *m)
 {
-    if (m->ulview)
+    if (m->ulview) {
         free(m->ulview->state);
+        if (m->ulview_own) {
+            free(m->ulview->offset);
+            free(m->ulview->partner);
+        }
+    }
     free(m->ulview);
     m->ulview = NULL;
+    m->ulview_own = false;
 }
 
 int sph_ul_view(struct model *m)
 {
     if (par_size() < 2 || m->opt.tl.total_lagrangian || !m->nl)
         return 0;
+    if (m->ulview_own)
+        view_drop(m);
     const size_t ns = m->nl->offset[m->nl->n];
     struct bond_list *v = m->ulview ? m->ulview : calloc(1, sizeof *v);
     uint8_t *st = v ? realloc(v->state, ns ? ns : 1) : NULL;
@@ -300,6 +334,40 @@ int sph_ul_view(struct model *m)
     v->offset = m->nl->offset;
     v->partner = m->nl->idx;
     m->ulview = v;
+    return 0;
+}
+
+int sph_ul_view_held(struct model *m, size_t n_held)
+{
+    if (par_size() < 2 || m->opt.tl.total_lagrangian || !m->nl)
+        return 0;
+    view_drop(m);
+    const struct neighbor_list *nl = m->nl;
+    const size_t n = n_held < nl->n ? n_held : nl->n;
+    size_t ns = 0;
+    for (size_t k = 0; k < nl->offset[n]; k++)
+        ns += (size_t)nl->idx[k] < n_held;
+    struct bond_list *v = calloc(1, sizeof *v);
+    if (!v)
+        return -1;
+    v->offset = malloc((n + 1) * sizeof *v->offset);
+    v->partner = malloc((ns ? ns : 1) * sizeof *v->partner);
+    v->state = calloc(ns ? ns : 1, 1); /* intact: each partner counts as work */
+    m->ulview = v;
+    m->ulview_own = true;
+    if (!v->offset || !v->partner || !v->state) {
+        view_drop(m);
+        return -1;
+    }
+    v->n = n;
+    size_t w = 0;
+    for (size_t i = 0; i < n; i++) {
+        v->offset[i] = w;
+        for (size_t k = nl->offset[i]; k < nl->offset[i + 1]; k++)
+            if ((size_t)nl->idx[k] < n_held)
+                v->partner[w++] = nl->idx[k];
+    }
+    v->offset[n] = w;
     return 0;
 }
 
