@@ -322,9 +322,10 @@ int sph_symmetry_restore(struct model *m, struct sim *s, struct spall_error *err
         now[d] = p->x[d];
         p->x[d] = m->x_build[d];
     }
-    int rc = sym_find_ghosts(m, s, m->nl_radius, err);
+    const double *xs[3] = {p->x[0], p->x[1], dim == 3 ? p->x[2] : NULL};
+    int rc = sym_find_ghosts(m, n, NULL, xs, m->nl_radius, err);
     if (!rc) {
-        sym_fill(m, s); /* the positions; the rest is refilled by the next update */
+        sym_fill(m, s, n); /* the positions; the rest is refilled by the next update */
         neighbor_list_destroy(&m->nl);
         double *xb[3] = {g->buf[0], g->buf[1], dim == 3 ? g->buf[2] : NULL};
         rc = neighbor_list_build(&m->nl, dim, n + g->n_ghost, xb, m->nl_radius, err);
