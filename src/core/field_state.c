@@ -139,6 +139,18 @@ int field_state_add_values(struct field_state *fs, const char *name, enum field_
     return add_slot(fs, &s, err);
 }
 
+int field_state_add_values_hook(struct field_state *fs, const char *name, enum field_type type,
+                                void *values, size_t count, field_state_set_rows_fn loaded,
+                                void *ctx, struct spall_error *err)
+{
+    /* the hook stands in for the row-count check of fixed values: it
+     * checks the count itself (field_state_slot_resize) */
+    struct field_state_slot s = {.type = type, .width = 1, .direct = values, .rows_fixed = count,
+                                 .set_rows = loaded, .ctx = ctx};
+    snprintf(s.name, sizeof s.name, "%s", name);
+    return add_slot(fs, &s, err);
+}
+
 const struct field_state_slot *field_state_find(const struct field_state *fs, const char *name)
 {
     for (size_t k = 0; k < fs->n; k++)

@@ -119,6 +119,15 @@ int field_state_add_list(struct field_state *fs, const char *name, enum field_ty
 int field_state_add_values(struct field_state *fs, const char *name, enum field_type type,
                            void *values, size_t count, struct spall_error *err);
 
+/** As field_state_add_values, with @p loaded called before a load (with the
+ *  checkpoint's count in place of a row count, as a set_rows callback): the
+ *  owner learns that its values come from a checkpoint.  The values are
+ *  alike on every rank (FIELD_STATE_GLOBAL), so a distributed run saves
+ *  them as one rank does. */
+int field_state_add_values_hook(struct field_state *fs, const char *name, enum field_type type,
+                                void *values, size_t count, field_state_set_rows_fn loaded,
+                                void *ctx, struct spall_error *err);
+
 /** Look a slot up by name; NULL if absent. */
 const struct field_state_slot *field_state_find(const struct field_state *fs, const char *name);
 

@@ -155,11 +155,12 @@ struct model {
     struct bond_list ck_list;  /**< the owned rows of the neighbour list as bonds */
     struct bond_list ck_iface; /**< the owned rows of the interface list as bonds */
     int32_t *ck_gid, *ck_igid; /**< distributed runs: their partners by global id */
-    int64_t sym_ghosts;        /**< symmetry planes: mirror ghosts of the last build */
-    int64_t *sym_ghosts_at;    /**< &sym_ghosts (the registry keeps an array's address) */
+    int64_t sym_ghosts;        /**< symmetry planes: mirror ghosts of the last build (the
+                                    whole body's, also on several ranks) */
     bool sym_restore;          /**< a checkpoint was loaded: the next force call rebuilds
                                     the ghosts and list of the last build
-                                    (sph_symmetry_restore) */
+                                    (sph_symmetry_restore; on several ranks the list
+                                    after the partition, sph_symmetry_list) */
     bool ulview_own;       /**< the view owns its rows (sph_ul_view_held: a serial
                                 list with symmetry-plane images, which it leaves out) */
 };
@@ -241,7 +242,10 @@ size_t sph_symmetry_ghosts(const struct model *m);
  *  spatial ghost) particles and the images of those near a plane, at the
  *  build positions x_build with the radius m->nl_radius, images in
  *  ascending (source gid, mask); @p moved: an engine rebuild (the first
- *  one marks the ghosts built, as sph_symmetry_update's first call). */
+ *  one marks the ghosts built, as sph_symmetry_update's first call).
+ *  Sets m->sym_ghosts to the whole body's image count (collective); after
+ *  a checkpoint's load the list is the checkpointed build's, checked
+ *  against the saved count. */
 int sph_symmetry_list(struct model *m, struct sim *s, bool moved, struct spall_error *err);
 /** Distributed: the images refreshed from their sources (after the halo
  *  of the fused loop); fill @p src. */

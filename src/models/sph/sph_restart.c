@@ -12,7 +12,8 @@
  * the one-rank file (below).  With symmetry planes the list spans the
  * mirror ghosts, which are not particles of the run: it is not saved but
  * found again after the load from the build positions and list radius
- * (sph_symmetry.c, sph_symmetry_restore).
+ * (sph_symmetry.c: sph_symmetry_restore on one rank, sph_symmetry_list
+ * after the partition on several), on any rank count.
  */
 #include "models/sph/sph_internal.h"
 
@@ -176,9 +177,11 @@ static int register_tl(struct model *m, size_t n, struct field_state *fs, struct
 }
 
 /* Symmetry planes: the mirror ghosts are rebuilt, not saved.  Their count
- * at the last build is saved as a check; its load marks the rebuild
- * (sph_symmetry_restore, at the next force call, after the whole load). */
-static int sym_set_rows(void *ctx, size_t rows, struct spall_error *err)
+ * at the last build (the whole body's: in a distributed run summed over
+ * the ranks at each build, sph_symmetry_list) is saved as a check; its
+ * load marks the rebuild (sph_symmetry_restore at the next force call on
+ * one rank; on several, sph_symmetry_list after the partition). */
+static int sym_loaded(void *ctx, size_t rows, struct spall_error *err)
 {
     struct model *m = ctx;
     if (rows != 1)
@@ -187,18 +190,13 @@ static int sym_set_rows(void *ctx, size_t rows, struct spall_error *err)
     return SPALL_OK;
 }
 
-static size_t one_row(const void *ctx)
+static int register_symmetry(struct model *m, const struct sim *s, struct field_state *fs,
+                             struct spall_error *err)
 {
-    (void)ctx;
-    return 1;
-}
-
-static int register_symmetry(struct model *m, struct field_state *fs, struct spall_error *err)
-{
-    m->sym_ghosts = (int64_t)sph_symmetry_ghosts(m);
-    m->sym_ghosts_at = &m->sym_ghosts;
-    return field_state_add_list(fs, "sph.symmetry_ghosts", FIELD_I64,
-                                (void **)&m->sym_ghosts_at, 1, one_row, sym_set_rows, m, err);
+    if (!s->par)
+        m->sym_ghosts = (int64_t)sph_symmetry_ghosts(m);
+    return field_state_add_values_hook(fs, "sph.symmetry_ghosts", FIELD_I64, &m->sym_ghosts, 1,
+                                       sym_loaded, m, err);
 }
 
 int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
@@ -209,10 +207,6 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
     const size_t n = s->p->n_owned;
     const bool sym = m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1] ||
                      m->opt.bound.symmetry[2];
-    if (sym && s->par)
-        return spall_error_set(err, SPALL_ERR_INPUT,
-                               "sph: distributed runs with symmetry planes cannot be "
-                               "checkpointed yet; run on one rank (without mpirun)");
     if (s->p->n != n && !s->par) /* a distributed run's are the ranks' spatial ghosts */
         return spall_error_set(err, SPALL_ERR_INTERNAL,
                                "sph: %zu particles beside the %zu owned cannot be checkpointed",
@@ -229,7 +223,7 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
         rc = field_state_add_particle_array(fs, "sph.failed", FIELD_U8, (void **)&m->failed, n, 1,
                                             err);
     if (!rc && sym)
-        rc = register_symmetry(m, fs, err);
+        rc = register_symmetry(m, s, fs, err);
     else if (!rc && m->nl)
         rc = register_rows(m, s, fs, "list", &m->ck_list, &m->nl->offset, &m->nl->idx,
                            &m->ck_gid, nl_set_rows, err);

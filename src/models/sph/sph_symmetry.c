@@ -42,6 +42,7 @@
 
 #include "core/fields.h"
 #include "core/neighbor.h"
+#include "core/parallel/comm.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -241,10 +242,31 @@ int sph_symmetry_list(struct model *m, struct sim *s, bool moved, struct spall_e
         for (int d = 0; d < dim; d++)
             g->buf[d][n + k] = field_reflect_sign(FIELD_VECTOR, d, g->gmask[k]) *
                                m->x_build[d][g->gsrc[k]];
+    /* the whole body's image count, as one rank counts it: each image
+     * once, on the rank that owns its source (a restart's check, and the
+     * value a checkpoint saves) */
+    uint64_t mine = 0;
+    for (size_t k = 0; k < g->n_ghost; k++)
+        mine += (size_t)g->gsrc[k] < no;
+    const int64_t total = (int64_t)par_sum_u64(mine);
     neighbor_list_destroy(&m->nl);
     double *xb[3] = {g->buf[0], g->buf[1], dim == 3 ? g->buf[2] : NULL};
     if ((rc = neighbor_list_build(&m->nl, dim, n + g->n_ghost, xb, m->nl_radius, err)))
         return rc;
+    /* after a checkpoint's load (the partition of a restart): the build
+     * positions and radius are the checkpoint's, so this is the list of its
+     * last build, which the serial run holds and sph_symmetry_restore finds
+     * on one rank (not counted as a build) */
+    if (m->sym_restore) {
+        m->sym_restore = false;
+        g->built = true;
+        if (total != m->sym_ghosts)
+            return spall_error_set(err, SPALL_ERR_INPUT,
+                                   "sph symmetry: %lld mirror ghosts at the checkpoint's build "
+                                   "positions, the checkpoint says %lld",
+                                   (long long)total, (long long)m->sym_ghosts);
+    }
+    m->sym_ghosts = total;
     if (moved)
         g->built = true;
     return SPALL_OK;
