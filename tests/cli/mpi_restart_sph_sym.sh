@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Distributed checkpoints of SPH with symmetry planes and the mirrored clamp
+# (issue 21 item 4, issue 22 item 1; docs/restart.md, "Distributed runs"):
+# the reduced quarter Taylor bar of mpi_sph_sym.sh (planes x = 0 and y = 0,
+# tests/cli/decks/mpi_sym.yaml: fused loop, artificial stress, XSPH, the
+# wall, the predictor-corrector) and the reduced clamped plate
+# (mpi_clamp.yaml: the clamp with CSPM, the leapfrog, a probe, the clamp's
+# reaction force), a checkpoint every 40 steps.  A symmetry run saves no
+# list, only the whole body's count of mirror images as a check: a restart
+# on several ranks finds the images and the list of the checkpointed build
+# after the partition (sph_symmetry_list), on one rank before its first
+# force call (sph_symmetry_restore).
+#  - written on 2 ranks, every checkpoint equals the serial run's (h5diff);
+#  - continued from the 2-rank checkpoint of step 40 without mpirun and on
+#    2 and 3 ranks, and from the serial one on 2 ranks: history.csv,
+#    fields.xdmf (bodies.xdmf) byte for byte, every frame and later
+#    checkpoint under h5diff, as the uninterrupted serial run;
+#  - the lists are rebuilt after the checkpoint, and the restart's own
+#    list is not counted as a build (the engine's ghost rebuilds on 3
+#    ranks are the serial builds after step 40).
+# Usage: mpi_restart_sph_sym.sh SPALL SRC MPIEXEC
+set -u
+spall="$1"
+mpiexec="$3"
+# shellcheck source=lib/rank_compare.bash
+source "$2/tests/cli/lib/rank_compare.bash"
+counts=${SPALL_MPI_RANK_COUNTS:-2 3}
+ck=40
+ckf=$(printf "checkpoint_%010d.h5" "$ck")
+for d in sym clamp; do
+    sed "s/^output: {\(.*\)\$/output: {checkpoint: {every_steps: $ck, keep: 5}, \1/" \
+        "$2/tests/cli/decks/mpi_$d.yaml" > "$d.yaml"
+    grep -q "checkpoint: {every_steps: $ck" "$d.yaml" || { echo "FAIL: cannot make $d.yaml"; exit 1; }
+    serial "$d"
+    written_on_2 "$d"
+    for n in 1 $counts; do
+        continued "$d" "${d}2/$ckf" "$n"
+    done
+    # the lists must be rebuilt after the checkpoint, or the test shows little
+    b0=$(awk -F, -v s="$ck" 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "neighbor_builds") b = k
+                                      next}
+                             $1 == s {print $b}' "${d}_serial/history.csv")
+    nb=$(col "${d}_serial/history.csv" neighbor_builds)
+    [ "$nb" -gt "${b0:-$nb}" ] || { echo "FAIL $d: no list rebuild after step $ck"; fail=1; }
+    for n in $counts; do
+        rb=$(sed -n 's/^spatial_ghost_rebuilds: \([0-9]*\) in.*/\1/p' "${d}_cont$n/run.log")
+        [ "${rb:-0}" -eq $((nb - b0)) ] ||
+            { echo "FAIL $d continued on $n ranks: ${rb:-no} ghost rebuilds, serial" \
+                "$((nb - b0)) builds after step $ck"; fail=1; }
+    done
+done
+# the serial checkpoint continued on 2 ranks
+out=sym_from_serial
+mpi 2 run sym.yaml --restart "sym_serial/$ckf" -o "$out" ||
+    { echo "FAIL sym: serial checkpoint continued on 2 ranks: exit $?"; fail=1; }
+same_as_serial sym_serial "$out" "sym: serial checkpoint continued on 2 ranks"
+checkpoints_same sym_serial "$out" "sym: serial checkpoint continued on 2 ranks"
+[ $fail -eq 0 ] && echo "mpi_restart_sph_sym: 2-rank checkpoints as serial; restarts on 1" \
+    "$counts ranks and from the serial checkpoint on 2 exact"
+[ $fail -eq 0 ]
