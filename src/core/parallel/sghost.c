@@ -84,6 +84,19 @@ int par_sghost_create(struct par_sghost **out, int dim, double range, double ski
     return SPALL_OK;
 }
 
+int par_sghost_set_range(struct par_sghost *g, double range, double skin,
+                         struct spall_error *err)
+{
+    if (!(range > 0.0) || !(skin > 0.0) || !isfinite(range + skin))
+        return spall_error_set(err, SPALL_ERR_INTERNAL,
+                               "spatial ghosts: need a positive finite range and skin (got "
+                               "range %g m, skin %g m)",
+                               range, skin);
+    g->range = range;
+    g->skin = skin;
+    return SPALL_OK;
+}
+
 void par_sghost_destroy(struct par_sghost **gp)
 {
     if (!gp || !*gp)

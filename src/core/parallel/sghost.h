@@ -37,6 +37,14 @@ int par_sghost_create(struct par_sghost **out, int dim, double range, double ski
                       struct spall_error *err);
 void par_sghost_destroy(struct par_sghost **g);
 
+/** A new @p range and @p skin (both > 0, metres) for the builds that follow:
+ *  a model whose interaction range grows during the run (SPH with a
+ *  variable smoothing length: its list radius follows h_max) gives the
+ *  range of the list it is about to build.  Not collective (every rank
+ *  must set the same values). */
+int par_sghost_set_range(struct par_sghost *g, double range, double skin,
+                         struct spall_error *err);
+
 /** Mirror planes through the origin (bit d: the plane x_d = 0) for the
  *  builds that follow: a particle is also sent to a rank when one of its
  *  images in these planes (each plane and each combination) lies within

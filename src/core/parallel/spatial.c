@@ -124,8 +124,12 @@ static int relayout(struct sim *s, bool moved, struct spall_error *err)
     struct par_slots sl;
     size_t rec = 0;
     int rc = ghost_arrays(s, &sm, &sl, &rec, err);
+    /* the model's range of the list it builds now: it may have grown since
+     * the last build (SPH with a variable h, whose radius follows h_max) */
     if (!rc && !d->sg)
         rc = par_sghost_create(&d->sg, dim, sm.range, sm.skin, err);
+    else if (!rc)
+        rc = par_sghost_set_range(d->sg, sm.range, sm.skin, err);
     if ((rc = par_agree(rc, err)))
         return rc;
     par_sghost_set_mirror(d->sg, sm.mirror_planes);

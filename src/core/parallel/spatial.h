@@ -36,7 +36,8 @@ struct spall_error;
 
 /** What a model with spatial ghosts tells the engine (model_ops.spatial_ghosts). */
 struct par_spatial_model {
-    double range;  /**< interaction range [m] */
+    double range;  /**< interaction range [m] of the list built next (read at every
+                        ghost build: it may grow during the run) */
     double skin;   /**< Verlet skin [m]: the list covers range + skin */
     double **xb;   /**< the model's array pointers xb[0..dim): positions at its last list build */
     int n_particle;

@@ -42,10 +42,13 @@
 
 const char *sph_ul_not_distributed(const struct model *m)
 {
-    /* (what neither form distributes yet: sph_localize.c) */
-    if (m->opt.kern.variable_h)
-        return "the updated form with a variable smoothing length (model.variable_h) is not "
-               "distributed yet (the ghost range follows h_max);";
+    /* (what neither form distributes yet: sph_localize.c).  The interface
+     * split keeps the pairs within the skin q_max h_max of the last build
+     * allows for, and a partition or migration between builds would take
+     * h_max of the moment (no restart state holds the build's) */
+    if (m->opt.kern.variable_h && m->opt.iface.kind != SPH_IFACE_NONE)
+        return "interfaces (model.interface) with a variable smoothing length "
+               "(model.variable_h) are not distributed yet;";
     return NULL;
 }
 
@@ -164,9 +167,14 @@ static bool rebuild_due(struct model *m, const struct sim *s, double d2max)
     hmax = par_max_double(hmax);
     /* symmetry planes: the serial run builds its list over real and
      * mirrored particles at its first force call (sph_symmetry_update) */
-    if ((m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1]) && !sph_symmetry_built(m))
-        return true;
-    return !(m->qmax * hmax + 2.0 * sqrt(d2max) <= m->nl_radius);
+    bool due = (m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1]) && !sph_symmetry_built(m);
+    due = due || !(m->qmax * hmax + 2.0 * sqrt(d2max) <= m->nl_radius);
+    /* the radius of the list built now, the serial one (sph_neighbors_update):
+     * the engine takes it as the ghost range (sph_spatial_ghosts) before it
+     * builds the ghosts; with a variable h it has grown since the last build */
+    if (due)
+        m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
+    return due;
 }
 
 /* par_spatial_model.place: the mirrored clamp's particles (sph_clamp.c) */
@@ -267,7 +275,11 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
                                                   "out of memory (SPH state, %zu particles)", n)
                                 : SPALL_OK;
     neighbor_list_destroy(&m->nl);
-    m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
+    /* a build (moved) has the radius of the whole body's h_max now; after a
+     * partition or a migration the list is the last build's again, with
+     * its radius (a variable h has changed h_max since) */
+    if (moved || !(m->nl_radius > 0.0))
+        m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
     /* symmetry planes: over the held particles and their images, untrimmed
      * as the serial list of sph_symmetry_update (sph_symmetry.c) */
     const bool sym = m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1];
@@ -275,7 +287,7 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
         rc = sym ? sph_symmetry_list(m, sim, moved, err)
                  : neighbor_list_build(&m->nl, m->dim, n, m->x_build, m->nl_radius, err);
     if (!rc) {
-        if (!sym)
+        if (!sym && !m->opt.kern.variable_h) /* (h grows between builds: no trim) */
             sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
         if (merge_rows(m->nl, no, n, p->gid))
             rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
