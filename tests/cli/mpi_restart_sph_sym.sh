@@ -1,18 +1,22 @@
 #!/usr/bin/env bash
-# Distributed checkpoints of SPH with symmetry planes and the mirrored clamp
-# (issue 21 item 4, issue 22 item 1; docs/restart.md, "Distributed runs"):
+# Distributed checkpoints of SPH with symmetry planes, the mirrored clamp
+# and a variable h (issue 21 item 4, issue 22 item 1; docs/restart.md,
+# "Distributed runs"):
 # the reduced quarter Taylor bar of mpi_sph_sym.sh (planes x = 0 and y = 0,
 # tests/cli/decks/mpi_sym.yaml: fused loop, artificial stress, XSPH, the
 # wall, the predictor-corrector) and the reduced clamped plate
 # (mpi_clamp.yaml: the clamp with CSPM, the leapfrog, a probe, the clamp's
-# reaction force), a checkpoint every 40 steps.  A symmetry run saves no
-# list, only the whole body's count of mirror images as a check: a restart
-# on several ranks finds the images and the list of the checkpointed build
-# after the partition (sph_symmetry_list), on one rank before its first
-# force call (sph_symmetry_restore).
+# reaction force) and the rubber strip pulled apart with a variable h
+# (mpi_vh.yaml: the partition of a restart keeps the list radius of the
+# checkpointed build, not that of h_max at the checkpoint), a checkpoint
+# every 40 steps.  A symmetry run saves no list, only the whole body's
+# count of mirror images as a check: a restart on several ranks finds the
+# images and the list of the checkpointed build after the partition
+# (sph_symmetry_list), on one rank before its first force call
+# (sph_symmetry_restore).
 #  - written on 2 ranks, every checkpoint equals the serial run's (h5diff);
 #  - continued from the 2-rank checkpoint of step 40 without mpirun and on
-#    2 and 3 ranks, and from the serial one on 2 ranks: history.csv,
+#    2 and 3 ranks, and the bar from the serial one on 2 ranks: history.csv,
 #    fields.xdmf (bodies.xdmf) byte for byte, every frame and later
 #    checkpoint under h5diff, as the uninterrupted serial run;
 #  - the lists are rebuilt after the checkpoint, and the restart's own
@@ -27,7 +31,7 @@ source "$2/tests/cli/lib/rank_compare.bash"
 counts=${SPALL_MPI_RANK_COUNTS:-2 3}
 ck=40
 ckf=$(printf "checkpoint_%010d.h5" "$ck")
-for d in sym clamp; do
+for d in sym clamp vh; do
     sed "s/^output: {\(.*\)\$/output: {checkpoint: {every_steps: $ck, keep: 5}, \1/" \
         "$2/tests/cli/decks/mpi_$d.yaml" > "$d.yaml"
     grep -q "checkpoint: {every_steps: $ck" "$d.yaml" || { echo "FAIL: cannot make $d.yaml"; exit 1; }

@@ -13,6 +13,7 @@
 # vector rows of the fused loop (Wendland, no artificial stress) on 2, and
 # a rubber strip pulled apart with a variable h (mpi_vh.yaml: h_max and
 # with it the list radius and the ghosts' range grow) on 2 and 3 ranks
+# and rebalanced on 3 (a migration keeps the last build's radius)
 # (axisymmetric runs: mpi_sph_axi.sh):
 # history.csv, fields.xdmf and bodies.xdmf byte for byte, every frame under
 # h5diff.  What the updated form cannot do distributed yet is refused in
@@ -60,6 +61,7 @@ cp "$2/tests/cli/decks/mpi_vh.yaml" vh.yaml
 serial vh
 ranks vh 2
 ranks vh 3
+rebalanced vh 3
 nb=$(col vh_serial/history.csv neighbor_builds)
 rb=$(sed -n 's/^spatial_ghost_rebuilds: \([0-9]*\) in.*/\1/p' vh3/run.log)
 [ "${rb:-0}" -eq $((nb - 1)) ] && [ "$nb" -ge 20 ] ||
