@@ -140,6 +140,42 @@ static void test_layouts(void **state)
     free(loc);
 }
 
+/* Values with a load hook (SPH's count of symmetry-plane images): global
+ * like plain values, the hook told the checkpoint's count before a load
+ * and free to refuse it. */
+static int hook_loaded(void *ctx, size_t rows, struct spall_error *err)
+{
+    int *seen = ctx;
+    if (rows != 1)
+        return spall_error_set(err, SPALL_ERR_INPUT, "%zu values", rows);
+    (*seen)++;
+    return SPALL_OK;
+}
+
+static void test_values_hook(void **state)
+{
+    (void)state;
+    struct field_state *fs = NULL;
+    struct spall_error err = {0};
+    assert_int_equal(field_state_create(&fs, &err), 0);
+    int64_t v = 42;
+    int seen = 0;
+    assert_int_equal(field_state_add_values_hook(fs, "v", FIELD_I64, &v, 1, hook_loaded, &seen,
+                                                 &err),
+                     0);
+    const struct field_state_slot *sv = field_state_find(fs, "v");
+    assert_int_equal(sv->layout, FIELD_STATE_GLOBAL);
+    assert_int_equal(field_state_slot_rows(sv), 1);
+    assert_ptr_equal(field_state_slot_data(sv), &v);
+    assert_int_equal(seen, 0); /* registering is no load */
+    assert_int_equal(field_state_slot_resize(sv, 1, &err), 0);
+    assert_int_equal(seen, 1);
+    assert_int_equal(field_state_slot_resize(sv, 2, &err), SPALL_ERR_INPUT);
+    assert_string_equal(err.msg, "2 values");
+    assert_int_equal(seen, 1);
+    field_state_destroy(&fs);
+}
+
 /* A pair list from a neighbour search (macro-particles, contact): its
  * offsets are placed per owned particle plus the total, its pairs by the
  * rows of the list itself, and a load resizes the pair arrays. */
@@ -187,6 +223,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_slots),
                                        cmocka_unit_test(test_layouts),
+                                       cmocka_unit_test(test_values_hook),
                                        cmocka_unit_test(test_pair_list)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
