@@ -141,6 +141,50 @@ int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err)
     return SPALL_OK;
 }
 
+int pd_lps_compact(struct model *m, struct spall_error *err)
+{
+    struct bond_list *bl = m->bl;
+    struct pd_lps *L = &m->lps;
+    const size_t nh = bl->offset[bl->n];
+    /* surface_correction scales omega beta by factors of both particles: as
+     * many values as bonds near a surface, so the arrays stay */
+    if (m->opt.full_bonds || m->kind || L->surface || !L->ob || !bl->rest || !bl->type ||
+        nh == 0)
+        return SPALL_OK;
+    struct distinct16 *d = NULL;
+    int rc = distinct16_create(&d, PD_KIND_KEY, PD_KIND_MAX, err);
+    uint16_t *kind = rc ? NULL : malloc(nh * sizeof *kind);
+    if (!rc && !kind)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
+    bool fits = true;
+    for (size_t s = 0; !rc && s < nh && fits; s++) {
+        unsigned char key[PD_KIND_KEY];
+        memcpy(key, &bl->rest[s], sizeof(double));
+        memcpy(key + sizeof(double), &L->ob[s], sizeof(double));
+        key[2 * sizeof(double)] = bl->type[s];
+        const int32_t row = distinct16_add(d, key);
+        fits = row >= 0;
+        kind[s] = (uint16_t)(fits ? row : 0);
+    }
+    size_t nk = 0;
+    unsigned char *tab = (!rc && fits) ? distinct16_take_table(d, &nk) : NULL;
+    distinct16_destroy(&d);
+    if (!rc && tab)
+        rc = pd_kinds_from_table(m, tab, nk, err); /* frees tab */
+    if (rc || !tab) { /* more than PD_KIND_MAX distinct triples: the arrays stay */
+        free(kind);
+        return rc;
+    }
+    m->kind = kind;
+    free(bl->rest);
+    free(bl->type);
+    free(L->ob);
+    bl->rest = NULL;
+    bl->type = NULL;
+    L->ob = NULL;
+    return SPALL_OK;
+}
+
 size_t pd_model_bytes(const struct model *m, size_t n)
 {
     const struct bond_list *bl = m->bl;
@@ -151,5 +195,12 @@ size_t pd_model_bytes(const struct model *m, size_t n)
     b += n * (2 * sizeof(size_t) + sizeof(double)); /* n_init, n_init_f, diss */
     for (int d = 0; d < 3; d++)
         b += m->f_prev[d] ? 2 * n * sizeof(double) : 0;
+    /* formulation lps / eps (pd_lps.h): per particle m, theta, alpha, the
+     * dilatation coefficient and the surface factor; per half-bond omega
+     * beta and eps' plastic extension, force state and reverse copy */
+    const struct pd_lps *L = &m->lps;
+    b += ((L->wvol ? 4 * n : 0) + (L->afac ? n : 0) + (L->hs ? 2 * n : 0)) * sizeof(double);
+    b += ((L->ob ? nh : 0) + (L->ep ? nh : 0) + (L->tb ? nh : 0) + (L->epr ? nh : 0)) *
+         sizeof(double);
     return b;
 }

@@ -158,11 +158,14 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
             return rc;
     }
     pd_lps_weights(m, sim);
-    return SPALL_OK;
+    /* the reference lengths, omega beta and types as 16-bit rows of a table
+     * (pd_compact.c): 2 bytes per half-bond instead of 17 */
+    return pd_lps_compact(m, err);
 }
 
 void pd_lps_weights(struct model *m, const struct sim *sim)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     struct pd_lps *L = &m->lps;
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
@@ -171,7 +174,7 @@ void pd_lps_weights(struct model *m, const struct sim *sim)
         double w = 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
             if (!(bl->state[s] & BOND_BROKEN))
-                w += L->ob[s] * bl->rest[s] * bl->rest[s] * p->volume[bl->partner[s]];
+                w += B.ob[pd_lps_row(&B, s)] * B.rest[pd_lps_row(&B, s)] * B.rest[pd_lps_row(&B, s)] * p->volume[bl->partner[s]];
         const struct pd_material *mt = &m->mat[p->material[i]];
         L->wvol[i] = w;
         L->alpha[i] = w > 0.0 ? d * (d + 2.0) * mt->mu / w * (L->afac ? L->afac[i] : 1.0) : 0.0;
@@ -182,6 +185,7 @@ void pd_lps_weights(struct model *m, const struct sim *sim)
 /* Dilatation of particle i from the current positions (intact bonds). */
 static double lps_theta(const struct model *m, const struct sim *sim, size_t i)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
     const int dim = sim->dim;
@@ -197,14 +201,15 @@ static double lps_theta(const struct model *m, const struct sim *sim, size_t i)
             double r = p->x[c][j] - p->x[c][i];
             l2 += r * r;
         }
-        double xi = bl->rest[s];
-        sum += m->lps.ob[s] * xi * (sqrt(l2) - xi) * p->volume[j];
+        double xi = B.rest[pd_lps_row(&B, s)];
+        sum += B.ob[pd_lps_row(&B, s)] * xi * (sqrt(l2) - xi) * p->volume[j];
     }
     return (double)dim * sum / m->lps.wvol[i];
 }
 
 int pd_lps_forces(struct model *m, struct sim *sim)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
     struct pd_lps *L = &m->lps;
@@ -229,16 +234,16 @@ int pd_lps_forces(struct model *m, struct sim *sim)
                 double r = p->x[c][j] - p->x[c][i];
                 l2 += r * r;
             }
-            const double xi = bl->rest[s], e = sqrt(l2) - xi;
-            if (!late && e / xi > m->s0_tab[bl->type[s]]) {
+            const double xi = B.rest[pd_lps_row(&B, s)], e = sqrt(l2) - xi;
+            if (!late && e / xi > m->s0_tab[B.type[pd_lps_row(&B, s)]]) {
                 st[s] |= BOND_BROKEN;
                 /* energy of the half-bond at the last dilatation: t e / 2 (the
                  * state energy is homogeneous of degree 2 in e) */
                 double t = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
-                m->diss[i] += 0.5 * L->ob[s] * t * e * p->volume[i] * p->volume[j];
+                m->diss[i] += 0.5 * B.ob[pd_lps_row(&B, s)] * t * e * p->volume[i] * p->volume[j];
                 continue;
             }
-            sum += L->ob[s] * xi * e * p->volume[j];
+            sum += B.ob[pd_lps_row(&B, s)] * xi * e * p->volume[j];
         }
         L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
     }
@@ -259,10 +264,10 @@ int pd_lps_forces(struct model *m, struct sim *sim)
                 r[c] = p->x[c][j] - p->x[c][i];
                 l2 += r[c] * r[c];
             }
-            const double l = sqrt(l2), xi = bl->rest[s], e = l - xi;
+            const double l = sqrt(l2), xi = B.rest[pd_lps_row(&B, s)], e = l - xi;
             const double tij = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
             const double tji = L->alpha[j] * e + L->bcoef[j] * xi * L->theta[j];
-            const double g = L->ob[s] * (tij + tji) * (p->volume[i] * p->volume[j]) / l;
+            const double g = B.ob[pd_lps_row(&B, s)] * (tij + tji) * (p->volume[i] * p->volume[j]) / l;
             for (int c = 0; c < dim; c++)
                 fi[c] += g * r[c];
         }
@@ -281,6 +286,7 @@ int pd_lps_forces(struct model *m, struct sim *sim)
  * as in the immediate order, from this step's state (e^dp: eps). */
 void pd_lps_break_late(struct model *m, const struct sim *sim)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     const struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
     const struct pd_lps *L = &m->lps;
@@ -296,13 +302,13 @@ void pd_lps_break_late(struct model *m, const struct sim *sim)
                 double r = p->x[c][j] - p->x[c][i];
                 l2 += r * r;
             }
-            const double xi = bl->rest[s], e = sqrt(l2) - xi;
-            if (!(e / xi > m->s0_tab[bl->type[s]]))
+            const double xi = B.rest[pd_lps_row(&B, s)], e = sqrt(l2) - xi;
+            if (!(e / xi > m->s0_tab[B.type[pd_lps_row(&B, s)]]))
                 continue;
             bl->state[s] |= BOND_BROKEN;
             const double ee = e - (L->ep ? L->ep[s] : 0.0);
             const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
-            m->diss[i] += 0.5 * L->ob[s] * t * ee * p->volume[i] * p->volume[j];
+            m->diss[i] += 0.5 * B.ob[pd_lps_row(&B, s)] * t * ee * p->volume[i] * p->volume[j];
         }
 }
 
@@ -310,6 +316,7 @@ void pd_lps_break_late(struct model *m, const struct sim *sim)
  * direct terms (alpha_i + alpha_j), i's own dilatation and its neighbours'. */
 double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
     const struct pd_lps *L = &m->lps;
@@ -322,7 +329,7 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
         S[i] = 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
             if (!(bl->state[s] & BOND_BROKEN))
-                S[i] += L->ob[s] * bl->rest[s] * p->volume[bl->partner[s]];
+                S[i] += B.ob[pd_lps_row(&B, s)] * B.rest[pd_lps_row(&B, s)] * p->volume[bl->partner[s]];
     }
     double dt = INFINITY;
     for (size_t i = 0; i < p->n_owned; i++) {
@@ -331,9 +338,9 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
             if (bl->state[s] & BOND_BROKEN)
                 continue;
             size_t j = (size_t)bl->partner[s];
-            R += p->volume[j] * L->ob[s] * (L->alpha[i] + L->alpha[j]);
+            R += p->volume[j] * B.ob[pd_lps_row(&B, s)] * (L->alpha[i] + L->alpha[j]);
             if (L->wvol[j] > 0.0)
-                R += p->volume[j] * L->ob[s] * bl->rest[s] * fabs(L->bcoef[j]) * d * S[j] /
+                R += p->volume[j] * B.ob[pd_lps_row(&B, s)] * B.rest[pd_lps_row(&B, s)] * fabs(L->bcoef[j]) * d * S[j] /
                      L->wvol[j];
         }
         R *= 2.0 * p->volume[i];
@@ -347,6 +354,7 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
 void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i,
                           double *energy, double *stress)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
     const struct pd_lps *L = &m->lps;
@@ -367,10 +375,10 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
         l = sqrt(l);
         /* formulation eps: only the elastic part e^d - e^dp stores energy (pd_eps.c) */
         const double ep = L->ep ? L->ep[s] : 0.0;
-        const double xi = bl->rest[s], e = l - xi, ed = e - th * xi / (double)dim - ep;
-        w += 0.5 * L->alpha[i] * L->ob[s] * ed * ed * p->volume[j];
+        const double xi = B.rest[pd_lps_row(&B, s)], e = l - xi, ed = e - th * xi / (double)dim - ep;
+        w += 0.5 * L->alpha[i] * B.ob[pd_lps_row(&B, s)] * ed * ed * p->volume[j];
         /* collapsed stress sum_j t_ij M (x) xi V_j ([Silling2007], homogeneous case) */
-        const double g = L->ob[s] * (L->alpha[i] * (e - ep) + L->bcoef[i] * xi * th) *
+        const double g = B.ob[pd_lps_row(&B, s)] * (L->alpha[i] * (e - ep) + L->bcoef[i] * xi * th) *
                          p->volume[j] / l;
         pd_add_bond_virial(sg, dim, g, r, r0);
     }

@@ -467,7 +467,9 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
                     return rc;
                 }
             }
-        if ((rc = pd_build_coefficients(m, sim, err)))
+        /* lps / eps never read the pair coefficients (their force state is
+         * omega beta and the moduli, pd_lps.c): not stored, 8 B per half-bond */
+        if (!m->opt.lps && (rc = pd_build_coefficients(m, sim, err)))
             return rc;
     }
     if ((rc = pd_mixed_init(m, sim, err)) ||
@@ -659,7 +661,8 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
             n ? (double)nb / (double)n : 0.0, m->kind ? "compact" : "full",
             m->kind ? "" : pd_compact_eligible(m) ? ": over 65535 distinct bonds" : "");
         if (m->kind)
-            PUT("  compact families: %zu distinct (length, coefficient, type)\n", m->n_kind);
+            PUT("  compact families: %zu distinct (length, %s, type)\n", m->n_kind,
+                m->opt.lps ? "omega beta" : "coefficient");
     }
     for (size_t k = 0; k < m->n_mat; k++) {
         const struct pd_material *mt = &m->mat[k];
