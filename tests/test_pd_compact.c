@@ -4,7 +4,7 @@
  * velocities, bond states and energies bit for bit (3D PMB with breaking in
  * both break orders, 2D with the surface correction, whose coefficients
  * differ bond by bond near the edges; LPS and EPS in 3D and 2D, their table
- * holding omega beta, pd_lps_compact), and the layouts the table does not
+ * holding omega beta, built by pd_lps_init), and the layouts the table does not
  * take keep the arrays (LPS with its surface correction).
  */
 #include <setjmp.h>
@@ -146,7 +146,7 @@ static void test_same_2d_surface(void **state)
     assert_true(same_both_ways(2, ", surface_correction: true") > 0);
 }
 
-/* LPS and EPS (pd_lps_compact): the rows hold the lengths, omega beta and
+/* LPS and EPS (pd_lps_init): the rows hold the lengths, omega beta and
  * types; with influence inverse and partial volumes the family has several
  * values of omega beta, and cubic makes them differ by direction. */
 static void test_same_lps_eps(void **state)

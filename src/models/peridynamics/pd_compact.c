@@ -46,7 +46,10 @@ bool pd_compact_predicted(const struct model *m)
     bool ortho = false;
     for (size_t k = 0; k < m->n_mat; k++)
         ortho |= m->mat[k].ortho;
-    return !m->opt.full_bonds && !m->opt.lps && !m->opt.eps && !m->opt.fiber_plane && !ortho;
+    /* lps / eps: their table holds omega beta (pd_lps_init), which their
+     * surface correction scales bond by bond: the arrays then */
+    return !m->opt.full_bonds && !m->opt.fiber_plane && !ortho &&
+           !(m->opt.lps && m->lps.surface);
 }
 
 int pd_kinds_from_table(struct model *m, unsigned char *tab, size_t nk,
@@ -138,50 +141,6 @@ int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err)
     bl->rest_idx = NULL;
     bl->rest_tab = NULL;
     bl->n_rest = 0;
-    return SPALL_OK;
-}
-
-int pd_lps_compact(struct model *m, struct spall_error *err)
-{
-    struct bond_list *bl = m->bl;
-    struct pd_lps *L = &m->lps;
-    const size_t nh = bl->offset[bl->n];
-    /* surface_correction scales omega beta by factors of both particles: as
-     * many values as bonds near a surface, so the arrays stay */
-    if (m->opt.full_bonds || m->kind || L->surface || !L->ob || !bl->rest || !bl->type ||
-        nh == 0)
-        return SPALL_OK;
-    struct distinct16 *d = NULL;
-    int rc = distinct16_create(&d, PD_KIND_KEY, PD_KIND_MAX, err);
-    uint16_t *kind = rc ? NULL : malloc(nh * sizeof *kind);
-    if (!rc && !kind)
-        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
-    bool fits = true;
-    for (size_t s = 0; !rc && s < nh && fits; s++) {
-        unsigned char key[PD_KIND_KEY];
-        memcpy(key, &bl->rest[s], sizeof(double));
-        memcpy(key + sizeof(double), &L->ob[s], sizeof(double));
-        key[2 * sizeof(double)] = bl->type[s];
-        const int32_t row = distinct16_add(d, key);
-        fits = row >= 0;
-        kind[s] = (uint16_t)(fits ? row : 0);
-    }
-    size_t nk = 0;
-    unsigned char *tab = (!rc && fits) ? distinct16_take_table(d, &nk) : NULL;
-    distinct16_destroy(&d);
-    if (!rc && tab)
-        rc = pd_kinds_from_table(m, tab, nk, err); /* frees tab */
-    if (rc || !tab) { /* more than PD_KIND_MAX distinct triples: the arrays stay */
-        free(kind);
-        return rc;
-    }
-    m->kind = kind;
-    free(bl->rest);
-    free(bl->type);
-    free(L->ob);
-    bl->rest = NULL;
-    bl->type = NULL;
-    L->ob = NULL;
     return SPALL_OK;
 }
 

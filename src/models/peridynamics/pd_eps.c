@@ -77,7 +77,7 @@ int pd_eps_forces(struct model *m, struct sim *sim)
     /* distributed: theta_j and j's return-map scale per particle (sent to
      * the ghosts after pass 1), and per half-bond i's copy of e^dp_ji */
     double *hs = L->hs, *epr = L->epr;
-    const bool late = m->opt.break_late; /* next_step: pd_lps_break_late after the forces */
+    const bool late = m->opt.break_late; /* next_step: bonds past s0 dropped in pass 2 */
     /* pass 1, per particle (its own half-bonds only): breaking, dilatation,
      * return map, scalar force state t_ij / omega into tb */
 #pragma omp parallel for schedule(dynamic, 256)
@@ -184,15 +184,28 @@ int pd_eps_forces(struct model *m, struct sim *sim)
             } else {
                 tji = tb[rev[s]];
             }
-            const double g = B.ob[pd_lps_row(&B, s)] * (tb[s] + tji) * (p->volume[i] * p->volume[j]) / sqrt(l2);
+            const size_t row = pd_lps_row(&B, s);
+            const double ob = B.ob[row];
+            const double g = ob * (tb[s] + tji) * (p->volume[i] * p->volume[j]) / sqrt(l2);
             for (int c = 0; c < dim; c++)
                 fi[c] += g * r[c];
+            /* break_order next_step: pd_lps_break_rows' rule on this length,
+             * in row order (the same bits as its own pass) */
+            if (late) {
+                const double xi = B.rest[row], e = sqrt(l2) - xi;
+                if (e / xi > m->s0_tab[B.type[row]]) {
+                    st[s] |= BOND_BROKEN;
+                    const double ee = e - ep[s];
+                    const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
+                    m->diss[i] += 0.5 * ob * t * ee * p->volume[i] * p->volume[j];
+                }
+            }
         }
         for (int c = 0; c < dim; c++)
             p->f[c][i] += fi[c];
     }
-    if (late)
-        pd_lps_break_late(m, sim);
+    if (late && n > no) /* distributed: the ghosts' rows (empty) */
+        pd_lps_break_rows(m, sim, no, n);
     return SPALL_OK;
 }
 

@@ -142,7 +142,7 @@ static inline size_t pd_lps_row(const struct pd_lps_bonds *b, size_t s)
     return b->kind ? b->kind[s] : s;
 }
 /** omega beta of half-bond @p s (formulation lps / eps): in compact storage
- *  (pd_lps_compact) the table's coefficient column holds it. */
+ *  the table's coefficient column holds it (pd_lps_init, pd_lps.c). */
 static inline double pd_ob(const struct model *m, size_t s)
 {
     return m->kind ? m->k_coef[m->kind[s]] : m->lps.ob[s];
@@ -162,15 +162,6 @@ bool pd_compact_predicted(const struct model *m);
  *  table overflows, leaves the arrays pd_build_coefficients expects (rest
  *  lengths and a zeroed type array) and m->kind NULL. */
 int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err);
-
-/** Formulation lps / eps, after pd_lps_init: the per-half-bond rest
- *  length, omega beta and type replaced by a 16-bit row of a table of the
- *  distinct triples (the kind table, omega beta in its coefficient column;
- *  pd_setup_tables makes it the same on every rank), when they fit, the
- *  deck does not ask for bond_storage full and no surface correction makes
- *  omega beta a property of the particle pair.
- *  The rows hold the very doubles of the arrays: bitwise the same run. */
-int pd_lps_compact(struct model *m, struct spall_error *err);
 
 /** Bytes of one bond kind's key: rest length, coefficient (doubles), type. */
 #define PD_KIND_KEY (2 * sizeof(double) + 1)

@@ -32,7 +32,7 @@ static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, con
     /* afac (surface correction) is NULL without it */
     double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
     const int npp = L->afac ? 5 : 4;
-    /* ob is NULL in compact storage (pd_lps_compact: m->kind has the rows) */
+    /* ob is NULL in compact storage (pd_lps_init: m->kind has the rows) */
     double **bb[4];
     int nbb = 0;
     if (L->ob)
