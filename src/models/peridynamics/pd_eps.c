@@ -89,21 +89,22 @@ int pd_eps_forces(struct model *m, struct sim *sim)
             if (st[s] & BOND_BROKEN)
                 continue;
             size_t j = (size_t)bl->partner[s];
+            const size_t row = pd_lps_row(&B, s);
             double l2 = 0.0;
             for (int c = 0; c < dim; c++) {
                 double r = p->x[c][j] - p->x[c][i];
                 l2 += r * r;
             }
-            const double xi = B.rest[pd_lps_row(&B, s)], e = sqrt(l2) - xi;
-            if (!late && e / xi > m->s0_tab[B.type[pd_lps_row(&B, s)]]) {
+            const double xi = B.rest[row], e = sqrt(l2) - xi;
+            if (!late && e / xi > m->s0_tab[B.type[row]]) {
                 st[s] |= BOND_BROKEN;
                 /* elastic energy of the half-bond at the last state: t (e - e^dp) / 2 */
                 double t = L->alpha[i] * (e - ep[s]) + L->bcoef[i] * xi * L->theta[i];
-                m->diss[i] += 0.5 * B.ob[pd_lps_row(&B, s)] * t * (e - ep[s]) * p->volume[i] * p->volume[j];
+                m->diss[i] += 0.5 * B.ob[row] * t * (e - ep[s]) * p->volume[i] * p->volume[j];
                 continue;
             }
             tb[s] = e; /* kept for the return map below */
-            sum += B.ob[pd_lps_row(&B, s)] * xi * e * p->volume[j];
+            sum += B.ob[row] * xi * e * p->volume[j];
         }
         const double wv = L->wvol[i];
         const double th = wv > 0.0 ? d * sum / wv : 0.0;

@@ -263,8 +263,10 @@ void pd_lps_weights(struct model *m, const struct sim *sim)
     for (size_t i = 0; i < p->n; i++) {
         double w = 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
-            if (!(bl->state[s] & BOND_BROKEN))
-                w += B.ob[pd_lps_row(&B, s)] * B.rest[pd_lps_row(&B, s)] * B.rest[pd_lps_row(&B, s)] * p->volume[bl->partner[s]];
+            if (!(bl->state[s] & BOND_BROKEN)) {
+                const size_t row = pd_lps_row(&B, s);
+                w += B.ob[row] * B.rest[row] * B.rest[row] * p->volume[bl->partner[s]];
+            }
         const struct pd_material *mt = &m->mat[p->material[i]];
         L->wvol[i] = w;
         L->alpha[i] = w > 0.0 ? d * (d + 2.0) * mt->mu / w * (L->afac ? L->afac[i] : 1.0) : 0.0;
@@ -286,13 +288,14 @@ static double lps_theta(const struct model *m, const struct sim *sim, size_t i)
         if (bl->state[s] & BOND_BROKEN)
             continue;
         size_t j = (size_t)bl->partner[s];
+        const size_t row = pd_lps_row(&B, s);
         double l2 = 0.0;
         for (int c = 0; c < dim; c++) {
             double r = p->x[c][j] - p->x[c][i];
             l2 += r * r;
         }
-        double xi = B.rest[pd_lps_row(&B, s)];
-        sum += B.ob[pd_lps_row(&B, s)] * xi * (sqrt(l2) - xi) * p->volume[j];
+        double xi = B.rest[row];
+        sum += B.ob[row] * xi * (sqrt(l2) - xi) * p->volume[j];
     }
     return (double)dim * sum / m->lps.wvol[i];
 }
@@ -319,21 +322,22 @@ int pd_lps_forces(struct model *m, struct sim *sim)
             if (st[s] & BOND_BROKEN)
                 continue;
             size_t j = (size_t)bl->partner[s];
+            const size_t row = pd_lps_row(&B, s);
             double l2 = 0.0;
             for (int c = 0; c < dim; c++) {
                 double r = p->x[c][j] - p->x[c][i];
                 l2 += r * r;
             }
-            const double xi = B.rest[pd_lps_row(&B, s)], e = sqrt(l2) - xi;
-            if (!late && e / xi > m->s0_tab[B.type[pd_lps_row(&B, s)]]) {
+            const double xi = B.rest[row], e = sqrt(l2) - xi;
+            if (!late && e / xi > m->s0_tab[B.type[row]]) {
                 st[s] |= BOND_BROKEN;
                 /* energy of the half-bond at the last dilatation: t e / 2 (the
                  * state energy is homogeneous of degree 2 in e) */
                 double t = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
-                m->diss[i] += 0.5 * B.ob[pd_lps_row(&B, s)] * t * e * p->volume[i] * p->volume[j];
+                m->diss[i] += 0.5 * B.ob[row] * t * e * p->volume[i] * p->volume[j];
                 continue;
             }
-            sum += B.ob[pd_lps_row(&B, s)] * xi * e * p->volume[j];
+            sum += B.ob[row] * xi * e * p->volume[j];
         }
         L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
     }
@@ -395,18 +399,19 @@ void pd_lps_break_rows(struct model *m, const struct sim *sim, size_t i0, size_t
             if (bl->state[s] & BOND_BROKEN)
                 continue;
             size_t j = (size_t)bl->partner[s];
+            const size_t row = pd_lps_row(&B, s);
             double l2 = 0.0;
             for (int c = 0; c < dim; c++) {
                 double r = p->x[c][j] - p->x[c][i];
                 l2 += r * r;
             }
-            const double xi = B.rest[pd_lps_row(&B, s)], e = sqrt(l2) - xi;
-            if (!(e / xi > m->s0_tab[B.type[pd_lps_row(&B, s)]]))
+            const double xi = B.rest[row], e = sqrt(l2) - xi;
+            if (!(e / xi > m->s0_tab[B.type[row]]))
                 continue;
             bl->state[s] |= BOND_BROKEN;
             const double ee = e - (L->ep ? L->ep[s] : 0.0);
             const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
-            m->diss[i] += 0.5 * B.ob[pd_lps_row(&B, s)] * t * ee * p->volume[i] * p->volume[j];
+            m->diss[i] += 0.5 * B.ob[row] * t * ee * p->volume[i] * p->volume[j];
         }
 }
 
@@ -431,8 +436,10 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
     for (size_t i = 0; i < n; i++) {
         S[i] = 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
-            if (!(bl->state[s] & BOND_BROKEN))
-                S[i] += B.ob[pd_lps_row(&B, s)] * B.rest[pd_lps_row(&B, s)] * p->volume[bl->partner[s]];
+            if (!(bl->state[s] & BOND_BROKEN)) {
+                const size_t row = pd_lps_row(&B, s);
+                S[i] += B.ob[row] * B.rest[row] * p->volume[bl->partner[s]];
+            }
     }
     double dt = INFINITY;
     for (size_t i = 0; i < p->n_owned; i++) {
@@ -441,9 +448,10 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
             if (bl->state[s] & BOND_BROKEN)
                 continue;
             size_t j = (size_t)bl->partner[s];
-            R += p->volume[j] * B.ob[pd_lps_row(&B, s)] * (L->alpha[i] + L->alpha[j]);
+            const size_t row = pd_lps_row(&B, s);
+            R += p->volume[j] * B.ob[row] * (L->alpha[i] + L->alpha[j]);
             if (L->wvol[j] > 0.0)
-                R += p->volume[j] * B.ob[pd_lps_row(&B, s)] * B.rest[pd_lps_row(&B, s)] * fabs(L->bcoef[j]) * d * S[j] /
+                R += p->volume[j] * B.ob[row] * B.rest[row] * fabs(L->bcoef[j]) * d * S[j] /
                      L->wvol[j];
         }
         R *= 2.0 * p->volume[i];
@@ -478,10 +486,11 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
         l = sqrt(l);
         /* formulation eps: only the elastic part e^d - e^dp stores energy (pd_eps.c) */
         const double ep = L->ep ? L->ep[s] : 0.0;
-        const double xi = B.rest[pd_lps_row(&B, s)], e = l - xi, ed = e - th * xi / (double)dim - ep;
-        w += 0.5 * L->alpha[i] * B.ob[pd_lps_row(&B, s)] * ed * ed * p->volume[j];
+        const size_t row = pd_lps_row(&B, s);
+        const double xi = B.rest[row], e = l - xi, ed = e - th * xi / (double)dim - ep;
+        w += 0.5 * L->alpha[i] * B.ob[row] * ed * ed * p->volume[j];
         /* collapsed stress sum_j t_ij M (x) xi V_j ([Silling2007], homogeneous case) */
-        const double g = B.ob[pd_lps_row(&B, s)] * (L->alpha[i] * (e - ep) + L->bcoef[i] * xi * th) *
+        const double g = B.ob[row] * (L->alpha[i] * (e - ep) + L->bcoef[i] * xi * th) *
                          p->volume[j] / l;
         pd_add_bond_virial(sg, dim, g, r, r0);
     }
