@@ -113,9 +113,16 @@ int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_
      * positions the engine set (core/parallel/spatial.c) */
     const bool dist = sim->par != NULL;
     struct neighbor_list *nl = NULL;
-    int rc = neighbor_list_build(&nl, sim->dim, n, dist ? m->xb : p->x, m->pp.r_c + skin, err);
-    if (rc)
+    struct neighbor_pairs *pairs = NULL;
+    if (!dist && !m->pair_full && !(pairs = malloc(sizeof *pairs)))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for macro-particle pairs");
+    /* one rank: the pair loop's table comes with the list (macro_half.c) */
+    int rc = neighbor_list_build_pairs(&nl, pairs, sim->dim, n, dist ? m->xb : p->x,
+                                       m->pp.r_c + skin, err);
+    if (rc) {
+        free(pairs);
         return rc;
+    }
     if (dist)
         sort_rows_by_gid(nl, p->gid);
     size_t ns = nl->offset[n];
@@ -127,6 +134,8 @@ int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_
         free(nka);
         free(nen);
         free(npg);
+        neighbor_pairs_free(pairs);
+        free(pairs);
         neighbor_list_destroy(&nl);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for macro-particle pairs");
     }
@@ -137,6 +146,7 @@ int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_
         carry_state(m->nl, m->pgid, m->dr0, m->kappa, m->engaged, nl, npg, rows, ndr, nka, nen);
     }
     macro_adopt_pairs(m, nl, npg, ndr, nka, nen);
+    macro_half_invalidate(m, pairs);
     if (!dist)
         for (int d = 0; d < sim->dim; d++)
             memcpy(m->xb[d], p->x[d], n * sizeof(double));
@@ -149,7 +159,7 @@ void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid,
                        double *kappa, uint8_t *engaged)
 {
     macro_par_release(m); /* a list lent to a migration probe is not kept */
-    m->half_ok = false;
+    macro_half_invalidate(m, NULL);
     neighbor_list_destroy(&m->nl);
     free(m->pgid);
     free(m->dr0);

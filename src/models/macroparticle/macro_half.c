@@ -66,8 +66,18 @@ void macro_half_free(struct model *m)
     m->hpi = m->hpj = NULL;
     m->pc = m->pphi = m->pwp = m->pfl = NULL;
     m->pok = NULL;
-    m->half_pairs = m->half_pair_cap = m->half_slot_cap = 0;
+    m->half_pairs = m->half_pair_cap = 0;
+    macro_half_invalidate(m, NULL);
+}
+
+void macro_half_invalidate(struct model *m, struct neighbor_pairs *pairs)
+{
     m->half_ok = false;
+    if (m->hnew) {
+        neighbor_pairs_free(m->hnew);
+        free(m->hnew);
+    }
+    m->hnew = pairs;
 }
 
 /* *a holds @p count elements of @p size bytes: (re)allocated when it
@@ -142,51 +152,96 @@ static int64_t half_fill(struct model *m, const struct particles *p, size_t n)
     return bad;
 }
 
+/* The arrays of the pair table @p t of the one-rank build (neighbor_pairs.c:
+ * the same pairs, numbered as half_fill numbers them: by the computing end,
+ * the smaller index, then the partner ascending), taken over. */
+static void half_take(struct model *m, struct neighbor_pairs *t, size_t n)
+{
+    free(m->hoff);
+    free(m->hpj);
+    free(m->pid);
+    m->hoff = t->first;
+    m->hpj = t->partner;
+    m->pid = t->slot_pair;
+    t->first = t->slot_pair = NULL;
+    t->partner = NULL;
+    const struct neighbor_list *nl = m->nl;
+    for (size_t i = 0; i < n; i++)
+        for (size_t q = m->hoff[i]; q < m->hoff[i + 1]; q++)
+            m->hpi[q] = (int32_t)i;
+    if (m->hps)
+        for (size_t i = 0; i < n; i++)
+            for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+                if ((size_t)nl->idx[s] > i)
+                    m->hps[m->pid[s]] = s;
+                else
+                    m->hprs[m->pid[s]] = s;
+            }
+}
+
 static int half_prepare(struct model *m, const struct particles *p, size_t n, bool plastic,
                         bool pairwise, struct spall_error *err)
 {
     const struct neighbor_list *nl = m->nl;
-    size_t *cnt = malloc((n + 1) * sizeof *cnt);
-    if (!cnt)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
+    /* the build's table describes this list only when no ghosts follow
+     * (one rank: n owned = all particles) */
+    struct neighbor_pairs *t = m->hnew && nl->n == n ? m->hnew : NULL;
+    size_t *cnt = NULL, np;
+    if (t) {
+        np = t->n_pairs;
+    } else {
+        cnt = malloc((n + 1) * sizeof *cnt);
+        if (!cnt)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
 #pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
-    for (size_t i = 0; i < n; i++)
-        cnt[i] = half_count(nl, half_start(nl, m->pgid, p->gid, i), i, n);
-    size_t np = 0;
-    for (size_t i = 0; i < n; i++) {
-        size_t c = cnt[i];
-        cnt[i] = np;
-        np += c;
+        for (size_t i = 0; i < n; i++)
+            cnt[i] = half_count(nl, half_start(nl, m->pgid, p->gid, i), i, n);
+        np = 0;
+        for (size_t i = 0; i < n; i++) {
+            size_t c = cnt[i];
+            cnt[i] = np;
+            np += c;
+        }
+        cnt[n] = np;
     }
-    cnt[n] = np;
     const size_t ns = nl->offset[n];
-    const bool pg = np > m->half_pair_cap, sg = ns > m->half_slot_cap;
-    const size_t pn = pg ? np : m->half_pair_cap, sn = sg ? ns : m->half_slot_cap;
+    const bool pg = np > m->half_pair_cap;
+    const size_t pn = pg ? np : m->half_pair_cap;
     bool ok = need((void **)&m->hpi, pn, sizeof *m->hpi, pg) &&
-              need((void **)&m->hpj, pn, sizeof *m->hpj, pg) &&
               need((void **)&m->pc, pn, sizeof *m->pc, pg) &&
               need((void **)&m->pphi, pn, sizeof *m->pphi, pg) &&
               need((void **)&m->pok, pn, sizeof *m->pok, pg) &&
               (!plastic || (need((void **)&m->hps, pn, sizeof *m->hps, pg) &&
                             need((void **)&m->hprs, pn, sizeof *m->hprs, pg) &&
                             need((void **)&m->pwp, pn, sizeof *m->pwp, pg))) &&
-              (!pairwise || need((void **)&m->pfl, 3 * pn, sizeof *m->pfl, pg)) &&
-              need((void **)&m->pid, sn, sizeof *m->pid, sg);
-    free(m->hoff);
-    m->hoff = cnt;
+              (!pairwise || need((void **)&m->pfl, 3 * pn, sizeof *m->pfl, pg));
+    if (!t) { /* made here: the exact sizes of this list */
+        free(m->hoff);
+        free(m->hpj);
+        free(m->pid);
+        m->hoff = cnt;
+        m->hpj = malloc((np ? np : 1) * sizeof *m->hpj);
+        m->pid = malloc((ns ? ns : 1) * sizeof *m->pid);
+        ok = ok && m->hpj && m->pid;
+    }
     if (!ok) {
         macro_half_free(m);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the macro-particle "
                                "pair loop (%zu pairs)", np);
     }
     m->half_pair_cap = pn;
-    m->half_slot_cap = sn;
     m->half_pairs = np;
-    int64_t bad = half_fill(m, p, n);
-    if (bad >= 0) {
-        macro_half_free(m);
-        return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle pair list not symmetric "
-                               "(a partner of particle %lld does not list it)", (long long)bad);
+    if (t) {
+        half_take(m, t, n);
+        macro_half_invalidate(m, NULL);
+    } else {
+        int64_t bad = half_fill(m, p, n);
+        if (bad >= 0) {
+            macro_half_free(m);
+            return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle pair list not "
+                                   "symmetric (a partner of particle %lld does not list it)",
+                                   (long long)bad);
+        }
     }
     m->half_ok = true;
     return SPALL_OK;
