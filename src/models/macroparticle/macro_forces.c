@@ -141,7 +141,9 @@ int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_
     }
     for (size_t s = 0; s < ns && npg; s++)
         npg[s] = p->gid[nl->idx[s]];
-    if (m->nl) {
+    /* an elastic run never writes the plastic state: all zeros, as calloc
+     * made the new arrays */
+    if (m->nl && (isfinite(m->pp.e_y) || m->pstate_read)) {
         size_t rows = p->n_owned < m->nl->n ? p->n_owned : m->nl->n;
         carry_state(m->nl, m->pgid, m->dr0, m->kappa, m->engaged, nl, npg, rows, ndr, nka, nen);
     }

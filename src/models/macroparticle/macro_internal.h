@@ -64,6 +64,8 @@ struct model {
     double *dr0;           /**< per full-list slot: plastic offset [m] */
     double *kappa;         /**< per slot: accumulated plastic slip [m] */
     uint8_t *engaged;      /**< per slot: 1 once the pair was inside its yield surface */
+    bool pstate_read;      /**< the three above were read from a checkpoint (else they stay
+                                zero in an elastic run, and a rebuild need not carry them) */
     long n_calls;          /**< force evaluations so far (random-stream counter) */
     /* the once-per-pair loop (macro_half.c): its pair list is made again
      * after each change of the neighbour list (half_ok cleared by

@@ -48,16 +48,19 @@ static int set_idx(void *ctx, size_t rows, struct spall_error *err)
 
 static int set_dr0(void *ctx, size_t rows, struct spall_error *err)
 {
+    ((struct model *)ctx)->pstate_read = true;
     return pair_resize((void **)&((struct model *)ctx)->dr0, rows, sizeof(double), err);
 }
 
 static int set_kappa(void *ctx, size_t rows, struct spall_error *err)
 {
+    ((struct model *)ctx)->pstate_read = true;
     return pair_resize((void **)&((struct model *)ctx)->kappa, rows, sizeof(double), err);
 }
 
 static int set_engaged(void *ctx, size_t rows, struct spall_error *err)
 {
+    ((struct model *)ctx)->pstate_read = true;
     return pair_resize((void **)&((struct model *)ctx)->engaged, rows, 1, err);
 }
 
