@@ -80,9 +80,9 @@ struct model {
     size_t *hps, *hprs;    /**< per pair: its slot in row hpi and in row hpj (SIZE_MAX:
                                 a ghost's row), plastic runs only */
     size_t *pid;           /**< per slot of the owned rows: its pair */
-    double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i) */
-    double *pphi;          /**< per pair: its energy phi */
-    uint8_t *pok;          /**< per pair: 1 when it counts */
+    double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i);
+                                +0 when it does not count */
+    double *pphi;          /**< per pair: its energy phi; +0 when it does not count */
     double *pwp;           /**< per pair: half its plastic work of this call (plastic runs) */
     double *pfl;           /**< 3 per pair: pairwise Langevin force on hpi (pairwise damping) */
     size_t n_builds;
