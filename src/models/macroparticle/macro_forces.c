@@ -174,6 +174,33 @@ void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid,
     m->engaged = engaged;
 }
 
+/* The largest squared displacement since the build (a maximum, exact in
+ * any order: the loops vectorise, the decision is the one of a serial
+ * scan; a NaN is never the maximum, as in the scan it replaces). */
+MACRO_CLONES static double max_shift2(int dim, size_t n, double *const x[3], double *const xb[3])
+{
+    double d2max = 0.0;
+    if (dim == 3) {
+        const double *x0 = x[0], *x1 = x[1], *x2 = x[2];
+        const double *b0 = xb[0], *b1 = xb[1], *b2 = xb[2];
+        for (size_t i = 0; i < n; i++) {
+            const double u0 = x0[i] - b0[i], u1 = x1[i] - b1[i], u2 = x2[i] - b2[i];
+            const double d2 = u0 * u0 + u1 * u1 + u2 * u2;
+            d2max = d2 > d2max ? d2 : d2max;
+        }
+        return d2max;
+    }
+    for (size_t i = 0; i < n; i++) {
+        double d2 = 0.0;
+        for (int d = 0; d < dim; d++) {
+            double u = x[d][i] - xb[d][i];
+            d2 += u * u;
+        }
+        d2max = d2 > d2max ? d2 : d2max;
+    }
+    return d2max;
+}
+
 int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err)
 {
     struct particles *p = sim->p;
@@ -181,19 +208,9 @@ int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct 
     const double skin = m->skin_ratio * m->pp.r0;
     if (!force && sim->par)
         return SPALL_OK; /* distributed: the engine's test, over all ranks (spatial.c) */
-    if (!force && m->nl && m->nl->n == n) {
-        double d2max = 0.0;
-        for (size_t i = 0; i < n; i++) {
-            double d2 = 0.0;
-            for (int d = 0; d < sim->dim; d++) {
-                double u = p->x[d][i] - m->xb[d][i];
-                d2 += u * u;
-            }
-            d2max = d2 > d2max ? d2 : d2max;
-        }
-        if (4.0 * d2max < skin * skin)
-            return SPALL_OK;
-    }
+    if (!force && m->nl && m->nl->n == n &&
+        4.0 * max_shift2(sim->dim, n, p->x, m->xb) < skin * skin)
+        return SPALL_OK;
     return macro_list_build(m, sim, true, err);
 }
 

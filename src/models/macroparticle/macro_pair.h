@@ -155,9 +155,15 @@ MACRO_PAIR_INLINE void macro_mie_chunk(const struct macro_pair *w, size_t nb,
         }
     }
 #undef MACRO_MIE_FIXED
+    /* the switch, for the few pairs in [r_on, r_c): a branch-free test of
+     * the chunk first (vectorised), the scalar loop only when one is there */
+    int any = 0;
     for (size_t k = 0; k < nb; k++)
-        if (r[k] > r_on && r[k] < r_c)
-            macro_taper(w, r[k], &phi[k], &fr[k]);
+        any |= (r[k] > r_on) & (r[k] < r_c);
+    if (any)
+        for (size_t k = 0; k < nb; k++)
+            if (r[k] > r_on && r[k] < r_c)
+                macro_taper(w, r[k], &phi[k], &fr[k]);
 }
 
 /** Three standard normal numbers for key (seed, step, a, b), from the
