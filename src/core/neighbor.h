@@ -33,12 +33,12 @@ void neighbor_list_destroy(struct neighbor_list **nl);
 
 /** The pairs of a full list, each once: pair q = (i, j) with i < j, numbered
  *  by i, then by j ascending (so the pairs of i are the upper part of its
- *  row, in the row's order). */
+ *  row, in the row's order); at most UINT32_MAX pairs (4 B a slot). */
 struct neighbor_pairs {
     size_t n_pairs;
     size_t *first;     /**< n+1: the pairs of i are [first[i], first[i+1]) */
     int32_t *partner;  /**< per pair: its j (> i) */
-    size_t *slot_pair; /**< per slot of the full list: the pair it holds */
+    uint32_t *slot_pair; /**< per slot of the full list: the pair it holds */
 };
 
 /** The list of neighbor_list_build (the same CSR, bit for bit) by a half

@@ -178,7 +178,7 @@ void neighbor_pairs_free(struct neighbor_pairs *pp)
  *  rows and the pair table from the buffers; false when out of memory. */
 static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t *off,
                         int32_t **idx_out, size_t **first_out, int32_t **partner_out,
-                        size_t **slot_out)
+                        uint32_t **slot_out)
 {
     size_t np = 0;
     for (int t = 0; t < nbuf; t++)
@@ -187,7 +187,7 @@ static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t 
     int32_t *low = malloc((np ? np : 1) * sizeof *low);
     int32_t *up = malloc((np ? np : 1) * sizeof *up);
     int32_t *idx = malloc((np ? 2 * np : 1) * sizeof *idx);
-    size_t *sp = slot_out ? malloc((np ? 2 * np : 1) * sizeof *sp) : NULL;
+    uint32_t *sp = slot_out ? malloc((np ? 2 * np : 1) * sizeof *sp) : NULL;
     if (!lo || !first || !low || !up || !idx || (slot_out && !sp)) {
         free(lo);
         free(first);
@@ -245,8 +245,8 @@ static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t 
             idx[s] = up[q];
             idx[t] = (int32_t)i;
             if (sp) {
-                sp[s] = q;
-                sp[t] = q;
+                sp[s] = (uint32_t)q;
+                sp[t] = (uint32_t)q;
             }
         }
     }
@@ -299,6 +299,18 @@ int neighbor_list_build_pairs(struct neighbor_list **out, struct neighbor_pairs 
     }
     grid_free(&g);
     bool ok = bufs != NULL;
+    size_t np = 0;
+    for (int t = 0; ok && t < nbuf; t++)
+        np += bufs[t].n;
+    if (ok && pairs && np > UINT32_MAX) {
+        for (int t = 0; t < nbuf && bufs != &none; t++)
+            free(bufs[t].ab);
+        if (bufs != &none)
+            free(bufs);
+        neighbor_list_destroy(&nl);
+        return spall_error_set(err, SPALL_ERR_INPUT, "neighbour search: %zu pairs exceed the "
+                               "32-bit pair index of the pair table", np);
+    }
     if (ok)
         ok = order_pairs(bufs, nbuf, n, nl->offset, &nl->idx, pairs ? &pairs->first : NULL,
                          pairs ? &pairs->partner : NULL, pairs ? &pairs->slot_pair : NULL);

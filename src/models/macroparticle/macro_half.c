@@ -66,7 +66,8 @@ void macro_half_free(struct model *m)
     free(m->pphi);
     free(m->pwp);
     free(m->pfl);
-    m->hoff = m->hps = m->hprs = m->pid = NULL;
+    m->hoff = m->hps = m->hprs = NULL;
+    m->pid = NULL;
     m->hpi = m->hpj = NULL;
     m->pc = m->pphi = m->pwp = m->pfl = NULL;
     m->half_pairs = m->half_pair_cap = 0;
@@ -140,9 +141,9 @@ static int64_t half_fill(struct model *m, const struct particles *p, size_t n)
                     bad = p->gid[i];
                     continue;
                 }
-                m->pid[t] = q;
+                m->pid[t] = (uint32_t)q;
             }
-            m->pid[s] = q;
+            m->pid[s] = (uint32_t)q;
             m->hpi[q] = (int32_t)i;
             m->hpj[q] = (int32_t)j;
             if (m->hps) {
@@ -166,7 +167,8 @@ static void half_take(struct model *m, struct neighbor_pairs *t, size_t n)
     m->hoff = t->first;
     m->hpj = t->partner;
     m->pid = t->slot_pair;
-    t->first = t->slot_pair = NULL;
+    t->first = NULL;
+    t->slot_pair = NULL;
     t->partner = NULL;
     const struct neighbor_list *nl = m->nl;
     for (size_t i = 0; i < n; i++)
@@ -206,6 +208,11 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
             np += c;
         }
         cnt[n] = np;
+        if (np > UINT32_MAX) {
+            free(cnt);
+            return spall_error_set(err, SPALL_ERR_INPUT, "%zu macro-particle pairs on a rank "
+                                   "exceed the 32-bit pair index", np);
+        }
     }
     const size_t ns = nl->offset[n];
     const bool pg = np > m->half_pair_cap;
@@ -380,7 +387,7 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
     const double *x0 = h->x[0], *x1 = dim > 1 ? h->x[1] : h->x[0];
     const double *x2 = dim > 2 ? h->x[2] : h->x[0];
     const double *pc = h->m->pc, *pphi = h->m->pphi;
-    const size_t *pid = h->m->pid;
+    const uint32_t *pid = h->m->pid;
     const double xi0 = x0[i], xi1 = dim > 1 ? x1[i] : 0.0, xi2 = dim > 2 ? x2[i] : 0.0;
 #if defined(__GNUC__)
     /* lanes: A = force xyz and energy, B = virial xx yy zz xy, C = yz zx */
@@ -430,7 +437,7 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
 struct half_g4 {
     const int32_t *idx;
     const double *x0, *x1, *x2, *pc, *pphi;
-    const size_t *pid;
+    const uint32_t *pid;
     half_v4 xi, yi, zi;
 };
 

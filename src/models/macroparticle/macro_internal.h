@@ -79,7 +79,7 @@ struct model {
     int32_t *hpi, *hpj;    /**< per pair: the end that computes it and the partner */
     size_t *hps, *hprs;    /**< per pair: its slot in row hpi and in row hpj (SIZE_MAX:
                                 a ghost's row), plastic runs only */
-    size_t *pid;           /**< per slot of the owned rows: its pair */
+    uint32_t *pid;         /**< per slot of the owned rows: its pair (< 2^32 pairs) */
     double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i);
                                 +0 when it does not count */
     double *pphi;          /**< per pair: its energy phi; +0 when it does not count */
