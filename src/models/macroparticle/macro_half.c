@@ -279,11 +279,12 @@ MACRO_CLONES static void half_chunk_dist(size_t nb, int dim, double *const *rest
 {
     const double *restrict x0 = x[0], *restrict x1 = dim > 1 ? x[1] : x[0];
     const double *restrict x2 = dim > 2 ? x[2] : x[0];
+    /* the loads are unconditional (x1, x2 name x[0] below 2D, 3D) so that
+     * the loop vectorises; the unused components are then replaced by 0 */
     for (size_t k = 0; k < nb; k++) {
         const size_t i = (size_t)pi[k], j = (size_t)pj[k];
-        const double ex = x0[j] - x0[i];
-        const double ey = dim > 1 ? x1[j] - x1[i] : 0.0;
-        const double ez = dim > 2 ? x2[j] - x2[i] : 0.0;
+        const double ex = x0[j] - x0[i], fy = x1[j] - x1[i], fz = x2[j] - x2[i];
+        const double ey = dim > 1 ? fy : 0.0, ez = dim > 2 ? fz : 0.0;
         r2[k] = ex * ex + ey * ey + ez * ez;
         r[k] = sqrt(r2[k]);
     }
