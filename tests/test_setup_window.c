@@ -63,7 +63,7 @@ static void check_case(const struct fill_case *c, double halo)
         for (int r = 0; r < size; r++) {
             struct particles *p = NULL;
             assert_int_equal(particles_create(&p, c->dim, 0, &err), SPALL_OK);
-            struct lattice_window w = {r, size, halo, 0, 0, 0, 0};
+            struct lattice_window w = {r, size, halo, 0, 0, 0, 0, 0};
             assert_int_equal(lattice_fill_window(p, &spec, g, 0, &w, &err), SPALL_OK);
             assert_int_equal(w.n_total, n_serial);
             /* the window is a run of the serial order */
