@@ -26,8 +26,6 @@
 static const char *unsupported(const struct deck_node *root)
 {
     const struct deck_node *model = deck_peek(root, "model");
-    if (deck_peek(root, "contact"))
-        return "particle contact (contact:)";
     /* the state-based stable time step reads the weighted volumes of the
      * partners' partners, which the edge of a window leaves too small */
     const struct deck_node *f = model && model->kind == DECK_MAPPING
