@@ -154,23 +154,21 @@ int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first
     if (ps->rank == 0)
         before = 0; /* MPI_Exscan leaves rank 0's result undefined */
     MPI_Allgather(&mine, 1, MPI_UINT64_T, c64, 1, MPI_UINT64_T, MPI_COMM_WORLD);
-    {
-        for (int r = 0; r < ps->size; r++)
-            counts[r] = (size_t)c64[r];
-        par_setup_offsets(counts, ps->size, own_first);
-        const uint64_t all = (uint64_t)own_first[ps->size];
-        for (int r = 0; r <= ps->size; r++)
-            own_first[r] += ps->n_global;
-        if ((int64_t)before != own_first[ps->rank] - ps->n_global ||
-            (int64_t)before != w->gid_first + (int64_t)w->n_below || all != w->n_total)
-            rc = spall_error_set(err, SPALL_ERR_INTERNAL,
-                                 "distributed set-up: rank %d's block starts at site %lld "
-                                 "by the counts, %lld by the generator (%llu of %zu sites)",
-                                 ps->rank, (long long)before,
-                                 (long long)(w->gid_first + (int64_t)w->n_below),
-                                 (unsigned long long)all, w->n_total);
-        ps->n_global += (int64_t)w->n_total;
-    }
+    for (int r = 0; r < ps->size; r++)
+        counts[r] = (size_t)c64[r];
+    par_setup_offsets(counts, ps->size, own_first);
+    const uint64_t all = (uint64_t)own_first[ps->size];
+    for (int r = 0; r <= ps->size; r++)
+        own_first[r] += ps->n_global;
+    if ((int64_t)before != own_first[ps->rank] - ps->n_global ||
+        (int64_t)before != w->gid_first + (int64_t)w->n_below || all != w->n_total)
+        rc = spall_error_set(err, SPALL_ERR_INTERNAL,
+                             "distributed set-up: rank %d's block starts at site %lld "
+                             "by the counts, %lld by the generator (%llu of %zu sites)",
+                             ps->rank, (long long)before,
+                             (long long)(w->gid_first + (int64_t)w->n_below),
+                             (unsigned long long)all, w->n_total);
+    ps->n_global += (int64_t)w->n_total;
     free(counts);
     free(c64);
     return par_agree(rc, err);
