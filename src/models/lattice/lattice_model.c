@@ -698,6 +698,7 @@ const struct model_ops lattice_model_ops = {
     .fixtures = lattice_fixtures,
     .setup_range = lattice_setup_range,
     .setup_tables = lattice_setup_tables,
+    .bonds_within_bodies = true, /* bond_list_build_shells skips other bodies */
 };
 
 const struct lattice_material *lattice_material_get(const struct model *m, int k)
