@@ -505,11 +505,12 @@ static void thread_range(size_t n, size_t *lo, size_t *hi, size_t *tid)
 
 /* The threads' rings of the once-per-bond loop (lattice_half.c): W
  * entries of dim doubles each for up to the team's size, kept by the model
- * (all zero between calls).  0 when that loop does not apply or memory is
- * short: the row loop then gives the same bits. */
-static size_t half_rings(struct model *m, struct sim *sim, int dim, int gather)
+ * (all zero between calls).  0 when that loop does not apply, is switched
+ * off (lattice_set_row_loop) or memory is short: the row loop then gives
+ * the same bits. */
+static size_t half_rings(struct model *m, struct sim *sim, int dim)
 {
-    if (gather)
+    if (m->half_off)
         return 0;
     const size_t w = lattice_half_ring(m, sim);
 #ifdef _OPENMP
@@ -532,7 +533,8 @@ static void drive_axial(struct model *m, struct sim *sim, int fast, int dim, int
     struct lattice_view v = lattice_make_view(m, sim);
     v.reverse = reverse;
     const size_t n = sim->p->n_owned;
-    const size_t w = fast ? half_rings(m, sim, dim, gather) : 0;
+    const size_t w = fast ? half_rings(m, sim, dim) : 0;
+    m->half_used = w > 0;
     const size_t per = w * (size_t)dim, n_rings = per ? m->half_buf_len / per : 0;
 #pragma omp parallel
     {
@@ -540,7 +542,8 @@ static void drive_axial(struct model *m, struct sim *sim, int fast, int dim, int
         size_t lo, hi, t = 0;
         thread_range(n, &lo, &hi, &t);
         if (t < n_rings)
-            lattice_half_range(m, &lv, lo, hi, m->half_buf + t * per, w - 1, dim, multi);
+            lattice_half_range(m, &lv, lo, hi, m->half_buf + t * per, w - 1, dim, multi,
+                               gather);
         else if (fast)
             range_linear(m, &lv, lo, hi, dim, multi, gather);
         else
@@ -590,6 +593,16 @@ int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error 
     const int fast = m->lp.law == LATTICE_LAW_LINEAR && m->n_mat == 1 && !m->kscale;
     drive_axial(m, sim, fast, dim, m->layers > 1 || m->honeycomb, gather, reverse);
     return 0;
+}
+
+void lattice_set_row_loop(struct model *m, bool rows)
+{
+    m->half_off = rows;
+}
+
+bool lattice_used_half_loop(const struct model *m)
+{
+    return m->half_used;
 }
 
 /* ---- per-particle diagnostics (no state change) ------------------------- */

@@ -30,8 +30,12 @@
  * bookings come in slot order (its lower partners' rows are swept first,
  * ascending), so diss[] sums in the same order too.
  *
- * Used for the linear law of one material without angles, when the rows
- * pass lattice_half_ring's check (sorted as above, symmetric); otherwise,
+ * Angular springs (2D): each row's sum adds, after the axial term of each
+ * slot, the angle forces buffered for it (lattice_forces.c, pass 1); the
+ * pushed term carries its slot's buffer along (push_angles).
+ *
+ * Used for the linear law of one material, when the rows pass
+ * lattice_half_ring's check (sorted as above, symmetric); otherwise,
  * e.g. on a rank of a distributed run whose rows list ghosts before lower
  * owned partners, the row loop runs.
  */
@@ -155,12 +159,30 @@ static double break_both(struct model *m, const struct lattice_view *v,
 /* Ring entry of row i (stride dim). */
 #define RING(i) (ring + ((i) & mask) * (size_t)dim)
 
+/* Angular springs (2D): after the axial term of the upper half-bond s, its
+ * row adds the angle forces on its partner's side of s (the buffer slot of
+ * s's twin, reverse[s]) and the partner's entry those of the twin's side,
+ * the buffer at s (reverse[twin] = s): each row's sum interleaves axial and
+ * angle terms in slot order, as the row loop adds them. */
+LATTICE_INLINE void push_angles(const struct lattice_view *v, size_t s, double a[3],
+                                double *restrict rj)
+{
+    const double *ab = v->ang_buf + 2 * v->reverse[s];
+    a[0] += ab[0];
+    a[1] += ab[1];
+    if (rj) {
+        const double *aj = v->ang_buf + 2 * s;
+        rj[0] += aj[0];
+        rj[1] += aj[1];
+    }
+}
+
 /* First pass of a thread's range [lo, hi): the rows' bonds to partners
  * below lo, evaluated from the rows' side into their ring entries. */
 LATTICE_INLINE void half_first(struct model *m, const struct lattice_view *v,
                                const struct lattice_bond_law *pw, size_t lo, size_t hi,
                                double *restrict ring, size_t mask, const int dim,
-                               const int multi)
+                               const int multi, const int gather)
 {
     const size_t end = hi - lo > mask ? lo + mask + 1 : hi;
     for (size_t i = lo; i < end; i++) {
@@ -172,6 +194,11 @@ LATTICE_INLINE void half_first(struct model *m, const struct lattice_view *v,
             const double c = slot_coef(m, v, pw, i, s, j, dx, r2, dim, multi);
             for (int d = 0; d < dim; d++)
                 ri[d] += c * dx[d];
+            if (gather) {
+                const double *ab = v->ang_buf + 2 * v->reverse[s];
+                ri[0] += ab[0];
+                ri[1] += ab[1];
+            }
         }
     }
 }
@@ -179,7 +206,8 @@ LATTICE_INLINE void half_first(struct model *m, const struct lattice_view *v,
 /* Row i alone (more than a block's half-bonds): its upper half-bonds. */
 LATTICE_INLINE void half_row(struct model *m, const struct lattice_view *v,
                              const struct lattice_bond_law *pw, size_t i, size_t hi,
-                             double *restrict ring, size_t mask, const int dim, const int multi)
+                             double *restrict ring, size_t mask, const int dim, const int multi,
+                             const int gather)
 {
     double *ri = RING(i);
     double a[3] = {ri[0], dim > 1 ? ri[1] : 0.0, dim > 2 ? ri[2] : 0.0};
@@ -203,6 +231,8 @@ LATTICE_INLINE void half_row(struct model *m, const struct lattice_view *v,
             if (rj)
                 rj[d] -= g;
         }
+        if (gather)
+            push_angles(v, s, a, rj);
     }
     double fi[3] = {a[0], a[1], a[2]};
     add_force(v, i, dim, fi);
@@ -251,7 +281,7 @@ static void half_breaks(struct model *m, const struct lattice_view *v,
 LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
                                  const struct lattice_bond_law *pw, size_t i0, size_t hi,
                                  double *restrict ring, size_t mask, const int dim,
-                                 const int multi, const int tab)
+                                 const int multi, const int gather, const int tab)
 {
     /* sc[0..dim): bond vectors, then terms; sc[3]: signed rest lengths */
     double sc[4][LATTICE_BLOCK];
@@ -260,7 +290,7 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
     uint16_t nu[LATTICE_BLOCK];
     const size_t sb = v->offset[i0];
     if (v->offset[i0 + 1] - sb > LATTICE_BLOCK) {
-        half_row(m, v, pw, i0, hi, ring, mask, dim, multi);
+        half_row(m, v, pw, i0, hi, ring, mask, dim, multi, gather);
         return i0 + 1;
     }
     size_t nt = 0, i = i0;
@@ -320,7 +350,8 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
     for (size_t r = i0; r < i1; r++) {
         double *ri = RING(r);
         double a0 = ri[0], a1 = dim > 1 ? ri[1] : 0.0, a2 = dim > 2 ? ri[2] : 0.0;
-        for (const size_t te = t + nu[r - i0]; t < te; t++) {
+        size_t s = gather ? v->offset[r + 1] - nu[r - i0] : 0; /* slot of entry t */
+        for (const size_t te = t + nu[r - i0]; t < te; t++, s++) {
             const size_t j = (size_t)jb[t];
             const double g0 = sc[0][t], g1 = dim > 1 ? sc[1][t] : 0.0,
                          g2 = dim > 2 ? sc[2][t] : 0.0;
@@ -329,9 +360,20 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
                 a1 += g1;
             if (dim > 2)
                 a2 += g2;
-            if (LATTICE_UNLIKELY(j >= hi))
+            double *rj = LATTICE_UNLIKELY(j >= hi) ? NULL : RING(j);
+            if (gather) {
+                double a[3] = {a0, a1, 0.0};
+                if (rj) {
+                    rj[0] -= g0;
+                    rj[1] -= g1;
+                }
+                push_angles(v, s, a, rj);
+                a0 = a[0];
+                a1 = a[1];
                 continue;
-            double *rj = RING(j);
+            }
+            if (!rj)
+                continue;
             rj[0] -= g0;
             if (dim > 1)
                 rj[1] -= g1;
@@ -350,26 +392,32 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
 }
 
 LATTICE_INLINE void half_loop(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
-                              double *restrict ring, size_t mask, const int dim, const int multi)
+                              double *restrict ring, size_t mask, const int dim, const int multi,
+                              const int gather)
 {
     const struct lattice_bond_law *pw = m->pair; /* material 0 with itself */
-    half_first(m, v, pw, lo, hi, ring, mask, dim, multi);
+    half_first(m, v, pw, lo, hi, ring, mask, dim, multi, gather);
     for (size_t i = lo; i < hi;)
-        i = v->rest_idx ? half_block(m, v, pw, i, hi, ring, mask, dim, multi, 1)
-                        : half_block(m, v, pw, i, hi, ring, mask, dim, multi, 0);
+        i = v->rest_idx ? half_block(m, v, pw, i, hi, ring, mask, dim, multi, gather, 1)
+                        : half_block(m, v, pw, i, hi, ring, mask, dim, multi, gather, 0);
 }
 
 LATTICE_CLONES void lattice_half_range(struct model *m, const struct lattice_view *v, size_t lo,
-                                       size_t hi, double *ring, size_t mask, int dim, int multi)
+                                       size_t hi, double *ring, size_t mask, int dim, int multi,
+                                       int gather)
 {
     if (dim == 1)
-        half_loop(m, v, lo, hi, ring, mask, 1, 0);
+        half_loop(m, v, lo, hi, ring, mask, 1, 0, 0);
+    else if (dim == 2 && gather && multi)
+        half_loop(m, v, lo, hi, ring, mask, 2, 1, 1);
+    else if (dim == 2 && gather)
+        half_loop(m, v, lo, hi, ring, mask, 2, 0, 1);
     else if (dim == 2 && multi)
-        half_loop(m, v, lo, hi, ring, mask, 2, 1);
+        half_loop(m, v, lo, hi, ring, mask, 2, 1, 0);
     else if (dim == 2)
-        half_loop(m, v, lo, hi, ring, mask, 2, 0);
+        half_loop(m, v, lo, hi, ring, mask, 2, 0, 0);
     else if (multi)
-        half_loop(m, v, lo, hi, ring, mask, 3, 1);
+        half_loop(m, v, lo, hi, ring, mask, 3, 1, 0);
     else
-        half_loop(m, v, lo, hi, ring, mask, 3, 0);
+        half_loop(m, v, lo, hi, ring, mask, 3, 0, 0);
 }

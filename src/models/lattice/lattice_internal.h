@@ -71,6 +71,8 @@ struct model {
     size_t half_ring;     /**< ring entries per thread (power of 2); 0: rows unsuited */
     double *half_buf;     /**< the threads' rings, all zero between calls */
     size_t half_buf_len;  /**< doubles in half_buf */
+    bool half_off;        /**< lattice_set_row_loop: the row loop only */
+    bool half_used;       /**< the last force call took the once-per-bond loop */
     bool initialised;
 };
 
