@@ -293,12 +293,22 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
         half_row(m, v, pw, i0, hi, ring, mask, dim, multi, gather);
         return i0 + 1;
     }
-    size_t nt = 0, i = i0;
-    do {
+    /* the block's end: the last row whose slots still fit (offset is
+     * sorted: a binary search, not a test per row) */
+    size_t lo_end = i0 + 1, hi_end = hi - i0 < LATTICE_BLOCK ? hi : i0 + LATTICE_BLOCK;
+    while (lo_end < hi_end) {
+        const size_t mid = lo_end + (hi_end - lo_end + 1) / 2;
+        if (v->offset[mid] - sb <= LATTICE_BLOCK)
+            lo_end = mid;
+        else
+            hi_end = mid - 1;
+    }
+    const size_t i1 = lo_end;
+    size_t nt = 0, s = sb;
+    for (size_t i = i0; i < i1; i++) {
         const double xi = v->x0[i], yi = dim > 1 ? v->x1[i] : 0.0,
                      zi = dim > 2 ? v->x2[i] : 0.0;
         const size_t e = v->offset[i + 1];
-        size_t s = v->offset[i];
         while (s < e && (size_t)v->partner[s] < i)
             s++;
         const size_t t0 = nt;
@@ -318,9 +328,7 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
             jb[nt] = j;
         }
         nu[i - i0] = (uint16_t)(nt - t0);
-        i++;
-    } while (i < hi && i - i0 < LATTICE_BLOCK && v->offset[i + 1] - sb <= LATTICE_BLOCK);
-    const size_t i1 = i;
+    }
     const double k0 = pw[0].k, tl0 = pw[0].t_lim, cl0 = pw[0].c_lim;
     int64_t breaks = 0;
     for (size_t t = 0; t < nt; t++) {
@@ -350,8 +358,8 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
     for (size_t r = i0; r < i1; r++) {
         double *ri = RING(r);
         double a0 = ri[0], a1 = dim > 1 ? ri[1] : 0.0, a2 = dim > 2 ? ri[2] : 0.0;
-        size_t s = gather ? v->offset[r + 1] - nu[r - i0] : 0; /* slot of entry t */
-        for (const size_t te = t + nu[r - i0]; t < te; t++, s++) {
+        size_t sl = gather ? v->offset[r + 1] - nu[r - i0] : 0; /* slot of entry t */
+        for (const size_t te = t + nu[r - i0]; t < te; t++, sl++) {
             const size_t j = (size_t)jb[t];
             const double g0 = sc[0][t], g1 = dim > 1 ? sc[1][t] : 0.0,
                          g2 = dim > 2 ? sc[2][t] : 0.0;
@@ -367,7 +375,7 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
                     rj[0] -= g0;
                     rj[1] -= g1;
                 }
-                push_angles(v, s, a, rj);
+                push_angles(v, sl, a, rj);
                 a0 = a[0];
                 a1 = a[1];
                 continue;
