@@ -521,7 +521,15 @@ static size_t half_rings(struct model *m, struct sim *sim, int dim)
     const size_t need = nt * w * (size_t)dim;
     if (w && m->half_buf_len < need) {
         free(m->half_buf);
+        free(m->half_cnt);
         m->half_buf = calloc(need, sizeof *m->half_buf);
+        m->half_cnt = calloc(nt * w, sizeof *m->half_cnt);
+        if (!m->half_buf || !m->half_cnt) {
+            free(m->half_buf);
+            free(m->half_cnt);
+            m->half_buf = NULL;
+            m->half_cnt = NULL;
+        }
         m->half_buf_len = m->half_buf ? need : 0;
     }
     return m->half_buf ? w : 0;
@@ -542,8 +550,8 @@ static void drive_axial(struct model *m, struct sim *sim, int fast, int dim, int
         size_t lo, hi, t = 0;
         thread_range(n, &lo, &hi, &t);
         if (t < n_rings)
-            lattice_half_range(m, &lv, lo, hi, m->half_buf + t * per, w - 1, dim, multi,
-                               gather);
+            lattice_half_range(m, &lv, lo, hi, m->half_buf + t * per, m->half_cnt + t * w,
+                               w - 1, dim, multi, gather);
         else if (fast)
             range_linear(m, &lv, lo, hi, dim, multi, gather);
         else

@@ -73,7 +73,9 @@ static int rows_suit(const struct bond_list *bl, size_t n, size_t *span)
         const size_t e = bl->offset[i + 1];
         size_t s = bl->offset[i], last = 0;
         int any = 0;
-        /* the lower part: ascending, no duplicates */
+        /* the lower part: ascending, no duplicates, counted in 16 bits */
+        if (e - s > UINT16_MAX)
+            return 0;
         for (; s < e && (size_t)bl->partner[s] < i; s++, n_lower++) {
             if (any && (size_t)bl->partner[s] <= last)
                 return 0;
@@ -181,13 +183,14 @@ LATTICE_INLINE void push_angles(const struct lattice_view *v, size_t s, double a
  * below lo, evaluated from the rows' side into their ring entries. */
 LATTICE_INLINE void half_first(struct model *m, const struct lattice_view *v,
                                const struct lattice_bond_law *pw, size_t lo, size_t hi,
-                               double *restrict ring, size_t mask, const int dim,
+                               double *restrict ring, uint16_t *restrict cnt, size_t mask, const int dim,
                                const int multi, const int gather)
 {
     const size_t end = hi - lo > mask ? lo + mask + 1 : hi;
     for (size_t i = lo; i < end; i++) {
         double *ri = RING(i);
         for (size_t s = v->offset[i]; s < v->offset[i + 1] && (size_t)v->partner[s] < lo; s++) {
+            cnt[i & mask]++;
             const size_t j = (size_t)v->partner[s];
             double dx[3] = {0, 0, 0};
             const double r2 = bond_vec(v, i, j, dim, dx);
@@ -206,7 +209,7 @@ LATTICE_INLINE void half_first(struct model *m, const struct lattice_view *v,
 /* Row i alone (more than a block's half-bonds): its upper half-bonds. */
 LATTICE_INLINE void half_row(struct model *m, const struct lattice_view *v,
                              const struct lattice_bond_law *pw, size_t i, size_t hi,
-                             double *restrict ring, size_t mask, const int dim, const int multi,
+                             double *restrict ring, uint16_t *restrict cnt, size_t mask, const int dim, const int multi,
                              const int gather)
 {
     double *ri = RING(i);
@@ -225,6 +228,8 @@ LATTICE_INLINE void half_row(struct model *m, const struct lattice_view *v,
         else if (LATTICE_UNLIKELY(r > r_rest * b->t_lim || r < r_rest * b->c_lim))
             c = break_both(m, v, b, i, s, j, hi, dx, r_rest, r, dim);
         double *rj = j < hi ? RING(j) : NULL;
+        if (rj)
+            cnt[j & mask]++;
         for (int d = 0; d < dim; d++) {
             const double g = c * dx[d];
             a[d] += g;
@@ -238,6 +243,7 @@ LATTICE_INLINE void half_row(struct model *m, const struct lattice_view *v,
     add_force(v, i, dim, fi);
     for (int d = 0; d < dim; d++)
         ri[d] = 0.0;
+    cnt[i & mask] = 0;
 }
 
 /* Pass 3 of half_block (rare): the upper half-bonds of the rows [i0, i1)
@@ -280,7 +286,7 @@ static void half_breaks(struct model *m, const struct lattice_view *v,
  * (half_row). */
 LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
                                  const struct lattice_bond_law *pw, size_t i0, size_t hi,
-                                 double *restrict ring, size_t mask, const int dim,
+                                 double *restrict ring, uint16_t *restrict cnt, size_t mask, const int dim,
                                  const int multi, const int gather, const int tab)
 {
     /* sc[0..dim): bond vectors, then terms; sc[3]: signed rest lengths */
@@ -290,7 +296,7 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
     uint16_t nu[LATTICE_BLOCK];
     const size_t sb = v->offset[i0];
     if (v->offset[i0 + 1] - sb > LATTICE_BLOCK) {
-        half_row(m, v, pw, i0, hi, ring, mask, dim, multi, gather);
+        half_row(m, v, pw, i0, hi, ring, cnt, mask, dim, multi, gather);
         return i0 + 1;
     }
     /* the block's end: the last row whose slots still fit (offset is
@@ -309,8 +315,8 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
         const double xi = v->x0[i], yi = dim > 1 ? v->x1[i] : 0.0,
                      zi = dim > 2 ? v->x2[i] : 0.0;
         const size_t e = v->offset[i + 1];
-        while (s < e && (size_t)v->partner[s] < i)
-            s++;
+        s = v->offset[i] + cnt[i & mask]; /* past the lower partners */
+        cnt[i & mask] = 0;
         const size_t t0 = nt;
         /* (nt < LATTICE_BLOCK always holds: the second exit keeps GCC from
          * vectorising a loop of three or so with gathers and checks) */
@@ -326,6 +332,8 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
             if (multi)
                 tb[nt] = v->type[s];
             jb[nt] = j;
+            if ((size_t)j < hi)
+                cnt[j & mask]++;
         }
         nu[i - i0] = (uint16_t)(nt - t0);
     }
@@ -400,32 +408,32 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
 }
 
 LATTICE_INLINE void half_loop(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
-                              double *restrict ring, size_t mask, const int dim, const int multi,
+                              double *restrict ring, uint16_t *restrict cnt, size_t mask, const int dim, const int multi,
                               const int gather)
 {
     const struct lattice_bond_law *pw = m->pair; /* material 0 with itself */
-    half_first(m, v, pw, lo, hi, ring, mask, dim, multi, gather);
+    half_first(m, v, pw, lo, hi, ring, cnt, mask, dim, multi, gather);
     for (size_t i = lo; i < hi;)
-        i = v->rest_idx ? half_block(m, v, pw, i, hi, ring, mask, dim, multi, gather, 1)
-                        : half_block(m, v, pw, i, hi, ring, mask, dim, multi, gather, 0);
+        i = v->rest_idx ? half_block(m, v, pw, i, hi, ring, cnt, mask, dim, multi, gather, 1)
+                        : half_block(m, v, pw, i, hi, ring, cnt, mask, dim, multi, gather, 0);
 }
 
 LATTICE_CLONES void lattice_half_range(struct model *m, const struct lattice_view *v, size_t lo,
-                                       size_t hi, double *ring, size_t mask, int dim, int multi,
-                                       int gather)
+                                       size_t hi, double *ring, uint16_t *cnt, size_t mask,
+                                       int dim, int multi, int gather)
 {
     if (dim == 1)
-        half_loop(m, v, lo, hi, ring, mask, 1, 0, 0);
+        half_loop(m, v, lo, hi, ring, cnt, mask, 1, 0, 0);
     else if (dim == 2 && gather && multi)
-        half_loop(m, v, lo, hi, ring, mask, 2, 1, 1);
+        half_loop(m, v, lo, hi, ring, cnt, mask, 2, 1, 1);
     else if (dim == 2 && gather)
-        half_loop(m, v, lo, hi, ring, mask, 2, 0, 1);
+        half_loop(m, v, lo, hi, ring, cnt, mask, 2, 0, 1);
     else if (dim == 2 && multi)
-        half_loop(m, v, lo, hi, ring, mask, 2, 1, 0);
+        half_loop(m, v, lo, hi, ring, cnt, mask, 2, 1, 0);
     else if (dim == 2)
-        half_loop(m, v, lo, hi, ring, mask, 2, 0, 0);
+        half_loop(m, v, lo, hi, ring, cnt, mask, 2, 0, 0);
     else if (multi)
-        half_loop(m, v, lo, hi, ring, mask, 3, 1, 0);
+        half_loop(m, v, lo, hi, ring, cnt, mask, 3, 1, 0);
     else
-        half_loop(m, v, lo, hi, ring, mask, 3, 0, 0);
+        half_loop(m, v, lo, hi, ring, cnt, mask, 3, 0, 0);
 }

@@ -69,7 +69,8 @@ struct model {
     unsigned long half_gen;
     size_t half_n;
     size_t half_ring;     /**< ring entries per thread (power of 2); 0: rows unsuited */
-    double *half_buf;     /**< the threads' rings, all zero between calls */
+    double *half_buf;     /**< the threads' rings of row sums, all zero between calls */
+    uint16_t *half_cnt;   /**< the threads' rings of lower-partner counts, likewise */
     size_t half_buf_len;  /**< doubles in half_buf */
     bool half_off;        /**< lattice_set_row_loop: the row loop only */
     bool half_used;       /**< the last force call took the once-per-bond loop */

@@ -148,6 +148,7 @@ static void lattice_destroy(struct model **pm)
     free(m->diss);
     free(m->kappa);
     free(m->half_buf);
+    free(m->half_cnt);
     lattice_thermal_destroy(&m->th);
     free(m->ifc);
     free(m);
