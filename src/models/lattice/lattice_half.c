@@ -18,8 +18,10 @@
  * lower partners, which arrive in ascending order because the rows are
  * swept in order; row i then adds the terms of its upper partners in slot
  * order and f_i += the ring entry, which is cleared for row i + W.  W, a
- * power of two, exceeds the largest index distance of a bond (a few hundred
- * kB on lattice2d: the ring stays in the caches).  A thread's range [lo, hi)
+ * power of two, exceeds the largest index distance of a bond (1 024 entries,
+ * 16 kB, on lattice2d: the ring stays in L1).  A second ring counts each
+ * row's lower partners as they record their bonds, which gives the row's
+ * first upper slot without a scan.  A thread's range [lo, hi)
  * first evaluates, from the rows' own side, the bonds to partners below lo
  * (evaluated again by the thread below: the same bits), and pushes nothing
  * to rows at or past hi, nor to ghosts: every row is summed by its thread
@@ -149,7 +151,8 @@ static double break_both(struct model *m, const struct lattice_view *v,
                          const struct lattice_bond_law *b, size_t i, size_t s, size_t j,
                          size_t hi, const double dx[3], double r_rest, double r, int dim)
 {
-    const double c = lattice_break_half(m, i, s, b, r_rest, r, lattice_bond_dr(v, i, j, dim, dx, r));
+    const double c =
+        lattice_break_half(m, i, s, b, r_rest, r, lattice_bond_dr(v, i, j, dim, dx, r));
     if (j < hi) {
         const double dn[3] = {-dx[0], -dx[1], -dx[2]};
         lattice_break_half(m, j, lower_slot(v->offset, v->partner, j, i), b, r_rest, r,
@@ -183,8 +186,8 @@ LATTICE_INLINE void push_angles(const struct lattice_view *v, size_t s, double a
  * below lo, evaluated from the rows' side into their ring entries. */
 LATTICE_INLINE void half_first(struct model *m, const struct lattice_view *v,
                                const struct lattice_bond_law *pw, size_t lo, size_t hi,
-                               double *restrict ring, uint16_t *restrict cnt, size_t mask, const int dim,
-                               const int multi, const int gather)
+                               double *restrict ring, uint16_t *restrict cnt, size_t mask,
+                               const int dim, const int multi, const int gather)
 {
     const size_t end = hi - lo > mask ? lo + mask + 1 : hi;
     for (size_t i = lo; i < end; i++) {
@@ -209,8 +212,8 @@ LATTICE_INLINE void half_first(struct model *m, const struct lattice_view *v,
 /* Row i alone (more than a block's half-bonds): its upper half-bonds. */
 LATTICE_INLINE void half_row(struct model *m, const struct lattice_view *v,
                              const struct lattice_bond_law *pw, size_t i, size_t hi,
-                             double *restrict ring, uint16_t *restrict cnt, size_t mask, const int dim, const int multi,
-                             const int gather)
+                             double *restrict ring, uint16_t *restrict cnt, size_t mask,
+                             const int dim, const int multi, const int gather)
 {
     double *ri = RING(i);
     double a[3] = {ri[0], dim > 1 ? ri[1] : 0.0, dim > 2 ? ri[2] : 0.0};
@@ -286,8 +289,9 @@ static void half_breaks(struct model *m, const struct lattice_view *v,
  * (half_row). */
 LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
                                  const struct lattice_bond_law *pw, size_t i0, size_t hi,
-                                 double *restrict ring, uint16_t *restrict cnt, size_t mask, const int dim,
-                                 const int multi, const int gather, const int tab)
+                                 double *restrict ring, uint16_t *restrict cnt, size_t mask,
+                                 const int dim, const int multi, const int gather,
+                                 const int tab)
 {
     /* sc[0..dim): bond vectors, then terms; sc[3]: signed rest lengths */
     double sc[4][LATTICE_BLOCK];
@@ -408,8 +412,8 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
 }
 
 LATTICE_INLINE void half_loop(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
-                              double *restrict ring, uint16_t *restrict cnt, size_t mask, const int dim, const int multi,
-                              const int gather)
+                              double *restrict ring, uint16_t *restrict cnt, size_t mask,
+                              const int dim, const int multi, const int gather)
 {
     const struct lattice_bond_law *pw = m->pair; /* material 0 with itself */
     half_first(m, v, pw, lo, hi, ring, cnt, mask, dim, multi, gather);
