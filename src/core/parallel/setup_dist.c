@@ -62,6 +62,13 @@ void par_setup_offsets(const size_t *n_own, int size, int64_t *own_first)
         own_first[r + 1] = own_first[r] + (int64_t)n_own[r];
 }
 
+double par_setup_dt_limit(double local)
+{
+    return par_min_double(local);
+}
+
+#ifdef SPALL_HAVE_MPI
+
 /* The rank whose block holds global id @p g: the body's segment (bodies
  * ascend in global id), then the last rank whose block starts at or
  * before it (blocks ascend with the rank). */
@@ -107,13 +114,6 @@ static int64_t local_of(const struct par_setup *ps, int64_t g)
     }
     return -1;
 }
-
-double par_setup_dt_limit(double local)
-{
-    return par_min_double(local);
-}
-
-#ifdef SPALL_HAVE_MPI
 
 int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first,
                      struct spall_error *err)
@@ -497,10 +497,12 @@ int par_setup_distribute(struct sim *s, struct spall_error *err)
 
 #else /* no MPI: never reached (the set-up distributes only on several ranks) */
 
-int par_setup_filled(struct sim *s, const struct lattice_window *w, struct spall_error *err)
+int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first,
+                     struct spall_error *err)
 {
     (void)s;
     (void)w;
+    (void)first;
     return spall_error_set(err, SPALL_ERR_INTERNAL, "distributed set-up in a build without MPI");
 }
 
