@@ -1,12 +1,26 @@
 #!/usr/bin/env bash
 # Side by side: the 3D problem of bench/pd_vs_lammps.sh with the state-based
 # models, spall `formulation: lps | eps` against LAMMPS pair peri/lps and
-# peri/eps (Debian's `lammps`, serial `lmp`).  Damage and probe values only
-# (no timings).  Usage:
-#     bench/pd_lps_vs_lammps.sh [--check] [path/to/spall] [NX NY NZ STEPS]
+# peri/eps (Debian's `lammps`): damage and probe values, and the race
+# (loop wall time, bond-steps/s, peak memory per particle).  Usage:
+#     bench/pd_lps_vs_lammps.sh [--check] [--ranks] [path/to/spall] [NX NY NZ STEPS]
 # --check (the ctest `pd_lps_vs_lammps`, label lammps): exit 77 (skipped)
-# without `lmp`, exit 1 when a check below fails; without --check a missing
-# `lmp` is installed (Debian package, root).
+# without `lmp`, exit 1 when a check below fails; the 1-core times are
+# printed, not checked, and the 2-core runs are left out (fast); without
+# --check a missing `lmp` is installed (Debian package, root).
+# --ranks: spall's 2-core runs are 2 MPI ranks x 1 thread (rank for rank
+# with LAMMPS; memory = the sum of the ranks' peaks); default 2 OpenMP
+# threads in one process.
+#
+# Race (as bench/pd_vs_lammps.sh): the lps and eps-elastic cases on 1 core
+# (spall 1 thread, LAMMPS `lmp` serial) and 2 cores (LAMMPS: 2 MPI ranks,
+# Debian's build has no OPENMP package).  Wall time = spall's loop ("s wall"
+# of `spall run`, the stepping loop with its output) and LAMMPS' "Loop time
+# of"; bond-steps/s with each bond counted once (spall run.log
+# `interactions`); peak RSS by /usr/bin/time -f %M (per process; LAMMPS on 2
+# ranks: the largest rank's peak x 2, as bench/pd_vs_lammps.sh), divided by
+# the particles.  Also printed: each code's own count of its arrays (spall
+# run.log "model arrays", LAMMPS "Per MPI rank memory allocation").
 #
 # Problem: simple-cubic sites dx = 1 mm, NX x NY x NZ (default 36 x 24 x 24),
 # delta = 3.015 dx, PDLAMMPS partial volumes (spall partial_volume_rule:
@@ -32,8 +46,14 @@
 # at 0 for step 1: every bond in tension then breaks at step 1 (peri/pmb keeps
 # its initial s0).  The set-up of a second run has the families and sets s0.
 set -euo pipefail
-CHECK=0
-if [ "${1:-}" = "--check" ]; then CHECK=1; shift; fi
+CHECK=0 RANKS=0
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --check) CHECK=1; shift ;;
+        --ranks) RANKS=1; shift ;;
+        *) break ;;
+    esac
+done
 SPALL=${1:-build/spall}
 NX=${2:-36}; NY=${3:-24}; NZ=${4:-24}; STEPS=${5:-200}
 NAME=pd_lps_vs_lammps
@@ -111,17 +131,39 @@ run: {{dt: 5.0e-8, dt_override: true, steps: {steps}, threads: 1}}
 output: {{history_every: {steps}, field_interval: 1.0}}
 """)
 PY
+# values (and the 1-core race): spall 1 thread, serial lmp
 for c in lps eps-elastic eps-plastic; do
-    ( cd "$W" && OMP_NUM_THREADS=1 "$SPALL" run "$c.yaml" > "spall_$c.out" 2>&1 ) ||
+    ( cd "$W" && OMP_NUM_THREADS=1 /usr/bin/time -f "%M" -o "spall_${c}_1.mem" \
+        "$SPALL" run "$c.yaml" > "spall_$c.out" 2>&1 ) ||
         { echo "spall run $c failed:"; tail -5 "$W/spall_$c.out"; exit 1; }
 done
 for c in lps eps-elastic eps-plastic lmp-lps-ref; do
-    ( cd "$W" && OMP_NUM_THREADS=1 "$LMP" -in "in.$c" -log "lmp_$c.log" -screen none ) ||
+    ( cd "$W" && OMP_NUM_THREADS=1 /usr/bin/time -f "%M" -o "lmp_${c}_1.mem" \
+        "$LMP" -in "in.$c" -log "lmp_$c.log" -screen none ) ||
         { echo "lammps run $c failed:"; tail -5 "$W/lmp_$c.log"; exit 1; }
 done
-python3 - "$W" "$CHECK" <<'PY'
-import sys, csv, re
-W, check = sys.argv[1], sys.argv[2] == "1"
+# the 2-core race (not under --check)
+if [ $CHECK = 0 ]; then
+    for c in lps eps-elastic; do
+        if [ $RANKS = 1 ]; then
+            cp "$W/$c.yaml" "$W/${c}_2.yaml"
+            ( cd "$W" && OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 \
+                /usr/bin/time -f "%M" -a -o "spall_${c}_2.mem" "$SPALL" run "${c}_2.yaml" \
+                > "spall_${c}_2.out" 2>&1 )
+        else
+            sed -e "s/threads: 1}/threads: 2}/" "$W/$c.yaml" > "$W/${c}_2.yaml"
+            ( cd "$W" && OMP_NUM_THREADS=2 /usr/bin/time -f "%M" -o "spall_${c}_2.mem" \
+                "$SPALL" run "${c}_2.yaml" > "spall_${c}_2.out" 2>&1 )
+        fi || { echo "spall 2-core run $c failed:"; tail -5 "$W/spall_${c}_2.out"; exit 1; }
+        ( cd "$W" && OMP_NUM_THREADS=1 /usr/bin/time -f "%M" -o "lmp_${c}_2.mem" \
+            mpirun --allow-run-as-root --oversubscribe -np 2 "$LMP" -in "in.$c" \
+            -log "lmp_${c}_2.log" -screen none > "lmp_${c}_2.out" 2>&1 ) ||
+            { echo "lammps 2-rank run $c failed:"; tail -5 "$W/lmp_${c}_2.out"; exit 1; }
+    done
+fi
+python3 - "$W" "$CHECK" "$RANKS" <<'PY'
+import sys, csv, re, os
+W, check, ranks = sys.argv[1], sys.argv[2] == "1", sys.argv[3] == "1"
 def spall(c):
     last = list(csv.DictReader(open(f"{W}/{c}/history.csv")))[-1]
     return float(last["damage_sum"]), float([v for k, v in last.items() if k.startswith("p_ux")][0])
@@ -150,6 +192,42 @@ expect(f"eps-elastic: spall eps = LAMMPS lps (u_x rel. diff {rel(S['eps-elastic'
 gap, lgap = rel(S['eps-elastic'][1], L['eps-elastic'][1]), rel(L['lmp-lps-ref'][1], L['eps-elastic'][1])
 print(f"  eps-elastic: spall-LAMMPS gap on u_x {gap:.3e}; LAMMPS lps-vs-eps gap {lgap:.3e} (the theta_i term)")
 print(f"  eps-plastic: spall / LAMMPS damage_sum {S['eps-plastic'][0]:.6g} / {L['eps-plastic'][0]:.6g}, u_x {S['eps-plastic'][1]:.6g} / {L['eps-plastic'][1]:.6g} (not compared)")
+# the race: loop wall time, bond-steps/s (each bond once), peak RSS per particle
+def spall_time(c, T):
+    out = open(f"{W}/spall_{c}{'' if T == 1 else '_2'}.out").read()
+    log = open(f"{W}/{c if T == 1 else c + '_2'}/run.log").read()
+    n = int(re.search(r"^particles: (\d+)", log, re.M).group(1))
+    bonds = int(re.search(r"^interactions: (\d+)", log, re.M).group(1))
+    steps = int(re.search(r"^steps_done: (\d+)", log, re.M).group(1))
+    wall = float(re.search(r"([0-9.eE+-]+) s wall", out).group(1))
+    # one peak per process (ranks append theirs): the run's memory is their sum
+    mem = sum(float(v) for v in open(f"{W}/spall_{c}_{T}.mem").read().split()) * 1024
+    ma = re.search(r"model arrays: (\d+) B, (\d+) B/particle", log)
+    return n, bonds, steps, wall, mem, int(ma.group(2)) if ma else None
+def lmp_time(c, T):
+    lg = open(f"{W}/lmp_{c}{'' if T == 1 else '_2'}.log").read()
+    m = re.findall(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", lg)[-1]
+    own = re.findall(r"Per MPI rank memory allocation \(min/avg/max\) = [0-9.]+ \| ([0-9.]+) \|", lg)[-1]
+    # /usr/bin/time sees the largest process of the tree: x ranks (as pd_vs_lammps.sh)
+    mem = float(open(f"{W}/lmp_{c}_{T}.mem").read().split()[-1]) * 1024 * T
+    return int(m[2]), float(m[0]), mem, float(own) * 2**20 * T
+cores = (1,) if check else (1, 2)
+print(f"\n{'case':<12} {'cores':>5} {'code':<7} {'loop wall s':>11} {'bond-steps/s':>13} "
+      f"{'RSS B/part':>11} {'own B/part':>11}")
+ratio = []
+for c in ("lps", "eps-elastic"):
+    for T in cores:
+        n, bonds, steps, sw, sm, sown = spall_time(c, T)
+        ln, lw, lm, lown = lmp_time(c, T)
+        how = "" if T == 1 else (" (2 ranks)" if ranks else " (2 threads)")
+        print(f"{c:<12} {T:>5} {'spall':<7} {sw:11.4g} {bonds * steps / sw:13.4g} {sm / n:11.0f} "
+              f"{sown if sown is not None else float('nan'):11.0f}{how}")
+        print(f"{'':<12} {T:>5} {'LAMMPS':<7} {lw:11.4g} {bonds * steps / lw:13.4g} {lm / ln:11.0f} "
+              f"{lown / ln:11.0f} ({T} rank{'s' if T > 1 else ''})")
+        ratio.append((c, T, lw / sw, sm / lm))
+for c, T, thr, mem in ratio:
+    print(f"  {c} on {T} core{'s' if T > 1 else ''}: spall / LAMMPS throughput {thr:.2f}x per core, "
+          f"peak memory per particle {mem:.2f} of LAMMPS'")
 if check and not ok:
     sys.exit(1)
 PY

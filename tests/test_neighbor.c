@@ -70,7 +70,48 @@ static void assert_well_formed(const struct neighbor_list *nl)
     }
 }
 
-/** Build with the cell list on 1 and 2 threads and by brute force; all equal. */
+/** The half-stencil builder on @p threads threads: the CSR of @p ref, and
+ *  a pair table that lists each pair once, (i, j < i) in the order of the
+ *  rows' upper parts, with every slot pointing at its pair. */
+static void check_pairs(const struct neighbor_list *ref, int dim, const struct pts *p,
+                        double radius, int threads)
+{
+    struct spall_error err = {0};
+    struct neighbor_list *nl = NULL, *nl2 = NULL;
+    struct neighbor_pairs pp;
+    int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    assert_int_equal(neighbor_list_build_pairs(&nl, &pp, dim, p->n, p->x, radius, &err), SPALL_OK);
+    assert_int_equal(neighbor_list_build_pairs(&nl2, NULL, dim, p->n, p->x, radius, &err),
+                     SPALL_OK);
+    omp_set_num_threads(saved);
+    assert_same_list(ref, nl);
+    assert_same_list(ref, nl2);
+    assert_int_equal(2 * pp.n_pairs, nl->offset[nl->n]);
+    assert_int_equal(pp.first[0], 0);
+    for (size_t i = 0; i < nl->n; i++) {
+        size_t q = pp.first[i];
+        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+            const size_t j = (size_t)nl->idx[s], pq = pp.slot_pair[s];
+            if (j > i) { /* the upper part: i's pairs, in order */
+                assert_int_equal(pq, q);
+                assert_int_equal(pp.partner[q], j);
+                q++;
+            } else { /* a pair of j's, whose partner is i */
+                assert_true(pq >= pp.first[j] && pq < pp.first[j + 1]);
+                assert_int_equal(pp.partner[pq], i);
+            }
+        }
+        assert_int_equal(q, pp.first[i + 1]);
+    }
+    neighbor_pairs_free(&pp);
+    assert_null(pp.first);
+    neighbor_list_destroy(&nl);
+    neighbor_list_destroy(&nl2);
+}
+
+/** Build with the cell list on 1 and 2 threads and by brute force; all equal
+ *  (the half-stencil builder too). */
 static size_t check_all_equal(int dim, const struct pts *p, double radius)
 {
     struct spall_error err = {0};
@@ -85,6 +126,8 @@ static size_t check_all_equal(int dim, const struct pts *p, double radius)
     assert_same_list(brute, c1);
     assert_same_list(brute, c2);
     assert_well_formed(c1);
+    check_pairs(brute, dim, p, radius, 1);
+    check_pairs(brute, dim, p, radius, 2);
     size_t m = c1->offset[c1->n];
     neighbor_list_destroy(&brute);
     neighbor_list_destroy(&c1);
@@ -155,6 +198,8 @@ static void test_triangular_lattice(void **state)
     for (size_t k = nl->offset[1]; k < nl->offset[2]; k++)
         assert_true(nl->idx[k] != 0 && nl->idx[k] != 2);
     neighbor_list_destroy(&nl);
+    /* pairs at exactly the radius, on the cell edges: all builders agree */
+    check_all_equal(2, &p, r0);
     pts_free(&p);
 }
 
@@ -168,6 +213,7 @@ static void test_degenerate(void **state)
     assert_int_equal(neighbor_list_build(&nl, 3, 0, p0.x, 1.0, &err), SPALL_OK);
     assert_int_equal(nl->n, 0);
     assert_int_equal(nl->offset[0], 0);
+    check_pairs(nl, 3, &p0, 1.0, 1);
     neighbor_list_destroy(&nl);
     pts_free(&p0);
     /* All particles at one point: everybody's neighbour. */
@@ -207,6 +253,11 @@ static void test_errors(void **state)
     assert_int_equal(neighbor_list_build(&nl, 2, 4, p.x, 1.0, &err), SPALL_ERR_INPUT);
     assert_non_null(strstr(err.msg, "particle 2"));
     assert_null(nl);
+    struct neighbor_pairs pp;
+    assert_int_equal(neighbor_list_build_pairs(&nl, &pp, 2, 4, p.x, 1.0, &err), SPALL_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "particle 2"));
+    assert_null(nl);
+    assert_null(pp.first);
     pts_free(&p);
 }
 

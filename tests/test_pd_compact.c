@@ -1,12 +1,14 @@
 /*
- * Compact families of the bond-based peridynamics kernel (pd_compact.c):
- * the same problems run with bond_storage compact and full give the same
- * positions, velocities, bond states and energies bit for bit (3D PMB with
- * breaking in both break orders, 2D with the surface correction, whose
- * coefficients differ bond by bond near the edges), and the layouts the
- * table cannot hold keep the arrays.
+ * Compact families of the peridynamics kernels (pd_compact.c): the same
+ * problems run with bond_storage compact and full give the same positions,
+ * velocities, bond states and energies bit for bit (3D PMB with breaking in
+ * both break orders, 2D with the surface correction, whose coefficients
+ * differ bond by bond near the edges; LPS and EPS in 3D and 2D, their table
+ * holding omega beta, built by pd_lps_init), and the layouts the table does not
+ * take keep the arrays (LPS with its surface correction).
  */
 #include <setjmp.h>
+#include <stdbool.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -45,11 +47,16 @@ static struct sim *build_ok(const char *yaml)
  * smaller and faster so that bonds break), or a 2D square plate. */
 static void deck(char *buf, size_t len, int dim, const char *model_extra, const char *storage)
 {
+    /* lps / eps take E and nu (eps a yield stress low enough to yield here) */
+    const bool st = strstr(model_extra, "lps") || strstr(model_extra, "eps");
+    const char *st_mat = !st ? ""
+                         : strstr(model_extra, "eps") ? "poisson_ratio: 0.25, yield_stress: 5.0e7, "
+                                                      : "poisson_ratio: 0.25, ";
     if (dim == 3)
         snprintf(buf, len,
                  "model: {type: peridynamics, horizon_factor: 3.015, partial_volume_rule: "
                  "lammps, bond_storage: %s%s}\n"
-                 "materials:\n  glass: {density: 2440, bulk_modulus: 48.0e9, "
+                 "materials:\n  glass: {density: 2440, %s: 48.0e9, %s"
                  "critical_stretch: 0.002}\n"
                  "lattice: {type: sc, spacing: 1.0e-3}\n"
                  "geometry:\n  block: {box: {min: [-0.0005, -0.0005, -0.0005], max: [0.0095, "
@@ -61,7 +68,7 @@ static void deck(char *buf, size_t len, int dim, const char *model_extra, const 
                  "  - {group: left, type: velocity, components: [x], value: -50.0}\n"
                  "  - {group: right, type: velocity, components: [x], value: 50.0}\n"
                  "run: {dt: 5.0e-8, dt_override: true, steps: 60}\n",
-                 storage, model_extra);
+                 storage, model_extra, st ? "youngs_modulus" : "bulk_modulus", st_mat);
     else
         snprintf(buf, len,
                  "model: {type: peridynamics, bond_storage: %s%s}\n"
@@ -76,8 +83,7 @@ static void deck(char *buf, size_t len, int dim, const char *model_extra, const 
                  "  - {group: left, type: velocity, components: [x], value: -40.0}\n"
                  "  - {group: right, type: velocity, components: [x], value: 40.0}\n"
                  "run: {dt: 5.0e-8, dt_override: true, steps: 80}\n",
-                 storage, model_extra,
-                 strstr(model_extra, "lps") ? "poisson_ratio: 0.25, " : "");
+                 storage, model_extra, st_mat);
 }
 
 static void run(struct sim *s)
@@ -140,12 +146,26 @@ static void test_same_2d_surface(void **state)
     assert_true(same_both_ways(2, ", surface_correction: true") > 0);
 }
 
-/* lps keeps its per-bond arrays: no table. */
-static void test_lps_keeps_arrays(void **state)
+/* LPS and EPS (pd_lps_init): the rows hold the lengths, omega beta and
+ * types; with influence inverse and partial volumes the family has several
+ * values of omega beta, and cubic makes them differ by direction. */
+static void test_same_lps_eps(void **state)
+{
+    (void)state;
+    assert_true(same_both_ways(3, ", formulation: lps, influence: inverse, break_order: "
+                                  "next_step") > 0);
+    assert_true(same_both_ways(3, ", formulation: eps") > 0);
+    assert_true(same_both_ways(2, ", formulation: lps, influence_correction: cubic") > 0);
+    assert_true(same_both_ways(2, ", formulation: eps, influence: inverse") > 0);
+}
+
+/* lps with its surface correction keeps its per-bond arrays: omega beta is
+ * scaled bond by bond near the edges (pd_lps_surface.c). */
+static void test_lps_surface_keeps_arrays(void **state)
 {
     (void)state;
     char buf[2048];
-    deck(buf, sizeof buf, 2, ", formulation: lps", "compact");
+    deck(buf, sizeof buf, 2, ", formulation: lps, surface_correction: true", "compact");
     struct sim *s = build_ok(buf);
     assert_int_equal(pd_compact_kinds(s->model), 0);
     sim_destroy(&s);
@@ -156,7 +176,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_3d),
         cmocka_unit_test(test_same_2d_surface),
-        cmocka_unit_test(test_lps_keeps_arrays),
+        cmocka_unit_test(test_same_lps_eps),
+        cmocka_unit_test(test_lps_surface_keeps_arrays),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

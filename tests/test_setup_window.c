@@ -63,7 +63,7 @@ static void check_case(const struct fill_case *c, double halo)
         for (int r = 0; r < size; r++) {
             struct particles *p = NULL;
             assert_int_equal(particles_create(&p, c->dim, 0, &err), SPALL_OK);
-            struct lattice_window w = {r, size, halo, 0, 0, 0, 0};
+            struct lattice_window w = {r, size, halo, 0, 0, 0, 0, 0};
             assert_int_equal(lattice_fill_window(p, &spec, g, 0, &w, &err), SPALL_OK);
             assert_int_equal(w.n_total, n_serial);
             /* the window is a run of the serial order */
@@ -154,12 +154,51 @@ static void test_split_layers(void **state)
     assert_true(a <= 33 && a + 30 >= 33);
 }
 
+/* A second body's window: the particle limit counts the earlier bodies'
+ * whole particles (n_prior), not the few of them in this rank's window,
+ * and refuses exactly where the serial fill after them refuses. */
+static void test_window_limit_counts_prior(void **state)
+{
+    (void)state;
+    struct spall_error err = {0};
+    const struct lattice_spec spec = {LATTICE_SQUARE, R0, {0, 0, 0}, 0.0};
+    const struct fill_case c = {LATTICE_SQUARE, 2, 0.0, {0, 0, 0}, {9, 11, 0}, false};
+    struct geom *g = region_of(&c);
+    struct particles *serial = NULL;
+    size_t n = 0;
+    assert_int_equal(particles_create(&serial, 2, 0, &err), SPALL_OK);
+    assert_int_equal(lattice_fill(serial, &spec, g, 0, &n, &err), SPALL_OK);
+    for (size_t prior = 4; prior <= 6; prior++) {
+        /* serially: prior particles of earlier bodies, then this body */
+        struct particles *ps = NULL;
+        assert_int_equal(particles_create(&ps, 2, 0, &err), SPALL_OK);
+        ps->max_n = n + 5;
+        const double pos[3] = {-1.0, -1.0, 0.0};
+        for (size_t k = 0; k < prior; k++)
+            assert_int_equal(particles_append(ps, pos, 0, NULL, &err), SPALL_OK);
+        size_t added = 0;
+        const int want = lattice_fill(ps, &spec, g, 0, &added, &err);
+        assert_int_equal(want, prior <= 5 ? SPALL_OK : SPALL_ERR_INPUT);
+        /* rank 1 of 3, its window empty of the earlier bodies */
+        struct particles *p = NULL;
+        assert_int_equal(particles_create(&p, 2, 0, &err), SPALL_OK);
+        p->max_n = n + 5;
+        struct lattice_window w = {1, 3, 2.1 * R0, prior, 0, 0, 0, 0};
+        assert_int_equal(lattice_fill_window(p, &spec, g, 0, &w, &err), want);
+        particles_destroy(&p);
+        particles_destroy(&ps);
+    }
+    particles_destroy(&serial);
+    geom_destroy(&g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_windows_2d),
         cmocka_unit_test(test_windows_3d_and_1d),
         cmocka_unit_test(test_split_layers),
+        cmocka_unit_test(test_window_limit_counts_prior),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

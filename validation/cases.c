@@ -112,8 +112,8 @@ static const struct vcase cases[] = {
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_interface_crack, TIER_ALL},
     {"pd-lps-waves", "LPS P-wave speed in a 2D plate (nu = 0.3) vs analytical",
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_waves, TIER_ALL},
-    {"pd-kalthoff-lps", "Kalthoff-Winkler plate with LPS (plane strain, nu = 0.3): crack angle "
-     "65-72 deg",
+    {"pd-kalthoff-lps", "Kalthoff-Winkler plate with LPS (plane strain, nu = 0.3, dx = 0.5 mm): "
+     "crack angle 65-72 deg",
      VKIND_VALIDATION, VGATE_OFF, NULL, pd_case_kalthoff_lps, TIER_ALL},
     {"pd-bimaterial-bar", "1D PMB bar of two materials: wave transmission and reflection vs "
      "the impedance formula",

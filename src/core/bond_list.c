@@ -444,6 +444,7 @@ void bond_list_replace(struct bond_list *bl, size_t n, size_t *offset, int32_t *
     bl->state = state;
     bl->type = type;
     bl->reverse = NULL;
+    bl->gen++;
 }
 
 /** array_gather of @p old (NULL: nothing), which is freed; *ok false once

@@ -40,6 +40,9 @@ struct bond_list {
     uint8_t *state;     /**< enum bond_state_flags */
     uint8_t *type;      /**< model-defined; NULL as rest */
     size_t *reverse;    /**< optional: slot of j->i for slot i->j (NULL until built) */
+    unsigned long gen;  /**< incremented whenever bond_list_replace swaps the arrays
+                             (localize, migration), so that a model may cache what it
+                             learnt about the rows (lattice_half.c) */
 };
 
 /** Reference length of half-bond @p k (either storage). */

@@ -58,7 +58,7 @@ struct particle_contact {
     int32_t *vbody;
     double *gbody;       /* scratch: bodies as doubles for the exchange */
     size_t vcap;
-    long rebalances;     /* the rebalances seen at the last build */
+    long layouts;        /* the re-layouts seen at the last build (par_layouts) */
     struct bond_list ckbl; /* the owned rows of the lists, as a checkpoint sees them */
     int32_t *ck_gid;     /* distributed checkpoint: the candidates' global ids */
 };
@@ -352,7 +352,7 @@ enum rebuild { REBUILD_NONE, REBUILD_NOW, REBUILD_AT_REF };
  * does not make.  The same answer on every rank. */
 static bool relaid_out(const struct particle_contact *c, const struct sim *s, long reb)
 {
-    return s->par && c->built && (!c->sg || reb != c->rebalances);
+    return s->par && c->built && (!c->sg || reb != c->layouts);
 }
 
 /* REBUILD_NOW when some particle moved more than skin/2 since the lists
@@ -363,9 +363,9 @@ static bool relaid_out(const struct particle_contact *c, const struct sim *s, lo
 static enum rebuild needs_rebuild(struct particle_contact *c, const struct sim *s)
 {
     const struct particles *p = s->p;
-    long reb = 0;
-    unsigned long long moved = 0;
-    par_balance_stats(s, &reb, &moved);
+    /* a rebalance's or the distributed set-up's migration, which also
+     * moves particles between ranks after the lists were built */
+    const long reb = par_layouts(s);
     const bool relaid = relaid_out(c, s, reb);
     const double lim = 0.25 * c->skin * c->skin;
     double m2 = 0.0;
@@ -386,7 +386,7 @@ static enum rebuild needs_rebuild(struct particle_contact *c, const struct sim *
     }
     if (s->par)
         m2 = par_max_double(m2 != m2 ? INFINITY : m2);
-    c->rebalances = reb;
+    c->layouts = reb;
     if (!(m2 <= lim)) /* a NaN forces a rebuild */
         return REBUILD_NOW;
     return relaid ? REBUILD_AT_REF : REBUILD_NONE;
@@ -624,14 +624,12 @@ void **particle_contact_built_at(struct particle_contact *c, int d)
 static int dist_checkpoint_lists(struct particle_contact *c, struct sim *s,
                                  struct spall_error *err)
 {
-    long reb = 0;
-    unsigned long long moved = 0;
-    par_balance_stats(s, &reb, &moved);
+    const long reb = par_layouts(s);
     int rc = SPALL_OK;
     if (relaid_out(c, s, reb)) {
         struct cview v;
         rc = rebuild_at_ref(c, s, &v, err);
-        c->rebalances = reb;
+        c->layouts = reb;
     }
     if (rc)
         return rc;

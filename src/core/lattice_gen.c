@@ -398,8 +398,8 @@ int lattice_fill_window(struct particles *p, const struct lattice_spec *spec,
     if (total == 0)
         rc = spall_error_set(err, SPALL_ERR_INPUT, "contains no lattice site (%s, spacing %g m)",
                              lattice_kind_name(spec->kind), spec->spacing);
-    else if ((double)p->n + (double)total > b.limit)
-        rc = limit_error((double)p->n + (double)total, spec, b.limit, err);
+    else if ((double)w->n_prior + (double)total > b.limit)
+        rc = limit_error((double)w->n_prior + (double)total, spec, b.limit, err);
     if (!rc) {
         lattice_split_layers(cnt, nl, w->size, first);
         /* the halo: whole layers within w->halo of the rank's own ones (a

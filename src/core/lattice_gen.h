@@ -73,7 +73,10 @@ int lattice_fill(struct particles *p, const struct lattice_spec *spec, const str
 struct lattice_window {
     int rank, size;    /**< in: this rank, of how many */
     double halo;       /**< in: halo depth [m] on either side of the block */
-    int64_t gid_first; /**< out: serial index of the first site appended */
+    size_t n_prior;    /**< in: particles of the earlier fills in the serial
+                            set-up (their windows hold fewer): the limit */
+    int64_t gid_first; /**< out: index of the first site appended among the
+                            region's sites (the serial index less n_prior) */
     size_t n_below;    /**< out: halo sites before the rank's own block */
     size_t n_own;      /**< out: sites of the rank's own block */
     size_t n_total;    /**< out: sites of the whole region */

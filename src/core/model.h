@@ -240,6 +240,11 @@ struct model_ops {
      *  the same on every rank (par_setup_merge_table), so that migrated
      *  bonds name the same values.  Collective. */
     int (*setup_tables)(struct model *m, struct sim *sim, struct spall_error *err);
+    /** The model never bonds particles of different bodies (the lattice
+     *  model's shells): the distributed set-up then builds each body's
+     *  window alone wherever the bodies lie.  false (a radius search, as
+     *  peridynamics): only bodies more than a range apart are distributed. */
+    bool bonds_within_bodies;
 };
 
 #endif

@@ -23,6 +23,7 @@
  */
 #include "core/neighbor.h"
 
+#include "core/neighbor_grid.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -32,23 +33,6 @@
 
 /** Rows up to this length are sorted by plain insertion sort. */
 #define NEIGHBOR_INSERTION_MAX 48
-
-/** Squared distance, written once so the cell list and the brute force
- *  take exactly the same decision for every pair. */
-static inline double pair_r2(int dim, const double *xi, double *const xs[3], size_t k)
-{
-    double dx = xs[0][k] - xi[0];
-    double r2 = dx * dx;
-    if (dim > 1) {
-        double dy = xs[1][k] - xi[1];
-        r2 += dy * dy;
-    }
-    if (dim > 2) {
-        double dz = xs[2][k] - xi[2];
-        r2 += dz * dz;
-    }
-    return r2;
-}
 
 /* Shell sort (Ciura's gaps) for long rows: glibc's qsort is a merge sort
  * through a comparison function pointer and memcpy per element, which
@@ -101,8 +85,8 @@ static int list_finish_offsets(struct neighbor_list *nl, struct spall_error *err
     return SPALL_OK;
 }
 
-static int check_input(int dim, size_t n, double *const x[3], double radius,
-                       struct spall_error *err)
+int neighbor_check_input(int dim, size_t n, double *const x[3], double radius,
+                         struct spall_error *err)
 {
     if (dim < 1 || dim > 3)
         return spall_error_set(err, SPALL_ERR_INPUT, "neighbour search: dimension %d not in 1..3",
@@ -121,18 +105,7 @@ static int check_input(int dim, size_t n, double *const x[3], double radius,
     return SPALL_OK;
 }
 
-/** The binned particles. */
-struct cell_grid {
-    int dim;
-    double lo[3];
-    double inv_edge;
-    long nc[3];       /**< cells per axis (1 for unused axes) */
-    size_t *start;    /**< ncell+1: particles of cell c are [start[c], start[c+1]) */
-    int32_t *order;   /**< sorted slot -> particle index */
-    double *xs[3];    /**< positions in sorted order */
-};
-
-static void grid_free(struct cell_grid *g)
+void grid_free(struct cell_grid *g)
 {
     free(g->start);
     free(g->order);
@@ -155,8 +128,8 @@ static inline size_t cell_index(const struct cell_grid *g, double *const x[3], s
     return c;
 }
 
-static int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], double radius,
-                      struct spall_error *err)
+int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], double radius,
+               struct spall_error *err)
 {
     memset(g, 0, sizeof *g);
     g->dim = dim;
@@ -376,7 +349,7 @@ int neighbor_list_build(struct neighbor_list **out, int dim, size_t n, double *c
                         double radius, struct spall_error *err)
 {
     *out = NULL;
-    int rc = check_input(dim, n, x, radius, err);
+    int rc = neighbor_check_input(dim, n, x, radius, err);
     if (rc)
         return rc;
     struct neighbor_list *nl = NULL;
@@ -451,7 +424,7 @@ int neighbor_list_build_brute(struct neighbor_list **out, int dim, size_t n, dou
                               double radius, struct spall_error *err)
 {
     *out = NULL;
-    int rc = check_input(dim, n, x, radius, err);
+    int rc = neighbor_check_input(dim, n, x, radius, err);
     if (rc)
         return rc;
     struct neighbor_list *nl = NULL;

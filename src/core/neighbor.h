@@ -31,4 +31,24 @@ int neighbor_list_build_brute(struct neighbor_list **out, int dim, size_t n, dou
                               double radius, struct spall_error *err);
 void neighbor_list_destroy(struct neighbor_list **nl);
 
+/** The pairs of a full list, each once: pair q = (i, j) with i < j, numbered
+ *  by i, then by j ascending (so the pairs of i are the upper part of its
+ *  row, in the row's order); at most UINT32_MAX pairs (4 B a slot). */
+struct neighbor_pairs {
+    size_t n_pairs;
+    size_t *first;     /**< n+1: the pairs of i are [first[i], first[i+1]) */
+    int32_t *partner;  /**< per pair: its j (> i) */
+    uint32_t *slot_pair; /**< per slot of the full list: the pair it holds */
+};
+
+/** The list of neighbor_list_build (the same CSR, bit for bit) by a half
+ *  stencil: each pair is tested once, the rows are put in order by two
+ *  counting-sort passes instead of sorts (neighbor_pairs.c).  With @p pairs
+ *  not NULL its arrays are allocated and filled (free with
+ *  neighbor_pairs_free).  Positions must be finite. */
+int neighbor_list_build_pairs(struct neighbor_list **out, struct neighbor_pairs *pairs, int dim,
+                              size_t n, double *const x[3], double radius,
+                              struct spall_error *err);
+void neighbor_pairs_free(struct neighbor_pairs *pp);
+
 #endif

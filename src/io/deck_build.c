@@ -725,8 +725,10 @@ int deck_build_sim_setup(const struct deck *d, struct sim **out, struct run_outp
         goto fail;
     if ((rc = parse_model(&c, root, err)) || (rc = parse_materials(&c, root, err)) ||
         (rc = parse_max_particles(&c, root, err)) ||
-        (rc = deck_setup_dist_decide(c.sim, root, distribute, note, note_len, err)) ||
-        (rc = parse_body(&c, root, err)) ||
+        (rc = deck_setup_dist_decide(c.sim, root, distribute, note, note_len, err)))
+        goto fail;
+    deck_setup_dist_bodies(c.sim, root, c.geometry, c.dim, note, note_len);
+    if ((rc = parse_body(&c, root, err)) ||
         (rc = parse_regions(&c, root, err)) ||
         (rc = deck_parse_inclusions(c.sim, root, c.geometry, c.dim, err)))
         goto fail;

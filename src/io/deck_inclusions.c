@@ -4,6 +4,7 @@
  *        balls inside a shape with a deterministic counter-based generator.
  */
 #include "io/deck_inclusions.h"
+#include "io/deck_setup_dist.h"
 #include "io/deck_shapes.h"
 
 #include "core/geometry.h"
@@ -140,6 +141,9 @@ static int incl_entry(struct sim *s, const struct deck_node *e, size_t entry,
                           entry, name, placed, count, tries);
     /* assign the material: particles whose reference position is inside */
     const struct particles *p = s->p;
+    size_t *hit_idx = malloc((p->n_owned ? p->n_owned : 1) * sizeof *hit_idx);
+    if (!hit_idx) /* (the same on every rank: the deck's sizes) */
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory placing inclusions");
     size_t hit = 0;
     for (size_t i = 0; i < p->n_owned; i++) {
         for (size_t q = first; q < *nb; q++) {
@@ -149,11 +153,14 @@ static int incl_entry(struct sim *s, const struct deck_node *e, size_t entry,
                 d2 += (p->x0[d][i] - o->c[d]) * (p->x0[d][i] - o->c[d]);
             if (d2 <= o->r * o->r) {
                 p->material[i] = mat;
-                hit++;
+                hit_idx[hit++] = i;
                 break;
             }
         }
     }
+    /* the whole body's count: a distributed set-up's window holds part of it */
+    hit = deck_setup_dist_count(s, hit_idx, hit);
+    free(hit_idx);
     if (hit == 0)
         return deck_error(err, e, "inclusions[%zu]: no particle lies inside the %ld inclusions "
                           "(radius below the lattice spacing?)", entry, count);

@@ -11,10 +11,14 @@
 #include "core/parallel/setup_dist.h"
 #include "core/particles.h"
 #include "core/sim.h"
+#include "core/geometry.h"
 #include "io/deck.h"
+#include "io/deck_shapes.h"
 #include "spall/error.h"
 
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The deck features the distributed set-up does not build per region yet:
@@ -22,12 +26,6 @@
 static const char *unsupported(const struct deck_node *root)
 {
     const struct deck_node *model = deck_peek(root, "model");
-    if (deck_peek(root, "bodies"))
-        return "several bodies (bodies:)";
-    if (deck_peek(root, "inclusions"))
-        return "inclusions";
-    if (deck_peek(root, "contact"))
-        return "particle contact (contact:)";
     /* the state-based stable time step reads the weighted volumes of the
      * partners' partners, which the edge of a window leaves too small */
     const struct deck_node *f = model && model->kind == DECK_MAPPING
@@ -84,6 +82,49 @@ int deck_setup_dist_decide(struct sim *s, const struct deck_node *root, bool wan
     return rc;
 }
 
+/* Whether the bounding boxes of the bodies' shapes keep every pair more
+ * than @p range apart (false where a shape is unbounded or fails to parse). */
+static bool bodies_apart(const struct deck_node *bodies, const struct deck_shape_ctx *sc,
+                         double range)
+{
+    const size_t n = bodies->n;
+    double(*box)[2][3] = calloc(n, sizeof *box);
+    bool ok = box != NULL;
+    for (size_t k = 0; ok && k < n; k++) {
+        const struct deck_node *b = bodies->items[k];
+        struct geom *g = NULL;
+        struct spall_error ignored;
+        memset(&ignored, 0, sizeof ignored);
+        ok = b->kind == DECK_MAPPING && deck_shape_at_key(sc, b, "geometry", &g, &ignored) == 0 &&
+             g && geom_bounds(g, sc->dim, box[k][0], box[k][1]);
+        geom_destroy(&g);
+    }
+    for (size_t i = 0; ok && i < n; i++)
+        for (size_t j = i + 1; ok && j < n; j++) {
+            double gap = -INFINITY; /* the boxes' distance is at least the widest gap */
+            for (int d = 0; d < sc->dim; d++)
+                gap = fmax(gap, fmax(box[j][0][d] - box[i][1][d], box[i][0][d] - box[j][1][d]));
+            ok = gap > range;
+        }
+    free(box);
+    return ok;
+}
+
+void deck_setup_dist_bodies(struct sim *s, const struct deck_node *root,
+                            const struct deck_node *geometry, int dim, char *note, size_t len)
+{
+    const struct deck_node *bodies = deck_peek(root, "bodies");
+    if (!s->setup || s->ops->bonds_within_bodies || !bodies || bodies->kind != DECK_SEQUENCE ||
+        bodies->n < 2)
+        return;
+    const struct deck_shape_ctx sc = {geometry, dim};
+    if (bodies_apart(bodies, &sc, 0.5 * s->setup->halo)) /* the halo is two ranges */
+        return;
+    par_setup_destroy(&s->setup);
+    snprintf(note, len, "setup: replicated on every rank (bodies within one interaction range of "
+             "each other: the model's bonds may join them)");
+}
+
 int deck_setup_dist_fill(struct sim *s, const struct lattice_spec *spec, const struct geom *g,
                          int32_t material, size_t *added, struct spall_error *err)
 {
@@ -92,12 +133,13 @@ int deck_setup_dist_fill(struct sim *s, const struct lattice_spec *spec, const s
     w.rank = s->setup->rank;
     w.size = s->setup->size;
     w.halo = s->setup->halo;
+    w.n_prior = (size_t)s->setup->n_global;
     size_t first = s->p->n;
     int rc = lattice_fill_window(s->p, spec, g, material, &w, err);
     *added = s->p->n - first;
     if (rc)
         return rc;
-    return par_setup_filled(s, &w, err);
+    return par_setup_filled(s, &w, first, err);
 }
 
 size_t deck_setup_dist_count(const struct sim *s, const size_t *idx, size_t n)

@@ -26,6 +26,17 @@ struct spall_error;
 int deck_setup_dist_decide(struct sim *s, const struct deck_node *root, bool wanted, char *note,
                            size_t len, struct spall_error *err);
 
+/** Called before the bodies are filled, with the deck's `geometry:`
+ *  mapping (may be NULL): where a model may bond particles of different
+ *  bodies (ops->bonds_within_bodies false) and two of the bodies' shapes
+ *  come within one interaction range of each other (or a shape is
+ *  unbounded or does not parse: its error comes with the fill), one
+ *  body's window would miss the other body's partners, so the set-up
+ *  turns replicated (s->setup freed) and @p note says why.  Decided from
+ *  the deck alone, the same on every rank. */
+void deck_setup_dist_bodies(struct sim *s, const struct deck_node *root,
+                            const struct deck_node *geometry, int dim, char *note, size_t len);
+
 /** Fill this rank's window of the body (lattice_fill_window) and set the
  *  global ids (collective). */
 int deck_setup_dist_fill(struct sim *s, const struct lattice_spec *spec, const struct geom *g,

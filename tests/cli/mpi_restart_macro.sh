@@ -31,23 +31,12 @@ awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) {if ($k == "plastic_pairs") p = k
          $1 == 200 {p0 = $p; b0 = $b} END {exit !($p > p0 && p0 > 100 && $b > b0)}' \
     rod_serial/history.csv || { echo "FAIL rod: no plasticity or rebuild after step 200"; fail=1; }
 # refusals on 2 ranks: one line, exit 2, the run directory untouched
-refused() { # what dir deck expected-substring
-    local before after rc
-    before=$(cd "$2" && ls -l --time-style=+%s.%N && md5sum -- *)
-    mpi 2 run "$3" --restart "$2" 2> refused.err
-    rc=$?
-    after=$(cd "$2" && ls -l --time-style=+%s.%N && md5sum -- *)
-    [ $rc -eq 2 ] || { echo "FAIL $1: exit $rc, expected 2"; fail=1; }
-    [ "$(wc -l < refused.err)" -eq 1 ] && grep -q -- "$4" refused.err ||
-        { echo "FAIL $1: message"; cat refused.err; fail=1; }
-    [ "$before" = "$after" ] || { echo "FAIL $1: $2 changed"; fail=1; }
-}
 mkdir cut
 cp rod2/history.csv rod2/fields_000000.h5 rod2/fields.xdmf cut/
 head -c 20000 rod2/checkpoint_0000000400.h5 > cut/checkpoint_0000000400.h5
-refused "truncated checkpoint" cut rod.yaml "not a readable HDF5 file"
+refused_restart "truncated checkpoint" cut rod.yaml "not a readable HDF5 file"
 sed 's/temperature: 300/temperature: 310/' rod.yaml > rod_warm.yaml
-refused "another deck" rod2 rod_warm.yaml "deck key 'model.temperature' differs"
+refused_restart "another deck" rod2 rod_warm.yaml "deck key 'model.temperature' differs"
 [ $fail -eq 0 ] && echo "mpi_restart_macro: 2-rank checkpoints as serial; restarts on 1" \
     "${SPALL_MPI_RANK_COUNTS:-3 4} ranks exact; refusals"
 [ $fail -eq 0 ]

@@ -88,18 +88,6 @@ for r in rings_rb3 rings_rb_cont4; do
     [ "${moved:-0}" -gt 0 ] || { echo "FAIL $r: nothing migrated"; fail=1; }
 done
 # refusals on 2 ranks: one line, exit 2, the run directory untouched
-refused_restart() { # what dir deck expected-substring
-    local before after rc
-    before=$(cd "$2" && ls -l --time-style=+%s.%N && md5sum -- *)
-    mpi 2 run "$3" --restart "$2" 2> refused.err
-    rc=$?
-    after=$(cd "$2" && ls -l --time-style=+%s.%N && md5sum -- *)
-    [ $rc -eq 2 ] || { echo "FAIL $1: exit $rc, expected 2"; fail=1; }
-    if [ "$(wc -l < refused.err)" -ne 1 ] || ! grep -q -- "$4" refused.err; then
-        echo "FAIL $1: message"; cat refused.err; fail=1
-    fi
-    [ "$before" = "$after" ] || { echo "FAIL $1: $2 changed"; fail=1; }
-}
 mkdir cut
 cp rings2/history.csv rings2/fields_000000.h5 rings2/fields.xdmf cut/
 head -c 20000 rings2/checkpoint_0000000120.h5 > cut/checkpoint_0000000120.h5

@@ -6,9 +6,15 @@
 # h5diff of every frame.  Lattice (2D triangular, 3D fcc) and PMB (2D
 # square, 3D sc) decks, each with a pre-crack, groups, velocity or force or
 # traction BCs and a probe, on 2, 3 and 4 ranks (3D: 4); the replicated
-# set-up of the 2D lattice and 3D PMB decks on 3 ranks.  run.log says which
-# set-up ran and gives the whole body's counts, and a deck the distributed
-# set-up does not support yet keeps the replicated one with a one-line reason.
+# set-up of the 2D lattice and 3D PMB decks on 3 ranks.  Several bodies
+# (bodies:, one window per body): two lattice bodies (one on a rotated
+# lattice, closer than a bond range), two PMB bodies more than a range
+# apart, the thermal deck's inclusions and a reduced flyer-plate spall with
+# particle contact, on 2, 3 and 4 ranks and replicated on 3.  run.log says
+# which set-up ran and gives the whole body's counts, and a deck the
+# distributed set-up does not support (PMB bodies within a range of each
+# other, whose bonds may join them) keeps the replicated one with a
+# one-line reason.
 # Usage: mpi_setup.sh SPALL SRC MPIEXEC
 set -u
 spall="$1"
@@ -21,6 +27,13 @@ cp "$decks/mpi_pd.yaml" pd2.yaml
 cp "$decks/mpi_setup_fcc.yaml" lat3.yaml
 cp "$decks/mpi_setup_pd3.yaml" pd3.yaml
 cp "$decks/mpi_thermal.yaml" thermal.yaml
+cp "$decks/mpi_setup_bodies.yaml" bod2.yaml
+cp "$decks/mpi_setup_pd_bodies.yaml" pdb2.yaml
+cp "$decks/mpi_setup_contact.yaml" con2.yaml
+# the PMB strip (its groups, pre-crack and probe) moved 4 mm down, 2 mm
+# above the plate: within the family radius, so bonds join the bodies
+sed -e 's/0\.02599/0.02199/; s/0\.03601/0.03201/; s/0\.0335/0.0295/; s/0\.0255/0.0215/' \
+    -e 's/0\.0275/0.0235/; s/0\.0305/0.0265/g' pdb2.yaml > pdnear.yaml
 fail=0
 mpi() { # ranks out deck
     OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$1" \
@@ -36,14 +49,16 @@ compare() { # reference out
 setup_line() { # out expected-prefix
     grep -q "^setup: $2" "$1/run.log" || { echo "FAIL $1/run.log: no 'setup: $2'"; fail=1; }
 }
-for d in lat2 pd2 lat3 pd3; do
+for d in lat2 pd2 lat3 pd3 bod2 pdb2 thermal con2; do
     OMP_NUM_THREADS=1 timeout 120 "$spall" run "$d.yaml" -o "$d-1" --quiet --no-progress ||
         { echo "FAIL $d serial run"; exit 1; }
     # the references must break bonds beyond the pre-crack, else the test proves little
     b=$(awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "bonds_broken") c = k}
                  END {print $c}' "$d-1/history.csv")
     awk -v b="$b" 'BEGIN {exit !(b > 20)}' || { echo "FAIL $d broke too few bonds ($b)"; fail=1; }
-    grep -q "^precut_bonds: [1-9]" "$d-1/run.log" || { echo "FAIL $d: no pre-cut bonds"; fail=1; }
+    case $d in thermal | con2) ;; *) # (no pre-crack: heating, an impact)
+        grep -q "^precut_bonds: [1-9]" "$d-1/run.log" || { echo "FAIL $d: no pre-cut bonds"; fail=1; }
+    esac
     counts="2 3 4"
     case $d in *3) counts="4" ;; esac
     for n in $counts; do
@@ -63,10 +78,14 @@ for d in lat2 pd2 lat3 pd3; do
     compare "$d-1" "$d-r3"
     setup_line "$d-r3" "replicated on every rank (parallel.setup: replicated)"
 done
-# not supported yet (the thermal deck's inclusions and thermal lattice): the
-# replicated set-up, said in run.log
-mpi 2 thermal-2 thermal.yaml
-setup_line thermal-2 "replicated on every rank ("
+# not supported: PMB bodies whose bonds may join them keep the replicated
+# set-up, said in run.log, and still give one rank's bytes
+grep -q "0.02199" pdnear.yaml || { echo "FAIL pdnear.yaml: the strip did not move"; fail=1; }
+OMP_NUM_THREADS=1 timeout 120 "$spall" run pdnear.yaml -o pdnear-1 --quiet --no-progress ||
+    { echo "FAIL pdnear serial run"; fail=1; }
+mpi 2 pdnear-2 pdnear.yaml
+compare pdnear-1 pdnear-2
+setup_line pdnear-2 "replicated on every rank (bodies within one interaction range"
 [ $fail -eq 0 ] && echo "mpi_setup: distributed set-up = replicated = one rank (lattice and" \
-    "PMB, 2D and 3D, 2-4 ranks)"
+    "PMB, 2D and 3D, several bodies, inclusions, contact, 2-4 ranks)"
 [ $fail -eq 0 ]

@@ -9,7 +9,9 @@
 # steps on 3 ranks (particles migrate with their reference rows); its
 # checkpoints (written by 2 ranks: the serial ones under h5diff) restarted on
 # 3 ranks and on one without mpirun, with the same bytes.  What TLSPH cannot
-# do distributed yet (reference updates) is refused in one line, exit 2 (the
+# do distributed yet (reference updates; TLSPH bodies behind an interface,
+# tests/cli/decks/mpi_tl_ifc.yaml, which runs on one rank) is refused in one
+# line, exit 2, and so is axisymmetric TLSPH, which one rank refuses too (the
 # updated form distributes: tests/cli/mpi_sph_ul.sh).
 # Usage: mpi_sph.sh SPALL SRC MPIEXEC
 set -u
@@ -57,5 +59,20 @@ ranks pc 3
 sed 's/^  hourglass: 1.0$/  hourglass: 1.0\n  reference_update: {distortion: 1.2}/' tl.yaml > reref.yaml
 grep -q reference_update reref.yaml || { echo "FAIL: cannot make reref.yaml"; exit 1; }
 refused "reference update" reref.yaml "reference updates"
+# TLSPH bodies behind the penalty interface (type: tlsph, interface: bodies):
+# they run on one rank (the blocks touch), are refused on several
+cp "$2/tests/cli/decks/mpi_tl_ifc.yaml" ifc.yaml
+serial ifc
+np=$(awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "interface_pairs") c = k}
+              NR > 1 && $c > 0 {n++} END {print n + 0}' ifc_serial/history.csv)
+[ "$np" -gt 5 ] || { echo "FAIL: ifc: interface pairs in $np history rows"; fail=1; }
+refused "TLSPH interface" ifc.yaml "TLSPH bodies behind an interface"
+# axisymmetric TLSPH does not exist on one rank either (sph_options.c): the
+# deck is refused on several ranks by the same one line
+sed 's/^model: {type: tlsph, plane: strain,/model: {type: tlsph, plane: axisymmetric,/;
+     s/, interface: bodies}$/}/' ifc.yaml > axi.yaml
+grep -q "plane: axisymmetric, kernel: wendland, h_factor: 1.3}" axi.yaml ||
+    { echo "FAIL: cannot make axi.yaml"; exit 1; }
+refused "axisymmetric TLSPH" axi.yaml "takes no artificial_stress, summation density or total"
 [ $fail -eq 0 ] && echo "mpi_sph: OK"
 exit $fail

@@ -56,6 +56,11 @@ void par_balance_stats(const struct sim *s, long *rebalances, unsigned long long
     *migrated = s->par ? s->par->migrated : 0;
 }
 
+long par_layouts(const struct sim *s)
+{
+    return s->par ? s->par->layouts : 0;
+}
+
 #ifdef SPALL_HAVE_MPI
 
 void par_balance_free(struct par_decomp *d)

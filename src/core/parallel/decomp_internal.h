@@ -29,6 +29,7 @@ struct par_decomp {
     void *zz;              /**< Zoltan_Struct kept between rebalances (its cuts are reused) */
     long rebalances;
     unsigned long long migrated;
+    long layouts; /**< migrations so far, the set-up's partition included (par_layouts) */
     void *bhalo; /**< per-half-bond halo plan (bhalo.c), built on first use; NULL */
     /* spatial ghosts (spatial.c) of a model with spatial_ghosts */
     struct par_sghost *sg;

@@ -384,6 +384,7 @@ int par_migrate(struct sim *s, const int *dest, unsigned long long *moved,
     *moved = (unsigned long long)par_sum_u64((uint64_t)out);
     if (!rc)
         s->par->migrated += *moved;
+    s->par->layouts++; /* (even after a failure: the local arrays may have changed) */
     return rc;
 }
 

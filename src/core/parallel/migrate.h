@@ -73,4 +73,9 @@ int par_rebalance(struct sim *s, double *before, double *after, unsigned long lo
 /** Rebalances and particles migrated so far (run.log). */
 void par_balance_stats(const struct sim *s, long *rebalances, unsigned long long *migrated);
 
+/** Migrations so far (par_migrate): a rebalance's and the distributed
+ *  set-up's partition (which rebalances does not count).  Lists kept on
+ *  local indices across force calls are stale once it changes. */
+long par_layouts(const struct sim *s);
+
 #endif

@@ -32,12 +32,8 @@ int par_setup_create(struct par_setup **out, double halo, struct spall_error *er
     *out = NULL;
     struct par_setup *ps = calloc(1, sizeof *ps);
     const int size = par_size();
-    if (ps)
-        ps->own_first = calloc((size_t)size + 1, sizeof *ps->own_first);
-    if (!ps || !ps->own_first) {
-        free(ps);
+    if (!ps)
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the distributed set-up");
-    }
     ps->rank = par_rank();
     ps->size = size;
     ps->halo = halo;
@@ -49,7 +45,9 @@ void par_setup_destroy(struct par_setup **pps)
 {
     if (!pps || !*pps)
         return;
-    free((*pps)->own_first);
+    for (size_t b = 0; b < (*pps)->n_seg; b++)
+        free((*pps)->seg[b].own_first);
+    free((*pps)->seg);
     free((*pps)->probe_owner);
     free((*pps)->probe_gid);
     free((*pps)->probe_d2);
@@ -64,25 +62,6 @@ void par_setup_offsets(const size_t *n_own, int size, int64_t *own_first)
         own_first[r + 1] = own_first[r] + (int64_t)n_own[r];
 }
 
-/* The rank whose block holds global id @p g (blocks ascend with the rank). */
-static int block_of(const struct par_setup *ps, int64_t g)
-{
-    int a = 0, b = ps->size - 1;
-    while (a < b) { /* the last r with own_first[r] <= g */
-        int mid = (a + b + 1) / 2;
-        if (ps->own_first[mid] <= g)
-            a = mid;
-        else
-            b = mid - 1;
-    }
-    return a;
-}
-
-static bool in_block(const struct par_setup *ps, size_t i)
-{
-    return i >= ps->lo && i < ps->lo + ps->n_own;
-}
-
 double par_setup_dt_limit(double local)
 {
     return par_min_double(local);
@@ -90,41 +69,106 @@ double par_setup_dt_limit(double local)
 
 #ifdef SPALL_HAVE_MPI
 
-int par_setup_filled(struct sim *s, const struct lattice_window *w, struct spall_error *err)
+/* The rank whose block holds global id @p g: the body's segment (bodies
+ * ascend in global id), then the last rank whose block starts at or
+ * before it (blocks ascend with the rank). */
+static int block_of(const struct par_setup *ps, int64_t g)
+{
+    size_t sb = 0;
+    while (sb + 1 < ps->n_seg && ps->seg[sb + 1].own_first[0] <= g)
+        sb++;
+    const int64_t *own_first = ps->seg[sb].own_first;
+    int a = 0, b = ps->size - 1;
+    while (a < b) {
+        int mid = (a + b + 1) / 2;
+        if (own_first[mid] <= g)
+            a = mid;
+        else
+            b = mid - 1;
+    }
+    return a;
+}
+
+/* The segment holding local particle @p i (a few bodies: a linear walk). */
+static const struct par_setup_seg *seg_of(const struct par_setup *ps, size_t i)
+{
+    for (size_t b = 0; b < ps->n_seg; b++)
+        if (i >= ps->seg[b].start && i < ps->seg[b].start + ps->seg[b].n)
+            return &ps->seg[b];
+    return NULL;
+}
+
+static bool in_block(const struct par_setup *ps, size_t i)
+{
+    const struct par_setup_seg *sg = seg_of(ps, i);
+    return sg && i >= sg->lo && i < sg->lo + sg->n_own;
+}
+
+/* The local index of global id @p g, or -1 where the window lacks it. */
+static int64_t local_of(const struct par_setup *ps, int64_t g)
+{
+    for (size_t b = 0; b < ps->n_seg; b++) {
+        const struct par_setup_seg *sg = &ps->seg[b];
+        if (g >= sg->gid_first && g < sg->gid_first + (int64_t)sg->n)
+            return (int64_t)sg->start + (g - sg->gid_first);
+    }
+    return -1;
+}
+
+int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first,
+                     struct spall_error *err)
 {
     struct par_setup *ps = s->setup;
     struct particles *p = s->p;
-    for (size_t i = 0; i < p->n; i++)
-        p->gid[i] = w->gid_first + (int64_t)i;
-    ps->gid_first = w->gid_first;
-    ps->lo = w->n_below;
-    ps->n_own = w->n_own;
+    struct par_setup_seg *seg = realloc(ps->seg, (ps->n_seg + 1) * sizeof *seg);
+    int64_t *own_first = calloc((size_t)ps->size + 1, sizeof *own_first);
+    size_t *counts = malloc((size_t)ps->size * sizeof *counts);
+    uint64_t *c64 = malloc((size_t)ps->size * sizeof *c64);
+    if (seg)
+        ps->seg = seg;
+    int rc = SPALL_OK;
+    if (!seg || !own_first || !counts || !c64) {
+        free(own_first);
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the distributed set-up");
+    } else {
+        /* the body's serial positions follow all of the earlier bodies' */
+        struct par_setup_seg *sg = &ps->seg[ps->n_seg++];
+        sg->start = first;
+        sg->n = p->n - first;
+        sg->gid_first = ps->n_global + w->gid_first;
+        sg->lo = first + w->n_below;
+        sg->n_own = w->n_own;
+        sg->own_first = own_first;
+        for (size_t i = first; i < p->n; i++)
+            p->gid[i] = sg->gid_first + (int64_t)(i - first);
+    }
+    if ((rc = par_agree(rc, err))) {
+        free(counts);
+        free(c64);
+        return rc;
+    }
     /* the offsets from the counts (an exclusive prefix sum over the ranks)
      * must be where the generator put the rank's first own site */
-    uint64_t mine = (uint64_t)w->n_own, before = 0, all = 0;
+    uint64_t mine = (uint64_t)w->n_own, before = 0;
     MPI_Exscan(&mine, &before, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
     if (ps->rank == 0)
         before = 0; /* MPI_Exscan leaves rank 0's result undefined */
-    size_t *counts = malloc((size_t)ps->size * sizeof *counts);
-    uint64_t *c64 = malloc((size_t)ps->size * sizeof *c64);
-    int rc = SPALL_OK;
-    if (!counts || !c64)
-        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the distributed set-up");
     MPI_Allgather(&mine, 1, MPI_UINT64_T, c64, 1, MPI_UINT64_T, MPI_COMM_WORLD);
-    if (!rc) {
-        for (int r = 0; r < ps->size; r++)
-            counts[r] = (size_t)c64[r];
-        par_setup_offsets(counts, ps->size, ps->own_first);
-        all = (uint64_t)ps->own_first[ps->size];
-        if ((int64_t)before != ps->own_first[ps->rank] ||
-            (int64_t)before != w->gid_first + (int64_t)w->n_below || all != w->n_total)
-            rc = spall_error_set(err, SPALL_ERR_INTERNAL,
-                                 "distributed set-up: rank %d's block starts at global id %lld "
-                                 "by the counts, %lld by the generator (%llu of %zu sites)",
-                                 ps->rank, (long long)before,
-                                 (long long)(w->gid_first + (int64_t)w->n_below),
-                                 (unsigned long long)all, w->n_total);
-    }
+    for (int r = 0; r < ps->size; r++)
+        counts[r] = (size_t)c64[r];
+    par_setup_offsets(counts, ps->size, own_first);
+    const uint64_t all = (uint64_t)own_first[ps->size];
+    for (int r = 0; r <= ps->size; r++)
+        own_first[r] += ps->n_global;
+    if ((int64_t)before != own_first[ps->rank] - ps->n_global ||
+        (int64_t)before != w->gid_first + (int64_t)w->n_below || all != w->n_total)
+        rc = spall_error_set(err, SPALL_ERR_INTERNAL,
+                             "distributed set-up: rank %d's block starts at site %lld "
+                             "by the counts, %lld by the generator (%llu of %zu sites)",
+                             ps->rank, (long long)before,
+                             (long long)(w->gid_first + (int64_t)w->n_below),
+                             (unsigned long long)all, w->n_total);
+    ps->n_global += (int64_t)w->n_total;
     free(counts);
     free(c64);
     return par_agree(rc, err);
@@ -159,25 +203,29 @@ int par_setup_probe(struct sim *s, size_t k, struct spall_error *err)
     }
     /* the serial search over this rank's block: the first of the nearest */
     double best = INFINITY;
-    size_t at = 0;
-    for (size_t i = ps->lo; i < ps->lo + ps->n_own; i++) {
-        double d2 = 0.0;
-        for (int d = 0; d < s->dim; d++) {
-            double dx = s->p->x0[d][i] - pr->pos[d];
-            d2 += dx * dx;
-        }
-        if (d2 < best) {
-            best = d2;
-            at = i;
+    size_t at = 0, n_own = 0;
+    for (size_t b = 0; b < ps->n_seg; b++) {
+        const struct par_setup_seg *sg = &ps->seg[b];
+        n_own += sg->n_own;
+        for (size_t i = sg->lo; i < sg->lo + sg->n_own; i++) {
+            double d2 = 0.0;
+            for (int d = 0; d < s->dim; d++) {
+                double dx = s->p->x0[d][i] - pr->pos[d];
+                d2 += dx * dx;
+            }
+            if (d2 < best) {
+                best = d2;
+                at = i;
+            }
         }
     }
     const double gbest = par_min_double(best);
-    const int64_t g = par_min_i64(ps->n_own && best == gbest ? s->p->gid[at] : INT64_MAX);
+    const int64_t g = par_min_i64(n_own && best == gbest ? s->p->gid[at] : INT64_MAX);
     ps->probe_gid[k] = g;
     ps->probe_d2[k] = gbest;
     ps->probe_owner[k] = block_of(ps, g);
-    const int64_t loc = g - ps->gid_first;
-    pr->particle = loc >= 0 && (size_t)loc < s->p->n ? (size_t)loc : SIZE_MAX;
+    const int64_t loc = local_of(ps, g);
+    pr->particle = loc >= 0 ? (size_t)loc : SIZE_MAX;
     return SPALL_OK;
 }
 
@@ -264,18 +312,38 @@ static int localize_sets(struct sim *s, struct par_decomp *d, const int64_t *new
     int rc = failed;
     if (!rc && (!d->group_n || !d->group_key || !d->probe_owner || !d->probe_local))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising groups");
+    /* per body: the group's members in the rank's block, those of the
+     * lower ranks' blocks and the whole body's (a member's key is its
+     * serial position: the earlier bodies' members, then the lower blocks') */
+    const size_t ns = ps->n_seg ? ps->n_seg : 1;
+    uint64_t *own = calloc(3 * ns, sizeof *own);
+    if (!own && !rc)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising groups");
+    if ((rc = par_agree(rc, err))) {
+        free(own);
+        return rc;
+    }
+    uint64_t *before = own + ns, *total = own + 2 * ns;
     for (size_t g = 0; g < s->n_groups; g++) {
         struct group *gr = &s->groups[g];
-        uint64_t own = 0, before = 0, total = 0;
+        memset(own, 0, 3 * ns * sizeof *own);
         for (size_t q = 0; q < gr->n; q++)
-            own += in_block(ps, gr->idx[q]);
-        MPI_Exscan(&own, &before, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
-        MPI_Allreduce(&own, &total, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+            for (size_t b = 0; b < ps->n_seg; b++) {
+                const struct par_setup_seg *sg = &ps->seg[b];
+                own[b] += gr->idx[q] >= sg->lo && gr->idx[q] < sg->lo + sg->n_own;
+            }
+        MPI_Exscan(own, before, (int)ns, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+        MPI_Allreduce(own, total, (int)ns, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
         if (ps->rank == 0)
-            before = 0;
+            memset(before, 0, ns * sizeof *before);
         if (rc)
             continue; /* still in every collective */
-        d->group_n[g] = (size_t)total;
+        uint64_t all = 0;
+        for (size_t b = 0; b < ns; b++) {
+            before[b] += all; /* now the key of the rank's first member of body b */
+            all += total[b];
+        }
+        d->group_n[g] = (size_t)all;
         d->group_key[g] = malloc((gr->n ? gr->n : 1) * sizeof *d->group_key[g]);
         if (!d->group_key[g]) {
             rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising groups");
@@ -284,14 +352,17 @@ static int localize_sets(struct sim *s, struct par_decomp *d, const int64_t *new
         size_t m = 0;
         for (size_t q = 0; q < gr->n; q++) {
             size_t i = gr->idx[q];
-            if (!in_block(ps, i))
-                continue;
-            gr->idx[m] = (size_t)new_of_old[i];
-            d->group_key[g][m] = (int64_t)(before + m);
-            m++;
+            for (size_t b = 0; b < ps->n_seg; b++) {
+                const struct par_setup_seg *sg = &ps->seg[b];
+                if (i < sg->lo || i >= sg->lo + sg->n_own)
+                    continue;
+                gr->idx[m] = (size_t)new_of_old[i];
+                d->group_key[g][m++] = (int64_t)before[b]++;
+            }
         }
         gr->n = m;
     }
+    free(own);
     for (size_t k = 0; !rc && k < s->n_probes; k++) {
         d->probe_owner[k] = ps->probe_owner[k];
         size_t i = s->probes[k].particle;
@@ -329,13 +400,14 @@ static int localize_window(struct sim *s, struct par_decomp *d, uint64_t counts[
     size_t n_keep = 0, n_owned = 0;
     if (!rc) {
         for (size_t i = 0; i < n; i++) {
-            owner[i] = in_block(ps, i) ? ps->rank : block_of(ps, ps->gid_first + (int64_t)i);
+            owner[i] = in_block(ps, i) ? ps->rank : block_of(ps, s->p->gid[i]);
             new_of_old[i] = -1;
         }
-        for (size_t i = ps->lo; i < ps->lo + ps->n_own; i++) {
-            new_of_old[i] = (int64_t)n_keep;
-            keep[n_keep++] = i;
-        }
+        for (size_t b = 0; b < ps->n_seg; b++) /* the bodies in order: gid order */
+            for (size_t i = ps->seg[b].lo; i < ps->seg[b].lo + ps->seg[b].n_own; i++) {
+                new_of_old[i] = (int64_t)n_keep;
+                keep[n_keep++] = i;
+            }
         n_owned = n_keep;
         /* pre-cut and all half-bonds of the block's rows (the halo's rows
          * are incomplete and counted by their own blocks) */
@@ -394,7 +466,7 @@ int par_setup_distribute(struct sim *s, struct spall_error *err)
     uint64_t counts[2] = {0, 0};
     int rc = localize_window(s, d, counts, err);
     par_sum_u64_array(counts, 2);
-    d->n_global = (size_t)ps->own_first[ps->size];
+    d->n_global = (size_t)ps->n_global;
     d->interactions = s->ops->interactions ? (size_t)(counts[1] / 2) : 0;
     float ver = 0.0f;
     if (!rc && Zoltan_Initialize(0, NULL, &ver) != ZOLTAN_OK)
@@ -425,10 +497,12 @@ int par_setup_distribute(struct sim *s, struct spall_error *err)
 
 #else /* no MPI: never reached (the set-up distributes only on several ranks) */
 
-int par_setup_filled(struct sim *s, const struct lattice_window *w, struct spall_error *err)
+int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first,
+                     struct spall_error *err)
 {
     (void)s;
     (void)w;
+    (void)first;
     return spall_error_set(err, SPALL_ERR_INTERNAL, "distributed set-up in a build without MPI");
 }
 

@@ -24,6 +24,14 @@
  * by their serial positions) and repartitions with Zoltan RCB weighted by
  * bond count (par_rebalance), migrating to the final decomposition.
  *
+ * Several bodies (bodies:) are several such windows, one per body, each
+ * split over the ranks by its own layers (struct par_setup_seg): the
+ * serial order is body 1's particles, then body 2's, so each body's blocks
+ * start after all of the earlier bodies' particles.  This holds every
+ * particle a bond reads only where bonds never cross bodies (the lattice
+ * model's shells) or the bodies lie more than an interaction range apart
+ * (deck_setup_dist_bodies decides, io/deck_setup_dist.h).
+ *
  * Everything here is collective over the ranks.
  */
 #ifndef SPALL_CORE_PARALLEL_SETUP_DIST_H
@@ -36,14 +44,24 @@ struct lattice_window;
 struct sim;
 struct spall_error;
 
+/** One body's part of the window: the rank's layers of that body and their
+ *  halo, appended after the earlier bodies' (local order = global-id order). */
+struct par_setup_seg {
+    size_t start, n;     /**< local particles [start, start + n) are this body's */
+    int64_t gid_first;   /**< global id of local particle start */
+    size_t lo, n_own;    /**< local particles [lo, lo + n_own) are the rank's block */
+    int64_t *own_first;  /**< size + 1: global id of the first particle of each
+                              rank's block of this body (own_first[size]: one
+                              past the body's last) */
+};
+
 /** The window of a distributed set-up (sim->setup; NULL: replicated). */
 struct par_setup {
     int rank, size;
     double halo;         /**< halo depth [m] each side of the block */
-    int64_t gid_first;   /**< global id of local particle 0 */
-    size_t lo, n_own;    /**< local particles [lo, lo + n_own) are the rank's block */
-    int64_t *own_first;  /**< size + 1: global id of the first particle of each
-                              rank's block (own_first[size]: the whole body) */
+    struct par_setup_seg *seg; /**< per body, in deck order */
+    size_t n_seg;
+    int64_t n_global;    /**< particles of all bodies filled so far */
     int *probe_owner;    /**< per probe: the rank whose block holds it */
     int64_t *probe_gid;  /**< per probe: its particle's global id */
     double *probe_d2;    /**< per probe: squared distance to it [m^2] */
@@ -61,10 +79,13 @@ void par_setup_destroy(struct par_setup **ps);
  *  this rank's block.  Pure bookkeeping, exposed for the unit test. */
 void par_setup_offsets(const size_t *n_own, int size, int64_t *own_first);
 
-/** After the fill of @p w: the particles' global ids and the blocks'
- *  offsets (collective); SPALL_ERR_INTERNAL when the offsets from the
- *  counts disagree with the generator's serial positions. */
-int par_setup_filled(struct sim *s, const struct lattice_window *w, struct spall_error *err);
+/** After the fill of one body's window @p w, appended from local particle
+ *  @p first on: its segment, the particles' global ids (after the earlier
+ *  bodies') and the blocks' offsets (collective); SPALL_ERR_INTERNAL when
+ *  the offsets from the counts disagree with the generator's serial
+ *  positions. */
+int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first,
+                     struct spall_error *err);
 
 /** Members of idx[0, n) (local indices, ascending) in the rank's own
  *  block, summed over all ranks (collective): a group's or region's size. */

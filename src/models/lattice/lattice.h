@@ -77,6 +77,13 @@ const struct lattice_bond_law *lattice_pair_law(const struct model *m, int ma, i
 struct bond_list *lattice_bond_list(struct model *m);
 /** Angular springs present. */
 bool lattice_has_angles(const struct model *m);
+/** Tests and benchmarks: @p rows true keeps the linear law's loop to the
+ *  row loop (every bond evaluated from both rows, lattice_forces.c) instead
+ *  of the once-per-bond loop (lattice_half.c) where that applies; the same
+ *  results bit for bit either way. */
+void lattice_set_row_loop(struct model *m, bool rows);
+/** Whether the last force call took the once-per-bond loop. */
+bool lattice_used_half_loop(const struct model *m);
 /** Triangle-area stiffness [J] of material @p k (area springs, nu > 1/3). */
 double lattice_area_stiffness(const struct model *m, int k);
 /** Angular failure limits of material @p k [rad] (compression, tension). */

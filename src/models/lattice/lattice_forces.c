@@ -28,7 +28,7 @@
  * compile-time constant inside each specialisation.
  */
 #include "core/fields.h"
-#include "models/lattice/lattice_internal.h"
+#include "models/lattice/lattice_kernels.h"
 #include "models/lattice/lattice_softening.h"
 
 #include "core/bond_list.h"
@@ -38,6 +38,7 @@
 #include "spall/error.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
 #include <omp.h>
@@ -53,8 +54,8 @@
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-static double break_half(struct model *m, size_t i, size_t s, const struct lattice_bond_law *bw,
-                         double rest, double r, double dr)
+double lattice_break_half(struct model *m, size_t i, size_t s, const struct lattice_bond_law *bw,
+                          double rest, double r, double dr)
 {
     const double st = r / rest;
     m->bl->state[s] |= BOND_BROKEN;
@@ -66,27 +67,7 @@ static double break_half(struct model *m, size_t i, size_t s, const struct latti
     return cb;
 }
 
-/** Arrays the hot loops read, copied into locals once per call so that the
- *  compiler need not reload them after every store into the force arrays. */
-struct lattice_view {
-    const size_t *restrict offset;
-    const int32_t *restrict partner;
-    const double *restrict rest;        /* NULL when compacted: */
-    const uint16_t *restrict rest_idx;  /* rest = rest_tab[rest_idx[s]] */
-    const double *restrict rest_tab;
-    const uint8_t *restrict state;
-    const uint8_t *restrict type;
-    const size_t *restrict reverse;
-    const double *restrict ang_buf;
-    const double *restrict kscale; /* NULL unless an E(T) table is given */
-    const int32_t *restrict mat;
-    const double *restrict x0, *restrict x1, *restrict x2;
-    double *restrict f0, *restrict f1, *restrict f2;
-    const double *const *u; /* drift velocities: x_n = x - dt_drift u */
-    double dt_drift;
-};
-
-static struct lattice_view make_view(const struct model *m, struct sim *sim)
+struct lattice_view lattice_make_view(const struct model *m, struct sim *sim)
 {
     struct lattice_view v;
     const struct bond_list *bl = m->bl;
@@ -112,32 +93,9 @@ static struct lattice_view make_view(const struct model *m, struct sim *sim)
     return v;
 }
 
-/** Reference length of half-bond s (bond_rest on the view's copies). */
-LATTICE_INLINE double view_rest(const struct lattice_view *v, size_t s)
-{
-    return v->rest_idx ? v->rest_tab[v->rest_idx[s]] : v->rest[s];
-}
-
-/** dx = x_j - x_i for the first @p dim components; returns |dx|^2. */
-LATTICE_INLINE double bond_vec(const struct lattice_view *v, size_t i, size_t j, const int dim,
-                               double dx[3])
-{
-    dx[0] = v->x0[j] - v->x0[i];
-    double r2 = dx[0] * dx[0];
-    if (dim > 1) {
-        dx[1] = v->x1[j] - v->x1[i];
-        r2 += dx[1] * dx[1];
-    }
-    if (dim > 2) {
-        dx[2] = v->x2[j] - v->x2[i];
-        r2 += dx[2] * dx[2];
-    }
-    return r2;
-}
-
 /** r - r_n: the bond's length change over this step (x_n = x - dt u). */
-static double bond_dr(const struct lattice_view *v, size_t i, size_t j, const int dim,
-                      const double dx[3], double r)
+double lattice_bond_dr(const struct lattice_view *v, size_t i, size_t j, int dim,
+                       const double dx[3], double r)
 {
     double r2 = 0.0;
     for (int d = 0; d < dim; d++) {
@@ -145,16 +103,6 @@ static double bond_dr(const struct lattice_view *v, size_t i, size_t j, const in
         r2 += e * e;
     }
     return r - sqrt(r2);
-}
-
-LATTICE_INLINE void add_force(const struct lattice_view *v, size_t i, const int dim,
-                              const double fi[3])
-{
-    v->f0[i] += fi[0];
-    if (dim > 1)
-        v->f1[i] += fi[1];
-    if (dim > 2)
-        v->f2[i] += fi[2];
 }
 
 /** Linear law, one material: f_i += k (1 - r_rest / r) dx, one sqrt and one
@@ -182,8 +130,8 @@ LATTICE_INLINE void row_linear(struct model *m, const struct lattice_view *v,
         if (LATTICE_UNLIKELY(v->state[s])) {
             c = c < 0.0 ? c : 0.0;
         } else if (LATTICE_UNLIKELY(r > r_rest * tl || r < r_rest * cl)) {
-            c = break_half(m, i, s, &pw[multi_type ? v->type[s] : 0], r_rest, r,
-                           bond_dr(v, i, j, dim, dx, r));
+            c = lattice_break_half(m, i, s, &pw[multi_type ? v->type[s] : 0], r_rest, r,
+                                   lattice_bond_dr(v, i, j, dim, dx, r));
         }
         for (int d = 0; d < dim; d++)
             fi[d] += c * dx[d];
@@ -227,7 +175,8 @@ LATTICE_INLINE void row_general(struct model *m, const struct lattice_view *v, s
         } else if (LATTICE_UNLIKELY(r > r_rest * bw->t_lim || r < r_rest * bw->c_lim)) {
             struct lattice_bond_law bk = *bw;
             bk.k = k;
-            c = break_half(m, i, s, &bk, r_rest, r, bond_dr(v, i, j, dim, dx, r));
+            c = lattice_break_half(m, i, s, &bk, r_rest, r,
+                                   lattice_bond_dr(v, i, j, dim, dx, r));
         } else {
             c = lattice_coef(&lp, bw->curve, k, st, 0);
         }
@@ -360,9 +309,6 @@ static void angles_row(struct model *m, const int32_t *mat, double *const *x, si
  * inside it) switch once per range to a loop whose dimension, law and
  * variant are literal constants. */
 
-/* Half-bonds per block of the linear loop: the block's scratch (bond
- * vectors and coefficients, 4 x 8 B per half-bond) stays in L1. */
-#define LATTICE_BLOCK 256
 
 /** Pass 2 of block_linear over the block's @p nt half-bonds from slot @p sb:
  *  the force coefficients into cb; returns nonzero when a bond breaks now.
@@ -446,8 +392,9 @@ LATTICE_INLINE void block_linear(struct model *m, const struct lattice_view *v,
                 const double r = sqrt(r2), r_rest = view_rest(v, s);
                 const struct lattice_bond_law *b = &pw[multi ? v->type[s] : 0];
                 if (r > r_rest * b->t_lim || r < r_rest * b->c_lim)
-                    cb[t] = break_half(m, i, s, b, r_rest, r,
-                                       bond_dr(v, i, (size_t)v->partner[s], dim, dx, r));
+                    cb[t] = lattice_break_half(
+                        m, i, s, b, r_rest, r,
+                        lattice_bond_dr(v, i, (size_t)v->partner[s], dim, dx, r));
             }
     }
     for (size_t i = i0; i < i1; i++) {
@@ -486,18 +433,6 @@ LATTICE_INLINE void loop_linear(struct model *m, const struct lattice_view *v, s
     }
 }
 
-/* The linear loop in two versions picked once at load time by the CPU (GCC
- * function multi-versioning): x86-64-v3 (four-lane sqrt and division) and
- * the build's baseline.  The file is built without FP contraction (ISO C
- * mode) and with -fno-math-errno (a sqrt the compiler may vectorise), so
- * both versions round every operation alike: the same bits on any CPU and
- * thread.  SPALL_NO_CLONES builds the baseline only. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
-    !defined(SPALL_NO_CLONES)
-#define LATTICE_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define LATTICE_CLONES
-#endif
 
 LATTICE_CLONES static void range_linear(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
                          int dim, int multi, int gather)
@@ -551,8 +486,9 @@ static void range_general(struct model *m, const struct lattice_view *v, size_t 
     }
 }
 
-/** Static split of [0, n) over the threads of the current team. */
-static void thread_range(size_t n, size_t *lo, size_t *hi)
+/** Static split of [0, n) over the threads of the current team; *tid:
+ *  the calling thread's number. */
+static void thread_range(size_t n, size_t *lo, size_t *hi, size_t *tid)
 {
 #ifdef _OPENMP
     size_t nt = (size_t)omp_get_num_threads(), t = (size_t)omp_get_thread_num();
@@ -562,22 +498,61 @@ static void thread_range(size_t n, size_t *lo, size_t *hi)
     size_t q = n / nt, r = n % nt;
     *lo = t * q + (t < r ? t : r);
     *hi = *lo + q + (t < r ? 1 : 0);
+    *tid = t;
 }
 
 /* ---- loop drivers: the only place with OpenMP pragmas ----------------------- */
 
+/* The threads' rings of the once-per-bond loop (lattice_half.c): W
+ * entries of dim doubles each for up to the team's size, kept by the model
+ * (all zero between calls).  0 when that loop does not apply, is switched
+ * off (lattice_set_row_loop) or memory is short: the row loop then gives
+ * the same bits. */
+static size_t half_rings(struct model *m, struct sim *sim, int dim)
+{
+    if (m->half_off)
+        return 0;
+    const size_t w = lattice_half_ring(m, sim);
+#ifdef _OPENMP
+    const size_t nt = (size_t)omp_get_max_threads();
+#else
+    const size_t nt = 1;
+#endif
+    const size_t need = nt * w * (size_t)dim;
+    if (w && m->half_buf_len < need) {
+        free(m->half_buf);
+        free(m->half_cnt);
+        m->half_buf = calloc(need, sizeof *m->half_buf);
+        m->half_cnt = calloc(nt * w, sizeof *m->half_cnt);
+        if (!m->half_buf || !m->half_cnt) {
+            free(m->half_buf);
+            free(m->half_cnt);
+            m->half_buf = NULL;
+            m->half_cnt = NULL;
+        }
+        m->half_buf_len = m->half_buf ? need : 0;
+    }
+    return m->half_buf ? w : 0;
+}
+
 static void drive_axial(struct model *m, struct sim *sim, int fast, int dim, int multi,
                         int gather, const size_t *reverse)
 {
-    struct lattice_view v = make_view(m, sim);
+    struct lattice_view v = lattice_make_view(m, sim);
     v.reverse = reverse;
     const size_t n = sim->p->n_owned;
+    const size_t w = fast ? half_rings(m, sim, dim) : 0;
+    m->half_used = w > 0;
+    const size_t per = w * (size_t)dim, n_rings = per ? m->half_buf_len / per : 0;
 #pragma omp parallel
     {
         const struct lattice_view lv = v; /* thread-local copy */
-        size_t lo, hi;
-        thread_range(n, &lo, &hi);
-        if (fast)
+        size_t lo, hi, t = 0;
+        thread_range(n, &lo, &hi, &t);
+        if (t < n_rings)
+            lattice_half_range(m, &lv, lo, hi, m->half_buf + t * per, m->half_cnt + t * w,
+                               w - 1, dim, multi, gather);
+        else if (fast)
             range_linear(m, &lv, lo, hi, dim, multi, gather);
         else
             range_general(m, &lv, lo, hi, dim, gather);
@@ -626,6 +601,16 @@ int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error 
     const int fast = m->lp.law == LATTICE_LAW_LINEAR && m->n_mat == 1 && !m->kscale;
     drive_axial(m, sim, fast, dim, m->layers > 1 || m->honeycomb, gather, reverse);
     return 0;
+}
+
+void lattice_set_row_loop(struct model *m, bool rows)
+{
+    m->half_off = rows;
+}
+
+bool lattice_used_half_loop(const struct model *m)
+{
+    return m->half_used;
 }
 
 /* ---- per-particle diagnostics (no state change) ------------------------- */

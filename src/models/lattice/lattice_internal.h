@@ -63,6 +63,17 @@ struct model {
     size_t n_half;
     struct lattice_interface *ifc; /**< material-pair bond laws (lattice_interface.c) */
     size_t n_ifc;
+    /* the once-per-bond linear loop (lattice_half.c): what the row check
+     * found for the list of generation half_gen with half_n owned rows */
+    bool half_known;      /**< false: check the rows again (new list) */
+    unsigned long half_gen;
+    size_t half_n;
+    size_t half_ring;     /**< ring entries per thread (power of 2); 0: rows unsuited */
+    double *half_buf;     /**< the threads' rings of row sums, all zero between calls */
+    uint16_t *half_cnt;   /**< the threads' rings of lower-partner counts, likewise */
+    size_t half_buf_len;  /**< doubles in half_buf */
+    bool half_off;        /**< lattice_set_row_loop: the row loop only */
+    bool half_used;       /**< the last force call took the once-per-bond loop */
     bool initialised;
 };
 
@@ -88,6 +99,12 @@ struct par_model_arrays;
 int lattice_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 int lattice_migrated(struct model *m, struct sim *sim, struct spall_error *err);
 struct model_energy;
+
+/* lattice_half.c */
+/** Ring entries per thread for the once-per-bond linear loop over the
+ *  owned rows of the current list, 0 when its rows do not allow it
+ *  (cached until the list changes). */
+size_t lattice_half_ring(struct model *m, const struct sim *sim);
 
 /* lattice_forces.c */
 int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);

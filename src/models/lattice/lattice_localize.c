@@ -82,6 +82,7 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
     free(m->diss);
     m->diss = diss;
     m->n_half = nh;
+    m->half_known = false; /* the rows changed (also caught by bl->gen) */
     return SPALL_OK;
 }
 

@@ -147,6 +147,8 @@ static void lattice_destroy(struct model **pm)
     free(m->ang_buf);
     free(m->diss);
     free(m->kappa);
+    free(m->half_buf);
+    free(m->half_cnt);
     lattice_thermal_destroy(&m->th);
     free(m->ifc);
     free(m);
@@ -428,6 +430,7 @@ static int lattice_init(struct model *m, struct sim *sim, struct spall_error *er
                         : bond_list_build_shells(&m->bl, p, layers, lo, hi, err);
     if (rc)
         return rc;
+    m->half_known = false; /* a new list: lattice_half_ring checks its rows again */
     m->n_half = m->bl->offset[m->bl->n];
     if (m->opt.law == LATTICE_LAW_SOFT) {
         free(m->kappa);
@@ -698,6 +701,7 @@ const struct model_ops lattice_model_ops = {
     .fixtures = lattice_fixtures,
     .setup_range = lattice_setup_range,
     .setup_tables = lattice_setup_tables,
+    .bonds_within_bodies = true, /* bond_list_build_shells skips other bodies */
 };
 
 const struct lattice_material *lattice_material_get(const struct model *m, int k)

@@ -48,6 +48,9 @@
 
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 static void macro_forces_full(struct model *m, struct sim *sim);
 
@@ -113,9 +116,16 @@ int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_
      * positions the engine set (core/parallel/spatial.c) */
     const bool dist = sim->par != NULL;
     struct neighbor_list *nl = NULL;
-    int rc = neighbor_list_build(&nl, sim->dim, n, dist ? m->xb : p->x, m->pp.r_c + skin, err);
-    if (rc)
+    struct neighbor_pairs *pairs = NULL;
+    if (!dist && !m->pair_full && !(pairs = malloc(sizeof *pairs)))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for macro-particle pairs");
+    /* one rank: the pair loop's table comes with the list (macro_half.c) */
+    int rc = neighbor_list_build_pairs(&nl, pairs, sim->dim, n, dist ? m->xb : p->x,
+                                       m->pp.r_c + skin, err);
+    if (rc) {
+        free(pairs);
         return rc;
+    }
     if (dist)
         sort_rows_by_gid(nl, p->gid);
     size_t ns = nl->offset[n];
@@ -127,16 +137,21 @@ int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_
         free(nka);
         free(nen);
         free(npg);
+        neighbor_pairs_free(pairs);
+        free(pairs);
         neighbor_list_destroy(&nl);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for macro-particle pairs");
     }
     for (size_t s = 0; s < ns && npg; s++)
         npg[s] = p->gid[nl->idx[s]];
-    if (m->nl) {
+    /* an elastic run never writes the plastic state: all zeros, as calloc
+     * made the new arrays */
+    if (m->nl && (isfinite(m->pp.e_y) || m->pstate_read)) {
         size_t rows = p->n_owned < m->nl->n ? p->n_owned : m->nl->n;
         carry_state(m->nl, m->pgid, m->dr0, m->kappa, m->engaged, nl, npg, rows, ndr, nka, nen);
     }
     macro_adopt_pairs(m, nl, npg, ndr, nka, nen);
+    macro_half_invalidate(m, pairs);
     if (!dist)
         for (int d = 0; d < sim->dim; d++)
             memcpy(m->xb[d], p->x[d], n * sizeof(double));
@@ -149,7 +164,7 @@ void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid,
                        double *kappa, uint8_t *engaged)
 {
     macro_par_release(m); /* a list lent to a migration probe is not kept */
-    m->half_ok = false;
+    macro_half_invalidate(m, NULL);
     neighbor_list_destroy(&m->nl);
     free(m->pgid);
     free(m->dr0);
@@ -162,6 +177,55 @@ void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid,
     m->engaged = engaged;
 }
 
+/* The largest squared displacement since the build of particles [i0, i1)
+ * (a maximum, exact in any order: the loops vectorise, the decision is the
+ * one of a serial scan; a NaN is never the maximum, as in the scan it
+ * replaces). */
+MACRO_CLONES static double max_shift2(int dim, size_t i0, size_t i1, double *const x[3],
+                                      double *const xb[3])
+{
+    double d2max = 0.0;
+    if (dim == 3) {
+        const double *x0 = x[0], *x1 = x[1], *x2 = x[2];
+        const double *b0 = xb[0], *b1 = xb[1], *b2 = xb[2];
+        for (size_t i = i0; i < i1; i++) {
+            const double u0 = x0[i] - b0[i], u1 = x1[i] - b1[i], u2 = x2[i] - b2[i];
+            const double d2 = u0 * u0 + u1 * u1 + u2 * u2;
+            d2max = d2 > d2max ? d2 : d2max;
+        }
+        return d2max;
+    }
+    for (size_t i = i0; i < i1; i++) {
+        double d2 = 0.0;
+        for (int d = 0; d < dim; d++) {
+            double u = x[d][i] - xb[d][i];
+            d2 += u * u;
+        }
+        d2max = d2 > d2max ? d2 : d2max;
+    }
+    return d2max;
+}
+
+/* The same over all n particles, a range a thread (the ranges' maxima
+ * combined by the same test). */
+static double max_shift2_all(int dim, size_t n, double *const x[3], double *const xb[3])
+{
+    double d2max = 0.0;
+#pragma omp parallel if (n >= MACRO_OMP_MIN)
+    {
+        size_t i0 = 0, i1 = n;
+#ifdef _OPENMP
+        const size_t nt = (size_t)omp_get_num_threads(), t = (size_t)omp_get_thread_num();
+        i0 = n * t / nt;
+        i1 = n * (t + 1) / nt;
+#endif
+        const double d = max_shift2(dim, i0, i1, x, xb);
+#pragma omp critical(macro_max_shift)
+        d2max = d > d2max ? d : d2max;
+    }
+    return d2max;
+}
+
 int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err)
 {
     struct particles *p = sim->p;
@@ -169,19 +233,9 @@ int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct 
     const double skin = m->skin_ratio * m->pp.r0;
     if (!force && sim->par)
         return SPALL_OK; /* distributed: the engine's test, over all ranks (spatial.c) */
-    if (!force && m->nl && m->nl->n == n) {
-        double d2max = 0.0;
-        for (size_t i = 0; i < n; i++) {
-            double d2 = 0.0;
-            for (int d = 0; d < sim->dim; d++) {
-                double u = p->x[d][i] - m->xb[d][i];
-                d2 += u * u;
-            }
-            d2max = d2 > d2max ? d2 : d2max;
-        }
-        if (4.0 * d2max < skin * skin)
-            return SPALL_OK;
-    }
+    if (!force && m->nl && m->nl->n == n &&
+        4.0 * max_shift2_all(sim->dim, n, p->x, m->xb) < skin * skin)
+        return SPALL_OK;
     return macro_list_build(m, sim, true, err);
 }
 

@@ -11,9 +11,11 @@
  * After each list change a flat pair list is made from it: per pair the
  * computing end and the partner, per slot of the owned rows the pair it
  * holds.  Pass 1 runs over the pairs (long vectorisable chunks): distance,
- * plastic update, pairwise Langevin force, the Mie law, and stores c = -f/r,
- * phi and whether the pair counts.  Pass 2 sums every row over all its slots
- * in list order, as the full loop does, reading its pairs' values.
+ * plastic update, pairwise Langevin force, the Mie law, and stores c = -f/r
+ * and phi (+0 both when the pair does not count).  Pass 2 sums every row
+ * over all its slots in list order, as the full loop does, reading its
+ * pairs' values; in 3D four rows at a time, a row a vector lane (each lane
+ * the same operations in the same order as one row alone).
  *
  * Why the bits agree: x_i - x_j is exactly -(x_j - x_i) (IEEE subtraction),
  * so both ends of a pair compute the same r, re, phi and c; each end forms
@@ -24,6 +26,9 @@
  * evolved them identically).  A pair that adds no Langevin force or plastic
  * work stores +0.0 where the full loop added nothing: sums that start at
  * +0.0 are never -0.0 in round-to-nearest, so adding a zero changes no bit.
+ * For the same reason a pair that does not count (c = phi = +0 stored),
+ * and a row of a four-row group that has ended, add +-0 terms instead of
+ * being skipped.
  *
  * One thread on one rank: rows in blocks, pass 1 of the block's pairs then
  * pass 2 of its rows (a row's other pairs belong to rows with smaller
@@ -59,15 +64,24 @@ void macro_half_free(struct model *m)
     free(m->pid);
     free(m->pc);
     free(m->pphi);
-    free(m->pok);
     free(m->pwp);
     free(m->pfl);
-    m->hoff = m->hps = m->hprs = m->pid = NULL;
+    m->hoff = m->hps = m->hprs = NULL;
+    m->pid = NULL;
     m->hpi = m->hpj = NULL;
     m->pc = m->pphi = m->pwp = m->pfl = NULL;
-    m->pok = NULL;
-    m->half_pairs = m->half_pair_cap = m->half_slot_cap = 0;
+    m->half_pairs = m->half_pair_cap = 0;
+    macro_half_invalidate(m, NULL);
+}
+
+void macro_half_invalidate(struct model *m, struct neighbor_pairs *pairs)
+{
     m->half_ok = false;
+    if (m->hnew) {
+        neighbor_pairs_free(m->hnew);
+        free(m->hnew);
+    }
+    m->hnew = pairs;
 }
 
 /* *a holds @p count elements of @p size bytes: (re)allocated when it
@@ -127,9 +141,9 @@ static int64_t half_fill(struct model *m, const struct particles *p, size_t n)
                     bad = p->gid[i];
                     continue;
                 }
-                m->pid[t] = q;
+                m->pid[t] = (uint32_t)q;
             }
-            m->pid[s] = q;
+            m->pid[s] = (uint32_t)q;
             m->hpi[q] = (int32_t)i;
             m->hpj[q] = (int32_t)j;
             if (m->hps) {
@@ -142,51 +156,101 @@ static int64_t half_fill(struct model *m, const struct particles *p, size_t n)
     return bad;
 }
 
+/* The arrays of the pair table @p t of the one-rank build (neighbor_pairs.c:
+ * the same pairs, numbered as half_fill numbers them: by the computing end,
+ * the smaller index, then the partner ascending), taken over. */
+static void half_take(struct model *m, struct neighbor_pairs *t, size_t n)
+{
+    free(m->hoff);
+    free(m->hpj);
+    free(m->pid);
+    m->hoff = t->first;
+    m->hpj = t->partner;
+    m->pid = t->slot_pair;
+    t->first = NULL;
+    t->slot_pair = NULL;
+    t->partner = NULL;
+    const struct neighbor_list *nl = m->nl;
+    for (size_t i = 0; i < n; i++)
+        for (size_t q = m->hoff[i]; q < m->hoff[i + 1]; q++)
+            m->hpi[q] = (int32_t)i;
+    if (m->hps)
+        for (size_t i = 0; i < n; i++)
+            for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+                if ((size_t)nl->idx[s] > i)
+                    m->hps[m->pid[s]] = s;
+                else
+                    m->hprs[m->pid[s]] = s;
+            }
+}
+
 static int half_prepare(struct model *m, const struct particles *p, size_t n, bool plastic,
                         bool pairwise, struct spall_error *err)
 {
     const struct neighbor_list *nl = m->nl;
-    size_t *cnt = malloc((n + 1) * sizeof *cnt);
-    if (!cnt)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
+    /* the build's table describes this list only when no ghosts follow
+     * (one rank: n owned = all particles) */
+    struct neighbor_pairs *t = m->hnew && nl->n == n ? m->hnew : NULL;
+    size_t *cnt = NULL, np;
+    if (t) {
+        np = t->n_pairs;
+    } else {
+        cnt = malloc((n + 1) * sizeof *cnt);
+        if (!cnt)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
 #pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
-    for (size_t i = 0; i < n; i++)
-        cnt[i] = half_count(nl, half_start(nl, m->pgid, p->gid, i), i, n);
-    size_t np = 0;
-    for (size_t i = 0; i < n; i++) {
-        size_t c = cnt[i];
-        cnt[i] = np;
-        np += c;
+        for (size_t i = 0; i < n; i++)
+            cnt[i] = half_count(nl, half_start(nl, m->pgid, p->gid, i), i, n);
+        np = 0;
+        for (size_t i = 0; i < n; i++) {
+            size_t c = cnt[i];
+            cnt[i] = np;
+            np += c;
+        }
+        cnt[n] = np;
+        if (np > UINT32_MAX) {
+            free(cnt);
+            return spall_error_set(err, SPALL_ERR_INPUT, "%zu macro-particle pairs on a rank "
+                                   "exceed the 32-bit pair index", np);
+        }
     }
-    cnt[n] = np;
     const size_t ns = nl->offset[n];
-    const bool pg = np > m->half_pair_cap, sg = ns > m->half_slot_cap;
-    const size_t pn = pg ? np : m->half_pair_cap, sn = sg ? ns : m->half_slot_cap;
+    const bool pg = np > m->half_pair_cap;
+    const size_t pn = pg ? np : m->half_pair_cap;
     bool ok = need((void **)&m->hpi, pn, sizeof *m->hpi, pg) &&
-              need((void **)&m->hpj, pn, sizeof *m->hpj, pg) &&
               need((void **)&m->pc, pn, sizeof *m->pc, pg) &&
               need((void **)&m->pphi, pn, sizeof *m->pphi, pg) &&
-              need((void **)&m->pok, pn, sizeof *m->pok, pg) &&
               (!plastic || (need((void **)&m->hps, pn, sizeof *m->hps, pg) &&
                             need((void **)&m->hprs, pn, sizeof *m->hprs, pg) &&
                             need((void **)&m->pwp, pn, sizeof *m->pwp, pg))) &&
-              (!pairwise || need((void **)&m->pfl, 3 * pn, sizeof *m->pfl, pg)) &&
-              need((void **)&m->pid, sn, sizeof *m->pid, sg);
-    free(m->hoff);
-    m->hoff = cnt;
+              (!pairwise || need((void **)&m->pfl, 3 * pn, sizeof *m->pfl, pg));
+    if (!t) { /* made here: the exact sizes of this list */
+        free(m->hoff);
+        free(m->hpj);
+        free(m->pid);
+        m->hoff = cnt;
+        m->hpj = malloc((np ? np : 1) * sizeof *m->hpj);
+        m->pid = malloc((ns ? ns : 1) * sizeof *m->pid);
+        ok = ok && m->hpj && m->pid;
+    }
     if (!ok) {
         macro_half_free(m);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the macro-particle "
                                "pair loop (%zu pairs)", np);
     }
     m->half_pair_cap = pn;
-    m->half_slot_cap = sn;
     m->half_pairs = np;
-    int64_t bad = half_fill(m, p, n);
-    if (bad >= 0) {
-        macro_half_free(m);
-        return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle pair list not symmetric "
-                               "(a partner of particle %lld does not list it)", (long long)bad);
+    if (t) {
+        half_take(m, t, n);
+        macro_half_invalidate(m, NULL);
+    } else {
+        int64_t bad = half_fill(m, p, n);
+        if (bad >= 0) {
+            macro_half_free(m);
+            return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle pair list not "
+                                   "symmetric (a partner of particle %lld does not list it)",
+                                   (long long)bad);
+        }
     }
     m->half_ok = true;
     return SPALL_OK;
@@ -215,32 +279,41 @@ MACRO_CLONES static void half_chunk_dist(size_t nb, int dim, double *const *rest
 {
     const double *restrict x0 = x[0], *restrict x1 = dim > 1 ? x[1] : x[0];
     const double *restrict x2 = dim > 2 ? x[2] : x[0];
+    /* the loads are unconditional (x1, x2 name x[0] below 2D, 3D) so that
+     * the loop vectorises; the unused components are then replaced by 0 */
     for (size_t k = 0; k < nb; k++) {
         const size_t i = (size_t)pi[k], j = (size_t)pj[k];
-        const double ex = x0[j] - x0[i];
-        const double ey = dim > 1 ? x1[j] - x1[i] : 0.0;
-        const double ez = dim > 2 ? x2[j] - x2[i] : 0.0;
+        const double ex = x0[j] - x0[i], fy = x1[j] - x1[i], fz = x2[j] - x2[i];
+        const double ey = dim > 1 ? fy : 0.0, ez = dim > 2 ? fz : 0.0;
         r2[k] = ex * ex + ey * ey + ez * ez;
         r[k] = sqrt(r2[k]);
     }
 }
 
 /** Pair law of nb pairs at distances rd (squared r2) and elastic distances
- *  re: phi, c = -f/r and whether the pair counts (the full loop's tests,
- *  without short circuits for the vectoriser; NaN distances count). */
+ *  re: phi and c = -f/r, both +0 where the pair does not count (the full
+ *  loop's tests, without short circuits for the vectoriser; NaN distances
+ *  count).  A pair with c = +-0 and phi = 0 adds only +-0 terms to the sums
+ *  of pass 2, which change no sum (they start at +0 and never become -0),
+ *  so pass 2 may skip it: that is the skip of a pair that does not count. */
 MACRO_CLONES static void half_chunk_law(const struct macro_pair *w, size_t nb,
                                         const double *restrict r2, const double *restrict rd,
                                         const double *restrict re, double rlist2,
-                                        double *restrict ph, double *restrict c,
-                                        uint8_t *restrict ok)
+                                        double *restrict ph, double *restrict c)
 {
     double fk[MACRO_CHUNK];
     const double r_c = w->r_c;
     macro_mie_chunk(w, nb, re, ph, fk);
     for (size_t k = 0; k < nb; k++) {
-        c[k] = -fk[k] / rd[k]; /* force on i along dx (attraction > 0) */
-        ok[k] = (uint8_t)(!(r2[k] >= rlist2) & (r2[k] != 0.0) & !(re[k] >= r_c) &
-                          !(re[k] <= 0.0));
+        const uint64_t ok = (uint64_t)(!(r2[k] >= rlist2) & (r2[k] != 0.0) & !(re[k] >= r_c) &
+                                       !(re[k] <= 0.0));
+        /* force on i along dx (attraction > 0); the masks by bits, not a
+         * branch the vectoriser would have to keep around the division */
+        union { double d; uint64_t u; } ck = {.d = -fk[k] / rd[k]}, pk = {.d = ph[k]};
+        ck.u &= -ok;
+        pk.u &= -ok;
+        c[k] = ck.d;
+        ph[k] = pk.d;
     }
 }
 
@@ -287,7 +360,7 @@ static void half_compute(const struct half_ctx *h, size_t q0, size_t nb)
         }
         re_k = rre;
     }
-    half_chunk_law(w, nb, rr2, rr, re_k, h->rlist2, m->pphi + q0, m->pc + q0, m->pok + q0);
+    half_chunk_law(w, nb, rr2, rr, re_k, h->rlist2, m->pphi + q0, m->pc + q0);
 }
 
 static void half_pass1(const struct half_ctx *h, size_t q0, size_t q1)
@@ -301,99 +374,214 @@ static void half_pass1(const struct half_ctx *h, size_t q0, size_t q1)
  * vector add rounds every lane as the scalar add does). */
 typedef double half_v4 __attribute__((vector_size(32)));
 typedef double half_v2 __attribute__((vector_size(16)));
+typedef long long half_m4 __attribute__((vector_size(32)));
 #endif
 
-/* Pass 2 of rows [i0, i1): each row's sums over all its slots in list
- * order (energy, force and virial, then plastic work and Langevin force). */
-MACRO_CLONES static void half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
+/* A row's sums, in this order: force x y z, energy, virial xx yy zz xy yz zx. */
+enum { HALF_SUMS = 10 };
+
+/* The sums of row i over all its slots in list order. */
+static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[HALF_SUMS])
 {
-    struct model *m = h->m;
     const struct neighbor_list *nl = h->nl;
     const int dim = h->dim;
     const double *x0 = h->x[0], *x1 = dim > 1 ? h->x[1] : h->x[0];
     const double *x2 = dim > 2 ? h->x[2] : h->x[0];
-    const double *pc = m->pc, *pphi = m->pphi;
-    const uint8_t *pok = m->pok;
-    const size_t *pid = m->pid;
-    for (size_t i = i0; i < i1; i++) {
-        double vi[3] = {0, 0, 0}, fl[3] = {0, 0, 0};
-        for (int d = 0; d < dim; d++)
-            vi[d] = h->v[d][i];
-        const double xi0 = x0[i], xi1 = dim > 1 ? x1[i] : 0.0, xi2 = dim > 2 ? x2[i] : 0.0;
-        double e, fi[3], s6[6];
+    const double *pc = h->m->pc, *pphi = h->m->pphi;
+    const uint32_t *pid = h->m->pid;
+    const double xi0 = x0[i], xi1 = dim > 1 ? x1[i] : 0.0, xi2 = dim > 2 ? x2[i] : 0.0;
 #if defined(__GNUC__)
-        /* lanes: A = force xyz and energy, B = virial xx yy zz xy, C = yz zx */
-        half_v4 A = {0, 0, 0, 0}, B = {0, 0, 0, 0};
-        half_v2 C = {0, 0};
-        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
-            const size_t q = pid[s], j = (size_t)nl->idx[s];
-            if (!pok[q])
-                continue;
-            const double dx = x0[j] - xi0, dy = dim > 1 ? x1[j] - xi1 : 0.0;
-            const double dz = dim > 2 ? x2[j] - xi2 : 0.0;
-            const double c = pc[q], hc = 0.5 * c;
-            A += (half_v4){c, c, c, 0.5} * (half_v4){dx, dy, dz, pphi[q]};
-            B += (half_v4){hc, hc, hc, hc} * (half_v4){dx, dy, dz, dx} *
-                 (half_v4){dx, dy, dz, dy};
-            C += (half_v2){hc, hc} * (half_v2){dy, dz} * (half_v2){dz, dx};
-        }
-        fi[0] = A[0];
-        fi[1] = A[1];
-        fi[2] = A[2];
-        e = A[3];
-        for (int k = 0; k < 4; k++)
-            s6[k] = B[k];
-        s6[4] = C[0];
-        s6[5] = C[1];
+    /* lanes: A = force xyz and energy, B = virial xx yy zz xy, C = yz zx */
+    half_v4 A = {0, 0, 0, 0}, B = {0, 0, 0, 0};
+    half_v2 C = {0, 0};
+    for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+        const size_t q = pid[s], j = (size_t)nl->idx[s];
+        if (pc[q] == 0.0 && pphi[q] == 0.0)
+            continue; /* does not count, or adds +-0 only */
+        const double dx = x0[j] - xi0, dy = dim > 1 ? x1[j] - xi1 : 0.0;
+        const double dz = dim > 2 ? x2[j] - xi2 : 0.0;
+        const double c = pc[q], hc = 0.5 * c;
+        A += (half_v4){c, c, c, 0.5} * (half_v4){dx, dy, dz, pphi[q]};
+        B += (half_v4){hc, hc, hc, hc} * (half_v4){dx, dy, dz, dx} * (half_v4){dx, dy, dz, dy};
+        C += (half_v2){hc, hc} * (half_v2){dy, dz} * (half_v2){dz, dx};
+    }
+    for (int k = 0; k < 4; k++) {
+        out[k] = A[k];
+        out[4 + k] = B[k];
+    }
+    out[8] = C[0];
+    out[9] = C[1];
 #else
-        e = fi[0] = fi[1] = fi[2] = 0.0;
-        for (int k = 0; k < 6; k++)
-            s6[k] = 0.0;
-        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
-            const size_t q = pid[s], j = (size_t)nl->idx[s];
-            if (!pok[q])
-                continue;
-            const double dx[3] = {x0[j] - xi0, dim > 1 ? x1[j] - xi1 : 0.0,
-                                  dim > 2 ? x2[j] - xi2 : 0.0};
-            const double c = pc[q];
-            e += 0.5 * pphi[q];
-            for (int d = 0; d < 3; d++)
-                fi[d] += c * dx[d];
-            for (int d = 0; d < 3; d++)
-                s6[d] += 0.5 * c * dx[d] * dx[d];
-            s6[3] += 0.5 * c * dx[0] * dx[1];
-            s6[4] += 0.5 * c * dx[1] * dx[2];
-            s6[5] += 0.5 * c * dx[2] * dx[0];
-        }
+    for (int k = 0; k < HALF_SUMS; k++)
+        out[k] = 0.0;
+    for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+        const size_t q = pid[s], j = (size_t)nl->idx[s];
+        if (pc[q] == 0.0 && pphi[q] == 0.0)
+            continue; /* does not count, or adds +-0 only */
+        const double dx[3] = {x0[j] - xi0, dim > 1 ? x1[j] - xi1 : 0.0,
+                              dim > 2 ? x2[j] - xi2 : 0.0};
+        const double c = pc[q];
+        for (int d = 0; d < 3; d++)
+            out[d] += c * dx[d];
+        out[3] += 0.5 * pphi[q];
+        for (int d = 0; d < 3; d++)
+            out[4 + d] += 0.5 * c * dx[d] * dx[d];
+        out[7] += 0.5 * c * dx[0] * dx[1];
+        out[8] += 0.5 * c * dx[1] * dx[2];
+        out[9] += 0.5 * c * dx[2] * dx[0];
+    }
 #endif
-        double wplast = 0.0;
-        if (h->plastic)
-            for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++)
-                wplast += m->pwp[pid[s]];
-        if (h->mu > 0.0)
-            for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
-                const size_t q = pid[s];
-                const bool own = (size_t)m->hpi[q] == i; /* else the partner's term, negated */
-                for (int d = 0; d < dim; d++)
-                    fl[d] = own ? fl[d] + m->pfl[3 * q + (size_t)d]
-                                : fl[d] - m->pfl[3 * q + (size_t)d];
-            }
-        if (h->g > 0.0) {
-            double xr[3] = {0, 0, 0};
-            if (h->sg > 0.0)
-                macro_gauss3(h->seed, h->step, (uint64_t)h->gid[i], UINT64_MAX, xr);
+}
+
+#if defined(__GNUC__)
+/* The four rows' data of one force call (half_rows4). */
+struct half_g4 {
+    const int32_t *idx;
+    const double *x0, *x1, *x2, *pc, *pphi;
+    const uint32_t *pid;
+    half_v4 xi, yi, zi;
+};
+
+/* Step k of half_rows4: slot k of each row (slot @p last, masked, for a row
+ * that has ended; @p tail: some row may have). */
+/* (always inlined: called from the clones, it must be compiled in them) */
+__attribute__((always_inline)) static inline void
+half_step4(const struct half_g4 *g, const size_t s0[4], const size_t e0[4], size_t last, size_t k,
+           bool tail, half_v4 acc[HALF_SUMS])
+{
+    half_v4 xj, yj, zj, c, ph;
+    half_m4 in;
+    for (int l = 0; l < 4; l++) {
+        const bool inl = !tail || s0[l] + k < e0[l];
+        const size_t s = inl ? s0[l] + k : last;
+        const size_t q = g->pid[s], j = (size_t)g->idx[s];
+        xj[l] = g->x0[j];
+        yj[l] = g->x1[j];
+        zj[l] = g->x2[j];
+        c[l] = g->pc[q];
+        ph[l] = g->pphi[q];
+        in[l] = -(long long)inl;
+    }
+    if (tail) { /* a row that has ended adds +0 */
+        c = (half_v4)((half_m4)c & in);
+        ph = (half_v4)((half_m4)ph & in);
+    }
+    /* c = +-0: the force and virial terms are +-0 (no change), and are +0
+     * here also where dx is not finite; phi is +0 where the pair does not
+     * count (pass 1) */
+    const half_m4 ok = c != 0.0;
+    const half_v4 dx = (half_v4)((half_m4)(xj - g->xi) & ok);
+    const half_v4 dy = (half_v4)((half_m4)(yj - g->yi) & ok);
+    const half_v4 dz = (half_v4)((half_m4)(zj - g->zi) & ok);
+    const half_v4 hc = 0.5 * c;
+    acc[0] += c * dx;
+    acc[1] += c * dy;
+    acc[2] += c * dz;
+    acc[3] += 0.5 * ph;
+    acc[4] += hc * dx * dx;
+    acc[5] += hc * dy * dy;
+    acc[6] += hc * dz * dz;
+    acc[7] += hc * dx * dy;
+    acc[8] += hc * dy * dz;
+    acc[9] += hc * dz * dx;
+}
+
+/* The sums of the four rows i .. i + 3 of a 3D run at once, a row a lane:
+ * step k takes slot k of every row (a row past its end, or a pair that
+ * does not count, adds +0, which changes no sum: they start at +0 and
+ * never become -0), so each lane runs the operations of half_row_sums on
+ * its row in the same order; no shuffles between lanes.  The steps that
+ * every row has run without the end test. */
+__attribute__((always_inline)) static inline void
+half_rows4(const struct half_ctx *h, size_t i, double out[4][HALF_SUMS])
+{
+    const size_t *off = h->nl->offset;
+    const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2];
+    struct half_g4 g = {.idx = h->nl->idx, .x0 = x0, .x1 = x1, .x2 = x2, .pc = h->m->pc,
+                        .pphi = h->m->pphi, .pid = h->m->pid};
+    g.xi = (half_v4){x0[i], x0[i + 1], x0[i + 2], x0[i + 3]};
+    g.yi = (half_v4){x1[i], x1[i + 1], x1[i + 2], x1[i + 3]};
+    g.zi = (half_v4){x2[i], x2[i + 1], x2[i + 2], x2[i + 3]};
+    size_t s0[4], e0[4], len = 0, kin = SIZE_MAX;
+    for (int l = 0; l < 4; l++) {
+        s0[l] = off[i + (size_t)l];
+        e0[l] = off[i + (size_t)l + 1];
+        len = e0[l] - s0[l] > len ? e0[l] - s0[l] : len;
+        kin = e0[l] - s0[l] < kin ? e0[l] - s0[l] : kin;
+    }
+    const size_t last = e0[3] - (len > 0); /* a slot of the group, read by ended rows */
+    half_v4 acc[HALF_SUMS];
+    for (int k = 0; k < HALF_SUMS; k++)
+        acc[k] = (half_v4){0, 0, 0, 0};
+    for (size_t k = 0; k < kin; k++)
+        half_step4(&g, s0, e0, last, k, false, acc);
+    for (size_t k = kin; k < len; k++)
+        half_step4(&g, s0, e0, last, k, true, acc);
+    for (int l = 0; l < 4; l++)
+        for (int k = 0; k < HALF_SUMS; k++)
+            out[l][k] = acc[k][l];
+}
+#endif
+
+/* Row i's outputs from its sums: plastic work and Langevin forces (in list
+ * order), force, energy, virial, dissipation. */
+static inline void half_row_finish(const struct half_ctx *h, size_t i,
+                                   const double sum[HALF_SUMS])
+{
+    struct model *m = h->m;
+    const struct neighbor_list *nl = h->nl;
+    const int dim = h->dim;
+    double vi[3] = {0, 0, 0}, fl[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++)
+        vi[d] = h->v[d][i];
+    double wplast = 0.0;
+    if (h->plastic)
+        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++)
+            wplast += m->pwp[m->pid[s]];
+    if (h->mu > 0.0)
+        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+            const size_t q = m->pid[s];
+            const bool own = (size_t)m->hpi[q] == i; /* else the partner's term, negated */
             for (int d = 0; d < dim; d++)
-                fl[d] += -h->g * vi[d] + h->sg * xr[d];
+                fl[d] = own ? fl[d] + m->pfl[3 * q + (size_t)d]
+                            : fl[d] - m->pfl[3 * q + (size_t)d];
         }
-        double pw = 0.0;
-        for (int d = 0; d < dim; d++) {
-            h->f[d][i] += fi[d] + fl[d];
-            pw += fl[d] * vi[d];
-        }
-        m->epot[i] = e;
-        for (int k = 0; k < 6; k++)
-            m->sig[6 * i + k] = s6[k];
-        m->wdiss[i] += wplast - pw * h->dt;
+    if (h->g > 0.0) {
+        double xr[3] = {0, 0, 0};
+        if (h->sg > 0.0)
+            macro_gauss3(h->seed, h->step, (uint64_t)h->gid[i], UINT64_MAX, xr);
+        for (int d = 0; d < dim; d++)
+            fl[d] += -h->g * vi[d] + h->sg * xr[d];
+    }
+    double pw = 0.0;
+    for (int d = 0; d < dim; d++) {
+        h->f[d][i] += sum[d] + fl[d];
+        pw += fl[d] * vi[d];
+    }
+    m->epot[i] = sum[3];
+    for (int k = 0; k < 6; k++)
+        m->sig[6 * i + k] = sum[4 + k];
+    m->wdiss[i] += wplast - pw * h->dt;
+}
+
+/* Pass 2 of rows [i0, i1): each row's sums over all its slots in list
+ * order (energy, force and virial, then plastic work and Langevin force);
+ * in 3D four rows at a time. */
+MACRO_CLONES static void half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
+{
+    for (size_t i = i0; i < i1;) {
+        double sum[4][HALF_SUMS];
+        size_t nr = 1;
+#if defined(__GNUC__)
+        if (h->dim == 3 && i1 - i >= 4) {
+            half_rows4(h, i, sum);
+            nr = 4;
+        } else
+#endif
+            half_row_sums(h, i, sum[0]);
+        for (size_t l = 0; l < nr; l++)
+            half_row_finish(h, i + l, sum[l]);
+        i += nr;
     }
 }
 
@@ -438,9 +626,9 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
         for (size_t k = 0; k < nc; k++)
             half_pass1(&h, k * MACRO_CHUNK, k * MACRO_CHUNK + MACRO_CHUNK < nq
                                                 ? k * MACRO_CHUNK + MACRO_CHUNK : nq);
-#pragma omp for schedule(dynamic, 256)
-        for (size_t i = 0; i < n; i++)
-            half_pass2(&h, i, i + 1);
+#pragma omp for schedule(dynamic, 4)
+        for (size_t b = 0; b < n; b += 64)
+            half_pass2(&h, b, n - b < 64 ? n : b + 64);
     }
     return SPALL_OK;
 }

@@ -15,6 +15,7 @@
 #include <stdint.h>
 
 struct neighbor_list;
+struct neighbor_pairs;
 struct spall_error;
 struct sim;
 
@@ -63,21 +64,25 @@ struct model {
     double *dr0;           /**< per full-list slot: plastic offset [m] */
     double *kappa;         /**< per slot: accumulated plastic slip [m] */
     uint8_t *engaged;      /**< per slot: 1 once the pair was inside its yield surface */
+    bool pstate_read;      /**< the three above were read from a checkpoint (else they stay
+                                zero in an elastic run, and a rebuild need not carry them) */
     long n_calls;          /**< force evaluations so far (random-stream counter) */
     /* the once-per-pair loop (macro_half.c): its pair list is made again
      * after each change of the neighbour list (half_ok cleared by
      * macro_adopt_pairs and a restart) */
     bool pair_full;        /**< deck pair_loop: full (both ends evaluate a pair) */
     bool half_ok;          /**< the arrays below describe the current list */
-    size_t half_pairs, half_pair_cap, half_slot_cap; /**< pairs, allocated pairs, slots */
+    struct neighbor_pairs *hnew; /**< the pair table of the last one-rank build, not yet
+                                      taken by the loop (NULL: none; half_fill makes it) */
+    size_t half_pairs, half_pair_cap; /**< pairs, allocated pairs */
     size_t *hoff;          /**< per owned row + 1: its pairs are [hoff[i], hoff[i+1]) */
     int32_t *hpi, *hpj;    /**< per pair: the end that computes it and the partner */
     size_t *hps, *hprs;    /**< per pair: its slot in row hpi and in row hpj (SIZE_MAX:
                                 a ghost's row), plastic runs only */
-    size_t *pid;           /**< per slot of the owned rows: its pair */
-    double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i) */
-    double *pphi;          /**< per pair: its energy phi */
-    uint8_t *pok;          /**< per pair: 1 when it counts */
+    uint32_t *pid;         /**< per slot of the owned rows: its pair (< 2^32 pairs) */
+    double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i);
+                                +0 when it does not count */
+    double *pphi;          /**< per pair: its energy phi; +0 when it does not count */
     double *pwp;           /**< per pair: half its plastic work of this call (plastic runs) */
     double *pfl;           /**< 3 per pair: pairwise Langevin force on hpi (pairwise damping) */
     size_t n_builds;
@@ -142,6 +147,9 @@ MACRO_CLONES void macro_chunk_geom(size_t nb, int dim, const double xi[3],
  * full loop (the same bits) */
 int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err);
 void macro_half_free(struct model *m);
+/** The list changed: the pair loop's arrays are made again at the next call
+ *  (from @p pairs, the new list's table, when not NULL: taken over). */
+void macro_half_invalidate(struct model *m, struct neighbor_pairs *pairs);
 
 /** The plastic update of one pair slot (Eq. 16, see macro_forces.c) at
  *  distance @p r; returns the elastic distance r - dr0 and adds the half of

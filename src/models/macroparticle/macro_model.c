@@ -380,7 +380,7 @@ static int macro_init(struct model *m, struct sim *sim, struct spall_error *err)
     for (size_t i = 0; i < p->n_owned; i++)
         m->volume += p->volume[i];
     if ((rc = macro_neighbors_update(m, sim, true, err)) || (rc = gauge_init(m, sim, err)) ||
-        (rc = neighbor_list_build(&m->nl0, 3, p->n_owned, p->x0, 1.1 * c->r0, err)))
+        (rc = neighbor_list_build_pairs(&m->nl0, NULL, 3, p->n_owned, p->x0, 1.1 * c->r0, err)))
         return rc;
     gauge_read(m, sim, p->x0, &m->gauge0, &m->spread0); /* set-up: one rank's view */
     m->initialised = true;

@@ -124,19 +124,23 @@ MACRO_PAIR_INLINE void macro_mie_chunk(const struct macro_pair *w, size_t nb,
     double s[MACRO_CHUNK], sp[MACRO_CHUNK], sq[MACRO_CHUNK];
     const double r0 = w->r0, p = w->p, q = w->q, r_on = w->r_on, r_c = w->r_c;
     const double a = w->D / (q - p);
-    /* One loop with the powers in registers for exponents known here (with a
-     * constant n, macro_ipow unrolls into the same multiplications); other
+    /* One loop with the powers in registers for exponents known here,
+     * written out as macro_ipow's multiplications in its order (its first
+     * r = 1.0 * b is exact and left out): GCC unrolls macro_ipow's loop
+     * only after the vectoriser has run, which left this loop scalar; other
      * integer exponents power array by array, non-integer ones call pow(). */
-#define MACRO_MIE_FIXED(P, Q)                                                                   \
+#define MACRO_MIE_FIXED(SP, SQ)                                                                 \
     for (size_t k = 0; k < nb; k++) {                                                           \
-        const double sk = r0 / r[k], spk = macro_ipow(sk, P), sqk = macro_ipow(sk, Q);          \
+        const double sk = r0 / r[k], s2 = sk * sk, s4 = s2 * s2, s8 = s4 * s4;                  \
+        const double spk = SP, sqk = SQ;                                                        \
+        (void)s8;                                                                               \
         phi[k] = a * (p * sqk - q * spk);                                                       \
         fr[k] = a * p * q * (sqk - spk) / r[k];                                                 \
     }
     if (w->ip == 4 && w->iq == 9) { /* [Saitoh]'s aluminium, every shipped material */
-        MACRO_MIE_FIXED(4, 9)
+        MACRO_MIE_FIXED(s4, sk * s8)
     } else if (w->ip == 6 && w->iq == 12) { /* Lennard-Jones */
-        MACRO_MIE_FIXED(6, 12)
+        MACRO_MIE_FIXED(s2 * s4, s4 * s8)
     } else {
         for (size_t k = 0; k < nb; k++)
             s[k] = r0 / r[k];
@@ -155,9 +159,15 @@ MACRO_PAIR_INLINE void macro_mie_chunk(const struct macro_pair *w, size_t nb,
         }
     }
 #undef MACRO_MIE_FIXED
+    /* the switch, for the few pairs in [r_on, r_c): a branch-free test of
+     * the chunk first (vectorised), the scalar loop only when one is there */
+    int any = 0;
     for (size_t k = 0; k < nb; k++)
-        if (r[k] > r_on && r[k] < r_c)
-            macro_taper(w, r[k], &phi[k], &fr[k]);
+        any |= (r[k] > r_on) & (r[k] < r_c);
+    if (any)
+        for (size_t k = 0; k < nb; k++)
+            if (r[k] > r_on && r[k] < r_c)
+                macro_taper(w, r[k], &phi[k], &fr[k]);
 }
 
 /** Three standard normal numbers for key (seed, step, a, b), from the

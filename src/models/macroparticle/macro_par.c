@@ -308,7 +308,7 @@ int macro_slip_par(const struct model *m, const struct sim *sim, double *slip, d
             else
                 b++;
         }
-        rc = neighbor_list_build(&ref, 3, n, t.x0, 1.1 * r0, err);
+        rc = neighbor_list_build_pairs(&ref, NULL, 3, n, t.x0, 1.1 * r0, err);
     }
     for (int w = 0; w < 2 && !rc; w++) {
         double *dst = w ? normal : slip;

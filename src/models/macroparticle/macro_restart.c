@@ -38,7 +38,7 @@ static int pair_resize(void **a, size_t rows, size_t size, struct spall_error *e
 static int set_idx(void *ctx, size_t rows, struct spall_error *err)
 {
     struct model *m = ctx;
-    m->half_ok = false; /* the list is replaced */
+    macro_half_invalidate(m, NULL); /* the list is replaced */
     if (m->nl->offset[m->nl->n] != rows)
         return spall_error_set(err, SPALL_ERR_INPUT,
                                "macro-particle pair list: %zu pairs, its offsets say %zu", rows,
@@ -48,16 +48,19 @@ static int set_idx(void *ctx, size_t rows, struct spall_error *err)
 
 static int set_dr0(void *ctx, size_t rows, struct spall_error *err)
 {
+    ((struct model *)ctx)->pstate_read = true;
     return pair_resize((void **)&((struct model *)ctx)->dr0, rows, sizeof(double), err);
 }
 
 static int set_kappa(void *ctx, size_t rows, struct spall_error *err)
 {
+    ((struct model *)ctx)->pstate_read = true;
     return pair_resize((void **)&((struct model *)ctx)->kappa, rows, sizeof(double), err);
 }
 
 static int set_engaged(void *ctx, size_t rows, struct spall_error *err)
 {
+    ((struct model *)ctx)->pstate_read = true;
     return pair_resize((void **)&((struct model *)ctx)->engaged, rows, 1, err);
 }
 

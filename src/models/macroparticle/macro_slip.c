@@ -126,8 +126,8 @@ int macro_slip_analyse(size_t n, double *const x[3], double *const x0[3], double
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (slip analysis)");
         goto done;
     }
-    if ((rc = neighbor_list_build(&ref, 3, n, x0, 1.1 * r0, err)) ||
-        (rc = neighbor_list_build(&cur, 3, n, x, 1.5 * r0, err)))
+    if ((rc = neighbor_list_build_pairs(&ref, NULL, 3, n, x0, 1.1 * r0, err)) ||
+        (rc = neighbor_list_build_pairs(&cur, NULL, 3, n, x, 1.5 * r0, err)))
         goto done;
     macro_centro_symmetry(n, x, cur, r0, csp);
     macro_slip_vectors(n, x, x0, ref, thr, NULL, nrm, ns);

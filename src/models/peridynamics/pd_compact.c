@@ -46,7 +46,10 @@ bool pd_compact_predicted(const struct model *m)
     bool ortho = false;
     for (size_t k = 0; k < m->n_mat; k++)
         ortho |= m->mat[k].ortho;
-    return !m->opt.full_bonds && !m->opt.lps && !m->opt.eps && !m->opt.fiber_plane && !ortho;
+    /* lps / eps: their table holds omega beta (pd_lps_init), which their
+     * surface correction scales bond by bond: the arrays then */
+    return !m->opt.full_bonds && !m->opt.fiber_plane && !ortho &&
+           !(m->opt.lps && m->lps.surface);
 }
 
 int pd_kinds_from_table(struct model *m, unsigned char *tab, size_t nk,
@@ -151,5 +154,12 @@ size_t pd_model_bytes(const struct model *m, size_t n)
     b += n * (2 * sizeof(size_t) + sizeof(double)); /* n_init, n_init_f, diss */
     for (int d = 0; d < 3; d++)
         b += m->f_prev[d] ? 2 * n * sizeof(double) : 0;
+    /* formulation lps / eps (pd_lps.h): per particle m, theta, alpha, the
+     * dilatation coefficient and the surface factor; per half-bond omega
+     * beta and eps' plastic extension, force state and reverse copy */
+    const struct pd_lps *L = &m->lps;
+    b += ((L->wvol ? 4 * n : 0) + (L->afac ? n : 0) + (L->hs ? 2 * n : 0)) * sizeof(double);
+    b += ((L->ob ? nh : 0) + (L->ep ? nh : 0) + (L->tb ? nh : 0) + (L->epr ? nh : 0)) *
+         sizeof(double);
     return b;
 }

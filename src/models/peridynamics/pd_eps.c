@@ -64,6 +64,7 @@ int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err)
 
 int pd_eps_forces(struct model *m, struct sim *sim)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
     struct pd_lps *L = &m->lps;
@@ -76,7 +77,7 @@ int pd_eps_forces(struct model *m, struct sim *sim)
     /* distributed: theta_j and j's return-map scale per particle (sent to
      * the ghosts after pass 1), and per half-bond i's copy of e^dp_ji */
     double *hs = L->hs, *epr = L->epr;
-    const bool late = m->opt.break_late; /* next_step: pd_lps_break_late after the forces */
+    const bool late = m->opt.break_late; /* next_step: bonds past s0 dropped in pass 2 */
     /* pass 1, per particle (its own half-bonds only): breaking, dilatation,
      * return map, scalar force state t_ij / omega into tb */
 #pragma omp parallel for schedule(dynamic, 256)
@@ -88,21 +89,22 @@ int pd_eps_forces(struct model *m, struct sim *sim)
             if (st[s] & BOND_BROKEN)
                 continue;
             size_t j = (size_t)bl->partner[s];
+            const size_t row = pd_lps_row(&B, s);
             double l2 = 0.0;
             for (int c = 0; c < dim; c++) {
                 double r = p->x[c][j] - p->x[c][i];
                 l2 += r * r;
             }
-            const double xi = bl->rest[s], e = sqrt(l2) - xi;
-            if (!late && e / xi > m->s0_tab[bl->type[s]]) {
+            const double xi = B.rest[row], e = sqrt(l2) - xi;
+            if (!late && e / xi > m->s0_tab[B.type[row]]) {
                 st[s] |= BOND_BROKEN;
                 /* elastic energy of the half-bond at the last state: t (e - e^dp) / 2 */
                 double t = L->alpha[i] * (e - ep[s]) + L->bcoef[i] * xi * L->theta[i];
-                m->diss[i] += 0.5 * L->ob[s] * t * (e - ep[s]) * p->volume[i] * p->volume[j];
+                m->diss[i] += 0.5 * B.ob[row] * t * (e - ep[s]) * p->volume[i] * p->volume[j];
                 continue;
             }
             tb[s] = e; /* kept for the return map below */
-            sum += L->ob[s] * xi * e * p->volume[j];
+            sum += B.ob[row] * xi * e * p->volume[j];
         }
         const double wv = L->wvol[i];
         const double th = wv > 0.0 ? d * sum / wv : 0.0;
@@ -118,8 +120,8 @@ int pd_eps_forces(struct model *m, struct sim *sim)
         for (size_t s = s0; s < s1; s++) {
             if (st[s] & BOND_BROKEN)
                 continue;
-            const double tau = al * (tb[s] - th * bl->rest[s] / d - ep[s]);
-            nrm2 += L->ob[s] * tau * tau * p->volume[bl->partner[s]];
+            const double tau = al * (tb[s] - th * B.rest[pd_lps_row(&B, s)] / d - ep[s]);
+            nrm2 += B.ob[pd_lps_row(&B, s)] * tau * tau * p->volume[bl->partner[s]];
         }
         /* with the surface correction's a_i on alpha_i (pd_lps_surface.c) the
          * homogeneous-state norm is ||tau||^2 = a_i alpha_i s : s / (2 mu) */
@@ -133,13 +135,13 @@ int pd_eps_forces(struct model *m, struct sim *sim)
         for (size_t s = s0; s < s1; s++) {
             if (st[s] & BOND_BROKEN)
                 continue;
-            const double xi = bl->rest[s], ed = tb[s] - th * xi / d;
+            const double xi = B.rest[pd_lps_row(&B, s)], ed = tb[s] - th * xi / d;
             double tau = al * (ed - ep[s]);
             if (scale < 1.0) {
                 tau *= scale;
                 const double dep = ed - tau / al - ep[s];
                 ep[s] += dep;
-                work += L->ob[s] * tau * dep * p->volume[bl->partner[s]];
+                work += B.ob[pd_lps_row(&B, s)] * tau * dep * p->volume[bl->partner[s]];
             }
             tb[s] = iso * xi + tau;
         }
@@ -170,7 +172,7 @@ int pd_eps_forces(struct model *m, struct sim *sim)
             }
             double tji;
             if (epr) { /* pass 1 of j for this half-bond, as j's owner runs it */
-                const double xi = bl->rest[s], e = sqrt(l2) - xi;
+                const double xi = B.rest[pd_lps_row(&B, s)], e = sqrt(l2) - xi;
                 const double thj = hs[2 * j], scj = hs[2 * j + 1], alj = L->alpha[j];
                 const double ed = e - thj * xi / d;
                 double tau = alj * (ed - epr[s]);
@@ -183,15 +185,28 @@ int pd_eps_forces(struct model *m, struct sim *sim)
             } else {
                 tji = tb[rev[s]];
             }
-            const double g = L->ob[s] * (tb[s] + tji) * (p->volume[i] * p->volume[j]) / sqrt(l2);
+            const size_t row = pd_lps_row(&B, s);
+            const double ob = B.ob[row];
+            const double g = ob * (tb[s] + tji) * (p->volume[i] * p->volume[j]) / sqrt(l2);
             for (int c = 0; c < dim; c++)
                 fi[c] += g * r[c];
+            /* break_order next_step: pd_lps_break_rows' rule on this length,
+             * in row order (the same bits as its own pass) */
+            if (late) {
+                const double xi = B.rest[row], e = sqrt(l2) - xi;
+                if (e / xi > m->s0_tab[B.type[row]]) {
+                    st[s] |= BOND_BROKEN;
+                    const double ee = e - ep[s];
+                    const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
+                    m->diss[i] += 0.5 * ob * t * ee * p->volume[i] * p->volume[j];
+                }
+            }
         }
         for (int c = 0; c < dim; c++)
             p->f[c][i] += fi[c];
     }
-    if (late)
-        pd_lps_break_late(m, sim);
+    if (late && n > no) /* distributed: the ghosts' rows (empty) */
+        pd_lps_break_rows(m, sim, no, n);
     return SPALL_OK;
 }
 
@@ -201,6 +216,7 @@ int pd_eps_forces(struct model *m, struct sim *sim)
  * sqrt(2/3 eps^p : eps^p); 2D: the axial plastic strain in uniaxial stress). */
 double pd_eps_plastic_strain(const struct model *m, const struct sim *sim, size_t i)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     const struct bond_list *bl = m->bl;
     const struct pd_lps *L = &m->lps;
     const double d = (double)sim->dim;
@@ -209,6 +225,6 @@ double pd_eps_plastic_strain(const struct model *m, const struct sim *sim, size_
     double q = 0.0;
     for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
         if (!(bl->state[s] & BOND_BROKEN))
-            q += L->ob[s] * L->ep[s] * L->ep[s] * sim->p->volume[bl->partner[s]];
+            q += B.ob[pd_lps_row(&B, s)] * L->ep[s] * L->ep[s] * sim->p->volume[bl->partner[s]];
     return sqrt(eps_cd(sim->dim) * d * (d + 2.0) * q / (2.0 * L->wvol[i]));
 }

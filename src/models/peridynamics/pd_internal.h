@@ -123,6 +123,30 @@ static inline unsigned pd_type(const struct model *m, size_t s)
 {
     return m->kind ? m->k_type[m->kind[s]] : m->bl->type[s];
 }
+/** The rest lengths, omega beta and types of formulation lps / eps in either
+ *  storage, taken out of the model once per loop (a byte store in a loop
+ *  would make the compiler reload them through m): row r = pd_lps_row(s). */
+struct pd_lps_bonds {
+    const uint16_t *kind;    /**< per half-bond row of the table, or NULL: r = s */
+    const double *rest, *ob; /**< per row */
+    const uint8_t *type;     /**< per row */
+};
+static inline struct pd_lps_bonds pd_lps_bonds(const struct model *m)
+{
+    if (m->kind)
+        return (struct pd_lps_bonds){m->kind, m->k_rest, m->k_coef, m->k_type};
+    return (struct pd_lps_bonds){NULL, m->bl->rest, m->lps.ob, m->bl->type};
+}
+static inline size_t pd_lps_row(const struct pd_lps_bonds *b, size_t s)
+{
+    return b->kind ? b->kind[s] : s;
+}
+/** omega beta of half-bond @p s (formulation lps / eps): in compact storage
+ *  the table's coefficient column holds it (pd_lps_init, pd_lps.c). */
+static inline double pd_ob(const struct model *m, size_t s)
+{
+    return m->kind ? m->k_coef[m->kind[s]] : m->lps.ob[s];
+}
 
 /* pd_compact.c */
 /** Whether the built model could have compact families (false once it has

@@ -32,8 +32,16 @@ static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, con
     /* afac (surface correction) is NULL without it */
     double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
     const int npp = L->afac ? 5 : 4;
-    double **bb[4] = {&L->ob, &L->ep, &L->tb, &L->epr};
-    const int nbb = L->ep ? 4 : 1;
+    /* ob is NULL in compact storage (pd_lps_init: m->kind has the rows) */
+    double **bb[4];
+    int nbb = 0;
+    if (L->ob)
+        bb[nbb++] = &L->ob;
+    if (L->ep) {
+        bb[nbb++] = &L->ep;
+        bb[nbb++] = &L->tb;
+        bb[nbb++] = &L->epr;
+    }
     double *np[5] = {NULL, NULL, NULL, NULL, NULL}, *nb[4] = {NULL, NULL, NULL, NULL};
     int bad = 0;
     for (int k = 0; k < npp; k++)
@@ -222,6 +230,8 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
         }
         double **bb[4] = {&L->ob, &L->ep, &L->tb, &L->epr};
         for (int k = 0; k < (L->ep ? 4 : 1); k++) {
+            if (!*bb[k]) /* ob in compact storage: m->kind travels instead */
+                continue;
             a->bond[a->n_bond] = (void **)bb[k];
             a->bond_size[a->n_bond++] = sizeof(double);
         }

@@ -27,6 +27,7 @@
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
+#include "core/distinct.h"
 #include "core/fields.h"
 #include "core/lattice_gen.h"
 #include "core/parallel/decomp.h"
@@ -36,6 +37,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Partial volume, the linear rule of pd_forces.c ([MadenciOterkus2014] sec. 2.4). */
 static double lps_beta(const struct model *m, double xi)
@@ -45,6 +47,13 @@ static double lps_beta(const struct model *m, double xi)
     if (xi >= m->delta + 0.5 * m->dx)
         return 0.0;
     return (m->delta + 0.5 * m->dx - xi) / m->dx;
+}
+
+/* omega beta of a bond of length xi without the cubic factor */
+static double lps_ob0(const struct model *m, double xi)
+{
+    double om = m->lps.influence == PD_OMEGA_INVERSE ? m->delta / xi : 1.0;
+    return om * lps_beta(m, xi);
 }
 
 void pd_lps_free(struct pd_lps *L)
@@ -89,7 +98,7 @@ static void cubic_harmonics(const struct sim *sim, const double *e, double xi, d
  * M of the fullest family is isotropic (M_1111 = 3 M_1122), the second
  * moment staying isotropic by the same symmetry.  One gamma for the run,
  * from its fullest family, in the frame of the deck's lattice. */
-static int cubic_correction(struct model *m, struct sim *sim, struct spall_error *err)
+static int cubic_gamma(struct model *m, const struct sim *sim, struct spall_error *err)
 {
     struct pd_lps *L = &m->lps;
     const struct particles *p = sim->p;
@@ -106,29 +115,110 @@ static int cubic_correction(struct model *m, struct sim *sim, struct spall_error
     double s0 = 0.0, s1 = 0.0;
     for (size_t s = bl->offset[best]; s < bl->offset[best + 1]; s++) {
         size_t j = (size_t)bl->partner[s];
+        const double xi = bond_rest(bl, s);
         double e[3] = {0, 0, 0}, P, Q;
         for (int c = 0; c < sim->dim; c++)
             e[c] = p->x0[c][j] - p->x0[c][best];
-        cubic_harmonics(sim, e, bl->rest[s], &P, &Q);
-        const double w = L->ob[s] * bl->rest[s] * bl->rest[s] * p->volume[j];
+        cubic_harmonics(sim, e, xi, &P, &Q);
+        const double w = lps_ob0(m, xi) * xi * xi * p->volume[j];
         s0 += w * Q;
         s1 += w * P * Q;
     }
     L->gamma = s1 != 0.0 ? -s0 / s1 : 0.0;
-    for (size_t i = 0; i < p->n; i++)
-        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
-            size_t j = (size_t)bl->partner[s];
-            double e[3] = {0, 0, 0}, P, Q;
-            for (int c = 0; c < sim->dim; c++)
-                e[c] = p->x0[c][j] - p->x0[c][i];
-            cubic_harmonics(sim, e, bl->rest[s], &P, &Q);
-            const double f = 1.0 + L->gamma * P;
-            if (!(f > 0.0))
-                return spall_error_set_key(err, SPALL_ERR_PHYSICS, "model.influence_correction",
-                                           "influence_correction cubic: gamma = %g makes the "
-                                           "influence of some bonds non-positive", L->gamma);
-            L->ob[s] *= f;
+    return SPALL_OK;
+}
+
+/* omega beta of half-bond s of particle i: lps_ob0, with the cubic
+ * correction its factor 1 + gamma P(n) */
+static int lps_ob(const struct model *m, const struct sim *sim, size_t i, size_t s, double *ob,
+                  struct spall_error *err)
+{
+    const struct bond_list *bl = m->bl;
+    const double xi = bond_rest(bl, s);
+    *ob = lps_ob0(m, xi);
+    if (!m->lps.cubic)
+        return SPALL_OK;
+    const size_t j = (size_t)bl->partner[s];
+    double e[3] = {0, 0, 0}, P, Q;
+    for (int c = 0; c < sim->dim; c++)
+        e[c] = sim->p->x0[c][j] - sim->p->x0[c][i];
+    cubic_harmonics(sim, e, xi, &P, &Q);
+    const double f = 1.0 + m->lps.gamma * P;
+    if (!(f > 0.0))
+        return spall_error_set_key(err, SPALL_ERR_PHYSICS, "model.influence_correction",
+                                   "influence_correction cubic: gamma = %g makes the influence "
+                                   "of some bonds non-positive", m->lps.gamma);
+    *ob *= f;
+    return SPALL_OK;
+}
+
+/* Bond type of half-bond s of particle i (isotropic materials: no fiber
+ * bit), as pd_init sets it for the arrays. */
+static uint8_t lps_type(const struct model *m, const struct sim *sim, size_t i, size_t s)
+{
+    const struct particles *p = sim->p;
+    const size_t j = (size_t)m->bl->partner[s];
+    return (uint8_t)(((size_t)p->material[i] * m->n_mat + (size_t)p->material[j]) * 2);
+}
+
+/* Compact set-up (pd_init built the list with bond_list_build_compact and
+ * no types): each half-bond's (length, omega beta, type) indexed at once
+ * in slot order into the kind table, never holding the 8-byte lengths or
+ * omega beta (set-up peak memory: partner, state, rest index, row).  The
+ * keys are the doubles the arrays would hold, so the run is the same bit
+ * for bit.  More than PD_KIND_MAX distinct triples: the arrays (lengths,
+ * types), which the caller then fills as without the table. */
+static int lps_build_kinds(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct bond_list *bl = m->bl;
+    const size_t n = bl->n, nh = bl->offset[n];
+    struct distinct16 *d = NULL;
+    int rc = distinct16_create(&d, PD_KIND_KEY, 65535u, err);
+    uint16_t *kind = rc ? NULL : malloc((nh ? nh : 1) * sizeof *kind);
+    if (!rc && !kind)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
+    bool fits = nh > 0; /* no bonds: the (empty) arrays, no table */
+    for (size_t i = 0; !rc && i < n && fits; i++)
+        for (size_t s = bl->offset[i]; !rc && s < bl->offset[i + 1] && fits; s++) {
+            const double rest = bond_rest(bl, s);
+            double ob;
+            rc = lps_ob(m, sim, i, s, &ob, err);
+            unsigned char key[PD_KIND_KEY];
+            memcpy(key, &rest, sizeof rest);
+            memcpy(key + sizeof rest, &ob, sizeof ob);
+            key[2 * sizeof(double)] = lps_type(m, sim, i, s);
+            const int32_t row = distinct16_add(d, key);
+            fits = row >= 0;
+            kind[s] = (uint16_t)(fits ? row : 0);
         }
+    size_t nk = 0;
+    unsigned char *tab = (!rc && fits) ? distinct16_take_table(d, &nk) : NULL;
+    distinct16_destroy(&d);
+    if (!rc && tab)
+        rc = pd_kinds_from_table(m, tab, nk, err); /* frees tab */
+    if (rc || !tab) {
+        free(kind);
+        if (rc)
+            return rc;
+        /* the arrays, as pd_init builds them without the table */
+        if ((rc = bond_list_expand_rest(bl, err)))
+            return rc;
+        if (!(bl->type = malloc((nh ? nh : 1) * sizeof *bl->type)))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
+        for (size_t i = 0; i < n; i++)
+            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+                bl->type[s] = lps_type(m, sim, i, s);
+        return SPALL_OK;
+    }
+    m->kind = kind;
+    /* the table holds the lengths (k_rest): the list keeps none */
+    free(bl->rest);
+    free(bl->rest_idx);
+    free(bl->rest_tab);
+    bl->rest = NULL;
+    bl->rest_idx = NULL;
+    bl->rest_tab = NULL;
+    bl->n_rest = 0;
     return SPALL_OK;
 }
 
@@ -139,22 +229,24 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
     if (!(L->wvol = calloc(n ? n : 1, sizeof(double))) ||
         !(L->theta = calloc(n ? n : 1, sizeof(double))) ||
         !(L->alpha = calloc(n ? n : 1, sizeof(double))) ||
-        !(L->bcoef = calloc(n ? n : 1, sizeof(double))) ||
-        !(L->ob = calloc(nh ? nh : 1, sizeof(double))))
+        !(L->bcoef = calloc(n ? n : 1, sizeof(double))))
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS state");
-    for (size_t s = 0; s < nh; s++) {
-        double xi = m->bl->rest[s];
-        double om = L->influence == PD_OMEGA_INVERSE ? m->delta / xi : 1.0;
-        L->ob[s] = om * lps_beta(m, xi);
-    }
-    if (L->cubic) {
-        int rc = cubic_correction(m, sim, err);
-        if (rc)
-            return rc;
+    int rc = L->cubic ? cubic_gamma(m, sim, err) : SPALL_OK;
+    /* compact families (pd_compact_predicted): the table, built directly */
+    if (!rc && !m->bl->type)
+        rc = lps_build_kinds(m, sim, err);
+    if (rc)
+        return rc;
+    if (!m->kind) {
+        if (!(L->ob = calloc(nh ? nh : 1, sizeof(double))))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS state");
+        for (size_t i = 0; i < n; i++)
+            for (size_t s = m->bl->offset[i]; s < m->bl->offset[i + 1]; s++)
+                if ((rc = lps_ob(m, sim, i, s, &L->ob[s], err)))
+                    return rc;
     }
     if (L->surface) { /* after the cubic factors: it corrects the family as weighted */
-        int rc = pd_lps_surface_init(m, sim, err);
-        if (rc)
+        if ((rc = pd_lps_surface_init(m, sim, err)))
             return rc;
     }
     pd_lps_weights(m, sim);
@@ -163,6 +255,7 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
 
 void pd_lps_weights(struct model *m, const struct sim *sim)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     struct pd_lps *L = &m->lps;
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
@@ -170,8 +263,10 @@ void pd_lps_weights(struct model *m, const struct sim *sim)
     for (size_t i = 0; i < p->n; i++) {
         double w = 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
-            if (!(bl->state[s] & BOND_BROKEN))
-                w += L->ob[s] * bl->rest[s] * bl->rest[s] * p->volume[bl->partner[s]];
+            if (!(bl->state[s] & BOND_BROKEN)) {
+                const size_t row = pd_lps_row(&B, s);
+                w += B.ob[row] * B.rest[row] * B.rest[row] * p->volume[bl->partner[s]];
+            }
         const struct pd_material *mt = &m->mat[p->material[i]];
         L->wvol[i] = w;
         L->alpha[i] = w > 0.0 ? d * (d + 2.0) * mt->mu / w * (L->afac ? L->afac[i] : 1.0) : 0.0;
@@ -182,6 +277,7 @@ void pd_lps_weights(struct model *m, const struct sim *sim)
 /* Dilatation of particle i from the current positions (intact bonds). */
 static double lps_theta(const struct model *m, const struct sim *sim, size_t i)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
     const int dim = sim->dim;
@@ -192,19 +288,21 @@ static double lps_theta(const struct model *m, const struct sim *sim, size_t i)
         if (bl->state[s] & BOND_BROKEN)
             continue;
         size_t j = (size_t)bl->partner[s];
+        const size_t row = pd_lps_row(&B, s);
         double l2 = 0.0;
         for (int c = 0; c < dim; c++) {
             double r = p->x[c][j] - p->x[c][i];
             l2 += r * r;
         }
-        double xi = bl->rest[s];
-        sum += m->lps.ob[s] * xi * (sqrt(l2) - xi) * p->volume[j];
+        double xi = B.rest[row];
+        sum += B.ob[row] * xi * (sqrt(l2) - xi) * p->volume[j];
     }
     return (double)dim * sum / m->lps.wvol[i];
 }
 
 int pd_lps_forces(struct model *m, struct sim *sim)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
     struct pd_lps *L = &m->lps;
@@ -224,21 +322,22 @@ int pd_lps_forces(struct model *m, struct sim *sim)
             if (st[s] & BOND_BROKEN)
                 continue;
             size_t j = (size_t)bl->partner[s];
+            const size_t row = pd_lps_row(&B, s);
             double l2 = 0.0;
             for (int c = 0; c < dim; c++) {
                 double r = p->x[c][j] - p->x[c][i];
                 l2 += r * r;
             }
-            const double xi = bl->rest[s], e = sqrt(l2) - xi;
-            if (!late && e / xi > m->s0_tab[bl->type[s]]) {
+            const double xi = B.rest[row], e = sqrt(l2) - xi;
+            if (!late && e / xi > m->s0_tab[B.type[row]]) {
                 st[s] |= BOND_BROKEN;
                 /* energy of the half-bond at the last dilatation: t e / 2 (the
                  * state energy is homogeneous of degree 2 in e) */
                 double t = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
-                m->diss[i] += 0.5 * L->ob[s] * t * e * p->volume[i] * p->volume[j];
+                m->diss[i] += 0.5 * B.ob[row] * t * e * p->volume[i] * p->volume[j];
                 continue;
             }
-            sum += L->ob[s] * xi * e * p->volume[j];
+            sum += B.ob[row] * xi * e * p->volume[j];
         }
         L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
     }
@@ -259,18 +358,26 @@ int pd_lps_forces(struct model *m, struct sim *sim)
                 r[c] = p->x[c][j] - p->x[c][i];
                 l2 += r[c] * r[c];
             }
-            const double l = sqrt(l2), xi = bl->rest[s], e = l - xi;
+            const size_t row = pd_lps_row(&B, s);
+            const double l = sqrt(l2), xi = B.rest[row], e = l - xi, ob = B.ob[row];
             const double tij = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
             const double tji = L->alpha[j] * e + L->bcoef[j] * xi * L->theta[j];
-            const double g = L->ob[s] * (tij + tji) * (p->volume[i] * p->volume[j]) / l;
+            const double g = ob * (tij + tji) * (p->volume[i] * p->volume[j]) / l;
             for (int c = 0; c < dim; c++)
                 fi[c] += g * r[c];
+            /* break_order next_step: pd_lps_break_rows' rule on this length, in
+             * row order (the same bits as a pass of its own, without
+             * computing the lengths again); t_ij is the half-bond's state */
+            if (late && e / xi > m->s0_tab[B.type[row]]) {
+                st[s] |= BOND_BROKEN;
+                m->diss[i] += 0.5 * ob * tij * e * p->volume[i] * p->volume[j];
+            }
         }
         for (int c = 0; c < dim; c++)
             p->f[c][i] += fi[c];
     }
-    if (late)
-        pd_lps_break_late(m, sim);
+    if (late && n > no) /* distributed: the ghosts' rows (empty, see pass 1) */
+        pd_lps_break_rows(m, sim, no, n);
     return SPALL_OK;
 }
 
@@ -279,37 +386,45 @@ int pd_lps_forces(struct model *m, struct sim *sim)
  * after it, each half-bond by its own particle from the same length (so the
  * two ends agree).  Its stored elastic energy goes to the dissipated energy
  * as in the immediate order, from this step's state (e^dp: eps). */
-void pd_lps_break_late(struct model *m, const struct sim *sim)
+void pd_lps_break_rows(struct model *m, const struct sim *sim, size_t i0, size_t i1)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     const struct particles *p = sim->p;
     struct bond_list *bl = m->bl;
     const struct pd_lps *L = &m->lps;
     const int dim = p->dim;
 #pragma omp parallel for schedule(dynamic, 256)
-    for (size_t i = 0; i < p->n; i++)
+    for (size_t i = i0; i < i1; i++)
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
             if (bl->state[s] & BOND_BROKEN)
                 continue;
             size_t j = (size_t)bl->partner[s];
+            const size_t row = pd_lps_row(&B, s);
             double l2 = 0.0;
             for (int c = 0; c < dim; c++) {
                 double r = p->x[c][j] - p->x[c][i];
                 l2 += r * r;
             }
-            const double xi = bl->rest[s], e = sqrt(l2) - xi;
-            if (!(e / xi > m->s0_tab[bl->type[s]]))
+            const double xi = B.rest[row], e = sqrt(l2) - xi;
+            if (!(e / xi > m->s0_tab[B.type[row]]))
                 continue;
             bl->state[s] |= BOND_BROKEN;
             const double ee = e - (L->ep ? L->ep[s] : 0.0);
             const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
-            m->diss[i] += 0.5 * L->ob[s] * t * ee * p->volume[i] * p->volume[j];
+            m->diss[i] += 0.5 * B.ob[row] * t * ee * p->volume[i] * p->volume[j];
         }
+}
+
+void pd_lps_break_late(struct model *m, const struct sim *sim)
+{
+    pd_lps_break_rows(m, sim, 0, sim->p->n);
 }
 
 /* Row sum of the linearised stiffness of particle i (each |n . u| <= |u|):
  * direct terms (alpha_i + alpha_j), i's own dilatation and its neighbours'. */
 double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
     const struct pd_lps *L = &m->lps;
@@ -321,8 +436,10 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
     for (size_t i = 0; i < n; i++) {
         S[i] = 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
-            if (!(bl->state[s] & BOND_BROKEN))
-                S[i] += L->ob[s] * bl->rest[s] * p->volume[bl->partner[s]];
+            if (!(bl->state[s] & BOND_BROKEN)) {
+                const size_t row = pd_lps_row(&B, s);
+                S[i] += B.ob[row] * B.rest[row] * p->volume[bl->partner[s]];
+            }
     }
     double dt = INFINITY;
     for (size_t i = 0; i < p->n_owned; i++) {
@@ -331,9 +448,10 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
             if (bl->state[s] & BOND_BROKEN)
                 continue;
             size_t j = (size_t)bl->partner[s];
-            R += p->volume[j] * L->ob[s] * (L->alpha[i] + L->alpha[j]);
+            const size_t row = pd_lps_row(&B, s);
+            R += p->volume[j] * B.ob[row] * (L->alpha[i] + L->alpha[j]);
             if (L->wvol[j] > 0.0)
-                R += p->volume[j] * L->ob[s] * bl->rest[s] * fabs(L->bcoef[j]) * d * S[j] /
+                R += p->volume[j] * B.ob[row] * B.rest[row] * fabs(L->bcoef[j]) * d * S[j] /
                      L->wvol[j];
         }
         R *= 2.0 * p->volume[i];
@@ -347,6 +465,7 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
 void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i,
                           double *energy, double *stress)
 {
+    const struct pd_lps_bonds B = pd_lps_bonds(m);
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
     const struct pd_lps *L = &m->lps;
@@ -367,10 +486,11 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
         l = sqrt(l);
         /* formulation eps: only the elastic part e^d - e^dp stores energy (pd_eps.c) */
         const double ep = L->ep ? L->ep[s] : 0.0;
-        const double xi = bl->rest[s], e = l - xi, ed = e - th * xi / (double)dim - ep;
-        w += 0.5 * L->alpha[i] * L->ob[s] * ed * ed * p->volume[j];
+        const size_t row = pd_lps_row(&B, s);
+        const double xi = B.rest[row], e = l - xi, ed = e - th * xi / (double)dim - ep;
+        w += 0.5 * L->alpha[i] * B.ob[row] * ed * ed * p->volume[j];
         /* collapsed stress sum_j t_ij M (x) xi V_j ([Silling2007], homogeneous case) */
-        const double g = L->ob[s] * (L->alpha[i] * (e - ep) + L->bcoef[i] * xi * th) *
+        const double g = B.ob[row] * (L->alpha[i] * (e - ep) + L->bcoef[i] * xi * th) *
                          p->volume[j] / l;
         pd_add_bond_virial(sg, dim, g, r, r0);
     }

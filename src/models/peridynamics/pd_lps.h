@@ -54,6 +54,9 @@ int pd_lps_forces(struct model *m, struct sim *sim);
 int pd_lps_surface_init(struct model *m, struct sim *sim, struct spall_error *err);
 /** break_order next_step: drop the bonds past s0 after this step's forces. */
 void pd_lps_break_late(struct model *m, const struct sim *sim);
+/** The same for the rows of particles [i0, i1) (the force passes break the
+ *  owned rows themselves, on the lengths they compute). */
+void pd_lps_break_rows(struct model *m, const struct sim *sim, size_t i0, size_t i1);
 /** Gershgorin bound of the linearised LPS stiffness: dt < 2 sqrt(m_i / R_i). */
 double pd_lps_stable_dt(const struct model *m, const struct sim *sim);
 /** Energy [J] and stress [Pa] of particle @p i from the current positions. */

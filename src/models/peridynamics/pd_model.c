@@ -26,7 +26,7 @@
  *                               next_step: it acts in the step it breaks
  *                               (PDLAMMPS order)
  *     bond_storage: compact | full   compact (default): lengths, coefficients
- *                               and types of the bond-based kernel in a table
+ *                               (lps/eps: omega beta) and types in a table
  *                               of the distinct ones, a 16-bit row per
  *                               half-bond (pd_compact.c); full: one of each
  *                               per half-bond.  Same results bit for bit.
@@ -447,9 +447,11 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
         for (int d = 0; d < sim->dim; d++)
             if (!(m->f_prev[d] = calloc(2 * (n ? n : 1), sizeof(double))))
                 return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for ADR");
-    if (direct && (rc = pd_compact_build(m, sim, err)))
+    /* lps / eps: pd_lps_init builds their table (omega beta in it) */
+    const bool lps_direct = direct && m->opt.lps;
+    if (direct && !lps_direct && (rc = pd_compact_build(m, sim, err)))
         return rc;
-    if (!m->kind) {
+    if (!m->kind && !lps_direct) {
         /* bond types: (ma * nm + mb) * 2 + fiber */
         for (size_t i = 0; i < n; i++)
             for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
@@ -467,7 +469,9 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
                     return rc;
                 }
             }
-        if ((rc = pd_build_coefficients(m, sim, err)))
+        /* lps / eps never read the pair coefficients (their force state is
+         * omega beta and the moduli, pd_lps.c) */
+        if (!m->opt.lps && (rc = pd_build_coefficients(m, sim, err)))
             return rc;
     }
     if ((rc = pd_mixed_init(m, sim, err)) ||
@@ -659,7 +663,8 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
             n ? (double)nb / (double)n : 0.0, m->kind ? "compact" : "full",
             m->kind ? "" : pd_compact_eligible(m) ? ": over 65535 distinct bonds" : "");
         if (m->kind)
-            PUT("  compact families: %zu distinct (length, coefficient, type)\n", m->n_kind);
+            PUT("  compact families: %zu distinct (length, %s, type)\n", m->n_kind,
+                m->opt.lps ? "omega beta" : "coefficient");
     }
     for (size_t k = 0; k < m->n_mat; k++) {
         const struct pd_material *mt = &m->mat[k];

@@ -93,3 +93,16 @@ continued() { # deck checkpoint n [h5diff options]: DECK continued from CHECKPOI
     grep -q "^restart_from: .*$(basename "$2")\$" "$out/run.log" ||
         { echo "FAIL $what: run.log: no restart"; fail=1; }
 }
+refused_restart() { # what dir deck expected-substring: a restart from dir on 2 ranks is
+    # refused in one line, exit 2, dir untouched (byte for byte, times included)
+    local before after rc
+    before=$(cd "$2" && ls -l --time-style=+%s.%N && md5sum -- *)
+    mpi 2 run "$3" --restart "$2" 2> refused.err
+    rc=$?
+    after=$(cd "$2" && ls -l --time-style=+%s.%N && md5sum -- *)
+    [ $rc -eq 2 ] || { echo "FAIL $1: exit $rc, expected 2"; fail=1; }
+    if [ "$(wc -l < refused.err)" -ne 1 ] || ! grep -q -- "$4" refused.err; then
+        echo "FAIL $1: message"; cat refused.err; fail=1
+    fi
+    [ "$before" = "$after" ] || { echo "FAIL $1: $2 changed"; fail=1; }
+}
