@@ -168,6 +168,17 @@ int bond_list_build_compact(struct bond_list **out, const struct particles *p, d
     return build_radius(out, p, radius, true, err);
 }
 
+void bond_list_drop_rest(struct bond_list *bl)
+{
+    free(bl->rest);
+    free(bl->rest_idx);
+    free(bl->rest_tab);
+    bl->rest = NULL;
+    bl->rest_idx = NULL;
+    bl->rest_tab = NULL;
+    bl->n_rest = 0;
+}
+
 int bond_list_expand_rest(struct bond_list *bl, struct spall_error *err)
 {
     if (!bl || !bl->rest_idx)

@@ -96,6 +96,9 @@ int bond_list_build_compact(struct bond_list **out, const struct particles *p, d
 /** Back to one double per half-bond (rest) from a compact list; nothing to
  *  do on a list that has its doubles. */
 int bond_list_expand_rest(struct bond_list *bl, struct spall_error *err);
+/** Free the rest lengths of every form (doubles, compact indices and their
+ *  table): for a model that keeps them itself (peridynamics' tables). */
+void bond_list_drop_rest(struct bond_list *bl);
 /** Build bonds only for pairs whose reference distance lies in one of the
  *  shells [r_lo[s], r_hi[s]); type = s.  Used for lattice neighbour layers. */
 int bond_list_build_shells(struct bond_list **out, const struct particles *p, int n_shells,

@@ -56,7 +56,7 @@ static void sort_row(int32_t *v, size_t m)
     }
 }
 
-static int list_alloc(struct neighbor_list **out, size_t n, struct spall_error *err)
+int neighbor_list_alloc(struct neighbor_list **out, size_t n, struct spall_error *err)
 {
     struct neighbor_list *nl = calloc(1, sizeof *nl);
     if (nl)
@@ -353,7 +353,7 @@ int neighbor_list_build(struct neighbor_list **out, int dim, size_t n, double *c
     if (rc)
         return rc;
     struct neighbor_list *nl = NULL;
-    rc = list_alloc(&nl, n, err);
+    rc = neighbor_list_alloc(&nl, n, err);
     if (rc)
         return rc;
     if (n == 0) {
@@ -428,7 +428,7 @@ int neighbor_list_build_brute(struct neighbor_list **out, int dim, size_t n, dou
     if (rc)
         return rc;
     struct neighbor_list *nl = NULL;
-    rc = list_alloc(&nl, n, err);
+    rc = neighbor_list_alloc(&nl, n, err);
     if (rc)
         return rc;
     double r2max = radius * radius;

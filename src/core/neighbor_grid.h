@@ -50,4 +50,8 @@ static inline double pair_r2(int dim, const double *xi, double *const xs[3], siz
     return r2;
 }
 
+struct neighbor_list;
+/** An empty list of @p n rows (offsets zeroed) for the builders. */
+int neighbor_list_alloc(struct neighbor_list **out, size_t n, struct spall_error *err);
+
 #endif

@@ -274,15 +274,9 @@ int neighbor_list_build_pairs(struct neighbor_list **out, struct neighbor_pairs 
     int rc = neighbor_check_input(dim, n, x, radius, err);
     if (rc)
         return rc;
-    struct neighbor_list *nl = calloc(1, sizeof *nl);
-    if (nl)
-        nl->offset = calloc(n + 1, sizeof *nl->offset);
-    if (!nl || !nl->offset) {
-        free(nl);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the neighbour list of %zu",
-                               n);
-    }
-    nl->n = n;
+    struct neighbor_list *nl = NULL;
+    if ((rc = neighbor_list_alloc(&nl, n, err)))
+        return rc;
     struct cell_grid g;
     memset(&g, 0, sizeof g);
     if (n > 0 && (rc = grid_build(&g, dim, n, x, radius, err))) {

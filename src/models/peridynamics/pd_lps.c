@@ -212,13 +212,7 @@ static int lps_build_kinds(struct model *m, struct sim *sim, struct spall_error 
     }
     m->kind = kind;
     /* the table holds the lengths (k_rest): the list keeps none */
-    free(bl->rest);
-    free(bl->rest_idx);
-    free(bl->rest_tab);
-    bl->rest = NULL;
-    bl->rest_idx = NULL;
-    bl->rest_tab = NULL;
-    bl->n_rest = 0;
+    bond_list_drop_rest(bl);
     return SPALL_OK;
 }
 
