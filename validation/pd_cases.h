@@ -43,4 +43,18 @@ int pd_case_kalthoff_lps(struct vreport *r, struct spall_error *err);
 /** "pd-eps-bar": EPS bar pulled past yield and unloaded (pd_eps_bar.c). */
 int pd_case_eps_bar(struct vreport *r, struct spall_error *err);
 
+/** The Kalthoff-Winkler plate of pd-kalthoff and pd-kalthoff-lps, after
+ *  the model, material and lattice lines: 200 x 100 mm, two notches from
+ *  the impact edge at +-25.5 mm to 50.5 mm, the 50 mm between them struck
+ *  at 32 m/s, 90 us ([Silling2003] set-up). */
+#define PD_KALTHOFF_PLATE_YAML                                                                    \
+    "geometry:\n  plate: {box: {min: [-1e-5, -0.05001], max: [0.20001, 0.05001]}}\n"             \
+    "body: {geometry: plate, material: steel}\n"                                                  \
+    "precracks:\n  - {from: [-0.001, 0.0255], to: [0.0505, 0.0255]}\n"                          \
+    "  - {from: [-0.001, -0.0255], to: [0.0505, -0.0255]}\n"                                     \
+    "groups:\n  impact: {box: {min: [-1, -0.025], max: [0.0025, 0.025]}}\n"                     \
+    "boundary_conditions:\n"                                                                      \
+    "  - {group: impact, type: velocity, components: [x], value: 32.0}\n"                         \
+    "run: {end_time: 90.0e-6}\n"
+
 #endif

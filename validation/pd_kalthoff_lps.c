@@ -58,14 +58,7 @@ static int kl_one(double dx, double o, double hf, struct kl_run *k, struct spall
              "materials:\n  steel: {density: 8000, youngs_modulus: 190.0e9, poisson_ratio: 0.3,\n"
              "         fracture_energy: 2.2e4}\n"
              "lattice: {type: square, spacing: %.17g, thickness: 1.0e-3, origin: [%.17g, %.17g]}\n"
-             "geometry:\n  plate: {box: {min: [-1e-5, -0.05001], max: [0.20001, 0.05001]}}\n"
-             "body: {geometry: plate, material: steel}\n"
-             "precracks:\n  - {from: [-0.001, 0.0255], to: [0.0505, 0.0255]}\n"
-             "  - {from: [-0.001, -0.0255], to: [0.0505, -0.0255]}\n"
-             "groups:\n  impact: {box: {min: [-1, -0.025], max: [0.0025, 0.025]}}\n"
-             "boundary_conditions:\n"
-             "  - {group: impact, type: velocity, components: [x], value: 32.0}\n"
-             "run: {end_time: 90.0e-6}\n",
+             PD_KALTHOFF_PLATE_YAML,
              hf, dx, o, o);
     const double t0 = vclock_wall();
     struct sim *s = NULL;

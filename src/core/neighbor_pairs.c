@@ -188,13 +188,15 @@ static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t 
     int32_t *up = malloc((np ? np : 1) * sizeof *up);
     int32_t *idx = malloc((np ? 2 * np : 1) * sizeof *idx);
     uint32_t *sp = slot_out ? malloc((np ? 2 * np : 1) * sizeof *sp) : NULL;
-    if (!lo || !first || !low || !up || !idx || (slot_out && !sp)) {
+    size_t *ucur = malloc((n ? n : 1) * sizeof *ucur); /* row cursors */
+    if (!lo || !first || !low || !up || !idx || (slot_out && !sp) || !ucur) {
         free(lo);
         free(first);
         free(low);
         free(up);
         free(idx);
         free(sp);
+        free(ucur);
         return false;
     }
     /* counts: lo[j + 1] partners below j, first[i + 1] above i */
@@ -217,16 +219,6 @@ static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t 
     /* upper rows, ascending: j ascending; lo[j] now ends row j, which
      * starts where row j - 1 ends; the cursors of the upper rows are the
      * first[] shifted by one, kept in lo[] 's place once read */
-    size_t *ucur = malloc((n ? n : 1) * sizeof *ucur);
-    if (!ucur) {
-        free(lo);
-        free(first);
-        free(low);
-        free(up);
-        free(idx);
-        free(sp);
-        return false;
-    }
     memcpy(ucur, first, n * sizeof *ucur);
     for (size_t j = 0, b0 = 0; j < n; j++) {
         const size_t b1 = lo[j];
