@@ -9,10 +9,10 @@
 # steps on 3 ranks (particles migrate with their reference rows); its
 # checkpoints (written by 2 ranks: the serial ones under h5diff) restarted on
 # 3 ranks and on one without mpirun, with the same bytes.  What TLSPH cannot
-# do distributed yet (reference updates; TLSPH bodies behind an interface,
-# tests/cli/decks/mpi_tl_ifc.yaml, which runs on one rank) is refused in one
-# line, exit 2, and so is axisymmetric TLSPH, which one rank refuses too (the
-# updated form distributes: tests/cli/mpi_sph_ul.sh).
+# do distributed yet (reference updates) is refused in one line, exit 2,
+# and so is axisymmetric TLSPH, which one rank refuses too (the updated form
+# distributes: tests/cli/mpi_sph_ul.sh; TLSPH bodies behind an interface:
+# tests/cli/mpi_sph_tl_ifc.sh).
 # Usage: mpi_sph.sh SPALL SRC MPIEXEC
 set -u
 spall="$1"
@@ -59,14 +59,8 @@ ranks pc 3
 sed 's/^  hourglass: 1.0$/  hourglass: 1.0\n  reference_update: {distortion: 1.2}/' tl.yaml > reref.yaml
 grep -q reference_update reref.yaml || { echo "FAIL: cannot make reref.yaml"; exit 1; }
 refused "reference update" reref.yaml "reference updates"
-# TLSPH bodies behind the penalty interface (type: tlsph, interface: bodies):
-# they run on one rank (the blocks touch), are refused on several
+# (TLSPH bodies behind the penalty interface distribute: mpi_sph_tl_ifc.sh)
 cp "$2/tests/cli/decks/mpi_tl_ifc.yaml" ifc.yaml
-serial ifc
-np=$(awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "interface_pairs") c = k}
-              NR > 1 && $c > 0 {n++} END {print n + 0}' ifc_serial/history.csv)
-[ "$np" -gt 5 ] || { echo "FAIL: ifc: interface pairs in $np history rows"; fail=1; }
-refused "TLSPH interface" ifc.yaml "TLSPH bodies behind an interface"
 # axisymmetric TLSPH does not exist on one rank either (sph_options.c): the
 # deck is refused on several ranks by the same one line
 sed 's/^model: {type: tlsph, plane: strain,/model: {type: tlsph, plane: axisymmetric,/;

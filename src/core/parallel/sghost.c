@@ -35,7 +35,40 @@ struct par_sghost {
     size_t n_send, n_recv;
     double *sbuf, *rbuf;
     long builds;
+    /* sends of the next build whatever the distance (par_sghost_set_forced),
+     * sorted by (rank, owned index) */
+    struct forced_send *forced;
+    size_t n_forced;
 };
+
+struct forced_send {
+    int rank;
+    size_t i;
+};
+
+static int cmp_forced(const void *a, const void *b)
+{
+    const struct forced_send *x = a, *y = b;
+    if (x->rank != y->rank)
+        return (x->rank > y->rank) - (x->rank < y->rank);
+    return (x->i > y->i) - (x->i < y->i);
+}
+
+int par_sghost_set_forced(struct par_sghost *g, size_t n, const size_t *idx, const int *rank,
+                          struct spall_error *err)
+{
+    free(g->forced);
+    g->forced = malloc((n ? n : 1) * sizeof *g->forced);
+    g->n_forced = 0;
+    if (!g->forced)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (spatial ghosts, %zu sends)",
+                               n);
+    for (size_t k = 0; k < n; k++)
+        g->forced[k] = (struct forced_send){rank[k], idx[k]};
+    qsort(g->forced, n, sizeof *g->forced, cmp_forced);
+    g->n_forced = n;
+    return SPALL_OK;
+}
 
 static void release_build(struct par_sghost *g)
 {
@@ -57,7 +90,11 @@ static void release_build(struct par_sghost *g)
     const double range = g->range, skin = g->skin;
     const unsigned mirror = g->mirror;
     const long builds = g->builds;
+    struct forced_send *forced = g->forced;
+    const size_t n_forced = g->n_forced;
     memset(g, 0, sizeof *g);
+    g->forced = forced;
+    g->n_forced = n_forced;
     g->dim = dim;
     g->range = range;
     g->skin = skin;
@@ -102,6 +139,7 @@ void par_sghost_destroy(struct par_sghost **gp)
     if (!gp || !*gp)
         return;
     release_build(*gp);
+    free((*gp)->forced);
     free(*gp);
     *gp = NULL;
 }
@@ -239,26 +277,38 @@ static int build_lists(struct par_sghost *g, size_t n, const double *const x[3],
     for (size_t i = 0; i < n; i++)
         order[i] = (struct gid_slot){gid[i], i};
     qsort(order, n, sizeof *order, cmp_gid_slot);
+    /* the forced sends as a flag per (rank, owned index) row of one rank at
+     * a time: mark[i] = r + 1 while rank r's list is made */
+    int *mark = calloc(n ? n : 1, sizeof *mark);
+    if (!mark) {
+        free(order);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (spatial ghosts)");
+    }
     size_t total = 0;
     for (int pass = 0; pass < 2; pass++) {
         if (pass == 1) {
             g->send_idx = malloc((total ? total : 1) * sizeof *g->send_idx);
             if (!g->send_idx) {
                 free(order);
+                free(mark);
                 return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (spatial ghosts)");
             }
         }
-        size_t at = 0;
+        size_t at = 0, f = 0;
         for (int r = 0; r < size; r++) {
             const double *b = boxes + (size_t)r * bw;
-            if (r == rank || b[6] == 0.0)
+            for (; f < g->n_forced && g->forced[f].rank <= r; f++) /* sorted by rank */
+                if (g->forced[f].rank == r && g->forced[f].i < n)
+                    mark[g->forced[f].i] = r + 1;
+            if (r == rank)
                 continue;
             for (size_t k = 0; k < n; k++) {
                 size_t i = order[k].k;
                 double p[3] = {0.0, 0.0, 0.0};
                 for (int d = 0; d < dim; d++)
                     p[d] = x[d][i];
-                if (!near_box(g->mirror, p, b, b + 3, dim, cut2))
+                if (mark[i] != r + 1 &&
+                    (b[6] == 0.0 || !near_box(g->mirror, p, b, b + 3, dim, cut2)))
                     continue;
                 if (pass == 0) {
                     g->scount[r]++;
@@ -270,6 +320,7 @@ static int build_lists(struct par_sghost *g, size_t n, const double *const x[3],
         }
     }
     free(order);
+    free(mark);
     MPI_Alltoall(g->scount, 1, MPI_INT, g->rcount, 1, MPI_INT, MPI_COMM_WORLD);
     int as = 0, ar = 0;
     for (int r = 0; r < size; r++) {
@@ -318,6 +369,9 @@ int par_sghost_build(struct par_sghost *g, size_t n, const double *const x[3],
     MPI_Allgather(box, 7, MPI_DOUBLE, boxes, 7, MPI_DOUBLE, MPI_COMM_WORLD);
     rc = build_lists(g, n, x, gid, boxes, err);
     free(boxes);
+    free(g->forced); /* for this build only */
+    g->forced = NULL;
+    g->n_forced = 0;
     if ((rc = par_agree(rc, err)))
         return rc;
     /* the ids and positions of what each rank receives */

@@ -54,6 +54,16 @@ int par_sghost_set_range(struct par_sghost *g, double range, double skin,
  *  collective (every rank must set the same planes). */
 void par_sghost_set_mirror(struct par_sghost *g, unsigned planes);
 
+/** Particles to send at the next build whatever their distance: owned
+ *  index idx[k] to rank rank[k] (k < @p n; repeats and this rank's own
+ *  number are ignored).  For a model that also needs fixed partners on
+ *  other ranks as ghosts (TLSPH bodies behind an interface: the reference
+ *  partners, whose current distance the box test does not bound): the
+ *  ghost set becomes the union, each ghost once, in ascending gid.  Used
+ *  by the next par_sghost_build only.  Not collective. */
+int par_sghost_set_forced(struct par_sghost *g, size_t n, const size_t *idx, const int *rank,
+                          struct spall_error *err);
+
 /** Build the ghost set from this rank's @p n owned particles (positions
  *  x[d][i], ids gid[i]); remembers the positions for par_sghost_check and
  *  the send lists for par_sghost_update.  Collective. */

@@ -6,6 +6,7 @@
  */
 #include "core/parallel/spatial.h"
 
+#include "core/bond_list.h"
 #include "core/model.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
@@ -95,6 +96,57 @@ static int halo_from_lists(struct par_decomp *d, const struct par_sghost_lists *
     return 0;
 }
 
+/* The sends that hold the model's fixed partners (par_spatial_model.bonds)
+ * as ghosts: owned particle i goes to the owner of each partner j held
+ * here as a ghost (symmetric bonds: i is a partner of j there).  The
+ * owners of the current ghosts come from the halo's receive lists (of the
+ * partition, a migration or the last ghost build: counts in 2 dim doubles
+ * per particle). */
+static int forced_sends(struct par_decomp *d, const struct sim *s, const struct bond_list *bl,
+                        struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    const size_t no = p->n_owned, n = p->n, ng = n - no;
+    const int size = par_size(), w = 2 * p->dim;
+    int *own = malloc((ng ? ng : 1) * sizeof *own);
+    size_t cnt = 0;
+    for (size_t i = 0; i < no && i < bl->n; i++)
+        cnt += bl->offset[i + 1] - bl->offset[i];
+    size_t *idx = malloc((cnt ? cnt : 1) * sizeof *idx);
+    int *rk = malloc((cnt ? cnt : 1) * sizeof *rk);
+    int rc = own && idx && rk ? SPALL_OK
+                              : spall_error_set(err, SPALL_ERR_NOMEM,
+                                                "out of memory (spatial ghosts: partners)");
+    for (size_t q = 0; q < ng && !rc; q++)
+        own[q] = -1;
+    for (int r = 0; r < size && !rc; r++)
+        for (int k = d->recv_displs[r] / w; k < (d->recv_displs[r] + d->recv_counts[r]) / w; k++)
+            if (d->recv_idx[k] >= no && d->recv_idx[k] < n)
+                own[d->recv_idx[k] - no] = r;
+    size_t nf = 0;
+    for (size_t i = 0; i < no && i < bl->n && !rc; i++)
+        for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
+            const size_t j = (size_t)bl->partner[k];
+            if (j < no)
+                continue;
+            if (j >= n || own[j - no] < 0) {
+                rc = spall_error_set(err, SPALL_ERR_INTERNAL,
+                                     "spatial ghosts: particle %lld's partner %zu is no ghost "
+                                     "of this rank",
+                                     (long long)p->gid[i], j);
+                break;
+            }
+            idx[nf] = i;
+            rk[nf++] = own[j - no];
+        }
+    if (!rc)
+        rc = par_sghost_set_forced(d->sg, nf, idx, rk, err);
+    free(own);
+    free(idx);
+    free(rk);
+    return rc;
+}
+
 /* Byte counts per rank of @p cnt particles of @p rec bytes; -1 past INT_MAX. */
 static int byte_counts(const int *cnt, size_t rec, int size, int *bc, int *bd)
 {
@@ -133,6 +185,8 @@ static int relayout(struct sim *s, bool moved, struct spall_error *err)
     if ((rc = par_agree(rc, err)))
         return rc;
     par_sghost_set_mirror(d->sg, sm.mirror_planes);
+    if (sm.bonds && (rc = par_agree(forced_sends(d, s, sm.bonds, err), err)))
+        return rc;
     if (moved)
         for (int c = 0; c < dim; c++)
             memcpy(sm.xb[c], p->x[c], no * sizeof(double));

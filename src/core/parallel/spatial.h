@@ -28,11 +28,12 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+struct bond_list;
 struct model;
 struct sim;
 struct spall_error;
 
-#define PAR_SPATIAL_MAX_ARRAYS 8
+#define PAR_SPATIAL_MAX_ARRAYS 12
 
 /** What a model with spatial ghosts tells the engine (model_ops.spatial_ghosts). */
 struct par_spatial_model {
@@ -62,6 +63,17 @@ struct par_spatial_model {
      *  does.  Called on every rank (it may use collectives); errors are
      *  agreed by the caller. */
     int (*place)(struct model *m, struct sim *s, struct spall_error *err);
+    /** Optional: fixed partners the model also reads beside its spatial
+     *  ones (TLSPH bodies behind an interface: the reference lists, whose
+     *  partners may lie farther than range + skin in the current
+     *  configuration): rows of the owned particles, local indices.  Every
+     *  ghost build sends each owned particle to the ranks that own one of
+     *  its partners (bonds are symmetric, so each rank then holds every
+     *  partner of its rows), besides the particles within range + skin:
+     *  one ghost set, each ghost once, in ascending gid.  The model
+     *  renumbers the rows itself in spatial_rebuilt (they held the old
+     *  local indices). */
+    const struct bond_list *bonds;
 };
 
 /** Right after the partition (decomp.c): the first ghost set, built at the

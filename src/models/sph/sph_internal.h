@@ -144,7 +144,9 @@ struct model {
     size_t n_bodies;
     uint8_t *form;         /**< per particle SPH_FORM_*: a run whose bodies are split
                                 by formulation (NULL: one formulation, no split) */
-    size_t n_total;        /**< particles on TLSPH when form is set */
+    size_t n_total;        /**< particles on TLSPH when form is set (the whole body's) */
+    size_t ul_pairs_all;   /**< distributed: the current list's pairs of the whole body at
+                                its last build (sph_ulpar.c) */
     struct bond_list *ulmig; /**< distributed updated form: the empty bond list a
                                   migration is lent (sph_ulpar.c; NULL: none) */
     size_t ul_half;        /**< its half-bonds (none) */
@@ -352,6 +354,15 @@ struct par_model_arrays;
 /** model_ops.migrate_arrays and model_ops.migrated (rebalancing). */
 int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err);
+/** TLSPH bodies behind an interface (split_forms) on spatial ghosts: what
+ *  the ghosts carry besides the updated form's arrays (the packed blocks)
+ *  and the reference rows as the fixed partners every ghost build keeps
+ *  (par_spatial_model.bonds); nothing without m->tl. */
+void sph_tl_spatial_ghosts(struct model *m, struct par_spatial_model *sp);
+/** After a ghost build (sph_spatial_rebuilt): the reference rows renumbered
+ *  to the new local indices by their partners' global ids, the per-particle
+ *  scratch sized for the n local particles, m->form of every local particle. */
+int sph_tl_relayout(struct model *m, struct sim *sim, struct spall_error *err);
 
 /* sph_tlsph_reref.c */
 /** End of a step: re-reference when model.reference_update says so. */

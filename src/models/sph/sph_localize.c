@@ -20,29 +20,31 @@
 #include "core/fields.h"
 #include "core/neighbor.h"
 #include "core/parallel/migrate.h"
+#include "core/parallel/spatial.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
 
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* What a distributed SPH run cannot do yet, or NULL.  Two TLSPH cases
- * need no line of their own: sph_options.c sets split_forms for every
- * TLSPH run with an interface (type: tlsph included: the interface pairs
- * come from the updated form's spatial list, the bodies' own pairs from
- * their reference lists, so such a run would need the spatial ghosts and
- * the bond ghosts at once), and refuses plane: axisymmetric with the total
- * formulation on one rank already (sph_axisym.c has no TLSPH loops). */
+/* What a distributed SPH run cannot do yet, or NULL.  TLSPH bodies behind
+ * an interface (split_forms, with type: tlsph or model.body_formulation)
+ * run on the spatial ghosts of the updated form's current list, which
+ * every ghost build extends by the reference partners (sph_spatial_ghosts,
+ * sph_tl_relayout).  Axisymmetric TLSPH needs no line: one rank refuses
+ * plane: axisymmetric with the total formulation already (sph_options.c;
+ * sph_axisym.c has no TLSPH loops). */
 static const char *not_distributed(const struct model *m)
 {
     const struct sph_options *o = &m->opt;
-    if (o->tl.split_forms || m->form)
-        return "TLSPH bodies behind an interface (model.interface, with type: tlsph or "
-               "model.body_formulation) are not distributed yet;";
-    if (!o->tl.total_lagrangian)
-        return sph_ul_not_distributed(m); /* sph_ulpar.c */
-    if (o->tl.reref_every || o->tl.reref_distortion > 0.0)
+    if (!o->tl.total_lagrangian || o->tl.split_forms) {
+        const char *ul = sph_ul_not_distributed(m); /* sph_ulpar.c */
+        if (ul)
+            return ul;
+    }
+    if (o->tl.total_lagrangian && (o->tl.reref_every || o->tl.reref_distortion > 0.0))
         return "reference updates (model.reference_update) are not distributed yet;";
     return NULL;
 }
@@ -182,8 +184,21 @@ static int rebuild_list(struct model *m, size_t n, const int64_t *serial, struct
         return spall_error_set(err, bl->n != n ? SPALL_ERR_INTERNAL : SPALL_ERR_NOMEM,
                                "SPH: cannot rebuild the TLSPH reference list of this rank");
     }
+    int64_t *rgid = malloc((nh ? nh : 1) * sizeof *rgid);
+    if (!rgid) {
+        free(off);
+        free(idx);
+        free(up);
+        free(rown);
+        free(halo);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH partner ids)");
+    }
     memcpy(off, bl->offset, (n + 1) * sizeof *off);
     memcpy(idx, bl->partner, nh * sizeof *idx);
+    for (size_t k = 0; k < nh; k++) /* the rows' partners by id (sph_tl_relayout) */
+        rgid[k] = serial[idx[k]];
+    free(t->rgid);
+    t->rgid = rgid;
     free(t->nl->offset);
     free(t->nl->idx);
     t->nl->offset = off;
@@ -249,11 +264,13 @@ int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_
     if (rc || !keep) /* only asked whether it can (and for the halo list) */
         return rc;
     /* the updated form's list is rebuilt around the spatial ghosts right
-     * after (sph_ulpar.c, par_spatial_init) */
-    if (!m->tl)
+     * after (sph_ulpar.c, par_spatial_init); so is a split run's (both) */
+    if (!m->tl || m->form)
         sph_ul_localize(m);
-    else if ((rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
+    if (m->tl && (rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
         return rc;
+    if (m->form && gather(&m->form, 1, keep, n_keep))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising SPH forms");
     /* the model's own per-particle arrays (the registry's are the engine's) */
     double **a[SPH_N_ARRAYS];
     const size_t na = sph_state_arrays(m, a);
@@ -306,5 +323,99 @@ int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err)
 {
     if (!m->tl)
         return sph_ul_migrated(m, err);
-    return rebuild_list(m, sim->p->n, sim->p->gid, err);
+    int rc = m->form ? sph_ul_migrated(m, err) : SPALL_OK; /* the current list: rebuilt */
+    if (!rc)
+        rc = rebuild_list(m, sim->p->n, sim->p->gid, err);
+    /* m->form follows the particles (the ghosts are rebuilt next) */
+    return rc || !m->form ? rc : sph_tl_relayout(m, sim, err);
+}
+
+void sph_tl_spatial_ghosts(struct model *m, struct par_spatial_model *sp)
+{
+    if (!m->tl)
+        return;
+    /* stage 1 of an owned particle reads its partners' reference block
+     * (mass, volume, X0) and the force stage B0^-1 of the pair's rows:
+     * the packed blocks travel whole (the halo of each force call
+     * refreshes their current part) */
+    struct sph_tl *t = m->tl->ref;
+    int k = sp->n_particle;
+    sp->particle[k] = (void **)&t->pk;
+    sp->particle_size[k++] = TL_STRIDE * sizeof(double);
+    sp->particle[k] = (void **)&t->self;
+    sp->particle_size[k++] = TL_SELF * sizeof(double);
+    sp->n_particle = k;
+    sp->bonds = m->tl->halo;
+}
+
+/* Local index of global id @p g among ids ascending in [lo, hi), or -1. */
+static long find_gid(const int64_t *gid, size_t lo, size_t hi, int64_t g)
+{
+    const size_t end = hi;
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if (gid[mid] < g)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < end && gid[lo] == g ? (long)lo : -1;
+}
+
+/* Grow @p off (rows [0, from] set) to n rows; the new rows empty. */
+static size_t *rows_to(size_t *off, size_t from, size_t n)
+{
+    size_t *o = realloc(off, (n + 1) * sizeof *o);
+    for (size_t i = from + 1; o && i <= n; i++)
+        o[i] = o[from];
+    return o;
+}
+
+int sph_tl_relayout(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    const struct particles *p = sim->p;
+    const size_t n = p->n, no = p->n_owned;
+    if (m->form) { /* every local particle's, ghosts included (the interface split) */
+        uint8_t *f = realloc(m->form, n ? n : 1);
+        if (!f)
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH forms)");
+        m->form = f;
+        for (size_t i = 0; i < n; i++)
+            f[i] = (size_t)p->body[i] < m->n_bodies ? m->body_total[p->body[i]] : 0;
+    }
+    if (!m->tl)
+        return SPALL_OK;
+    struct sph_tl *t = m->tl->ref;
+    struct bond_list *bl = m->tl->halo;
+    const size_t nh = t->nl->offset[no];
+    /* ghost rows are empty: rows [0, no) hold every pair */
+    size_t *o1 = rows_to(t->nl->offset, no, n);
+    if (o1)
+        t->nl->offset = o1;
+    size_t *o2 = rows_to(bl->offset, no, n);
+    if (o2)
+        bl->offset = o2;
+    size_t *up = realloc(t->up, (n ? n : 1) * sizeof *up);
+    if (up)
+        t->up = up;
+    double *halo = realloc(t->halo, (n ? n : 1) * TL_HALO * sizeof *halo);
+    if (halo)
+        t->halo = halo;
+    if (!o1 || !o2 || !up || !halo)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH rows)");
+    t->nl->n = n;
+    bl->n = n;
+    for (size_t k = 0; k < nh; k++) {
+        long j = find_gid(p->gid, 0, no, t->rgid[k]);
+        if (j < 0)
+            j = find_gid(p->gid, no, n, t->rgid[k]);
+        if (j < 0)
+            return spall_error_set(err, SPALL_ERR_INTERNAL,
+                                   "TLSPH: reference partner %lld is not held by this rank",
+                                   (long long)t->rgid[k]);
+        t->nl->idx[k] = (int32_t)j;
+        bl->partner[k] = (int32_t)j;
+    }
+    row_split(t, p->gid);
+    return SPALL_OK;
 }

@@ -32,6 +32,7 @@
 #include "core/neighbor.h"
 #include "core/exact_sum.h"
 #include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
 #include "core/parallel/psum.h"
 #include "core/particles.h"
 #include "core/sim.h"
@@ -529,7 +530,7 @@ static int updated_form_rates(struct model *m, struct sim *s, double lfdt,
 {
     /* bodies split by formulation with every particle on TLSPH: only the
      * current list, which feeds the interface between the bodies */
-    if (m->form && m->n_total == s->p->n_owned)
+    if (m->form && m->n_total == (s->par ? par_n_global(s) : s->p->n_owned))
         return sph_neighbors_update(m, s, false, err);
     /* the wall's k is per ring mass and its force axial: as in 2D */
     if (m->opt.kern.plane == SPH_PLANE_AXISYMMETRIC)
@@ -557,7 +558,8 @@ static int compute_rates(struct model *m, struct sim *s, double lfdt, struct spa
     for (int k = 0; k < m->n_forms && !rc; k++)
         rc = m->forms[k]->rates(m, s, lfdt, err);
     if (m->form) /* split by formulation (sph_forms.c): both lists' pairs */
-        m->n_pairs = m->nl->offset[s->p->n_owned] + sph_tlsph_pairs(m);
+        m->n_pairs = (s->par ? m->ul_pairs_all : m->nl->offset[s->p->n_owned]) +
+                     sph_tlsph_pairs(m);
     if (!rc && m->opt.bound.wall)
         wall_forces(m, s);
     return rc;

@@ -91,6 +91,8 @@ struct sph_tl {
     int32_t *rown;        /**< per listed pair: its row's particle (a pair's reverse row) */
     struct tl_pair *prev; /**< per listed pair (i, j): the constants of (j, i) in j's row */
     double *halo;         /**< TL_HALO doubles per particle: stage-1 values for the ghosts */
+    int64_t *rgid;        /**< per listed pair: the partner's global id (the rows are
+                               renumbered after each spatial ghost build, sph_localize.c) */
 };
 
 /* What a ghost needs of its owner's stage 1: the packed block up to TL_H

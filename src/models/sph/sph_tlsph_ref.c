@@ -32,6 +32,7 @@ static void sph_tl_destroy(struct sph_tl **tl)
     free(t->rown);
     free(t->prev);
     free(t->halo);
+    free(t->rgid);
     free(t);
     *tl = NULL;
 }
@@ -196,6 +197,8 @@ const struct sph_formulation sph_form_total = {
 size_t sph_tlsph_pairs(const struct model *m)
 {
     const struct sph_tl *t = m->tl ? m->tl->ref : NULL;
+    if (t && m->sim && m->sim->par) /* the whole body's (sph_localize.c) */
+        return m->tl->pairs_all;
     return t && t->nl ? t->nl->offset[t->nl->n] : 0;
 }
 

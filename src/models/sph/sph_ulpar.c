@@ -185,7 +185,7 @@ static int clamp_place(struct model *m, struct sim *s, struct spall_error *err)
 
 int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp)
 {
-    if (m->opt.tl.total_lagrangian)
+    if (m->opt.tl.total_lagrangian && !m->opt.tl.split_forms)
         return 1; /* the reference list's bond ghosts (sph_localize.c) */
     /* range + skin covers the list radius, with a margin for the rounding
      * of the box test: an extra ghost is never listed by an owned row
@@ -208,6 +208,8 @@ int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp)
         sp->particle_size[k++] = sizeof(double);
     }
     sp->n_particle = k;
+    /* TLSPH bodies behind an interface: their reference partners too */
+    sph_tl_spatial_ghosts(m, sp);
     return 0;
 }
 
@@ -274,6 +276,10 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
     int rc = resize_state(m, n) ? spall_error_set(err, SPALL_ERR_NOMEM,
                                                   "out of memory (SPH state, %zu particles)", n)
                                 : SPALL_OK;
+    /* TLSPH bodies behind an interface: the reference rows by id, and
+     * every local particle's formulation (the interface split reads it) */
+    if (!rc && m->form)
+        rc = sph_tl_relayout(m, sim, err);
     neighbor_list_destroy(&m->nl);
     /* a build (moved) has the radius of the whole body's h_max now; after a
      * partition or a migration the list is the last build's again, with
@@ -303,6 +309,7 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
     if (!rc && sph_ul_view(m))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
     m->n_pairs = (size_t)par_sum_u64(rc ? 0 : (uint64_t)m->nl->offset[no]); /* the serial count */
+    m->ul_pairs_all = m->n_pairs;
     if (moved)
         m->n_builds++;
     m->t_neighbor += omp_get_wtime() - t0;

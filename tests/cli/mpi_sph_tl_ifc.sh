@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Rank-count independence of TLSPH bodies behind the penalty interface
+# (issue 22 item 1; docs/parallel.md, "TLSPH bodies behind an interface"):
+# a rank holds the spatial ghosts of the current list (the interface pairs)
+# and the reference partners of its TLSPH rows in one ghost set.  Two TLSPH
+# blocks pressed together (tests/cli/decks/mpi_tl_ifc.yaml, type: tlsph,
+# interface: bodies) without mpirun, on 2, 3 and 4 ranks and rebalanced
+# every 20 steps on 3: history.csv, fields.xdmf byte for byte, every frame
+# under h5diff.
+# Usage: mpi_sph_tl_ifc.sh SPALL SRC MPIEXEC
+set -u
+spall="$1"
+mpiexec="$3"
+# shellcheck source=lib/rank_compare.bash
+source "$2/tests/cli/lib/rank_compare.bash"
+cp "$2/tests/cli/decks/mpi_tl_ifc.yaml" ifc.yaml
+serial ifc
+np=$(awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "interface_pairs") c = k}
+              NR > 1 && $c > 0 {n++} END {print n + 0}' ifc_serial/history.csv)
+[ "$np" -gt 5 ] || { echo "FAIL: ifc: interface pairs in $np history rows"; fail=1; }
+for n in 2 3 4; do
+    ranks ifc "$n"
+done
+rebalanced ifc 3
+[ $fail -eq 0 ] && echo "mpi_sph_tl_ifc: OK"
+exit $fail
