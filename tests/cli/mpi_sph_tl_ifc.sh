@@ -6,7 +6,11 @@
 # blocks pressed together (tests/cli/decks/mpi_tl_ifc.yaml, type: tlsph,
 # interface: bodies) without mpirun, on 2, 3 and 4 ranks and rebalanced
 # every 20 steps on 3: history.csv, fields.xdmf byte for byte, every frame
-# under h5diff.
+# under h5diff; a TLSPH strip pulled apart on an updated-form block
+# (tests/cli/decks/mpi_tl_bf.yaml, model.body_formulation: some reference
+# partners lie beyond range + skin, ghosts for them alone) on 2 and 3 ranks
+# and rebalanced on 3, its checkpoints written by 2 ranks (the serial ones
+# under h5diff) restarted on 1 (without mpirun) and on 3 ranks.
 # Usage: mpi_sph_tl_ifc.sh SPALL SRC MPIEXEC
 set -u
 spall="$1"
@@ -22,5 +26,17 @@ for n in 2 3 4; do
     ranks ifc "$n"
 done
 rebalanced ifc 3
+sed 's/^output: {\(.*\)}$/output: {\1, checkpoint: {every_steps: 100, keep: 5}}/' \
+    "$2/tests/cli/decks/mpi_tl_bf.yaml" > bf.yaml
+grep -q "checkpoint: {every_steps: 100" bf.yaml || { echo "FAIL: cannot add checkpoints"; exit 1; }
+serial bf
+np=$(awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "interface_pairs") c = k}
+              NR > 1 && $c > 0 {n++} END {print n + 0}' bf_serial/history.csv)
+[ "$np" -gt 20 ] || { echo "FAIL: bf: interface pairs in $np history rows"; fail=1; }
+written_on_2 bf
+ranks bf 3
+rebalanced bf 3
+continued bf bf2/checkpoint_0000000300.h5 1
+continued bf bf2/checkpoint_0000000300.h5 3
 [ $fail -eq 0 ] && echo "mpi_sph_tl_ifc: OK"
 exit $fail

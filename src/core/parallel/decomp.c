@@ -605,8 +605,10 @@ void par_describe(const struct sim *s, char *buf, size_t len)
     PUT("mpi_ranks: %d\nranks_x_threads: %d x %d\n", size, size, omp_get_max_threads());
     PUT("decomposition: Zoltan RCB on the reference positions, weight 1 + bonds per particle; "
         "ghosts = %s (set-up %.3g s)\n",
-        d->sg ? "the particles of other ranks within range + skin (spatial ghosts)"
-              : "bond partners on other ranks",
+        d->sg && d->sg_bonds ? "the particles of other ranks within range + skin (spatial "
+                               "ghosts) and the model's fixed partners on other ranks"
+        : d->sg              ? "the particles of other ranks within range + skin (spatial ghosts)"
+                             : "bond partners on other ranks",
         d->setup_seconds);
     PUT("decomposition_per_rank: |\n");
     for (int r = 0; r < size; r++)

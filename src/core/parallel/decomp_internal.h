@@ -34,6 +34,8 @@ struct par_decomp {
     /* spatial ghosts (spatial.c) of a model with spatial_ghosts */
     struct par_sghost *sg;
     long sg_rebuilds;      /**< rebuilds in the step (the one after the partition not counted) */
+    int sg_bonds;          /**< the spatial ghosts also hold the model's fixed partners
+                                (par_spatial_model.bonds) */
 };
 
 struct sim;

@@ -185,6 +185,7 @@ static int relayout(struct sim *s, bool moved, struct spall_error *err)
     if ((rc = par_agree(rc, err)))
         return rc;
     par_sghost_set_mirror(d->sg, sm.mirror_planes);
+    d->sg_bonds = sm.bonds != NULL;
     if (sm.bonds && (rc = par_agree(forced_sends(d, s, sm.bonds, err), err)))
         return rc;
     if (moved)
