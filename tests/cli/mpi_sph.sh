@@ -8,9 +8,11 @@
 # every frame under h5diff; the bar with a Zoltan repartition every 20
 # steps on 3 ranks (particles migrate with their reference rows); its
 # checkpoints (written by 2 ranks: the serial ones under h5diff) restarted on
-# 3 ranks and on one without mpirun, with the same bytes.  What TLSPH cannot
-# do distributed yet (reference updates) is refused in one line, exit 2,
-# and so is axisymmetric TLSPH, which one rank refuses too (the updated form
+# 3 ranks and on one without mpirun, with the same bytes; the bar with a
+# re-reference every 20 steps (h grown where the neighbourhood went flat) on
+# 2 and 3 ranks.  What TLSPH cannot do distributed yet (reference updates of
+# TLSPH bodies behind an interface) is refused in one line, exit 2, and so
+# is axisymmetric TLSPH, which one rank refuses too (the updated form
 # distributes: tests/cli/mpi_sph_ul.sh; TLSPH bodies behind an interface:
 # tests/cli/mpi_sph_tl_ifc.sh).
 # Usage: mpi_sph.sh SPALL SRC MPIEXEC
@@ -56,11 +58,23 @@ ep=$(col tl_serial/history.csv max_plastic_strain)
 awk -v e="$ep" 'BEGIN {exit !(e > 0.1)}' || { echo "FAIL: max plastic strain $ep <= 0.1"; fail=1; }
 serial pc
 ranks pc 3
-sed 's/^  hourglass: 1.0$/  hourglass: 1.0\n  reference_update: {distortion: 1.2}/' tl.yaml > reref.yaml
+# re-references every 20 steps, h grown where the neighbourhood went flat
+# (isotropy 0.9: 160 particles by step 100): each regathers the ghosts
+# around the current positions (sph_tlsph_reref.c)
+sed 's/^  hourglass: 1.0$/  hourglass: 1.0\n  reference_update: {every: 20, isotropy: 0.9}/' \
+    "$2/tests/cli/decks/mpi_tl.yaml" > reref.yaml
 grep -q reference_update reref.yaml || { echo "FAIL: cannot make reref.yaml"; exit 1; }
-refused "reference update" reref.yaml "reference updates"
+serial reref
+nr=$(col reref_serial/history.csv reference_updates)
+[ "${nr:-0}" -ge 5 ] || { echo "FAIL: reref: ${nr:-0} reference updates"; fail=1; }
+ranks reref 2
+ranks reref 3
 # (TLSPH bodies behind the penalty interface distribute: mpi_sph_tl_ifc.sh)
 cp "$2/tests/cli/decks/mpi_tl_ifc.yaml" ifc.yaml
+# their reference updates are not (the ghosts are the current list's)
+sed 's/, interface: bodies}$/, interface: bodies, reference_update: {every: 5}}/' ifc.yaml > ifcrr.yaml
+grep -q "reference_update: {every: 5}}" ifcrr.yaml || { echo "FAIL: cannot make ifcrr.yaml"; exit 1; }
+refused "TLSPH interface, reference update" ifcrr.yaml "TLSPH bodies behind an interface"
 # axisymmetric TLSPH does not exist on one rank either (sph_options.c): the
 # deck is refused on several ranks by the same one line
 sed 's/^model: {type: tlsph, plane: strain,/model: {type: tlsph, plane: axisymmetric,/;

@@ -162,15 +162,82 @@ static int byte_counts(const int *cnt, size_t rec, int size, int *bc, int *bd)
     return at > (size_t)INT_MAX ? -1 : 0;
 }
 
-/* Rebuild the ghosts around the owned build positions (moved: the owned
- * particles' current positions become the build positions first) and
- * re-lay out the local arrays: owned [0, n_owned) unchanged, then the
- * ghosts in ascending gid with their owners' records. */
-static int relayout(struct sim *s, bool moved, struct spall_error *err)
+/* Re-lay out the local arrays around the ghost set of @p sg's last build:
+ * owned [0, n_owned) unchanged, then the ghosts in ascending gid with
+ * their owners' records (the arrays of @p sl, @p rec bytes per particle);
+ * the halo lists follow. */
+static int exchange_records(struct sim *s, struct par_sghost *sg, const struct par_slots *sl,
+                            size_t rec, struct spall_error *err)
 {
     struct par_decomp *d = s->par;
     struct particles *p = s->p;
     const int dim = p->dim, size = par_size();
+    const size_t no = p->n_owned;
+    struct par_sghost_lists L;
+    par_sghost_lists(sg, &L);
+    const size_t ng = par_sghost_count(sg), nn = no + ng;
+    int *bc = malloc(4 * (size_t)size * sizeof *bc);
+    char *sbuf = malloc((L.n_send ? L.n_send : 1) * rec);
+    char *rbuf = malloc((L.n_recv ? L.n_recv : 1) * rec);
+    int rc = !bc || !sbuf || !rbuf ? SPALL_ERR_NOMEM : SPALL_OK;
+    if (!rc && (byte_counts(L.scount, rec, size, bc, bc + size) ||
+                byte_counts(L.rcount, rec, size, bc + 2 * size, bc + 3 * size)))
+        rc = SPALL_ERR_NOMEM;
+    if (!rc) {
+        char *b = sbuf;
+        for (size_t k = 0; k < L.n_send; k++)
+            for (size_t q = 0; q < sl->n; q++) {
+                size_t e = sl->esize[q];
+                memcpy(b, (const char *)*sl->ptr[q] + L.send_idx[k] * e, e);
+                b += e;
+            }
+    }
+    /* the new arrays: the owned rows stay where they are */
+    for (size_t q = 0; q < sl->n && !rc; q++) {
+        void *a = realloc(*sl->ptr[q], (nn ? nn : 1) * sl->esize[q]);
+        if (a)
+            *sl->ptr[q] = a;
+        else
+            rc = SPALL_ERR_NOMEM;
+    }
+    if (!rc && halo_from_lists(d, &L, no, dim))
+        rc = SPALL_ERR_NOMEM;
+    if (rc)
+        spall_error_set(err, rc, "out of memory (spatial ghosts: %zu ghosts)", ng);
+    if ((rc = par_agree(rc, err))) {
+        free(bc);
+        free(sbuf);
+        free(rbuf);
+        return rc;
+    }
+    MPI_Alltoallv(sbuf, bc, bc + size, MPI_BYTE, rbuf, bc + 2 * size, bc + 3 * size, MPI_BYTE,
+                  MPI_COMM_WORLD);
+    const char *b = rbuf;
+    for (size_t k = 0; k < L.n_recv; k++) {
+        const size_t i = no + L.recv_idx[k];
+        for (size_t q = 0; q < sl->n; q++) {
+            size_t e = sl->esize[q];
+            memcpy((char *)*sl->ptr[q] + i * e, b, e);
+            b += e;
+        }
+    }
+    free(bc);
+    free(sbuf);
+    free(rbuf);
+    p->n = nn;
+    p->cap = nn;
+    d->n_ghost = ng;
+    return SPALL_OK;
+}
+
+/* Rebuild the ghosts around the owned build positions (moved: the owned
+ * particles' current positions become the build positions first), re-lay
+ * out the local arrays and let the model rebuild its list. */
+static int relayout(struct sim *s, bool moved, struct spall_error *err)
+{
+    struct par_decomp *d = s->par;
+    struct particles *p = s->p;
+    const int dim = p->dim;
     const size_t no = p->n_owned;
     struct par_spatial_model sm;
     struct par_slots sl;
@@ -196,63 +263,40 @@ static int relayout(struct sim *s, bool moved, struct spall_error *err)
         xb[c] = sm.xb[c];
     if ((rc = par_sghost_build(d->sg, no, xb, p->gid, err)))
         return rc;
-    struct par_sghost_lists L;
-    par_sghost_lists(d->sg, &L);
-    const size_t ng = par_sghost_count(d->sg), nn = no + ng;
-    int *bc = malloc(4 * (size_t)size * sizeof *bc);
-    char *sbuf = malloc((L.n_send ? L.n_send : 1) * rec);
-    char *rbuf = malloc((L.n_recv ? L.n_recv : 1) * rec);
-    rc = !bc || !sbuf || !rbuf ? SPALL_ERR_NOMEM : SPALL_OK;
-    if (!rc && (byte_counts(L.scount, rec, size, bc, bc + size) ||
-                byte_counts(L.rcount, rec, size, bc + 2 * size, bc + 3 * size)))
-        rc = SPALL_ERR_NOMEM;
-    if (!rc) {
-        char *b = sbuf;
-        for (size_t k = 0; k < L.n_send; k++)
-            for (size_t q = 0; q < sl.n; q++) {
-                size_t e = sl.esize[q];
-                memcpy(b, (const char *)*sl.ptr[q] + L.send_idx[k] * e, e);
-                b += e;
-            }
-    }
-    /* the new arrays: the owned rows stay where they are */
-    for (size_t q = 0; q < sl.n && !rc; q++) {
-        void *a = realloc(*sl.ptr[q], (nn ? nn : 1) * sl.esize[q]);
-        if (a)
-            *sl.ptr[q] = a;
-        else
-            rc = SPALL_ERR_NOMEM;
-    }
-    if (!rc && halo_from_lists(d, &L, no, dim))
-        rc = SPALL_ERR_NOMEM;
-    if (rc)
-        spall_error_set(err, rc, "out of memory (spatial ghosts: %zu ghosts)", ng);
-    if ((rc = par_agree(rc, err))) {
-        free(bc);
-        free(sbuf);
-        free(rbuf);
+    if ((rc = exchange_records(s, d->sg, &sl, rec, err)))
         return rc;
-    }
-    MPI_Alltoallv(sbuf, bc, bc + size, MPI_BYTE, rbuf, bc + 2 * size, bc + 3 * size, MPI_BYTE,
-                  MPI_COMM_WORLD);
-    const char *b = rbuf;
-    for (size_t k = 0; k < L.n_recv; k++) {
-        const size_t i = no + L.recv_idx[k];
-        for (size_t q = 0; q < sl.n; q++) {
-            size_t e = sl.esize[q];
-            memcpy((char *)*sl.ptr[q] + i * e, b, e);
-            b += e;
-        }
-    }
-    free(bc);
-    free(sbuf);
-    free(rbuf);
-    p->n = nn;
-    p->cap = nn;
-    d->n_ghost = ng;
     if (moved)
         d->sg_rebuilds++;
     return par_agree(s->ops->spatial_rebuilt(s->model, s, moved, err), err);
+}
+
+int par_spatial_regather(struct sim *s, double range, const struct par_spatial_model *sm,
+                         struct spall_error *err)
+{
+    struct particles *p = s->p;
+    struct par_slots sl;
+    int rc = par_particle_slots(s, &sl) ? SPALL_ERR_INTERNAL : SPALL_OK;
+    for (int k = 0; k < sm->n_particle && !rc; k++)
+        rc = par_slot_add(&sl, sm->particle[k], sm->particle_size[k]) ? SPALL_ERR_INTERNAL : rc;
+    if (rc)
+        spall_error_set(err, rc, "spatial ghosts: too many arrays");
+    size_t rec = 0;
+    for (size_t k = 0; k < sl.n; k++)
+        rec += sl.esize[k];
+    /* a ghost set of its own (the step keeps the model's bond halo) */
+    struct par_sghost *g = NULL;
+    if (!rc)
+        rc = par_sghost_create(&g, p->dim, range, 1e-6 * range, err);
+    if ((rc = par_agree(rc, err)))
+        return rc;
+    const double *x[3] = {NULL, NULL, NULL};
+    for (int c = 0; c < p->dim; c++)
+        x[c] = p->x[c];
+    rc = par_sghost_build(g, p->n_owned, x, p->gid, err);
+    if (!rc)
+        rc = exchange_records(s, g, &sl, rec, err);
+    par_sghost_destroy(&g);
+    return rc;
 }
 
 int par_spatial_init(struct sim *s, struct spall_error *err)
@@ -315,6 +359,16 @@ int par_spatial_init(struct sim *s, struct spall_error *err)
 int par_ghosts_step(struct sim *s, struct spall_error *err)
 {
     (void)s;
+    (void)err;
+    return SPALL_OK;
+}
+
+int par_spatial_regather(struct sim *s, double range, const struct par_spatial_model *sm,
+                         struct spall_error *err)
+{
+    (void)s;
+    (void)range;
+    (void)sm;
     (void)err;
     return SPALL_OK;
 }

@@ -87,6 +87,18 @@ int par_spatial_init(struct sim *s, struct spall_error *err);
  *  (par_halo_x).  For bond models the halo alone. */
 int par_ghosts_step(struct sim *s, struct spall_error *err);
 
+/** A bond model about to replace its bonds by a neighbour search (TLSPH's
+ *  re-reference, which lists the particles near each one's current
+ *  position): the ghosts become the particles of other ranks within
+ *  @p range of the box of the owned particles' current positions, each
+ *  with its owner's record (the engine's and the registry's arrays and
+ *  sm->particle; the other fields of @p sm are not read), and the halo
+ *  lists follow them.  No spatial ghosts are kept: the model's new bonds
+ *  must list only particles held now, and the next migration takes the
+ *  ghosts back to its bond partners.  Collective. */
+int par_spatial_regather(struct sim *s, double range, const struct par_spatial_model *sm,
+                         struct spall_error *err);
+
 /** Spatial ghost rebuilds in the step so far (0 without spatial ghosts). */
 long par_spatial_rebuilds(const struct sim *s);
 

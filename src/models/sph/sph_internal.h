@@ -323,6 +323,16 @@ struct par_spatial_model;
 /** model_ops.spatial_ghosts / spatial_rebuilt (> 0: a TLSPH run, no spatial ghosts). */
 int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp);
 int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spall_error *err);
+/** Every per-particle array of the model (sph_state_arrays) sized for @p n
+ *  local particles, the rows kept; -1 when out of memory. */
+int sph_resize_state(struct model *m, size_t n);
+/** Each row of @p nl (a cell list over the owned particles, then the
+ *  ghosts, each ascending in gid) in ascending partner gid, the serial
+ *  order; partners from @p n_held on (symmetry-plane images) stay last;
+ *  -1 when out of memory. */
+struct neighbor_list;
+int sph_rows_by_gid(struct neighbor_list *nl, size_t n_owned, size_t n_held,
+                    const int64_t *gid);
 /** What only the updated form cannot do distributed yet, or NULL (the
  *  refusals of both forms: sph_localize.c). */
 const char *sph_ul_not_distributed(const struct model *m);
@@ -354,6 +364,10 @@ struct par_model_arrays;
 /** model_ops.migrate_arrays and model_ops.migrated (rebalancing). */
 int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err);
+/** After a distributed re-reference (sph_tlsph_reference): the halo list,
+ *  the rows' split at the serial order, partner ids and scratch of the new
+ *  reference rows, and the whole body's pair count. */
+int sph_tl_par_rows(struct model *m, struct sim *sim, struct spall_error *err);
 /** TLSPH bodies behind an interface (split_forms) on spatial ghosts: what
  *  the ghosts carry besides the updated form's arrays (the packed blocks)
  *  and the reference rows as the fixed partners every ghost build keeps

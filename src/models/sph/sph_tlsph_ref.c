@@ -9,6 +9,7 @@
 
 #include "core/bond_list.h"
 #include "core/neighbor.h"
+#include "core/parallel/comm.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -69,15 +70,29 @@ static int sph_tl_alloc(struct sph_tl **out, size_t n, size_t np, struct spall_e
 /* The reference configuration is an input: the deck's positions (p->x0)
  * and rest volumes at the start, the current ones on a re-reference
  * (sph_tlsph_reref.c).  p->x0 itself is never changed (output, groups). */
+/* The hourglass constant of the pair in row a with partner b (the volumes
+ * in the row's order: the constant need not be symmetric in its last bits). */
+static inline double pair_hg(double kappa, double Ea, double Eb, double Va, double Vb, double W,
+                             double r2)
+{
+    return kappa * 0.5 * (Ea + Eb) * Va * Vb * W / r2;
+}
+
+/* A distributed re-reference (sph_tlsph_reref.c): the rows are built over
+ * the n local particles, the owned ones and every particle of other ranks
+ * within the list radius (par_spatial_regather), in the serial order
+ * (ascending gid); the ghosts' rows stay empty. */
 int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], const double *rho,
                         struct spall_error *err)
 {
     struct particles *p = s->p;
-    const size_t n = p->n_owned;
+    const size_t n = p->n, no = p->n_owned; /* serial: n = no */
     const int dim = m->dim;
     double hmax = 0.0;
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < no; i++)
         hmax = fmax(hmax, m->h[i]);
+    if (s->par)
+        hmax = par_max_double(hmax);
     if (!m->tl && !(m->tl = calloc(1, sizeof *m->tl)))
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH state)");
     sph_tl_destroy(&m->tl->ref);
@@ -87,8 +102,12 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
     const double t0 = omp_get_wtime();
     struct neighbor_list *nl = NULL;
     int rc = neighbor_list_build(&nl, dim, n, Xr, radius, err);
-    if (rc)
+    if (!rc && s->par && sph_rows_by_gid(nl, no, n, p->gid))
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH reference rows)");
+    if (rc) {
+        neighbor_list_destroy(&nl);
         return rc;
+    }
     if (m->form || rho) {
         /* bodies split by formulation (sph_forms.c): only the pairs inside
          * one TLSPH body; the others' rows stay empty.  A re-reference (rho
@@ -97,7 +116,8 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
         size_t w = 0, start = 0;
         for (size_t i = 0; i < n; i++) {
             const size_t end = nl->offset[i + 1];
-            for (size_t k = start; k < end && (!m->form || m->form[i] == SPH_FORM_TOTAL); k++) {
+            for (size_t k = start;
+                 k < end && i < no && (!m->form || m->form[i] == SPH_FORM_TOTAL); k++) {
                 const size_t j = (size_t)nl->idx[k];
                 if (m->form && (m->form[j] != SPH_FORM_TOTAL || p->body[j] != p->body[i]))
                     continue;
@@ -122,6 +142,8 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
     struct sph_tl *t = m->tl->ref;
     t->nl = nl;
     t->band = 0;
+    if (s->par && !(t->prev = malloc((off[no] ? off[no] : 1) * sizeof *t->prev)))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH reverse pairs)");
 #ifdef TL_CLONED
     __builtin_cpu_init(); /* what the ifunc resolver of TL_CLONES checks */
     t->wide = __builtin_cpu_supports("x86-64-v3");
@@ -148,7 +170,7 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
     const double kappa = m->opt.tl.hourglass;
     size_t fallbacks = 0;
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks)
-    for (size_t i = 0; i < n; i++) {
+    for (size_t i = 0; i < no; i++) {
         if (sph_skip(m, i, SPH_FORM_TOTAL))
             continue;
         const double Ei = m->mat[p->material[i]].E;
@@ -164,8 +186,13 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
             sph_kernel_eval(m->opt.kern.kernel, m->alpha, sqrt(r2), hb, pow(hb, dim), &W, &F);
             const double Vi = t->pk[i * TL_STRIDE + TL_VOL], V = t->pk[j * TL_STRIDE + TL_VOL];
             struct tl_pair *pr = &t->pair[k];
+            const double Ej = m->mat[p->material[j]].E;
             pr->F = F;
-            pr->hg = kappa * 0.5 * (Ei + m->mat[p->material[j]].E) * Vi * V * W / r2;
+            pr->hg = pair_hg(kappa, Ei, Ej, Vi, V, W, r2);
+            /* distributed: the pair in j's row (the same F, W and r2: the
+             * difference only changes sign, the mean h is commutative) */
+            if (t->prev)
+                t->prev[k] = (struct tl_pair){F, pair_hg(kappa, Ej, Ei, V, Vi, W, r2)};
             for (int a = 0; a < dim; a++)
                 for (int b = 0; b < dim; b++)
                     B[a * 3 + b] += -X[a] * V * F * X[b];
@@ -178,8 +205,8 @@ int sph_tlsph_reference(struct model *m, struct sim *s, double *const Xr[3], con
         for (int c = 0; c < 9; c++)
             m->Bi[c][i] = t->self[i * TL_SELF + TL_BI + c] = Bi[c];
     }
-    m->cspm_fallbacks += fallbacks;
-    return SPALL_OK;
+    m->cspm_fallbacks += s->par ? par_sum_u64(fallbacks) : fallbacks; /* the whole body's */
+    return s->par ? sph_tl_par_rows(m, s, err) : SPALL_OK;
 }
 
 int sph_tlsph_init(struct model *m, struct sim *s, struct spall_error *err)

@@ -48,6 +48,8 @@
 #include "models/sph/sph_internal.h"
 
 #include "core/neighbor.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/spatial.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "core/options.h"
@@ -59,6 +61,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Isotropy of particle i's kernel neighbourhood on the current positions:
  * M = sum_j V_j |dW/dr / r| x_ij (x) x_ij (the uncorrected B0, = I inside a
@@ -66,23 +69,28 @@
  * [0, 1]: 1 for any M proportional to I, 0 when the partners lie on a
  * plane or a line.  One pass: every TLSPH particle with s < @p smin gets
  * h *= 1.2 (at most twice its initial h); *grown counts them. */
-static int reref_isotropy_pass(struct model *m, const struct sim *s, double smin, size_t *grown,
+static int reref_isotropy_pass(struct model *m, struct sim *s, double smin, size_t *grown,
                                struct spall_error *err)
 {
+    /* distributed: the owned particles' rows over every particle within the
+     * radius (par_spatial_regather), in the serial order; serially nl = n */
     const struct particles *p = s->p;
-    const size_t n = p->n_owned;
+    const size_t n = p->n_owned, nl_n = p->n;
     const int dim = m->dim;
     double hmax = 0.0;
     for (size_t i = 0; i < n; i++)
         hmax = fmax(hmax, m->h[i]);
+    if (s->par)
+        hmax = par_max_double(hmax);
     struct neighbor_list *nl = NULL;
-    int rc = neighbor_list_build(&nl, dim, n, p->x, m->qmax * hmax, err);
-    if (rc)
-        return rc;
-    uint8_t *grow = calloc(n ? n : 1, 1);
-    if (!grow) {
+    int rc = neighbor_list_build(&nl, dim, nl_n, p->x, m->qmax * hmax, err);
+    uint8_t *grow = rc ? NULL : calloc(n ? n : 1, 1);
+    if (!rc && (!grow || (s->par && sph_rows_by_gid(nl, n, nl_n, p->gid))))
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH reference update)");
+    if (rc) {
+        free(grow);
         neighbor_list_destroy(&nl);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (TLSPH reference update)");
+        return rc;
     }
     size_t count = 0;
 #pragma omp parallel for schedule(static) reduction(+ : count)
@@ -127,13 +135,53 @@ static int reref_isotropy_pass(struct model *m, const struct sim *s, double smin
     free(grow);
     neighbor_list_destroy(&nl);
     *grown = count;
-    return SPALL_OK;
+    if (!s->par)
+        return SPALL_OK;
+    /* the whole body's count (every rank takes the same branch), and the
+     * partners' grown h for the next pass */
+    *grown = (size_t)par_sum_u64((uint64_t)count);
+    double **hh[1] = {&m->h};
+    return sph_par_halo_arrays(s, hh, 1, err);
+}
+
+/* Distributed: every particle within the radius of the coming list (qmax
+ * times the largest h the isotropy passes can reach: at most twice the
+ * initial one) of an owned particle's current position becomes a ghost,
+ * with what the passes and the reference read of it (x, m, the density and
+ * material are the engine's; h, dx, m2 the model's), and the model's
+ * arrays are sized for them (docs/parallel.md, "Re-referencing on several
+ * ranks"). */
+static int reref_regather(struct model *m, struct sim *s, struct spall_error *err)
+{
+    const struct particles *p = s->p;
+    const bool iso = m->opt.tl.reref_isotropy > 0.0;
+    double hb = 0.0;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        const double hg = 2.0 * m->opt.kern.h_factor * m->dx[i];
+        hb = fmax(hb, iso && m->h[i] < hg ? hg : m->h[i]);
+    }
+    hb = par_max_double(hb);
+    struct par_spatial_model sm;
+    memset(&sm, 0, sizeof sm);
+    double **a[] = {&m->h, &m->dx, &m->m2};
+    for (int k = 0; k < 3; k++) {
+        sm.particle[k] = (void **)a[k];
+        sm.particle_size[k] = sizeof(double);
+    }
+    sm.n_particle = 3;
+    int rc = par_spatial_regather(s, m->qmax * hb, &sm, err);
+    if (!rc && sph_resize_state(m, s->p->n))
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH state, %zu particles)",
+                             s->p->n);
+    return par_agree(rc, err);
 }
 
 int sph_tlsph_reref(struct model *m, struct sim *s, struct spall_error *err)
 {
     const double t0 = omp_get_wtime();
-    int rc = SPALL_OK;
+    int rc = s->par ? reref_regather(m, s, err) : SPALL_OK;
+    if (rc)
+        return rc;
     /* h grows where the current neighbourhood has gone flat (the foot of a
      * Taylor bar: stretched 2x radially, squeezed axially, so with the
      * initial h the in-plane partners leave the support and B0 turns

@@ -215,7 +215,7 @@ int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp)
 
 /* Every per-particle array of the model sized for the n local particles
  * (the engine re-laid out the carried ones; the rest keep their owned rows). */
-static int resize_state(struct model *m, size_t n)
+int sph_resize_state(struct model *m, size_t n)
 {
     double **a[SPH_N_ARRAYS];
     const size_t na = sph_state_arrays(m, a);
@@ -232,8 +232,8 @@ static int resize_state(struct model *m, size_t n)
  * in local index, i.e. the owned partners (ascending gid) and then the
  * ghosts (ascending gid); the two runs are merged.  Partners from @p n_held
  * on (symmetry-plane images, already in the serial order) stay last. */
-static int merge_rows(struct neighbor_list *nl, size_t n_owned, size_t n_held,
-                      const int64_t *gid)
+int sph_rows_by_gid(struct neighbor_list *nl, size_t n_owned, size_t n_held,
+                    const int64_t *gid)
 {
     size_t longest = 0;
     for (size_t i = 0; i < nl->n; i++)
@@ -273,7 +273,7 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
         if (m->h[i] > hmax)
             hmax = m->h[i];
     hmax = par_max_double(hmax);
-    int rc = resize_state(m, n) ? spall_error_set(err, SPALL_ERR_NOMEM,
+    int rc = sph_resize_state(m, n) ? spall_error_set(err, SPALL_ERR_NOMEM,
                                                   "out of memory (SPH state, %zu particles)", n)
                                 : SPALL_OK;
     /* TLSPH bodies behind an interface: the reference rows by id, and
@@ -295,7 +295,7 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
     if (!rc) {
         if (!sym && !m->opt.kern.variable_h) /* (h grows between builds: no trim) */
             sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
-        if (merge_rows(m->nl, no, n, p->gid))
+        if (sph_rows_by_gid(m->nl, no, n, p->gid))
             rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
     }
     /* the mirrored clamp's pairs among the owned particles (a partition
