@@ -10,11 +10,16 @@
 # (bodies:, one window per body): two lattice bodies (one on a rotated
 # lattice, closer than a bond range), two PMB bodies more than a range
 # apart, the thermal deck's inclusions and a reduced flyer-plate spall with
-# particle contact, on 2, 3 and 4 ranks and replicated on 3.  run.log says
-# which set-up ran and gives the whole body's counts, and a deck the
+# particle contact, on 2, 3 and 4 ranks and replicated on 3.  State-based
+# PD (formulation lps on the 2D PMB deck, eps with plasticity and the cubic
+# influence correction on the 3D one) and PMB's surface correction (2D) on
+# 2, 3 and 4 ranks and replicated on 3 (their stable step, whose bound
+# reads the partners' families, is the serial one bit for bit).  run.log
+# says which set-up ran and gives the whole body's counts, and decks the
 # distributed set-up does not support (PMB bodies within a range of each
-# other, whose bonds may join them) keeps the replicated one with a
-# one-line reason.
+# other, whose bonds may join them; the state-based surface correction, a
+# fixed point over the whole body) keep the replicated one with a one-line
+# reason.
 # Usage: mpi_setup.sh SPALL SRC MPIEXEC
 set -u
 spall="$1"
@@ -34,6 +39,23 @@ cp "$decks/mpi_setup_contact.yaml" con2.yaml
 # above the plate: within the family radius, so bonds join the bodies
 sed -e 's/0\.02599/0.02199/; s/0\.03601/0.03201/; s/0\.0335/0.0295/; s/0\.0255/0.0215/' \
     -e 's/0\.0275/0.0235/; s/0\.0305/0.0265/g' pdb2.yaml > pdnear.yaml
+# state-based PD: lps (2D), eps with plasticity and the cubic influence
+# correction (3D); PMB's surface correction (2D); the lps surface correction
+sed 's/^model: {type: peridynamics}$/model: {type: peridynamics, formulation: lps}/;
+     s/youngs_modulus: 72.0e9, fracture_energy/youngs_modulus: 72.0e9, poisson_ratio: 0.22, fracture_energy/' \
+    pd2.yaml > lps2.yaml
+sed 's/^model: {type: peridynamics}$/model: {type: peridynamics, formulation: eps, influence_correction: cubic}/;
+     s/youngs_modulus: 72.0e9, fracture_energy/youngs_modulus: 72.0e9, poisson_ratio: 0.22, yield_stress: 3.0e6, fracture_energy/;
+     s/^output: {field_every: 40, history_every: 10}$/output: {field_every: 40, history_every: 10, fields: [position, damage, plastic_strain]}/' \
+    pd3.yaml > eps3.yaml
+sed 's/^model: {type: peridynamics}$/model: {type: peridynamics, surface_correction: true}/' pd2.yaml > pdsc2.yaml
+sed 's/^model: {type: peridynamics, formulation: lps}$/model: {type: peridynamics, formulation: lps, surface_correction: true}/' \
+    lps2.yaml > lpssc.yaml
+grep -q "formulation: lps}" lps2.yaml && grep -q "poisson_ratio: 0.22" lps2.yaml &&
+    grep -q "formulation: eps, influence_correction: cubic}" eps3.yaml &&
+    grep -q "yield_stress: 3.0e6" eps3.yaml && grep -q "plastic_strain" eps3.yaml &&
+    grep -q "surface_correction: true}" pdsc2.yaml && grep -q "lps, surface_correction: true}" lpssc.yaml ||
+    { echo "FAIL: cannot make lps2, eps3, pdsc2, lpssc.yaml"; exit 1; }
 fail=0
 mpi() { # ranks out deck
     OMP_NUM_THREADS=1 timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -q -np "$1" \
@@ -49,7 +71,7 @@ compare() { # reference out
 setup_line() { # out expected-prefix
     grep -q "^setup: $2" "$1/run.log" || { echo "FAIL $1/run.log: no 'setup: $2'"; fail=1; }
 }
-for d in lat2 pd2 lat3 pd3 bod2 pdb2 thermal con2; do
+for d in lat2 pd2 lat3 pd3 bod2 pdb2 thermal con2 lps2 eps3 pdsc2; do
     OMP_NUM_THREADS=1 timeout 120 "$spall" run "$d.yaml" -o "$d-1" --quiet --no-progress ||
         { echo "FAIL $d serial run"; exit 1; }
     # the references must break bonds beyond the pre-crack, else the test proves little
@@ -60,7 +82,7 @@ for d in lat2 pd2 lat3 pd3 bod2 pdb2 thermal con2; do
         grep -q "^precut_bonds: [1-9]" "$d-1/run.log" || { echo "FAIL $d: no pre-cut bonds"; fail=1; }
     esac
     counts="2 3 4"
-    case $d in *3) counts="4" ;; esac
+    case $d in lat3 | pd3) counts="4" ;; esac
     for n in $counts; do
         mpi "$n" "$d-$n" "$d.yaml"
         compare "$d-1" "$d-$n"
@@ -86,6 +108,16 @@ OMP_NUM_THREADS=1 timeout 120 "$spall" run pdnear.yaml -o pdnear-1 --quiet --no-
 mpi 2 pdnear-2 pdnear.yaml
 compare pdnear-1 pdnear-2
 setup_line pdnear-2 "replicated on every rank (bodies within one interaction range"
+# eps3 must yield, else its plastic state proves little
+h5dump -y -w 0 -d /plastic_strain -o eps3-plastic.txt eps3-1/fields_000002.h5 > /dev/null
+yielded=$(tr ', ' '\n\n' < eps3-plastic.txt | awk 'NF && $1 > 0 {n++} END {print n + 0}')
+[ "$yielded" -gt 20 ] || { echo "FAIL eps3: $yielded particles yielded"; fail=1; }
+# the state-based surface correction: replicated, with its reason, still one rank's bytes
+OMP_NUM_THREADS=1 timeout 120 "$spall" run lpssc.yaml -o lpssc-1 --quiet --no-progress ||
+    { echo "FAIL lpssc serial run"; fail=1; }
+mpi 2 lpssc-2 lpssc.yaml
+compare lpssc-1 lpssc-2
+setup_line lpssc-2 "replicated on every rank (the state-based surface correction"
 [ $fail -eq 0 ] && echo "mpi_setup: distributed set-up = replicated = one rank (lattice and" \
-    "PMB, 2D and 3D, several bodies, inclusions, contact, 2-4 ranks)"
+    "PMB, 2D and 3D, several bodies, inclusions, contact, lps, eps, surface correction, 2-4 ranks)"
 [ $fail -eq 0 ]

@@ -67,6 +67,26 @@ double par_setup_dt_limit(double local)
     return par_min_double(local);
 }
 
+/* The segment holding local particle @p i (a few bodies: a linear walk). */
+static const struct par_setup_seg *seg_of(const struct par_setup *ps, size_t i)
+{
+    for (size_t b = 0; b < ps->n_seg; b++)
+        if (i >= ps->seg[b].start && i < ps->seg[b].start + ps->seg[b].n)
+            return &ps->seg[b];
+    return NULL;
+}
+
+bool par_setup_in_block(const struct par_setup *ps, size_t i)
+{
+    const struct par_setup_seg *sg = seg_of(ps, i);
+    return sg && i >= sg->lo && i < sg->lo + sg->n_own;
+}
+
+const struct par_setup *par_setup_window(const struct sim *s)
+{
+    return s->setup && !s->par ? s->setup : NULL;
+}
+
 #ifdef SPALL_HAVE_MPI
 
 /* The rank whose block holds global id @p g: the body's segment (bodies
@@ -87,21 +107,6 @@ static int block_of(const struct par_setup *ps, int64_t g)
             b = mid - 1;
     }
     return a;
-}
-
-/* The segment holding local particle @p i (a few bodies: a linear walk). */
-static const struct par_setup_seg *seg_of(const struct par_setup *ps, size_t i)
-{
-    for (size_t b = 0; b < ps->n_seg; b++)
-        if (i >= ps->seg[b].start && i < ps->seg[b].start + ps->seg[b].n)
-            return &ps->seg[b];
-    return NULL;
-}
-
-static bool in_block(const struct par_setup *ps, size_t i)
-{
-    const struct par_setup_seg *sg = seg_of(ps, i);
-    return sg && i >= sg->lo && i < sg->lo + sg->n_own;
 }
 
 /* The local index of global id @p g, or -1 where the window lacks it. */
@@ -178,7 +183,7 @@ size_t par_setup_count(const struct sim *s, const size_t *idx, size_t n)
 {
     uint64_t m = 0;
     for (size_t q = 0; q < n; q++)
-        m += in_block(s->setup, idx[q]);
+        m += par_setup_in_block(s->setup, idx[q]);
     return (size_t)par_sum_u64(m);
 }
 
@@ -400,7 +405,7 @@ static int localize_window(struct sim *s, struct par_decomp *d, uint64_t counts[
     size_t n_keep = 0, n_owned = 0;
     if (!rc) {
         for (size_t i = 0; i < n; i++) {
-            owner[i] = in_block(ps, i) ? ps->rank : block_of(ps, s->p->gid[i]);
+            owner[i] = par_setup_in_block(ps, i) ? ps->rank : block_of(ps, s->p->gid[i]);
             new_of_old[i] = -1;
         }
         for (size_t b = 0; b < ps->n_seg; b++) /* the bodies in order: gid order */

@@ -37,6 +37,7 @@
 #ifndef SPALL_CORE_PARALLEL_SETUP_DIST_H
 #define SPALL_CORE_PARALLEL_SETUP_DIST_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -97,8 +98,23 @@ size_t par_setup_count(const struct sim *s, const size_t *idx, size_t n);
 int par_setup_probe(struct sim *s, size_t k, struct spall_error *err);
 
 /** The dt limit of the whole body from each rank's (collective): the
- *  minimum (a halo particle's incomplete rows only lower its Omega). */
+ *  minimum.  A model whose bound reads only a particle's own row may take
+ *  every window particle (a halo particle's incomplete row only lowers its
+ *  stiffness); one whose bound reads the partners' families too (the
+ *  state-based Gershgorin bound: a halo edge's small weighted volumes raise
+ *  it) takes the block's particles only (par_setup_in_block), whose
+ *  partners' families lie whole inside the two-range halo. */
 double par_setup_dt_limit(double local);
+
+/** Whether local particle @p i of the window lies in the rank's block (of
+ *  any body), not in its halo: its row and its partners' rows are the
+ *  serial ones.  Pure bookkeeping, no communication. */
+bool par_setup_in_block(const struct par_setup *ps, size_t i);
+
+/** The window while the set-up builds it (sim->setup until
+ *  par_setup_distribute sets sim->par; NULL after, and in a replicated or
+ *  serial set-up): local indices are window indices only then. */
+const struct par_setup *par_setup_window(const struct sim *s);
 
 /** Make a table of distinct keys (core/distinct.h) the same on every rank:
  *  each rank's rows built from its window differ, but a particle that

@@ -18,6 +18,7 @@
 #include "core/exact_sum.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/psum.h"
+#include "core/parallel/setup_dist.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -545,13 +546,20 @@ void pd_adr_update(struct model *m, const struct sim *sim)
 }
 
 /* Silling & Askari 2005 Eq. 15 with the particle's row sum of bond
- * stiffnesses: dt < sqrt(2 m_i / sum_j coef_ij). */
+ * stiffnesses: dt < sqrt(2 m_i / sum_j coef_ij).  In a window of the
+ * distributed set-up the block's rows only: a halo particle cut by the
+ * window's edge lost bonds, but with the surface correction its remaining
+ * ones are stiffer (its factors see a surface there), so its row sum is
+ * not bounded by its serial one. */
 double pd_stable_dt(const struct model *m, const struct sim *sim)
 {
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
+    const struct par_setup *ps = par_setup_window(sim);
     double w2 = 0.0;
     for (size_t i = 0; i < p->n_owned; i++) {
+        if (ps && !par_setup_in_block(ps, i))
+            continue;
         double k = 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
             if (!(bl->state[s] & BOND_BROKEN))

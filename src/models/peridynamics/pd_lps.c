@@ -30,7 +30,9 @@
 #include "core/distinct.h"
 #include "core/fields.h"
 #include "core/lattice_gen.h"
+#include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/setup_dist.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -108,12 +110,20 @@ static int cubic_gamma(struct model *m, const struct sim *sim, struct spall_erro
         return spall_error_set_key(err, SPALL_ERR_INPUT, "model.influence_correction",
                                    "influence_correction cubic is for the square, sc and fcc "
                                    "lattices (got %s)", lattice_kind_name(k));
-    size_t best = 0;
+    /* the first particle (lowest index) with the most bonds; in a window of
+     * the distributed set-up among the block's particles only (a halo
+     * family may be cut short), then over the ranks below */
+    const struct par_setup *ps = par_setup_window(sim);
+    size_t best = SIZE_MAX, most = 0;
     for (size_t i = 0; i < p->n; i++)
-        if (bl->offset[i + 1] - bl->offset[i] > bl->offset[best + 1] - bl->offset[best])
+        if ((!ps || par_setup_in_block(ps, i)) &&
+            (best == SIZE_MAX || bl->offset[i + 1] - bl->offset[i] > most)) {
             best = i;
+            most = bl->offset[i + 1] - bl->offset[i];
+        }
     double s0 = 0.0, s1 = 0.0;
-    for (size_t s = bl->offset[best]; s < bl->offset[best + 1]; s++) {
+    for (size_t s = best != SIZE_MAX ? bl->offset[best] : 0;
+         best != SIZE_MAX && s < bl->offset[best + 1]; s++) {
         size_t j = (size_t)bl->partner[s];
         const double xi = bond_rest(bl, s);
         double e[3] = {0, 0, 0}, P, Q;
@@ -125,6 +135,13 @@ static int cubic_gamma(struct model *m, const struct sim *sim, struct spall_erro
         s1 += w * P * Q;
     }
     L->gamma = s1 != 0.0 ? -s0 / s1 : 0.0;
+    if (ps) { /* the serial choice: the most bonds, then the lowest global id */
+        const bool have = best != SIZE_MAX;
+        const int64_t top = -par_min_i64(have ? -(int64_t)most : 1);
+        const bool cand = have && (int64_t)most == top;
+        const int64_t g = par_min_i64(cand ? p->gid[best] : INT64_MAX);
+        L->gamma = par_min_double(cand && p->gid[best] == g ? L->gamma : INFINITY);
+    }
     return SPALL_OK;
 }
 
@@ -435,8 +452,16 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
                 S[i] += B.ob[row] * B.rest[row] * p->volume[bl->partner[s]];
             }
     }
+    /* In a window of the distributed set-up only the block's particles:
+     * the bound reads the partners' weighted volumes and S, whose families
+     * lie whole inside the two-range halo, where a halo particle's family
+     * cut by the window's edge has a small m_j and so a large bound (the
+     * minimum over the windows came out below the serial step). */
+    const struct par_setup *ps = par_setup_window(sim);
     double dt = INFINITY;
     for (size_t i = 0; i < p->n_owned; i++) {
+        if (ps && !par_setup_in_block(ps, i))
+            continue;
         double R = L->wvol[i] > 0.0 ? fabs(L->bcoef[i]) * d * S[i] * S[i] / L->wvol[i] : 0.0;
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
             if (bl->state[s] & BOND_BROKEN)
