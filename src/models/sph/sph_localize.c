@@ -91,6 +91,14 @@ static int halo_list(struct model *m, struct spall_error *err)
     return SPALL_OK;
 }
 
+int sph_tl_halo_refresh(struct model *m, struct spall_error *err)
+{
+    if (!m->tl || !m->tl->halo)
+        return SPALL_OK;
+    bond_list_destroy(&m->tl->halo);
+    return halo_list(m, err);
+}
+
 const struct bond_list *sph_halo_bonds(const struct model *m)
 {
     /* the updated form: its neighbour list, for the partition's work
