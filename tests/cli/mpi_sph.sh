@@ -10,7 +10,7 @@
 # checkpoints (written by 2 ranks: the serial ones under h5diff) restarted on
 # 3 ranks and on one without mpirun, with the same bytes; the bar with a
 # re-reference every 20 steps (h grown where the neighbourhood went flat) on
-# 2 and 3 ranks.  What TLSPH cannot do distributed yet (reference updates of
+# 2 and 3 ranks and rebalanced on 3, its 2-rank checkpoint restarted on 3.  What TLSPH cannot do distributed yet (reference updates of
 # TLSPH bodies behind an interface) is refused in one line, exit 2, and so
 # is axisymmetric TLSPH, which one rank refuses too (the updated form
 # distributes: tests/cli/mpi_sph_ul.sh; TLSPH bodies behind an interface:
@@ -29,7 +29,7 @@ sed '/time_integration: leapfrog/d; /viscosity_switch: balsara/d' tl.yaml > pc.y
 printf "probes: [{name: tip, position: [0.0004, 0.0004, 0.0092]}]\n" >> pc.yaml
 grep -q "time_integration" pc.yaml && { echo "FAIL: cannot make pc.yaml"; exit 1; }
 counts="${SPALL_MPI_RANK_COUNTS:-2 4}"
-checkpoints_same() { # out what: every checkpoint of out is the serial run's, under h5diff
+tl_checkpoints_same() { # out what: every checkpoint of out is tl_serial's, under h5diff
     local f
     for f in "$1"/checkpoint_*.h5; do
         h5diff -q "tl_serial/$(basename "$f")" "$f" ||
@@ -42,7 +42,7 @@ for n in $counts; do
     ranks tl "$n"
 done
 w="${counts%% *}" # the checkpoints of the first rank count (2; 3 under ASan)
-checkpoints_same "tl$w" "checkpoints written by $w ranks"
+tl_checkpoints_same "tl$w" "checkpoints written by $w ranks"
 rebalanced tl 3
 for n in 3 1; do # restarts from that run's checkpoint of step 50, on another count
     [ "$n" = "$w" ] && continue
@@ -51,7 +51,7 @@ for n in 3 1; do # restarts from that run's checkpoint of step 50, on another co
     OMP_NUM_THREADS=1 "${launch[@]}" "$spall" run tl.yaml --restart "tl$w/checkpoint_0000000050.h5" \
         -o "restart$n" --quiet --no-progress || { echo "FAIL restart on $n: exit $?"; fail=1; }
     same_as_serial tl_serial "restart$n" "written by $w ranks, restarted on $n"
-    checkpoints_same "restart$n" "restarted on $n"
+    tl_checkpoints_same "restart$n" "restarted on $n"
 done
 # the bar must deform plastically, or the test shows little
 ep=$(col tl_serial/history.csv max_plastic_strain)
@@ -60,15 +60,18 @@ serial pc
 ranks pc 3
 # re-references every 20 steps, h grown where the neighbourhood went flat
 # (isotropy 0.9: 160 particles by step 100): each regathers the ghosts
-# around the current positions (sph_tlsph_reref.c)
+# around the current positions (sph_tlsph_reref.c); its checkpoints written
+# by 2 ranks after two re-references continue on 3 across three more
 sed 's/^  hourglass: 1.0$/  hourglass: 1.0\n  reference_update: {every: 20, isotropy: 0.9}/' \
-    "$2/tests/cli/decks/mpi_tl.yaml" > reref.yaml
+    tl.yaml > reref.yaml
 grep -q reference_update reref.yaml || { echo "FAIL: cannot make reref.yaml"; exit 1; }
 serial reref
 nr=$(col reref_serial/history.csv reference_updates)
 [ "${nr:-0}" -ge 5 ] || { echo "FAIL: reref: ${nr:-0} reference updates"; fail=1; }
-ranks reref 2
+written_on_2 reref
 ranks reref 3
+rebalanced reref 3
+continued reref reref2/checkpoint_0000000050.h5 3
 # (TLSPH bodies behind the penalty interface distribute: mpi_sph_tl_ifc.sh)
 cp "$2/tests/cli/decks/mpi_tl_ifc.yaml" ifc.yaml
 # their reference updates are not (the ghosts are the current list's)

@@ -13,6 +13,8 @@
  * position or an image lies within range + skin of the box, and every image
  * within the range of an owned particle has its source among the owned
  * particles and the ghosts (some sources being ghosts by their image only).
+ * With forced sends (par_sghost_set_forced) the set is the brute-force set
+ * plus the bond partners held elsewhere, each once, and only for that build.
  * Run: mpirun -np N test_par_sghost (N = 1 is valid: no ghosts).
  */
 #include "core/parallel/comm.h"
@@ -86,13 +88,14 @@ static size_t owned_of(const struct cloud *c, int rank, double *x[3], int64_t *g
     return n;
 }
 
-static void check_against_brute_force(const struct cloud *c, const struct par_sghost *g,
-                                      double range, double skin, unsigned mirror,
-                                      const char *what)
+/* the box of @p rank's particles; 0 when it owns none */
+static int owned_box(const struct cloud *c, int rank, double lo[3], double hi[3])
 {
-    const int rank = par_rank();
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     int any = 0;
+    for (int d = 0; d < 3; d++) {
+        lo[d] = INFINITY;
+        hi[d] = -INFINITY;
+    }
     for (int j = 0; j < M; j++)
         if (c->owner[j] == rank) {
             any = 1;
@@ -101,6 +104,16 @@ static void check_against_brute_force(const struct cloud *c, const struct par_sg
                 hi[d] = fmax(hi[d], c->x[d][j]);
             }
         }
+    return any;
+}
+
+static void check_against_brute_force(const struct cloud *c, const struct par_sghost *g,
+                                      double range, double skin, unsigned mirror,
+                                      const char *what)
+{
+    const int rank = par_rank();
+    double lo[3], hi[3];
+    const int any = owned_box(c, rank, lo, hi);
     const double cut2 = (range + skin) * (range + skin);
     size_t q = 0, ng = par_sghost_count(g);
     const int64_t *gg = par_sghost_gid(g);
@@ -294,6 +307,73 @@ static void run_mirror_case(int dim)
     free(gid);
 }
 
+/* Forced sends (par_sghost_set_forced; TLSPH reference partners behind an
+ * interface, spatial.c): particle j is bonded to j ^ 1 (a symmetric bond
+ * set, the partners scattered over the cloud); every rank sends its owned
+ * particles to the owners of their partners.  The ghost set must be the
+ * brute-force set plus the partners held elsewhere, each once, ascending;
+ * the next build, without forced sends, the brute-force set again. */
+static void run_forced_case(int dim)
+{
+    const int size = par_size(), rank = par_rank();
+    static struct cloud c;
+    make_cloud(&c, dim, 0, size);
+    const double range = dim == 3 ? 0.08 : 0.04, skin = 0.3 * range;
+    char what[64];
+    snprintf(what, sizeof what, "%dD forced sends", dim);
+    double *x[3];
+    for (int d = 0; d < 3; d++)
+        x[d] = malloc(M * sizeof(double));
+    int64_t *gid = malloc(M * sizeof *gid);
+    size_t *idx = malloc(M * sizeof *idx);
+    int *to = malloc(M * sizeof *to);
+    const size_t n = owned_of(&c, rank, x, gid);
+    size_t nf = 0;
+    for (size_t i = 0; i < n; i++) {
+        const int k = (int)(gid[i] ^ 1);
+        if (c.owner[k] != rank) {
+            idx[nf] = i;
+            to[nf++] = c.owner[k];
+        }
+    }
+    struct spall_error err = {0};
+    struct par_sghost *g = NULL;
+    int rc = par_sghost_create(&g, dim, range, skin, &err);
+    CHECK(!rc, "create: %s", err.msg);
+    rc = par_sghost_set_forced(g, nf, idx, to, &err);
+    CHECK(!rc, "forced: %s", err.msg);
+    rc = par_sghost_build(g, n, (const double *const *)x, gid, &err);
+    CHECK(!rc, "build: %s", err.msg);
+    double lo[3], hi[3];
+    const int any = owned_box(&c, rank, lo, hi);
+    const double cut2 = (range + skin) * (range + skin);
+    const int64_t *gg = par_sghost_gid(g);
+    size_t q = 0, ng = par_sghost_count(g), partner_only = 0;
+    for (int j = 0; j < M && any; j++) {
+        const int near = dist2_box(&c, j, lo, hi, 0) <= cut2, bonded = c.owner[j ^ 1] == rank;
+        if (c.owner[j] == rank || !(near || bonded))
+            continue;
+        partner_only += !near;
+        CHECK(q < ng && gg[q] == j, "%s: ghost %zu should be particle %d (got %lld)", what, q, j,
+              q < ng ? (long long)gg[q] : -1LL);
+        CHECK(q >= ng || par_sghost_owner(g)[q] == c.owner[j], "%s: ghost %d owner", what, j);
+        q++;
+    }
+    CHECK(q == ng, "%s: %zu ghosts, expected %zu", what, ng, q);
+    CHECK(size == 1 || par_sum_u64(partner_only) > 0,
+          "%s: no ghost held for its partner alone: the test proves little", what);
+    rc = par_sghost_build(g, n, (const double *const *)x, gid, &err);
+    CHECK(!rc, "rebuild: %s", err.msg);
+    snprintf(what, sizeof what, "%dD after forced sends", dim);
+    check_against_brute_force(&c, g, range, skin, 0, what);
+    par_sghost_destroy(&g);
+    for (int d = 0; d < 3; d++)
+        free(x[d]);
+    free(gid);
+    free(idx);
+    free(to);
+}
+
 int main(int argc, char **argv)
 {
     if (par_world_init(&argc, &argv))
@@ -303,6 +383,8 @@ int main(int argc, char **argv)
             run_case(dim, inter);
     for (int dim = 2; dim <= 3; dim++)
         run_mirror_case(dim);
+    for (int dim = 2; dim <= 3; dim++)
+        run_forced_case(dim);
     int total = (int)par_sum_u64((uint64_t)failures);
     if (par_rank() == 0)
         printf("test_par_sghost: %d ranks, %s\n", par_size(), total ? "FAILED" : "ok");

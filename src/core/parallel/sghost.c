@@ -35,38 +35,35 @@ struct par_sghost {
     size_t n_send, n_recv;
     double *sbuf, *rbuf;
     long builds;
-    /* sends of the next build whatever the distance (par_sghost_set_forced),
-     * sorted by (rank, owned index) */
-    struct forced_send *forced;
-    size_t n_forced;
+    /* sends of the next build whatever the distance (par_sghost_set_forced):
+     * owned indices, rank r's at [fstart[r], fstart[r + 1]) */
+    size_t *fidx, *fstart;
 };
-
-struct forced_send {
-    int rank;
-    size_t i;
-};
-
-static int cmp_forced(const void *a, const void *b)
-{
-    const struct forced_send *x = a, *y = b;
-    if (x->rank != y->rank)
-        return (x->rank > y->rank) - (x->rank < y->rank);
-    return (x->i > y->i) - (x->i < y->i);
-}
 
 int par_sghost_set_forced(struct par_sghost *g, size_t n, const size_t *idx, const int *rank,
                           struct spall_error *err)
 {
-    free(g->forced);
-    g->forced = malloc((n ? n : 1) * sizeof *g->forced);
-    g->n_forced = 0;
-    if (!g->forced)
+    const int size = par_size();
+    free(g->fidx);
+    free(g->fstart);
+    g->fidx = malloc((n ? n : 1) * sizeof *g->fidx);
+    g->fstart = calloc((size_t)size + 2, sizeof *g->fstart);
+    if (!g->fidx || !g->fstart) {
+        free(g->fidx);
+        free(g->fstart);
+        g->fidx = g->fstart = NULL;
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (spatial ghosts, %zu sends)",
                                n);
+    }
+    /* grouped by rank (a counting sort; the order within a rank is free) */
     for (size_t k = 0; k < n; k++)
-        g->forced[k] = (struct forced_send){rank[k], idx[k]};
-    qsort(g->forced, n, sizeof *g->forced, cmp_forced);
-    g->n_forced = n;
+        if (rank[k] >= 0 && rank[k] < size)
+            g->fstart[rank[k] + 2]++;
+    for (int r = 0; r < size; r++)
+        g->fstart[r + 2] += g->fstart[r + 1];
+    for (size_t k = 0; k < n; k++)
+        if (rank[k] >= 0 && rank[k] < size)
+            g->fidx[g->fstart[rank[k] + 1]++] = idx[k];
     return SPALL_OK;
 }
 
@@ -90,11 +87,10 @@ static void release_build(struct par_sghost *g)
     const double range = g->range, skin = g->skin;
     const unsigned mirror = g->mirror;
     const long builds = g->builds;
-    struct forced_send *forced = g->forced;
-    const size_t n_forced = g->n_forced;
+    size_t *fidx = g->fidx, *fstart = g->fstart;
     memset(g, 0, sizeof *g);
-    g->forced = forced;
-    g->n_forced = n_forced;
+    g->fidx = fidx;
+    g->fstart = fstart;
     g->dim = dim;
     g->range = range;
     g->skin = skin;
@@ -139,7 +135,8 @@ void par_sghost_destroy(struct par_sghost **gp)
     if (!gp || !*gp)
         return;
     release_build(*gp);
-    free((*gp)->forced);
+    free((*gp)->fidx);
+    free((*gp)->fstart);
     free(*gp);
     *gp = NULL;
 }
@@ -294,14 +291,14 @@ static int build_lists(struct par_sghost *g, size_t n, const double *const x[3],
                 return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (spatial ghosts)");
             }
         }
-        size_t at = 0, f = 0;
+        size_t at = 0;
         for (int r = 0; r < size; r++) {
             const double *b = boxes + (size_t)r * bw;
-            for (; f < g->n_forced && g->forced[f].rank <= r; f++) /* sorted by rank */
-                if (g->forced[f].rank == r && g->forced[f].i < n)
-                    mark[g->forced[f].i] = r + 1;
             if (r == rank)
                 continue;
+            for (size_t f = g->fstart ? g->fstart[r] : 0; g->fstart && f < g->fstart[r + 1]; f++)
+                if (g->fidx[f] < n)
+                    mark[g->fidx[f]] = r + 1;
             for (size_t k = 0; k < n; k++) {
                 size_t i = order[k].k;
                 double p[3] = {0.0, 0.0, 0.0};
@@ -369,9 +366,9 @@ int par_sghost_build(struct par_sghost *g, size_t n, const double *const x[3],
     MPI_Allgather(box, 7, MPI_DOUBLE, boxes, 7, MPI_DOUBLE, MPI_COMM_WORLD);
     rc = build_lists(g, n, x, gid, boxes, err);
     free(boxes);
-    free(g->forced); /* for this build only */
-    g->forced = NULL;
-    g->n_forced = 0;
+    free(g->fidx); /* for this build only */
+    free(g->fstart);
+    g->fidx = g->fstart = NULL;
     if ((rc = par_agree(rc, err)))
         return rc;
     /* the ids and positions of what each rank receives */

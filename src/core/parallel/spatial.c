@@ -8,6 +8,7 @@
 
 #include "core/bond_list.h"
 #include "core/model.h"
+#include "core/parallel/bhalo.h"
 #include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/decomp_internal.h"
@@ -296,6 +297,7 @@ int par_spatial_regather(struct sim *s, double range, const struct par_spatial_m
     if (!rc)
         rc = exchange_records(s, g, &sl, rec, err);
     par_sghost_destroy(&g);
+    par_bhalo_free(s->par); /* a per-bond halo plan is for the old ghosts */
     return rc;
 }
 

@@ -157,6 +157,10 @@ struct model {
     struct bond_list ck_list;  /**< the owned rows of the neighbour list as bonds */
     struct bond_list ck_iface; /**< the owned rows of the interface list as bonds */
     int32_t *ck_gid, *ck_igid; /**< distributed runs: their partners by global id */
+    struct bond_list ck_tl;    /**< distributed re-referencing TLSPH: the owned reference rows */
+    int32_t *ck_tlgid;         /**< ... their partners by global id */
+    int64_t *ck_tlup;          /**< ... each row's split in the serial list */
+    int64_t ck_tlband;         /**< ... the serial list's band (max |gid_i - gid_j|) */
     int64_t sym_ghosts;        /**< symmetry planes: mirror ghosts of the last build (the
                                     whole body's, also on several ranks) */
     bool sym_restore;          /**< a checkpoint was loaded: the next force call rebuilds
@@ -364,6 +368,9 @@ struct par_model_arrays;
 /** model_ops.migrate_arrays and model_ops.migrated (rebalancing). */
 int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err);
 int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err);
+/** The halo list lent to the partition made afresh from the reference rows
+ *  (a checkpoint replaced them after the support check made it). */
+int sph_tl_halo_refresh(struct model *m, struct spall_error *err);
 /** After a distributed re-reference (sph_tlsph_reference): the halo list,
  *  the rows' split at the serial order, partner ids and scratch of the new
  *  reference rows, and the whole body's pair count. */

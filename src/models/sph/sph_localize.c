@@ -11,7 +11,12 @@
  *        constants each pair has in its partner's row (prev).
  *
  * The updated-Lagrangian form finds its partners by a neighbour search on
- * the spatial ghosts (sph_ulpar.c); this file dispatches to it.
+ * the spatial ghosts (sph_ulpar.c); this file dispatches to it.  TLSPH
+ * bodies behind an interface (split_forms) use both: the spatial ghosts of
+ * the current list extended by the reference partners (sph_tl_spatial_ghosts,
+ * sph_tl_relayout renumbering the reference rows by gid after each ghost
+ * build).  A distributed re-reference (sph_tlsph_reref.c) ends in
+ * sph_tl_par_rows.
  */
 #include "models/sph/sph_internal.h"
 #include "models/sph/sph_tlsph_data.h"
@@ -89,6 +94,14 @@ static int halo_list(struct model *m, struct spall_error *err)
     memcpy(bl->partner, nl->idx, nh * sizeof *bl->partner);
     m->tl->halo = bl;
     return SPALL_OK;
+}
+
+int sph_tl_halo_refresh(struct model *m, struct spall_error *err)
+{
+    if (!m->tl || !m->tl->halo)
+        return SPALL_OK;
+    bond_list_destroy(&m->tl->halo);
+    return halo_list(m, err);
 }
 
 const struct bond_list *sph_halo_bonds(const struct model *m)

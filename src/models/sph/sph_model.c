@@ -84,6 +84,8 @@ static void sph_destroy(struct model **pm)
     free(m->ifs.w);
     free(m->ifs.np);
     free(m->ck_gid);
+    free(m->ck_tlgid);
+    free(m->ck_tlup);
     free(m->ck_igid);
     free(m->body_total);
     free(m->form);

@@ -19,6 +19,9 @@
 
 #include "core/field_state.h"
 #include "core/neighbor.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/decomp.h"
+#include "core/parallel/gather.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "models/sph/sph_tlsph_data.h"
@@ -116,12 +119,6 @@ static int register_rows(struct model *m, const struct sim *s, struct field_stat
 
 /* ---- TLSPH reference after a re-reference -------------------------------- */
 
-static size_t tl_rows(const void *ctx)
-{
-    const struct sph_tl *t = ((const struct model *)ctx)->tl->ref;
-    return t->nl->offset[t->nl->n];
-}
-
 static int tl_set_idx(void *ctx, size_t rows, struct spall_error *err)
 {
     struct sph_tl *t = ((struct model *)ctx)->tl->ref;
@@ -132,6 +129,59 @@ static int tl_set_pair(void *ctx, size_t rows, struct spall_error *err)
 {
     struct sph_tl *t = ((struct model *)ctx)->tl->ref;
     return grow((void **)&t->pair, rows, sizeof *t->pair, err);
+}
+
+/* Called before the band is read, after the rows (the slots load in their
+ * order): a run about to be partitioned (mpirun) lends the loaded rows,
+ * not those of set-up, to the partition (sph_localize.c). */
+static int tl_loaded(void *ctx, size_t rows, struct spall_error *err)
+{
+    (void)rows;
+    return sph_tl_halo_refresh(ctx, err);
+}
+
+/* A distributed run writes the serial file (sph_localize.c keeps the rows
+ * in the serial order): the partners of the owned rows by global id, each
+ * row's split and the band in serial indices (the rows' places in the
+ * serial list from the row lengths of the whole body).  Collective. */
+static int tl_par_views(struct model *m, struct spall_error *err)
+{
+    const struct sim *s = m->sim;
+    const struct sph_tl *t = m->tl->ref;
+    const size_t no = s->p->n_owned, ng = par_n_global(s), *off = t->nl->offset;
+    const size_t ns = off[no];
+    double *len = malloc((no ? no : 1) * sizeof *len), *all = malloc((ng + 1) * sizeof *all);
+    int rc = grow((void **)&m->ck_tlgid, ns, sizeof *m->ck_tlgid, err);
+    if (!rc)
+        rc = grow((void **)&m->ck_tlup, no, sizeof *m->ck_tlup, err);
+    if (!rc && (!len || !all))
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (sph restart)");
+    int64_t band = 0;
+    for (size_t i = 0; i < no && !rc; i++) {
+        len[i] = (double)(off[i + 1] - off[i]); /* exact: < 2^53 */
+        for (size_t k = off[i]; k < off[i + 1]; k++) {
+            const int64_t d = t->rgid[k] - s->p->gid[i];
+            band = d > band ? d : -d > band ? -d : band;
+            m->ck_tlgid[k] = (int32_t)t->rgid[k];
+        }
+    }
+    rc = par_agree(rc, err);
+    if (!rc)
+        rc = par_gather_by_gid(s, len, all, err);
+    if (!rc) { /* the serial offset of each row, then the split in it */
+        double at = 0.0;
+        for (size_t g = 0; g < ng; g++) {
+            const double l = all[g];
+            all[g] = at;
+            at += l;
+        }
+        for (size_t i = 0; i < no; i++)
+            m->ck_tlup[i] = (int64_t)all[s->p->gid[i]] + (int64_t)(t->up[i] - off[i]);
+    }
+    free(len);
+    free(all);
+    m->ck_tlband = -par_min_i64(-band);
+    return rc;
 }
 
 static int register_tl(struct model *m, size_t n, struct field_state *fs, struct spall_error *err)
@@ -161,18 +211,28 @@ static int register_tl(struct model *m, size_t n, struct field_state *fs, struct
      * the deck (a distributed run has none, sph_localize.c) */
     if (rc || !(m->opt.tl.reref_every || m->opt.tl.reref_distortion > 0.0))
         return rc;
-    rc = field_state_add_array(fs, "sph.tl_offset", FIELD_I64, (void **)&t->nl->offset, n + 1, 1,
-                               err);
+    /* the owned rows as bonds (the serial layout from any rank count; a
+     * distributed run names the partners by global id) */
+    const bool par = m->sim->par != NULL;
+    m->ck_tl = (struct bond_list){.n = n, .offset = t->nl->offset, .partner = t->nl->idx};
+    if (par && (rc = tl_par_views(m, err)))
+        return rc;
+    rc = field_state_add_offsets(fs, "sph.tl_offset", (void **)&t->nl->offset, &m->ck_tl, err);
     if (!rc)
-        rc = field_state_add_list(fs, "sph.tl_partner", FIELD_I32, (void **)&t->nl->idx, 1,
-                                  tl_rows, tl_set_idx, m, err);
+        rc = field_state_add_bond_list(fs, "sph.tl_partner", FIELD_I32,
+                                       par ? (void **)&m->ck_tlgid : (void **)&t->nl->idx,
+                                       &m->ck_tl, 1, tl_set_idx, m, err);
     if (!rc)
-        rc = field_state_add_list(fs, "sph.tl_pair", FIELD_F64, (void **)&t->pair, 2, tl_rows,
-                                  tl_set_pair, m, err);
+        rc = field_state_add_bond_list(fs, "sph.tl_pair", FIELD_F64, (void **)&t->pair,
+                                       &m->ck_tl, 2, tl_set_pair, m, err);
     if (!rc)
-        rc = field_state_add_array(fs, "sph.tl_up", FIELD_I64, (void **)&t->up, n, 1, err);
+        rc = field_state_add_particle_array(fs, "sph.tl_up", FIELD_I64,
+                                            par ? (void **)&m->ck_tlup : (void **)&t->up, n, 1,
+                                            err);
     if (!rc)
-        rc = field_state_add_values(fs, "sph.tl_band", FIELD_I64, &t->band, 1, err);
+        rc = field_state_add_values_hook(fs, "sph.tl_band", FIELD_I64,
+                                         par ? (void *)&m->ck_tlband : (void *)&t->band, 1,
+                                         tl_loaded, m, err);
     return rc;
 }
 
