@@ -41,7 +41,7 @@ static const char *not_distributed(const struct model *m)
         return "TLSPH bodies behind an interface (model.interface, with type: tlsph or "
                "model.body_formulation) are not distributed yet;";
     if (!o->tl.total_lagrangian)
-        return sph_ul_not_distributed(m); /* sph_ulpar.c */
+        return NULL; /* the updated form: everything (sph_ulpar.c) */
     if (o->tl.reref_every || o->tl.reref_distortion > 0.0)
         return "reference updates (model.reference_update) are not distributed yet;";
     return NULL;
@@ -250,9 +250,17 @@ int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_
         return rc;
     /* the updated form's list is rebuilt around the spatial ghosts right
      * after (sph_ulpar.c, par_spatial_init) */
-    if (!m->tl)
+    if (!m->tl) {
         sph_ul_localize(m);
-    else if ((rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
+        /* the interface's per-particle values of the last force call (a
+         * restart's, checkpointed; NULL without an interface) */
+        if (m->ifs.e && (gather(&m->ifs.e, sizeof *m->ifs.e, keep, n_keep) ||
+                         gather(&m->ifs.w, sizeof *m->ifs.w, keep, n_keep) ||
+                         gather(&m->ifs.np, sizeof *m->ifs.np, keep, n_keep)))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising SPH state");
+        if (m->ifs.e)
+            m->ifs.n_alloc = n_keep;
+    } else if ((rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
         return rc;
     /* the model's own per-particle arrays (the registry's are the engine's) */
     double **a[SPH_N_ARRAYS];
@@ -305,6 +313,6 @@ int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall
 int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err)
 {
     if (!m->tl)
-        return sph_ul_migrated(m, err);
+        return sph_ul_migrated(m, sim->p->n, err);
     return rebuild_list(m, sim->p->n, sim->p->gid, err);
 }

@@ -102,6 +102,7 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
     double t0 = omp_get_wtime();
     neighbor_list_destroy(&m->nl);
     m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
+    m->nl_hmax = hmax;
     int rc = neighbor_list_build(&m->nl, dim, n, p->x, m->nl_radius, err);
     if (rc)
         return rc;
