@@ -10,7 +10,8 @@
 # (mpi_vh.yaml: the partition of a restart keeps the list radius of the
 # checkpointed build, not that of h_max at the checkpoint), a checkpoint
 # every 40 steps; and two strips behind the interface with a variable h
-# (mpi_vh_if.yaml), a checkpoint every 3 steps (below).  A symmetry run saves no list, only the whole body's
+# (mpi_vh_if.yaml), a checkpoint every 3 steps (below).  A symmetry run
+# saves no list, only the whole body's
 # count of mirror images as a check: a restart on several ranks finds the
 # images and the list of the checkpointed build after the partition
 # (sph_symmetry_list), on one rank before its first force call

@@ -234,7 +234,10 @@ struct fused_vec {
 /* The row is inlined into one function per dimension and CPU version
  * (fused_vec_row3, ...): AVX2 gathers in the x86-64-v3 one. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(SPALL_NO_CLONES)
-#define FUSED_CLONES __attribute__((target_clones("arch=x86-64-v3", "default"), optimize("no-tree-slp-vectorize")))
+/* (no SLP: it packs the row sums' scalar adds four terms from four arrays
+ * into a register per add, more instructions than the adds themselves) */
+#define FUSED_CLONES                                                                               \
+    __attribute__((target_clones("arch=x86-64-v3", "default"), optimize("no-tree-slp-vectorize")))
 #define FUSED_INLINE static inline __attribute__((always_inline))
 #else
 #define FUSED_CLONES

@@ -276,7 +276,8 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
     const bool sym = m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1];
     if (!rc)
         rc = sym ? sph_symmetry_list(m, sim, moved, err)
-                 : neighbor_list_build(&m->nl, m->dim, n, m->x_build, m->nl_radius, err);
+                 : neighbor_list_build_pairs(&m->nl, NULL, m->dim, n, m->x_build, m->nl_radius,
+                                             err);
     if (!rc) {
         if (!sym && !m->opt.kern.variable_h) /* (h grows between builds: no trim) */
             sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
