@@ -9,7 +9,9 @@
 # reaction force) and the rubber strip pulled apart with a variable h
 # (mpi_vh.yaml: the partition of a restart keeps the list radius of the
 # checkpointed build, not that of h_max at the checkpoint), a checkpoint
-# every 40 steps.  A symmetry run saves no list, only the whole body's
+# every 40 steps; and two strips behind the interface with a variable h
+# (mpi_vh_if.yaml), a checkpoint every 3 steps (below).  A symmetry run
+# saves no list, only the whole body's
 # count of mirror images as a check: a restart on several ranks finds the
 # images and the list of the checkpointed build after the partition
 # (sph_symmetry_list), on one rank before its first force call
@@ -54,11 +56,30 @@ for d in sym clamp vh; do
     done
 done
 # the serial checkpoint continued on 2 ranks
+# two strips behind the interface with a variable h (mpi_vh_if.yaml, to
+# 150 us): the partition of a restart splits the rebuilt list with the
+# h_max of the checkpointed build (sph.list_hmax); a checkpoint every 3
+# steps, continued from step 36 (built at 33, h has grown since), whose
+# next checkpoint (39) comes before the next build (41) and holds the
+# interface list of the restart's split
+sed "s/^output: {\(.*\)\$/output: {checkpoint: {every_steps: 3, keep: 30}, \1/;
+     s/^run: {end_time: 4.0e-4}\$/run: {end_time: 1.5e-4}/" \
+    "$2/tests/cli/decks/mpi_vh_if.yaml" > vhif.yaml
+grep -q "checkpoint: {every_steps: 3" vhif.yaml && grep -q "end_time: 1.5e-4" vhif.yaml ||
+    { echo "FAIL: cannot make vhif.yaml"; exit 1; }
+serial vhif
+written_on_2 vhif
+for n in 1 3; do
+    continued vhif vhif2/checkpoint_0000000036.h5 "$n"
+done
+b=$(awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "neighbor_builds") c = k; next}
+             $1 == 30 || $1 == 40 {printf "%s ", $c}' vhif_serial/history.csv)
+[ "$b" = "5 6 " ] || { echo "FAIL vhif: list builds at steps 30, 40: $b (expected 5 6)"; fail=1; }
 out=sym_from_serial
 mpi 2 run sym.yaml --restart "sym_serial/$ckf" -o "$out" ||
     { echo "FAIL sym: serial checkpoint continued on 2 ranks: exit $?"; fail=1; }
 same_as_serial sym_serial "$out" "sym: serial checkpoint continued on 2 ranks"
 checkpoints_same sym_serial "$out" "sym: serial checkpoint continued on 2 ranks"
 [ $fail -eq 0 ] && echo "mpi_restart_sph_sym: 2-rank checkpoints as serial; restarts on 1" \
-    "$counts ranks and from the serial checkpoint on 2 exact"
+    "$counts ranks (vhif: 1 and 3) and from the serial checkpoint on 2 exact"
 [ $fail -eq 0 ]

@@ -13,11 +13,12 @@
 # vector rows of the fused loop (Wendland, no artificial stress) on 2, and
 # a rubber strip pulled apart with a variable h (mpi_vh.yaml: h_max and
 # with it the list radius and the ghosts' range grow) on 2 and 3 ranks
-# and rebalanced on 3 (a migration keeps the last build's radius)
-# (axisymmetric runs: mpi_sph_axi.sh):
-# history.csv, fields.xdmf and bodies.xdmf byte for byte, every frame under
-# h5diff.  What the updated form cannot do distributed yet is refused in
-# one line, exit 2.
+# and rebalanced on 3 (a migration keeps the last build's radius), and
+# two such strips pressed together and pulled behind the interface between
+# bodies (mpi_vh_if.yaml) on 2 and 3 ranks and rebalanced on 3, with their
+# checkpoints (axisymmetric runs: mpi_sph_axi.sh):
+# history.csv, fields.xdmf and bodies.xdmf byte for byte, every frame and
+# checkpoint under h5diff.
 # Usage: mpi_sph_ul.sh SPALL SRC MPIEXEC
 set -u
 spall="$1"
@@ -66,10 +67,25 @@ nb=$(col vh_serial/history.csv neighbor_builds)
 rb=$(sed -n 's/^spatial_ghost_rebuilds: \([0-9]*\) in.*/\1/p' vh3/run.log)
 [ "${rb:-0}" -eq $((nb - 1)) ] && [ "$nb" -ge 20 ] ||
     { echo "FAIL: vh on 3 ranks: ${rb:-no} ghost rebuilds, serial $nb builds"; fail=1; }
-# ... but not yet with an interface (its split reads h_max of the last build)
-sed 's/^model: {type: sph, /model: {type: sph, variable_h: true, /' \
-    "$2/tests/cli/decks/mpi_ul_def.yaml" > vhdef.yaml
-grep -q "variable_h" vhdef.yaml || { echo "FAIL: cannot make vhdef.yaml"; exit 1; }
-refused "variable h with an interface" vhdef.yaml "variable smoothing length"
+# ... and with an interface between two strips pressed and pulled
+# (mpi_vh_if.yaml): the split of a partition or migration between builds
+# takes the last build's h_max; it shows in the interface list, which the
+# checkpoints hold (with the h_max of the moment the rebalanced run's
+# checkpoint of step 20 differed; without the interface values migrating,
+# those of steps 40 and 60)
+sed "s/^output: {\(.*\)\$/output: {checkpoint: {every_steps: 10, keep: 20}, \1/" \
+    "$2/tests/cli/decks/mpi_vh_if.yaml" > vhif.yaml
+grep -q "checkpoint: {every_steps: 10" vhif.yaml || { echo "FAIL: cannot make vhif.yaml"; exit 1; }
+serial vhif
+ranks vhif 2
+ranks vhif 3
+rebalanced vhif 3
+# (the rebalanced deck has a line more: its deck and checksum differ)
+checkpoints_same vhif_serial vhif_rb3 "vhif rebalanced, 3 ranks" \
+    "--exclude-path /checksum --exclude-path /deck"
+checkpoints_same vhif_serial vhif3 "vhif, 3 ranks"
+np=$(awk -F, 'NR == 1 {for (k = 1; k <= NF; k++) if ($k == "interface_pairs") c = k; next}
+              $c > m {m = $c} END {print m + 0}' vhif_serial/history.csv)
+[ "$np" -ge 10 ] || { echo "FAIL: vhif: at most $np interface pairs in contact"; fail=1; }
 [ $fail -eq 0 ] && echo "mpi_sph_ul: OK"
 exit $fail

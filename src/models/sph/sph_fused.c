@@ -234,7 +234,10 @@ struct fused_vec {
 /* The row is inlined into one function per dimension and CPU version
  * (fused_vec_row3, ...): AVX2 gathers in the x86-64-v3 one. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(SPALL_NO_CLONES)
-#define FUSED_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+/* (no SLP: it packs the row sums' scalar adds four terms from four arrays
+ * into a register per add, more instructions than the adds themselves) */
+#define FUSED_CLONES                                                                               \
+    __attribute__((target_clones("arch=x86-64-v3", "default"), optimize("no-tree-slp-vectorize")))
 #define FUSED_INLINE static inline __attribute__((always_inline))
 #else
 #define FUSED_CLONES
@@ -242,9 +245,14 @@ struct fused_vec {
 #endif
 
 /* Row i: its partners within the support into cj, their pair terms into
- * t[c * cap + k] (c < FT_N), and the terms' sums in list order into sum[c]. */
+ * t[c * cap + k] (c < FT_N), and the terms' sums in list order into sum[c].
+ * @p uh: every particle and partner has the same h (fixed h, one spacing:
+ * the Taylor bar); then h_j = h_i, hb = h_i and norm = normi for every
+ * pair, which the general code finds per pair from a load of h_j and a
+ * division: the same values, without the per-pair work. */
 FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *restrict t,
-                                int32_t *restrict cj, size_t cap, double sum[FT_N], const int dim)
+                                int32_t *restrict cj, size_t cap, double sum[FT_N], const int dim,
+                                const bool uh)
 {
     const size_t k0 = fv->off[i], row = fv->off[i + 1] - k0;
     const int32_t *restrict nb = fv->nb + k0;
@@ -275,14 +283,19 @@ FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *re
      * skin: about 40 % of the listed pairs of the Taylor bar lie outside),
      * by fused_pass's test; a store and a count, no branch. */
     size_t len = 0;
+    const double r2u = q2max * hi * hi; /* (uh: q2max hb hb of every pair) */
     for (size_t k = 0; k < row; k++) {
         const int32_t j = nb[k];
         const double x0 = xi0 - X0[j], x1 = xi1 - X1[j], x2 = dim == 3 ? xi2 - X2[j] : 0.0;
         const double r2 = x0 * x0 + x1 * x1 + x2 * x2;
-        const double hj = Hs[j];
-        const double hb = hj == hi ? hi : 0.5 * (hi + hj);
+        double r2lim = r2u;
+        if (!uh) {
+            const double hj = Hs[j];
+            const double hb = hj == hi ? hi : 0.5 * (hi + hj);
+            r2lim = q2max * hb * hb;
+        }
         cj[len] = j;
-        len += !(r2 >= q2max * hb * hb);
+        len += !(r2 >= r2lim);
     }
     /* no reductions in this loop, only independent lanes: simd is a
      * statement about aliasing (the term arrays are not the state) */
@@ -291,8 +304,8 @@ FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *re
         const int32_t j = cj[k]; /* an int index: the vectoriser gathers by it */
         const double x0 = xi0 - X0[j], x1 = xi1 - X1[j], x2 = dim == 3 ? xi2 - X2[j] : 0.0;
         const double r2 = x0 * x0 + x1 * x1 + x2 * x2;
-        const double hj = Hs[j];
-        const bool same_h = hj == hi;
+        const double hj = uh ? hi : Hs[j];
+        const bool same_h = uh || hj == hi;
         const double hm = 0.5 * (hi + hj);
         const double hb = same_h ? hi : hm;
         /* every value is formed whether or not it is used, so that the
@@ -355,20 +368,24 @@ FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *re
         tx1[k] = w1;
         tx2[k] = w2;
     }
-    /* the sums in list order, as fused_pass adds them */
-    double G[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    /* the sums in list order, as fused_pass adds them: one scalar chain
+     * each (as an array, G was vectorised across its components, four
+     * terms gathered from four arrays into a register per add: more
+     * instructions than the sixteen scalar adds) */
+    double g0 = 0.0, g1 = 0.0, g2 = 0.0, g3 = 0.0, g4 = 0.0, g5 = 0.0, g6 = 0.0, g7 = 0.0,
+           g8 = 0.0;
     double a0 = 0.0, a1 = 0.0, a2 = 0.0, de = 0.0, xv0 = 0.0, xv1 = 0.0, xv2 = 0.0;
     for (size_t k = 0; k < len; k++) {
-        G[0] += tg0[k];
-        G[1] += tg1[k];
-        G[3] += tg3[k];
-        G[4] += tg4[k];
+        g0 += tg0[k];
+        g1 += tg1[k];
+        g3 += tg3[k];
+        g4 += tg4[k];
         if (dim == 3) {
-            G[2] += tg2[k];
-            G[5] += tg5[k];
-            G[6] += tg6[k];
-            G[7] += tg7[k];
-            G[8] += tg8[k];
+            g2 += tg2[k];
+            g5 += tg5[k];
+            g6 += tg6[k];
+            g7 += tg7[k];
+            g8 += tg8[k];
         }
         a0 += ta0[k];
         a1 += ta1[k];
@@ -378,6 +395,7 @@ FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *re
         xv1 -= tx1[k];
         xv2 -= tx2[k];
     }
+    const double G[9] = {g0, g1, g2, g3, g4, g5, g6, g7, g8};
     for (int c = 0; c < 9; c++)
         sum[FT_G + c] = G[c];
     sum[FT_A] = a0;
@@ -394,13 +412,25 @@ FUSED_INLINE void fused_vec_row(const struct fused_vec *fv, size_t i, double *re
 FUSED_CLONES static void fused_vec_row3(const struct fused_vec *fv, size_t i, double *t,
                                         int32_t *cj, size_t cap, double sum[FT_N])
 {
-    fused_vec_row(fv, i, t, cj, cap, sum, 3);
+    fused_vec_row(fv, i, t, cj, cap, sum, 3, false);
+}
+
+FUSED_CLONES static void fused_vec_row3u(const struct fused_vec *fv, size_t i, double *t,
+                                         int32_t *cj, size_t cap, double sum[FT_N])
+{
+    fused_vec_row(fv, i, t, cj, cap, sum, 3, true);
 }
 
 FUSED_CLONES static void fused_vec_row2(const struct fused_vec *fv, size_t i, double *t,
                                         int32_t *cj, size_t cap, double sum[FT_N])
 {
-    fused_vec_row(fv, i, t, cj, cap, sum, 2);
+    fused_vec_row(fv, i, t, cj, cap, sum, 2, false);
+}
+
+FUSED_CLONES static void fused_vec_row2u(const struct fused_vec *fv, size_t i, double *t,
+                                         int32_t *cj, size_t cap, double sum[FT_N])
+{
+    fused_vec_row(fv, i, t, cj, cap, sum, 2, true);
 }
 
 /* fused_pass for the Wendland kernel without artificial stress, by rows of
@@ -436,6 +466,11 @@ static int fused_pass_vec(struct model *m, struct sim *s, const struct sph_pair_
         if (fv.off[i + 1] - fv.off[i] > cap)
             cap = fv.off[i + 1] - fv.off[i];
     cap = (cap + 7) & ~(size_t)7; /* each term array 64-byte aligned */
+    /* one h for every particle and partner (images included): the rows
+     * that skip the per-pair h (fused_vec_row) */
+    bool uh = src->n_all > 0;
+    for (size_t j = 1; j < src->n_all && uh; j++)
+        uh = src->h[j] == src->h[0];
     const double xs = m->opt.visc.xsph;
     int nomem = 0;
 #pragma omp parallel
@@ -452,9 +487,9 @@ static int fused_pass_vec(struct model *m, struct sim *s, const struct sph_pair_
                 continue; /* a TLSPH particle of a mixed run (sph_forms.c) */
             double sum[FT_N];
             if (dim == 3)
-                fused_vec_row3(&fv, i, t, cj, cap, sum);
+                (uh ? fused_vec_row3u : fused_vec_row3)(&fv, i, t, cj, cap, sum);
             else
-                fused_vec_row2(&fv, i, t, cj, cap, sum);
+                (uh ? fused_vec_row2u : fused_vec_row2)(&fv, i, t, cj, cap, sum);
             /* without XSPH fused_pass's sums stay +0 */
             const double *xv = xs > 0.0 ? sum + FT_XV : (const double[3]){0.0, 0.0, 0.0};
             fused_store(m, p, i, dim, sum + FT_A, xv, sum[FT_DE], sum + FT_G);

@@ -129,6 +129,11 @@ struct model {
     struct sph_clamp *clamp; /**< mirrored clamp (sph_clamp.c; NULL: none) */
     struct neighbor_list *nl;
     double nl_radius;
+    /** the whole body's h_max at the last build: the interface split keeps
+     *  the pairs within nl_radius - qmax nl_hmax of contact, and a partition,
+     *  migration or restart between builds (variable h) must split with the
+     *  build's value, not the h_max of the moment (sph_ulpar.c) */
+    double nl_hmax;
     size_t n_builds;
     double t_neighbor;     /**< wall seconds spent building neighbour lists */
     size_t cspm_fallbacks; /**< particles whose CSPM matrix was singular (total) */
@@ -337,16 +342,13 @@ int sph_resize_state(struct model *m, size_t n);
 struct neighbor_list;
 int sph_rows_by_gid(struct neighbor_list *nl, size_t n_owned, size_t n_held,
                     const int64_t *gid);
-/** What only the updated form cannot do distributed yet, or NULL (the
- *  refusals of both forms: sph_localize.c). */
-const char *sph_ul_not_distributed(const struct model *m);
 /** localize (the list only: sph_localize gathers the arrays), migrate_arrays
  *  and migrated of the updated form. */
 void sph_ul_localize(struct model *m);
 struct par_model_arrays;
 int sph_ul_migrate_arrays(struct model *m, struct sim *sim, struct par_model_arrays *a,
                           struct spall_error *err);
-int sph_ul_migrated(struct model *m, struct spall_error *err);
+int sph_ul_migrated(struct model *m, size_t n, struct spall_error *err);
 /** Free the migration's bond list and the list's bond view (sph_destroy). */
 void sph_ul_release(struct model *m);
 /** Point the bond view at the current neighbour list (runs on more than

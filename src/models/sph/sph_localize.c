@@ -45,11 +45,6 @@
 static const char *not_distributed(const struct model *m)
 {
     const struct sph_options *o = &m->opt;
-    if (!o->tl.total_lagrangian || o->tl.split_forms) {
-        const char *ul = sph_ul_not_distributed(m); /* sph_ulpar.c */
-        if (ul)
-            return ul;
-    }
     /* a re-reference regathers the ghosts around the current positions
      * (sph_tlsph_reref.c); a split run's ghosts are the spatial ones of
      * the current list, which it would have to rebuild with them */
@@ -283,8 +278,17 @@ int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_
         return rc;
     /* the updated form's list is rebuilt around the spatial ghosts right
      * after (sph_ulpar.c, par_spatial_init); so is a split run's (both) */
-    if (!m->tl || m->form)
+    if (!m->tl || m->form) {
         sph_ul_localize(m);
+        /* the interface's per-particle values of the last force call (a
+         * restart's, checkpointed; NULL without an interface) */
+        if (m->ifs.e && (gather(&m->ifs.e, sizeof *m->ifs.e, keep, n_keep) ||
+                         gather(&m->ifs.w, sizeof *m->ifs.w, keep, n_keep) ||
+                         gather(&m->ifs.np, sizeof *m->ifs.np, keep, n_keep)))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising SPH state");
+        if (m->ifs.e)
+            m->ifs.n_alloc = n_keep;
+    }
     if (m->tl && (rc = localize_tl(m, keep, n_keep, n_owned, new_of_old, err)))
         return rc;
     if (m->form && gather(&m->form, 1, keep, n_keep))
@@ -340,8 +344,8 @@ int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall
 int sph_migrated(struct model *m, struct sim *sim, struct spall_error *err)
 {
     if (!m->tl)
-        return sph_ul_migrated(m, err);
-    int rc = m->form ? sph_ul_migrated(m, err) : SPALL_OK; /* the current list: rebuilt */
+        return sph_ul_migrated(m, sim->p->n, err);
+    int rc = m->form ? sph_ul_migrated(m, sim->p->n, err) : SPALL_OK; /* the current list: rebuilt */
     if (!rc)
         rc = rebuild_list(m, sim->p->n, sim->p->gid, err);
     /* m->form follows the particles (the ghosts are rebuilt next) */

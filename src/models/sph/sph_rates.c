@@ -55,6 +55,18 @@ void sph_neighbors_trim(struct model *m, double *const x[3], double skin_abs)
     struct neighbor_list *nl = m->nl;
     const size_t n = nl->n;
     const int dim = m->dim;
+    /* One h for all (one spacing): every reach is q_max h + skin_abs, and
+     * when that is not below the list radius every listed pair (r^2 <
+     * radius^2 by the same sum of squares, neighbor_grid.h's pair_r2 and
+     * sph_dist2 alike) is kept: nothing to drop, no pass over the pairs. */
+    bool one_h = n > 0;
+    for (size_t i = 1; i < n && one_h; i++)
+        one_h = m->h[i] == m->h[0];
+    if (one_h) {
+        const double reach = m->qmax * m->h[0] + skin_abs;
+        if (reach * reach >= m->nl_radius * m->nl_radius)
+            return;
+    }
     size_t w = 0, start = 0;
     for (size_t i = 0; i < n; i++) {
         size_t end = nl->offset[i + 1];
@@ -103,7 +115,8 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
     double t0 = omp_get_wtime();
     neighbor_list_destroy(&m->nl);
     m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
-    int rc = neighbor_list_build(&m->nl, dim, n, p->x, m->nl_radius, err);
+    m->nl_hmax = hmax;
+    int rc = neighbor_list_build_pairs(&m->nl, NULL, dim, n, p->x, m->nl_radius, err);
     if (rc)
         return rc;
     if (!m->opt.kern.variable_h)

@@ -310,6 +310,12 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
     }
     if (!rc)
         rc = field_state_add_values(fs, "sph.wall_force", FIELD_F64, m->wall.force, 3, err);
+    /* an interface with a variable h: the last build's h_max, with which a
+     * distributed restart splits the list it rebuilds (sph_ulpar.c; one
+     * rank reads the split list).  Only there: other checkpoints keep
+     * their datasets */
+    if (!rc && m->opt.kern.variable_h && m->opt.iface.kind != SPH_IFACE_NONE)
+        rc = field_state_add_values(fs, "sph.list_hmax", FIELD_F64, &m->nl_hmax, 1, err);
     void *iv[] = {&m->n_builds, &m->ax.builds, &m->cspm_fallbacks, &m->n_pairs,
                   &m->ifs.pairs};
     const char *in[] = {"list_builds", "axis_builds", "cspm_fallbacks", "pairs",

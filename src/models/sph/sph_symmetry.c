@@ -251,7 +251,8 @@ int sph_symmetry_list(struct model *m, struct sim *s, bool moved, struct spall_e
     const int64_t total = (int64_t)par_sum_u64(mine);
     neighbor_list_destroy(&m->nl);
     double *xb[3] = {g->buf[0], g->buf[1], dim == 3 ? g->buf[2] : NULL};
-    if ((rc = neighbor_list_build(&m->nl, dim, n + g->n_ghost, xb, m->nl_radius, err)))
+    if ((rc = neighbor_list_build_pairs(&m->nl, NULL, dim, n + g->n_ghost, xb, m->nl_radius,
+                                        err)))
         return rc;
     /* after a checkpoint's load (the partition of a restart): the build
      * positions and radius are the checkpoint's, so this is the list of its
@@ -308,7 +309,8 @@ int sph_symmetry_update(struct model *m, struct sim *s, struct sph_pair_src *src
         double t0 = omp_get_wtime();
         neighbor_list_destroy(&m->nl);
         double *xb[3] = {g->buf[0], g->buf[1], dim == 3 ? g->buf[2] : NULL};
-        if ((rc = neighbor_list_build(&m->nl, dim, n + g->n_ghost, xb, m->nl_radius, err)))
+        if ((rc = neighbor_list_build_pairs(&m->nl, NULL, dim, n + g->n_ghost, xb, m->nl_radius,
+                                            err)))
             return rc;
         for (int d = 0; d < dim; d++)
             memcpy(m->x_build[d], p->x[d], n * sizeof(double));
@@ -350,7 +352,7 @@ int sph_symmetry_restore(struct model *m, struct sim *s, struct spall_error *err
         sym_fill(m, s, n); /* the positions; the rest is refilled by the next update */
         neighbor_list_destroy(&m->nl);
         double *xb[3] = {g->buf[0], g->buf[1], dim == 3 ? g->buf[2] : NULL};
-        rc = neighbor_list_build(&m->nl, dim, n + g->n_ghost, xb, m->nl_radius, err);
+        rc = neighbor_list_build_pairs(&m->nl, NULL, dim, n + g->n_ghost, xb, m->nl_radius, err);
     }
     for (int d = 0; d < dim; d++)
         p->x[d] = now[d];

@@ -40,18 +40,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *sph_ul_not_distributed(const struct model *m)
-{
-    /* (what neither form distributes yet: sph_localize.c).  The interface
-     * split keeps the pairs within the skin q_max h_max of the last build
-     * allows for, and a partition or migration between builds would take
-     * h_max of the moment (no restart state holds the build's) */
-    if (m->opt.kern.variable_h && m->opt.iface.kind != SPH_IFACE_NONE)
-        return "interfaces (model.interface) with a variable smoothing length "
-               "(model.variable_h) are not distributed yet;";
-    return NULL;
-}
-
 /* ---- the per-call halo of the pair loops' partner values ---- */
 
 /* The arrays of @p set with the run's options; returns their count. */
@@ -283,7 +271,10 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
     neighbor_list_destroy(&m->nl);
     /* a build (moved) has the radius of the whole body's h_max now; after a
      * partition or a migration the list is the last build's again, with
-     * its radius (a variable h has changed h_max since) */
+     * its radius and, for the interface split, its h_max (a variable h has
+     * changed h_max since; a restart reads both, sph_restart.c) */
+    if (moved || !(m->nl_radius > 0.0) || !m->opt.kern.variable_h)
+        m->nl_hmax = hmax; /* (a fixed h: always the build's) */
     if (moved || !(m->nl_radius > 0.0))
         m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
     /* symmetry planes: over the held particles and their images, untrimmed
@@ -291,7 +282,8 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
     const bool sym = m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1];
     if (!rc)
         rc = sym ? sph_symmetry_list(m, sim, moved, err)
-                 : neighbor_list_build(&m->nl, m->dim, n, m->x_build, m->nl_radius, err);
+                 : neighbor_list_build_pairs(&m->nl, NULL, m->dim, n, m->x_build, m->nl_radius,
+                                             err);
     if (!rc) {
         if (!sym && !m->opt.kern.variable_h) /* (h grows between builds: no trim) */
             sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
@@ -305,7 +297,7 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
     /* the interface pairs leave the kernel rows, as in the serial build
      * (their rows follow the merged ones, so they are in gid order too) */
     if (!rc && m->opt.iface.kind != SPH_IFACE_NONE)
-        rc = sph_interface_split(m, sim, m->x_build, m->nl_radius - m->qmax * hmax, err);
+        rc = sph_interface_split(m, sim, m->x_build, m->nl_radius - m->qmax * m->nl_hmax, err);
     if (!rc && sph_ul_view(m))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
     m->n_pairs = (size_t)par_sum_u64(rc ? 0 : (uint64_t)m->nl->offset[no]); /* the serial count */
@@ -427,19 +419,30 @@ int sph_ul_migrate_arrays(struct model *m, struct sim *sim, struct par_model_arr
     a->n_half = &m->ul_half;
     double **arr[SPH_N_ARRAYS];
     const size_t na = sph_state_arrays(m, arr);
-    if (na > PAR_MIGRATE_MAX_ARRAYS)
-        return spall_error_set(err, SPALL_ERR_INTERNAL, "SPH: %zu arrays to migrate", na);
+    if (na + 3 > PAR_MIGRATE_MAX_ARRAYS)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "SPH: %zu arrays to migrate", na + 3);
     for (size_t k = 0; k < na; k++) {
         a->particle[a->n_particle] = (void **)arr[k];
         a->particle_size[a->n_particle++] = sizeof(double);
     }
+    /* the interface's per-particle values of the last force call go with
+     * their particles: a checkpoint written after a rebalance, before the
+     * next force call, holds them (NULL without an interface: skipped) */
+    void **ia[] = {(void **)&m->ifs.e, (void **)&m->ifs.w, (void **)&m->ifs.np};
+    const size_t is[] = {sizeof *m->ifs.e, sizeof *m->ifs.w, sizeof *m->ifs.np};
+    for (size_t k = 0; k < 3 && m->ifs.e; k++) {
+        a->particle[a->n_particle] = ia[k];
+        a->particle_size[a->n_particle++] = is[k];
+    }
     return SPALL_OK;
 }
 
-int sph_ul_migrated(struct model *m, struct spall_error *err)
+int sph_ul_migrated(struct model *m, size_t n, struct spall_error *err)
 {
     (void)err;
     sph_ul_release(m); /* the rows came back empty; the list follows the ghosts */
     neighbor_list_destroy(&m->nl);
+    if (m->ifs.e) /* the migration renewed them for the n local particles */
+        m->ifs.n_alloc = n;
     return SPALL_OK;
 }
