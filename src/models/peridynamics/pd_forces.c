@@ -13,6 +13,7 @@
  * both ends, so the result does not depend on the thread count.
  */
 #include "models/peridynamics/pd_internal.h"
+#include "models/peridynamics/pd_kernel.h"
 
 #include "core/bond_list.h"
 #include "core/exact_sum.h"
@@ -25,22 +26,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Energy released by a half-bond that breaks in this step: what the kicks
- * left of the bond's energy, not 1/4 coef e_{n+1}^2.  immediate: its force
- * at x_n acted half a step (1/4 coef e_{n+1} e_n, exact); next_step: its
- * force at x_{n+1} acts half a step more (1/4 coef e_{n+1} (e_{n+1} + de),
- * de ~ e_{n+1} - e_n).  x_n = x - dt u; (ex, ey, ez) = x_j - x_i, e0 = l - r. */
-static inline double pd_break_energy(int dim, double ex, double ey, double ez, double r,
-                                     double e0, double coef, double dt, double *const *u,
-                                     size_t i, size_t j, bool late)
-{
-    const double px = ex - dt * (u[0][j] - u[0][i]);
-    const double py = dim > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;
-    const double pz = dim > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;
-    const double en = sqrt(px * px + py * py + pz * pz) - r;
-    return 0.25 * coef * e0 * (late ? 2.0 * e0 - en : en);
-}
 
 /* One kernel per dimension: the loop over j is the hot path (the mixed-mode
  * threshold; pd_kernel_block below for the others). */
@@ -86,9 +71,6 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
             f[2][i] += fz;                                                                      \
         diss[i] += dd;                                                                          \
     }
-
-#define PD_CHUNK 64
-#define PD_PRE (1.0 - 1e-12)
 
 /* Pass 1 for half-bond k of a chunk of particle i's row (partner, rest,
  * coef and thr start at the chunk) at (xi0, yi0, zi0): the force
@@ -145,11 +127,7 @@ pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0, double *const *
 #define PD_CLONES
 #endif
 #define PD_CHUNK_DIM(DIM)                                                                       \
-    PD_CLONES static int64_t pd_chunk##DIM(                                                     \
-        size_t nb, double xi0, double yi0, double zi0, double *const *restrict x,              \
-        const int32_t *restrict partner, const double *restrict rest,                           \
-        const double *restrict coef, const double *restrict thr, double *restrict gx,           \
-        double *restrict gy, double *restrict gz, double *restrict el)                          \
+    PD_CLONES PD_CHUNK_DECL(DIM)                                                                \
     {                                                                                           \
         return pd_chunk(DIM, nb, xi0, yi0, zi0, x, partner, rest, coef, thr, gx, gy, gz, el);   \
     }
@@ -157,55 +135,10 @@ PD_CHUNK_DIM(1)
 PD_CHUNK_DIM(2)
 PD_CHUNK_DIM(3)
 
-/* A row of the compact families' table as the kernel reads it: one cache
- * line for the three doubles of a half-bond, and its pre-test bound. */
-struct pd_kind_row {
-    double rest, coef, thr;
-    unsigned type;
-};
-
-/* What the split kernel reads and writes besides the particle's row. */
-struct pd_kctx {
-    const size_t *off;
-    const int32_t *partner;
-    const double *rest, *coef; /* NULL: compact families (ktab) */
-    const uint8_t *type;
-    uint8_t *st;
-    const uint16_t *kind;
-    const struct pd_kind_row *ktab;
-    const double *s0tab;
-    double *const *x, *const *u;
-    double dt;
-    bool late;
-    uint8_t *fresh;
-};
-
 /* Rows per block of the split kernel: a block is one thread's, its rows in
  * turn, so that the plain sum of one chunk goes into pass 1 of the next
  * one, across row ends. */
 #define PD_BLOCK 64
-
-/* One chunk of a row: half-bonds [s, s + nb) of particle i (row r of the
- * block) at (xi0, yi0, zi0), and the buffers of passes 0 and 1. */
-struct pd_chunk_buf {
-    size_t i, r, s, nb;
-    double xi0, yi0, zi0;
-    const double *rr, *cc;
-    double gx[PD_CHUNK], gy[PD_CHUNK], gz[PD_CHUNK], el[PD_CHUNK];
-    double rb[PD_CHUNK], cb[PD_CHUNK], tb[PD_CHUNK];
-};
-
-/* A pre-test bound, or NaN when the half-bond is broken (state bit 0),
- * without a branch: the bits of a quiet NaN or-ed into any double give a
- * NaN. */
-static inline double pd_thr_or_nan(double thr, uint8_t state)
-{
-    uint64_t b;
-    memcpy(&b, &thr, sizeof b);
-    b |= ((uint64_t)0 - (uint64_t)(state & BOND_BROKEN)) & UINT64_C(0x7ff8000000000000);
-    memcpy(&thr, &b, sizeof thr);
-    return thr;
-}
 
 /* Pass 0 of chunk b: its lengths and coefficients (compact families: from
  * the table) and its pre-test bounds, NaN for a broken half-bond; and in
@@ -470,7 +403,8 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
                                x, u, dt, late, fresh};
     switch (p->dim) {
     case 1:
-        pd_kernel_split1(&kc, n, f, diss);
+        if (!pd_half_forces(m, sim, &kc, n, f, diss))
+            pd_kernel_split1(&kc, n, f, diss);
         break;
     case 2:
         if (m->mixed) {
@@ -480,12 +414,13 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
             if (sim->par)
                 par_halo_values(sim, m->mm_g, 1);
             PD_KERNEL(2, 1)
-        } else {
+        } else if (!pd_half_forces(m, sim, &kc, n, f, diss)) {
             pd_kernel_split2(&kc, n, f, diss);
         }
         break;
     default:
-        pd_kernel_split3(&kc, n, f, diss);
+        if (!pd_half_forces(m, sim, &kc, n, f, diss))
+            pd_kernel_split3(&kc, n, f, diss);
         break;
     }
     free(ktab);
