@@ -98,12 +98,14 @@ static bool halves_equal(const struct model *m, size_t s, size_t t)
 }
 
 /* Whether the owned rows [0, n) suit the loop; *span: the largest index
- * distance of a bond between owned particles. */
-static bool rows_suit(const struct model *m, size_t n, size_t *span)
+ * distance of a bond between owned particles; *ghosts: whether some
+ * partner is a ghost (distributed run). */
+static bool rows_suit(const struct model *m, size_t n, size_t *span, bool *ghosts)
 {
     const struct bond_list *bl = m->bl;
     size_t n_lower = 0, n_upper = 0;
     *span = 0;
+    *ghosts = false;
     if (bl->n < n || !bl->state || (!m->kind && !(bl->rest && m->coef && bl->type)))
         return false;
     for (size_t i = 0; i < n; i++) {
@@ -123,8 +125,10 @@ static bool rows_suit(const struct model *m, size_t n, size_t *span)
             const size_t j = (size_t)bl->partner[s];
             if (j <= i)
                 return false;
-            if (j >= n)
+            if (j >= n) {
+                *ghosts = true;
                 continue;
+            }
             if (any && j <= last)
                 return false;
             last = j;
@@ -149,7 +153,7 @@ static size_t pd_half_ring(struct model *m, const struct sim *sim)
     if (m->half_known && m->half_gen == bl->gen && m->half_n == n)
         return m->half_ring;
     size_t span = 0, w = 1;
-    const bool ok = rows_suit(m, n, &span);
+    const bool ok = rows_suit(m, n, &span, &m->half_ghosts);
     while (w <= span)
         w <<= 1;
     m->half_ring = ok && w <= HALF_RING_MAX ? w : 0;
@@ -164,8 +168,9 @@ static size_t pd_half_ring(struct model *m, const struct sim *sim)
  * ends its row's main part. */
 struct half_buf {
     struct pd_chunk_buf b;
-    uint32_t pi[PD_CHUNK];
+    uint32_t pi[PD_CHUNK]; /* unless direct */
     bool last;
+    bool direct; /* every partner's row is the thread's: entry partner mod W */
 };
 
 /* What one thread's sweep works with. */
@@ -174,6 +179,7 @@ struct half_ctx {
     double *ring;    /* (mask + 1 + HALF_TRASH) entries of HALF_COLS */
     size_t mask;
     size_t hi_push;  /* pushes go to the rows below (0: none) */
+    bool ghosts;     /* some partners are ghosts (distributed run) */
     double *const *f;
     double *diss;
 };
@@ -183,15 +189,18 @@ struct half_ctx {
  * entries.  Pushes only when @p push (a constant: the first pass has
  * none). */
 static inline __attribute__((always_inline)) void
-half_gather(int dim, int push, const struct half_ctx *h, struct half_buf *hb,
-            const struct half_buf *hp)
+half_gather_v(int dim, int push, int fast, const struct half_ctx *h, struct half_buf *hb,
+              const struct half_buf *hp)
 {
     const struct pd_kctx *c = h->c;
     struct pd_chunk_buf *b = &hb->b;
     const struct pd_chunk_buf *p = hp ? &hp->b : NULL;
     const size_t s0 = b->s, nb = b->nb, np = p ? p->nb : 0;
     const size_t m = nb < np ? nb : np;
-    const size_t trash = h->mask + 1, hi = h->hi_push;
+    const size_t trash = h->mask + 1, hi = h->hi_push, mask = h->mask;
+    /* a direct chunk (most of them) finds its partners' entries from the
+     * partner indices, without the table pi (fast: b and p both direct) */
+    const bool bdir = fast || hb->direct, pdir = fast || (hp && hp->direct);
     double *restrict ring = h->ring;
     b->rr = c->rest ? c->rest + s0 : b->rb;
     b->cc = c->coef ? c->coef + s0 : b->cb;
@@ -206,7 +215,8 @@ half_gather(int dim, int push, const struct half_ctx *h, struct half_buf *hb,
         if (dim > 2)                                                                            \
             sz += p->gz[k];                                                                     \
         if (push) {                                                                             \
-            double *q = ring + HALF_COLS * (size_t)hp->pi[k];                                   \
+            const size_t e = pdir ? (size_t)c->partner[p->s + (k)] & mask : (size_t)hp->pi[k]; \
+            double *q = ring + HALF_COLS * e;                                                   \
             q[0] -= p->gx[k];                                                                   \
             if (dim > 1)                                                                        \
                 q[1] -= p->gy[k];                                                               \
@@ -216,9 +226,9 @@ half_gather(int dim, int push, const struct half_ctx *h, struct half_buf *hb,
     } while (0)
 #define HALF_PI(k)                                                                              \
     do {                                                                                        \
-        if (push) {                                                                             \
+        if (push && !bdir) {                                                                    \
             const size_t j = (size_t)c->partner[s0 + (k)];                                      \
-            hb->pi[k] = (uint32_t)(j < hi ? (j & h->mask) : trash + ((k) & (HALF_TRASH - 1))); \
+            hb->pi[k] = (uint32_t)(j < hi ? (j & mask) : trash + ((k) & (HALF_TRASH - 1)));    \
         }                                                                                       \
     } while (0)
 #define HALF_GATHER_KIND(k)                                                                     \
@@ -261,6 +271,18 @@ half_gather(int dim, int push, const struct half_ctx *h, struct half_buf *hb,
     ps[2] = sz;
 }
 
+/* half_gather_v with the common case, both chunks direct, in a loop of its
+ * own. */
+static inline __attribute__((always_inline)) void
+half_gather(int dim, int push, const struct half_ctx *h, struct half_buf *hb,
+            const struct half_buf *hp)
+{
+    if (push && hb->direct && (!hp || hp->direct))
+        half_gather_v(dim, push, 1, h, hb, hp);
+    else
+        half_gather_v(dim, push, 0, h, hb, hp);
+}
+
 /* Pass 2 of a chunk with a half-bond past the pre-test, in slot order:
  * each such half-bond settled with the exact test (l - r) / r > s0 (both
  * halves marked when the partner's row is this thread's, with the energy
@@ -275,7 +297,9 @@ half_settle(int dim, int push, const struct half_ctx *h, const struct half_buf *
     double sx = ps[0], sy = ps[1], sz = ps[2], dd = ps[3];
     for (size_t k = 0; k < b->nb; k++) {
         const size_t s = b->s + k;
-        double *q = push ? ring + HALF_COLS * (size_t)hb->pi[k] : NULL;
+        double *q = NULL;
+        if (push)
+            q = ring + HALF_COLS * (hb->direct ? (size_t)c->partner[s] & h->mask : (size_t)hb->pi[k]);
         const unsigned ty = c->kind ? c->ktab[c->kind[s]].type : c->type[s];
         if (b->el[k] > b->tb[k] && b->el[k] / b->rr[k] > c->s0tab[ty]) {
             const size_t i = b->i, j = (size_t)c->partner[s];
@@ -359,6 +383,7 @@ half_flush(int dim, int push, const struct half_ctx *h, struct half_buf **pend)
     struct half_buf none; /* an empty chunk: only its count and start are read */
     none.b.nb = 0;
     none.b.s = 0;
+    none.direct = true;
     half_gather(dim, push, h, &none, p);
     if (push && p->last)
         half_finish(dim, h, p->b.i);
@@ -385,6 +410,8 @@ half_segment(int dim, int push, const struct half_ctx *h, struct half_buf *buf, 
         b->yi0 = dim > 1 ? c->x[1][i] : 0.0;
         b->zi0 = dim > 2 ? c->x[2][i] : 0.0;
         hb->last = ends && s0 + b->nb == e;
+        /* all partners below i + W: this thread's rows when i + W <= hi */
+        hb->direct = push && !h->ghosts && i + h->mask < h->hi_push;
         const struct half_buf *p = *pend;
         half_gather(dim, push, h, hb, p);
         if (push && p && p->last)
@@ -435,14 +462,15 @@ static inline __attribute__((always_inline)) void half_range(int dim, struct hal
  * threads' code. */
 #define HALF_DIM(DIM)                                                                           \
     static void half_forces##DIM(const struct pd_kctx *c, size_t n, double *ring, size_t w,     \
-                                 int nt_max, double *const *f, double *diss)                    \
+                                 int nt_max, bool ghosts, double *const *f, double *diss)       \
     {                                                                                           \
         (void)nt_max;                                                                           \
         _Pragma("omp parallel num_threads(nt_max)")                                             \
         {                                                                                       \
             size_t t = 0, nt = 1;                                                               \
             HALF_THREAD_IDS(t, nt);                                                             \
-            struct half_ctx h = {c, ring + t * (w + HALF_TRASH) * HALF_COLS, w - 1, 0, f, diss}; \
+            struct half_ctx h = {c,    ring + t * (w + HALF_TRASH) * HALF_COLS, w - 1, 0,        \
+                                 ghosts, f, diss};                                              \
             half_range(DIM, &h, n * t / nt, n * (t + 1) / nt);                                  \
         }                                                                                       \
     }
@@ -482,15 +510,16 @@ bool pd_half_forces(struct model *m, const struct sim *sim, const struct pd_kctx
         if (!m->half_buf)
             return false; /* memory is short: the split kernel */
     }
+    const bool ghosts = m->half_ghosts;
     switch (sim->dim) {
     case 1:
-        half_forces1(c, n, m->half_buf, w, nt, f, diss);
+        half_forces1(c, n, m->half_buf, w, nt, ghosts, f, diss);
         break;
     case 2:
-        half_forces2(c, n, m->half_buf, w, nt, f, diss);
+        half_forces2(c, n, m->half_buf, w, nt, ghosts, f, diss);
         break;
     default:
-        half_forces3(c, n, m->half_buf, w, nt, f, diss);
+        half_forces3(c, n, m->half_buf, w, nt, ghosts, f, diss);
         break;
     }
     m->half_used = true;
