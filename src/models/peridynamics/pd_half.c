@@ -157,6 +157,7 @@ static size_t pd_half_ring(struct model *m, const struct sim *sim)
     while (w <= span)
         w <<= 1;
     m->half_ring = ok && w <= HALF_RING_MAX ? w : 0;
+    m->half_span = span;
     m->half_known = true;
     m->half_gen = bl->gen;
     m->half_n = n;
@@ -178,6 +179,7 @@ struct half_ctx {
     const struct pd_kctx *c;
     double *ring;    /* (mask + 1 + HALF_TRASH) entries of HALF_COLS */
     size_t mask;
+    size_t span;     /* largest index distance of a bond between owned rows */
     size_t hi_push;  /* pushes go to the rows below (0: none) */
     bool ghosts;     /* some partners are ghosts (distributed run) */
     double *const *f;
@@ -410,8 +412,9 @@ half_segment(int dim, int push, const struct half_ctx *h, struct half_buf *buf, 
         b->yi0 = dim > 1 ? c->x[1][i] : 0.0;
         b->zi0 = dim > 2 ? c->x[2][i] : 0.0;
         hb->last = ends && s0 + b->nb == e;
-        /* all partners below i + W: this thread's rows when i + W <= hi */
-        hb->direct = push && !h->ghosts && i + h->mask < h->hi_push;
+        /* all partners at most i + span: this thread's rows when that is
+         * below hi */
+        hb->direct = push && !h->ghosts && i + h->span < h->hi_push;
         const struct half_buf *p = *pend;
         half_gather(dim, push, h, hb, p);
         if (push && p && p->last)
@@ -462,14 +465,15 @@ static inline __attribute__((always_inline)) void half_range(int dim, struct hal
  * threads' code. */
 #define HALF_DIM(DIM)                                                                           \
     static void half_forces##DIM(const struct pd_kctx *c, size_t n, double *ring, size_t w,     \
-                                 int nt_max, bool ghosts, double *const *f, double *diss)       \
+                                 size_t span, int nt_max, bool ghosts, double *const *f,        \
+                                 double *diss)                                                  \
     {                                                                                           \
         (void)nt_max;                                                                           \
         _Pragma("omp parallel num_threads(nt_max)")                                             \
         {                                                                                       \
             size_t t = 0, nt = 1;                                                               \
             HALF_THREAD_IDS(t, nt);                                                             \
-            struct half_ctx h = {c,    ring + t * (w + HALF_TRASH) * HALF_COLS, w - 1, 0,        \
+            struct half_ctx h = {c,    ring + t * (w + HALF_TRASH) * HALF_COLS, w - 1, span, 0,  \
                                  ghosts, f, diss};                                              \
             half_range(DIM, &h, n * t / nt, n * (t + 1) / nt);                                  \
         }                                                                                       \
@@ -513,13 +517,13 @@ bool pd_half_forces(struct model *m, const struct sim *sim, const struct pd_kctx
     const bool ghosts = m->half_ghosts;
     switch (sim->dim) {
     case 1:
-        half_forces1(c, n, m->half_buf, w, nt, ghosts, f, diss);
+        half_forces1(c, n, m->half_buf, w, m->half_span, nt, ghosts, f, diss);
         break;
     case 2:
-        half_forces2(c, n, m->half_buf, w, nt, ghosts, f, diss);
+        half_forces2(c, n, m->half_buf, w, m->half_span, nt, ghosts, f, diss);
         break;
     default:
-        half_forces3(c, n, m->half_buf, w, nt, ghosts, f, diss);
+        half_forces3(c, n, m->half_buf, w, m->half_span, nt, ghosts, f, diss);
         break;
     }
     m->half_used = true;
