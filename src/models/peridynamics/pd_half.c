@@ -97,51 +97,96 @@ static bool halves_equal(const struct model *m, size_t s, size_t t)
     return bl->rest[s] == bl->rest[t] && m->coef[s] == m->coef[t] && bl->type[s] == bl->type[t];
 }
 
-/* Whether the owned rows [0, n) suit the loop; *span: the largest index
- * distance of a bond between owned particles; *ghosts: whether some
- * partner is a ghost (distributed run). */
-static bool rows_suit(const struct model *m, size_t n, size_t *span, bool *ghosts)
+/* Row flags (m->half_flags): an irregular row evaluates all its slots
+ * itself and takes no pushes; a clean row's upper partners are all owned
+ * and regular (its chunks push straight, half_segment). */
+#define HALF_IRREGULAR 1u
+#define HALF_CLEAN 2u
+
+/* Whether row @p i is regular: its owned partners below i ascending, then
+ * the partners above i, owned ascending, ghosts anywhere.  A distributed
+ * run's rows near the rank's boundary list ghosts among the partners
+ * below i (the rows keep the serial slot order, core/bond_list.h). */
+static bool row_regular(const struct bond_list *bl, size_t n, size_t i)
+{
+    const size_t e = bl->offset[i + 1];
+    size_t s = bl->offset[i], last = 0;
+    bool any = false;
+    for (; s < e && (size_t)bl->partner[s] < i; s++) {
+        if (any && (size_t)bl->partner[s] <= last)
+            return false;
+        last = (size_t)bl->partner[s];
+        any = true;
+    }
+    for (; s < e; s++) {
+        const size_t j = (size_t)bl->partner[s];
+        if (j <= i)
+            return false;
+        if (j >= n)
+            continue;
+        if (any && j <= last)
+            return false;
+        last = j;
+        any = true;
+    }
+    return true;
+}
+
+/* Slot of partner @p i in row @p j, by the sorted lower part when row j
+ * is regular, else by a scan; SIZE_MAX when absent. */
+static size_t twin_slot(const struct bond_list *bl, const uint8_t *flags, size_t j, size_t i)
+{
+    if (!(flags[j] & HALF_IRREGULAR))
+        return lower_slot(bl->offset, bl->partner, j, i);
+    for (size_t t = bl->offset[j]; t < bl->offset[j + 1]; t++)
+        if ((size_t)bl->partner[t] == i)
+            return t;
+    return SIZE_MAX;
+}
+
+/* Whether the owned rows [0, n) suit the loop, with each row's flags;
+ * *span: the largest index distance of a bond between owned particles. */
+static bool rows_suit(const struct model *m, size_t n, size_t *span, uint8_t *flags)
 {
     const struct bond_list *bl = m->bl;
     size_t n_lower = 0, n_upper = 0;
     *span = 0;
-    *ghosts = false;
     if (bl->n < n || !bl->state || (!m->kind && !(bl->rest && m->coef && bl->type)))
         return false;
+    for (size_t i = 0; i < n; i++)
+        flags[i] = row_regular(bl, n, i) ? 0 : HALF_IRREGULAR;
+    /* each owned bond with its twin in the partner's row, both halves equal */
     for (size_t i = 0; i < n; i++) {
-        const size_t e = bl->offset[i + 1];
-        size_t s = bl->offset[i], last = 0;
-        bool any = false;
-        /* the lower part: ascending, no duplicates */
-        for (; s < e && (size_t)bl->partner[s] < i; s++, n_lower++) {
-            if (any && (size_t)bl->partner[s] <= last)
-                return false;
-            last = (size_t)bl->partner[s];
-            any = true;
-        }
-        /* the upper part: owned partners ascending (ghosts anywhere), each
-         * with its twin in the partner's lower part, both halves equal */
-        for (; s < e; s++) {
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
             const size_t j = (size_t)bl->partner[s];
-            if (j <= i)
+            if (j == i)
                 return false;
-            if (j >= n) {
-                *ghosts = true;
+            if (j >= n)
+                continue;
+            if (j < i) {
+                n_lower++;
                 continue;
             }
-            if (any && j <= last)
-                return false;
-            last = j;
-            any = true;
             n_upper++;
-            const size_t t = lower_slot(bl->offset, bl->partner, j, i);
+            const size_t t = twin_slot(bl, flags, j, i);
             if (t == SIZE_MAX || !halves_equal(m, s, t))
                 return false;
             if (j - i > *span)
                 *span = j - i;
         }
     }
-    /* every upper half has a distinct lower twin: equal counts make it a
+    for (size_t i = 0; i < n; i++) {
+        if (flags[i] & HALF_IRREGULAR)
+            continue;
+        bool clean = true;
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            const size_t j = (size_t)bl->partner[s];
+            if (j > i && (j >= n || (flags[j] & HALF_IRREGULAR)))
+                clean = false;
+        }
+        flags[i] |= clean ? HALF_CLEAN : 0u;
+    }
+    /* every upper half has a distinct twin: equal counts make it a
      * one-to-one map, so no lower half is left without its push */
     return n_lower == n_upper;
 }
@@ -152,12 +197,13 @@ static size_t pd_half_ring(struct model *m, const struct sim *sim)
     const size_t n = sim->p->n_owned;
     if (m->half_known && m->half_gen == bl->gen && m->half_n == n)
         return m->half_ring;
+    free(m->half_flags);
+    m->half_flags = malloc(n ? n : 1);
     size_t span = 0, w = 1;
-    const bool ok = rows_suit(m, n, &span, &m->half_ghosts);
+    const bool ok = m->half_flags && rows_suit(m, n, &span, m->half_flags);
     while (w <= span)
         w <<= 1;
     m->half_ring = ok && w <= HALF_RING_MAX ? w : 0;
-    m->half_span = span;
     m->half_known = true;
     m->half_gen = bl->gen;
     m->half_n = n;
@@ -179,9 +225,8 @@ struct half_ctx {
     const struct pd_kctx *c;
     double *ring;    /* (mask + 1 + HALF_TRASH) entries of HALF_COLS */
     size_t mask;
-    size_t span;     /* largest index distance of a bond between owned rows */
+    const uint8_t *flags; /* per owned row: HALF_IRREGULAR, HALF_CLEAN */
     size_t hi_push;  /* pushes go to the rows below (0: none) */
-    bool ghosts;     /* some partners are ghosts (distributed run) */
     double *const *f;
     double *diss;
 };
@@ -230,7 +275,8 @@ half_gather_v(int dim, int push, int fast, const struct half_ctx *h, struct half
     do {                                                                                        \
         if (push && !bdir) {                                                                    \
             const size_t j = (size_t)c->partner[s0 + (k)];                                      \
-            hb->pi[k] = (uint32_t)(j < hi ? (j & mask) : trash + ((k) & (HALF_TRASH - 1)));    \
+            const bool to = j > b->i && j < hi && !(h->flags[j] & HALF_IRREGULAR);              \
+            hb->pi[k] = (uint32_t)(to ? (j & mask) : trash + ((k) & (HALF_TRASH - 1)));        \
         }                                                                                       \
     } while (0)
 #define HALF_GATHER_KIND(k)                                                                     \
@@ -314,7 +360,7 @@ half_settle(int dim, int push, const struct half_ctx *h, const struct half_buf *
             if (c->fresh && !(ty & 1u))
                 c->fresh[s] = 1;
             dd += e;
-            if (push && j < h->hi_push) {
+            if (push && (hb->direct || hb->pi[k] <= h->mask)) {
                 const size_t t = lower_slot(c->off, c->partner, j, i);
                 c->st[t] |= BOND_BROKEN;
                 if (c->fresh && !(ty & 1u))
@@ -412,9 +458,8 @@ half_segment(int dim, int push, const struct half_ctx *h, struct half_buf *buf, 
         b->yi0 = dim > 1 ? c->x[1][i] : 0.0;
         b->zi0 = dim > 2 ? c->x[2][i] : 0.0;
         hb->last = ends && s0 + b->nb == e;
-        /* all partners at most i + span: this thread's rows when that is
-         * below hi */
-        hb->direct = push && !h->ghosts && i + h->span < h->hi_push;
+        /* a clean row's upper part ascends: its last partner is its largest */
+        hb->direct = push && (h->flags[i] & HALF_CLEAN) && (size_t)c->partner[s0 + b->nb - 1] < h->hi_push;
         const struct half_buf *p = *pend;
         half_gather(dim, push, h, hb, p);
         if (push && p && p->last)
@@ -443,6 +488,8 @@ static inline __attribute__((always_inline)) void half_range(int dim, struct hal
     const size_t end = hi - lo > h->mask ? lo + h->mask + 1 : hi;
     h->hi_push = 0;
     for (size_t i = lo; i < end; i++) {
+        if (h->flags[i] & HALF_IRREGULAR)
+            continue;
         const size_t s = c->off[i], e = first_not_below(c->off, c->partner, i, lo);
         half_segment(dim, 0, h, buf, &next, &pend, i, s, e, false);
     }
@@ -450,7 +497,12 @@ static inline __attribute__((always_inline)) void half_range(int dim, struct hal
     /* the sweep: each row's upper part, its terms pushed to its partners */
     h->hi_push = hi;
     for (size_t i = lo; i < hi; i++) {
-        const size_t s = first_not_below(c->off, c->partner, i, i + 1), e = c->off[i + 1];
+        /* an irregular row: all its slots in order, pushing to its regular
+         * partners above i only */
+        const size_t s = h->flags[i] & HALF_IRREGULAR
+                             ? c->off[i]
+                             : first_not_below(c->off, c->partner, i, i + 1);
+        const size_t e = c->off[i + 1];
         if (s < e) {
             half_segment(dim, 1, h, buf, &next, &pend, i, s, e, true);
         } else {
@@ -465,7 +517,7 @@ static inline __attribute__((always_inline)) void half_range(int dim, struct hal
  * threads' code. */
 #define HALF_DIM(DIM)                                                                           \
     static void half_forces##DIM(const struct pd_kctx *c, size_t n, double *ring, size_t w,     \
-                                 size_t span, int nt_max, bool ghosts, double *const *f,        \
+                                 const uint8_t *flags, int nt_max, double *const *f,            \
                                  double *diss)                                                  \
     {                                                                                           \
         (void)nt_max;                                                                           \
@@ -473,8 +525,8 @@ static inline __attribute__((always_inline)) void half_range(int dim, struct hal
         {                                                                                       \
             size_t t = 0, nt = 1;                                                               \
             HALF_THREAD_IDS(t, nt);                                                             \
-            struct half_ctx h = {c,    ring + t * (w + HALF_TRASH) * HALF_COLS, w - 1, span, 0,  \
-                                 ghosts, f, diss};                                              \
+            struct half_ctx h = {c, ring + t * (w + HALF_TRASH) * HALF_COLS, w - 1, flags, 0, f, \
+                                 diss};                                                         \
             half_range(DIM, &h, n * t / nt, n * (t + 1) / nt);                                  \
         }                                                                                       \
     }
@@ -514,16 +566,15 @@ bool pd_half_forces(struct model *m, const struct sim *sim, const struct pd_kctx
         if (!m->half_buf)
             return false; /* memory is short: the split kernel */
     }
-    const bool ghosts = m->half_ghosts;
     switch (sim->dim) {
     case 1:
-        half_forces1(c, n, m->half_buf, w, m->half_span, nt, ghosts, f, diss);
+        half_forces1(c, n, m->half_buf, w, m->half_flags, nt, f, diss);
         break;
     case 2:
-        half_forces2(c, n, m->half_buf, w, m->half_span, nt, ghosts, f, diss);
+        half_forces2(c, n, m->half_buf, w, m->half_flags, nt, f, diss);
         break;
     default:
-        half_forces3(c, n, m->half_buf, w, m->half_span, nt, ghosts, f, diss);
+        half_forces3(c, n, m->half_buf, w, m->half_flags, nt, f, diss);
         break;
     }
     m->half_used = true;

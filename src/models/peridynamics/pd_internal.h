@@ -111,8 +111,7 @@ struct model {
     unsigned long half_gen;
     size_t half_n;
     size_t half_ring;        /**< ring entries per thread (power of 2); 0: rows unsuited */
-    size_t half_span;        /**< largest index distance of a bond between owned rows */
-    bool half_ghosts;        /**< some partner is a ghost (distributed run) */
+    uint8_t *half_flags;     /**< per owned row: irregular, clean (pd_half.c) */
     double *half_buf;        /**< the threads' rings of row sums, all zero between calls */
     size_t half_buf_len;     /**< doubles in half_buf */
     bool half_off;           /**< pd_set_row_loop: the split kernel only */
