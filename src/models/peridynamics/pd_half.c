@@ -50,6 +50,7 @@
 #include "core/sim.h"
 
 #include <stdlib.h>
+#include <string.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -510,7 +511,9 @@ static inline __attribute__((always_inline)) void half_range(int dim, struct hal
             half_finish(dim, h, i);
         }
     }
-    half_flush(dim, 1, h, &pend);
+    half_flush(dim, 1, h, &pend);    /* the trash too, so that the whole buffer is zero between calls, for
+     * a later ring width (a list rebuilt by migration) */
+    memset(h->ring + HALF_COLS * (h->mask + 1), 0, HALF_TRASH * HALF_COLS * sizeof *h->ring);
 }
 
 /* The loop per dimension, so that the dimension is a constant in the
