@@ -150,51 +150,16 @@ static inline __attribute__((always_inline)) void
 pd_chunk_gather(int dim, const struct pd_kctx *c, struct pd_chunk_buf *b,
                 const struct pd_chunk_buf *p, double (*sum)[3])
 {
-    const size_t s0 = b->s, nb = b->nb, np = p ? p->nb : 0;
-    const size_t m = nb < np ? nb : np;
-    b->rr = c->rest ? c->rest + s0 : b->rb;
-    b->cc = c->coef ? c->coef + s0 : b->cb;
+    const size_t np = p ? p->nb : 0;
     double dummy[3] = {0.0, 0.0, 0.0};
     double *ps = p ? sum[p->r] : dummy;
     double sx = ps[0], sy = ps[1], sz = ps[2];
     /* half-bond k of b, then term k of p */
-#define PD_PSUM(k)                                                                              \
-    do {                                                                                        \
-        sx += p->gx[k];                                                                         \
-        if (dim > 1)                                                                            \
-            sy += p->gy[k];                                                                     \
-        if (dim > 2)                                                                            \
-            sz += p->gz[k];                                                                     \
-    } while (0)
-#define PD_GATHER_KIND(k)                                                                       \
-    do {                                                                                        \
-        const struct pd_kind_row *q = &c->ktab[c->kind[s0 + (k)]];                              \
-        b->rb[k] = q->rest;                                                                     \
-        b->cb[k] = q->coef;                                                                     \
-        b->tb[k] = pd_thr_or_nan(q->thr, c->st[s0 + (k)]);                                      \
-    } while (0)
-#define PD_GATHER_FULL(k)                                                                       \
-    b->tb[k] = pd_thr_or_nan(c->s0tab[c->type[s0 + (k)]] * b->rr[k] * PD_PRE, c->st[s0 + (k)])
-    if (c->kind) {
-        for (size_t k = 0; k < m; k++) {
-            PD_GATHER_KIND(k);
-            PD_PSUM(k);
-        }
-        for (size_t k = m; k < nb; k++)
-            PD_GATHER_KIND(k);
-    } else {
-        for (size_t k = 0; k < m; k++) {
-            PD_GATHER_FULL(k);
-            PD_PSUM(k);
-        }
-        for (size_t k = m; k < nb; k++)
-            PD_GATHER_FULL(k);
-    }
-    for (size_t k = m; k < np; k++)
-        PD_PSUM(k);
+#define PD_PSUM(k) PD_ADD_TERM(dim, p, k, sx, sy, sz)
+#define PD_NONE(k) ((void)0)
+    PD_PASS0(c, b, np, PD_PSUM, PD_NONE);
 #undef PD_PSUM
-#undef PD_GATHER_KIND
-#undef PD_GATHER_FULL
+#undef PD_NONE
     ps[0] = sx;
     ps[1] = sy;
     ps[2] = sz;
@@ -209,48 +174,17 @@ pd_chunk_settle(int dim, const struct pd_kctx *c, const struct pd_chunk_buf *b, 
 {
     double sx = sum[0], sy = sum[1], sz = sum[2];
     for (size_t k = 0; k < b->nb; k++) {
-        const size_t s = b->s + k;
-        const unsigned ty = c->kind ? c->ktab[c->kind[s]].type : c->type[s];
-        if (b->el[k] > b->tb[k] && b->el[k] / b->rr[k] > c->s0tab[ty]) {
-            const size_t i = b->i, j = (size_t)c->partner[s];
-            const double ex = c->x[0][j] - b->xi0;
-            const double ey = dim > 1 ? c->x[1][j] - b->yi0 : 0.0;
-            const double ez = dim > 2 ? c->x[2][j] - b->zi0 : 0.0;
-            c->st[s] |= BOND_BROKEN;
-            if (c->fresh && !(ty & 1u))
-                c->fresh[s] = 1;
-            *dd += pd_break_energy(dim, ex, ey, ez, b->rr[k], b->el[k], b->cc[k], c->dt, c->u, i,
-                                   j, c->late);
+        const unsigned ty = pd_kc_type(c, b->s + k);
+        if (pd_breaks_now(c, b, k, ty)) {
+            *dd += pd_break_half(dim, c, b, k, ty);
             if (!c->late)
                 continue;
         }
-        sx += b->gx[k];
-        if (dim > 1)
-            sy += b->gy[k];
-        if (dim > 2)
-            sz += b->gz[k];
+        PD_ADD_TERM(dim, b, k, sx, sy, sz);
     }
     sum[0] = sx;
     sum[1] = sy;
     sum[2] = sz;
-}
-
-/* Pass 1 of chunk b (pd_chunk). */
-static inline __attribute__((always_inline)) int64_t pd_chunk_pass1(int dim,
-                                                                    const struct pd_kctx *c,
-                                                                    struct pd_chunk_buf *b)
-{
-    switch (dim) {
-    case 1:
-        return pd_chunk1(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
-                         b->tb, b->gx, b->gy, b->gz, b->el);
-    case 2:
-        return pd_chunk2(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
-                         b->tb, b->gx, b->gy, b->gz, b->el);
-    default:
-        return pd_chunk3(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
-                         b->tb, b->gx, b->gy, b->gz, b->el);
-    }
 }
 
 /* The PMB kernel without the mixed-mode threshold, split so that the
@@ -291,7 +225,7 @@ pd_kernel_block(int dim, const struct pd_kctx *c, size_t n, size_t q, struct pd_
             b->yi0 = dim > 1 ? c->x[1][i] : 0.0;
             b->zi0 = dim > 2 ? c->x[2][i] : 0.0;
             pd_chunk_gather(dim, c, b, p, sum);
-            const int64_t any = pd_chunk_pass1(dim, c, b);
+            const int64_t any = pd_pass1(dim, c, b);
             p = NULL;
             if (any)
                 pd_chunk_settle(dim, c, b, sum[r], &dd[r]);

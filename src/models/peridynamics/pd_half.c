@@ -68,15 +68,18 @@
  * below i are a sorted prefix of the row). */
 static size_t first_not_below(const size_t *off, const int32_t *partner, size_t i, size_t b)
 {
-    size_t lo = off[i], hi = off[i + 1];
-    while (lo < hi) {
-        const size_t mid = lo + (hi - lo) / 2;
-        if ((size_t)partner[mid] < b)
-            lo = mid + 1;
-        else
-            hi = mid;
+    /* halve the candidates [first, first + count) until one is left */
+    size_t first = off[i], count = off[i + 1] - off[i];
+    while (count > 0) {
+        const size_t half = count / 2;
+        if ((size_t)partner[first + half] >= b) {
+            count = half;
+        } else {
+            first += half + 1;
+            count -= half + 1;
+        }
     }
-    return lo;
+    return first;
 }
 
 /* Slot of partner @p i in the lower part of row @p j (i < j), or SIZE_MAX. */
@@ -192,22 +195,33 @@ static bool rows_suit(const struct model *m, size_t n, size_t *span, uint8_t *fl
     return n_lower == n_upper;
 }
 
+/* The ring width W for the owned rows [0, n) (with each row's flags): a
+ * power of two above the largest index distance of a bond, 0 when the
+ * rows do not suit the loop. */
+static size_t half_width(struct model *m, size_t n)
+{
+    free(m->half_flags);
+    m->half_flags = malloc(n ? n : 1);
+    size_t span = 0, w = 1;
+    if (!m->half_flags || !rows_suit(m, n, &span, m->half_flags) || span >= HALF_RING_MAX)
+        return 0;
+    while (w <= span)
+        w *= 2;
+    return w;
+}
+
+/* half_width, checked again only for a new list (generation) or owned
+ * count. */
 static size_t pd_half_ring(struct model *m, const struct sim *sim)
 {
     const struct bond_list *bl = m->bl;
     const size_t n = sim->p->n_owned;
-    if (m->half_known && m->half_gen == bl->gen && m->half_n == n)
-        return m->half_ring;
-    free(m->half_flags);
-    m->half_flags = malloc(n ? n : 1);
-    size_t span = 0, w = 1;
-    const bool ok = m->half_flags && rows_suit(m, n, &span, m->half_flags);
-    while (w <= span)
-        w <<= 1;
-    m->half_ring = ok && w <= HALF_RING_MAX ? w : 0;
-    m->half_known = true;
-    m->half_gen = bl->gen;
-    m->half_n = n;
+    if (!m->half_known || m->half_gen != bl->gen || m->half_n != n) {
+        m->half_ring = half_width(m, n);
+        m->half_known = true;
+        m->half_gen = bl->gen;
+        m->half_n = n;
+    }
     return m->half_ring;
 }
 
@@ -243,27 +257,20 @@ half_gather_v(int dim, int push, int fast, const struct half_ctx *h, struct half
     const struct pd_kctx *c = h->c;
     struct pd_chunk_buf *b = &hb->b;
     const struct pd_chunk_buf *p = hp ? &hp->b : NULL;
-    const size_t s0 = b->s, nb = b->nb, np = p ? p->nb : 0;
-    const size_t m = nb < np ? nb : np;
+    const size_t np = p ? p->nb : 0;
     const size_t trash = h->mask + 1, hi = h->hi_push, mask = h->mask;
     /* a direct chunk (most of them) finds its partners' entries from the
      * partner indices, without the table pi (fast: b and p both direct) */
     const bool bdir = fast || hb->direct, pdir = fast || (hp && hp->direct);
     double *restrict ring = h->ring;
-    b->rr = c->rest ? c->rest + s0 : b->rb;
-    b->cc = c->coef ? c->coef + s0 : b->cb;
     double dummy[HALF_COLS] = {0.0, 0.0, 0.0, 0.0};
     double *ps = p ? ring + HALF_COLS * (p->i & h->mask) : dummy;
     double sx = ps[0], sy = ps[1], sz = ps[2];
 #define HALF_PSUM(k)                                                                            \
     do {                                                                                        \
-        sx += p->gx[k];                                                                         \
-        if (dim > 1)                                                                            \
-            sy += p->gy[k];                                                                     \
-        if (dim > 2)                                                                            \
-            sz += p->gz[k];                                                                     \
+        PD_ADD_TERM(dim, p, k, sx, sy, sz);                                                     \
         if (push) {                                                                             \
-            const size_t e = pdir ? (size_t)c->partner[p->s + (k)] & mask : (size_t)hp->pi[k]; \
+            const size_t e = pdir ? (size_t)c->partner[p->s + (k)] & mask : (size_t)hp->pi[k];  \
             double *q = ring + HALF_COLS * e;                                                   \
             q[0] -= p->gx[k];                                                                   \
             if (dim > 1)                                                                        \
@@ -275,49 +282,17 @@ half_gather_v(int dim, int push, int fast, const struct half_ctx *h, struct half
 #define HALF_PI(k)                                                                              \
     do {                                                                                        \
         if (push && !bdir) {                                                                    \
-            const size_t j = (size_t)c->partner[s0 + (k)];                                      \
+            const size_t j = (size_t)c->partner[b->s + (k)];                                    \
             const bool to = j > b->i && j < hi && !(h->flags[j] & HALF_IRREGULAR);              \
-            hb->pi[k] = (uint32_t)(to ? (j & mask) : trash + ((k) & (HALF_TRASH - 1)));        \
+            hb->pi[k] = (uint32_t)(to ? (j & mask) : trash + ((k) & (HALF_TRASH - 1)));         \
         }                                                                                       \
     } while (0)
-#define HALF_GATHER_KIND(k)                                                                     \
-    do {                                                                                        \
-        const struct pd_kind_row *q = &c->ktab[c->kind[s0 + (k)]];                              \
-        b->rb[k] = q->rest;                                                                     \
-        b->cb[k] = q->coef;                                                                     \
-        b->tb[k] = pd_thr_or_nan(q->thr, c->st[s0 + (k)]);                                      \
-        HALF_PI(k);                                                                             \
-    } while (0)
-#define HALF_GATHER_FULL(k)                                                                     \
-    do {                                                                                        \
-        b->tb[k] = pd_thr_or_nan(c->s0tab[c->type[s0 + (k)]] * b->rr[k] * PD_PRE,              \
-                                 c->st[s0 + (k)]);                                              \
-        HALF_PI(k);                                                                             \
-    } while (0)
-    if (c->kind) {
-        for (size_t k = 0; k < m; k++) {
-            HALF_GATHER_KIND(k);
-            HALF_PSUM(k);
-        }
-        for (size_t k = m; k < nb; k++)
-            HALF_GATHER_KIND(k);
-    } else {
-        for (size_t k = 0; k < m; k++) {
-            HALF_GATHER_FULL(k);
-            HALF_PSUM(k);
-        }
-        for (size_t k = m; k < nb; k++)
-            HALF_GATHER_FULL(k);
-    }
-    for (size_t k = m; k < np; k++)
-        HALF_PSUM(k);
-#undef HALF_PSUM
-#undef HALF_PI
-#undef HALF_GATHER_KIND
-#undef HALF_GATHER_FULL
+    PD_PASS0(c, b, np, HALF_PSUM, HALF_PI);
     ps[0] = sx;
     ps[1] = sy;
     ps[2] = sz;
+#undef HALF_PSUM
+#undef HALF_PI
 }
 
 /* half_gather_v with the common case, both chunks direct, in a loop of its
@@ -348,18 +323,12 @@ half_settle(int dim, int push, const struct half_ctx *h, const struct half_buf *
         const size_t s = b->s + k;
         double *q = NULL;
         if (push)
-            q = ring + HALF_COLS * (hb->direct ? (size_t)c->partner[s] & h->mask : (size_t)hb->pi[k]);
-        const unsigned ty = c->kind ? c->ktab[c->kind[s]].type : c->type[s];
-        if (b->el[k] > b->tb[k] && b->el[k] / b->rr[k] > c->s0tab[ty]) {
+            q = ring + HALF_COLS * (hb->direct ? (size_t)c->partner[s] & h->mask
+                                               : (size_t)hb->pi[k]);
+        const unsigned ty = pd_kc_type(c, s);
+        if (pd_breaks_now(c, b, k, ty)) {
             const size_t i = b->i, j = (size_t)c->partner[s];
-            const double ex = c->x[0][j] - b->xi0;
-            const double ey = dim > 1 ? c->x[1][j] - b->yi0 : 0.0;
-            const double ez = dim > 2 ? c->x[2][j] - b->zi0 : 0.0;
-            const double e = pd_break_energy(dim, ex, ey, ez, b->rr[k], b->el[k], b->cc[k],
-                                             c->dt, c->u, i, j, c->late);
-            c->st[s] |= BOND_BROKEN;
-            if (c->fresh && !(ty & 1u))
-                c->fresh[s] = 1;
+            const double e = pd_break_half(dim, c, b, k, ty);
             dd += e;
             if (push && (hb->direct || hb->pi[k] <= h->mask)) {
                 const size_t t = lower_slot(c->off, c->partner, j, i);
@@ -371,11 +340,7 @@ half_settle(int dim, int push, const struct half_ctx *h, const struct half_buf *
             if (!c->late)
                 continue;
         }
-        sx += b->gx[k];
-        if (dim > 1)
-            sy += b->gy[k];
-        if (dim > 2)
-            sz += b->gz[k];
+        PD_ADD_TERM(dim, b, k, sx, sy, sz);
         if (push) {
             q[0] -= b->gx[k];
             if (dim > 1)
@@ -402,23 +367,6 @@ static inline __attribute__((always_inline)) void half_finish(int dim, const str
         h->f[2][i] += e[2];
     h->diss[i] += e[3];
     e[0] = e[1] = e[2] = e[3] = 0.0;
-}
-
-/* Pass 1 of chunk b (pd_chunkD). */
-static inline __attribute__((always_inline)) int64_t half_pass1(int dim, const struct pd_kctx *c,
-                                                                struct pd_chunk_buf *b)
-{
-    switch (dim) {
-    case 1:
-        return pd_chunk1(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
-                         b->tb, b->gx, b->gy, b->gz, b->el);
-    case 2:
-        return pd_chunk2(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
-                         b->tb, b->gx, b->gy, b->gz, b->el);
-    default:
-        return pd_chunk3(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
-                         b->tb, b->gx, b->gy, b->gz, b->el);
-    }
 }
 
 /* The pending plain chunk (if any) summed, and its row finished when it
@@ -460,13 +408,14 @@ half_segment(int dim, int push, const struct half_ctx *h, struct half_buf *buf, 
         b->zi0 = dim > 2 ? c->x[2][i] : 0.0;
         hb->last = ends && s0 + b->nb == e;
         /* a clean row's upper part ascends: its last partner is its largest */
-        hb->direct = push && (h->flags[i] & HALF_CLEAN) && (size_t)c->partner[s0 + b->nb - 1] < h->hi_push;
+        hb->direct = push && (h->flags[i] & HALF_CLEAN) &&
+                     (size_t)c->partner[s0 + b->nb - 1] < h->hi_push;
         const struct half_buf *p = *pend;
         half_gather(dim, push, h, hb, p);
         if (push && p && p->last)
             half_finish(dim, h, p->b.i);
         *pend = NULL;
-        if (half_pass1(dim, c, b)) {
+        if (pd_pass1(dim, c, b)) {
             half_settle(dim, push, h, hb);
             if (push && hb->last)
                 half_finish(dim, h, i);
@@ -511,7 +460,8 @@ static inline __attribute__((always_inline)) void half_range(int dim, struct hal
             half_finish(dim, h, i);
         }
     }
-    half_flush(dim, 1, h, &pend);    /* the trash too, so that the whole buffer is zero between calls, for
+    half_flush(dim, 1, h, &pend);
+    /* the trash too, so that the whole buffer is zero between calls, for
      * a later ring width (a list rebuilt by migration) */
     memset(h->ring + HALF_COLS * (h->mask + 1), 0, HALF_TRASH * HALF_COLS * sizeof *h->ring);
 }
