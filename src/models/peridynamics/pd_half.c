@@ -136,12 +136,17 @@ static bool row_regular(const struct bond_list *bl, size_t n, size_t i)
     return true;
 }
 
-/* Slot of partner @p i in row @p j, by the sorted lower part when row j
- * is regular, else by a scan; SIZE_MAX when absent. */
-static size_t twin_slot(const struct bond_list *bl, const uint8_t *flags, size_t j, size_t i)
+/* Slot of partner @p i (< j) in row @p j: in a regular row the next slot
+ * of its lower part (cnt[j] counts those found: the rows i are visited in
+ * ascending order, as the lower part lists them), else by a scan; SIZE_MAX
+ * when absent. */
+static size_t twin_slot(const struct bond_list *bl, const uint8_t *flags, uint32_t *cnt, size_t j,
+                        size_t i)
 {
-    if (!(flags[j] & HALF_IRREGULAR))
-        return lower_slot(bl->offset, bl->partner, j, i);
+    if (!(flags[j] & HALF_IRREGULAR)) {
+        const size_t t = bl->offset[j] + cnt[j]++;
+        return t < bl->offset[j + 1] && (size_t)bl->partner[t] == i ? t : SIZE_MAX;
+    }
     for (size_t t = bl->offset[j]; t < bl->offset[j + 1]; t++)
         if ((size_t)bl->partner[t] == i)
             return t;
@@ -150,7 +155,8 @@ static size_t twin_slot(const struct bond_list *bl, const uint8_t *flags, size_t
 
 /* Whether the owned rows [0, n) suit the loop, with each row's flags;
  * *span: the largest index distance of a bond between owned particles. */
-static bool rows_suit(const struct model *m, size_t n, size_t *span, uint8_t *flags)
+static bool rows_suit(const struct model *m, size_t n, size_t *span, uint8_t *flags,
+                      uint32_t *cnt)
 {
     const struct bond_list *bl = m->bl;
     size_t n_lower = 0, n_upper = 0;
@@ -172,7 +178,7 @@ static bool rows_suit(const struct model *m, size_t n, size_t *span, uint8_t *fl
                 continue;
             }
             n_upper++;
-            const size_t t = twin_slot(bl, flags, j, i);
+            const size_t t = twin_slot(bl, flags, cnt, j, i);
             if (t == SIZE_MAX || !halves_equal(m, s, t))
                 return false;
             if (j - i > *span)
@@ -202,8 +208,11 @@ static size_t half_width(struct model *m, size_t n)
 {
     free(m->half_flags);
     m->half_flags = malloc(n ? n : 1);
+    uint32_t *cnt = calloc(n ? n : 1, sizeof *cnt);
     size_t span = 0, w = 1;
-    if (!m->half_flags || !rows_suit(m, n, &span, m->half_flags) || span >= HALF_RING_MAX)
+    const bool ok = m->half_flags && cnt && rows_suit(m, n, &span, m->half_flags, cnt);
+    free(cnt);
+    if (!ok || span >= HALF_RING_MAX)
         return 0;
     while (w <= span)
         w *= 2;
