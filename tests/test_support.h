@@ -7,6 +7,7 @@
 #ifndef SPALL_TEST_SUPPORT_H
 #define SPALL_TEST_SUPPORT_H
 
+#include "core/bond_list.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "io/deck.h"
@@ -15,6 +16,8 @@
 #include "validation/lattice_cases.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 /** The simulation of @p yaml, or NULL with the cause printed (for tests
@@ -122,6 +125,16 @@ static inline double test_min_cross_distance(const struct sim *s)
             best = fmin(best, sqrt(dx * dx + dy * dy));
         }
     return best;
+}
+
+/** A copy (free it) of the bond states of @p bl, *nh of them. */
+static inline uint8_t *test_copy_states(const struct bond_list *bl, size_t *nh)
+{
+    *nh = bl->offset[bl->n];
+    uint8_t *st = malloc(*nh ? *nh : 1);
+    assert_non_null(st);
+    memcpy(st, bl->state, *nh);
+    return st;
 }
 
 #endif

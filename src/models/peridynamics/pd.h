@@ -84,5 +84,10 @@ bool pd_mixed_state(const struct model *m, size_t i, double *beta, double *g);
  *  positions (Benzeggagh & Kenane 1996 G_c(beta); pd_mixed.c, called by the
  *  step itself). */
 void pd_mixed_update(struct model *m, const struct sim *sim);
+/** Tests: the split kernel only (@p rows), every half-bond from its own row,
+ *  instead of the once-per-bond loop (pd_half.c), which gives the same bits. */
+void pd_set_row_loop(struct model *m, bool rows);
+/** Whether the last force computation took the once-per-bond loop. */
+bool pd_used_half_loop(const struct model *m);
 
 #endif

@@ -13,6 +13,7 @@
  * both ends, so the result does not depend on the thread count.
  */
 #include "models/peridynamics/pd_internal.h"
+#include "models/peridynamics/pd_kernel.h"
 
 #include "core/bond_list.h"
 #include "core/exact_sum.h"
@@ -26,22 +27,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Energy released by a half-bond that breaks in this step: what the kicks
- * left of the bond's energy, not 1/4 coef e_{n+1}^2.  immediate: its force
- * at x_n acted half a step (1/4 coef e_{n+1} e_n, exact); next_step: its
- * force at x_{n+1} acts half a step more (1/4 coef e_{n+1} (e_{n+1} + de),
- * de ~ e_{n+1} - e_n).  x_n = x - dt u; (ex, ey, ez) = x_j - x_i, e0 = l - r. */
-static inline double pd_break_energy(int dim, double ex, double ey, double ez, double r,
-                                     double e0, double coef, double dt, double *const *u,
-                                     size_t i, size_t j, bool late)
-{
-    const double px = ex - dt * (u[0][j] - u[0][i]);
-    const double py = dim > 1 ? ey - dt * (u[1][j] - u[1][i]) : 0.0;
-    const double pz = dim > 2 ? ez - dt * (u[2][j] - u[2][i]) : 0.0;
-    const double en = sqrt(px * px + py * py + pz * pz) - r;
-    return 0.25 * coef * e0 * (late ? 2.0 * e0 - en : en);
-}
 
 /* One kernel per dimension: the loop over j is the hot path (the mixed-mode
  * threshold; pd_kernel_block below for the others). */
@@ -87,9 +72,6 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
             f[2][i] += fz;                                                                      \
         diss[i] += dd;                                                                          \
     }
-
-#define PD_CHUNK 64
-#define PD_PRE (1.0 - 1e-12)
 
 /* Pass 1 for half-bond k of a chunk of particle i's row (partner, rest,
  * coef and thr start at the chunk) at (xi0, yi0, zi0): the force
@@ -146,11 +128,7 @@ pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0, double *const *
 #define PD_CLONES
 #endif
 #define PD_CHUNK_DIM(DIM)                                                                       \
-    PD_CLONES static int64_t pd_chunk##DIM(                                                     \
-        size_t nb, double xi0, double yi0, double zi0, double *const *restrict x,              \
-        const int32_t *restrict partner, const double *restrict rest,                           \
-        const double *restrict coef, const double *restrict thr, double *restrict gx,           \
-        double *restrict gy, double *restrict gz, double *restrict el)                          \
+    PD_CLONES PD_CHUNK_DECL(DIM)                                                                \
     {                                                                                           \
         return pd_chunk(DIM, nb, xi0, yi0, zi0, x, partner, rest, coef, thr, gx, gy, gz, el);   \
     }
@@ -158,55 +136,10 @@ PD_CHUNK_DIM(1)
 PD_CHUNK_DIM(2)
 PD_CHUNK_DIM(3)
 
-/* A row of the compact families' table as the kernel reads it: one cache
- * line for the three doubles of a half-bond, and its pre-test bound. */
-struct pd_kind_row {
-    double rest, coef, thr;
-    unsigned type;
-};
-
-/* What the split kernel reads and writes besides the particle's row. */
-struct pd_kctx {
-    const size_t *off;
-    const int32_t *partner;
-    const double *rest, *coef; /* NULL: compact families (ktab) */
-    const uint8_t *type;
-    uint8_t *st;
-    const uint16_t *kind;
-    const struct pd_kind_row *ktab;
-    const double *s0tab;
-    double *const *x, *const *u;
-    double dt;
-    bool late;
-    uint8_t *fresh;
-};
-
 /* Rows per block of the split kernel: a block is one thread's, its rows in
  * turn, so that the plain sum of one chunk goes into pass 1 of the next
  * one, across row ends. */
 #define PD_BLOCK 64
-
-/* One chunk of a row: half-bonds [s, s + nb) of particle i (row r of the
- * block) at (xi0, yi0, zi0), and the buffers of passes 0 and 1. */
-struct pd_chunk_buf {
-    size_t i, r, s, nb;
-    double xi0, yi0, zi0;
-    const double *rr, *cc;
-    double gx[PD_CHUNK], gy[PD_CHUNK], gz[PD_CHUNK], el[PD_CHUNK];
-    double rb[PD_CHUNK], cb[PD_CHUNK], tb[PD_CHUNK];
-};
-
-/* A pre-test bound, or NaN when the half-bond is broken (state bit 0),
- * without a branch: the bits of a quiet NaN or-ed into any double give a
- * NaN. */
-static inline double pd_thr_or_nan(double thr, uint8_t state)
-{
-    uint64_t b;
-    memcpy(&b, &thr, sizeof b);
-    b |= ((uint64_t)0 - (uint64_t)(state & BOND_BROKEN)) & UINT64_C(0x7ff8000000000000);
-    memcpy(&thr, &b, sizeof thr);
-    return thr;
-}
 
 /* Pass 0 of chunk b: its lengths and coefficients (compact families: from
  * the table) and its pre-test bounds, NaN for a broken half-bond; and in
@@ -218,51 +151,16 @@ static inline __attribute__((always_inline)) void
 pd_chunk_gather(int dim, const struct pd_kctx *c, struct pd_chunk_buf *b,
                 const struct pd_chunk_buf *p, double (*sum)[3])
 {
-    const size_t s0 = b->s, nb = b->nb, np = p ? p->nb : 0;
-    const size_t m = nb < np ? nb : np;
-    b->rr = c->rest ? c->rest + s0 : b->rb;
-    b->cc = c->coef ? c->coef + s0 : b->cb;
+    const size_t np = p ? p->nb : 0;
     double dummy[3] = {0.0, 0.0, 0.0};
     double *ps = p ? sum[p->r] : dummy;
     double sx = ps[0], sy = ps[1], sz = ps[2];
     /* half-bond k of b, then term k of p */
-#define PD_PSUM(k)                                                                              \
-    do {                                                                                        \
-        sx += p->gx[k];                                                                         \
-        if (dim > 1)                                                                            \
-            sy += p->gy[k];                                                                     \
-        if (dim > 2)                                                                            \
-            sz += p->gz[k];                                                                     \
-    } while (0)
-#define PD_GATHER_KIND(k)                                                                       \
-    do {                                                                                        \
-        const struct pd_kind_row *q = &c->ktab[c->kind[s0 + (k)]];                              \
-        b->rb[k] = q->rest;                                                                     \
-        b->cb[k] = q->coef;                                                                     \
-        b->tb[k] = pd_thr_or_nan(q->thr, c->st[s0 + (k)]);                                      \
-    } while (0)
-#define PD_GATHER_FULL(k)                                                                       \
-    b->tb[k] = pd_thr_or_nan(c->s0tab[c->type[s0 + (k)]] * b->rr[k] * PD_PRE, c->st[s0 + (k)])
-    if (c->kind) {
-        for (size_t k = 0; k < m; k++) {
-            PD_GATHER_KIND(k);
-            PD_PSUM(k);
-        }
-        for (size_t k = m; k < nb; k++)
-            PD_GATHER_KIND(k);
-    } else {
-        for (size_t k = 0; k < m; k++) {
-            PD_GATHER_FULL(k);
-            PD_PSUM(k);
-        }
-        for (size_t k = m; k < nb; k++)
-            PD_GATHER_FULL(k);
-    }
-    for (size_t k = m; k < np; k++)
-        PD_PSUM(k);
+#define PD_PSUM(k) PD_ADD_TERM(dim, p, k, sx, sy, sz)
+#define PD_NONE(k) ((void)0)
+    PD_PASS0(c, b, np, PD_PSUM, PD_NONE);
 #undef PD_PSUM
-#undef PD_GATHER_KIND
-#undef PD_GATHER_FULL
+#undef PD_NONE
     ps[0] = sx;
     ps[1] = sy;
     ps[2] = sz;
@@ -277,48 +175,17 @@ pd_chunk_settle(int dim, const struct pd_kctx *c, const struct pd_chunk_buf *b, 
 {
     double sx = sum[0], sy = sum[1], sz = sum[2];
     for (size_t k = 0; k < b->nb; k++) {
-        const size_t s = b->s + k;
-        const unsigned ty = c->kind ? c->ktab[c->kind[s]].type : c->type[s];
-        if (b->el[k] > b->tb[k] && b->el[k] / b->rr[k] > c->s0tab[ty]) {
-            const size_t i = b->i, j = (size_t)c->partner[s];
-            const double ex = c->x[0][j] - b->xi0;
-            const double ey = dim > 1 ? c->x[1][j] - b->yi0 : 0.0;
-            const double ez = dim > 2 ? c->x[2][j] - b->zi0 : 0.0;
-            c->st[s] |= BOND_BROKEN;
-            if (c->fresh && !(ty & 1u))
-                c->fresh[s] = 1;
-            *dd += pd_break_energy(dim, ex, ey, ez, b->rr[k], b->el[k], b->cc[k], c->dt, c->u, i,
-                                   j, c->late);
+        const unsigned ty = pd_kc_type(c, b->s + k);
+        if (pd_breaks_now(c, b, k, ty)) {
+            *dd += pd_break_half(dim, c, b, k, ty);
             if (!c->late)
                 continue;
         }
-        sx += b->gx[k];
-        if (dim > 1)
-            sy += b->gy[k];
-        if (dim > 2)
-            sz += b->gz[k];
+        PD_ADD_TERM(dim, b, k, sx, sy, sz);
     }
     sum[0] = sx;
     sum[1] = sy;
     sum[2] = sz;
-}
-
-/* Pass 1 of chunk b (pd_chunk). */
-static inline __attribute__((always_inline)) int64_t pd_chunk_pass1(int dim,
-                                                                    const struct pd_kctx *c,
-                                                                    struct pd_chunk_buf *b)
-{
-    switch (dim) {
-    case 1:
-        return pd_chunk1(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
-                         b->tb, b->gx, b->gy, b->gz, b->el);
-    case 2:
-        return pd_chunk2(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
-                         b->tb, b->gx, b->gy, b->gz, b->el);
-    default:
-        return pd_chunk3(b->nb, b->xi0, b->yi0, b->zi0, c->x, c->partner + b->s, b->rr, b->cc,
-                         b->tb, b->gx, b->gy, b->gz, b->el);
-    }
 }
 
 /* The PMB kernel without the mixed-mode threshold, split so that the
@@ -359,7 +226,7 @@ pd_kernel_block(int dim, const struct pd_kctx *c, size_t n, size_t q, struct pd_
             b->yi0 = dim > 1 ? c->x[1][i] : 0.0;
             b->zi0 = dim > 2 ? c->x[2][i] : 0.0;
             pd_chunk_gather(dim, c, b, p, sum);
-            const int64_t any = pd_chunk_pass1(dim, c, b);
+            const int64_t any = pd_pass1(dim, c, b);
             p = NULL;
             if (any)
                 pd_chunk_settle(dim, c, b, sum[r], &dd[r]);
@@ -471,7 +338,8 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
                                x, u, dt, late, fresh};
     switch (p->dim) {
     case 1:
-        pd_kernel_split1(&kc, n, f, diss);
+        if (!pd_half_forces(m, sim, &kc, n, f, diss))
+            pd_kernel_split1(&kc, n, f, diss);
         break;
     case 2:
         if (m->mixed) {
@@ -481,12 +349,13 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
             if (sim->par)
                 par_halo_values(sim, m->mm_g, 1);
             PD_KERNEL(2, 1)
-        } else {
+        } else if (!pd_half_forces(m, sim, &kc, n, f, diss)) {
             pd_kernel_split2(&kc, n, f, diss);
         }
         break;
     default:
-        pd_kernel_split3(&kc, n, f, diss);
+        if (!pd_half_forces(m, sim, &kc, n, f, diss))
+            pd_kernel_split3(&kc, n, f, diss);
         break;
     }
     free(ktab);

@@ -105,6 +105,17 @@ struct model {
     bool mixed;              /**< some bond type uses the mixed-mode threshold */
     bool ortho;              /**< some material is orthotropic */
     struct pd_lps lps;       /**< formulation lps (pd_lps.c) */
+    /* the once-per-bond loop (pd_half.c): what the row check found for the
+     * list of generation half_gen with half_n owned rows */
+    bool half_known;         /**< false: check the rows again (new list) */
+    unsigned long half_gen;
+    size_t half_n;
+    size_t half_ring;        /**< ring entries per thread (power of 2); 0: rows unsuited */
+    uint8_t *half_flags;     /**< per owned row: irregular, clean (pd_half.c) */
+    double *half_buf;        /**< the threads' rings of row sums, all zero between calls */
+    size_t half_buf_len;     /**< doubles in half_buf */
+    bool half_off;           /**< pd_set_row_loop: the split kernel only */
+    bool half_used;          /**< the last force call took the once-per-bond loop */
     struct pd_interface *ifc; /**< material-pair bond laws (pd_interface.c) */
     size_t n_ifc;
     bool initialised;

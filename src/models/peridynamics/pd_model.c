@@ -116,6 +116,8 @@ static void pd_destroy(struct model **pm)
     free(m->twin);
     free(m->fresh);
     free(m->tw_gid);
+    free(m->half_buf);
+    free(m->half_flags);
     pd_lps_free(&m->lps);
     for (int d = 0; d < 3; d++)
         free(m->f_prev[d]);
