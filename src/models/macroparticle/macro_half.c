@@ -62,17 +62,15 @@ void macro_half_free(struct model *m)
     free(m->hps);
     free(m->hprs);
     free(m->pid);
+    free(m->pc);
+    free(m->pphi);
     free(m->pwp);
     free(m->pfl);
-    free(m->gstep);
-    free(m->gval);
-    free(m->gca);
-    free(m->gcb);
-    m->hoff = m->hps = m->hprs = m->gstep = NULL;
-    m->pid = m->gca = m->gcb = NULL;
+    m->hoff = m->hps = m->hprs = NULL;
+    m->pid = NULL;
     m->hpi = m->hpj = NULL;
-    m->pwp = m->pfl = m->gval = NULL;
-    m->half_pairs = m->half_pair_cap = m->gval_cap = 0;
+    m->pc = m->pphi = m->pwp = m->pfl = NULL;
+    m->half_pairs = m->half_pair_cap = 0;
     macro_half_invalidate(m, NULL);
 }
 
@@ -173,7 +171,6 @@ static void half_take(struct model *m, struct neighbor_pairs *t, size_t n)
     t->slot_pair = NULL;
     t->partner = NULL;
     const struct neighbor_list *nl = m->nl;
-#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
     for (size_t i = 0; i < n; i++)
         for (size_t q = m->hoff[i]; q < m->hoff[i + 1]; q++)
             m->hpi[q] = (int32_t)i;
@@ -185,66 +182,6 @@ static void half_take(struct model *m, struct neighbor_pairs *t, size_t n)
                 else
                     m->hprs[m->pid[s]] = s;
             }
-}
-
-/* The slot layout of the pair values (gstep, gval: macro_internal.h) and
- * per pair the places of its two slots' values (gca, gcb), from the slot ->
- * pair index. */
-static int half_groups(struct model *m, size_t n, size_t np, struct spall_error *err)
-{
-    const size_t *off = m->nl->offset, ng = (n + 3) / 4;
-    free(m->gstep);
-    m->gstep = malloc((ng + 1) * sizeof *m->gstep);
-    if (!m->gstep)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
-    size_t steps = 0, ghosts = 0;
-    for (size_t g = 0; g < ng; g++) {
-        size_t len = 0;
-        for (size_t i = 4 * g; i < 4 * g + 4 && i < n; i++)
-            len = off[i + 1] - off[i] > len ? off[i + 1] - off[i] : len;
-        m->gstep[g] = steps;
-        steps += len;
-    }
-    m->gstep[ng] = steps;
-    for (size_t q = 0; q < np; q++)
-        ghosts += (size_t)m->hpj[q] >= n;
-    /* a ghost partner's values go to a place of their own past the groups
-     * (never read): four to a step, as in a group */
-    const size_t nval = 8 * (steps + (ghosts + 3) / 4);
-    if (nval > UINT32_MAX)
-        return spall_error_set(err, SPALL_ERR_INPUT, "%zu macro-particle pair values on a rank "
-                               "exceed their 32-bit places", nval);
-    if (nval > m->gval_cap || !m->gval) {
-        free(m->gval);
-        m->gval = malloc((nval ? nval : 1) * sizeof *m->gval);
-        m->gval_cap = m->gval ? nval : 0;
-        if (!m->gval)
-            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the "
-                                   "macro-particle pair values (%zu slots)", m->nl->offset[n]);
-    }
-    /* zeros past each row's end: pass 2 adds them as +0 terms */
-    memset(m->gval, 0, nval * sizeof *m->gval);
-    const uint32_t *pid = m->pid;
-    const int32_t *hpi = m->hpi;
-    uint32_t *gca = m->gca, *gcb = m->gcb;
-#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
-    for (size_t i = 0; i < n; i++) {
-        const size_t e0 = 8 * m->gstep[i / 4] + i % 4;
-        for (size_t s = off[i]; s < off[i + 1]; s++) {
-            const size_t q = pid[s];
-            const uint32_t e = (uint32_t)(e0 + 8 * (s - off[i]));
-            if ((size_t)hpi[q] == i)
-                gca[q] = e;
-            else
-                gcb[q] = e;
-        }
-    }
-    for (size_t q = 0, k = 0; q < np; q++)
-        if ((size_t)m->hpj[q] >= n) {
-            gcb[q] = (uint32_t)(8 * (steps + k / 4) + k % 4);
-            k++;
-        }
-    return SPALL_OK;
 }
 
 static int half_prepare(struct model *m, const struct particles *p, size_t n, bool plastic,
@@ -281,8 +218,8 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
     const bool pg = np > m->half_pair_cap;
     const size_t pn = pg ? np : m->half_pair_cap;
     bool ok = need((void **)&m->hpi, pn, sizeof *m->hpi, pg) &&
-              need((void **)&m->gca, pn, sizeof *m->gca, pg) &&
-              need((void **)&m->gcb, pn, sizeof *m->gcb, pg) &&
+              need((void **)&m->pc, pn, sizeof *m->pc, pg) &&
+              need((void **)&m->pphi, pn, sizeof *m->pphi, pg) &&
               (!plastic || (need((void **)&m->hps, pn, sizeof *m->hps, pg) &&
                             need((void **)&m->hprs, pn, sizeof *m->hprs, pg) &&
                             need((void **)&m->pwp, pn, sizeof *m->pwp, pg))) &&
@@ -314,15 +251,6 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
                                    "symmetric (a partner of particle %lld does not list it)",
                                    (long long)bad);
         }
-    }
-    int rc = half_groups(m, n, np, err);
-    if (rc) {
-        macro_half_free(m);
-        return rc;
-    }
-    if (!plastic && !pairwise) { /* only the finishing sums of those runs read it */
-        free(m->pid);
-        m->pid = NULL;
     }
     m->half_ok = true;
     return SPALL_OK;
@@ -432,17 +360,7 @@ static void half_compute(const struct half_ctx *h, size_t q0, size_t nb)
         }
         re_k = rre;
     }
-    double ph[MACRO_CHUNK], c[MACRO_CHUNK];
-    half_chunk_law(w, nb, rr2, rr, re_k, h->rlist2, ph, c);
-    /* each value to both its slots' places (phi four places after c) */
-    double *gv = m->gval;
-    const uint32_t *ga = m->gca + q0, *gb = m->gcb + q0;
-    for (size_t k = 0; k < nb; k++) {
-        gv[ga[k]] = c[k];
-        gv[ga[k] + 4] = ph[k];
-        gv[gb[k]] = c[k];
-        gv[gb[k] + 4] = ph[k];
-    }
+    half_chunk_law(w, nb, rr2, rr, re_k, h->rlist2, m->pphi + q0, m->pc + q0);
 }
 
 static void half_pass1(const struct half_ctx *h, size_t q0, size_t q1)
@@ -469,23 +387,21 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
     const int dim = h->dim;
     const double *x0 = h->x[0], *x1 = dim > 1 ? h->x[1] : h->x[0];
     const double *x2 = dim > 2 ? h->x[2] : h->x[0];
-    /* slot k's c at gv[8 k], its phi at gv[8 k + 4] */
-    const double *gv = h->m->gval + 8 * h->m->gstep[i / 4] + i % 4;
-    const size_t s0 = nl->offset[i];
+    const double *pc = h->m->pc, *pphi = h->m->pphi;
+    const uint32_t *pid = h->m->pid;
     const double xi0 = x0[i], xi1 = dim > 1 ? x1[i] : 0.0, xi2 = dim > 2 ? x2[i] : 0.0;
 #if defined(__GNUC__)
     /* lanes: A = force xyz and energy, B = virial xx yy zz xy, C = yz zx */
     half_v4 A = {0, 0, 0, 0}, B = {0, 0, 0, 0};
     half_v2 C = {0, 0};
-    for (size_t s = s0; s < nl->offset[i + 1]; s++) {
-        const size_t j = (size_t)nl->idx[s];
-        const double c = gv[8 * (s - s0)], ph = gv[8 * (s - s0) + 4];
-        if (c == 0.0 && ph == 0.0)
+    for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+        const size_t q = pid[s], j = (size_t)nl->idx[s];
+        if (pc[q] == 0.0 && pphi[q] == 0.0)
             continue; /* does not count, or adds +-0 only */
         const double dx = x0[j] - xi0, dy = dim > 1 ? x1[j] - xi1 : 0.0;
         const double dz = dim > 2 ? x2[j] - xi2 : 0.0;
-        const double hc = 0.5 * c;
-        A += (half_v4){c, c, c, 0.5} * (half_v4){dx, dy, dz, ph};
+        const double c = pc[q], hc = 0.5 * c;
+        A += (half_v4){c, c, c, 0.5} * (half_v4){dx, dy, dz, pphi[q]};
         B += (half_v4){hc, hc, hc, hc} * (half_v4){dx, dy, dz, dx} * (half_v4){dx, dy, dz, dy};
         C += (half_v2){hc, hc} * (half_v2){dy, dz} * (half_v2){dz, dx};
     }
@@ -498,16 +414,16 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
 #else
     for (int k = 0; k < HALF_SUMS; k++)
         out[k] = 0.0;
-    for (size_t s = s0; s < nl->offset[i + 1]; s++) {
-        const size_t j = (size_t)nl->idx[s];
-        const double c = gv[8 * (s - s0)], ph = gv[8 * (s - s0) + 4];
-        if (c == 0.0 && ph == 0.0)
+    for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
+        const size_t q = pid[s], j = (size_t)nl->idx[s];
+        if (pc[q] == 0.0 && pphi[q] == 0.0)
             continue; /* does not count, or adds +-0 only */
         const double dx[3] = {x0[j] - xi0, dim > 1 ? x1[j] - xi1 : 0.0,
                               dim > 2 ? x2[j] - xi2 : 0.0};
+        const double c = pc[q];
         for (int d = 0; d < 3; d++)
             out[d] += c * dx[d];
-        out[3] += 0.5 * ph;
+        out[3] += 0.5 * pphi[q];
         for (int d = 0; d < 3; d++)
             out[4 + d] += 0.5 * c * dx[d] * dx[d];
         out[7] += 0.5 * c * dx[0] * dx[1];
@@ -521,32 +437,38 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
 /* The four rows' data of one force call (half_rows4). */
 struct half_g4 {
     const int32_t *idx;
-    const double *x0, *x1, *x2;
-    const double *gv; /* the group's values: step k's c at gv[8 k], phi at gv[8 k + 4] */
+    const double *x0, *x1, *x2, *pc, *pphi;
+    const uint32_t *pid;
     half_v4 xi, yi, zi;
 };
 
-/* Step k of half_rows4: slot k of each row (a row that has ended reads the
- * position of slot @p last and the zeros past its end; @p tail: some row
- * may have). */
+/* Step k of half_rows4: slot k of each row (slot @p last, masked, for a row
+ * that has ended; @p tail: some row may have). */
 /* (always inlined: called from the clones, it must be compiled in them) */
 __attribute__((always_inline)) static inline void
 half_step4(const struct half_g4 *g, const size_t s0[4], const size_t e0[4], size_t last, size_t k,
            bool tail, half_v4 acc[HALF_SUMS])
 {
     half_v4 xj, yj, zj, c, ph;
+    half_m4 in;
     for (int l = 0; l < 4; l++) {
         const bool inl = !tail || s0[l] + k < e0[l];
-        const size_t j = (size_t)g->idx[inl ? s0[l] + k : last];
+        const size_t s = inl ? s0[l] + k : last;
+        const size_t q = g->pid[s], j = (size_t)g->idx[s];
         xj[l] = g->x0[j];
         yj[l] = g->x1[j];
         zj[l] = g->x2[j];
+        c[l] = g->pc[q];
+        ph[l] = g->pphi[q];
+        in[l] = -(long long)inl;
     }
-    memcpy(&c, g->gv + 8 * k, sizeof c);
-    memcpy(&ph, g->gv + 8 * k + 4, sizeof ph);
+    if (tail) { /* a row that has ended adds +0 */
+        c = (half_v4)((half_m4)c & in);
+        ph = (half_v4)((half_m4)ph & in);
+    }
     /* c = +-0: the force and virial terms are +-0 (no change), and are +0
      * here also where dx is not finite; phi is +0 where the pair does not
-     * count (pass 1) and past a row's end */
+     * count (pass 1) */
     const half_m4 ok = c != 0.0;
     const half_v4 dx = (half_v4)((half_m4)(xj - g->xi) & ok);
     const half_v4 dy = (half_v4)((half_m4)(yj - g->yi) & ok);
@@ -564,20 +486,19 @@ half_step4(const struct half_g4 *g, const size_t s0[4], const size_t e0[4], size
     acc[9] += hc * dz * dx;
 }
 
-/* The sums of the four rows i .. i + 3 (a group: i a multiple of 4) of a 3D
- * run at once, a row a lane:
+/* The sums of the four rows i .. i + 3 of a 3D run at once, a row a lane:
  * step k takes slot k of every row (a row past its end, or a pair that
  * does not count, adds +0, which changes no sum: they start at +0 and
  * never become -0), so each lane runs the operations of half_row_sums on
  * its row in the same order; no shuffles between lanes.  The steps that
  * every row has run without the end test. */
 __attribute__((always_inline)) static inline void
-half_rows4(const struct half_ctx *h, size_t i, double out[4][HALF_SUMS])
+half_rows4(const struct half_ctx *h, size_t i, half_v4 acc[HALF_SUMS])
 {
     const size_t *off = h->nl->offset;
     const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2];
-    struct half_g4 g = {.idx = h->nl->idx, .x0 = x0, .x1 = x1, .x2 = x2,
-                        .gv = h->m->gval + 8 * h->m->gstep[i / 4]};
+    struct half_g4 g = {.idx = h->nl->idx, .x0 = x0, .x1 = x1, .x2 = x2, .pc = h->m->pc,
+                        .pphi = h->m->pphi, .pid = h->m->pid};
     g.xi = (half_v4){x0[i], x0[i + 1], x0[i + 2], x0[i + 3]};
     g.yi = (half_v4){x1[i], x1[i + 1], x1[i + 2], x1[i + 3]};
     g.zi = (half_v4){x2[i], x2[i + 1], x2[i + 2], x2[i + 3]};
@@ -589,16 +510,40 @@ half_rows4(const struct half_ctx *h, size_t i, double out[4][HALF_SUMS])
         kin = e0[l] - s0[l] < kin ? e0[l] - s0[l] : kin;
     }
     const size_t last = e0[3] - (len > 0); /* a slot of the group, read by ended rows */
-    half_v4 acc[HALF_SUMS];
     for (int k = 0; k < HALF_SUMS; k++)
         acc[k] = (half_v4){0, 0, 0, 0};
     for (size_t k = 0; k < kin; k++)
         half_step4(&g, s0, e0, last, k, false, acc);
     for (size_t k = kin; k < len; k++)
         half_step4(&g, s0, e0, last, k, true, acc);
+}
+
+/* half_row_finish of the four rows i .. i + 3 of a run without plasticity
+ * and damping, a row a lane: the same operations on the zero Langevin
+ * force and plastic work (f += sum + 0, wdiss += 0 - (0 v) dt: kept, they
+ * are not no-ops for -0 and non-finite values), so the same bits, with
+ * vector loads and stores of the consecutive rows (about 100 instructions
+ * a row less than four calls of half_row_finish). */
+__attribute__((always_inline)) static inline void half_finish4(const struct half_ctx *h, size_t i,
+                                                               const half_v4 acc[HALF_SUMS])
+{
+    struct model *m = h->m;
+    const half_v4 z = {0, 0, 0, 0};
+    half_v4 pw = z, t;
+    for (int d = 0; d < 3; d++) {
+        memcpy(&t, h->f[d] + i, sizeof t);
+        t += acc[d] + z;
+        memcpy(h->f[d] + i, &t, sizeof t);
+        memcpy(&t, h->v[d] + i, sizeof t);
+        pw += z * t;
+    }
+    memcpy(m->epot + i, &acc[3], sizeof acc[3]);
     for (int l = 0; l < 4; l++)
-        for (int k = 0; k < HALF_SUMS; k++)
-            out[l][k] = acc[k][l];
+        for (int k = 0; k < 6; k++)
+            m->sig[6 * (i + (size_t)l) + (size_t)k] = acc[4 + k][l];
+    memcpy(&t, m->wdiss + i, sizeof t);
+    t += z - pw * h->dt;
+    memcpy(m->wdiss + i, &t, sizeof t);
 }
 #endif
 
@@ -648,19 +593,29 @@ static inline void half_row_finish(const struct half_ctx *h, size_t i,
  * in 3D four rows at a time. */
 MACRO_CLONES static void half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
 {
+    const bool plain = !h->plastic && !(h->mu > 0.0) && !(h->g > 0.0);
     for (size_t i = i0; i < i1;) {
-        double sum[4][HALF_SUMS];
-        size_t nr = 1;
+        double sum[HALF_SUMS];
 #if defined(__GNUC__)
-        if (h->dim == 3 && i % 4 == 0 && i1 - i >= 4) {
-            half_rows4(h, i, sum);
-            nr = 4;
-        } else
+        if (h->dim == 3 && i1 - i >= 4) {
+            half_v4 acc[HALF_SUMS];
+            half_rows4(h, i, acc);
+            if (plain) {
+                half_finish4(h, i, acc);
+            } else {
+                for (size_t l = 0; l < 4; l++) {
+                    for (int k = 0; k < HALF_SUMS; k++)
+                        sum[k] = acc[k][l];
+                    half_row_finish(h, i + l, sum);
+                }
+            }
+            i += 4;
+            continue;
+        }
 #endif
-            half_row_sums(h, i, sum[0]);
-        for (size_t l = 0; l < nr; l++)
-            half_row_finish(h, i + l, sum[l]);
-        i += nr;
+        half_row_sums(h, i, sum);
+        half_row_finish(h, i, sum);
+        i++;
     }
 }
 

@@ -79,17 +79,10 @@ struct model {
     int32_t *hpi, *hpj;    /**< per pair: the end that computes it and the partner */
     size_t *hps, *hprs;    /**< per pair: its slot in row hpi and in row hpj (SIZE_MAX:
                                 a ghost's row), plastic runs only */
-    uint32_t *pid;         /**< per slot of the owned rows: its pair (< 2^32 pairs);
-                                plastic and pairwise-damped runs only */
-    /* the pair values by slot, rows in groups of four (macro_half.c): group
-     * g = rows 4g .. 4g+3, step k of it = slot k of each row, 8 doubles
-     * (c of the four rows, then phi), zeros past a row's end */
-    size_t *gstep;         /**< per group + 1: its first step */
-    double *gval;          /**< 8 per step: c = -f/r (the force on the row's particle along
-                                x_j - x_i) and phi; +0 both when the pair does not count */
-    uint32_t *gca, *gcb;   /**< per pair: where the computing end's c goes in gval, and the
-                                partner's (past the groups for a ghost partner) */
-    size_t gval_cap;       /**< doubles allocated in gval */
+    uint32_t *pid;         /**< per slot of the owned rows: its pair (< 2^32 pairs) */
+    double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i);
+                                +0 when it does not count */
+    double *pphi;          /**< per pair: its energy phi; +0 when it does not count */
     double *pwp;           /**< per pair: half its plastic work of this call (plastic runs) */
     double *pfl;           /**< 3 per pair: pairwise Langevin force on hpi (pairwise damping) */
     size_t n_builds;
