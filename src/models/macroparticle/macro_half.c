@@ -30,11 +30,14 @@
  * and a row of a four-row group that has ended, add +-0 terms instead of
  * being skipped.
  *
- * One thread on one rank: rows in blocks, pass 1 of the block's pairs then
- * pass 2 of its rows (a row's other pairs belong to rows with smaller
- * indices, done in this block or an earlier one), so the pair values are
- * read back while in cache.  Threads or a distributed run: pass 1 over all
- * pairs, then pass 2.
+ * One rank: rows in blocks, pass 1 of the block's pairs then pass 2 of its
+ * rows (a row's other pairs belong to rows with smaller indices, done in
+ * this block or an earlier one), so the pair values are read back while in
+ * cache.  Threads split the rows into consecutive ranges; each first
+ * computes (pass 1) the pairs of its last rows that the next range's rows
+ * read, then, after a barrier, runs its range block by block as one thread
+ * does.  A distributed run (or a list whose pairs span more than a range):
+ * pass 1 over all pairs, then pass 2.
  */
 #include "models/macroparticle/macro_internal.h"
 
@@ -66,6 +69,8 @@ void macro_half_free(struct model *m)
     free(m->pphi);
     free(m->pwp);
     free(m->pfl);
+    free(m->hreach);
+    m->hreach = NULL;
     m->hoff = m->hps = m->hprs = NULL;
     m->pid = NULL;
     m->hpi = m->hpj = NULL;
@@ -250,6 +255,21 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
             return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle pair list not "
                                    "symmetric (a partner of particle %lld does not list it)",
                                    (long long)bad);
+        }
+    }
+    if (!m->pgid) { /* one rank: every partner an owned row */
+        free(m->hreach);
+        m->hreach = malloc((n ? n : 1) * sizeof *m->hreach);
+        if (!m->hreach) {
+            macro_half_free(m);
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
+        }
+        int32_t r = -1;
+        for (size_t i = 0; i < n; i++) {
+            /* partners ascend in a row: its last pair has the largest */
+            if (m->hoff[i + 1] > m->hoff[i] && m->hpj[m->hoff[i + 1] - 1] > r)
+                r = m->hpj[m->hoff[i + 1] - 1];
+            m->hreach[i] = r;
         }
     }
     m->half_ok = true;
@@ -619,6 +639,35 @@ MACRO_CLONES static void half_pass2(const struct half_ctx *h, size_t i0, size_t 
     }
 }
 
+/* Rows [a, b) block by block: pass 1 of the block's pairs below pair qend
+ * (those from qend on were computed before), then pass 2 of its rows. */
+static void half_fused(const struct half_ctx *h, size_t a, size_t b, size_t qend)
+{
+    const size_t *hoff = h->m->hoff;
+    for (size_t r = a; r < b; r += HALF_BLOCK) {
+        const size_t re = b - r < HALF_BLOCK ? b : r + HALF_BLOCK;
+        const size_t q1 = hoff[re] < qend ? hoff[re] : qend;
+        if (hoff[r] < q1)
+            half_pass1(h, hoff[r], q1);
+        half_pass2(h, r, re);
+    }
+}
+
+/* The first row with a pair whose partner is row b or later (b if none):
+ * a bisection of the running maximum hreach. */
+static size_t half_reach(const struct model *m, size_t b)
+{
+    size_t lo = 0, hi = b; /* the answer is in [lo, hi] */
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if (m->hreach[mid] >= 0 && (size_t)m->hreach[mid] >= b)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
 int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
 {
     struct particles *p = sim->p;
@@ -646,23 +695,43 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
     threads = n >= MACRO_OMP_MIN && omp_get_max_threads() > 1;
 #endif
     if (!threads && !m->pgid) {
-        for (size_t b = 0; b < n; b += HALF_BLOCK) {
-            const size_t be = n - b < HALF_BLOCK ? n : b + HALF_BLOCK;
-            half_pass1(&h, m->hoff[b], m->hoff[be]);
-            half_pass2(&h, b, be);
-        }
+        half_fused(&h, 0, n, m->hoff[n]);
         return SPALL_OK;
     }
     const size_t nq = m->half_pairs, nc = (nq + MACRO_CHUNK - 1) / MACRO_CHUNK;
+    const bool can = !m->pgid;
+    int split = can; /* rows in ranges (cleared when a range cannot be) */
 #pragma omp parallel if (threads)
     {
+        size_t t = 0, nt = 1;
+#ifdef _OPENMP
+        t = (size_t)omp_get_thread_num();
+        nt = (size_t)omp_get_num_threads();
+#endif
+        const size_t a = n * t / nt, b = n * (t + 1) / nt;
+        /* rows [hb, b) have pairs that the next range reads */
+        const size_t hb = can && t + 1 < nt ? half_reach(m, b) : b;
+        if (hb < a) {
+#pragma omp atomic write
+            split = 0;
+        }
+#pragma omp barrier
+        int ranges;
+#pragma omp atomic read
+        ranges = split;
+        if (ranges) {
+            half_pass1(&h, m->hoff[hb], m->hoff[b]);
+#pragma omp barrier
+            half_fused(&h, a, b, m->hoff[hb]);
+        } else {
 #pragma omp for schedule(static)
-        for (size_t k = 0; k < nc; k++)
-            half_pass1(&h, k * MACRO_CHUNK, k * MACRO_CHUNK + MACRO_CHUNK < nq
-                                                ? k * MACRO_CHUNK + MACRO_CHUNK : nq);
+            for (size_t k = 0; k < nc; k++)
+                half_pass1(&h, k * MACRO_CHUNK, k * MACRO_CHUNK + MACRO_CHUNK < nq
+                                                    ? k * MACRO_CHUNK + MACRO_CHUNK : nq);
 #pragma omp for schedule(dynamic, 4)
-        for (size_t b = 0; b < n; b += 64)
-            half_pass2(&h, b, n - b < 64 ? n : b + 64);
+            for (size_t r = 0; r < n; r += 64)
+                half_pass2(&h, r, n - r < 64 ? n : r + 64);
+        }
     }
     return SPALL_OK;
 }
