@@ -176,6 +176,7 @@ static void half_take(struct model *m, struct neighbor_pairs *t, size_t n)
     t->slot_pair = NULL;
     t->partner = NULL;
     const struct neighbor_list *nl = m->nl;
+#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
     for (size_t i = 0; i < n; i++)
         for (size_t q = m->hoff[i]; q < m->hoff[i + 1]; q++)
             m->hpi[q] = (int32_t)i;
