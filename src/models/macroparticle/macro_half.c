@@ -35,8 +35,9 @@
  * this block or an earlier one), so the pair values are read back while in
  * cache.  Threads split the rows into consecutive ranges; each first
  * computes (pass 1) the pairs of its last rows that the next range's rows
- * read, then, after a barrier, runs its range block by block as one thread
- * does.  A distributed run (or a list whose pairs span more than a range):
+ * read and those of its first rows that read the previous range's, then,
+ * after a barrier, sums its first rows (pass 2) and runs the rest of its
+ * range block by block as one thread does.  A distributed run (or a list whose pairs span more than a range):
  * pass 1 over all pairs, then pass 2.
  */
 #include "models/macroparticle/macro_internal.h"
@@ -260,7 +261,7 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
     }
     if (!m->pgid) { /* one rank: every partner an owned row */
         free(m->hreach);
-        m->hreach = malloc((n ? n : 1) * sizeof *m->hreach);
+        m->hreach = malloc((n ? 2 * n : 1) * sizeof *m->hreach);
         if (!m->hreach) {
             macro_half_free(m);
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
@@ -271,6 +272,13 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
             if (m->hoff[i + 1] > m->hoff[i] && m->hpj[m->hoff[i + 1] - 1] > r)
                 r = m->hpj[m->hoff[i + 1] - 1];
             m->hreach[i] = r;
+        }
+        const size_t *off = m->nl->offset;
+        r = INT32_MAX;
+        for (size_t i = n; i-- > 0;) {
+            if (off[i + 1] > off[i] && m->nl->idx[off[i]] < r)
+                r = m->nl->idx[off[i]]; /* full rows ascend: the first is the smallest */
+            m->hreach[n + i] = r;
         }
     }
     m->half_ok = true;
@@ -669,6 +677,22 @@ static size_t half_reach(const struct model *m, size_t b)
     return lo;
 }
 
+/* The first row of [a, b) from which on no row has a partner below row a (b
+ * if none): a bisection of the rows' running smallest partner. */
+static size_t half_head(const struct model *m, size_t n, size_t a, size_t b)
+{
+    const int32_t *low = m->hreach + n;
+    size_t lo = a, hi = b;
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if ((size_t)low[mid] >= a)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
 int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
 {
     struct particles *p = sim->p;
@@ -710,8 +734,13 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
         nt = (size_t)omp_get_num_threads();
 #endif
         const size_t a = n * t / nt, b = n * (t + 1) / nt;
-        /* rows [hb, b) have pairs that the next range reads */
+        /* rows [hb, b) have pairs that the next range reads; rows [a, lb)
+         * may read the previous range's, and their own pairs are computed
+         * before the barrier too, so that the work before it is about the
+         * same on each thread */
         const size_t hb = can && t + 1 < nt ? half_reach(m, b) : b;
+        const size_t lh = can && t > 0 ? half_head(m, n, a, b) : a;
+        const size_t lb = lh < hb ? lh : hb;
         if (hb < a) {
 #pragma omp atomic write
             split = 0;
@@ -721,9 +750,11 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
 #pragma omp atomic read
         ranges = split;
         if (ranges) {
+            half_pass1(&h, m->hoff[a], m->hoff[lb]);
             half_pass1(&h, m->hoff[hb], m->hoff[b]);
 #pragma omp barrier
-            half_fused(&h, a, b, m->hoff[hb]);
+            half_pass2(&h, a, lb);
+            half_fused(&h, lb, b, m->hoff[hb]);
         } else {
 #pragma omp for schedule(static)
             for (size_t k = 0; k < nc; k++)
