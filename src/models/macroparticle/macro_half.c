@@ -37,8 +37,8 @@
  * computes (pass 1) the pairs of its last rows that the next range's rows
  * read and those of its first rows that read the previous range's, then,
  * after a barrier, sums its first rows (pass 2) and runs the rest of its
- * range block by block as one thread does.  A distributed run (or a list whose pairs span more than a range):
- * pass 1 over all pairs, then pass 2.
+ * range block by block as one thread does.  A distributed run (or a list
+ * whose pairs span more than a range): pass 1 over all pairs, then pass 2.
  */
 #include "models/macroparticle/macro_internal.h"
 
