@@ -60,6 +60,61 @@ static bool buf_reserve(struct pair_buf *b, size_t more)
     return true;
 }
 
+/* The candidate test of 3D comes in two versions picked once at load time
+ * by the CPU (GCC function multi-versioning, as the pair loops of the
+ * models): x86-64-v3 (four doubles a vector) and the build's baseline; no
+ * FP contraction (ISO C mode), so both round as pair_r2. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
+    !defined(SPALL_NO_CLONES)
+#define NP_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define NP_CLONES
+#endif
+
+#if defined(__GNUC__)
+typedef double np_v4 __attribute__((vector_size(32)));
+typedef long long np_m4 __attribute__((vector_size(32)));
+#endif
+
+/** The pairs (a, order[q]) with q in [q0, q1) closer than r2max (3D), as
+ *  (min, max) at ab; returns the end of what it wrote.  Four candidates a
+ *  vector: r^2 by pair_r2's operations in its order ((dx dx + dy dy) + dz dz,
+ *  candidate minus particle), so the same decisions; most candidates fail,
+ *  and a group of four with no pair costs no branch per candidate. */
+NP_CLONES static int32_t *scan3(const double xi[3], double *const xs[3], const int32_t *order,
+                                size_t q0, size_t q1, double r2max, int32_t a, int32_t *ab)
+{
+    size_t q = q0;
+#if defined(__GNUC__)
+    const double *x0 = xs[0], *x1 = xs[1], *x2 = xs[2];
+    const np_v4 bx = {xi[0], xi[0], xi[0], xi[0]}, by = {xi[1], xi[1], xi[1], xi[1]};
+    const np_v4 bz = {xi[2], xi[2], xi[2], xi[2]}, rm = {r2max, r2max, r2max, r2max};
+    for (; q + 4 <= q1; q += 4) {
+        np_v4 u, v, w;
+        memcpy(&u, x0 + q, sizeof u);
+        memcpy(&v, x1 + q, sizeof v);
+        memcpy(&w, x2 + q, sizeof w);
+        const np_v4 dx = u - bx, dy = v - by, dz = w - bz;
+        const np_m4 in = (dx * dx + dy * dy) + dz * dz < rm;
+        if (!(in[0] | in[1] | in[2] | in[3]))
+            continue;
+        for (int l = 0; l < 4; l++)
+            if (in[l]) {
+                const int32_t o = order[q + (size_t)l];
+                *ab++ = a < o ? a : o;
+                *ab++ = a < o ? o : a;
+            }
+    }
+#endif
+    for (; q < q1; q++)
+        if (pair_r2(3, xi, xs, q) < r2max) {
+            const int32_t o = order[q];
+            *ab++ = a < o ? a : o;
+            *ab++ = a < o ? o : a;
+        }
+    return ab;
+}
+
 /** The forward pairs of the particles of cell @p c; false when out of
  *  memory. */
 static inline bool sweep_cell_dim(const struct cell_grid *g, const int dim, size_t c,
@@ -101,6 +156,12 @@ static inline bool sweep_cell_dim(const struct cell_grid *g, const int dim, size
         double xi[3] = {0, 0, 0};
         for (int d = 0; d < dim; d++)
             xi[d] = g->xs[d][k];
+        if (dim == 3) {
+            ab = scan3(xi, g->xs, order, k + 1, own_end, r2max, a, ab);
+            for (int r = 0; r < nr; r++)
+                ab = scan3(xi, g->xs, order, rk0[r], rk1[r], r2max, a, ab);
+            continue;
+        }
         for (size_t q = k + 1; q < own_end; q++)
             if (pair_r2(dim, xi, g->xs, q) < r2max) {
                 const int32_t o = order[q];

@@ -188,7 +188,31 @@ MACRO_CLONES static double max_shift2(int dim, size_t i0, size_t i1, double *con
     if (dim == 3) {
         const double *x0 = x[0], *x1 = x[1], *x2 = x[2];
         const double *b0 = xb[0], *b1 = xb[1], *b2 = xb[2];
-        for (size_t i = i0; i < i1; i++) {
+        size_t i = i0;
+#if defined(__GNUC__)
+        /* four running maxima, a vector lane each (GCC does not vectorise a
+         * maximum reduction of doubles without fast-math), combined by the
+         * same test: a NaN never becomes one, as in the scan */
+        typedef double v4 __attribute__((vector_size(32)));
+        typedef long long m4 __attribute__((vector_size(32)));
+        v4 mx = {0.0, 0.0, 0.0, 0.0};
+        for (; i + 4 <= i1; i += 4) {
+            v4 p0, p1, p2, q0, q1, q2;
+            memcpy(&p0, x0 + i, sizeof p0);
+            memcpy(&p1, x1 + i, sizeof p1);
+            memcpy(&p2, x2 + i, sizeof p2);
+            memcpy(&q0, b0 + i, sizeof q0);
+            memcpy(&q1, b1 + i, sizeof q1);
+            memcpy(&q2, b2 + i, sizeof q2);
+            const v4 u0 = p0 - q0, u1 = p1 - q1, u2 = p2 - q2;
+            const v4 d2 = u0 * u0 + u1 * u1 + u2 * u2;
+            const m4 gt = d2 > mx;
+            mx = (v4)(((m4)d2 & gt) | ((m4)mx & ~gt));
+        }
+        for (int l = 0; l < 4; l++)
+            d2max = mx[l] > d2max ? mx[l] : d2max;
+#endif
+        for (; i < i1; i++) {
             const double u0 = x0[i] - b0[i], u1 = x1[i] - b1[i], u2 = x2[i] - b2[i];
             const double d2 = u0 * u0 + u1 * u1 + u2 * u2;
             d2max = d2 > d2max ? d2 : d2max;

@@ -30,11 +30,15 @@
  * and a row of a four-row group that has ended, add +-0 terms instead of
  * being skipped.
  *
- * One thread on one rank: rows in blocks, pass 1 of the block's pairs then
- * pass 2 of its rows (a row's other pairs belong to rows with smaller
- * indices, done in this block or an earlier one), so the pair values are
- * read back while in cache.  Threads or a distributed run: pass 1 over all
- * pairs, then pass 2.
+ * One rank: rows in blocks, pass 1 of the block's pairs then pass 2 of its
+ * rows (a row's other pairs belong to rows with smaller indices, done in
+ * this block or an earlier one), so the pair values are read back while in
+ * cache.  Threads split the rows into consecutive ranges; each first
+ * computes (pass 1) the pairs of its last rows that the next range's rows
+ * read and those of its first rows that read the previous range's, then,
+ * after a barrier, sums its first rows (pass 2) and runs the rest of its
+ * range block by block as one thread does.  A distributed run (or a list
+ * whose pairs span more than a range): pass 1 over all pairs, then pass 2.
  */
 #include "models/macroparticle/macro_internal.h"
 
@@ -66,6 +70,8 @@ void macro_half_free(struct model *m)
     free(m->pphi);
     free(m->pwp);
     free(m->pfl);
+    free(m->hreach);
+    m->hreach = NULL;
     m->hoff = m->hps = m->hprs = NULL;
     m->pid = NULL;
     m->hpi = m->hpj = NULL;
@@ -171,6 +177,7 @@ static void half_take(struct model *m, struct neighbor_pairs *t, size_t n)
     t->slot_pair = NULL;
     t->partner = NULL;
     const struct neighbor_list *nl = m->nl;
+#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
     for (size_t i = 0; i < n; i++)
         for (size_t q = m->hoff[i]; q < m->hoff[i + 1]; q++)
             m->hpi[q] = (int32_t)i;
@@ -250,6 +257,28 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
             return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle pair list not "
                                    "symmetric (a partner of particle %lld does not list it)",
                                    (long long)bad);
+        }
+    }
+    if (!m->pgid) { /* one rank: every partner an owned row */
+        free(m->hreach);
+        m->hreach = malloc((n ? 2 * n : 1) * sizeof *m->hreach);
+        if (!m->hreach) {
+            macro_half_free(m);
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
+        }
+        int32_t r = -1;
+        for (size_t i = 0; i < n; i++) {
+            /* partners ascend in a row: its last pair has the largest */
+            if (m->hoff[i + 1] > m->hoff[i] && m->hpj[m->hoff[i + 1] - 1] > r)
+                r = m->hpj[m->hoff[i + 1] - 1];
+            m->hreach[i] = r;
+        }
+        const size_t *off = m->nl->offset;
+        r = INT32_MAX;
+        for (size_t i = n; i-- > 0;) {
+            if (off[i + 1] > off[i] && m->nl->idx[off[i]] < r)
+                r = m->nl->idx[off[i]]; /* full rows ascend: the first is the smallest */
+            m->hreach[n + i] = r;
         }
     }
     m->half_ok = true;
@@ -493,7 +522,7 @@ half_step4(const struct half_g4 *g, const size_t s0[4], const size_t e0[4], size
  * its row in the same order; no shuffles between lanes.  The steps that
  * every row has run without the end test. */
 __attribute__((always_inline)) static inline void
-half_rows4(const struct half_ctx *h, size_t i, double out[4][HALF_SUMS])
+half_rows4(const struct half_ctx *h, size_t i, half_v4 acc[HALF_SUMS])
 {
     const size_t *off = h->nl->offset;
     const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2];
@@ -510,16 +539,40 @@ half_rows4(const struct half_ctx *h, size_t i, double out[4][HALF_SUMS])
         kin = e0[l] - s0[l] < kin ? e0[l] - s0[l] : kin;
     }
     const size_t last = e0[3] - (len > 0); /* a slot of the group, read by ended rows */
-    half_v4 acc[HALF_SUMS];
     for (int k = 0; k < HALF_SUMS; k++)
         acc[k] = (half_v4){0, 0, 0, 0};
     for (size_t k = 0; k < kin; k++)
         half_step4(&g, s0, e0, last, k, false, acc);
     for (size_t k = kin; k < len; k++)
         half_step4(&g, s0, e0, last, k, true, acc);
+}
+
+/* half_row_finish of the four rows i .. i + 3 of a run without plasticity
+ * and damping, a row a lane: the same operations on the zero Langevin
+ * force and plastic work (f += sum + 0, wdiss += 0 - (0 v) dt: kept, they
+ * are not no-ops for -0 and non-finite values), so the same bits, with
+ * vector loads and stores of the consecutive rows (about 100 instructions
+ * a row less than four calls of half_row_finish). */
+__attribute__((always_inline)) static inline void half_finish4(const struct half_ctx *h, size_t i,
+                                                               const half_v4 acc[HALF_SUMS])
+{
+    struct model *m = h->m;
+    const half_v4 z = {0, 0, 0, 0};
+    half_v4 pw = z, t;
+    for (int d = 0; d < 3; d++) {
+        memcpy(&t, h->f[d] + i, sizeof t);
+        t += acc[d] + z;
+        memcpy(h->f[d] + i, &t, sizeof t);
+        memcpy(&t, h->v[d] + i, sizeof t);
+        pw += z * t;
+    }
+    memcpy(m->epot + i, &acc[3], sizeof acc[3]);
     for (int l = 0; l < 4; l++)
-        for (int k = 0; k < HALF_SUMS; k++)
-            out[l][k] = acc[k][l];
+        for (int k = 0; k < 6; k++)
+            m->sig[6 * (i + (size_t)l) + (size_t)k] = acc[4 + k][l];
+    memcpy(&t, m->wdiss + i, sizeof t);
+    t += z - pw * h->dt;
+    memcpy(m->wdiss + i, &t, sizeof t);
 }
 #endif
 
@@ -569,20 +622,75 @@ static inline void half_row_finish(const struct half_ctx *h, size_t i,
  * in 3D four rows at a time. */
 MACRO_CLONES static void half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
 {
+    const bool plain = !h->plastic && !(h->mu > 0.0) && !(h->g > 0.0);
     for (size_t i = i0; i < i1;) {
-        double sum[4][HALF_SUMS];
-        size_t nr = 1;
+        double sum[HALF_SUMS];
 #if defined(__GNUC__)
         if (h->dim == 3 && i1 - i >= 4) {
-            half_rows4(h, i, sum);
-            nr = 4;
-        } else
+            half_v4 acc[HALF_SUMS];
+            half_rows4(h, i, acc);
+            if (plain) {
+                half_finish4(h, i, acc);
+            } else {
+                for (size_t l = 0; l < 4; l++) {
+                    for (int k = 0; k < HALF_SUMS; k++)
+                        sum[k] = acc[k][l];
+                    half_row_finish(h, i + l, sum);
+                }
+            }
+            i += 4;
+            continue;
+        }
 #endif
-            half_row_sums(h, i, sum[0]);
-        for (size_t l = 0; l < nr; l++)
-            half_row_finish(h, i + l, sum[l]);
-        i += nr;
+        half_row_sums(h, i, sum);
+        half_row_finish(h, i, sum);
+        i++;
     }
+}
+
+/* Rows [a, b) block by block: pass 1 of the block's pairs below pair qend
+ * (those from qend on were computed before), then pass 2 of its rows. */
+static void half_fused(const struct half_ctx *h, size_t a, size_t b, size_t qend)
+{
+    const size_t *hoff = h->m->hoff;
+    for (size_t r = a; r < b; r += HALF_BLOCK) {
+        const size_t re = b - r < HALF_BLOCK ? b : r + HALF_BLOCK;
+        const size_t q1 = hoff[re] < qend ? hoff[re] : qend;
+        if (hoff[r] < q1)
+            half_pass1(h, hoff[r], q1);
+        half_pass2(h, r, re);
+    }
+}
+
+/* The first row with a pair whose partner is row b or later (b if none):
+ * a bisection of the running maximum hreach. */
+static size_t half_reach(const struct model *m, size_t b)
+{
+    size_t lo = 0, hi = b; /* the answer is in [lo, hi] */
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if (m->hreach[mid] >= 0 && (size_t)m->hreach[mid] >= b)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+/* The first row of [a, b) from which on no row has a partner below row a (b
+ * if none): a bisection of the rows' running smallest partner. */
+static size_t half_head(const struct model *m, size_t n, size_t a, size_t b)
+{
+    const int32_t *low = m->hreach + n;
+    size_t lo = a, hi = b;
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if ((size_t)low[mid] >= a)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
 }
 
 int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
@@ -612,23 +720,50 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
     threads = n >= MACRO_OMP_MIN && omp_get_max_threads() > 1;
 #endif
     if (!threads && !m->pgid) {
-        for (size_t b = 0; b < n; b += HALF_BLOCK) {
-            const size_t be = n - b < HALF_BLOCK ? n : b + HALF_BLOCK;
-            half_pass1(&h, m->hoff[b], m->hoff[be]);
-            half_pass2(&h, b, be);
-        }
+        half_fused(&h, 0, n, m->hoff[n]);
         return SPALL_OK;
     }
     const size_t nq = m->half_pairs, nc = (nq + MACRO_CHUNK - 1) / MACRO_CHUNK;
+    const bool can = !m->pgid;
+    int split = can; /* rows in ranges (cleared when a range cannot be) */
 #pragma omp parallel if (threads)
     {
+        size_t t = 0, nt = 1;
+#ifdef _OPENMP
+        t = (size_t)omp_get_thread_num();
+        nt = (size_t)omp_get_num_threads();
+#endif
+        const size_t a = n * t / nt, b = n * (t + 1) / nt;
+        /* rows [hb, b) have pairs that the next range reads; rows [a, lb)
+         * may read the previous range's, and their own pairs are computed
+         * before the barrier too, so that the work before it is about the
+         * same on each thread */
+        const size_t hb = can && t + 1 < nt ? half_reach(m, b) : b;
+        const size_t lh = can && t > 0 ? half_head(m, n, a, b) : a;
+        const size_t lb = lh < hb ? lh : hb;
+        if (hb < a) {
+#pragma omp atomic write
+            split = 0;
+        }
+#pragma omp barrier
+        int ranges;
+#pragma omp atomic read
+        ranges = split;
+        if (ranges) {
+            half_pass1(&h, m->hoff[a], m->hoff[lb]);
+            half_pass1(&h, m->hoff[hb], m->hoff[b]);
+#pragma omp barrier
+            half_pass2(&h, a, lb);
+            half_fused(&h, lb, b, m->hoff[hb]);
+        } else {
 #pragma omp for schedule(static)
-        for (size_t k = 0; k < nc; k++)
-            half_pass1(&h, k * MACRO_CHUNK, k * MACRO_CHUNK + MACRO_CHUNK < nq
-                                                ? k * MACRO_CHUNK + MACRO_CHUNK : nq);
+            for (size_t k = 0; k < nc; k++)
+                half_pass1(&h, k * MACRO_CHUNK, k * MACRO_CHUNK + MACRO_CHUNK < nq
+                                                    ? k * MACRO_CHUNK + MACRO_CHUNK : nq);
 #pragma omp for schedule(dynamic, 4)
-        for (size_t b = 0; b < n; b += 64)
-            half_pass2(&h, b, n - b < 64 ? n : b + 64);
+            for (size_t r = 0; r < n; r += 64)
+                half_pass2(&h, r, n - r < 64 ? n : r + 64);
+        }
     }
     return SPALL_OK;
 }

@@ -80,6 +80,9 @@ struct model {
     size_t *hps, *hprs;    /**< per pair: its slot in row hpi and in row hpj (SIZE_MAX:
                                 a ghost's row), plastic runs only */
     uint32_t *pid;         /**< per slot of the owned rows: its pair (< 2^32 pairs) */
+    int32_t *hreach;       /**< one rank, where the threads' row ranges meet: [0, n) per
+                                row the largest partner of the rows up to it (-1: none),
+                                [n, 2n) the smallest of the rows from it on (INT32_MAX) */
     double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i);
                                 +0 when it does not count */
     double *pphi;          /**< per pair: its energy phi; +0 when it does not count */
