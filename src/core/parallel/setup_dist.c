@@ -120,6 +120,81 @@ static int64_t local_of(const struct par_setup *ps, int64_t g)
     return -1;
 }
 
+int par_setup_halo_values(const struct sim *s, double *v, int ncomp, struct spall_error *err)
+{
+    const struct par_setup *ps = s->setup;
+    const size_t n = s->p->n, nc = (size_t)ncomp;
+    const int size = ps->size;
+    /* each halo particle asks the rank whose block holds it, by global id,
+     * in local order per rank (so the answers come back in that order) */
+    int *cnt = calloc(4 * (size_t)size, sizeof *cnt);
+    int *back = calloc(5 * (size_t)size, sizeof *back); /* the answers' counts, at */
+    int *owner = malloc((n ? n : 1) * sizeof *owner);
+    int rc = cnt && back && owner ? SPALL_OK
+                                  : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
+    int *sdsp = cnt ? cnt + size : NULL, *rcnt = cnt ? cnt + 2 * size : NULL;
+    int *rdsp = cnt ? cnt + 3 * size : NULL;
+    for (size_t i = 0; !rc && i < n; i++) {
+        owner[i] = par_setup_in_block(ps, i) ? -1 : block_of(ps, s->p->gid[i]);
+        if (owner[i] >= 0)
+            cnt[owner[i]]++;
+    }
+    if ((rc = par_agree(rc, err))) {
+        free(cnt);
+        free(back);
+        free(owner);
+        return rc;
+    }
+    MPI_Alltoall(cnt, 1, MPI_INT, rcnt, 1, MPI_INT, MPI_COMM_WORLD);
+    size_t ns = 0, nr = 0;
+    for (int r = 0; r < size; r++) {
+        sdsp[r] = (int)ns;
+        rdsp[r] = (int)nr;
+        ns += (size_t)cnt[r];
+        nr += (size_t)rcnt[r];
+    }
+    int64_t *ask = malloc((ns ? ns : 1) * sizeof *ask), *asked = malloc((nr ? nr : 1) * sizeof *asked);
+    double *ans = malloc((nr ? nr : 1) * nc * sizeof *ans), *got = malloc((ns ? ns : 1) * nc * sizeof *got);
+    rc = ask && asked && ans && got ? SPALL_OK
+                                    : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
+    if (!(rc = par_agree(rc, err))) {
+        int *at = back + 4 * size; /* the next slot per rank */
+        memcpy(at, sdsp, (size_t)size * sizeof *at);
+        for (size_t i = 0; i < n; i++)
+            if (owner[i] >= 0)
+                ask[at[owner[i]]++] = s->p->gid[i];
+        MPI_Alltoallv(ask, cnt, sdsp, MPI_INT64_T, asked, rcnt, rdsp, MPI_INT64_T, MPI_COMM_WORLD);
+        for (size_t q = 0; q < nr; q++) {
+            const int64_t loc = local_of(ps, asked[q]); /* in this rank's block */
+            for (size_t c = 0; c < nc; c++)
+                ans[q * nc + c] = loc >= 0 ? v[(size_t)loc * nc + c] : NAN;
+        }
+        int *bc = back, *bd = back + size, *ac = back + 2 * size, *ad = back + 3 * size;
+        for (int r = 0; r < size; r++) {
+            bc[r] = rcnt[r] * ncomp;
+            bd[r] = rdsp[r] * ncomp;
+            ac[r] = cnt[r] * ncomp;
+            ad[r] = sdsp[r] * ncomp;
+        }
+        MPI_Alltoallv(ans, bc, bd, MPI_DOUBLE, got, ac, ad, MPI_DOUBLE, MPI_COMM_WORLD);
+        memcpy(at, sdsp, (size_t)size * sizeof *at);
+        for (size_t i = 0; i < n; i++)
+            if (owner[i] >= 0) {
+                const size_t q = (size_t)at[owner[i]]++;
+                for (size_t c = 0; c < nc; c++)
+                    v[i * nc + c] = got[q * nc + c];
+            }
+    }
+    free(ask);
+    free(asked);
+    free(ans);
+    free(got);
+    free(cnt);
+    free(back);
+    free(owner);
+    return rc;
+}
+
 int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first,
                      struct spall_error *err)
 {
@@ -509,6 +584,15 @@ int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first
     (void)w;
     (void)first;
     return spall_error_set(err, SPALL_ERR_INTERNAL, "distributed set-up in a build without MPI");
+}
+
+int par_setup_halo_values(const struct sim *s, double *v, int ncomp, struct spall_error *err)
+{
+    (void)s;
+    (void)v;
+    (void)ncomp;
+    (void)err;
+    return SPALL_OK;
 }
 
 size_t par_setup_count(const struct sim *s, const size_t *idx, size_t n)
