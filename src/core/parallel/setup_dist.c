@@ -508,12 +508,48 @@ static int localize_window(struct sim *s, struct par_decomp *d, uint64_t counts[
     return rc;
 }
 
+/* The layers' axis (z in 3D, y in 2D) as Zoltan sees it in the set-up's
+ * partition: RCB_SET_DIRECTIONS only orders the cuts, how many run along
+ * each axis follows the box's widths (Zoltan's set_preset_dir), so a body
+ * wider across than along the layers (the LPS race's 36 x 24 x 24 block)
+ * was cut across them on 2 ranks and half of it migrated (the peak per
+ * rank above the replicated set-up's).  Stretched to just past the widest
+ * axis (a monotone map: the same particles on either side of a median),
+ * the axis takes the first cut.  NULL (no stretch) where it is the widest
+ * already; else n_owned stretched coordinates. */
+static double *layer_axis(const struct sim *s, int *axis, int *fail)
+{
+    const struct particles *p = s->p;
+    const int L = s->dim - 1;
+    double w[3] = {0.0, 0.0, 0.0}, wide = 0.0;
+    for (int d = 0; d < s->dim; d++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t i = 0; i < p->n_owned; i++) {
+            lo = fmin(lo, p->x0[d][i]);
+            hi = fmax(hi, p->x0[d][i]);
+        }
+        w[d] = par_max_double(hi) - par_min_double(lo);
+        if (d != L)
+            wide = fmax(wide, w[d]);
+    }
+    *axis = L;
+    if (s->dim < 2 || !(w[L] > 0.0) || w[L] > wide)
+        return NULL;
+    const double f = 1.001 * wide / w[L];
+    double *x = malloc((p->n_owned ? p->n_owned : 1) * sizeof *x);
+    *fail = x == NULL;
+    for (size_t i = 0; x && i < p->n_owned; i++)
+        x[i] = f * p->x0[L][i];
+    return x;
+}
+
 /* The blocks to the final decomposition: Zoltan RCB on the reference
  * positions weighted by 1 + bonds (as par_distribute), its first cut across
- * the blocks' layers (z in 3D, y in 2D) so that on 2 ranks nothing moves
- * and on more the moves stay within a block pair; the object is kept for
- * the run's rebalancing.  The migration, which holds the moving particles
- * twice, runs only when a particle changes rank. */
+ * the blocks' layers (RCB_SET_DIRECTIONS and layer_axis) so that on 2 ranks
+ * nothing moves and on more the moves stay within a block pair; the object
+ * is kept for the run's rebalancing (its cuts are only the first guesses
+ * of a repartition's medians).  The migration, which holds the moving
+ * particles twice, runs only when a particle changes rank. */
 static int setup_partition(struct sim *s, unsigned long long *moved, struct spall_error *err)
 {
     struct par_decomp *d = s->par;
@@ -521,13 +557,23 @@ static int setup_partition(struct sim *s, unsigned long long *moved, struct spal
     if (zz && s->dim > 1)
         Zoltan_Set_Param(zz, "RCB_SET_DIRECTIONS", s->dim == 3 ? "5" : "3"); /* zxy, yzx */
     d->zz = zz;
+    int axis = 0, fail = 0;
+    double *stretched = layer_axis(s, &axis, &fail);
     int rc = zz ? SPALL_OK : spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
-    if ((rc = par_agree(rc, err)))
+    if (!rc && fail)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory partitioning");
+    if ((rc = par_agree(rc, err))) {
+        free(stretched);
         return rc;
-    struct par_zobjs z = {0, s->p->n_owned, s->p->gid, s->p->x0, s->dim, halo_list(s), 0};
+    }
+    double *pos[3] = {s->p->x0[0], s->p->x0[1], s->p->x0[2]};
+    if (stretched)
+        pos[axis] = stretched;
+    struct par_zobjs z = {0, s->p->n_owned, s->p->gid, pos, s->dim, halo_list(s), 0};
     int *dest = NULL;
     size_t out = 0;
     rc = par_rcb_dest(zz, &z, &dest, &out, err);
+    free(stretched);
     const uint64_t leaving = par_sum_u64((uint64_t)out);
     *moved = 0;
     if (!(rc = par_agree(rc, err)) && leaving)
