@@ -9,8 +9,9 @@
 # printed, not checked, and the 2-core runs are left out (fast); without
 # --check a missing `lmp` is installed (Debian package, root).
 # --ranks: spall's 2-core runs are 2 MPI ranks x 1 thread (rank for rank
-# with LAMMPS; memory = the sum of the ranks' peaks); default 2 OpenMP
-# threads in one process.
+# with LAMMPS; memory = the sum of the ranks' peaks, and each rank's peak
+# against LAMMPS' largest rank, with the set-up run.log names: distributed
+# or replicated); default 2 OpenMP threads in one process.
 #
 # Race (as bench/pd_vs_lammps.sh): the lps and eps-elastic cases on 1 core
 # (spall 1 thread, LAMMPS `lmp` serial) and 2 cores (LAMMPS: 2 MPI ranks,
@@ -201,9 +202,11 @@ def spall_time(c, T):
     steps = int(re.search(r"^steps_done: (\d+)", log, re.M).group(1))
     wall = float(re.search(r"([0-9.eE+-]+) s wall", out).group(1))
     # one peak per process (ranks append theirs): the run's memory is their sum
-    mem = sum(float(v) for v in open(f"{W}/spall_{c}_{T}.mem").read().split()) * 1024
+    peaks = [float(v) * 1024 for v in open(f"{W}/spall_{c}_{T}.mem").read().split()]
     ma = re.search(r"model arrays: (\d+) B, (\d+) B/particle", log)
-    return n, bonds, steps, wall, mem, int(ma.group(2)) if ma else None
+    setup = re.search(r"^setup: (\w+)", log, re.M)
+    return (n, bonds, steps, wall, sum(peaks), int(ma.group(2)) if ma else None, peaks,
+            setup.group(1) if setup else "serial")
 def lmp_time(c, T):
     lg = open(f"{W}/lmp_{c}{'' if T == 1 else '_2'}.log").read()
     m = re.findall(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", lg)[-1]
@@ -214,10 +217,10 @@ def lmp_time(c, T):
 cores = (1,) if check else (1, 2)
 print(f"\n{'case':<12} {'cores':>5} {'code':<7} {'loop wall s':>11} {'bond-steps/s':>13} "
       f"{'RSS B/part':>11} {'own B/part':>11}")
-ratio = []
+ratio, per_rank = [], []
 for c in ("lps", "eps-elastic"):
     for T in cores:
-        n, bonds, steps, sw, sm, sown = spall_time(c, T)
+        n, bonds, steps, sw, sm, sown, peaks, setup = spall_time(c, T)
         ln, lw, lm, lown = lmp_time(c, T)
         how = "" if T == 1 else (" (2 ranks)" if ranks else " (2 threads)")
         print(f"{c:<12} {T:>5} {'spall':<7} {sw:11.4g} {bonds * steps / sw:13.4g} {sm / n:11.0f} "
@@ -225,9 +228,17 @@ for c in ("lps", "eps-elastic"):
         print(f"{'':<12} {T:>5} {'LAMMPS':<7} {lw:11.4g} {bonds * steps / lw:13.4g} {lm / ln:11.0f} "
               f"{lown / ln:11.0f} ({T} rank{'s' if T > 1 else ''})")
         ratio.append((c, T, lw / sw, sm / lm))
+        if T > 1 and ranks: # each rank's peak against LAMMPS' largest rank
+            per_rank.append((c, setup, peaks, lm / T, n))
 for c, T, thr, mem in ratio:
     print(f"  {c} on {T} core{'s' if T > 1 else ''}: spall / LAMMPS throughput {thr:.2f}x per core, "
           f"peak memory per particle {mem:.2f} of LAMMPS'")
+for c, setup, peaks, lrank, n in per_rank:
+    print(f"  {c} on 2 ranks ({setup} set-up): peak RSS per rank "
+          f"{' / '.join(f'{v / 2**20:.1f}' for v in peaks)} MiB "
+          f"({' / '.join(f'{v / n:.0f}' for v in peaks)} B per particle of the body), LAMMPS' "
+          f"largest rank {lrank / 2**20:.1f} MiB ({lrank / n:.0f} B): "
+          f"{max(peaks) / lrank:.2f} of LAMMPS'")
 if check and not ok:
     sys.exit(1)
 PY

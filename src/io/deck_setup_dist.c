@@ -25,21 +25,6 @@
  * (key, why).  Each keeps the replicated set-up. */
 static const char *unsupported(const struct deck_node *root)
 {
-    const struct deck_node *model = deck_peek(root, "model");
-    /* state-based PD (lps, eps): its corrected influences are a fixed point
-     * iterated over the whole body (pd_lps_surface.c: up to 200 passes, each
-     * bond's factor from both ends' families, so each pass reaches one range
-     * further, stopped by the largest change of all particles), which a
-     * window of two ranges cannot reproduce.  PMB's factors read the
-     * particle's own family and its partners' (two ranges): distributed. */
-    const struct deck_node *f = model && model->kind == DECK_MAPPING
-                                    ? deck_peek(model, "formulation") : NULL;
-    const struct deck_node *sc = model && model->kind == DECK_MAPPING
-                                     ? deck_peek(model, "surface_correction") : NULL;
-    if (f && f->kind == DECK_SCALAR && strcmp(f->scalar, "bond") != 0 && sc &&
-        sc->kind == DECK_SCALAR && strcmp(sc->scalar, "false") != 0)
-        return "the state-based surface correction (model.surface_correction with "
-               "formulation lps | eps)";
     /* a lamina's calibration fits its constants on the built body */
     const struct deck_node *mats = deck_peek(root, "materials");
     for (size_t k = 0; mats && mats->kind == DECK_MAPPING && k < mats->n; k++)

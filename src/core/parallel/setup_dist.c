@@ -120,6 +120,81 @@ static int64_t local_of(const struct par_setup *ps, int64_t g)
     return -1;
 }
 
+int par_setup_halo_values(const struct sim *s, double *v, int ncomp, struct spall_error *err)
+{
+    const struct par_setup *ps = s->setup;
+    const size_t n = s->p->n, nc = (size_t)ncomp;
+    const int size = ps->size;
+    /* each halo particle asks the rank whose block holds it, by global id,
+     * in local order per rank (so the answers come back in that order) */
+    int *cnt = calloc(4 * (size_t)size, sizeof *cnt);
+    int *back = calloc(5 * (size_t)size, sizeof *back); /* the answers' counts, at */
+    int *owner = malloc((n ? n : 1) * sizeof *owner);
+    int rc = cnt && back && owner ? SPALL_OK
+                                  : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
+    int *sdsp = cnt ? cnt + size : NULL, *rcnt = cnt ? cnt + 2 * size : NULL;
+    int *rdsp = cnt ? cnt + 3 * size : NULL;
+    for (size_t i = 0; !rc && i < n; i++) {
+        owner[i] = par_setup_in_block(ps, i) ? -1 : block_of(ps, s->p->gid[i]);
+        if (owner[i] >= 0)
+            cnt[owner[i]]++;
+    }
+    if ((rc = par_agree(rc, err))) {
+        free(cnt);
+        free(back);
+        free(owner);
+        return rc;
+    }
+    MPI_Alltoall(cnt, 1, MPI_INT, rcnt, 1, MPI_INT, MPI_COMM_WORLD);
+    size_t ns = 0, nr = 0;
+    for (int r = 0; r < size; r++) {
+        sdsp[r] = (int)ns;
+        rdsp[r] = (int)nr;
+        ns += (size_t)cnt[r];
+        nr += (size_t)rcnt[r];
+    }
+    int64_t *ask = malloc((ns ? ns : 1) * sizeof *ask), *asked = malloc((nr ? nr : 1) * sizeof *asked);
+    double *ans = malloc((nr ? nr : 1) * nc * sizeof *ans), *got = malloc((ns ? ns : 1) * nc * sizeof *got);
+    rc = ask && asked && ans && got ? SPALL_OK
+                                    : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
+    if (!(rc = par_agree(rc, err))) {
+        int *at = back + 4 * size; /* the next slot per rank */
+        memcpy(at, sdsp, (size_t)size * sizeof *at);
+        for (size_t i = 0; i < n; i++)
+            if (owner[i] >= 0)
+                ask[at[owner[i]]++] = s->p->gid[i];
+        MPI_Alltoallv(ask, cnt, sdsp, MPI_INT64_T, asked, rcnt, rdsp, MPI_INT64_T, MPI_COMM_WORLD);
+        for (size_t q = 0; q < nr; q++) {
+            const int64_t loc = local_of(ps, asked[q]); /* in this rank's block */
+            for (size_t c = 0; c < nc; c++)
+                ans[q * nc + c] = loc >= 0 ? v[(size_t)loc * nc + c] : NAN;
+        }
+        int *bc = back, *bd = back + size, *ac = back + 2 * size, *ad = back + 3 * size;
+        for (int r = 0; r < size; r++) {
+            bc[r] = rcnt[r] * ncomp;
+            bd[r] = rdsp[r] * ncomp;
+            ac[r] = cnt[r] * ncomp;
+            ad[r] = sdsp[r] * ncomp;
+        }
+        MPI_Alltoallv(ans, bc, bd, MPI_DOUBLE, got, ac, ad, MPI_DOUBLE, MPI_COMM_WORLD);
+        memcpy(at, sdsp, (size_t)size * sizeof *at);
+        for (size_t i = 0; i < n; i++)
+            if (owner[i] >= 0) {
+                const size_t q = (size_t)at[owner[i]]++;
+                for (size_t c = 0; c < nc; c++)
+                    v[i * nc + c] = got[q * nc + c];
+            }
+    }
+    free(ask);
+    free(asked);
+    free(ans);
+    free(got);
+    free(cnt);
+    free(back);
+    free(owner);
+    return rc;
+}
+
 int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first,
                      struct spall_error *err)
 {
@@ -433,12 +508,48 @@ static int localize_window(struct sim *s, struct par_decomp *d, uint64_t counts[
     return rc;
 }
 
+/* The layers' axis (z in 3D, y in 2D) as Zoltan sees it in the set-up's
+ * partition: RCB_SET_DIRECTIONS only orders the cuts, how many run along
+ * each axis follows the box's widths (Zoltan's set_preset_dir), so a body
+ * wider across than along the layers (the LPS race's 36 x 24 x 24 block)
+ * was cut across them on 2 ranks and half of it migrated (the peak per
+ * rank above the replicated set-up's).  Stretched to just past the widest
+ * axis (a monotone map: the same particles on either side of a median),
+ * the axis takes the first cut.  NULL (no stretch) where it is the widest
+ * already; else n_owned stretched coordinates. */
+static double *layer_axis(const struct sim *s, int *axis, int *fail)
+{
+    const struct particles *p = s->p;
+    const int L = s->dim - 1;
+    double w[3] = {0.0, 0.0, 0.0}, wide = 0.0;
+    for (int d = 0; d < s->dim; d++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t i = 0; i < p->n_owned; i++) {
+            lo = fmin(lo, p->x0[d][i]);
+            hi = fmax(hi, p->x0[d][i]);
+        }
+        w[d] = par_max_double(hi) - par_min_double(lo);
+        if (d != L)
+            wide = fmax(wide, w[d]);
+    }
+    *axis = L;
+    if (s->dim < 2 || !(w[L] > 0.0) || w[L] > wide)
+        return NULL;
+    const double f = 1.001 * wide / w[L];
+    double *x = malloc((p->n_owned ? p->n_owned : 1) * sizeof *x);
+    *fail = x == NULL;
+    for (size_t i = 0; x && i < p->n_owned; i++)
+        x[i] = f * p->x0[L][i];
+    return x;
+}
+
 /* The blocks to the final decomposition: Zoltan RCB on the reference
  * positions weighted by 1 + bonds (as par_distribute), its first cut across
- * the blocks' layers (z in 3D, y in 2D) so that on 2 ranks nothing moves
- * and on more the moves stay within a block pair; the object is kept for
- * the run's rebalancing.  The migration, which holds the moving particles
- * twice, runs only when a particle changes rank. */
+ * the blocks' layers (RCB_SET_DIRECTIONS and layer_axis) so that on 2 ranks
+ * nothing moves and on more the moves stay within a block pair; the object
+ * is kept for the run's rebalancing (its cuts are only the first guesses
+ * of a repartition's medians).  The migration, which holds the moving
+ * particles twice, runs only when a particle changes rank. */
 static int setup_partition(struct sim *s, unsigned long long *moved, struct spall_error *err)
 {
     struct par_decomp *d = s->par;
@@ -446,13 +557,23 @@ static int setup_partition(struct sim *s, unsigned long long *moved, struct spal
     if (zz && s->dim > 1)
         Zoltan_Set_Param(zz, "RCB_SET_DIRECTIONS", s->dim == 3 ? "5" : "3"); /* zxy, yzx */
     d->zz = zz;
+    int axis = 0, fail = 0;
+    double *stretched = layer_axis(s, &axis, &fail);
     int rc = zz ? SPALL_OK : spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
-    if ((rc = par_agree(rc, err)))
+    if (!rc && fail)
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory partitioning");
+    if ((rc = par_agree(rc, err))) {
+        free(stretched);
         return rc;
-    struct par_zobjs z = {0, s->p->n_owned, s->p->gid, s->p->x0, s->dim, halo_list(s), 0};
+    }
+    double *pos[3] = {s->p->x0[0], s->p->x0[1], s->p->x0[2]};
+    if (stretched)
+        pos[axis] = stretched;
+    struct par_zobjs z = {0, s->p->n_owned, s->p->gid, pos, s->dim, halo_list(s), 0};
     int *dest = NULL;
     size_t out = 0;
     rc = par_rcb_dest(zz, &z, &dest, &out, err);
+    free(stretched);
     const uint64_t leaving = par_sum_u64((uint64_t)out);
     *moved = 0;
     if (!(rc = par_agree(rc, err)) && leaving)
@@ -509,6 +630,15 @@ int par_setup_filled(struct sim *s, const struct lattice_window *w, size_t first
     (void)w;
     (void)first;
     return spall_error_set(err, SPALL_ERR_INTERNAL, "distributed set-up in a build without MPI");
+}
+
+int par_setup_halo_values(const struct sim *s, double *v, int ncomp, struct spall_error *err)
+{
+    (void)s;
+    (void)v;
+    (void)ncomp;
+    (void)err;
+    return SPALL_OK;
 }
 
 size_t par_setup_count(const struct sim *s, const size_t *idx, size_t n)

@@ -116,6 +116,13 @@ bool par_setup_in_block(const struct par_setup *ps, size_t i);
  *  serial set-up): local indices are window indices only then. */
 const struct par_setup *par_setup_window(const struct sim *s);
 
+/** In the window: @p ncomp values per local particle, v[i * ncomp + c];
+ *  every halo particle's (one outside the rank's block) are replaced by
+ *  those the rank whose block holds it computed (by global id; collective).
+ *  For a per-particle quantity iterated over the whole body, whose block
+ *  values are right only if the halo's are. */
+int par_setup_halo_values(const struct sim *s, double *v, int ncomp, struct spall_error *err);
+
 /** Make a table of distinct keys (core/distinct.h) the same on every rank:
  *  each rank's rows built from its window differ, but a particle that
  *  migrates takes its 16-bit row numbers along.  The union of the ranks'

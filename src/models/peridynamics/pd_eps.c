@@ -37,6 +37,7 @@
 
 #include "core/bond_list.h"
 #include "core/parallel/decomp.h"
+#include "core/parallel/setup_dist.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -54,12 +55,28 @@ int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err)
 {
     struct pd_lps *L = &m->lps;
     const size_t nh = m->bl->offset[sim->p->n];
+    /* a window of the distributed set-up computes no force: e^dp (zero),
+     * t and the reverse slots would only be carried to pd_localize, which
+     * makes them for the rank's rows (pd_eps_localized), not the window's */
+    if (par_setup_window(sim))
+        return SPALL_OK;
     if (!(L->ep = calloc(nh ? nh : 1, sizeof(double))) ||
         !(L->tb = calloc(nh ? nh : 1, sizeof(double))))
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the plastic "
                                "extension state");
     /* t_ji of a pair comes from j's row: the slot of the same bond there */
     return m->bl->reverse ? SPALL_OK : bond_list_build_reverse(m->bl, err);
+}
+
+int pd_eps_localized(struct pd_lps *L, size_t nh, size_t n, struct spall_error *err)
+{
+    if (!(L->ep = calloc(nh ? nh : 1, sizeof(double))) ||
+        !(L->tb = calloc(nh ? nh : 1, sizeof(double))) ||
+        !(L->epr = calloc(nh ? nh : 1, sizeof(double))) ||
+        !(L->hs = calloc(2 * (n ? n : 1), sizeof(double))))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the plastic "
+                               "extension state");
+    return SPALL_OK;
 }
 
 int pd_eps_forces(struct model *m, struct sim *sim)

@@ -157,8 +157,13 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     size_t *n_init = array_gather(m->n_init, sizeof *n_init, keep, n_keep);
     size_t *n_init_f = array_gather(m->n_init_f, sizeof *n_init_f, keep, n_keep);
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
+    /* eps from a window of the distributed set-up: its state starts here
+     * (pd_eps_init), zero as a fresh run's */
+    const bool eps_fresh = m->opt.eps && !L->ep;
     if (!rc && m->opt.lps)
         rc = lps_localize(&m->lps, keep, n_keep, oh, nh, err);
+    if (!rc && eps_fresh)
+        rc = pd_eps_localized(&m->lps, nh, n_keep, err);
     if (!rc && m->f_prev[0])
         rc = adr_localize(m, sim->dim, keep, n_keep, err);
     if (!rc && m->mm_g)

@@ -237,12 +237,16 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
 {
     struct pd_lps *L = &m->lps;
     const size_t n = sim->p->n, nh = m->bl->offset[n];
+    int rc = SPALL_OK;
     if (!(L->wvol = calloc(n ? n : 1, sizeof(double))) ||
         !(L->theta = calloc(n ? n : 1, sizeof(double))) ||
         !(L->alpha = calloc(n ? n : 1, sizeof(double))) ||
         !(L->bcoef = calloc(n ? n : 1, sizeof(double))))
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS state");
-    int rc = L->cubic ? cubic_gamma(m, sim, err) : SPALL_OK;
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS state");
+    if (L->cubic && par_setup_window(sim)) /* its choice is collective there */
+        rc = par_agree(rc, err);
+    if (!rc && L->cubic)
+        rc = cubic_gamma(m, sim, err);
     /* compact families (pd_compact_predicted): the table, built directly */
     if (!rc && !m->bl->type)
         rc = lps_build_kinds(m, sim, err);

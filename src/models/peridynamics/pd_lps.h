@@ -64,8 +64,13 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
                           double *energy, double *stress);
 
 /* pd_eps.c: elastic-plastic LPS (model.formulation: eps) */
-/** Allocate the plastic extension state (after pd_lps_init) and the reverse slots. */
+/** Allocate the plastic extension state (after pd_lps_init) and the reverse slots;
+ *  nothing in a window of the distributed set-up (pd_eps_localized makes it). */
 int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err);
+/** After pd_localize of a window: the zero plastic state of the rank's @p nh
+ *  half-bonds (e^dp, t, the reverse halves' e^dp) and its @p n particles'
+ *  halo values. */
+int pd_eps_localized(struct pd_lps *L, size_t nh, size_t n, struct spall_error *err);
 /** Forces with the plastic return map and fused breaking (replaces pd_lps_forces). */
 int pd_eps_forces(struct model *m, struct sim *sim);
 /** Equivalent plastic strain of particle @p i from its plastic extension state. */

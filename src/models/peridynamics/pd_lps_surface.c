@@ -38,6 +38,8 @@
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
+#include "core/parallel/comm.h"
+#include "core/parallel/setup_dist.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "spall/error.h"
@@ -65,11 +67,21 @@ static void second_moment(const struct model *m, const struct sim *sim, size_t i
 }
 
 /* Part 1: bond factors on omega until every family's K is isotropic on the
- * diagonal.  r holds 3 factors per particle. */
-static void dilatation_factors(struct model *m, const struct sim *sim, double *r)
+ * diagonal.  r holds 3 factors per particle.
+ * In a window of the distributed set-up (core/parallel/setup_dist.h) a
+ * bond's factor after k passes depends on particles k ranges away, so the
+ * window alone cannot iterate: the block's particles compute their r (their
+ * rows are complete), the halo's r come from the ranks whose blocks hold
+ * them, and the stop is the largest change of the whole body.  A row whose
+ * family lies in the window (the block's and its partners', two ranges of
+ * halo) then sees every factor it reads as serially, pass after pass; the
+ * rows cut by the window's edge go wrong but are read by no such row. */
+static int dilatation_factors(struct model *m, const struct sim *sim, double *r,
+                              struct spall_error *err)
 {
     const struct particles *p = sim->p;
     const struct bond_list *bl = m->bl;
+    const struct par_setup *ps = par_setup_window(sim);
     const int dim = sim->dim;
     for (int it = 0; it < SURF_ITER; it++) {
         double worst = 0.0;
@@ -78,13 +90,21 @@ static void dilatation_factors(struct model *m, const struct sim *sim, double *r
             second_moment(m, sim, i, K);
             for (int a = 0; a < dim; a++)
                 mi += K[a];
+            const bool counts = !ps || par_setup_in_block(ps, i);
             for (int a = 0; a < 3; a++) {
                 r[3 * i + (size_t)a] = a < dim && K[a] > 0.0 ? mi / (dim * K[a]) : 1.0;
-                worst = fmax(worst, fabs(r[3 * i + (size_t)a] - 1.0));
+                if (counts)
+                    worst = fmax(worst, fabs(r[3 * i + (size_t)a] - 1.0));
             }
         }
+        if (ps) {
+            int rc = par_setup_halo_values(sim, r, 3, err);
+            if (rc)
+                return rc;
+            worst = par_max_double(worst);
+        }
         if (worst < SURF_TOL)
-            return;
+            return SPALL_OK;
         for (size_t i = 0; i < p->n; i++)
             for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
                 const size_t j = (size_t)bl->partner[s];
@@ -98,6 +118,7 @@ static void dilatation_factors(struct model *m, const struct sim *sim, double *r
                     m->lps.ob[s] /= sqrt(q);
             }
     }
+    return SPALL_OK;
 }
 
 /* Part 2: deviatoric energy factor a_i of particle i (see the file comment),
@@ -139,13 +160,16 @@ int pd_lps_surface_init(struct model *m, struct sim *sim, struct spall_error *er
 {
     const size_t n = sim->p->n;
     double *r = malloc((n ? n : 1) * 3 * sizeof *r);
-    if (!r || !(m->lps.afac = malloc((n ? n : 1) * sizeof(double)))) {
-        free(r);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS surface "
-                               "correction");
-    }
-    dilatation_factors(m, sim, r);
+    int rc = SPALL_OK;
+    if (!r || !(m->lps.afac = malloc((n ? n : 1) * sizeof(double))))
+        rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS surface correction");
+    if (par_setup_window(sim)) /* the passes are collective there */
+        rc = par_agree(rc, err);
+    if (!rc)
+        rc = dilatation_factors(m, sim, r, err);
     free(r);
+    if (rc)
+        return rc;
     for (size_t i = 0; i < n; i++)
         m->lps.afac[i] = deviatoric_factor(m, sim, i);
     return SPALL_OK;
