@@ -579,17 +579,16 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
      * which kicks with these forces again) clearing the forces; the
      * particles whose velocity a BC sets in between are drifted again */
     const bool fused = save_prescribed(s);
-    if (fused) {
+    if (fused)
         step_kick_drift(s->p, half, dt, !pc);
-        rigid_kick(s, half, t_mid);
-        impose_velocities(s, s->t, t_mid, half, 0);
-        redo_prescribed_drift(s, dt);
-    } else {
+    else
         kick(s, half);
-        rigid_kick(s, half, t_mid);
-        impose_velocities(s, s->t, t_mid, half, 0);
+    rigid_kick(s, half, t_mid);
+    impose_velocities(s, s->t, t_mid, half, 0);
+    if (fused)
+        redo_prescribed_drift(s, dt);
+    else
         step_drift(s->p, dt);
-    }
     drift_extra(s, dt);
     rigid_drift(s, dt);
     account_body_work(s, dt);
