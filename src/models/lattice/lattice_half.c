@@ -513,29 +513,44 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
     return i1;
 }
 
-/* rd[(start + t) mod W] -= g[t], t < n: the ring's contiguous pieces. */
-LATTICE_INLINE void ring_push(double *restrict rd, size_t start, const double *restrict g,
-                              size_t n, size_t mask)
+/* Push of one offset: ring[(start + t) mod W] -= g[t] per component, t <
+ * n, in the ring's contiguous pieces. */
+LATTICE_INLINE void ring_push(double *restrict ring, size_t start, double g[][STENCIL_ROWS],
+                              size_t n, size_t mask, const int dim)
 {
-    const size_t n1 = mask + 1 - start < n ? mask + 1 - start : n;
-    for (size_t t = 0; t < n1; t++)
-        rd[start + t] -= g[t];
-    for (size_t t = n1; t < n; t++)
-        rd[t - n1] -= g[t];
+    const size_t w = mask + 1, n1 = w - start < n ? w - start : n;
+    double *restrict r0 = ring + start, *restrict r1 = r0 + w, *restrict r2 = r1 + w;
+    const double *restrict g0 = g[0], *restrict g1 = g[1], *restrict g2 = g[2];
+    for (size_t t = 0; t < n1; t++) {
+        r0[t] -= g0[t];
+        if (dim > 1)
+            r1[t] -= g1[t];
+        if (dim > 2)
+            r2[t] -= g2[t];
+    }
+    r0 = ring - n1;
+    r1 = r0 + w;
+    r2 = r1 + w;
+    for (size_t t = n1; t < n; t++) {
+        r0[t] -= g0[t];
+        if (dim > 1)
+            r1[t] -= g1[t];
+        if (dim > 2)
+            r2[t] -= g2[t];
+    }
 }
 
-/* a[t] = the ring entry of row i0 + t, cleared, t < n. */
-LATTICE_INLINE void ring_take(double *restrict rd, size_t start, double *restrict a, size_t n,
-                              size_t mask)
+/* Row sums of one component over t in [t0, t1): f[t] += (ring entry + the
+ * nu terms in offset order), the entry cleared; @p r: the entries of t. */
+LATTICE_INLINE void row_sums(double *restrict r, double g[][3][STENCIL_ROWS], size_t nu, int d,
+                             double *restrict f, size_t t0, size_t t1)
 {
-    const size_t n1 = mask + 1 - start < n ? mask + 1 - start : n;
-    for (size_t t = 0; t < n1; t++) {
-        a[t] = rd[start + t];
-        rd[start + t] = 0.0;
-    }
-    for (size_t t = n1; t < n; t++) {
-        a[t] = rd[t - n1];
-        rd[t - n1] = 0.0;
+    for (size_t t = t0; t < t1; t++) {
+        double a = r[t];
+        r[t] = 0.0;
+        for (size_t k = 0; k < nu; k++)
+            a += g[k][d][t];
+        f[t] += a;
     }
 }
 
@@ -544,10 +559,12 @@ LATTICE_INLINE void ring_take(double *restrict rd, size_t start, double *restric
  * when a slot of these rows is broken or a bond breaks now (the general
  * blocks then take the rows).  Per offset the bonds' terms, as half_block's
  * pass 2 computes them; then the pushes from the largest offset down, and
- * each row's sum in offset order (module comment). */
+ * each row's sum in offset order (module comment).  @p nu_lit, @p ns_lit:
+ * the stencil's upper and all slots as literals (0: read from @p st). */
 LATTICE_INLINE int stencil_block(const struct lattice_view *v, const struct lattice_stencil *st,
                                  const struct lattice_bond_law *b, size_t i0, size_t nb,
-                                 double *restrict ring, size_t mask, const int dim)
+                                 double *restrict ring, size_t mask, const int dim,
+                                 const size_t nu_lit, const size_t ns_lit)
 {
     const uint8_t *restrict state = v->state + v->offset[i0];
     const size_t n_slots = v->offset[i0 + nb] - v->offset[i0];
@@ -556,15 +573,14 @@ LATTICE_INLINE int stencil_block(const struct lattice_view *v, const struct latt
         any |= state[q];
     if (any)
         return 0;
-    double *restrict fd[3] = {v->f0, v->f1, v->f2};
     double g[LATTICE_STENCIL_MAX][3][STENCIL_ROWS];
-    const size_t nu = st->nu, ns = st->nl + nu;
+    const size_t nu = nu_lit ? nu_lit : st->nu, ns = ns_lit ? ns_lit : st->nl + st->nu;
     const double kk = b->k, tl = b->t_lim, cl = b->c_lim;
     int64_t breaks = 0;
     for (size_t k = 0; k < nu; k++) {
         const size_t o = st->off[k];
         /* the rest lengths of offset k: every ns-th slot */
-        const uint16_t *restrict ri = v->rest_idx + v->offset[i0] + st->nl + k;
+        const uint16_t *restrict ri = v->rest_idx + v->offset[i0] + (ns - nu) + k;
         const double *restrict tab = v->rest_tab;
         const double *restrict x = v->x0 + i0, *restrict y = dim > 1 ? v->x1 + i0 : x,
                                *restrict z = dim > 2 ? v->x2 + i0 : x;
@@ -590,21 +606,15 @@ LATTICE_INLINE int stencil_block(const struct lattice_view *v, const struct latt
     }
     if (LATTICE_UNLIKELY(breaks))
         return 0;
-    const size_t w = mask + 1;
     for (size_t k = nu; k-- > 0;)
-        for (int d = 0; d < dim; d++)
-            ring_push(ring + (size_t)d * w, (i0 + st->off[k]) & mask, g[k][d], nb, mask);
+        ring_push(ring, (i0 + st->off[k]) & mask, g[k], nb, mask, dim);
+    const size_t w = mask + 1, start = i0 & mask, n1 = w - start < nb ? w - start : nb;
+    double *restrict fd[3] = {v->f0 + i0, dim > 1 ? v->f1 + i0 : NULL,
+                              dim > 2 ? v->f2 + i0 : NULL};
     for (int d = 0; d < dim; d++) {
-        double a[STENCIL_ROWS];
-        ring_take(ring + (size_t)d * w, i0 & mask, a, nb, mask);
-        for (size_t k = 0; k < nu; k++) {
-            const double *restrict gk = g[k][d];
-            for (size_t t = 0; t < nb; t++)
-                a[t] += gk[t];
-        }
-        double *restrict f = fd[d] + i0;
-        for (size_t t = 0; t < nb; t++)
-            f[t] += a[t];
+        double *rd = ring + (size_t)d * w;
+        row_sums(rd + start, g, nu, d, fd[d], 0, n1);
+        row_sums(rd - n1, g, nu, d, fd[d], n1, nb);
     }
     return 1;
 }
@@ -640,7 +650,11 @@ LATTICE_INLINE size_t half_loop(struct model *m, const struct lattice_view *v, s
             const size_t end = run[q].b + reach < hi ? run[q].b : (hi > reach ? hi - reach : 0);
             if (i < end) {
                 const size_t nb = end - i < STENCIL_ROWS ? end - i : STENCIL_ROWS;
-                if (stencil_block(v, st, &pw[0], i, nb, ring, mask, dim))
+                /* the interior rows of a 2D alpha lattice as literals */
+                const int ok = st->nl == 3 && st->nu == 3
+                                   ? stencil_block(v, st, &pw[0], i, nb, ring, mask, dim, 3, 6)
+                                   : stencil_block(v, st, &pw[0], i, nb, ring, mask, dim, 0, 0);
+                if (ok)
                     done += nb;
                 else
                     for (size_t r = i; r < i + nb;)
