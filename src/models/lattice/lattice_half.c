@@ -574,14 +574,22 @@ LATTICE_INLINE int stencil_block(const struct lattice_view *v, const struct latt
     if (any)
         return 0;
     double g[LATTICE_STENCIL_MAX][3][STENCIL_ROWS];
+    /* the rest lengths of the upper slots, offset by offset (a row's upper
+     * slots are its last nu of ns) */
+    double rest[LATTICE_STENCIL_MAX][STENCIL_ROWS];
     const size_t nu = nu_lit ? nu_lit : st->nu, ns = ns_lit ? ns_lit : st->nl + st->nu;
+    {
+        const uint16_t *restrict ri = v->rest_idx + v->offset[i0] + (ns - nu);
+        const double *restrict tab = v->rest_tab;
+        for (size_t t = 0; t < nb; t++, ri += ns)
+            for (size_t k = 0; k < nu; k++)
+                rest[k][t] = tab[ri[k]];
+    }
     const double kk = b->k, tl = b->t_lim, cl = b->c_lim;
     int64_t breaks = 0;
     for (size_t k = 0; k < nu; k++) {
         const size_t o = st->off[k];
-        /* the rest lengths of offset k: every ns-th slot */
-        const uint16_t *restrict ri = v->rest_idx + v->offset[i0] + (ns - nu) + k;
-        const double *restrict tab = v->rest_tab;
+        const double *restrict rk = rest[k];
         const double *restrict x = v->x0 + i0, *restrict y = dim > 1 ? v->x1 + i0 : x,
                                *restrict z = dim > 2 ? v->x2 + i0 : x;
         double *restrict g0 = g[k][0], *restrict g1 = g[k][1], *restrict g2 = g[k][2];
@@ -594,7 +602,7 @@ LATTICE_INLINE int stencil_block(const struct lattice_view *v, const struct latt
                 r2 += dy * dy;
             if (dim > 2)
                 r2 += dz * dz;
-            const double r = sqrt(r2), r0 = tab[ri[t * ns]];
+            const double r = sqrt(r2), r0 = rk[t];
             const double c = kk - kk * r0 / r;
             breaks |= (int64_t)(r > r0 * tl) | (int64_t)(r < r0 * cl);
             g0[t] = c * dx;
