@@ -211,11 +211,39 @@ static void kick(struct sim *s, double half_dt)
 }
 
 /* Positions of the particles whose velocity components a condition sets
- * (the velocity BCs' members, component by component, in BC order): saved
- * before the fused kick and drift, which drifted them with the kicked
- * velocity, to drift them again from there with the imposed one
- * (redo_prescribed_drift).  Returns false, saving nothing, when memory is
- * short: the step then kicks, imposes and drifts in separate passes. */
+ * (the velocity BCs' members, component by component, in BC order), over
+ * the fused kick and drift, which drifted them with the kicked velocity:
+ * @p save keeps them before the pass, else each becomes x_saved + dt v
+ * with v now the imposed velocity, the drift the separate passes would
+ * have done after the imposition (a member of two BCs gets the same value
+ * twice). */
+static void prescribed_positions(struct sim *s, double dt, bool save)
+{
+    size_t q = 0;
+    for (size_t k = 0; k < s->n_bcs; k++) {
+        const struct bc *b = &s->bcs[k];
+        if (!bc_prescribes_velocity(b))
+            continue;
+        const struct group *g = &s->groups[b->group];
+        for (int d = 0; d < s->dim; d++) {
+            if (!(b->comp_mask & (1u << d)))
+                continue;
+            double *x = s->p->x[d];
+            const double *v = s->p->v[d];
+            for (size_t m = 0; m < g->n; m++, q++) {
+                const size_t i = g->idx[m];
+                if (save)
+                    s->drift_save[q] = x[i];
+                else
+                    x[i] = s->drift_save[q] + dt * v[i];
+            }
+        }
+    }
+}
+
+/* Room for prescribed_positions and the positions saved: false, saving
+ * nothing, when memory is short (the step then kicks, imposes and drifts
+ * in separate passes). */
 static bool save_prescribed(struct sim *s)
 {
     size_t need = 0;
@@ -229,38 +257,8 @@ static bool save_prescribed(struct sim *s)
         s->drift_save = b;
         s->drift_save_cap = need;
     }
-    size_t q = 0;
-    for (size_t k = 0; k < s->n_bcs; k++) {
-        const struct bc *b = &s->bcs[k];
-        if (!bc_prescribes_velocity(b))
-            continue;
-        const struct group *g = &s->groups[b->group];
-        for (int d = 0; d < s->dim; d++)
-            if (b->comp_mask & (1u << d))
-                for (size_t m = 0; m < g->n; m++)
-                    s->drift_save[q++] = s->p->x[d][g->idx[m]];
-    }
+    prescribed_positions(s, 0.0, true);
     return true;
-}
-
-/* x = x_saved + dt v for the saved components, v now the imposed velocity:
- * the drift the separate passes would have done after the imposition (a
- * member of two BCs gets the same value twice). */
-static void redo_prescribed_drift(struct sim *s, double dt)
-{
-    size_t q = 0;
-    for (size_t k = 0; k < s->n_bcs; k++) {
-        const struct bc *b = &s->bcs[k];
-        if (!bc_prescribes_velocity(b))
-            continue;
-        const struct group *g = &s->groups[b->group];
-        for (int d = 0; d < s->dim; d++)
-            if (b->comp_mask & (1u << d))
-                for (size_t m = 0; m < g->n; m++) {
-                    const size_t i = g->idx[m];
-                    s->p->x[d][i] = s->drift_save[q++] + dt * s->p->v[d][i];
-                }
-    }
 }
 
 double *const *sim_drift_velocities(const struct sim *s, double *dt)
@@ -586,7 +584,7 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
     rigid_kick(s, half, t_mid);
     impose_velocities(s, s->t, t_mid, half, 0);
     if (fused)
-        redo_prescribed_drift(s, dt);
+        prescribed_positions(s, dt, false);
     else
         step_drift(s->p, dt);
     drift_extra(s, dt);

@@ -7,7 +7,8 @@
  *        same way per lane, so both versions give the same bits on any
  *        thread count.
  *
- * The passes sweep all components at once (the mass read once).  The
+ * The passes sweep all components of a chunk of particles at once (the
+ * chunk's masses read from memory once, then from L1).  The
  * first kick of a step and the drift are one pass over m, f, v and x
  * (step_kick_drift; the integrator redoes the drift of the particles a
  * velocity condition sets in between), which also clears the forces the
@@ -32,65 +33,45 @@
 /* What a pass does: kick; kick and drift; kick, drift and clear f. */
 enum pass_kind { PASS_KICK, PASS_KICK_DRIFT, PASS_KICK_DRIFT_ZERO };
 
-/* One component's arrays. */
-struct comp {
-    double *restrict x, *restrict v, *restrict f;
-};
+/* Particles per chunk of a pass: the chunk's masses (16 kB) stay in the caches while its
+ * components are swept one after the other. */
+#define PASS_CHUNK 2048
 
-static inline void pass_dim(const double *restrict m, struct comp c0, struct comp c1,
-                            struct comp c2, size_t lo, size_t hi, double half_dt, double dt,
-                            const enum pass_kind kind, const int dim)
+/* One component over [lo, hi): the kick, then the drift with the new
+ * velocity and the clearing, as @p kind asks. */
+static inline void pass_comp(const double *restrict m, double *restrict x, double *restrict v,
+                             double *restrict f, size_t lo, size_t hi, double half_dt,
+                             double dt, const enum pass_kind kind)
 {
     for (size_t i = lo; i < hi; i++) {
-        const double mi = m[i];
-        const double v0 = c0.v[i] + half_dt * c0.f[i] / mi;
-        c0.v[i] = v0;
+        const double vi = v[i] + half_dt * f[i] / m[i];
+        v[i] = vi;
         if (kind != PASS_KICK)
-            c0.x[i] += dt * v0;
+            x[i] += dt * vi;
         if (kind == PASS_KICK_DRIFT_ZERO)
-            c0.f[i] = 0.0;
-        if (dim > 1) {
-            const double v1 = c1.v[i] + half_dt * c1.f[i] / mi;
-            c1.v[i] = v1;
-            if (kind != PASS_KICK)
-                c1.x[i] += dt * v1;
-            if (kind == PASS_KICK_DRIFT_ZERO)
-                c1.f[i] = 0.0;
-        }
-        if (dim > 2) {
-            const double v2 = c2.v[i] + half_dt * c2.f[i] / mi;
-            c2.v[i] = v2;
-            if (kind != PASS_KICK)
-                c2.x[i] += dt * v2;
-            if (kind == PASS_KICK_DRIFT_ZERO)
-                c2.f[i] = 0.0;
-        }
+            f[i] = 0.0;
     }
 }
 
-static inline void pass_kind_dim(const struct particles *p, size_t lo, size_t hi, double half_dt,
-                                 double dt, const enum pass_kind kind)
+static inline void pass_kind(const struct particles *p, size_t lo, size_t hi, double half_dt,
+                             double dt, const enum pass_kind kind)
 {
-    struct comp c[3] = {{0}};
-    for (int d = 0; d < p->dim; d++)
-        c[d] = (struct comp){p->x[d], p->v[d], p->f[d]};
-    if (p->dim == 1)
-        pass_dim(p->mass, c[0], c[1], c[2], lo, hi, half_dt, dt, kind, 1);
-    else if (p->dim == 2)
-        pass_dim(p->mass, c[0], c[1], c[2], lo, hi, half_dt, dt, kind, 2);
-    else
-        pass_dim(p->mass, c[0], c[1], c[2], lo, hi, half_dt, dt, kind, 3);
+    for (size_t c = lo; c < hi; c += PASS_CHUNK) {
+        const size_t e = hi - c < PASS_CHUNK ? hi : c + PASS_CHUNK;
+        for (int d = 0; d < p->dim; d++)
+            pass_comp(p->mass, p->x[d], p->v[d], p->f[d], c, e, half_dt, dt, kind);
+    }
 }
 
 STEP_CLONES static void pass_range(const struct particles *p, size_t lo, size_t hi,
                                    double half_dt, double dt, int kind)
 {
     if (kind == PASS_KICK)
-        pass_kind_dim(p, lo, hi, half_dt, dt, PASS_KICK);
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK);
     else if (kind == PASS_KICK_DRIFT)
-        pass_kind_dim(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT);
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT);
     else
-        pass_kind_dim(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT_ZERO);
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT_ZERO);
 }
 
 STEP_CLONES static void drift_range(const struct particles *p, size_t lo, size_t hi, double dt)
