@@ -513,41 +513,41 @@ LATTICE_INLINE size_t half_block(struct model *m, const struct lattice_view *v,
     return i1;
 }
 
-/* Push of one offset: ring[(start + t) mod W] -= g[t] per component, t <
- * n, in the ring's contiguous pieces. */
+/* One contiguous piece of a push: r_d[t - t0] -= g_d[t], t in [t0, t1),
+ * r_d = r + d W. */
+LATTICE_INLINE void push_piece(double *restrict r, size_t w, double g[][STENCIL_ROWS], size_t t0,
+                               size_t t1, const int dim)
+{
+    double *restrict r0 = r, *restrict r1 = dim > 1 ? r + w : r,
+                     *restrict r2 = dim > 2 ? r + 2 * w : r;
+    const double *restrict g0 = g[0], *restrict g1 = g[1], *restrict g2 = g[2];
+    for (size_t t = t0; t < t1; t++) {
+        r0[t - t0] -= g0[t];
+        if (dim > 1)
+            r1[t - t0] -= g1[t];
+        if (dim > 2)
+            r2[t - t0] -= g2[t];
+    }
+}
+
+/* Push of one offset: ring[(start + t) mod W] -= g[t] per component,
+ * t < n, in the ring's contiguous pieces. */
 LATTICE_INLINE void ring_push(double *restrict ring, size_t start, double g[][STENCIL_ROWS],
                               size_t n, size_t mask, const int dim)
 {
     const size_t w = mask + 1, n1 = w - start < n ? w - start : n;
-    double *restrict r0 = ring + start, *restrict r1 = r0 + w, *restrict r2 = r1 + w;
-    const double *restrict g0 = g[0], *restrict g1 = g[1], *restrict g2 = g[2];
-    for (size_t t = 0; t < n1; t++) {
-        r0[t] -= g0[t];
-        if (dim > 1)
-            r1[t] -= g1[t];
-        if (dim > 2)
-            r2[t] -= g2[t];
-    }
-    r0 = ring - n1;
-    r1 = r0 + w;
-    r2 = r1 + w;
-    for (size_t t = n1; t < n; t++) {
-        r0[t] -= g0[t];
-        if (dim > 1)
-            r1[t] -= g1[t];
-        if (dim > 2)
-            r2[t] -= g2[t];
-    }
+    push_piece(ring + start, w, g, 0, n1, dim);
+    push_piece(ring, w, g, n1, n, dim);
 }
 
 /* Row sums of one component over t in [t0, t1): f[t] += (ring entry + the
- * nu terms in offset order), the entry cleared; @p r: the entries of t. */
+ * nu terms in offset order), the entry (r[t - t0]) cleared. */
 LATTICE_INLINE void row_sums(double *restrict r, double g[][3][STENCIL_ROWS], size_t nu, int d,
                              double *restrict f, size_t t0, size_t t1)
 {
     for (size_t t = t0; t < t1; t++) {
-        double a = r[t];
-        r[t] = 0.0;
+        double a = r[t - t0];
+        r[t - t0] = 0.0;
         for (size_t k = 0; k < nu; k++)
             a += g[k][d][t];
         f[t] += a;
@@ -622,7 +622,7 @@ LATTICE_INLINE int stencil_block(const struct lattice_view *v, const struct latt
     for (int d = 0; d < dim; d++) {
         double *rd = ring + (size_t)d * w;
         row_sums(rd + start, g, nu, d, fd[d], 0, n1);
-        row_sums(rd - n1, g, nu, d, fd[d], n1, nb);
+        row_sums(rd, g, nu, d, fd[d], n1, nb);
     }
     return 1;
 }
