@@ -76,8 +76,9 @@
  * offsets x 3 components x 8 B a row, 12 kB) stay in L1. */
 #define STENCIL_ROWS 64
 
-/* Shortest run worth a stencil; most distinct stencils kept per list
- * (lattice2d: 8, the boundary rows included). */
+/* Shortest run worth a stencil; most distinct stencils kept per list (a
+ * regular lattice has a handful: its interior patterns and those of its
+ * boundary rows; further ones leave their rows to the general blocks). */
 #define STENCIL_MIN_RUN 8
 #define STENCIL_MAX_KINDS 64
 
@@ -234,8 +235,10 @@ size_t lattice_half_ring(struct model *m, const struct sim *sim)
     return m->half_ring;
 }
 
-bool lattice_half_stencils(const struct model *m, const struct lattice_view *v, int multi,
-                           int gather)
+/* Whether the stencil runs apply on the view @p v: found (compact rest
+ * lengths), one bond type, no angular springs. */
+static bool half_stencils(const struct model *m, const struct lattice_view *v, int multi,
+                          int gather)
 {
     return m->half_n_runs > 0 && v->rest_idx && !multi && !gather;
 }
@@ -634,7 +637,7 @@ LATTICE_INLINE size_t half_loop(struct model *m, const struct lattice_view *v, s
 {
     const struct lattice_bond_law *pw = m->pair; /* material 0 with itself */
     const struct lattice_run *run = m->half_runs;
-    const size_t nr = lattice_half_stencils(m, v, multi, gather) ? m->half_n_runs : 0;
+    const size_t nr = half_stencils(m, v, multi, gather) ? m->half_n_runs : 0;
     const int tab = v->rest_idx != NULL;
     half_first(m, v, pw, lo, hi, ring, mask, dim, multi, gather);
     /* the first run that ends past lo */

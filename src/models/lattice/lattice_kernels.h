@@ -99,12 +99,6 @@ double lattice_break_half(struct model *m, size_t i, size_t s, const struct latt
 size_t lattice_half_range(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
                         double *ring, size_t mask, int dim, int multi, int gather);
 
-/** Whether lattice_half_range will take its stencil runs on the view @p v
- *  (the list's rest lengths compacted and unchanged since the runs were
- *  found, one bond type, no angular springs). */
-bool lattice_half_stencils(const struct model *m, const struct lattice_view *v, int multi,
-                           int gather);
-
 LATTICE_INLINE void add_force(const struct lattice_view *v, size_t i, const int dim,
                               const double fi[3])
 {
