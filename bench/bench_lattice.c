@@ -110,19 +110,23 @@ static double triad_bandwidth(int threads)
 
 /* Bytes the lattice2d step moves to and from memory per particle, counted
  * from the data layout (docs/performance.md, "Roofline of the lattice
- * step"): 2D, one bond type, h half-bonds per particle, the rest lengths
- * compacted to 2 B (bond_list_compact_rest) or 8 B.  Every array is
- * streamed once per pass; the partners' positions come from the caches
- * (rows j = i +- 1, i +- n_side +- 1). */
+ * step" and "Lattice step, round 3"): 2D, one bond type, h half-bonds per
+ * particle, the rest lengths compacted to 2 B (bond_list_compact_rest).
+ * Every array is streamed once per pass; the partners' positions come from
+ * the caches (rows j = i +- 1, i +- n_side +- 1).  The rows take the
+ * stencil blocks of the once-per-bond loop (lattice_half.c: no partners,
+ * no row offsets read; the state and rest index of every slot, whose cache
+ * lines hold the row's), and the first kick, the drift and the clearing of
+ * the forces are one pass (core/step_passes.c). */
 static double lattice2d_step_bytes(double h, double rest_bytes)
 {
+    const double kick_drift = 8 + 2 * (2 * 8 + 2 * 8 + 2 * 8); /* m; per dimension f read
+                                                 and cleared, v and x read and written */
+    const double force = 2 * 8 + 2 * 16 + h * (rest_bytes + 1); /* x_i, f read and
+                                                 written; rest index, state */
     const double kick = 8 + 2 * (8 + 8 + 8); /* m; per dimension f, v read, v written */
-    const double drift = 2 * (8 + 8 + 8);    /* per dimension: v, x read, x written */
-    const double zero = 2 * 8;               /* forces cleared */
-    const double force = 8 + 2 * 8 + 2 * 16 + h * (4 + rest_bytes + 1); /* offset, x_i, f
-                                                   read and written; partner, rest, state */
     const double check = 8 + 2 * 8;          /* NaN check and kinetic energy: m, v */
-    return 2 * kick + drift + zero + force + check;
+    return kick_drift + force + kick + check;
 }
 
 static int bench_lattice2d(int threads, double scale, struct bench_result *out,

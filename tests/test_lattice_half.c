@@ -6,6 +6,12 @@
  *        forces, bond states and the released energy of fracture runs of a
  *        1D chain, a 2D alpha plate of one and of two neighbour shells (bond
  *        types), a 2D alpha-beta plate (angular springs) and a 3D FCC block.
+ *        The alpha plate takes the stencil blocks for most rows
+ *        (lattice_stencil_rows) and the general blocks around its broken
+ *        bonds: both paths and their hand-over in one run.  The chain
+ *        breaks in its first step (a stencil block that falls back before
+ *        its pushes; on 2 and 3 threads the intact part takes them); the
+ *        FCC block's order of particles has no runs.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -36,6 +42,7 @@ struct snap {
     double dissipated;
     size_t broken;
     bool half;
+    size_t stencil_rows; /* the largest count of one step */
 };
 
 static void set_threads(int t)
@@ -55,9 +62,12 @@ static struct snap run(const char *deck, long steps, int threads, bool rows)
     struct sim *s = test_build_ok(deck);
     lattice_set_row_loop(s->model, rows);
     struct spall_error err = {0};
-    for (long k = 0; k < steps && !sim_done(s); k++)
-        assert_int_equal(sim_step(s, &err), SPALL_OK);
     struct snap r = {0};
+    for (long k = 0; k < steps && !sim_done(s); k++) {
+        assert_int_equal(sim_step(s, &err), SPALL_OK);
+        if (lattice_stencil_rows(s->model) > r.stencil_rows)
+            r.stencil_rows = lattice_stencil_rows(s->model);
+    }
     const struct particles *p = s->p;
     r.n = p->n_owned;
     r.dim = s->dim;
@@ -88,18 +98,30 @@ static void snap_free(struct snap *r)
     free(r->state);
 }
 
+/* what the stencil blocks must take: more than half of the rows in some
+ * step, no row, or any count */
+enum stencil_use { STENCIL_MOST, STENCIL_NONE, STENCIL_ANY };
+
 /* The row loop on one thread against the once-per-bond loop on 1, 2 and 3
  * threads; @p min_broken bonds must have broken. */
-static void check_deck(const char *what, const char *deck, long steps, size_t min_broken)
+static void check_deck(const char *what, const char *deck, long steps, size_t min_broken,
+                       enum stencil_use stencil)
 {
     struct snap ref = run(deck, steps, 1, true);
     assert_false(ref.half);
+    assert_int_equal(ref.stencil_rows, 0);
     print_message("%s: %zu particles, %zu broken bonds after %ld steps\n", what, ref.n,
                   ref.broken, steps);
     assert_true(ref.broken >= min_broken);
     for (int t = 1; t <= 3; t++) {
         struct snap h = run(deck, steps, t, false);
         assert_true(h.half); /* the loop under test ran */
+        print_message("  %d thread(s): stencil blocks took up to %zu rows a step\n", t,
+                      h.stencil_rows);
+        if (stencil == STENCIL_MOST)
+            assert_true(2 * h.stencil_rows > h.n);
+        else if (stencil == STENCIL_NONE)
+            assert_int_equal(h.stencil_rows, 0);
         assert_int_equal(h.n, ref.n);
         assert_int_equal(h.nh, ref.nh);
         assert_memory_equal(h.xvf, ref.xvf, 3 * (size_t)ref.dim * ref.n * sizeof(double));
@@ -126,13 +148,13 @@ static void test_chain(void **state)
                "  - {group: l, type: fixed}\n"
                "  - {group: r, type: velocity, value: 20.0}\n"
                "run: {end_time: 2.0e-5}\n",
-               400, 1);
+               400, 1, STENCIL_ANY);
 }
 
 /* a pre-cracked plate pulled apart at its grips (validation case
  * lattice-threads at a coarser spacing), Poisson ratio @p nu: 1/3 axial
  * springs only, 0.2 with angular springs; @p layers neighbour shells */
-static void plate(const char *what, const char *nu, int layers)
+static void plate(const char *what, const char *nu, int layers, enum stencil_use stencil)
 {
     char deck[2048];
     snprintf(deck, sizeof deck,
@@ -155,19 +177,19 @@ static void plate(const char *what, const char *nu, int layers)
              "     function: {type: linear_ramp, duration: 1.0e-5}}\n"
              "run: {end_time: 1.0e-3}\n",
              layers, nu);
-    check_deck(what, deck, 1500, 10);
+    check_deck(what, deck, 1500, 10, stencil);
 }
 
 static void test_plate_alpha(void **state)
 {
     (void)state;
-    plate("alpha plate", "0.3333333333333333", 1);
+    plate("alpha plate", "0.3333333333333333", 1, STENCIL_MOST);
 }
 
 static void test_plate_angles(void **state)
 {
     (void)state;
-    plate("alpha-beta plate", "0.2", 1);
+    plate("alpha-beta plate", "0.2", 1, STENCIL_NONE); /* angles: general blocks */
 }
 
 /* an FCC block pulled apart in z */
@@ -189,14 +211,14 @@ static void test_fcc(void **state)
              "  - {group: lo, type: velocity, components: [z], value: -10.0}\n"
              "  - {group: hi, type: velocity, components: [z], value: 10.0}\n"
              "run: {end_time: 1.0e-3}\n");
-    check_deck("fcc block", deck, 600, 1);
+    check_deck("fcc block", deck, 600, 1, STENCIL_NONE);
 }
 
 /* two neighbour shells (bond types): the alpha plate with layers: 2 */
 static void test_plate_two_shells(void **state)
 {
     (void)state;
-    plate("alpha plate, two shells", "0.3333333333333333", 2);
+    plate("alpha plate, two shells", "0.3333333333333333", 2, STENCIL_NONE); /* types */
 }
 
 int main(void)

@@ -32,6 +32,7 @@
 #include "core/rigid.h"
 #include "core/sim.h"
 #include "core/model.h"
+#include "core/step_passes.h"
 #include "spall/error.h"
 
 #include <math.h>
@@ -204,63 +205,60 @@ static void impose_velocities_silent(struct sim *s, double t)
     }
 }
 
-/* The kicks and the drift sweep all components in one pass over the
- * particles (the mass read once, a third fewer streams than one pass per
- * component); each component gets the same operation as before, so the
- * bits do not change.  @p dim is a literal in each inlined copy. */
-static inline void kick_dim(struct particles *p, double half_dt, const int dim)
-{
-    const size_t n = p->n_owned;
-    const double *restrict m = p->mass;
-    double *restrict v0 = p->v[0], *restrict v1 = dim > 1 ? p->v[1] : NULL,
-                     *restrict v2 = dim > 2 ? p->v[2] : NULL;
-    const double *restrict f0 = p->f[0], *restrict f1 = dim > 1 ? p->f[1] : NULL,
-                           *restrict f2 = dim > 2 ? p->f[2] : NULL;
-#pragma omp parallel for schedule(static) if (n > SPALL_OMP_MIN_PARTICLES)
-    for (size_t i = 0; i < n; i++) {
-        v0[i] += half_dt * f0[i] / m[i];
-        if (dim > 1)
-            v1[i] += half_dt * f1[i] / m[i];
-        if (dim > 2)
-            v2[i] += half_dt * f2[i] / m[i];
-    }
-}
-
 static void kick(struct sim *s, double half_dt)
 {
-    if (s->dim == 1)
-        kick_dim(s->p, half_dt, 1);
-    else if (s->dim == 2)
-        kick_dim(s->p, half_dt, 2);
-    else
-        kick_dim(s->p, half_dt, 3);
+    step_kick(s->p, half_dt);
 }
 
-static inline void drift_dim(struct particles *p, double dt, const int dim)
+/* Positions of the particles whose velocity components a condition sets
+ * (the velocity BCs' members, component by component, in BC order), over
+ * the fused kick and drift, which drifted them with the kicked velocity:
+ * @p save keeps them before the pass, else each becomes x_saved + dt v
+ * with v now the imposed velocity, the drift the separate passes would
+ * have done after the imposition (a member of two BCs gets the same value
+ * twice). */
+static void prescribed_positions(struct sim *s, double dt, bool save)
 {
-    const size_t n = p->n_owned;
-    double *restrict x0 = p->x[0], *restrict x1 = dim > 1 ? p->x[1] : NULL,
-                     *restrict x2 = dim > 2 ? p->x[2] : NULL;
-    const double *restrict v0 = p->v[0], *restrict v1 = dim > 1 ? p->v[1] : NULL,
-                           *restrict v2 = dim > 2 ? p->v[2] : NULL;
-#pragma omp parallel for schedule(static) if (n > SPALL_OMP_MIN_PARTICLES)
-    for (size_t i = 0; i < n; i++) {
-        x0[i] += dt * v0[i];
-        if (dim > 1)
-            x1[i] += dt * v1[i];
-        if (dim > 2)
-            x2[i] += dt * v2[i];
+    size_t q = 0;
+    for (size_t k = 0; k < s->n_bcs; k++) {
+        const struct bc *b = &s->bcs[k];
+        if (!bc_prescribes_velocity(b))
+            continue;
+        const struct group *g = &s->groups[b->group];
+        for (int d = 0; d < s->dim; d++) {
+            if (!(b->comp_mask & (1u << d)))
+                continue;
+            double *x = s->p->x[d];
+            const double *v = s->p->v[d];
+            for (size_t m = 0; m < g->n; m++, q++) {
+                const size_t i = g->idx[m];
+                if (save)
+                    s->drift_save[q] = x[i];
+                else
+                    x[i] = s->drift_save[q] + dt * v[i];
+            }
+        }
     }
 }
 
-static void drift(struct sim *s, double dt)
+/* Room for prescribed_positions and the positions saved: false, saving
+ * nothing, when memory is short (the step then kicks, imposes and drifts
+ * in separate passes). */
+static bool save_prescribed(struct sim *s)
 {
-    if (s->dim == 1)
-        drift_dim(s->p, dt, 1);
-    else if (s->dim == 2)
-        drift_dim(s->p, dt, 2);
-    else
-        drift_dim(s->p, dt, 3);
+    size_t need = 0;
+    for (size_t k = 0; k < s->n_bcs; k++)
+        if (bc_prescribes_velocity(&s->bcs[k]))
+            need += s->groups[s->bcs[k].group].n * (size_t)s->dim;
+    if (need > s->drift_save_cap) {
+        double *b = realloc(s->drift_save, need * sizeof *b);
+        if (!b)
+            return false;
+        s->drift_save = b;
+        s->drift_save_cap = need;
+    }
+    prescribed_positions(s, 0.0, true);
+    return true;
 }
 
 double *const *sim_drift_velocities(const struct sim *s, double *dt)
@@ -329,10 +327,16 @@ static void reflect_axis(struct sim *s)
 }
 
 /* All forces at the current state.  @p state_dt > 0: the leapfrog's force
- * call, which also advances the model's state by state_dt (compute_forces_kick). */
-static int compute_all_forces(struct sim *s, double state_dt, struct spall_error *err)
+ * call, which also advances the model's state by state_dt (compute_forces_kick).
+ * @p owned_zeroed: the fused kick and drift cleared the owned forces. */
+static int compute_all_forces(struct sim *s, double state_dt, bool owned_zeroed,
+                              struct spall_error *err)
 {
-    particles_zero_forces(s->p);
+    if (!owned_zeroed)
+        particles_zero_forces(s->p);
+    else
+        for (int d = 0; d < s->dim; d++) /* the ghosts' */
+            memset(s->p->f[d] + s->p->n_owned, 0, (s->p->n - s->p->n_owned) * sizeof(double));
     int rc = SPALL_OK;
     /* ghosts take their owners' drifted positions (spatial ghosts rebuilt first when due) */
     if (s->par && (rc = par_ghosts_step(s, err)))
@@ -385,7 +389,7 @@ void sim_update_energy(struct sim *s)
 
 int sim_initial_forces(struct sim *s, struct spall_error *err)
 {
-    int rc = compute_all_forces(s, 0.0, err);
+    int rc = compute_all_forces(s, 0.0, false, err);
     if (rc)
         return rc;
     impose_velocities(s, 0.0, 0.0, 0.5 * s->dt, 1);
@@ -402,21 +406,6 @@ int sim_initial_forces(struct sim *s, struct spall_error *err)
 
 /* Particles per block of the kinetic-energy sum. */
 #define KINETIC_BLOCK 4096
-
-/* sum of m v_d^2 over [lo, hi): four interleaved partial sums (they
- * vectorise), combined in a fixed order */
-static double block_mv2(const double *restrict m, const double *restrict v, size_t lo, size_t hi)
-{
-    double a4[4] = {0.0, 0.0, 0.0, 0.0};
-    size_t i = lo;
-    for (; i + 4 <= hi; i += 4)
-        for (int l = 0; l < 4; l++)
-            a4[l] += m[i + l] * v[i + l] * v[i + l];
-    double a = (a4[0] + a4[1]) + (a4[2] + a4[3]);
-    for (; i < hi; i++)
-        a += m[i] * v[i] * v[i];
-    return a;
-}
 
 /* Find the first particle with a non-finite velocity (a non-finite position
  * makes the forces and hence the velocity non-finite in the same step).
@@ -437,7 +426,7 @@ static int check_finite(const struct sim *s, size_t *bad, double *kinetic)
         for (size_t b = 0; b < nb; b++) {
             const size_t lo = b * KINETIC_BLOCK, hi = lo + KINETIC_BLOCK < n ? lo + KINETIC_BLOCK : n;
             for (int d = 0; d < dim; d++)
-                part[3 * b + (size_t)d] = block_mv2(m, p->v[d], lo, hi);
+                part[3 * b + (size_t)d] = step_block_mv2(m, p->v[d], lo, hi);
         }
         for (size_t b = 0; b < nb; b++)
             for (int d = 0; d < dim; d++)
@@ -446,8 +435,8 @@ static int check_finite(const struct sim *s, size_t *bad, double *kinetic)
     } else { /* one block, or no memory for the block sums: the same blocks in turn */
         for (size_t lo = 0; lo < n; lo += KINETIC_BLOCK)
             for (int d = 0; d < dim; d++)
-                acc[d] += block_mv2(m, p->v[d], lo,
-                                    lo + KINETIC_BLOCK < n ? lo + KINETIC_BLOCK : n);
+                acc[d] += step_block_mv2(m, p->v[d], lo,
+                                         lo + KINETIC_BLOCK < n ? lo + KINETIC_BLOCK : n);
     }
     *kinetic = 0.0;
     for (int d = 0; d < dim; d++) {
@@ -583,11 +572,21 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
 {
     const double half = 0.5 * dt;
     const int pc = s->integrator == INTEGRATOR_PREDICTOR_CORRECTOR;
-    kick(s, half);
-    rigid_kick(s, half, s->t + half);
     const double t_mid = s->t + half;
+    /* one pass for the kick, the drift and (not for the predictor-corrector,
+     * which kicks with these forces again) clearing the forces; the
+     * particles whose velocity a BC sets in between are drifted again */
+    const bool fused = save_prescribed(s);
+    if (fused)
+        step_kick_drift(s->p, half, dt, !pc);
+    else
+        kick(s, half);
+    rigid_kick(s, half, t_mid);
     impose_velocities(s, s->t, t_mid, half, 0);
-    drift(s, dt);
+    if (fused)
+        prescribed_positions(s, dt, false);
+    else
+        step_drift(s->p, dt);
     drift_extra(s, dt);
     rigid_drift(s, dt);
     account_body_work(s, dt);
@@ -606,7 +605,7 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
         (rc = s->ops->advance_state(s->model, s, dt, MODEL_STAGE_PREDICT, err)))
         return unstable_or(s, rc, err);
     const double state_dt = s->integrator == INTEGRATOR_LEAPFROG ? dt : 0.0;
-    rc = compute_all_forces(s, state_dt, err);
+    rc = compute_all_forces(s, state_dt, fused && !pc, err);
     if (s->par && (rc = par_agree(rc, err))) /* one rank's failure stops all */
         return rc;
     if (rc)

@@ -62,6 +62,7 @@ void sim_destroy(struct sim **sp)
     free(s->precracks);
     for (int d = 0; d < 3; d++)
         free(s->v_half[d]);
+    free(s->drift_save);
     free(s->no_drift_velocity);
     free(s->materials);
     rigid_set_destroy(&s->rigid);

@@ -153,6 +153,9 @@ struct sim {
                                   step; the run driver: its history interval) */
     struct energy_account energy;
     double *v_half[3];    /**< predictor-corrector scratch (owned) */
+    double *drift_save;   /**< positions of velocity-BC members over the fused kick
+                               and drift (core/integrator.c) */
+    size_t drift_save_cap;
     uint8_t *no_drift_velocity; /**< 1: a BC prescribes the particle's velocity, the
                                      model's drift velocity does not move it (owned) */
     uint64_t seed;        /**< random seed for stochastic features */

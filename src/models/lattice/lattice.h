@@ -84,6 +84,9 @@ bool lattice_has_angles(const struct model *m);
 void lattice_set_row_loop(struct model *m, bool rows);
 /** Whether the last force call took the once-per-bond loop. */
 bool lattice_used_half_loop(const struct model *m);
+/** Owned rows the last force call's once-per-bond loop evaluated in
+ *  stencil blocks (rows of one regular pattern, lattice_half.c). */
+size_t lattice_stencil_rows(const struct model *m);
 /** Triangle-area stiffness [J] of material @p k (area springs, nu > 1/3). */
 double lattice_area_stiffness(const struct model *m, int k);
 /** Angular failure limits of material @p k [rad] (compression, tension). */

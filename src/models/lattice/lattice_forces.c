@@ -503,8 +503,8 @@ static void thread_range(size_t n, size_t *lo, size_t *hi, size_t *tid)
 
 /* ---- loop drivers: the only place with OpenMP pragmas ----------------------- */
 
-/* The threads' rings of the once-per-bond loop (lattice_half.c): W
- * entries of dim doubles each for up to the team's size, kept by the model
+/* The threads' rings of the once-per-bond loop (lattice_half.c): dim
+ * arrays of W entries each for up to the team's size, kept by the model
  * (all zero between calls).  0 when that loop does not apply, is switched
  * off (lattice_set_row_loop) or memory is short: the row loop then gives
  * the same bits. */
@@ -521,15 +521,7 @@ static size_t half_rings(struct model *m, struct sim *sim, int dim)
     const size_t need = nt * w * (size_t)dim;
     if (w && m->half_buf_len < need) {
         free(m->half_buf);
-        free(m->half_cnt);
         m->half_buf = calloc(need, sizeof *m->half_buf);
-        m->half_cnt = calloc(nt * w, sizeof *m->half_cnt);
-        if (!m->half_buf || !m->half_cnt) {
-            free(m->half_buf);
-            free(m->half_cnt);
-            m->half_buf = NULL;
-            m->half_cnt = NULL;
-        }
         m->half_buf_len = m->half_buf ? need : 0;
     }
     return m->half_buf ? w : 0;
@@ -544,19 +536,21 @@ static void drive_axial(struct model *m, struct sim *sim, int fast, int dim, int
     const size_t w = fast ? half_rings(m, sim, dim) : 0;
     m->half_used = w > 0;
     const size_t per = w * (size_t)dim, n_rings = per ? m->half_buf_len / per : 0;
-#pragma omp parallel
+    size_t stencil_rows = 0;
+#pragma omp parallel reduction(+ : stencil_rows)
     {
         const struct lattice_view lv = v; /* thread-local copy */
         size_t lo, hi, t = 0;
         thread_range(n, &lo, &hi, &t);
         if (t < n_rings)
-            lattice_half_range(m, &lv, lo, hi, m->half_buf + t * per, m->half_cnt + t * w,
-                               w - 1, dim, multi, gather);
+            stencil_rows += lattice_half_range(m, &lv, lo, hi, m->half_buf + t * per, w - 1,
+                                               dim, multi, gather);
         else if (fast)
             range_linear(m, &lv, lo, hi, dim, multi, gather);
         else
             range_general(m, &lv, lo, hi, dim, gather);
     }
+    m->half_stencil_rows = stencil_rows;
 }
 
 static void drive_angles(struct model *m, struct sim *sim)
@@ -611,6 +605,11 @@ void lattice_set_row_loop(struct model *m, bool rows)
 bool lattice_used_half_loop(const struct model *m)
 {
     return m->half_used;
+}
+
+size_t lattice_stencil_rows(const struct model *m)
+{
+    return m->half_used ? m->half_stencil_rows : 0;
 }
 
 /* ---- per-particle diagnostics (no state change) ------------------------- */

@@ -31,6 +31,22 @@ struct lattice_interface {
     double stiffness;   /**< factor on the pair's series stiffness */
 };
 
+/** Upper partners per stencil of the once-per-bond loop (FCC: 6). */
+#define LATTICE_STENCIL_MAX 8
+
+/** A row's slots: nl lower partners, then nu upper ones at offsets j - i
+ *  (ascending); on a regular lattice whole runs of rows share one
+ *  (lattice_half.c, "stencil runs"). */
+struct lattice_stencil {
+    size_t nl, nu;                     /**< lower and upper partners */
+    size_t off[LATTICE_STENCIL_MAX];   /**< j - i of the upper ones */
+};
+
+/** Owned rows [a, b) with stencil st. */
+struct lattice_run {
+    size_t a, b, st;
+};
+
 struct model {
     struct sim *sim; /**< borrowed */
     struct lattice_options opt;
@@ -70,10 +86,14 @@ struct model {
     size_t half_n;
     size_t half_ring;     /**< ring entries per thread (power of 2); 0: rows unsuited */
     double *half_buf;     /**< the threads' rings of row sums, all zero between calls */
-    uint16_t *half_cnt;   /**< the threads' rings of lower-partner counts, likewise */
     size_t half_buf_len;  /**< doubles in half_buf */
     bool half_off;        /**< lattice_set_row_loop: the row loop only */
     bool half_used;       /**< the last force call took the once-per-bond loop */
+    size_t half_stencil_rows; /**< ... and took this many rows in stencil blocks */
+    struct lattice_stencil *half_st; /**< the distinct stencils of the runs */
+    size_t half_n_st;
+    struct lattice_run *half_runs;   /**< ascending, disjoint */
+    size_t half_n_runs;
     bool initialised;
 };
 

@@ -93,12 +93,11 @@ double lattice_break_half(struct model *m, size_t i, size_t s, const struct latt
                           double rest, double r, double dr);
 
 /** The linear loop over the owned rows [lo, hi) with each bond evaluated
- *  once (lattice_half.c): @p ring (dim doubles an entry) and @p cnt, this
- *  thread's zeroed rings of mask + 1 entries (lattice_half_ring), zero
- *  again on return. */
-void lattice_half_range(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
-                        double *ring, uint16_t *cnt, size_t mask, int dim, int multi,
-                        int gather);
+ *  once (lattice_half.c): @p ring, this thread's zeroed ring of row sums,
+ *  dim arrays of mask + 1 entries (lattice_half_ring), zero again on
+ *  return.  Returns the rows its stencil blocks took. */
+size_t lattice_half_range(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
+                        double *ring, size_t mask, int dim, int multi, int gather);
 
 LATTICE_INLINE void add_force(const struct lattice_view *v, size_t i, const int dim,
                               const double fi[3])

@@ -148,7 +148,8 @@ static void lattice_destroy(struct model **pm)
     free(m->diss);
     free(m->kappa);
     free(m->half_buf);
-    free(m->half_cnt);
+    free(m->half_st);
+    free(m->half_runs);
     lattice_thermal_destroy(&m->th);
     free(m->ifc);
     free(m);

@@ -1,0 +1,163 @@
+/**
+ * @file step_passes.c
+ * @brief The integrator's per-particle passes, in two versions picked once
+ *        at load time by the CPU (x86-64-v3: four lanes; the build's
+ *        baseline: two), as the models' hot loops are.  Every operation is
+ *        a single IEEE rounding (ISO C mode: no FP contraction), done the
+ *        same way per lane, so both versions give the same bits on any
+ *        thread count.
+ *
+ * The passes sweep all components of a chunk of particles at once (the
+ * chunk's masses read from memory once, then from L1).  The
+ * first kick of a step and the drift are one pass over m, f, v and x
+ * (step_kick_drift; the integrator redoes the drift of the particles a
+ * velocity condition sets in between), which also clears the forces the
+ * force call is about to fill: one pass over the particle arrays instead
+ * of three (issue 25 item 1, round 3; docs/performance.md).
+ */
+#include "core/step_passes.h"
+
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
+    !defined(SPALL_NO_CLONES)
+#define STEP_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define STEP_CLONES
+#endif
+
+/* What a pass does: kick; kick and drift; kick, drift and clear f. */
+enum pass_kind { PASS_KICK, PASS_KICK_DRIFT, PASS_KICK_DRIFT_ZERO };
+
+/* Particles per chunk of a pass: the chunk's masses (16 kB) stay in the caches while its
+ * components are swept one after the other. */
+#define PASS_CHUNK 2048
+
+/* One component over [lo, hi): the kick, then the drift with the new
+ * velocity and the clearing, as @p kind asks. */
+static inline void pass_comp(const double *restrict m, double *restrict x, double *restrict v,
+                             double *restrict f, size_t lo, size_t hi, double half_dt,
+                             double dt, const enum pass_kind kind)
+{
+    for (size_t i = lo; i < hi; i++) {
+        const double vi = v[i] + half_dt * f[i] / m[i];
+        v[i] = vi;
+        if (kind != PASS_KICK)
+            x[i] += dt * vi;
+        if (kind == PASS_KICK_DRIFT_ZERO)
+            f[i] = 0.0;
+    }
+}
+
+static inline void pass_kind(const struct particles *p, size_t lo, size_t hi, double half_dt,
+                             double dt, const enum pass_kind kind)
+{
+    for (size_t c = lo; c < hi; c += PASS_CHUNK) {
+        const size_t e = hi - c < PASS_CHUNK ? hi : c + PASS_CHUNK;
+        for (int d = 0; d < p->dim; d++)
+            pass_comp(p->mass, p->x[d], p->v[d], p->f[d], c, e, half_dt, dt, kind);
+    }
+}
+
+STEP_CLONES static void pass_range(const struct particles *p, size_t lo, size_t hi,
+                                   double half_dt, double dt, int kind)
+{
+    if (kind == PASS_KICK)
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK);
+    else if (kind == PASS_KICK_DRIFT)
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT);
+    else
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT_ZERO);
+}
+
+STEP_CLONES static void drift_range(const struct particles *p, size_t lo, size_t hi, double dt)
+{
+    for (int d = 0; d < p->dim; d++) {
+        double *restrict x = p->x[d];
+        const double *restrict v = p->v[d];
+        for (size_t i = lo; i < hi; i++)
+            x[i] += dt * v[i];
+    }
+}
+
+/* The calling thread's static share of [0, n) (as schedule(static) and
+ * particles_zero_forces split it). */
+static void share(size_t n, size_t *lo, size_t *hi)
+{
+#ifdef _OPENMP
+    const size_t nt = (size_t)omp_get_num_threads(), t = (size_t)omp_get_thread_num();
+#else
+    const size_t nt = 1, t = 0;
+#endif
+    *lo = n * t / nt;
+    *hi = n * (t + 1) / nt;
+}
+
+static void run_pass(struct particles *p, double half_dt, double dt, int kind)
+{
+    const size_t n = p->n_owned;
+#pragma omp parallel if (n > SPALL_OMP_MIN_PARTICLES)
+    {
+        size_t lo, hi;
+        share(n, &lo, &hi);
+        pass_range(p, lo, hi, half_dt, dt, kind);
+    }
+}
+
+void step_kick(struct particles *p, double half_dt)
+{
+    run_pass(p, half_dt, 0.0, PASS_KICK);
+}
+
+void step_kick_drift(struct particles *p, double half_dt, double dt, bool zero_forces)
+{
+    run_pass(p, half_dt, dt, zero_forces ? PASS_KICK_DRIFT_ZERO : PASS_KICK_DRIFT);
+}
+
+void step_drift(struct particles *p, double dt)
+{
+    const size_t n = p->n_owned;
+#pragma omp parallel if (n > SPALL_OMP_MIN_PARTICLES)
+    {
+        size_t lo, hi;
+        share(n, &lo, &hi);
+        drift_range(p, lo, hi, dt);
+    }
+}
+
+#if defined(__GNUC__)
+/* Four lanes as one vector: each lane is its own sequence of roundings,
+ * as the four scalars below (a vector multiply or add rounds every lane as
+ * the scalar operation does); GCC does not vectorise the scalar form. */
+typedef double step_v4 __attribute__((vector_size(4 * sizeof(double))));
+#endif
+
+STEP_CLONES double step_block_mv2(const double *restrict m, const double *restrict v, size_t lo,
+                                  size_t hi)
+{
+    /* four lanes a[l] += m v v over i = lo + l (mod 4) */
+    double a[4] = {0.0, 0.0, 0.0, 0.0};
+    size_t i = lo;
+#if defined(__GNUC__)
+    step_v4 acc = {0.0, 0.0, 0.0, 0.0};
+    for (; i + 4 <= hi; i += 4) {
+        step_v4 mm, vv;
+        memcpy(&mm, m + i, sizeof mm);
+        memcpy(&vv, v + i, sizeof vv);
+        acc += mm * vv * vv;
+    }
+    memcpy(a, &acc, sizeof a);
+#else
+    for (; i + 4 <= hi; i += 4)
+        for (int l = 0; l < 4; l++)
+            a[l] += m[i + l] * v[i + l] * v[i + l];
+#endif
+    double sum = (a[0] + a[1]) + (a[2] + a[3]);
+    for (; i < hi; i++)
+        sum += m[i] * v[i] * v[i];
+    return sum;
+}
