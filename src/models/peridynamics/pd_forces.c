@@ -88,7 +88,6 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
     }
 
 #define PD_CHUNK 64
-#define PD_PRE (1.0 - 1e-12)
 
 /* Pass 1 for half-bond k of a chunk of particle i's row (partner, rest,
  * coef and thr start at the chunk) at (xi0, yi0, zi0): the force
@@ -134,16 +133,7 @@ pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0, double *const *
 }
 
 /* pd_chunk per dimension in two versions picked once at load time by the
- * CPU (GCC function multi-versioning, as sph_tlsph_data.h): x86-64-v3
- * (four doubles a vector) and the build's baseline.  The file is compiled
- * without FP contraction (ISO C mode), so both versions round alike and
- * the results do not depend on the CPU. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
-    !defined(SPALL_NO_CLONES)
-#define PD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define PD_CLONES
-#endif
+ * CPU (PD_CLONES, pd_internal.h). */
 #define PD_CHUNK_DIM(DIM)                                                                       \
     PD_CLONES static int64_t pd_chunk##DIM(                                                     \
         size_t nb, double xi0, double yi0, double zi0, double *const *restrict x,              \
@@ -194,18 +184,6 @@ struct pd_chunk_buf {
     double gx[PD_CHUNK], gy[PD_CHUNK], gz[PD_CHUNK], el[PD_CHUNK];
     double rb[PD_CHUNK], cb[PD_CHUNK], tb[PD_CHUNK];
 };
-
-/* A pre-test bound, or NaN when the half-bond is broken (state bit 0),
- * without a branch: the bits of a quiet NaN or-ed into any double give a
- * NaN. */
-static inline double pd_thr_or_nan(double thr, uint8_t state)
-{
-    uint64_t b;
-    memcpy(&b, &thr, sizeof b);
-    b |= ((uint64_t)0 - (uint64_t)(state & BOND_BROKEN)) & UINT64_C(0x7ff8000000000000);
-    memcpy(&thr, &b, sizeof thr);
-    return thr;
-}
 
 /* Pass 0 of chunk b: its lengths and coefficients (compact families: from
  * the table) and its pre-test bounds, NaN for a broken half-bond; and in
@@ -457,10 +435,10 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     /* fiber-parallel matrix cracks (pd_plane.c): flag stretch-broken matrix bonds */
     uint8_t *fresh = m->fresh;
     if (m->opt.lps) {
-        pd_lps_forces(m, sim);
-        if (m->opt.quasi == PD_QS_ADR)
+        int rc = pd_lps_forces(m, sim, err);
+        if (!rc && m->opt.quasi == PD_QS_ADR)
             pd_adr_update(m, sim);
-        return SPALL_OK;
+        return rc;
     }
     struct pd_kind_row *ktab;
     int rc = pd_kind_rows(m, &ktab, err);

@@ -1,0 +1,606 @@
+/**
+ * @file pd_lps_kernel.c
+ * @brief The force passes of formulations lps and eps (the model and its
+ *        formulas: pd_lps.c, pd_eps.c) as split row kernels.
+ *
+ * Each pass takes a particle's row in three steps, as the PMB kernel of
+ * pd_forces.c takes its chunks: pass 0 gathers each half-bond's rest
+ * length, omega beta and breaking pre-test bound (NaN: broken) from the
+ * kind table or the arrays; a vector loop (PD_CLONES: four doubles a
+ * vector where the CPU has them) computes every half-bond with no
+ * dependence between them, an exact +0.0 for a broken one; then the terms
+ * are summed in row order.  A row where some intact half-bond passes the
+ * pre-test e > s0 |xi| PD_PRE (which misses none of the exact test e / |xi|
+ * > s0) settles those one at a time with the exact test.  Every operation
+ * that reaches a result, its operands and the order of every sum are those
+ * of the loops it replaces (a +0.0 term leaves a sum that starts at +0.0 as
+ * it was), so the results are bit for bit the same for any thread count.
+ *
+ * eps keeps no per-half-bond force state: pass 2 computes t_ji from j's
+ * dilatation, return-map scale and isotropic coefficient (per particle,
+ * hs) and the plastic extension e^dp_ji of j's half (through the 16-bit
+ * reverse slot rloc, or distributed i's copy epr), the operations j's own
+ * pass 1 used to do, so the same bits.  Since j reads e^dp_ji of the step's
+ * start, the new plastic extensions (and the next_step breaking, which
+ * reads them) are written in a pass 3 over the rows that yielded or have a
+ * half-bond past the pre-test.
+ */
+#include "models/peridynamics/pd_internal.h"
+
+#include "core/bond_list.h"
+#include "core/parallel/decomp.h"
+#include "core/particles.h"
+#include "core/sim.h"
+#include "spall/error.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* A row of the kind table as the kernels read it (compact families). */
+struct lps_krow {
+    double rest, ob, thr;
+    unsigned type;
+};
+
+/* What the passes read besides the row's own buffers. */
+struct lps_ctx {
+    const size_t *off;
+    const int32_t *partner;
+    uint8_t *st;
+    const uint16_t *kind;        /* NULL: the arrays rest, ob, type */
+    const struct lps_krow *ktab; /* per call: thr with the thresholds of now */
+    const double *rest, *ob;
+    const uint8_t *type;
+    const double *s0tab;
+    double *const *x;
+    const double *vol;
+};
+
+/* One thread's buffers, each as long as the longest row. */
+struct lps_buf {
+    double *rb, *ob, *tb, *el, *gx, *gy, *gz, *ej;
+};
+
+static int lps_buf_alloc(struct lps_buf *b, size_t len)
+{
+    const size_t L = len ? len : 1;
+    double *a = malloc(8 * L * sizeof *a);
+    *b = a ? (struct lps_buf){a, a + L, a + 2 * L, a + 3 * L, a + 4 * L, a + 5 * L, a + 6 * L,
+                              a + 7 * L}
+           : (struct lps_buf){NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    return a != NULL;
+}
+
+/* Pass 0: rest length, omega beta and pre-test bound (NaN: broken) of the
+ * half-bonds [s0, s0 + nb). */
+static inline void lps_gather(const struct lps_ctx *c, size_t s0, size_t nb, struct lps_buf *b)
+{
+    if (c->kind) {
+        for (size_t k = 0; k < nb; k++) {
+            const struct lps_krow *q = &c->ktab[c->kind[s0 + k]];
+            b->rb[k] = q->rest;
+            b->ob[k] = q->ob;
+            b->tb[k] = pd_thr_or_nan(q->thr, c->st[s0 + k]);
+        }
+        return;
+    }
+    for (size_t k = 0; k < nb; k++) {
+        b->rb[k] = c->rest[s0 + k];
+        b->ob[k] = c->ob[s0 + k];
+        b->tb[k] = pd_thr_or_nan(c->s0tab[c->type[s0 + k]] * b->rb[k] * PD_PRE, c->st[s0 + k]);
+    }
+}
+
+static inline unsigned lps_type_of(const struct lps_ctx *c, size_t s)
+{
+    return c->kind ? c->ktab[c->kind[s]].type : c->type[s];
+}
+
+/* Dilatation terms of a row's nb half-bonds seen from (xi0, yi0, zi0):
+ * term = omega beta |xi| e V_j (+0.0 when broken) and the extension e =
+ * l - |xi|; whether an intact one passes the pre-test. */
+static inline __attribute__((always_inline)) int64_t
+lps_dil(int dim, size_t nb, double xi0, double yi0, double zi0, double *const *restrict x,
+        const int32_t *restrict partner, const double *restrict vol, const double *restrict rb,
+        const double *restrict ob, const double *restrict tb, double *restrict term,
+        double *restrict el)
+{
+    const double *restrict x0 = x[0], *restrict x1 = x[1], *restrict x2 = x[2];
+    int64_t any = 0;
+    for (size_t k = 0; k < nb; k++) {
+        const size_t j = (size_t)partner[k];
+        const double ex = x0[j] - xi0, ey = x1[j] - yi0;
+        const double ez = dim > 2 ? x2[j] - zi0 : 0.0;
+        const double e = sqrt(ex * ex + ey * ey + ez * ez) - rb[k];
+        const double t = ob[k] * rb[k] * e * vol[j];
+        term[k] = tb[k] == tb[k] ? t : 0.0;
+        el[k] = e;
+        any |= (int64_t)(e > tb[k]);
+    }
+    return any;
+}
+
+/* lps pass 2 terms: the force g (x_j - x_i) of each half-bond, g = omega
+ * beta (t_ij + t_ji) V_i V_j / l, with own = (x_i, alpha_i, bcoef_i,
+ * theta_i, V_i); e as lps_dil. */
+static inline __attribute__((always_inline)) int64_t
+lps_frc(int dim, size_t nb, const double *own, double *const *restrict x,
+        const int32_t *restrict partner, const double *restrict vol, const double *restrict al,
+        const double *restrict bc, const double *restrict th, const double *restrict rb,
+        const double *restrict ob, const double *restrict tb, double *restrict gx,
+        double *restrict gy, double *restrict gz, double *restrict el)
+{
+    const double *restrict x0 = x[0], *restrict x1 = x[1], *restrict x2 = x[2];
+    const double xi0 = own[0], yi0 = own[1], zi0 = own[2];
+    const double ai = own[3], bi = own[4], thi = own[5], vi = own[6];
+    int64_t any = 0;
+    for (size_t k = 0; k < nb; k++) {
+        const size_t j = (size_t)partner[k];
+        const double ex = x0[j] - xi0, ey = x1[j] - yi0;
+        const double ez = dim > 2 ? x2[j] - zi0 : 0.0;
+        const double l = sqrt(ex * ex + ey * ey + ez * ez), xi = rb[k], e = l - xi;
+        const double tij = ai * e + bi * xi * thi;
+        const double tji = al[j] * e + bc[j] * xi * th[j];
+        const double g = ob[k] * (tij + tji) * (vi * vol[j]) / l;
+        const int live = tb[k] == tb[k];
+        gx[k] = live ? g * ex : 0.0;
+        gy[k] = live ? g * ey : 0.0;
+        if (dim > 2)
+            gz[k] = live ? g * ez : 0.0;
+        el[k] = e;
+        any |= (int64_t)(e > tb[k]);
+    }
+    return any;
+}
+
+/* eps pass 2 terms: t_ij from i's state (own = x_i, iso_i, alpha_i,
+ * theta_i, scale_i, V_i) and e^dp of the step's start es, t_ji from j's
+ * (hs: theta, scale, iso per particle) and ej, the e^dp of j's half. */
+static inline __attribute__((always_inline)) int64_t
+eps_frc(int dim, size_t nb, const double *own, double d, double *const *restrict x,
+        const int32_t *restrict partner, const double *restrict vol, const double *restrict al,
+        const double *restrict hs, const double *restrict rb, const double *restrict ob,
+        const double *restrict tb, const double *restrict es, const double *restrict ej,
+        double *restrict gx, double *restrict gy, double *restrict gz, double *restrict el)
+{
+    const double *restrict x0 = x[0], *restrict x1 = x[1], *restrict x2 = x[2];
+    const double xi0 = own[0], yi0 = own[1], zi0 = own[2];
+    const double isoi = own[3], ali = own[4], thi = own[5], sci = own[6], vi = own[7];
+    int64_t any = 0;
+    for (size_t k = 0; k < nb; k++) {
+        const size_t j = (size_t)partner[k];
+        const double ex = x0[j] - xi0, ey = x1[j] - yi0;
+        const double ez = dim > 2 ? x2[j] - zi0 : 0.0;
+        const double l = sqrt(ex * ex + ey * ey + ez * ez), xi = rb[k], e = l - xi;
+        /* tau = alpha (e^d - e^dp) times the scale (1: exact, no yield) */
+        const double tij = isoi * xi + ali * (e - thi * xi / d - es[k]) * sci;
+        const double tji =
+            hs[3 * j + 2] * xi + al[j] * (e - hs[3 * j] * xi / d - ej[k]) * hs[3 * j + 1];
+        const double g = ob[k] * (tij + tji) * (vi * vol[j]) / l;
+        const int live = tb[k] == tb[k];
+        gx[k] = live ? g * ex : 0.0;
+        gy[k] = live ? g * ey : 0.0;
+        if (dim > 2)
+            gz[k] = live ? g * ez : 0.0;
+        el[k] = e;
+        any |= (int64_t)(e > tb[k]);
+    }
+    return any;
+}
+
+/* eps pass 1: each term of the norm ||tau||^2 = sum omega beta tau^2 V_j,
+ * tau = alpha (e - theta |xi| / d - e^dp) (+0.0 when broken). */
+PD_CLONES static void eps_norm(size_t nb, double th, double al, double d,
+                               const int32_t *restrict partner, const double *restrict vol,
+                               const double *restrict ep, const double *restrict rb,
+                               const double *restrict ob, const double *restrict tb,
+                               const double *restrict el, double *restrict q)
+{
+    for (size_t k = 0; k < nb; k++) {
+        const double tau = al * (el[k] - th * rb[k] / d - ep[k]);
+        const double v = ob[k] * tau * tau * vol[partner[k]];
+        q[k] = tb[k] == tb[k] ? v : 0.0;
+    }
+}
+
+/* The vector loops per dimension (2D, 3D), the dimension a constant. */
+#define LPS_DIM(DIM)                                                                            \
+    PD_CLONES static int64_t lps_dil##DIM(                                                      \
+        size_t nb, double xi0, double yi0, double zi0, double *const *restrict x,              \
+        const int32_t *restrict partner, const double *restrict vol, const double *restrict rb, \
+        const double *restrict ob, const double *restrict tb, double *restrict term,            \
+        double *restrict el)                                                                    \
+    {                                                                                           \
+        return lps_dil(DIM, nb, xi0, yi0, zi0, x, partner, vol, rb, ob, tb, term, el);          \
+    }                                                                                           \
+    PD_CLONES static int64_t lps_frc##DIM(                                                      \
+        size_t nb, const double *own, double *const *restrict x,                               \
+        const int32_t *restrict partner, const double *restrict vol, const double *restrict al, \
+        const double *restrict bc, const double *restrict th, const double *restrict rb,        \
+        const double *restrict ob, const double *restrict tb, double *restrict gx,              \
+        double *restrict gy, double *restrict gz, double *restrict el)                          \
+    {                                                                                           \
+        return lps_frc(DIM, nb, own, x, partner, vol, al, bc, th, rb, ob, tb, gx, gy, gz, el);  \
+    }                                                                                           \
+    PD_CLONES static int64_t eps_frc##DIM(                                                      \
+        size_t nb, const double *own, double d, double *const *restrict x,                     \
+        const int32_t *restrict partner, const double *restrict vol, const double *restrict al, \
+        const double *restrict hs, const double *restrict rb, const double *restrict ob,        \
+        const double *restrict tb, const double *restrict es, const double *restrict ej,        \
+        double *restrict gx, double *restrict gy, double *restrict gz, double *restrict el)     \
+    {                                                                                           \
+        return eps_frc(DIM, nb, own, d, x, partner, vol, al, hs, rb, ob, tb, es, ej, gx, gy,    \
+                       gz, el);                                                                 \
+    }
+LPS_DIM(2)
+LPS_DIM(3)
+
+/* Pass 1 of row i (both formulations): dilatation terms, the row sum and,
+ * break_order immediate, the breaking of the half-bonds past s0 (their
+ * bound set to NaN in b->tb, so that later loops of the row skip them).
+ * ep: eps' plastic extensions (the energy of a breaking half-bond is of
+ * its elastic part), NULL for lps.  Returns the sum. */
+static double lps_row_dil(struct model *m, const struct lps_ctx *c, size_t i, bool late,
+                          const double *ep, struct lps_buf *b)
+{
+    const struct pd_lps *L = &m->lps;
+    const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
+    double *const *x = c->x;
+    lps_gather(c, s0, nb, b);
+    const int64_t any =
+        m->dim == 3 ? lps_dil3(nb, x[0][i], x[1][i], x[2][i], x, c->partner + s0, c->vol, b->rb,
+                               b->ob, b->tb, b->gx, b->el)
+                    : lps_dil2(nb, x[0][i], x[1][i], 0.0, x, c->partner + s0, c->vol, b->rb,
+                               b->ob, b->tb, b->gx, b->el);
+    double sum = 0.0;
+    if (late || !any) {
+        for (size_t k = 0; k < nb; k++)
+            sum += b->gx[k];
+        return sum;
+    }
+    for (size_t k = 0; k < nb; k++) {
+        const size_t s = s0 + k;
+        const double xi = b->rb[k], e = b->el[k];
+        if (e > b->tb[k] && e / xi > c->s0tab[lps_type_of(c, s)]) {
+            c->st[s] |= BOND_BROKEN;
+            b->tb[k] = NAN;
+            /* energy of the half-bond at the last dilatation: t e / 2 (the
+             * state energy is homogeneous of degree 2 in e); eps: of the
+             * elastic part e - e^dp */
+            const size_t j = (size_t)c->partner[s];
+            const double ee = e - (ep ? ep[s] : 0.0);
+            const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
+            m->diss[i] += 0.5 * b->ob[k] * t * ee * c->vol[i] * c->vol[j];
+            continue;
+        }
+        sum += b->gx[k];
+    }
+    return sum;
+}
+
+/* The longest row of particles [0, n) */
+static size_t lps_max_row(const struct bond_list *bl, size_t n)
+{
+    size_t r = 0;
+    for (size_t i = 0; i < n; i++)
+        r = bl->offset[i + 1] - bl->offset[i] > r ? bl->offset[i + 1] - bl->offset[i] : r;
+    return r;
+}
+
+/* The context of a call, with the kind table's pre-test bounds of now
+ * (*ktab: free it). */
+static int lps_ctx_make(const struct model *m, const struct sim *sim, struct lps_ctx *c,
+                        struct lps_krow **ktab, struct spall_error *err)
+{
+    const struct bond_list *bl = m->bl;
+    *ktab = NULL;
+    if (m->kind) {
+        if (!(*ktab = malloc((m->n_kind ? m->n_kind : 1) * sizeof **ktab)))
+            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS forces");
+        for (size_t q = 0; q < m->n_kind; q++)
+            (*ktab)[q] = (struct lps_krow){m->k_rest[q], m->k_coef[q],
+                                           m->s0_tab[m->k_type[q]] * m->k_rest[q] * PD_PRE,
+                                           m->k_type[q]};
+    }
+    *c = (struct lps_ctx){bl->offset, bl->partner, bl->state, m->kind, *ktab, bl->rest,
+                          m->lps.ob, bl->type, m->s0_tab, sim->p->x, sim->p->volume};
+    return SPALL_OK;
+}
+
+/* Sums of a row's force terms in row order; break_order next_step: the
+ * half-bonds past s0 broken (lps, settle), the energy of their state. */
+static void lps_row_force(struct model *m, const struct lps_ctx *c, size_t i, int64_t any,
+                          bool settle, const struct lps_buf *b, double *const *f)
+{
+    const struct pd_lps *L = &m->lps;
+    const int dim = m->dim;
+    const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
+    double fx = 0.0, fy = 0.0, fz = 0.0;
+    for (size_t k = 0; k < nb; k++) {
+        fx += b->gx[k];
+        fy += b->gy[k];
+        if (dim > 2)
+            fz += b->gz[k];
+    }
+    f[0][i] += fx;
+    f[1][i] += fy;
+    if (dim > 2)
+        f[2][i] += fz;
+    if (!any || !settle)
+        return;
+    for (size_t k = 0; k < nb; k++) {
+        const size_t s = s0 + k;
+        const double xi = b->rb[k], e = b->el[k];
+        if (!(e > b->tb[k] && e / xi > c->s0tab[lps_type_of(c, s)]))
+            continue;
+        /* t_ij is the half-bond's state */
+        c->st[s] |= BOND_BROKEN;
+        const size_t j = (size_t)c->partner[s];
+        const double tij = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
+        m->diss[i] += 0.5 * b->ob[k] * tij * e * c->vol[i] * c->vol[j];
+    }
+}
+
+int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    if (m->lps.ep)
+        return pd_eps_forces(m, sim, err); /* formulation eps: plastic return map */
+    struct particles *p = sim->p;
+    struct pd_lps *L = &m->lps;
+    const size_t n = p->n, no = p->n_owned;
+    const double d = (double)m->dim;
+    const bool late = m->opt.break_late;
+    struct lps_ctx c;
+    struct lps_krow *ktab;
+    int rc = lps_ctx_make(m, sim, &c, &ktab, err);
+    if (rc)
+        return rc;
+    const size_t len = lps_max_row(m->bl, n);
+    int bad = 0;
+    /* pass 1: breaking (immediate) and dilatation; each half-bond decided by
+     * its own particle from a length that is bit-identical from both ends */
+#pragma omp parallel reduction(| : bad)
+    {
+        struct lps_buf b;
+        const int ok = lps_buf_alloc(&b, len);
+        bad |= !ok;
+#pragma omp for schedule(dynamic, 256)
+        for (size_t i = 0; i < n; i++) {
+            if (!ok)
+                continue;
+            const double sum = lps_row_dil(m, &c, i, late, NULL, &b);
+            L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
+        }
+        free(b.rb);
+    }
+    /* distributed: a ghost's row is empty here; its owner's dilatation,
+     * which t_ji needs, comes with the halo */
+    if (!bad && sim->par)
+        par_halo_values(sim, L->theta, 1);
+    /* pass 2: forces, t_ij from i's state and t_ji from j's; next_step:
+     * pd_lps_break_rows' rule on the same lengths, in row order */
+#pragma omp parallel reduction(| : bad)
+    {
+        struct lps_buf b;
+        const int ok = !bad && lps_buf_alloc(&b, len);
+        bad |= !ok;
+#pragma omp for schedule(dynamic, 256)
+        for (size_t i = 0; i < no; i++) {
+            if (!ok)
+                continue;
+            const size_t s0 = c.off[i], nb = c.off[i + 1] - s0;
+            const double own[7] = {p->x[0][i], p->x[1][i], m->dim > 2 ? p->x[2][i] : 0.0,
+                                   L->alpha[i], L->bcoef[i], L->theta[i], p->volume[i]};
+            lps_gather(&c, s0, nb, &b);
+            const int64_t any =
+                (m->dim == 3 ? lps_frc3 : lps_frc2)(nb, own, p->x, c.partner + s0, c.vol, L->alpha,
+                                                    L->bcoef, L->theta, b.rb, b.ob, b.tb, b.gx,
+                                                    b.gy, b.gz, b.el);
+            lps_row_force(m, &c, i, any, late, &b, p->f);
+        }
+        free(b.rb);
+    }
+    free(ktab);
+    if (bad)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS row buffers");
+    if (late && n > no) /* distributed: the ghosts' rows (empty, see pass 1) */
+        pd_lps_break_rows(m, sim, no, n);
+    return SPALL_OK;
+}
+
+/* eps pass 1 of row i (pd_eps.c has the formulas): dilatation, the norm of
+ * the trial deviatoric force state, the return map's scale, the plastic
+ * work of a yielding row; theta, scale and the isotropic coefficient d k
+ * theta / m_i into hs.  The plastic extensions themselves are written by
+ * pass 3. */
+static void eps_row_pass1(struct model *m, const struct sim *sim, const struct lps_ctx *c,
+                          size_t i, bool late, struct lps_buf *b)
+{
+    struct pd_lps *L = &m->lps;
+    const struct particles *p = sim->p;
+    const double d = (double)m->dim, *ep = L->ep;
+    const struct pd_material *mt = &m->mat[p->material[i]];
+    const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
+    const double sum = lps_row_dil(m, c, i, late, ep, b);
+    const double wv = L->wvol[i];
+    const double th = wv > 0.0 ? d * sum / wv : 0.0;
+    L->theta[i] = th;
+    double *hs = L->hs + 3 * i;
+    hs[0] = th;
+    hs[1] = 1.0;
+    hs[2] = 0.0;
+    if (!(wv > 0.0))
+        return;
+    const double al = L->alpha[i];
+    eps_norm(nb, th, al, d, c->partner + s0, c->vol, ep + s0, b->rb, b->ob, b->tb, b->el, b->gy);
+    double nrm2 = 0.0;
+    for (size_t k = 0; k < nb; k++)
+        nrm2 += b->gy[k];
+    /* with the surface correction's a_i on alpha_i (pd_lps_surface.c) the
+     * homogeneous-state norm is ||tau||^2 = a_i alpha_i s : s / (2 mu) */
+    const double lim2 = d * (d + 2.0) * pd_eps_cd(m->dim) * mt->yield_stress * mt->yield_stress / (2.0 * wv) *
+                        (L->afac ? L->afac[i] : 1.0);
+    const double scale = nrm2 > lim2 ? sqrt(lim2 / nrm2) : 1.0;
+    hs[1] = scale;
+    hs[2] = (d * mt->kd / wv) * th; /* d k theta / m_i, times |xi| in t */
+    double work = 0.0;
+    if (scale < 1.0)
+        for (size_t k = 0; k < nb; k++) {
+            if (!(b->tb[k] == b->tb[k]))
+                continue;
+            const size_t s = s0 + k;
+            const double xi = b->rb[k], ed = b->el[k] - th * xi / d;
+            double tau = al * (ed - ep[s]);
+            tau *= scale;
+            const double dep = ed - tau / al - ep[s];
+            work += b->ob[k] * tau * dep * c->vol[c->partner[s]];
+        }
+    m->diss[i] += work * p->volume[i];
+}
+
+/* eps pass 2 of owned row i: the forces; distributed, i's copies e^dp_ji
+ * (epr) updated as j's owner updates e^dp_ji.  Returns whether some
+ * half-bond passes the breaking pre-test. */
+static int64_t eps_row_pass2(struct model *m, const struct sim *sim, const struct lps_ctx *c,
+                             size_t i, struct lps_buf *b)
+{
+    struct pd_lps *L = &m->lps;
+    const struct particles *p = sim->p;
+    const double d = (double)m->dim, *hs = L->hs;
+    const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
+    double *epr = L->epr;
+    lps_gather(c, s0, nb, b);
+    if (epr)
+        for (size_t k = 0; k < nb; k++)
+            b->ej[k] = epr[s0 + k];
+    else
+        for (size_t k = 0; k < nb; k++)
+            b->ej[k] = L->ep[c->off[c->partner[s0 + k]] + L->rloc[s0 + k]];
+    const double own[8] = {p->x[0][i], p->x[1][i], m->dim > 2 ? p->x[2][i] : 0.0,
+                           hs[3 * i + 2], L->alpha[i], hs[3 * i], hs[3 * i + 1], p->volume[i]};
+    const int64_t any =
+        (m->dim == 3 ? eps_frc3 : eps_frc2)(nb, own, d, p->x, c->partner + s0, c->vol, L->alpha,
+                                            hs, b->rb, b->ob, b->tb, L->ep + s0, b->ej, b->gx,
+                                            b->gy, b->gz, b->el);
+    lps_row_force(m, c, i, any, false, b, p->f);
+    if (epr) /* pass 1 of j for this half-bond, as j's owner runs it */
+        for (size_t k = 0; k < nb; k++) {
+            const size_t s = s0 + k, j = (size_t)c->partner[s];
+            const double scj = hs[3 * j + 1];
+            if (!(b->tb[k] == b->tb[k]) || !(scj < 1.0))
+                continue;
+            const double xi = b->rb[k], alj = L->alpha[j];
+            const double ed = b->el[k] - hs[3 * j] * xi / d;
+            double tau = alj * (ed - epr[s]);
+            tau *= scj;
+            const double dep = ed - tau / alj - epr[s];
+            epr[s] += dep;
+        }
+    return any;
+}
+
+/* eps pass 3 of row i: the plastic extensions of a yielding row (the
+ * return map of pass 1 on the same lengths), then break_order next_step
+ * (brk): pd_lps_break_rows' rule, in row order. */
+static void eps_row_pass3(struct model *m, const struct sim *sim, const struct lps_ctx *c,
+                          size_t i, bool brk)
+{
+    struct pd_lps *L = &m->lps;
+    const struct particles *p = sim->p;
+    const double d = (double)m->dim, th = L->theta[i], al = L->alpha[i];
+    const double scale = L->hs[3 * i + 1];
+    double *ep = L->ep;
+    for (size_t s = c->off[i]; s < c->off[i + 1]; s++) {
+        if (c->st[s] & BOND_BROKEN)
+            continue;
+        const size_t j = (size_t)c->partner[s];
+        double l2 = 0.0;
+        for (int q = 0; q < m->dim; q++) {
+            const double r = p->x[q][j] - p->x[q][i];
+            l2 += r * r;
+        }
+        const size_t row = c->kind ? c->kind[s] : s;
+        const double xi = c->kind ? c->ktab[row].rest : c->rest[s], e = sqrt(l2) - xi;
+        if (scale < 1.0) {
+            const double ed = e - th * xi / d;
+            double tau = al * (ed - ep[s]);
+            tau *= scale;
+            const double dep = ed - tau / al - ep[s];
+            ep[s] += dep;
+        }
+        if (!brk || !(e / xi > c->s0tab[lps_type_of(c, s)]))
+            continue;
+        c->st[s] |= BOND_BROKEN;
+        const double ob = c->kind ? c->ktab[row].ob : c->ob[s];
+        const double ee = e - ep[s];
+        const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
+        m->diss[i] += 0.5 * ob * t * ee * p->volume[i] * p->volume[j];
+    }
+}
+
+int pd_eps_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    struct particles *p = sim->p;
+    struct pd_lps *L = &m->lps;
+    const size_t n = p->n, no = p->n_owned;
+    const bool late = m->opt.break_late;
+    struct lps_ctx c;
+    struct lps_krow *ktab;
+    int rc = lps_ctx_make(m, sim, &c, &ktab, err);
+    if (rc)
+        return rc;
+    const size_t len = lps_max_row(m->bl, n);
+    /* next_step: the rows with a half-bond past the pre-test in pass 2 */
+    uint8_t *brk = late ? calloc(n ? n : 1, 1) : NULL;
+    int bad = late && !brk;
+    /* pass 1, per particle (its own half-bonds only): breaking (immediate),
+     * dilatation, return map */
+#pragma omp parallel reduction(| : bad)
+    {
+        struct lps_buf b;
+        const int ok = !bad && lps_buf_alloc(&b, len);
+        bad |= !ok;
+#pragma omp for schedule(dynamic, 256)
+        for (size_t i = 0; i < n; i++)
+            if (ok)
+                eps_row_pass1(m, sim, &c, i, late, &b);
+        free(b.rb);
+    }
+    /* distributed: the partner's half t_ji needs its whole family (the
+     * return map's scale), which a ghost's owner has.  Rather than the
+     * values t_ji themselves (one per bond that crosses ranks), its owner
+     * sends theta_j, the scale and d k theta_j / m_j (three per ghost), and i
+     * repeats j's update of e^dp_ji on its copy epr: the same operations on
+     * the same operands (the length and rest length of a bond are bitwise
+     * symmetric), so the same bits (docs/parallel.md, "Elastic-plastic
+     * peridynamics") */
+    if (!bad && sim->par)
+        par_halo_values(sim, L->hs, 3);
+    /* pass 2: F_i = V_i sum_j (t_ij + t_ji) beta V_j M_ij */
+#pragma omp parallel reduction(| : bad)
+    {
+        struct lps_buf b;
+        const int ok = !bad && lps_buf_alloc(&b, len);
+        bad |= !ok;
+#pragma omp for schedule(dynamic, 256)
+        for (size_t i = 0; i < no; i++)
+            if (ok && eps_row_pass2(m, sim, &c, i, &b) && late)
+                brk[i] = 1;
+        free(b.rb);
+    }
+    /* pass 3: once every row has read the plastic extensions of the step's
+     * start */
+    if (!bad) {
+#pragma omp parallel for schedule(dynamic, 256)
+        for (size_t i = 0; i < n; i++)
+            if (L->hs[3 * i + 1] < 1.0 || (brk && brk[i]))
+                eps_row_pass3(m, sim, &c, i, brk && brk[i]);
+    }
+    free(brk);
+    free(ktab);
+    if (bad)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the EPS row buffers");
+    if (late && n > no) /* distributed: the ghosts' rows (empty) */
+        pd_lps_break_rows(m, sim, no, n);
+    return SPALL_OK;
+}
