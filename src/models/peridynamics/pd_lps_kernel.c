@@ -35,6 +35,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* A row of the kind table as the kernels read it (compact families). */
 struct lps_krow {
@@ -96,6 +97,19 @@ static inline unsigned lps_type_of(const struct lps_ctx *c, size_t s)
     return c->kind ? c->ktab[c->kind[s]].type : c->type[s];
 }
 
+/* v where mask is all ones, +0.0 where it is zero: a select on the bits,
+ * which keeps the loads that only the force reads (alpha_j, theta_j, ...)
+ * unconditional; with a ?: GCC would make them masked gathers, which the
+ * vectoriser leaves scalar. */
+static inline double lps_keep(double v, uint64_t mask)
+{
+    uint64_t b;
+    memcpy(&b, &v, sizeof b);
+    b &= mask;
+    memcpy(&v, &b, sizeof v);
+    return v;
+}
+
 /* Dilatation terms of a row's nb half-bonds seen from (xi0, yi0, zi0):
  * term = omega beta |xi| e V_j (+0.0 when broken) and the extension e =
  * l - |xi|; whether an intact one passes the pre-test. */
@@ -142,11 +156,10 @@ lps_frc(int dim, size_t nb, const double *own, double *const *restrict x,
         const double tij = ai * e + bi * xi * thi;
         const double tji = al[j] * e + bc[j] * xi * th[j];
         const double g = ob[k] * (tij + tji) * (vi * vol[j]) / l;
-        const int live = tb[k] == tb[k];
-        gx[k] = live ? g * ex : 0.0;
-        gy[k] = live ? g * ey : 0.0;
-        if (dim > 2)
-            gz[k] = live ? g * ez : 0.0;
+        const uint64_t live = (uint64_t)0 - (uint64_t)(tb[k] == tb[k]);
+        gx[k] = lps_keep(g * ex, live);
+        gy[k] = lps_keep(g * ey, live);
+        gz[k] = lps_keep(g * ez, live);
         el[k] = e;
         any |= (int64_t)(e > tb[k]);
     }
@@ -177,11 +190,10 @@ eps_frc(int dim, size_t nb, const double *own, double d, double *const *restrict
         const double tji =
             hs[3 * j + 2] * xi + al[j] * (e - hs[3 * j] * xi / d - ej[k]) * hs[3 * j + 1];
         const double g = ob[k] * (tij + tji) * (vi * vol[j]) / l;
-        const int live = tb[k] == tb[k];
-        gx[k] = live ? g * ex : 0.0;
-        gy[k] = live ? g * ey : 0.0;
-        if (dim > 2)
-            gz[k] = live ? g * ez : 0.0;
+        const uint64_t live = (uint64_t)0 - (uint64_t)(tb[k] == tb[k]);
+        gx[k] = lps_keep(g * ex, live);
+        gy[k] = lps_keep(g * ey, live);
+        gz[k] = lps_keep(g * ez, live);
         el[k] = e;
         any |= (int64_t)(e > tb[k]);
     }
