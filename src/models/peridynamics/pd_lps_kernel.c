@@ -72,24 +72,70 @@ static int lps_buf_alloc(struct lps_buf *b, size_t len)
     return a != NULL;
 }
 
+/* A row whose terms wait to be summed (LPS_PEND) */
+struct lps_pend {
+    const struct lps_buf *b; /* NULL: none */
+    size_t i, nb;
+};
+
 /* Pass 0: rest length, omega beta and pre-test bound (NaN: broken) of the
- * half-bonds [s0, s0 + nb). */
-static inline void lps_gather(const struct lps_ctx *c, size_t s0, size_t nb, struct lps_buf *b)
+ * half-bonds [s0, s0 + nb); and in the same loop the row-order sums of the
+ * ncomp term columns (gx, gy, gz) of the pending row p into acc.  A sum is
+ * a chain of dependent additions that would wait on the adder's latency
+ * alone; next to the loads of pass 0 it costs little (as pd_chunk_gather
+ * of pd_forces.c). */
+static inline __attribute__((always_inline)) void
+lps_gather(int ncomp, const struct lps_ctx *c, size_t s0, size_t nb, struct lps_buf *b,
+           const struct lps_pend *p, double *acc)
 {
+    const size_t np = p && p->b ? p->nb : 0, m = nb < np ? nb : np;
+    const struct lps_buf *q = np ? p->b : NULL;
+    double a0 = 0.0, a1 = 0.0, a2 = 0.0;
+#define LPS_PSUM(k)                                                                             \
+    do {                                                                                        \
+        a0 += q->gx[k];                                                                         \
+        if (ncomp > 1)                                                                          \
+            a1 += q->gy[k];                                                                     \
+        if (ncomp > 2)                                                                          \
+            a2 += q->gz[k];                                                                     \
+    } while (0)
+#define LPS_GATHER_KIND(k)                                                                      \
+    do {                                                                                        \
+        const struct lps_krow *r = &c->ktab[c->kind[s0 + (k)]];                                 \
+        b->rb[k] = r->rest;                                                                     \
+        b->ob[k] = r->ob;                                                                       \
+        b->tb[k] = pd_thr_or_nan(r->thr, c->st[s0 + (k)]);                                      \
+    } while (0)
+#define LPS_GATHER_FULL(k)                                                                      \
+    do {                                                                                        \
+        b->rb[k] = c->rest[s0 + (k)];                                                           \
+        b->ob[k] = c->ob[s0 + (k)];                                                             \
+        b->tb[k] =                                                                              \
+            pd_thr_or_nan(c->s0tab[c->type[s0 + (k)]] * b->rb[k] * PD_PRE, c->st[s0 + (k)]);    \
+    } while (0)
     if (c->kind) {
-        for (size_t k = 0; k < nb; k++) {
-            const struct lps_krow *q = &c->ktab[c->kind[s0 + k]];
-            b->rb[k] = q->rest;
-            b->ob[k] = q->ob;
-            b->tb[k] = pd_thr_or_nan(q->thr, c->st[s0 + k]);
+        for (size_t k = 0; k < m; k++) {
+            LPS_GATHER_KIND(k);
+            LPS_PSUM(k);
         }
-        return;
+        for (size_t k = m; k < nb; k++)
+            LPS_GATHER_KIND(k);
+    } else {
+        for (size_t k = 0; k < m; k++) {
+            LPS_GATHER_FULL(k);
+            LPS_PSUM(k);
+        }
+        for (size_t k = m; k < nb; k++)
+            LPS_GATHER_FULL(k);
     }
-    for (size_t k = 0; k < nb; k++) {
-        b->rb[k] = c->rest[s0 + k];
-        b->ob[k] = c->ob[s0 + k];
-        b->tb[k] = pd_thr_or_nan(c->s0tab[c->type[s0 + k]] * b->rb[k] * PD_PRE, c->st[s0 + k]);
-    }
+    for (size_t k = m; k < np; k++)
+        LPS_PSUM(k);
+#undef LPS_PSUM
+#undef LPS_GATHER_KIND
+#undef LPS_GATHER_FULL
+    acc[0] = a0;
+    acc[1] = a1;
+    acc[2] = a2;
 }
 
 static inline unsigned lps_type_of(const struct lps_ctx *c, size_t s)
@@ -247,29 +293,31 @@ PD_CLONES static void eps_norm(size_t nb, double th, double al, double d,
 LPS_DIM(2)
 LPS_DIM(3)
 
-/* Pass 1 of row i (both formulations): dilatation terms, the row sum and,
- * break_order immediate, the breaking of the half-bonds past s0 (their
- * bound set to NaN in b->tb, so that later loops of the row skip them).
- * ep: eps' plastic extensions (the energy of a breaking half-bond is of
- * its elastic part), NULL for lps.  Returns the sum. */
-static double lps_row_dil(struct model *m, const struct lps_ctx *c, size_t i, bool late,
-                          const double *ep, struct lps_buf *b)
+/* Pass 1 of row i (both formulations), its vector loop on the gathered
+ * row: the dilatation terms into b->gx; whether a half-bond passes the
+ * pre-test. */
+static int64_t lps_row_dil(const struct model *m, const struct lps_ctx *c, size_t i,
+                           struct lps_buf *b)
+{
+    const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
+    double *const *x = c->x;
+    return m->dim == 3 ? lps_dil3(nb, x[0][i], x[1][i], x[2][i], x, c->partner + s0, c->vol,
+                                  b->rb, b->ob, b->tb, b->gx, b->el)
+                       : lps_dil2(nb, x[0][i], x[1][i], 0.0, x, c->partner + s0, c->vol, b->rb,
+                                  b->ob, b->tb, b->gx, b->el);
+}
+
+/* break_order immediate, a row with a half-bond past the pre-test: the
+ * sum of its dilatation terms with the half-bonds past s0 broken and left
+ * out (their bound set to NaN in b->tb, so that later loops of the row skip
+ * them).  ep: eps' plastic extensions (the energy of a breaking half-bond
+ * is of its elastic part), NULL for lps. */
+static double lps_row_settle(struct model *m, const struct lps_ctx *c, size_t i,
+                             const double *ep, struct lps_buf *b)
 {
     const struct pd_lps *L = &m->lps;
     const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
-    double *const *x = c->x;
-    lps_gather(c, s0, nb, b);
-    const int64_t any =
-        m->dim == 3 ? lps_dil3(nb, x[0][i], x[1][i], x[2][i], x, c->partner + s0, c->vol, b->rb,
-                               b->ob, b->tb, b->gx, b->el)
-                    : lps_dil2(nb, x[0][i], x[1][i], 0.0, x, c->partner + s0, c->vol, b->rb,
-                               b->ob, b->tb, b->gx, b->el);
     double sum = 0.0;
-    if (late || !any) {
-        for (size_t k = 0; k < nb; k++)
-            sum += b->gx[k];
-        return sum;
-    }
     for (size_t k = 0; k < nb; k++) {
         const size_t s = s0 + k;
         const double xi = b->rb[k], e = b->el[k];
@@ -319,38 +367,46 @@ static int lps_ctx_make(const struct model *m, const struct sim *sim, struct lps
     return SPALL_OK;
 }
 
-/* Sums of a row's force terms in row order; break_order next_step: the
- * half-bonds past s0 broken (lps, settle), the energy of their state. */
-static void lps_row_force(struct model *m, const struct lps_ctx *c, size_t i, int64_t any,
-                          bool settle, const struct lps_buf *b, double *const *f)
+/* break_order next_step: the half-bonds of row i past s0 broken, the
+ * energy of their state t_ij e / 2 (lps; eps: eps_row_pass3). */
+static void lps_row_break(struct model *m, const struct lps_ctx *c, size_t i,
+                          const struct lps_buf *b)
 {
     const struct pd_lps *L = &m->lps;
-    const int dim = m->dim;
     const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
-    double fx = 0.0, fy = 0.0, fz = 0.0;
-    for (size_t k = 0; k < nb; k++) {
-        fx += b->gx[k];
-        fy += b->gy[k];
-        if (dim > 2)
-            fz += b->gz[k];
-    }
-    f[0][i] += fx;
-    f[1][i] += fy;
-    if (dim > 2)
-        f[2][i] += fz;
-    if (!any || !settle)
-        return;
     for (size_t k = 0; k < nb; k++) {
         const size_t s = s0 + k;
         const double xi = b->rb[k], e = b->el[k];
         if (!(e > b->tb[k] && e / xi > c->s0tab[lps_type_of(c, s)]))
             continue;
-        /* t_ij is the half-bond's state */
         c->st[s] |= BOND_BROKEN;
         const size_t j = (size_t)c->partner[s];
         const double tij = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
         m->diss[i] += 0.5 * b->ob[k] * tij * e * c->vol[i] * c->vol[j];
     }
+}
+
+/* The force sums of a pending row (acc) into f. */
+static inline void lps_add_force(int dim, const struct lps_pend *p, const double *acc,
+                                 double *const *f)
+{
+    if (!p->b)
+        return;
+    f[0][p->i] += acc[0];
+    f[1][p->i] += acc[1];
+    if (dim > 2)
+        f[2][p->i] += acc[2];
+}
+
+/* Two row buffers for one thread; 0 when out of memory (both freed). */
+static int lps_bufs_alloc(struct lps_buf b[2], size_t len)
+{
+    const int ok = lps_buf_alloc(&b[0], len) && lps_buf_alloc(&b[1], len);
+    if (!ok) {
+        free(b[0].rb);
+        b[0].rb = b[1].rb = NULL;
+    }
+    return ok;
 }
 
 int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
@@ -370,47 +426,85 @@ int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
     const size_t len = lps_max_row(m->bl, n);
     int bad = 0;
     /* pass 1: breaking (immediate) and dilatation; each half-bond decided by
-     * its own particle from a length that is bit-identical from both ends */
+     * its own particle from a length that is bit-identical from both ends.
+     * A row's sum waits for the next row's pass 0 (its theta with it),
+     * unless breaking settles it at once. */
 #pragma omp parallel reduction(| : bad)
     {
-        struct lps_buf b;
-        const int ok = lps_buf_alloc(&b, len);
+        struct lps_buf b[2];
+        const int ok = lps_bufs_alloc(b, len);
         bad |= !ok;
-#pragma omp for schedule(dynamic, 256)
+        struct lps_pend pend = {NULL, 0, 0};
+        int cur = 0;
+#pragma omp for schedule(dynamic, 256) nowait
         for (size_t i = 0; i < n; i++) {
             if (!ok)
                 continue;
-            const double sum = lps_row_dil(m, &c, i, late, NULL, &b);
-            L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
+            const size_t s0 = c.off[i], nb = c.off[i + 1] - s0;
+            double acc[3];
+            lps_gather(1, &c, s0, nb, &b[cur], &pend, acc);
+            if (pend.b)
+                L->theta[pend.i] = L->wvol[pend.i] > 0.0 ? d * acc[0] / L->wvol[pend.i] : 0.0;
+            pend.b = NULL;
+            if (!late && lps_row_dil(m, &c, i, &b[cur])) {
+                const double sum = lps_row_settle(m, &c, i, NULL, &b[cur]);
+                L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
+                continue;
+            }
+            if (late)
+                lps_row_dil(m, &c, i, &b[cur]);
+            pend = (struct lps_pend){&b[cur], i, nb};
+            cur ^= 1;
         }
-        free(b.rb);
+        if (pend.b) {
+            double acc[3];
+            lps_gather(1, &c, 0, 0, &b[cur], &pend, acc);
+            L->theta[pend.i] = L->wvol[pend.i] > 0.0 ? d * acc[0] / L->wvol[pend.i] : 0.0;
+        }
+        free(b[0].rb);
+        free(b[1].rb);
     }
     /* distributed: a ghost's row is empty here; its owner's dilatation,
      * which t_ji needs, comes with the halo */
     if (!bad && sim->par)
         par_halo_values(sim, L->theta, 1);
     /* pass 2: forces, t_ij from i's state and t_ji from j's; next_step:
-     * pd_lps_break_rows' rule on the same lengths, in row order */
+     * pd_lps_break_rows' rule on the same lengths, in row order.  A row's
+     * sums wait for the next row's pass 0. */
 #pragma omp parallel reduction(| : bad)
     {
-        struct lps_buf b;
-        const int ok = !bad && lps_buf_alloc(&b, len);
+        struct lps_buf b[2];
+        const int ok = !bad && lps_bufs_alloc(b, len);
         bad |= !ok;
-#pragma omp for schedule(dynamic, 256)
+        struct lps_pend pend = {NULL, 0, 0};
+        int cur = 0;
+#pragma omp for schedule(dynamic, 256) nowait
         for (size_t i = 0; i < no; i++) {
             if (!ok)
                 continue;
             const size_t s0 = c.off[i], nb = c.off[i + 1] - s0;
+            double acc[3];
+            lps_gather(m->dim, &c, s0, nb, &b[cur], &pend, acc);
+            lps_add_force(m->dim, &pend, acc, p->f);
             const double own[7] = {p->x[0][i], p->x[1][i], m->dim > 2 ? p->x[2][i] : 0.0,
                                    L->alpha[i], L->bcoef[i], L->theta[i], p->volume[i]};
-            lps_gather(&c, s0, nb, &b);
+            struct lps_buf *bb = &b[cur];
             const int64_t any =
                 (m->dim == 3 ? lps_frc3 : lps_frc2)(nb, own, p->x, c.partner + s0, c.vol, L->alpha,
-                                                    L->bcoef, L->theta, b.rb, b.ob, b.tb, b.gx,
-                                                    b.gy, b.gz, b.el);
-            lps_row_force(m, &c, i, any, late, &b, p->f);
+                                                    L->bcoef, L->theta, bb->rb, bb->ob, bb->tb,
+                                                    bb->gx, bb->gy, bb->gz, bb->el);
+            if (late && any)
+                lps_row_break(m, &c, i, bb);
+            pend = (struct lps_pend){bb, i, nb};
+            cur ^= 1;
         }
-        free(b.rb);
+        if (pend.b) {
+            double acc[3];
+            lps_gather(m->dim, &c, 0, 0, &b[cur], &pend, acc);
+            lps_add_force(m->dim, &pend, acc, p->f);
+        }
+        free(b[0].rb);
+        free(b[1].rb);
     }
     free(ktab);
     if (bad)
@@ -433,7 +527,15 @@ static void eps_row_pass1(struct model *m, const struct sim *sim, const struct l
     const double d = (double)m->dim, *ep = L->ep;
     const struct pd_material *mt = &m->mat[p->material[i]];
     const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
-    const double sum = lps_row_dil(m, c, i, late, ep, b);
+    double acc[3];
+    lps_gather(1, c, s0, nb, b, NULL, acc);
+    const int64_t any = lps_row_dil(m, c, i, b);
+    double sum = 0.0;
+    if (!late && any)
+        sum = lps_row_settle(m, c, i, ep, b);
+    else
+        for (size_t k = 0; k < nb; k++)
+            sum += b->gx[k];
     const double wv = L->wvol[i];
     const double th = wv > 0.0 ? d * sum / wv : 0.0;
     L->theta[i] = th;
@@ -474,14 +576,16 @@ static void eps_row_pass1(struct model *m, const struct sim *sim, const struct l
  * (epr) updated as j's owner updates e^dp_ji.  Returns whether some
  * half-bond passes the breaking pre-test. */
 static int64_t eps_row_pass2(struct model *m, const struct sim *sim, const struct lps_ctx *c,
-                             size_t i, struct lps_buf *b)
+                             size_t i, struct lps_buf *b, const struct lps_pend *pend)
 {
     struct pd_lps *L = &m->lps;
     const struct particles *p = sim->p;
     const double d = (double)m->dim, *hs = L->hs;
     const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
     double *epr = L->epr;
-    lps_gather(c, s0, nb, b);
+    double acc[3];
+    lps_gather(m->dim, c, s0, nb, b, pend, acc);
+    lps_add_force(m->dim, pend, acc, p->f);
     if (epr)
         for (size_t k = 0; k < nb; k++)
             b->ej[k] = epr[s0 + k];
@@ -494,7 +598,6 @@ static int64_t eps_row_pass2(struct model *m, const struct sim *sim, const struc
         (m->dim == 3 ? eps_frc3 : eps_frc2)(nb, own, d, p->x, c->partner + s0, c->vol, L->alpha,
                                             hs, b->rb, b->ob, b->tb, L->ep + s0, b->ej, b->gx,
                                             b->gy, b->gz, b->el);
-    lps_row_force(m, c, i, any, false, b, p->f);
     if (epr) /* pass 1 of j for this half-bond, as j's owner runs it */
         for (size_t k = 0; k < nb; k++) {
             const size_t s = s0 + k, j = (size_t)c->partner[s];
@@ -591,14 +694,27 @@ int pd_eps_forces(struct model *m, struct sim *sim, struct spall_error *err)
     /* pass 2: F_i = V_i sum_j (t_ij + t_ji) beta V_j M_ij */
 #pragma omp parallel reduction(| : bad)
     {
-        struct lps_buf b;
-        const int ok = !bad && lps_buf_alloc(&b, len);
+        struct lps_buf b[2];
+        const int ok = !bad && lps_bufs_alloc(b, len);
         bad |= !ok;
-#pragma omp for schedule(dynamic, 256)
-        for (size_t i = 0; i < no; i++)
-            if (ok && eps_row_pass2(m, sim, &c, i, &b) && late)
+        struct lps_pend pend = {NULL, 0, 0};
+        int cur = 0;
+#pragma omp for schedule(dynamic, 256) nowait
+        for (size_t i = 0; i < no; i++) {
+            if (!ok)
+                continue;
+            if (eps_row_pass2(m, sim, &c, i, &b[cur], &pend) && late)
                 brk[i] = 1;
-        free(b.rb);
+            pend = (struct lps_pend){&b[cur], i, c.off[i + 1] - c.off[i]};
+            cur ^= 1;
+        }
+        if (pend.b) {
+            double acc[3];
+            lps_gather(m->dim, &c, 0, 0, &b[cur], &pend, acc);
+            lps_add_force(m->dim, &pend, acc, p->f);
+        }
+        free(b[0].rb);
+        free(b[1].rb);
     }
     /* pass 3: once every row has read the plastic extensions of the step's
      * start */
