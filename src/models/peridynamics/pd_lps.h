@@ -51,7 +51,8 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err);
  *  pre-cracks: a pre-cut bond is not part of the family). */
 void pd_lps_weights(struct model *m, const struct sim *sim);
 void pd_lps_free(struct pd_lps *L);
-/** Forces with fused breaking (critical stretch; pd_lps_kernel.c). */
+/** Forces with fused breaking (critical stretch; pd_lps_kernel.c), with eps'
+ *  plastic return map where the model has its state. */
 int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err);
 /** surface_correction: factors on omega and alpha near free surfaces (pd_lps_surface.c). */
 int pd_lps_surface_init(struct model *m, struct sim *sim, struct spall_error *err);
@@ -69,9 +70,6 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
 /* pd_eps.c: elastic-plastic LPS (model.formulation: eps) */
 /** Allocate the plastic extension state (after pd_lps_init) and the reverse slots. */
 int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err);
-/** Forces with the plastic return map and fused breaking (pd_lps_kernel.c; called by
- *  pd_lps_forces). */
-int pd_eps_forces(struct model *m, struct sim *sim, struct spall_error *err);
 /** c_d of the J2 criterion s : s <= c_d sigma_Y^2: 2/3 in 3D, 1/2 in 2D. */
 double pd_eps_cd(int dim);
 /** Equivalent plastic strain of particle @p i from its plastic extension state. */

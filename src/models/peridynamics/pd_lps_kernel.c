@@ -156,6 +156,20 @@ static inline double lps_keep(double v, uint64_t mask)
     return v;
 }
 
+/* The force term g (x_j - x_i) of half-bond k into gx, gy, gz (+0.0 when
+ * broken: thr is NaN), its extension e into el; whether it passes the
+ * pre-test (a macro: as an inline function GCC no longer vectorised the
+ * loops). */
+#define LPS_PUT(k, g, ex, ey, ez, e, thr)                                                       \
+    do {                                                                                        \
+        const uint64_t live_ = (uint64_t)0 - (uint64_t)((thr) == (thr));                        \
+        gx[k] = lps_keep((g) * (ex), live_);                                                    \
+        gy[k] = lps_keep((g) * (ey), live_);                                                    \
+        gz[k] = lps_keep((g) * (ez), live_);                                                    \
+        el[k] = (e);                                                                            \
+        any |= (int64_t)((e) > (thr));                                                          \
+    } while (0)
+
 /* Dilatation terms of a row's nb half-bonds seen from (xi0, yi0, zi0):
  * term = omega beta |xi| e V_j (+0.0 when broken) and the extension e =
  * l - |xi|; whether an intact one passes the pre-test. */
@@ -180,68 +194,39 @@ lps_dil(int dim, size_t nb, double xi0, double yi0, double zi0, double *const *r
     return any;
 }
 
-/* lps pass 2 terms: the force g (x_j - x_i) of each half-bond, g = omega
- * beta (t_ij + t_ji) V_i V_j / l, with own = (x_i, alpha_i, bcoef_i,
- * theta_i, V_i); e as lps_dil. */
+/* Pass 2 terms: the force g (x_j - x_i) of each half-bond, g = omega beta
+ * (t_ij + t_ji) V_i V_j / l; e as lps_dil.  lps (eps false): own = (x_i,
+ * alpha_i, bcoef_i, theta_i, V_i), t_ji from alpha_j, bcoef_j (q) and
+ * theta_j.  eps: own = (x_i, iso_i, alpha_i, theta_i, scale_i, V_i), t_ij
+ * with e^dp of the step's start es, t_ji from j's theta, scale and iso (q
+ * = hs, three per particle) and ej, the e^dp of j's half; tau = alpha (e^d
+ * - e^dp) times the scale (1: exact, no yield). */
 static inline __attribute__((always_inline)) int64_t
-lps_frc(int dim, size_t nb, const double *own, double *const *restrict x,
+lps_frc(int dim, bool eps, size_t nb, const double *own, double d, double *const *restrict x,
         const int32_t *restrict partner, const double *restrict vol, const double *restrict al,
-        const double *restrict bc, const double *restrict th, const double *restrict rb,
-        const double *restrict ob, const double *restrict tb, double *restrict gx,
-        double *restrict gy, double *restrict gz, double *restrict el)
+        const double *restrict q, const double *restrict th, const double *restrict rb,
+        const double *restrict ob, const double *restrict tb, const double *restrict es,
+        const double *restrict ej, double *restrict gx, double *restrict gy, double *restrict gz,
+        double *restrict el)
 {
     const double *restrict x0 = x[0], *restrict x1 = x[1], *restrict x2 = x[2];
     const double xi0 = own[0], yi0 = own[1], zi0 = own[2];
-    const double ai = own[3], bi = own[4], thi = own[5], vi = own[6];
     int64_t any = 0;
     for (size_t k = 0; k < nb; k++) {
         const size_t j = (size_t)partner[k];
         const double ex = x0[j] - xi0, ey = x1[j] - yi0;
         const double ez = dim > 2 ? x2[j] - zi0 : 0.0;
         const double l = sqrt(ex * ex + ey * ey + ez * ez), xi = rb[k], e = l - xi;
-        const double tij = ai * e + bi * xi * thi;
-        const double tji = al[j] * e + bc[j] * xi * th[j];
-        const double g = ob[k] * (tij + tji) * (vi * vol[j]) / l;
-        const uint64_t live = (uint64_t)0 - (uint64_t)(tb[k] == tb[k]);
-        gx[k] = lps_keep(g * ex, live);
-        gy[k] = lps_keep(g * ey, live);
-        gz[k] = lps_keep(g * ez, live);
-        el[k] = e;
-        any |= (int64_t)(e > tb[k]);
-    }
-    return any;
-}
-
-/* eps pass 2 terms: t_ij from i's state (own = x_i, iso_i, alpha_i,
- * theta_i, scale_i, V_i) and e^dp of the step's start es, t_ji from j's
- * (hs: theta, scale, iso per particle) and ej, the e^dp of j's half. */
-static inline __attribute__((always_inline)) int64_t
-eps_frc(int dim, size_t nb, const double *own, double d, double *const *restrict x,
-        const int32_t *restrict partner, const double *restrict vol, const double *restrict al,
-        const double *restrict hs, const double *restrict rb, const double *restrict ob,
-        const double *restrict tb, const double *restrict es, const double *restrict ej,
-        double *restrict gx, double *restrict gy, double *restrict gz, double *restrict el)
-{
-    const double *restrict x0 = x[0], *restrict x1 = x[1], *restrict x2 = x[2];
-    const double xi0 = own[0], yi0 = own[1], zi0 = own[2];
-    const double isoi = own[3], ali = own[4], thi = own[5], sci = own[6], vi = own[7];
-    int64_t any = 0;
-    for (size_t k = 0; k < nb; k++) {
-        const size_t j = (size_t)partner[k];
-        const double ex = x0[j] - xi0, ey = x1[j] - yi0;
-        const double ez = dim > 2 ? x2[j] - zi0 : 0.0;
-        const double l = sqrt(ex * ex + ey * ey + ez * ez), xi = rb[k], e = l - xi;
-        /* tau = alpha (e^d - e^dp) times the scale (1: exact, no yield) */
-        const double tij = isoi * xi + ali * (e - thi * xi / d - es[k]) * sci;
-        const double tji =
-            hs[3 * j + 2] * xi + al[j] * (e - hs[3 * j] * xi / d - ej[k]) * hs[3 * j + 1];
-        const double g = ob[k] * (tij + tji) * (vi * vol[j]) / l;
-        const uint64_t live = (uint64_t)0 - (uint64_t)(tb[k] == tb[k]);
-        gx[k] = lps_keep(g * ex, live);
-        gy[k] = lps_keep(g * ey, live);
-        gz[k] = lps_keep(g * ez, live);
-        el[k] = e;
-        any |= (int64_t)(e > tb[k]);
+        double tij, tji;
+        if (eps) {
+            tij = own[3] * xi + own[4] * (e - own[5] * xi / d - es[k]) * own[6];
+            tji = q[3 * j + 2] * xi + al[j] * (e - q[3 * j] * xi / d - ej[k]) * q[3 * j + 1];
+        } else {
+            tij = own[3] * e + own[4] * xi * own[5];
+            tji = al[j] * e + q[j] * xi * th[j];
+        }
+        const double g = ob[k] * (tij + tji) * (own[eps ? 7 : 6] * vol[j]) / l;
+        LPS_PUT(k, g, ex, ey, ez, e, tb[k]);
     }
     return any;
 }
@@ -278,7 +263,8 @@ PD_CLONES static void eps_norm(size_t nb, double th, double al, double d,
         const double *restrict ob, const double *restrict tb, double *restrict gx,              \
         double *restrict gy, double *restrict gz, double *restrict el)                          \
     {                                                                                           \
-        return lps_frc(DIM, nb, own, x, partner, vol, al, bc, th, rb, ob, tb, gx, gy, gz, el);  \
+        return lps_frc(DIM, false, nb, own, 0.0, x, partner, vol, al, bc, th, rb, ob, tb, NULL, \
+                       NULL, gx, gy, gz, el);                                                   \
     }                                                                                           \
     PD_CLONES static int64_t eps_frc##DIM(                                                      \
         size_t nb, const double *own, double d, double *const *restrict x,                     \
@@ -287,8 +273,8 @@ PD_CLONES static void eps_norm(size_t nb, double th, double al, double d,
         const double *restrict tb, const double *restrict es, const double *restrict ej,        \
         double *restrict gx, double *restrict gy, double *restrict gz, double *restrict el)     \
     {                                                                                           \
-        return eps_frc(DIM, nb, own, d, x, partner, vol, al, hs, rb, ob, tb, es, ej, gx, gy,    \
-                       gz, el);                                                                 \
+        return lps_frc(DIM, true, nb, own, d, x, partner, vol, al, hs, NULL, rb, ob, tb, es, ej, \
+                       gx, gy, gz, el);                                                         \
     }
 LPS_DIM(2)
 LPS_DIM(3)
@@ -409,26 +395,72 @@ static int lps_bufs_alloc(struct lps_buf b[2], size_t len)
     return ok;
 }
 
-int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
+/* What a row function (lps_rows) returns: its sums wait for the next row
+ * (LPS_PENDING), it has a half-bond past the breaking pre-test (LPS_ANY). */
+enum { LPS_PENDING = 1, LPS_ANY = 2 };
+
+/* theta of the pending row of pass 1 from its sum acc[0] */
+static void lps_fin_theta(struct model *m, const struct lps_pend *p, const double *acc)
 {
-    if (m->lps.ep)
-        return pd_eps_forces(m, sim, err); /* formulation eps: plastic return map */
-    struct particles *p = sim->p;
     struct pd_lps *L = &m->lps;
-    const size_t n = p->n, no = p->n_owned;
-    const double d = (double)m->dim;
-    const bool late = m->opt.break_late;
-    struct lps_ctx c;
-    struct lps_krow *ktab;
-    int rc = lps_ctx_make(m, sim, &c, &ktab, err);
-    if (rc)
-        return rc;
-    const size_t len = lps_max_row(m->bl, n);
+    if (p->b)
+        L->theta[p->i] = L->wvol[p->i] > 0.0 ? m->dim * acc[0] / L->wvol[p->i] : 0.0;
+}
+
+/* lps pass 1 of row i (the sum of the pending row first): dilatation terms;
+ * break_order immediate with a half-bond past the pre-test: settled, the
+ * theta of the row at once. */
+static int lps_row_pass1(struct model *m, const struct sim *sim, const struct lps_ctx *c,
+                         size_t i, struct lps_buf *b, const struct lps_pend *pend)
+{
+    (void)sim;
+    struct pd_lps *L = &m->lps;
+    const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
+    double acc[3];
+    lps_gather(1, c, s0, nb, b, pend, acc);
+    lps_fin_theta(m, pend, acc);
+    if (lps_row_dil(m, c, i, b) && !m->opt.break_late) {
+        const double sum = lps_row_settle(m, c, i, NULL, b);
+        L->theta[i] = L->wvol[i] > 0.0 ? m->dim * sum / L->wvol[i] : 0.0;
+        return 0;
+    }
+    return LPS_PENDING;
+}
+
+/* lps pass 2 of owned row i (the sums of the pending row first): the
+ * forces, and next_step the breaking. */
+static int lps_row_pass2(struct model *m, const struct sim *sim, const struct lps_ctx *c,
+                         size_t i, struct lps_buf *b, const struct lps_pend *pend)
+{
+    const struct particles *p = sim->p;
+    const struct pd_lps *L = &m->lps;
+    const size_t s0 = c->off[i], nb = c->off[i + 1] - s0;
+    double acc[3];
+    lps_gather(m->dim, c, s0, nb, b, pend, acc);
+    lps_add_force(m->dim, pend, acc, p->f);
+    const double own[7] = {p->x[0][i], p->x[1][i], m->dim > 2 ? p->x[2][i] : 0.0,
+                           L->alpha[i], L->bcoef[i], L->theta[i], p->volume[i]};
+    const int64_t any =
+        (m->dim == 3 ? lps_frc3 : lps_frc2)(nb, own, p->x, c->partner + s0, c->vol, L->alpha,
+                                            L->bcoef, L->theta, b->rb, b->ob, b->tb, b->gx,
+                                            b->gy, b->gz, b->el);
+    if (m->opt.break_late && any)
+        lps_row_break(m, c, i, b);
+    return LPS_PENDING;
+}
+
+typedef int (*lps_row_fn)(struct model *m, const struct sim *sim, const struct lps_ctx *c,
+                          size_t i, struct lps_buf *b, const struct lps_pend *pend);
+
+/* Rows [0, nrows) by row(), two buffers a thread: a row's sums wait for
+ * the next row's pass 0 (lps_gather), the last one's for the end (ncomp
+ * sums: 1, pass 1's theta; dim, pass 2's forces).  brk: the rows where
+ * row() found a half-bond past the pre-test.  Returns 1 when out of
+ * memory. */
+static int lps_rows(struct model *m, struct sim *sim, const struct lps_ctx *c, size_t len,
+                    size_t nrows, int ncomp, lps_row_fn row, uint8_t *brk)
+{
     int bad = 0;
-    /* pass 1: breaking (immediate) and dilatation; each half-bond decided by
-     * its own particle from a length that is bit-identical from both ends.
-     * A row's sum waits for the next row's pass 0 (its theta with it),
-     * unless breaking settles it at once. */
 #pragma omp parallel reduction(| : bad)
     {
         struct lps_buf b[2];
@@ -437,81 +469,44 @@ int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
         struct lps_pend pend = {NULL, 0, 0};
         int cur = 0;
 #pragma omp for schedule(dynamic, 256) nowait
-        for (size_t i = 0; i < n; i++) {
+        for (size_t i = 0; i < nrows; i++) {
             if (!ok)
                 continue;
-            const size_t s0 = c.off[i], nb = c.off[i + 1] - s0;
-            double acc[3];
-            lps_gather(1, &c, s0, nb, &b[cur], &pend, acc);
-            if (pend.b)
-                L->theta[pend.i] = L->wvol[pend.i] > 0.0 ? d * acc[0] / L->wvol[pend.i] : 0.0;
-            pend.b = NULL;
-            if (!late && lps_row_dil(m, &c, i, &b[cur])) {
-                const double sum = lps_row_settle(m, &c, i, NULL, &b[cur]);
-                L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
-                continue;
-            }
-            if (late)
-                lps_row_dil(m, &c, i, &b[cur]);
-            pend = (struct lps_pend){&b[cur], i, nb};
-            cur ^= 1;
+            const int r = row(m, sim, c, i, &b[cur], &pend);
+            if ((r & LPS_ANY) && brk)
+                brk[i] = 1;
+            pend = (struct lps_pend){(r & LPS_PENDING) ? &b[cur] : NULL, i,
+                                     c->off[i + 1] - c->off[i]};
+            cur ^= (r & LPS_PENDING) ? 1 : 0;
         }
-        if (pend.b) {
-            double acc[3];
-            lps_gather(1, &c, 0, 0, &b[cur], &pend, acc);
-            L->theta[pend.i] = L->wvol[pend.i] > 0.0 ? d * acc[0] / L->wvol[pend.i] : 0.0;
-        }
+        double acc[3];
+        if (pend.b)
+            lps_gather(ncomp, c, 0, 0, &b[cur], &pend, acc);
+        if (pend.b && ncomp == 1)
+            lps_fin_theta(m, &pend, acc);
+        else if (pend.b)
+            lps_add_force(m->dim, &pend, acc, sim->p->f);
         free(b[0].rb);
         free(b[1].rb);
     }
+    return bad;
+}
+
+/* lps: passes 1 and 2; 1 when out of memory */
+static int lps_forces(struct model *m, struct sim *sim, const struct lps_ctx *c, size_t len)
+{
+    /* pass 1: breaking (immediate) and dilatation; each half-bond decided by
+     * its own particle from a length that is bit-identical from both ends */
+    int bad = lps_rows(m, sim, c, len, sim->p->n, 1, lps_row_pass1, NULL);
     /* distributed: a ghost's row is empty here; its owner's dilatation,
      * which t_ji needs, comes with the halo */
     if (!bad && sim->par)
-        par_halo_values(sim, L->theta, 1);
+        par_halo_values(sim, m->lps.theta, 1);
     /* pass 2: forces, t_ij from i's state and t_ji from j's; next_step:
-     * pd_lps_break_rows' rule on the same lengths, in row order.  A row's
-     * sums wait for the next row's pass 0. */
-#pragma omp parallel reduction(| : bad)
-    {
-        struct lps_buf b[2];
-        const int ok = !bad && lps_bufs_alloc(b, len);
-        bad |= !ok;
-        struct lps_pend pend = {NULL, 0, 0};
-        int cur = 0;
-#pragma omp for schedule(dynamic, 256) nowait
-        for (size_t i = 0; i < no; i++) {
-            if (!ok)
-                continue;
-            const size_t s0 = c.off[i], nb = c.off[i + 1] - s0;
-            double acc[3];
-            lps_gather(m->dim, &c, s0, nb, &b[cur], &pend, acc);
-            lps_add_force(m->dim, &pend, acc, p->f);
-            const double own[7] = {p->x[0][i], p->x[1][i], m->dim > 2 ? p->x[2][i] : 0.0,
-                                   L->alpha[i], L->bcoef[i], L->theta[i], p->volume[i]};
-            struct lps_buf *bb = &b[cur];
-            const int64_t any =
-                (m->dim == 3 ? lps_frc3 : lps_frc2)(nb, own, p->x, c.partner + s0, c.vol, L->alpha,
-                                                    L->bcoef, L->theta, bb->rb, bb->ob, bb->tb,
-                                                    bb->gx, bb->gy, bb->gz, bb->el);
-            if (late && any)
-                lps_row_break(m, &c, i, bb);
-            pend = (struct lps_pend){bb, i, nb};
-            cur ^= 1;
-        }
-        if (pend.b) {
-            double acc[3];
-            lps_gather(m->dim, &c, 0, 0, &b[cur], &pend, acc);
-            lps_add_force(m->dim, &pend, acc, p->f);
-        }
-        free(b[0].rb);
-        free(b[1].rb);
-    }
-    free(ktab);
-    if (bad)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS row buffers");
-    if (late && n > no) /* distributed: the ghosts' rows (empty, see pass 1) */
-        pd_lps_break_rows(m, sim, no, n);
-    return SPALL_OK;
+     * pd_lps_break_rows' rule on the same lengths, in row order */
+    if (!bad)
+        bad = lps_rows(m, sim, c, len, sim->p->n_owned, m->dim, lps_row_pass2, NULL);
+    return bad;
 }
 
 /* eps pass 1 of row i (pd_eps.c has the formulas): dilatation, the norm of
@@ -573,10 +568,10 @@ static void eps_row_pass1(struct model *m, const struct sim *sim, const struct l
 }
 
 /* eps pass 2 of owned row i: the forces; distributed, i's copies e^dp_ji
- * (epr) updated as j's owner updates e^dp_ji.  Returns whether some
- * half-bond passes the breaking pre-test. */
-static int64_t eps_row_pass2(struct model *m, const struct sim *sim, const struct lps_ctx *c,
-                             size_t i, struct lps_buf *b, const struct lps_pend *pend)
+ * (epr) updated as j's owner updates e^dp_ji.  LPS_ANY: some half-bond
+ * passes the breaking pre-test. */
+static int eps_row_pass2(struct model *m, const struct sim *sim, const struct lps_ctx *c,
+                         size_t i, struct lps_buf *b, const struct lps_pend *pend)
 {
     struct pd_lps *L = &m->lps;
     const struct particles *p = sim->p;
@@ -611,7 +606,7 @@ static int64_t eps_row_pass2(struct model *m, const struct sim *sim, const struc
             const double dep = ed - tau / alj - epr[s];
             epr[s] += dep;
         }
-    return any;
+    return LPS_PENDING | (any ? LPS_ANY : 0);
 }
 
 /* eps pass 3 of row i: the plastic extensions of a yielding row (the
@@ -653,18 +648,12 @@ static void eps_row_pass3(struct model *m, const struct sim *sim, const struct l
     }
 }
 
-int pd_eps_forces(struct model *m, struct sim *sim, struct spall_error *err)
+/* eps: passes 1 to 3; 1 when out of memory */
+static int eps_forces(struct model *m, struct sim *sim, const struct lps_ctx *c, size_t len)
 {
-    struct particles *p = sim->p;
     struct pd_lps *L = &m->lps;
-    const size_t n = p->n, no = p->n_owned;
+    const size_t n = sim->p->n;
     const bool late = m->opt.break_late;
-    struct lps_ctx c;
-    struct lps_krow *ktab;
-    int rc = lps_ctx_make(m, sim, &c, &ktab, err);
-    if (rc)
-        return rc;
-    const size_t len = lps_max_row(m->bl, n);
     /* next_step: the rows with a half-bond past the pre-test in pass 2 */
     uint8_t *brk = late ? calloc(n ? n : 1, 1) : NULL;
     int bad = late && !brk;
@@ -678,7 +667,7 @@ int pd_eps_forces(struct model *m, struct sim *sim, struct spall_error *err)
 #pragma omp for schedule(dynamic, 256)
         for (size_t i = 0; i < n; i++)
             if (ok)
-                eps_row_pass1(m, sim, &c, i, late, &b);
+                eps_row_pass1(m, sim, c, i, late, &b);
         free(b.rb);
     }
     /* distributed: the partner's half t_ji needs its whole family (the
@@ -692,43 +681,35 @@ int pd_eps_forces(struct model *m, struct sim *sim, struct spall_error *err)
     if (!bad && sim->par)
         par_halo_values(sim, L->hs, 3);
     /* pass 2: F_i = V_i sum_j (t_ij + t_ji) beta V_j M_ij */
-#pragma omp parallel reduction(| : bad)
-    {
-        struct lps_buf b[2];
-        const int ok = !bad && lps_bufs_alloc(b, len);
-        bad |= !ok;
-        struct lps_pend pend = {NULL, 0, 0};
-        int cur = 0;
-#pragma omp for schedule(dynamic, 256) nowait
-        for (size_t i = 0; i < no; i++) {
-            if (!ok)
-                continue;
-            if (eps_row_pass2(m, sim, &c, i, &b[cur], &pend) && late)
-                brk[i] = 1;
-            pend = (struct lps_pend){&b[cur], i, c.off[i + 1] - c.off[i]};
-            cur ^= 1;
-        }
-        if (pend.b) {
-            double acc[3];
-            lps_gather(m->dim, &c, 0, 0, &b[cur], &pend, acc);
-            lps_add_force(m->dim, &pend, acc, p->f);
-        }
-        free(b[0].rb);
-        free(b[1].rb);
-    }
+    if (!bad)
+        bad = lps_rows(m, sim, c, len, sim->p->n_owned, m->dim, eps_row_pass2, brk);
     /* pass 3: once every row has read the plastic extensions of the step's
      * start */
     if (!bad) {
 #pragma omp parallel for schedule(dynamic, 256)
         for (size_t i = 0; i < n; i++)
             if (L->hs[3 * i + 1] < 1.0 || (brk && brk[i]))
-                eps_row_pass3(m, sim, &c, i, brk && brk[i]);
+                eps_row_pass3(m, sim, c, i, brk && brk[i]);
     }
     free(brk);
+    return bad;
+}
+
+int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    const size_t n = sim->p->n, no = sim->p->n_owned;
+    struct lps_ctx c;
+    struct lps_krow *ktab;
+    int rc = lps_ctx_make(m, sim, &c, &ktab, err);
+    if (rc)
+        return rc;
+    const size_t len = lps_max_row(m->bl, n);
+    /* formulation eps: with the plastic return map */
+    const int bad = m->lps.ep ? eps_forces(m, sim, &c, len) : lps_forces(m, sim, &c, len);
     free(ktab);
     if (bad)
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the EPS row buffers");
-    if (late && n > no) /* distributed: the ghosts' rows (empty) */
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS row buffers");
+    if (m->opt.break_late && n > no) /* distributed: the ghosts' rows (empty) */
         pd_lps_break_rows(m, sim, no, n);
     return SPALL_OK;
 }
