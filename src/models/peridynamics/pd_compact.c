@@ -156,6 +156,6 @@ size_t pd_model_bytes(const struct model *m, size_t n)
     const struct pd_lps *L = &m->lps;
     b += ((L->wvol ? 4 * n : 0) + (L->afac ? n : 0) + (L->hs ? 3 * n : 0)) * sizeof(double);
     b += ((L->ob ? nh : 0) + (L->ep ? nh : 0) + (L->epr ? nh : 0)) * sizeof(double);
-    b += L->rloc ? nh * sizeof *L->rloc : 0;
+    b += (L->rloc ? nh * sizeof *L->rloc : 0) + (L->rloc8 ? nh : 0);
     return b;
 }

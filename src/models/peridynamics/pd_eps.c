@@ -49,19 +49,23 @@ double pd_eps_cd(int dim)
     return dim == 3 ? 2.0 / 3.0 : 0.5;
 }
 
-/* The reverse slot of each half-bond i->j as its place in j's row (16
- * bits: 2 B per half-bond where bond_list_build_reverse keeps 8). */
+/* The reverse slot of each half-bond i->j as its place in j's row: one
+ * byte where no family has more than 256 bonds (a 3D horizon of 3 dx has
+ * 122), else 16 bits; bond_list_build_reverse keeps 8 B. */
 static int eps_reverse(struct model *m, struct spall_error *err)
 {
     const struct bond_list *bl = m->bl;
     const size_t n = bl->n, nh = bl->offset[n];
     struct pd_lps *L = &m->lps;
+    size_t len = 0;
     for (size_t i = 0; i < n; i++)
-        if (bl->offset[i + 1] - bl->offset[i] > (size_t)UINT16_MAX + 1)
-            return spall_error_set_key(err, SPALL_ERR_INPUT, "model.formulation",
-                                       "formulation eps: a family of %zu bonds (at most "
-                                       "65 536)", bl->offset[i + 1] - bl->offset[i]);
-    if (!(L->rloc = malloc((nh ? nh : 1) * sizeof *L->rloc)))
+        len = bl->offset[i + 1] - bl->offset[i] > len ? bl->offset[i + 1] - bl->offset[i] : len;
+    if (len > (size_t)UINT16_MAX + 1)
+        return spall_error_set_key(err, SPALL_ERR_INPUT, "model.formulation",
+                                   "formulation eps: a family of %zu bonds (at most 65 536)",
+                                   len);
+    const bool narrow = len <= (size_t)UINT8_MAX + 1;
+    if (narrow ? !(L->rloc8 = malloc(nh ? nh : 1)) : !(L->rloc = malloc((nh ? nh : 1) * 2)))
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the reverse slots");
     int missing = 0;
 #pragma omp parallel for schedule(static) reduction(| : missing)
@@ -70,7 +74,11 @@ static int eps_reverse(struct model *m, struct spall_error *err)
             const size_t j = (size_t)bl->partner[s];
             const size_t r = bond_list_slot(bl, j, (int32_t)i);
             missing |= r == SIZE_MAX;
-            L->rloc[s] = (uint16_t)(r == SIZE_MAX ? 0 : r - bl->offset[j]);
+            const size_t q = r == SIZE_MAX ? 0 : r - bl->offset[j];
+            if (narrow)
+                L->rloc8[s] = (uint8_t)q;
+            else
+                L->rloc[s] = (uint16_t)q;
         }
     if (missing)
         return spall_error_set(err, SPALL_ERR_INTERNAL,

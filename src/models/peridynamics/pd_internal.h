@@ -111,6 +111,12 @@ struct model {
     bool initialised;
 };
 
+/** formulation eps, serial: the slot of the reverse half of half-bond @p s. */
+static inline size_t pd_eps_rev(const struct model *m, size_t s)
+{
+    const size_t j = (size_t)m->bl->partner[s];
+    return m->bl->offset[j] + (m->lps.rloc8 ? m->lps.rloc8[s] : m->lps.rloc[s]);
+}
 /** Reference length, coefficient and type of half-bond @p s in either layout. */
 static inline double pd_rest(const struct model *m, size_t s)
 {

@@ -62,7 +62,9 @@ static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, con
     free(L->hs);
     L->hs = hs;
     free(L->rloc); /* the reverse slots of the whole body's rows: epr takes over */
+    free(L->rloc8);
     L->rloc = NULL;
+    L->rloc8 = NULL;
     for (int k = 0; k < npp; k++) {
         free(*pp[k]);
         *pp[k] = np[k];
@@ -147,7 +149,7 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
         if (!(L->epr = malloc((nf ? nf : 1) * sizeof *L->epr)))
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
         for (size_t s = 0; s < nf; s++)
-            L->epr[s] = L->ep[m->bl->offset[m->bl->partner[s]] + L->rloc[s]];
+            L->epr[s] = L->ep[pd_eps_rev(m, s)];
     }
     size_t *oh = NULL, nh = 0;
     int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);

@@ -65,6 +65,7 @@ void pd_lps_free(struct pd_lps *L)
     free(L->afac);
     free(L->ep);
     free(L->rloc);
+    free(L->rloc8);
     free(L->epr);
     free(L->hs);
 }

@@ -40,7 +40,8 @@ struct pd_lps {
     double *hs;     /**< per particle (owned and ghosts): theta, return-map scale and d k
                          theta / m_i of the call (pd_lps_kernel.c) */
     uint16_t *rloc; /**< per half-bond i->j: the place of j->i in j's row (serial; NULL
-                         once distributed) */
+                         once distributed, or where rloc8 holds it) */
+    uint8_t *rloc8; /**< the same in a byte where no family has more than 256 bonds */
     /* distributed eps only (pd_localize.c; NULL otherwise) */
     double *epr;    /**< per half-bond i->j: i's copy of e^dp of j->i, kept by the same update */
 };

@@ -18,8 +18,8 @@
  *
  * eps keeps no per-half-bond force state: pass 2 computes t_ji from j's
  * dilatation, return-map scale and isotropic coefficient (per particle,
- * hs) and the plastic extension e^dp_ji of j's half (through the 16-bit
- * reverse slot rloc, or distributed i's copy epr), the operations j's own
+ * hs) and the plastic extension e^dp_ji of j's half (through the 8- or
+ * 16-bit reverse slot, pd_eps_rev, or distributed i's copy epr), the operations j's own
  * pass 1 used to do, so the same bits.  Since j reads e^dp_ji of the step's
  * start, the new plastic extensions (and the next_step breaking, which
  * reads them) are written in a pass 3 over the rows that yielded or have a
@@ -586,7 +586,7 @@ static int eps_row_pass2(struct model *m, const struct sim *sim, const struct lp
             b->ej[k] = epr[s0 + k];
     else
         for (size_t k = 0; k < nb; k++)
-            b->ej[k] = L->ep[c->off[c->partner[s0 + k]] + L->rloc[s0 + k]];
+            b->ej[k] = L->ep[pd_eps_rev(m, s0 + k)];
     const double own[8] = {p->x[0][i], p->x[1][i], m->dim > 2 ? p->x[2][i] : 0.0,
                            hs[3 * i + 2], L->alpha[i], hs[3 * i], hs[3 * i + 1], p->volume[i]};
     const int64_t any =
