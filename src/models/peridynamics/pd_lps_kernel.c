@@ -662,7 +662,7 @@ static int eps_forces(struct model *m, struct sim *sim, const struct lps_ctx *c,
 #pragma omp parallel reduction(| : bad)
     {
         struct lps_buf b;
-        const int ok = !bad && lps_buf_alloc(&b, len);
+        const int ok = lps_buf_alloc(&b, len);
         bad |= !ok;
 #pragma omp for schedule(dynamic, 256)
         for (size_t i = 0; i < n; i++)
