@@ -302,8 +302,7 @@ void bond_list_destroy(struct bond_list **pbl)
     *pbl = NULL;
 }
 
-/** Slot of partner @p who in row @p j (rows are sorted), or SIZE_MAX. */
-static size_t find_slot(const struct bond_list *bl, size_t j, int32_t who)
+size_t bond_list_slot(const struct bond_list *bl, size_t j, int32_t who)
 {
     size_t a = bl->offset[j], b = bl->offset[j + 1];
     while (a < b) {
@@ -326,7 +325,7 @@ int bond_list_build_reverse(struct bond_list *bl, struct spall_error *err)
 #pragma omp parallel for schedule(static) reduction(| : missing)
     for (size_t i = 0; i < n; i++) {
         for (size_t k = bl->offset[i]; k < bl->offset[i + 1]; k++) {
-            rev[k] = find_slot(bl, (size_t)bl->partner[k], (int32_t)i);
+            rev[k] = bond_list_slot(bl, (size_t)bl->partner[k], (int32_t)i);
             missing |= rev[k] == SIZE_MAX;
         }
     }

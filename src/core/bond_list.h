@@ -111,6 +111,8 @@ int bond_list_build_shells_compact(struct bond_list **out, const struct particle
                                    struct spall_error *err);
 void bond_list_destroy(struct bond_list **bl);
 
+/** Slot of partner @p who in row @p j (rows are sorted), or SIZE_MAX. */
+size_t bond_list_slot(const struct bond_list *bl, size_t j, int32_t who);
 /** Build the reverse-slot index (needed by angular springs). */
 int bond_list_build_reverse(struct bond_list *bl, struct spall_error *err);
 

@@ -149,11 +149,13 @@ size_t pd_model_bytes(const struct model *m, size_t n)
     for (int d = 0; d < 3; d++)
         b += m->f_prev[d] ? 2 * n * sizeof(double) : 0;
     /* formulation lps / eps (pd_lps.h): per particle m, theta, alpha, the
-     * dilatation coefficient and the surface factor; per half-bond omega
-     * beta and eps' plastic extension, force state and reverse copy */
+     * dilatation coefficient and the surface factor (eps: theta, scale and
+     * d k theta / m again for the partners); per half-bond omega beta and
+     * eps' plastic extension, reverse slot (serial) or reverse copy
+     * (distributed) */
     const struct pd_lps *L = &m->lps;
-    b += ((L->wvol ? 4 * n : 0) + (L->afac ? n : 0) + (L->hs ? 2 * n : 0)) * sizeof(double);
-    b += ((L->ob ? nh : 0) + (L->ep ? nh : 0) + (L->tb ? nh : 0) + (L->epr ? nh : 0)) *
-         sizeof(double);
+    b += ((L->wvol ? 4 * n : 0) + (L->afac ? n : 0) + (L->hs ? 3 * n : 0)) * sizeof(double);
+    b += ((L->ob ? nh : 0) + (L->ep ? nh : 0) + (L->epr ? nh : 0)) * sizeof(double);
+    b += (L->rloc ? nh * sizeof *L->rloc : 0) + (L->rloc8 ? nh : 0);
     return b;
 }

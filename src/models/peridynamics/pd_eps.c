@@ -31,7 +31,7 @@
  * deviatoric in the omega-weighted sense (sum omega beta |xi| e^dp V = 0)
  * and the dilatation stays elastic.  Plastic work tau . delta e^dp V_i goes
  * to the particle's dissipated energy.  Bonds break at the LPS critical
- * stretch (pd_lps.c).
+ * stretch (pd_lps.c).  The force passes are in pd_lps_kernel.c.
  */
 #include "models/peridynamics/pd_internal.h"
 
@@ -46,184 +46,75 @@
 #include <stdlib.h>
 
 /* c_d of the J2 criterion s : s <= c_d sigma_Y^2 (see the file comment) */
-static double eps_cd(int dim)
+double pd_eps_cd(int dim)
 {
     return dim == 3 ? 2.0 / 3.0 : 0.5;
+}
+
+/* The reverse slot of each half-bond i->j as its place in j's row: one
+ * byte where no family has more than 256 bonds (a 3D horizon of 3 dx has
+ * 122), else 16 bits; bond_list_build_reverse keeps 8 B. */
+static int eps_reverse(struct model *m, struct spall_error *err)
+{
+    const struct bond_list *bl = m->bl;
+    const size_t n = bl->n, nh = bl->offset[n];
+    struct pd_lps *L = &m->lps;
+    size_t len = 0;
+    for (size_t i = 0; i < n; i++)
+        len = bl->offset[i + 1] - bl->offset[i] > len ? bl->offset[i + 1] - bl->offset[i] : len;
+    if (len > (size_t)UINT16_MAX + 1)
+        return spall_error_set_key(err, SPALL_ERR_INPUT, "model.formulation",
+                                   "formulation eps: a family of %zu bonds (at most 65 536)",
+                                   len);
+    const bool narrow = len <= (size_t)UINT8_MAX + 1;
+    if (narrow ? !(L->rloc8 = malloc(nh ? nh : 1)) : !(L->rloc = malloc((nh ? nh : 1) * 2)))
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the reverse slots");
+    int missing = 0;
+#pragma omp parallel for schedule(static) reduction(| : missing)
+    for (size_t i = 0; i < n; i++)
+        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
+            const size_t j = (size_t)bl->partner[s];
+            const size_t r = bond_list_slot(bl, j, (int32_t)i);
+            missing |= r == SIZE_MAX;
+            const size_t q = r == SIZE_MAX ? 0 : r - bl->offset[j];
+            if (narrow)
+                L->rloc8[s] = (uint8_t)q;
+            else
+                L->rloc[s] = (uint16_t)q;
+        }
+    if (missing)
+        return spall_error_set(err, SPALL_ERR_INTERNAL,
+                               "bond list is not symmetric: a bond has no reverse half");
+    return SPALL_OK;
 }
 
 int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err)
 {
     struct pd_lps *L = &m->lps;
-    const size_t nh = m->bl->offset[sim->p->n];
-    /* a window of the distributed set-up computes no force: e^dp (zero),
-     * t and the reverse slots would only be carried to pd_localize, which
+    const size_t n = sim->p->n, nh = m->bl->offset[n];
+    /* a window of the distributed set-up computes no force: e^dp (zero)
+     * and the reverse slots would only be carried to pd_localize, which
      * makes them for the rank's rows (pd_eps_localized), not the window's */
     if (par_setup_window(sim))
         return SPALL_OK;
+    /* hs: theta, return-map scale and d k theta / m_i per particle, which
+     * t_ji reads (pd_lps_kernel.c) */
     if (!(L->ep = calloc(nh ? nh : 1, sizeof(double))) ||
-        !(L->tb = calloc(nh ? nh : 1, sizeof(double))))
+        !(L->hs = calloc(3 * (n ? n : 1), sizeof(double))))
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the plastic "
                                "extension state");
-    /* t_ji of a pair comes from j's row: the slot of the same bond there */
-    return m->bl->reverse ? SPALL_OK : bond_list_build_reverse(m->bl, err);
+    /* t_ji of a pair reads e^dp of j's half: the slot of the same bond there */
+    return eps_reverse(m, err);
 }
 
 int pd_eps_localized(struct pd_lps *L, size_t nh, size_t n, struct spall_error *err)
 {
+    /* distributed: no reverse slots; i's copy epr of e^dp_ji instead */
     if (!(L->ep = calloc(nh ? nh : 1, sizeof(double))) ||
-        !(L->tb = calloc(nh ? nh : 1, sizeof(double))) ||
         !(L->epr = calloc(nh ? nh : 1, sizeof(double))) ||
-        !(L->hs = calloc(2 * (n ? n : 1), sizeof(double))))
+        !(L->hs = calloc(3 * (n ? n : 1), sizeof(double))))
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the plastic "
                                "extension state");
-    return SPALL_OK;
-}
-
-int pd_eps_forces(struct model *m, struct sim *sim)
-{
-    const struct pd_lps_bonds B = pd_lps_bonds(m);
-    struct particles *p = sim->p;
-    struct bond_list *bl = m->bl;
-    struct pd_lps *L = &m->lps;
-    const size_t n = p->n, no = p->n_owned;
-    const int dim = p->dim;
-    const double d = (double)dim, cd = eps_cd(dim);
-    uint8_t *st = bl->state;
-    const size_t *rev = bl->reverse;
-    double *tb = L->tb, *ep = L->ep;
-    /* distributed: theta_j and j's return-map scale per particle (sent to
-     * the ghosts after pass 1), and per half-bond i's copy of e^dp_ji */
-    double *hs = L->hs, *epr = L->epr;
-    const bool late = m->opt.break_late; /* next_step: bonds past s0 dropped in pass 2 */
-    /* pass 1, per particle (its own half-bonds only): breaking, dilatation,
-     * return map, scalar force state t_ij / omega into tb */
-#pragma omp parallel for schedule(dynamic, 256)
-    for (size_t i = 0; i < n; i++) {
-        const size_t s0 = bl->offset[i], s1 = bl->offset[i + 1];
-        const struct pd_material *mt = &m->mat[p->material[i]];
-        double sum = 0.0;
-        for (size_t s = s0; s < s1; s++) {
-            if (st[s] & BOND_BROKEN)
-                continue;
-            size_t j = (size_t)bl->partner[s];
-            const size_t row = pd_lps_row(&B, s);
-            double l2 = 0.0;
-            for (int c = 0; c < dim; c++) {
-                double r = p->x[c][j] - p->x[c][i];
-                l2 += r * r;
-            }
-            const double xi = B.rest[row], e = sqrt(l2) - xi;
-            if (!late && e / xi > m->s0_tab[B.type[row]]) {
-                st[s] |= BOND_BROKEN;
-                /* elastic energy of the half-bond at the last state: t (e - e^dp) / 2 */
-                double t = L->alpha[i] * (e - ep[s]) + L->bcoef[i] * xi * L->theta[i];
-                m->diss[i] += 0.5 * B.ob[row] * t * (e - ep[s]) * p->volume[i] * p->volume[j];
-                continue;
-            }
-            tb[s] = e; /* kept for the return map below */
-            sum += B.ob[row] * xi * e * p->volume[j];
-        }
-        const double wv = L->wvol[i];
-        const double th = wv > 0.0 ? d * sum / wv : 0.0;
-        L->theta[i] = th;
-        if (hs) {
-            hs[2 * i] = th;
-            hs[2 * i + 1] = 1.0;
-        }
-        if (!(wv > 0.0))
-            continue;
-        const double al = L->alpha[i];
-        double nrm2 = 0.0;
-        for (size_t s = s0; s < s1; s++) {
-            if (st[s] & BOND_BROKEN)
-                continue;
-            const double tau = al * (tb[s] - th * B.rest[pd_lps_row(&B, s)] / d - ep[s]);
-            nrm2 += B.ob[pd_lps_row(&B, s)] * tau * tau * p->volume[bl->partner[s]];
-        }
-        /* with the surface correction's a_i on alpha_i (pd_lps_surface.c) the
-         * homogeneous-state norm is ||tau||^2 = a_i alpha_i s : s / (2 mu) */
-        const double lim2 = d * (d + 2.0) * cd * mt->yield_stress * mt->yield_stress /
-                            (2.0 * wv) * (L->afac ? L->afac[i] : 1.0);
-        const double scale = nrm2 > lim2 ? sqrt(lim2 / nrm2) : 1.0;
-        if (hs)
-            hs[2 * i + 1] = scale;
-        const double iso = (d * mt->kd / wv) * th; /* d k theta / m_i, times |xi| below */
-        double work = 0.0;
-        for (size_t s = s0; s < s1; s++) {
-            if (st[s] & BOND_BROKEN)
-                continue;
-            const double xi = B.rest[pd_lps_row(&B, s)], ed = tb[s] - th * xi / d;
-            double tau = al * (ed - ep[s]);
-            if (scale < 1.0) {
-                tau *= scale;
-                const double dep = ed - tau / al - ep[s];
-                ep[s] += dep;
-                work += B.ob[pd_lps_row(&B, s)] * tau * dep * p->volume[bl->partner[s]];
-            }
-            tb[s] = iso * xi + tau;
-        }
-        m->diss[i] += work * p->volume[i];
-    }
-    /* distributed: the partner's half t_ji needs its whole family (the
-     * return map's scale), which a ghost's owner has.  Rather than the
-     * values t_ji themselves (one per bond that crosses ranks), its owner
-     * sends theta_j and the scale (two per ghost), and i repeats j's update
-     * of e^dp_ji on its copy epr: the same operations on the same operands
-     * (the length and rest length of a bond are bitwise symmetric), so the
-     * same bits (docs/parallel.md, "Elastic-plastic peridynamics") */
-    if (sim->par)
-        par_halo_values(sim, hs, 2);
-    /* pass 2: F_i = V_i sum_j (t_ij + t_ji) beta V_j M_ij; t_ji from j's row,
-     * or distributed from j's theta and scale */
-#pragma omp parallel for schedule(dynamic, 256)
-    for (size_t i = 0; i < no; i++) {
-        double fi[3] = {0.0, 0.0, 0.0};
-        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
-            if (st[s] & BOND_BROKEN)
-                continue;
-            size_t j = (size_t)bl->partner[s];
-            double r[3] = {0.0, 0.0, 0.0}, l2 = 0.0;
-            for (int c = 0; c < dim; c++) {
-                r[c] = p->x[c][j] - p->x[c][i];
-                l2 += r[c] * r[c];
-            }
-            double tji;
-            if (epr) { /* pass 1 of j for this half-bond, as j's owner runs it */
-                const double xi = B.rest[pd_lps_row(&B, s)], e = sqrt(l2) - xi;
-                const double thj = hs[2 * j], scj = hs[2 * j + 1], alj = L->alpha[j];
-                const double ed = e - thj * xi / d;
-                double tau = alj * (ed - epr[s]);
-                if (scj < 1.0) {
-                    tau *= scj;
-                    const double dep = ed - tau / alj - epr[s];
-                    epr[s] += dep;
-                }
-                tji = (d * m->mat[p->material[j]].kd / L->wvol[j]) * thj * xi + tau;
-            } else {
-                tji = tb[rev[s]];
-            }
-            const size_t row = pd_lps_row(&B, s);
-            const double ob = B.ob[row];
-            const double g = ob * (tb[s] + tji) * (p->volume[i] * p->volume[j]) / sqrt(l2);
-            for (int c = 0; c < dim; c++)
-                fi[c] += g * r[c];
-            /* break_order next_step: pd_lps_break_rows' rule on this length,
-             * in row order (the same bits as its own pass) */
-            if (late) {
-                const double xi = B.rest[row], e = sqrt(l2) - xi;
-                if (e / xi > m->s0_tab[B.type[row]]) {
-                    st[s] |= BOND_BROKEN;
-                    const double ee = e - ep[s];
-                    const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
-                    m->diss[i] += 0.5 * ob * t * ee * p->volume[i] * p->volume[j];
-                }
-            }
-        }
-        for (int c = 0; c < dim; c++)
-            p->f[c][i] += fi[c];
-    }
-    if (late && n > no) /* distributed: the ghosts' rows (empty) */
-        pd_lps_break_rows(m, sim, no, n);
     return SPALL_OK;
 }
 
@@ -243,5 +134,5 @@ double pd_eps_plastic_strain(const struct model *m, const struct sim *sim, size_
     for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
         if (!(bl->state[s] & BOND_BROKEN))
             q += B.ob[pd_lps_row(&B, s)] * L->ep[s] * L->ep[s] * sim->p->volume[bl->partner[s]];
-    return sqrt(eps_cd(sim->dim) * d * (d + 2.0) * q / (2.0 * L->wvol[i]));
+    return sqrt(pd_eps_cd(sim->dim) * d * (d + 2.0) * q / (2.0 * L->wvol[i]));
 }

@@ -117,16 +117,7 @@ pd_chunk(int dim, size_t nb, double xi0, double yi0, double zi0, double *const *
 }
 
 /* pd_chunk per dimension in two versions picked once at load time by the
- * CPU (GCC function multi-versioning, as sph_tlsph_data.h): x86-64-v3
- * (four doubles a vector) and the build's baseline.  The file is compiled
- * without FP contraction (ISO C mode), so both versions round alike and
- * the results do not depend on the CPU. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
-    !defined(SPALL_NO_CLONES)
-#define PD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define PD_CLONES
-#endif
+ * CPU (PD_CLONES, pd_internal.h). */
 #define PD_CHUNK_DIM(DIM)                                                                       \
     PD_CLONES PD_CHUNK_DECL(DIM)                                                                \
     {                                                                                           \
@@ -325,10 +316,10 @@ int pd_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
     /* fiber-parallel matrix cracks (pd_plane.c): flag stretch-broken matrix bonds */
     uint8_t *fresh = m->fresh;
     if (m->opt.lps) {
-        pd_lps_forces(m, sim);
-        if (m->opt.quasi == PD_QS_ADR)
+        int rc = pd_lps_forces(m, sim, err);
+        if (!rc && m->opt.quasi == PD_QS_ADR)
             pd_adr_update(m, sim);
-        return SPALL_OK;
+        return rc;
     }
     struct pd_kind_row *ktab;
     int rc = pd_kind_rows(m, &ktab, err);

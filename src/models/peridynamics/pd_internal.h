@@ -11,6 +11,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "core/bond_list.h"
 #include "core/mathconst.h"
@@ -121,6 +122,12 @@ struct model {
     bool initialised;
 };
 
+/** formulation eps, serial: the slot of the reverse half of half-bond @p s. */
+static inline size_t pd_eps_rev(const struct model *m, size_t s)
+{
+    const size_t j = (size_t)m->bl->partner[s];
+    return m->bl->offset[j] + (m->lps.rloc8 ? m->lps.rloc8[s] : m->lps.rloc[s]);
+}
 /** Reference length, coefficient and type of half-bond @p s in either layout. */
 static inline double pd_rest(const struct model *m, size_t s)
 {
@@ -269,6 +276,37 @@ static inline void pd_add_bond_virial(double *sg, int dim, double g, const doubl
     sg[3] += 0.5 * g * (r[0] * r0[1] + r[1] * r0[0]);
     sg[4] += 0.5 * g * (r[1] * r0[2] + r[2] * r0[1]);
     sg[5] += 0.5 * g * (r[0] * r0[2] + r[2] * r0[0]);
+}
+
+/* The split bond kernels (pd_forces.c, pd_lps_kernel.c) -------------------- */
+
+/** Vector loops in two versions picked once at load time by the CPU (GCC
+ *  function multi-versioning, as sph_tlsph_data.h): x86-64-v3 (four
+ *  doubles a vector) and the build's baseline.  The files are compiled
+ *  without FP contraction (ISO C mode), so both versions round alike and
+ *  the results do not depend on the CPU. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) &&     \
+    !defined(SPALL_NO_CLONES)
+#define PD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define PD_CLONES
+#endif
+
+/** Factor of the breaking pre-test e > s0 xi PD_PRE, which misses no
+ *  half-bond of the exact test e / xi > s0: that needs e > s0 xi (1 -
+ *  2^-53) in floating point. */
+#define PD_PRE (1.0 - 1e-12)
+
+/** A pre-test bound, or NaN when the half-bond is broken (state bit 0),
+ *  without a branch: the bits of a quiet NaN or-ed into any double give a
+ *  NaN. */
+static inline double pd_thr_or_nan(double thr, uint8_t state)
+{
+    uint64_t b;
+    memcpy(&b, &thr, sizeof b);
+    b |= ((uint64_t)0 - (uint64_t)(state & BOND_BROKEN)) & UINT64_C(0x7ff8000000000000);
+    memcpy(&thr, &b, sizeof thr);
+    return thr;
 }
 
 #endif

@@ -36,7 +36,6 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
 }
 
 #define PD_CHUNK 64
-#define PD_PRE (1.0 - 1e-12)
 
 /* A row of the compact families' table as the kernel reads it: one cache
  * line for the three doubles of a half-bond, and its pre-test bound. */
@@ -71,18 +70,6 @@ struct pd_chunk_buf {
     double gx[PD_CHUNK], gy[PD_CHUNK], gz[PD_CHUNK], el[PD_CHUNK];
     double rb[PD_CHUNK], cb[PD_CHUNK], tb[PD_CHUNK];
 };
-
-/* A pre-test bound, or NaN when the half-bond is broken (state bit 0),
- * without a branch: the bits of a quiet NaN or-ed into any double give a
- * NaN. */
-static inline double pd_thr_or_nan(double thr, uint8_t state)
-{
-    uint64_t b;
-    memcpy(&b, &thr, sizeof b);
-    b |= ((uint64_t)0 - (uint64_t)(state & BOND_BROKEN)) & UINT64_C(0x7ff8000000000000);
-    memcpy(&thr, &b, sizeof thr);
-    return thr;
-}
 
 /* Type of half-bond @p s in either storage. */
 static inline unsigned pd_kc_type(const struct pd_kctx *c, size_t s)

@@ -25,7 +25,8 @@
  * adds per half-bond the plastic extension state and the scalar force
  * state (scratch of each force call, kept the size of the rows) and the
  * copy of the reverse half's plastic extension; per particle the dilatation
- * and return-map scale its owner sends to the ghosts (pd_eps.c). */
+ * return-map scale and d k theta / m its owner sends to the ghosts
+ * (pd_lps_kernel.c). */
 static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, const size_t *oh,
                         size_t nh, struct spall_error *err)
 {
@@ -33,24 +34,23 @@ static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, con
     double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
     const int npp = L->afac ? 5 : 4;
     /* ob is NULL in compact storage (pd_lps_init: m->kind has the rows) */
-    double **bb[4];
+    double **bb[3];
     int nbb = 0;
     if (L->ob)
         bb[nbb++] = &L->ob;
     if (L->ep) {
         bb[nbb++] = &L->ep;
-        bb[nbb++] = &L->tb;
         bb[nbb++] = &L->epr;
     }
-    double *np[5] = {NULL, NULL, NULL, NULL, NULL}, *nb[4] = {NULL, NULL, NULL, NULL};
+    double *np[5] = {NULL, NULL, NULL, NULL, NULL}, *nb[3] = {NULL, NULL, NULL};
     int bad = 0;
     for (int k = 0; k < npp; k++)
         bad |= !(np[k] = array_gather(*pp[k], sizeof(double), keep, n_keep));
     for (int k = 0; k < nbb; k++)
         bad |= !(nb[k] = array_gather(*bb[k], sizeof(double), oh, nh));
-    double *hs = NULL; /* eps: theta and scale per particle, filled by each force call */
+    double *hs = NULL; /* eps: theta, scale, d k theta / m per particle, of each force call */
     if (L->ep)
-        bad |= !(hs = calloc(2 * (n_keep ? n_keep : 1), sizeof *hs));
+        bad |= !(hs = calloc(3 * (n_keep ? n_keep : 1), sizeof *hs));
     if (bad) {
         for (int k = 0; k < npp; k++)
             free(np[k]);
@@ -61,6 +61,10 @@ static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, con
     }
     free(L->hs);
     L->hs = hs;
+    free(L->rloc); /* the reverse slots of the whole body's rows: epr takes over */
+    free(L->rloc8);
+    L->rloc = NULL;
+    L->rloc8 = NULL;
     for (int k = 0; k < npp; k++) {
         free(*pp[k]);
         *pp[k] = np[k];
@@ -145,7 +149,7 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
         if (!(L->epr = malloc((nf ? nf : 1) * sizeof *L->epr)))
             return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
         for (size_t s = 0; s < nf; s++)
-            L->epr[s] = L->ep[m->bl->reverse[s]];
+            L->epr[s] = L->ep[pd_eps_rev(m, s)];
     }
     size_t *oh = NULL, nh = 0;
     int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
@@ -198,8 +202,8 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
  * dissipated energy travel with a particle; with LPS also its weighted
  * volume, dilatation and coefficients, and the influence of each half-bond
  * (a ghost's alpha, bcoef and theta enter its partners' forces); with eps
- * the plastic extension, force state and reverse half's plastic extension
- * of each half-bond and the halo's theta and scale; with fiber_plane each
+ * the plastic extension and reverse half's plastic extension of each
+ * half-bond and the halo's theta, scale and d k theta / m; with fiber_plane each
  * half-bond's twin slot and flag; with ADR the particle's model forces of
  * the last two steps. */
 int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
@@ -233,8 +237,8 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
             a->particle[a->n_particle] = (void **)pp[k];
             a->particle_size[a->n_particle++] = sizeof(double);
         }
-        double **bb[4] = {&L->ob, &L->ep, &L->tb, &L->epr};
-        for (int k = 0; k < (L->ep ? 4 : 1); k++) {
+        double **bb[3] = {&L->ob, &L->ep, &L->epr};
+        for (int k = 0; k < (L->ep ? 3 : 1); k++) {
             if (!*bb[k]) /* ob in compact storage: m->kind travels instead */
                 continue;
             a->bond[a->n_bond] = (void **)bb[k];
@@ -242,7 +246,7 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
         }
         if (L->hs) {
             a->particle[a->n_particle] = (void **)&L->hs;
-            a->particle_size[a->n_particle++] = 2 * sizeof *L->hs;
+            a->particle_size[a->n_particle++] = 3 * sizeof *L->hs;
         }
     }
     if (m->mm_g) { /* laminae, mixed mode */

@@ -67,7 +67,8 @@ void pd_lps_free(struct pd_lps *L)
     free(L->ob);
     free(L->afac);
     free(L->ep);
-    free(L->tb);
+    free(L->rloc);
+    free(L->rloc8);
     free(L->epr);
     free(L->hs);
 }
@@ -313,87 +314,6 @@ static double lps_theta(const struct model *m, const struct sim *sim, size_t i)
         sum += B.ob[row] * xi * (sqrt(l2) - xi) * p->volume[j];
     }
     return (double)dim * sum / m->lps.wvol[i];
-}
-
-int pd_lps_forces(struct model *m, struct sim *sim)
-{
-    const struct pd_lps_bonds B = pd_lps_bonds(m);
-    struct particles *p = sim->p;
-    struct bond_list *bl = m->bl;
-    struct pd_lps *L = &m->lps;
-    const size_t n = p->n, no = p->n_owned;
-    const int dim = p->dim;
-    const double d = (double)dim;
-    uint8_t *st = bl->state;
-    const bool late = m->opt.break_late;
-    if (L->ep)
-        return pd_eps_forces(m, sim); /* formulation eps: plastic return map (pd_eps.c) */
-    /* pass 1: breaking and dilatation; each half-bond decided by its own
-     * particle from a length that is bit-identical from both ends */
-#pragma omp parallel for schedule(dynamic, 256)
-    for (size_t i = 0; i < n; i++) {
-        double sum = 0.0;
-        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
-            if (st[s] & BOND_BROKEN)
-                continue;
-            size_t j = (size_t)bl->partner[s];
-            const size_t row = pd_lps_row(&B, s);
-            double l2 = 0.0;
-            for (int c = 0; c < dim; c++) {
-                double r = p->x[c][j] - p->x[c][i];
-                l2 += r * r;
-            }
-            const double xi = B.rest[row], e = sqrt(l2) - xi;
-            if (!late && e / xi > m->s0_tab[B.type[row]]) {
-                st[s] |= BOND_BROKEN;
-                /* energy of the half-bond at the last dilatation: t e / 2 (the
-                 * state energy is homogeneous of degree 2 in e) */
-                double t = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
-                m->diss[i] += 0.5 * B.ob[row] * t * e * p->volume[i] * p->volume[j];
-                continue;
-            }
-            sum += B.ob[row] * xi * e * p->volume[j];
-        }
-        L->theta[i] = L->wvol[i] > 0.0 ? d * sum / L->wvol[i] : 0.0;
-    }
-    /* distributed: a ghost's row is empty here; its owner's dilatation,
-     * which t_ji needs, comes with the halo */
-    if (sim->par)
-        par_halo_values(sim, L->theta, 1);
-    /* pass 2: forces, t_ij from i's state and t_ji from j's */
-#pragma omp parallel for schedule(dynamic, 256)
-    for (size_t i = 0; i < no; i++) {
-        double fi[3] = {0.0, 0.0, 0.0};
-        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
-            if (st[s] & BOND_BROKEN)
-                continue;
-            size_t j = (size_t)bl->partner[s];
-            double r[3] = {0.0, 0.0, 0.0}, l2 = 0.0;
-            for (int c = 0; c < dim; c++) {
-                r[c] = p->x[c][j] - p->x[c][i];
-                l2 += r[c] * r[c];
-            }
-            const size_t row = pd_lps_row(&B, s);
-            const double l = sqrt(l2), xi = B.rest[row], e = l - xi, ob = B.ob[row];
-            const double tij = L->alpha[i] * e + L->bcoef[i] * xi * L->theta[i];
-            const double tji = L->alpha[j] * e + L->bcoef[j] * xi * L->theta[j];
-            const double g = ob * (tij + tji) * (p->volume[i] * p->volume[j]) / l;
-            for (int c = 0; c < dim; c++)
-                fi[c] += g * r[c];
-            /* break_order next_step: pd_lps_break_rows' rule on this length, in
-             * row order (the same bits as a pass of its own, without
-             * computing the lengths again); t_ij is the half-bond's state */
-            if (late && e / xi > m->s0_tab[B.type[row]]) {
-                st[s] |= BOND_BROKEN;
-                m->diss[i] += 0.5 * ob * tij * e * p->volume[i] * p->volume[j];
-            }
-        }
-        for (int c = 0; c < dim; c++)
-            p->f[c][i] += fi[c];
-    }
-    if (late && n > no) /* distributed: the ghosts' rows (empty, see pass 1) */
-        pd_lps_break_rows(m, sim, no, n);
-    return SPALL_OK;
 }
 
 /* break_order next_step (PDLAMMPS order, pair peri/lps and peri/eps): a bond

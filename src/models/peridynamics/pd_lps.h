@@ -9,6 +9,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "models/peridynamics/pd.h"
 
@@ -36,10 +37,13 @@ struct pd_lps {
     double *afac;   /**< per particle: factor on alpha of the surface correction; NULL: 1 */
     /* formulation eps (pd_eps.c); NULL for lps */
     double *ep;     /**< per half-bond: plastic deviatoric extension e^dp [m] */
-    double *tb;     /**< per half-bond: scalar force state t_ij / omega of the last call */
+    double *hs;     /**< per particle (owned and ghosts): theta, return-map scale and d k
+                         theta / m_i of the call (pd_lps_kernel.c) */
+    uint16_t *rloc; /**< per half-bond i->j: the place of j->i in j's row (serial; NULL
+                         once distributed, or where rloc8 holds it) */
+    uint8_t *rloc8; /**< the same in a byte where no family has more than 256 bonds */
     /* distributed eps only (pd_localize.c; NULL otherwise) */
     double *epr;    /**< per half-bond i->j: i's copy of e^dp of j->i, kept by the same update */
-    double *hs;     /**< per particle (owned and ghosts): theta, return-map scale of the call */
 };
 
 /** Allocate and fill the LPS arrays (after the bond list and materials). */
@@ -48,8 +52,9 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err);
  *  pre-cracks: a pre-cut bond is not part of the family). */
 void pd_lps_weights(struct model *m, const struct sim *sim);
 void pd_lps_free(struct pd_lps *L);
-/** Forces with fused breaking (critical stretch). */
-int pd_lps_forces(struct model *m, struct sim *sim);
+/** Forces with fused breaking (critical stretch; pd_lps_kernel.c), with eps'
+ *  plastic return map where the model has its state. */
+int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err);
 /** surface_correction: factors on omega and alpha near free surfaces (pd_lps_surface.c). */
 int pd_lps_surface_init(struct model *m, struct sim *sim, struct spall_error *err);
 /** break_order next_step: drop the bonds past s0 after this step's forces. */
@@ -68,11 +73,11 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
  *  nothing in a window of the distributed set-up (pd_eps_localized makes it). */
 int pd_eps_init(struct model *m, struct sim *sim, struct spall_error *err);
 /** After pd_localize of a window: the zero plastic state of the rank's @p nh
- *  half-bonds (e^dp, t, the reverse halves' e^dp) and its @p n particles'
+ *  half-bonds (e^dp, the reverse halves' e^dp) and its @p n particles'
  *  halo values. */
 int pd_eps_localized(struct pd_lps *L, size_t nh, size_t n, struct spall_error *err);
-/** Forces with the plastic return map and fused breaking (replaces pd_lps_forces). */
-int pd_eps_forces(struct model *m, struct sim *sim);
+/** c_d of the J2 criterion s : s <= c_d sigma_Y^2: 2/3 in 3D, 1/2 in 2D. */
+double pd_eps_cd(int dim);
 /** Equivalent plastic strain of particle @p i from its plastic extension state. */
 double pd_eps_plastic_strain(const struct model *m, const struct sim *sim, size_t i);
 
