@@ -106,7 +106,9 @@ static const struct known_gap known_gaps[] = {
     {"macro-rod-large", "n_phi = 4, free ends: share of slip normals on {111} after collapse"},
     /* #4 item 5c: the first bonds break at a corner of the stepped hole edge */
     {"pd-lamina-a", "A-0: crack start, distance from the hole's centre line"},
-    /* #26 item 4: cubic lattices' fourth moment is not isotropic (LPS E, nu along [100]) */
+    /* #26 item 4: at delta = 3.015 dx with linear partial volumes the cubic families'
+     * fourth moment is not isotropic (LPS E, nu along [100]); the cell rule meets 1 % at
+     * delta = 4.015 dx (rows "cell volumes") */
     {"pd-lps-patch", "3D sc nu = 0.10: E"},
     {"pd-lps-patch", "3D sc nu = 0.10: Poisson's ratio"},
     {"pd-lps-patch", "3D sc nu = 0.30: E"},

@@ -32,6 +32,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define LPS_E 1.0e9
 
@@ -74,87 +75,164 @@ static int uniaxial(struct sim *s, size_t i, double *c11, double *c12, struct sp
     return SPALL_OK;
 }
 
+/* One configuration of the patch test. */
+struct lps_form {
+    const char *name;
+    const char *lattice;
+    int plane;         /* 0: 3D, 1: plane stress, 2: plane strain */
+    bool corrected;    /* influence_correction cubic */
+    bool cell;         /* partial_volume_rule cell, delta = LPS_CELL_M dx */
+};
+
+/* delta / dx of the cell-rule rows: the first m (of 3.015, 4.015, ...) from
+ * which every nu is inside 1 % on sc and fcc with that rule
+ * (pd_lps_patch_study); at the default 3.015 it misses (sc nu = 0.1: -2.1 %) */
+#define LPS_CELL_M 4.015
+
+/* E and nu of the particle nearest the centre of the block under uniaxial
+ * strain; hf: delta / dx (0: the default 3.015), rule: partial_volume_rule */
+static int lps_patch_run(const struct lps_form *f, double nu, double hf, const char *rule,
+                         double *E_m, double *nu_m, struct spall_error *err)
+{
+    char deck[1024], model[256];
+    double c[3];
+    snprintf(model, sizeof model, "formulation: lps%s%s%s%s%s%s",
+             f->plane == 1 ? ", plane: plane_stress" : f->plane == 2 ? ", plane: plane_strain" : "",
+             f->corrected ? ", influence_correction: cubic" : "", rule ? ", partial_volume_rule: " : "",
+             rule ? rule : "", hf > 0.0 ? ", horizon_factor: " : "", "");
+    if (hf > 0.0) {
+        const size_t w = strlen(model);
+        snprintf(model + w, sizeof model - w, "%.17g", hf);
+    }
+    /* the block holds the centre particle's whole family: half-width >= delta
+     * + the cell's reach + the offset of the nearest site (fcc: 0.8 dx) */
+    const double half = hf > 0.0 ? 1e-3 * (hf + 1.7) : 0.00525;
+    if (f->plane) {
+        snprintf(deck, sizeof deck,
+                 "model: {type: peridynamics, %s}\n"
+                 "materials:\n  m: {density: 1000, youngs_modulus: %g, poisson_ratio: %g}\n"
+                 "lattice: {type: %s, spacing: 1.0e-3, thickness: 1.0e-3}\n"
+                 "geometry:\n  p: {box: {min: [0, 0], max: [0.0205, 0.0205]}}\n"
+                 "body: {geometry: p, material: m}\nrun: {end_time: 1.0}\n",
+                 model, LPS_E, nu, f->lattice);
+        c[0] = c[1] = 0.01;
+        c[2] = 0.0;
+    } else {
+        snprintf(deck, sizeof deck,
+                 "model: {type: peridynamics, %s}\n"
+                 "materials:\n  m: {density: 1000, youngs_modulus: %g, poisson_ratio: %g}\n"
+                 "lattice: {type: %s, spacing: 1.0e-3}\n"
+                 "geometry:\n  p: {box: {min: [0, 0, 0], max: [%.17g, %.17g, %.17g]}}\n"
+                 "body: {geometry: p, material: m}\nrun: {end_time: 1.0}\n",
+                 model, LPS_E, nu, f->lattice, 2 * half, 2 * half, 2 * half);
+        c[0] = c[1] = c[2] = hf > 0.0 ? half : 0.005;
+    }
+    struct sim *s = NULL;
+    int rc = vlat_build("pd_lps_patch", deck, &s, err);
+    if (rc)
+        return rc;
+    double c11 = 0.0, c12 = 0.0;
+    rc = uniaxial(s, nearest(s->p, c), &c11, &c12, err);
+    sim_destroy(&s);
+    if (rc)
+        return rc;
+    if (f->plane == 1) {
+        *nu_m = c12 / c11;
+        *E_m = c11 * (1.0 - *nu_m * *nu_m);
+    } else {
+        *nu_m = c12 / (c11 + c12);
+        *E_m = c11 * (1.0 + *nu_m) * (1.0 - 2.0 * *nu_m) / (1.0 - *nu_m);
+    }
+    return SPALL_OK;
+}
+
+/* The cause of the 3D gap, measured: nu = 0.1 (the most sensitive value:
+ * the error of C11 and C12 is alpha times that of the fourth moment, large
+ * against the bulk part when mu / K is) on sc and fcc for m = 3.015 ...
+ * 6.015 with the linear and the cell rule.  The linear rule's error swings
+ * with m (sc: -5.3, -0.1, +0.2, -1.5 % in nu), the cell rule's falls to
+ * within 0.7 % from m = 4.015 on. */
+static int pd_lps_patch_study(struct vreport *r, struct spall_error *err)
+{
+    static const char *const lat[] = {"sc", "fcc"}, *const rules[] = {"linear", "cell"};
+    for (int q = 0; q < 2; q++)
+        for (int k = 0; k < 2; k++) {
+            char line[256];
+            int w = snprintf(line, sizeof line, "%s, %s rule, nu = 0.1, (E, nu) error %% at "
+                             "m = 3.015/4.015/5.015/6.015:", lat[q], rules[k]);
+            for (int j = 0; j < 4; j++) {
+                const struct lps_form f = {"", lat[q], 0, false, k == 1};
+                double E_m, nu_m;
+                int rc = lps_patch_run(&f, 0.1, 3.015 + j, rules[k], &E_m, &nu_m, err);
+                if (rc)
+                    return rc;
+                if (w > 0 && (size_t)w < sizeof line)
+                    w += snprintf(line + w, sizeof line - (size_t)w, " (%+.2f, %+.2f)",
+                                  100.0 * (E_m / LPS_E - 1.0), 100.0 * (nu_m / 0.1 - 1.0));
+            }
+            vreport_info(r, "pd-lps-patch: %s", line);
+        }
+    return SPALL_OK;
+}
+
 int pd_case_lps_patch(struct vreport *r, struct spall_error *err)
 {
     static const double nus[] = {0.1, 0.3, 0.45};
-    /* 0, 1: triangular; 2, 3: cubic 3D as they are; 4-6: with influence_correction
-     * cubic (pd_lps.c) on the square, sc and fcc lattices */
-    static const char *const forms[] = {"plane stress",          "plane strain",
-                                        "3D sc",                 "3D fcc",
-                                        "plane stress square, corrected",
-                                        "3D sc, corrected",      "3D fcc, corrected"};
-    static const char *const lat2[] = {"triangular", "triangular", "", "", "square"};
-    static const char *const lat3[] = {"", "", "sc", "fcc", "", "sc", "fcc"};
+    /* triangular (2D); cubic 3D as they are; with influence_correction cubic
+     * (pd_lps.c) on the square, sc and fcc lattices; the cell rule
+     * (pd_cellvol.c) at delta = LPS_CELL_M dx on sc and fcc */
+    static const struct lps_form forms[] = {
+        {"plane stress", "triangular", 1, false, false},
+        {"plane strain", "triangular", 2, false, false},
+        {"3D sc", "sc", 0, false, false},
+        {"3D fcc", "fcc", 0, false, false},
+        {"plane stress square, corrected", "square", 1, true, false},
+        {"3D sc, corrected", "sc", 0, true, false},
+        {"3D fcc, corrected", "fcc", 0, true, false},
+        {"3D sc, cell volumes, delta = 4.015 dx", "sc", 0, false, true},
+        {"3D fcc, cell volumes, delta = 4.015 dx", "fcc", 0, false, true},
+    };
+    const int nf = (int)(sizeof forms / sizeof forms[0]);
     int rc;
-    for (int fm = 0; fm < 7; fm++)
+    for (int fm = 0; fm < nf; fm++)
         for (int k = 0; k < 3; k++) {
+            const struct lps_form *f = &forms[fm];
             const double nu = nus[k];
-            char deck[1024];
-            double c[3];
-            const bool d2 = fm < 2 || fm == 4, corr = fm >= 4;
-            const char *icor = corr ? ", influence_correction: cubic" : "";
-            if (d2) {
-                snprintf(deck, sizeof deck,
-                         "model: {type: peridynamics, formulation: lps, plane: %s%s}\n"
-                         "materials:\n  m: {density: 1000, youngs_modulus: %g, poisson_ratio: "
-                         "%g}\n"
-                         "lattice: {type: %s, spacing: 1.0e-3, thickness: 1.0e-3}\n"
-                         "geometry:\n  p: {box: {min: [0, 0], max: [0.0205, 0.0205]}}\n"
-                         "body: {geometry: p, material: m}\nrun: {end_time: 1.0}\n",
-                         fm == 1 ? "plane_strain" : "plane_stress", icor, LPS_E, nu, lat2[fm]);
-                c[0] = c[1] = 0.01;
-                c[2] = 0.0;
-            } else {
-                snprintf(deck, sizeof deck,
-                         "model: {type: peridynamics, formulation: lps%s}\n"
-                         "materials:\n  m: {density: 1000, youngs_modulus: %g, poisson_ratio: "
-                         "%g}\n"
-                         "lattice: {type: %s, spacing: 1.0e-3}\n"
-                         "geometry:\n  p: {box: {min: [0, 0, 0], max: [0.0105, 0.0105, "
-                         "0.0105]}}\n"
-                         "body: {geometry: p, material: m}\nrun: {end_time: 1.0}\n",
-                         icor, LPS_E, nu, lat3[fm]);
-                c[0] = c[1] = c[2] = 0.005;
-            }
-            struct sim *s = NULL;
-            if ((rc = vlat_build("pd_lps_patch", deck, &s, err)))
+            double E_m, nu_m;
+            if ((rc = lps_patch_run(f, nu, f->cell ? LPS_CELL_M : 0.0, f->cell ? "cell" : NULL,
+                                    &E_m, &nu_m, err)))
                 return rc;
-            double c11 = 0.0, c12 = 0.0;
-            rc = uniaxial(s, nearest(s->p, c), &c11, &c12, err);
-            sim_destroy(&s);
-            if (rc)
-                return rc;
-            double nu_m, E_m;
-            if (fm == 0 || fm == 4) {
-                nu_m = c12 / c11;
-                E_m = c11 * (1.0 - nu_m * nu_m);
-            } else {
-                nu_m = c12 / (c11 + c12);
-                E_m = c11 * (1.0 + nu_m) * (1.0 - 2.0 * nu_m) / (1.0 - nu_m);
-            }
+            const bool tri = f->plane && !f->corrected, plain3 = !f->plane && !f->corrected &&
+                                                                  !f->cell;
             char q[96];
-            const char *src = fm < 2 ? "input E, nu; triangular lattice, interior particle"
-                                     : "input E, nu; cubic lattice, [100], interior particle";
-            const char *note = fm < 2 ? "1 %: issue 26 item 4; the triangular family's fourth "
-                                        "moment is isotropic"
-                               : corr ? "1 %: issue 26 item 4; the corrected influence makes "
-                                        "the fullest family's fourth moment isotropic"
-                                      : "1 %: issue 26 item 4; the cubic family's fourth moment "
-                                        "is not isotropic (C44 != (C11 - C12)/2)";
-            const char *gap = "cubic lattice: E and nu along [100] are not the isotropic "
-                              "ones (2 shear moduli, one alpha; docs/decks.md, LPS)";
-            snprintf(q, sizeof q, "%s nu = %.2f: E", forms[fm], nu);
+            const char *src = tri ? "input E, nu; triangular lattice, interior particle"
+                                  : "input E, nu; cubic lattice, [100], interior particle";
+            const char *note =
+                tri ? "1 %: issue 26 item 4; the triangular family's fourth moment is isotropic"
+                : f->corrected ? "1 %: issue 26 item 4; the corrected influence makes the "
+                                 "fullest family's fourth moment isotropic"
+                : f->cell ? "1 %: issue 26 item 4; cells cut by the horizon weighted by their "
+                            "volume inside it ([Seleson2014]): nu = 0.1 within 0.7 % for m = "
+                            "4.015 to 6.015 on sc and fcc (the linear rule: -1.5 to +1.7 %)"
+                          : "1 %: issue 26 item 4; the cubic family's fourth moment is not "
+                            "isotropic (C44 != (C11 - C12)/2)";
+            const char *gap = "cubic lattice, delta = 3.015 dx, linear partial volumes: the "
+                              "family's fourth moment sum w n_x^4 / sum w is 0.2016 (sc), "
+                              "0.1995 (fcc) against the isotropic 1/5, so E and nu along [100] "
+                              "are not the isotropic ones; the cell rule at delta = 4.015 dx "
+                              "meets 1 % (rows below; docs/decks.md, LPS)";
+            snprintf(q, sizeof q, "%s nu = %.2f: E", f->name, nu);
             if ((rc = vreport_check(r, q, "Pa", LPS_E, E_m, 0.01, true, src, note, err)))
                 return rc;
-            if ((fm == 2 || fm == 3) && !r->checks[r->n - 1].pass)
+            if (plain3 && !r->checks[r->n - 1].pass)
                 vreport_mark_gap(r, gap);
-            snprintf(q, sizeof q, "%s nu = %.2f: Poisson's ratio", forms[fm], nu);
+            snprintf(q, sizeof q, "%s nu = %.2f: Poisson's ratio", f->name, nu);
             if ((rc = vreport_check(r, q, "1", nu, nu_m, 0.01, true, src, note, err)))
                 return rc;
-            if ((fm == 2 || fm == 3) && !r->checks[r->n - 1].pass)
+            if (plain3 && !r->checks[r->n - 1].pass)
                 vreport_mark_gap(r, gap);
         }
-    return SPALL_OK;
+    return pd_lps_patch_study(r, err);
 }
 
 /*

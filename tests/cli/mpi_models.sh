@@ -2,7 +2,8 @@
 # Rank-count independence of models lifted from the issue-20 refusals:
 #  - peridynamics `formulation: lps` (state-based: each force call sends the
 #    owners' dilatations to their ghosts, a second halo after the positions)
-#    on a pre-cracked plate under traction;
+#    on a pre-cracked plate under traction (and with partial_volume_rule
+#    cell on 2 ranks);
 #  - the thermal lattice (conduction over bonds to ghosts, one halo of the
 #    temperatures per conduction sub-step; heating, expansion, melting; a
 #    fixed-temperature group) with two materials, and with one material and
@@ -22,10 +23,16 @@ sed 's/^model: {type: peridynamics}$/model: {type: peridynamics, formulation: lp
     "$2/tests/cli/decks/mpi_pd.yaml" > lps.yaml
 grep -q "formulation: lps" lps.yaml && grep -q "poisson_ratio: 0.22" lps.yaml ||
     { echo "FAIL: cannot make lps.yaml from tests/cli/decks/mpi_pd.yaml"; exit 1; }
+# the same with partial_volume_rule cell: families and halos reach delta + the
+# cell's circumradius (pd_cellvol.c)
+sed 's/formulation: lps}/formulation: lps, partial_volume_rule: cell}/' lps.yaml > lpscell.yaml
+grep -q "partial_volume_rule: cell" lpscell.yaml ||
+    { echo "FAIL: cannot make lpscell.yaml"; exit 1; }
 cp "$2/tests/cli/decks/mpi_thermal.yaml" thermal.yaml
-for deck in lps thermal; do
+for deck in lps lpscell thermal; do
     serial $deck
 done
+ranks lpscell 2
 # the references must break and melt bonds, else the test proves little
 lps_broken=$(col lps_serial/history.csv bonds_broken)
 awk -v b="$lps_broken" 'BEGIN {exit !(b > 50)}' || { echo "FAIL lps broke $lps_broken bonds"; fail=1; }

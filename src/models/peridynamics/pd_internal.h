@@ -49,6 +49,7 @@ struct pd_options {
     bool break_late;         /**< a bond past s0 acts once more (PDLAMMPS order) */
     bool full_bonds;         /**< bond_storage full: no compact families (pd_compact.c) */
     bool family_at_delta;    /**< family ends at delta, not delta + dx/2 (PDLAMMPS rule) */
+    bool cell_volumes;       /**< partial_volume_rule cell: beta = cut cell fraction (pd_cellvol.c) */
     bool surface_correction; /**< energy method (Madenci & Oterkus 2014 sec. 4.2) */
     enum pd_quasi quasi;
     enum pd_fiber_model fiber_model;

@@ -25,6 +25,7 @@
  * forces, bench/pd_lps_vs_lammps.sh).
  */
 #include "models/peridynamics/pd_internal.h"
+#include "models/peridynamics/pd_cellvol.h"
 
 #include "core/bond_list.h"
 #include "core/distinct.h"
@@ -51,11 +52,21 @@ static double lps_beta(const struct model *m, double xi)
     return (m->delta + 0.5 * m->dx - xi) / m->dx;
 }
 
-/* omega beta of a bond of length xi without the cubic factor */
-static double lps_ob0(const struct model *m, double xi)
+/* omega beta of a bond of length xi and reference offset e without the
+ * cubic factor; beta of the cell rule from the cut cell (pd_cellvol.c) */
+static int lps_ob0(const struct model *m, double xi, const double *e, double *ob,
+                   struct spall_error *err)
 {
-    double om = m->lps.influence == PD_OMEGA_INVERSE ? m->delta / xi : 1.0;
-    return om * lps_beta(m, xi);
+    double om = m->lps.influence == PD_OMEGA_INVERSE ? m->delta / xi : 1.0, beta;
+    if (m->lps.cell) {
+        int rc = pd_cellvol_beta(m->lps.cell, e, m->dx, &beta, err);
+        if (rc)
+            return rc;
+    } else {
+        beta = lps_beta(m, xi);
+    }
+    *ob = om * beta;
+    return SPALL_OK;
 }
 
 void pd_lps_free(struct pd_lps *L)
@@ -123,18 +134,25 @@ static int cubic_gamma(struct model *m, const struct sim *sim, struct spall_erro
             most = bl->offset[i + 1] - bl->offset[i];
         }
     double s0 = 0.0, s1 = 0.0;
+    int rc = SPALL_OK;
     for (size_t s = best != SIZE_MAX ? bl->offset[best] : 0;
-         best != SIZE_MAX && s < bl->offset[best + 1]; s++) {
+         !rc && best != SIZE_MAX && s < bl->offset[best + 1]; s++) {
         size_t j = (size_t)bl->partner[s];
         const double xi = bond_rest(bl, s);
         double e[3] = {0, 0, 0}, P, Q;
         for (int c = 0; c < sim->dim; c++)
             e[c] = p->x0[c][j] - p->x0[c][best];
         cubic_harmonics(sim, e, xi, &P, &Q);
-        const double w = lps_ob0(m, xi) * xi * xi * p->volume[j];
+        double ob = 0.0;
+        rc = lps_ob0(m, xi, e, &ob, err);
+        const double w = ob * xi * xi * p->volume[j];
         s0 += w * Q;
         s1 += w * P * Q;
     }
+    if (ps) /* before the collective choice below: every window or none */
+        rc = par_agree(rc, err);
+    if (rc)
+        return rc;
     L->gamma = s1 != 0.0 ? -s0 / s1 : 0.0;
     if (ps) { /* the serial choice: the most bonds, then the lowest global id */
         const bool have = best != SIZE_MAX;
@@ -153,13 +171,13 @@ static int lps_ob(const struct model *m, const struct sim *sim, size_t i, size_t
 {
     const struct bond_list *bl = m->bl;
     const double xi = bond_rest(bl, s);
-    *ob = lps_ob0(m, xi);
-    if (!m->lps.cubic)
-        return SPALL_OK;
     const size_t j = (size_t)bl->partner[s];
     double e[3] = {0, 0, 0}, P, Q;
     for (int c = 0; c < sim->dim; c++)
         e[c] = sim->p->x0[c][j] - sim->p->x0[c][i];
+    int rc = lps_ob0(m, xi, e, ob, err);
+    if (rc || !m->lps.cubic)
+        return rc;
     cubic_harmonics(sim, e, xi, &P, &Q);
     const double f = 1.0 + m->lps.gamma * P;
     if (!(f > 0.0))
@@ -199,7 +217,7 @@ static int lps_build_kinds(struct model *m, struct sim *sim, struct spall_error 
     for (size_t i = 0; !rc && i < n && fits; i++)
         for (size_t s = bl->offset[i]; !rc && s < bl->offset[i + 1] && fits; s++) {
             const double rest = bond_rest(bl, s);
-            double ob;
+            double ob = 0.0;
             rc = lps_ob(m, sim, i, s, &ob, err);
             unsigned char key[PD_KIND_KEY];
             memcpy(key, &rest, sizeof rest);
@@ -244,6 +262,13 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
         !(L->alpha = calloc(n ? n : 1, sizeof(double))) ||
         !(L->bcoef = calloc(n ? n : 1, sizeof(double))))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS state");
+    /* partial_volume_rule cell: the cut cells' fractions, met while the
+     * influence is set up below (the cache lives for this call only) */
+    struct pd_cellvol cv = {0};
+    if (!rc && m->opt.cell_volumes &&
+        !(rc = pd_cellvol_init(&cv, sim->lattice.kind, sim->dim, m->delta / m->dx,
+                               sim->lattice.angle, err)))
+        L->cell = &cv;
     if (L->cubic && par_setup_window(sim)) /* its choice is collective there */
         rc = par_agree(rc, err);
     if (!rc && L->cubic)
@@ -251,16 +276,17 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
     /* compact families (pd_compact_predicted): the table, built directly */
     if (!rc && !m->bl->type)
         rc = lps_build_kinds(m, sim, err);
+    if (!rc && !m->kind) {
+        if (!(L->ob = calloc(nh ? nh : 1, sizeof(double))))
+            rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS state");
+        for (size_t i = 0; !rc && i < n; i++)
+            for (size_t s = m->bl->offset[i]; !rc && s < m->bl->offset[i + 1]; s++)
+                rc = lps_ob(m, sim, i, s, &L->ob[s], err);
+    }
+    L->cell = NULL;
+    pd_cellvol_free(&cv);
     if (rc)
         return rc;
-    if (!m->kind) {
-        if (!(L->ob = calloc(nh ? nh : 1, sizeof(double))))
-            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS state");
-        for (size_t i = 0; i < n; i++)
-            for (size_t s = m->bl->offset[i]; s < m->bl->offset[i + 1]; s++)
-                if ((rc = lps_ob(m, sim, i, s, &L->ob[s], err)))
-                    return rc;
-    }
     if (L->surface) { /* after the cubic factors: it corrects the family as weighted */
         if ((rc = pd_lps_surface_init(m, sim, err)))
             return rc;

@@ -16,6 +16,7 @@
 struct model;
 struct sim;
 struct spall_error;
+struct pd_cellvol;
 
 /** Influence function omega(xi) (deck `model.influence`). */
 enum pd_influence {
@@ -28,6 +29,7 @@ struct pd_lps {
     enum pd_influence influence;
     bool cubic;     /**< influence_correction cubic: omega (1 + gamma P(n)) (pd_lps.c) */
     double gamma;   /**< its gamma (0 without the correction) */
+    struct pd_cellvol *cell; /**< partial_volume_rule cell, during pd_lps_init only */
     double *wvol;   /**< weighted volume m_i = sum omega beta |xi|^2 V_j [m^5] */
     double *theta;  /**< dilatation of the last force call */
     double *alpha;  /**< deviatoric coefficient d (d + 2) mu / m_i */

@@ -16,11 +16,14 @@
  *     plane: plane_stress | plane_strain   2D only (default plane_stress)
  *     partial_volume: bool      pmb: beta_ij for sites cut by the horizon
  *                               (default true)
- *     partial_volume_rule: linear | lammps   linear (default): family to
- *                               delta + dx/2, beta = (delta + dx/2 - xi)/dx
+ *     partial_volume_rule: linear | lammps | cell   linear (default): family
+ *                               to delta + dx/2, beta = (delta + dx/2 - xi)/dx
  *                               in the cut shell; lammps: same beta but the
  *                               family ends at delta (Parks et al. PDLAMMPS,
- *                               pair peri/pmb), for like-for-like races
+ *                               pair peri/pmb), for like-for-like races;
+ *                               cell (lps/eps): beta = the fraction of the
+ *                               neighbour's lattice cell inside the horizon
+ *                               (pd_cellvol.c)
  *     break_order: immediate | next_step   immediate (default): a bond past
  *                               s0 carries no force from that step on;
  *                               next_step: it acts in the step it breaks
@@ -77,6 +80,7 @@
  * damage_sum.
  */
 #include "models/peridynamics/pd_internal.h"
+#include "models/peridynamics/pd_cellvol.h"
 
 #include "core/bond_list.h"
 #include "core/exact_sum.h"
@@ -132,7 +136,7 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
     static const char *const planes[] = {"plane_stress", "plane_strain", NULL};
     static const char *const qs[] = {"off", "adr", NULL};
     static const char *const fm[] = {"lattice", "angular", NULL};
-    static const char *const pvr[] = {"linear", "lammps", NULL};
+    static const char *const pvr[] = {"linear", "lammps", "cell", NULL};
     static const char *const bo[] = {"immediate", "next_step", NULL};
     static const char *const bst[] = {"compact", "full", NULL};
     static const char *const mmo[] = {"bk", "off", NULL};
@@ -190,12 +194,19 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
         m->opt.mixed_mode = mmode == 0;
         m->opt.fiber_plane = mc == 1;
         m->opt.family_at_delta = pr == 1;
+        m->opt.cell_volumes = pr == 2;
         m->opt.break_late = b == 1;
         m->opt.full_bonds = bs == 1;
         m->opt.lps = fo >= 1; /* eps is lps with a plastic deviatoric state */
         m->opt.eps = fo == 2;
         m->lps.influence = (enum pd_influence)in;
         m->lps.cubic = ic == 1;
+        if (m->opt.cell_volumes && (!m->opt.lps || !m->opt.partial_volume)) {
+            free(m);
+            return deck_error_key(err, params, "partial_volume_rule", "partial_volume_rule "
+                                  "cell is for formulation lps or eps with partial_volume "
+                                  "true");
+        }
         if (m->lps.cubic && !m->opt.lps) {
             free(m);
             return deck_error_key(err, params, "influence_correction", "influence_correction "
@@ -400,6 +411,16 @@ static int pd_init(struct model *m, struct sim *sim, struct spall_error *err)
         m->delta = m->opt.horizon_factor * m->dx;
         radius = m->opt.partial_volume && !m->opt.family_at_delta ? m->delta + 0.5 * m->dx
                                                                    : m->delta * (1.0 + 1e-12);
+        if (m->opt.cell_volumes) { /* every site whose cell the sphere cuts */
+            const double reach = pd_cellvol_reach(sim->lattice.kind);
+            if (!(reach > 0.0) || (sim->dim == 3) != (sim->lattice.kind == LATTICE_SC ||
+                                                      sim->lattice.kind == LATTICE_FCC))
+                return spall_error_set_key(err, SPALL_ERR_INPUT, "model.partial_volume_rule",
+                                           "partial_volume_rule cell is for the triangular, "
+                                           "square, sc and fcc lattices (got %s)",
+                                           lattice_kind_name(sim->lattice.kind));
+            radius = m->delta + reach * m->dx * (1.0 + 1e-12);
+        }
     }
     /* isotropic constants */
     int rc;
@@ -657,7 +678,8 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
         m->delta, m->delta / m->dx,
         sim->dim == 2 ? (m->opt.plane == PD_PLANE_STRAIN ? "plane strain" : "plane stress")
                       : sim->dim == 3 ? "3D" : "1D",
-        m->opt.partial_volume ? "on" : "off", (m->opt.surface_correction || m->lps.surface) ? "on" : "off",
+        m->opt.partial_volume ? (m->opt.cell_volumes ? "on (cell rule)" : "on") : "off",
+        (m->opt.surface_correction || m->lps.surface) ? "on" : "off",
         m->opt.quasi == PD_QS_ADR ? "adr" : "off", m->bl ? bond_list_count(m->bl) : 0);
     if (m->bl) { /* the allocations themselves: the memory target of issue 25 */
         const size_t n = sim->p->n_owned, nb = pd_model_bytes(m, n);
@@ -700,7 +722,11 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
 static double pd_setup_range(const struct model *m, const struct sim *sim)
 {
     const double dx = sim->lattice.spacing;
-    return m->opt.variant == PD_PDLM ? 1.05 * dx : (m->opt.horizon_factor + 0.5) * dx;
+    if (m->opt.variant == PD_PDLM)
+        return 1.05 * dx;
+    if (m->opt.cell_volumes) /* as pd_init: to the farthest cell the sphere cuts */
+        return (m->opt.horizon_factor + pd_cellvol_reach(sim->lattice.kind) * (1.0 + 1e-12)) * dx;
+    return (m->opt.horizon_factor + 0.5) * dx;
 }
 
 static size_t pd_interactions(const struct model *m, const struct sim *sim)
