@@ -104,7 +104,7 @@ static const struct vcase cases[] = {
          "(gap; 0.0 deg with fiber_plane), starts 0.25-0.72 mm from the tip; 20 of 21 checks "
          "pass. Standard tier: B-0-45.")},
     {"pd-lps-patch", "LPS patch test: E and nu for nu = 0.1, 0.3, 0.45, 2D and 3D",
-     VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_patch, TIER_ALL},
+     VKIND_VERIFICATION, VGATE_QUICK, NULL, pd_case_lps_patch, TIER_ALL},
     {"pd-lps-surface", "LPS surface correction: E and nu of small bodies with free surfaces",
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_surface, TIER_ALL},
     {"pd-interface-crack", "LPS plate of two materials: the crack runs along the weaker "
