@@ -72,7 +72,8 @@ int pd_cellvol_init(struct pd_cellvol *c, enum lattice_kind kind, int dim, doubl
     int nc = 0;
     switch (kind) {
     case LATTICE_SC:
-        for (int a = 0; a < 3; a++)
+    case LATTICE_SQUARE: /* +-e_a: cube, square */
+        for (int a = 0; a < (kind == LATTICE_SC ? 3 : 2); a++)
             for (int sg = -1; sg <= 1; sg += 2) {
                 c->nv[nc][0] = c->nv[nc][1] = c->nv[nc][2] = 0.0;
                 c->nv[nc++][a] = sg;
@@ -86,13 +87,6 @@ int pd_cellvol_init(struct pd_cellvol *c, enum lattice_kind kind, int dim, doubl
                     c->nv[nc][(a + 1) % 3] = s1 * sqrt(0.5);
                     c->nv[nc++][(a + 2) % 3] = s2 * sqrt(0.5);
                 }
-        break;
-    case LATTICE_SQUARE:
-        for (int a = 0; a < 2; a++)
-            for (int sg = -1; sg <= 1; sg += 2) {
-                c->nv[nc][0] = c->nv[nc][1] = c->nv[nc][2] = 0.0;
-                c->nv[nc++][a] = sg;
-            }
         break;
     case LATTICE_TRIANGULAR: /* rows along x (lattice frame) */
         for (int k = 0; k < 6; k++) {
