@@ -7,7 +7,9 @@
 # rank's cause once, and leave no output behind (set-up sites) or the
 # outputs already written untouched (the restart into its own directory).
 # The faulted ranks vary (the last, a middle and rank 0), so the cause
-# travels to rank 0, which prints it, from any of them.
+# travels to rank 0, which prints it, from any of them.  On 3 ranks (the
+# largest of SPALL_MPI_RANK_COUNTS), and in the Release suite three sites
+# again on 2.
 # Usage: mpi_fault.sh SPALL SRC MPIEXEC
 set -u
 spall="$1"
@@ -19,8 +21,12 @@ export OMP_NUM_THREADS=1
 np="${SPALL_MPI_RANK_COUNTS:-3}"
 np="${np##* }" # the largest listed rank count (ASan: 3)
 [ "$np" -ge 2 ] 2>/dev/null || np=3
-last=$((np - 1))
-launch="timeout 60 $mpiexec --allow-run-as-root --oversubscribe -q -np $np"
+on() { # rank count: the launches from here on
+    np="$1"
+    last=$((np - 1))
+    launch="timeout 60 $mpiexec --allow-run-as-root --oversubscribe -q -np $np"
+}
+on "$np"
 fail=0
 # the lattice plate (distributed set-up) with a checkpoint every 10 steps;
 # the same replicated (Zoltan partitions the whole body); the LPS plate with
@@ -80,6 +86,14 @@ before="$(cd run && md5sum ./* | sort)"
 faulted restart "$last" lat.yaml run kept --restart run
 if [ "$(cd run && md5sum ./* | sort)" != "$before" ]; then
     echo "FAIL restart: the run's files changed"; fail=1
+fi
+# the Release suite (all rank counts) also on 2 ranks: a set-up, a frame
+# and a checkpoint site, rank 1 and rank 0 failing
+if [ -z "${SPALL_MPI_RANK_COUNTS:-}" ]; then
+    on 2
+    faulted setup_fill 1 lat.yaml o2_fill absent
+    faulted frame 1 lat.yaml o2_frame kept
+    faulted checkpoint 0 lat.yaml o2_ckpt kept
 fi
 [ $fail -eq 0 ] && echo "mpi_fault: all passed"
 [ $fail -eq 0 ]
