@@ -39,6 +39,11 @@ struct spall_error {
     int code;
     char msg[SPALL_ERROR_MSG_LEN];
     char key[SPALL_ERROR_KEY_LEN];
+    /** Non-zero once the MPI error agreement handed this error to every rank
+     *  (core/parallel/comm.h, par_agree): all ranks are then on their way
+     *  out with it, and further agreements pass it on without a message.
+     *  Reset by spall_error_clear() and by an agreement that all ranks pass. */
+    int agreed;
 };
 
 /** Record an error; returns @p code so callers can `return spall_error_set(...)`.

@@ -83,4 +83,5 @@ void spall_error_clear(struct spall_error *err)
     err->code = 0;
     err->msg[0] = '\0';
     err->key[0] = '\0';
+    err->agreed = 0;
 }

@@ -390,6 +390,8 @@ void sim_update_energy(struct sim *s)
 int sim_initial_forces(struct sim *s, struct spall_error *err)
 {
     int rc = compute_all_forces(s, 0.0, false, err);
+    if (s->par) /* distributed set-up: the sums below are collective */
+        rc = par_agree(rc, err);
     if (rc)
         return rc;
     impose_velocities(s, 0.0, 0.0, 0.5 * s->dt, 1);

@@ -13,6 +13,7 @@
 #include "core/geometry.h"
 #include "core/particles.h"
 #include "core/model.h"
+#include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/setup_dist.h"
 #include "spall/error.h"
@@ -311,6 +312,8 @@ int sim_prepare(struct sim *s, struct spall_error *err)
         if (!(s->p->mass[i] > 0.0))
             return spall_error_set(err, SPALL_ERR_INTERNAL, "particle %zu has no mass", i);
     int rc = s->ops->init(s->model, s, err);
+    if (!rc)
+        rc = par_fault("model_init", err);
     if (rc)
         return rc;
     s->n_precut = 0;
@@ -332,8 +335,12 @@ int sim_prepare(struct sim *s, struct spall_error *err)
     if (rc)
         return rc;
 
+    /* each rank built its window (s->setup): the whole body's limit, a
+     * reduction that a rank which failed above meets as an agreement first */
+    if (s->setup && (rc = par_agree(SPALL_OK, err)))
+        return rc;
     s->dt_limit = fmin(s->ops->stable_dt(s->model, s), particle_contact_stable_dt(s));
-    if (s->setup) /* each rank built its window: the whole body's limit */
+    if (s->setup)
         s->dt_limit = par_setup_dt_limit(s->dt_limit);
     if (!(s->dt_limit > 0.0) || !isfinite(s->dt_limit))
         return spall_error_set(err, SPALL_ERR_PHYSICS,

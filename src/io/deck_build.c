@@ -322,9 +322,10 @@ static int parse_regions(struct build_ctx *c, const struct deck_node *root, stru
             return rc;
         }
         geom_destroy(&g);
-        if (deck_setup_dist_count(c->sim, idx, n) == 0) {
+        size_t in_body = 0;
+        if ((rc = deck_setup_dist_count(c->sim, idx, n, &in_body, err)) || in_body == 0) {
             free(idx);
-            return deck_error(err, r, "region contains no particle of the body");
+            return rc ? rc : deck_error(err, r, "region contains no particle of the body");
         }
         for (size_t q = 0; q < n; q++)
             c->sim->p->material[idx[q]] = mat;
@@ -377,7 +378,13 @@ static int parse_groups(struct build_ctx *c, const struct deck_node *root, struc
             return rc;
         }
         char why[300] = ""; /* the likely cause: a region thinner than the spacing */
-        const bool empty = deck_setup_dist_count(c->sim, idx, n) == 0; /* the whole body's */
+        size_t in_body = 0; /* the whole body's */
+        if ((rc = deck_setup_dist_count(c->sim, idx, n, &in_body, err))) {
+            geom_destroy(&g);
+            free(idx);
+            return rc;
+        }
+        const bool empty = in_body == 0;
         if (empty)
             setup_empty_group_hint(c->sim, g, why, sizeof why);
         geom_destroy(&g);
@@ -533,8 +540,10 @@ static int parse_bcs(struct build_ctx *c, const struct deck_node *root, struct s
             const struct group *g = &c->sim->groups[b.group];
             /* default loaded area: each boundary particle carries the
              * cross-section of its lattice cell, volume / spacing */
-            b.area = (double)deck_setup_dist_count(c->sim, g->idx, g->n) *
-                     lattice_site_volume(&c->sim->lattice, c->sim->thickness) /
+            size_t in_body = 0;
+            if ((rc = deck_setup_dist_count(c->sim, g->idx, g->n, &in_body, err)))
+                return rc;
+            b.area = (double)in_body * lattice_site_volume(&c->sim->lattice, c->sim->thickness) /
                      c->sim->lattice.spacing;
             if ((rc = deck_double_pos(n, "area", false, &b.area, err)))
                 return rc;

@@ -142,7 +142,7 @@ static int incl_entry(struct sim *s, const struct deck_node *e, size_t entry,
     /* assign the material: particles whose reference position is inside */
     const struct particles *p = s->p;
     size_t *hit_idx = malloc((p->n_owned ? p->n_owned : 1) * sizeof *hit_idx);
-    if (!hit_idx) /* (the same on every rank: the deck's sizes) */
+    if (!hit_idx) /* distributed: the others meet it at their next agreement */
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory placing inclusions");
     size_t hit = 0;
     for (size_t i = 0; i < p->n_owned; i++) {
@@ -159,9 +159,12 @@ static int incl_entry(struct sim *s, const struct deck_node *e, size_t entry,
         }
     }
     /* the whole body's count: a distributed set-up's window holds part of it */
-    hit = deck_setup_dist_count(s, hit_idx, hit);
+    size_t in_body = 0;
+    rc = deck_setup_dist_count(s, hit_idx, hit, &in_body, err);
     free(hit_idx);
-    if (hit == 0)
+    if (rc)
+        return rc;
+    if (in_body == 0)
         return deck_error(err, e, "inclusions[%zu]: no particle lies inside the %ld inclusions "
                           "(radius below the lattice spacing?)", entry, count);
     return SPALL_OK;

@@ -123,12 +123,21 @@ int deck_setup_dist_fill(struct sim *s, const struct lattice_spec *spec, const s
     size_t first = s->p->n;
     int rc = lattice_fill_window(s->p, spec, g, material, &w, err);
     *added = s->p->n - first;
+    if (!rc)
+        rc = par_fault("setup_fill", err);
     if (rc)
         return rc;
     return par_setup_filled(s, &w, first, err);
 }
 
-size_t deck_setup_dist_count(const struct sim *s, const size_t *idx, size_t n)
+int deck_setup_dist_count(const struct sim *s, const size_t *idx, size_t n, size_t *count,
+                          struct spall_error *err)
 {
-    return s->setup ? par_setup_count(s, idx, n) : n;
+    *count = n;
+    if (!s->setup)
+        return SPALL_OK;
+    int rc = par_agree(SPALL_OK, err);
+    if (!rc)
+        *count = par_setup_count(s, idx, n);
+    return rc;
 }

@@ -42,9 +42,11 @@ void deck_setup_dist_bodies(struct sim *s, const struct deck_node *root,
 int deck_setup_dist_fill(struct sim *s, const struct lattice_spec *spec, const struct geom *g,
                          int32_t material, size_t *added, struct spall_error *err);
 
-/** Members of a set of local indices over the whole body: idx's count on
- *  the replicated set-up, the sum of the ranks' blocks on the distributed
- *  one (collective there). */
-size_t deck_setup_dist_count(const struct sim *s, const size_t *idx, size_t n);
+/** Members of a set of local indices over the whole body into *count:
+ *  idx's count on the replicated set-up, the sum of the ranks' blocks on the
+ *  distributed one (collective there, and agreed first: a rank that failed
+ *  since the last agreement stops all here; docs/parallel.md). */
+int deck_setup_dist_count(const struct sim *s, const size_t *idx, size_t n, size_t *count,
+                          struct spall_error *err);
 
 #endif

@@ -599,6 +599,13 @@ static int write_xdmf(const struct field_writer *w, struct spall_error *err)
     return rc;
 }
 
+/* Distributed (s->par): the frame's file is opened and its index bounds
+ * reduced collectively, so a failure of one rank is agreed before each. */
+static int frame_agree(const struct sim *s, int rc, struct spall_error *err)
+{
+    return s->par ? par_agree(rc, err) : rc;
+}
+
 int field_writer_write(struct field_writer *w, const struct sim *s, struct spall_error *err)
 {
     size_t n = s->p->n_owned;
@@ -606,13 +613,16 @@ int field_writer_write(struct field_writer *w, const struct sim *s, struct spall
     for (size_t k = 0; k < w->n_fields; k++)
         if (need < (n ? n : 1) * (size_t)w->fields[k].ncomp)
             need = (n ? n : 1) * (size_t)w->fields[k].ncomp;
+    int rc = SPALL_OK;
     if (need > w->buf_cap) {
         double *b = realloc(w->buf, need * sizeof *b);
-        if (!b)
-            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu output values",
-                                   need);
-        w->buf = b;
-        w->buf_cap = need;
+        if (!b) {
+            rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu output values",
+                                 need);
+        } else {
+            w->buf = b;
+            w->buf_cap = need;
+        }
     }
 
     char h5name[48], tmpname[56];
@@ -620,11 +630,12 @@ int field_writer_write(struct field_writer *w, const struct sim *s, struct spall
     snprintf(tmpname, sizeof tmpname, ".%s.tmp", h5name);
     char *final = path_join(w->dir, h5name);
     char *tmp = path_join(w->dir, tmpname);
-    int rc = SPALL_OK;
-    if (!final || !tmp) {
+    if (!rc && (!final || !tmp))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory writing frame");
+    if (!rc)
+        rc = par_fault("frame", err);
+    if ((rc = frame_agree(s, rc, err)))
         goto done;
-    }
     struct h5_quiet q;
     h5_quiet_begin(&q);
     rc = write_frame_h5(w, s, tmp, final, n, err);
@@ -638,8 +649,9 @@ int field_writer_write(struct field_writer *w, const struct sim *s, struct spall
     if (root && rename(tmp, final) != 0) {
         remove(tmp);
         rc = spall_error_set(err, SPALL_ERR_IO, "cannot rename '%s' to '%s'", tmp, final);
-        goto done;
     }
+    if ((rc = frame_agree(s, rc, err))) /* the index's bounds below are reduced */
+        goto done;
     size_t old_len = w->grids.len, old_bodies = w->bodies.len;
     if (append_xdmf_grid(w, s, h5name, s->t, s->step, par_n_global(s)) || save_grids(w)) {
         w->grids.len = old_len;

@@ -14,6 +14,7 @@
 
 #include "core/bond_list.h"
 #include "core/fragments.h"
+#include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/particles.h"
 #include "core/rigid.h"
@@ -210,9 +211,13 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     struct run_balance rb;
     memset(&rb, 0, sizeof rb);
     int rc = deck_load_file(&d, opt->deck_path, err);
-    if (rc)
-        return rc;
-    if ((rc = setup_check_units(d, err))) /* unit slips, before anything is built */
+    if (!rc)
+        rc = par_fault("deck", err);
+    if (!rc)
+        rc = setup_check_units(d, err); /* unit slips, before anything is built */
+    /* mpirun: a deck one rank cannot read stops all before the set-up's
+     * collectives (docs/parallel.md, "Error agreement") */
+    if ((rc = run_par_agree(rc, err)))
         goto done;
     if (opt->threads > 0)
         omp_set_num_threads(opt->threads);
@@ -236,7 +241,8 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
                             err)))
         goto done;
     bool resume = ck.restarted && run_ckpt_same_dir(&ck);
-    if ((rc = setup_check_cost(d, s, &ro, dir, opt->yes, &setup, err)))
+    /* the free disk space is each rank's own view: agreed */
+    if ((rc = run_par_agree(setup_check_cost(d, s, &ro, dir, opt->yes, &setup, err), err)))
         goto done;
 
     /* all checks passed: now, and only now, touch the file system */
@@ -265,8 +271,9 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         goto done;
 
     struct history_layout hl;
-    if (s->ops->bonds && s->ops->bonds(s->model) &&
-        (rc = fragments_create(&frag, par_n_global(s), err)))
+    if (s->ops->bonds && s->ops->bonds(s->model))
+        rc = fragments_create(&frag, par_n_global(s), err);
+    if ((rc = run_par_agree(rc, err)))
         goto done;
     hl.frag = frag;
     history_columns(s, &hl);
@@ -282,7 +289,10 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         ro.field_every = s->n_steps / 20 > 0 ? s->n_steps / 20 : 1;
         frames_on = 1;
     }
-    if ((rc = field_writer_create(&fw, dir, s, ro.n_fields ? ro.fields : NULL, ro.n_fields, err)))
+    rc = field_writer_create(&fw, dir, s, ro.n_fields ? ro.fields : NULL, ro.n_fields, err);
+    if (!rc)
+        rc = par_fault("output_open", err);
+    if ((rc = run_par_agree(rc, err)))
         goto done;
     long hist_every = ro.history_every > 0 ? ro.history_every
                                             : (s->n_steps / 2000 > 0 ? s->n_steps / 2000 : 1);
@@ -337,8 +347,11 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
         if ((rc = run_balance_step(&rb, s, hist_row, log, err))) /* mpirun: rebalancing */
             break;
         int sig = run_signal_agreed(); /* distributed: the same step on every rank */
+        /* agreed: a rank that failed before the checkpoint's file was
+         * opened meets the others' first agreement inside the write */
         if ((ck.opt.on || sig) &&
-            (rc = run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, log, err)))
+            (rc = run_par_agree(run_ckpt_maybe(&ck, s, hw, fw, next_frame_t, sig != 0, log, err),
+                                err)))
             break;
         progress_update_sim(&pr, s);
         if ((res->signal = sig))

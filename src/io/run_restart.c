@@ -105,6 +105,8 @@ int run_ckpt_begin(struct run_ckpt *c, const struct spall_run_options *opt, cons
     if (!rc)
         rc = collect_state(c, s, err);
     if (!rc)
+        rc = par_fault("restart", err);
+    if (!rc) /* each rank reads the whole file itself; the caller agrees */
         rc = checkpoint_read(c->file, s, c->fs, d, &c->meta, err);
     if (rc)
         return rc;
@@ -198,7 +200,9 @@ int run_ckpt_maybe(struct run_ckpt *c, struct sim *s, const struct history_write
      * slots are registered afresh for every checkpoint */
     field_state_destroy(&c->fs);
     int rc = collect_state(c, s, err);
-    if (rc)
+    if (!rc)
+        rc = par_fault("checkpoint", err);
+    if (rc) /* distributed: the caller agrees (run.c) */
         return rc;
     struct checkpoint_meta m = {.frames = (int64_t)field_writer_frames(fw),
                                 /* distributed: rank 0 writes history.csv */

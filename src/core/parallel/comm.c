@@ -96,11 +96,20 @@ int par_agree(int rc, struct spall_error *err)
 #ifdef SPALL_HAVE_MPI
     if (!par_active() || par_size() == 1)
         return rc;
+    /* every rank holds this error already (an earlier agreement) and is on
+     * its way out with it: the ranks' ways out need not pass the same number
+     * of agreement points (the rank that failed met the others' next one
+     * from wherever it failed), so none of them may wait for the others here */
+    if (rc && err && err->agreed)
+        return rc;
     int size = par_size();
     int mine = rc ? par_rank() : size, first = size;
     MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-    if (first == size)
+    if (first == size) {
+        if (err) /* all passed: an error record kept from before is no longer news */
+            err->agreed = 0;
         return 0;
+    }
     struct spall_error e = {0};
     if (par_rank() == first) {
         if (err)
@@ -108,6 +117,7 @@ int par_agree(int rc, struct spall_error *err)
         e.code = rc;
     }
     MPI_Bcast(&e, (int)sizeof e, MPI_BYTE, first, MPI_COMM_WORLD);
+    e.agreed = 1;
     if (err)
         *err = e;
     return e.code ? e.code : SPALL_ERR_INTERNAL;
@@ -115,6 +125,31 @@ int par_agree(int rc, struct spall_error *err)
     (void)err;
     return rc;
 #endif
+}
+
+int par_fault(const char *site, struct spall_error *err)
+{
+    /* one getenv per visit: the sites are set-up steps and file writes,
+     * never the step's loops, so the hook costs nothing a run could see */
+    const char *spec = getenv("SPALL_FAULT");
+    if (!spec || !spec[0])
+        return SPALL_OK;
+    const size_t n = strlen(site);
+    const int rank = par_rank();
+    for (const char *p = spec; *p;) {
+        const char *comma = strchr(p, ',');
+        const size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        if (len > n + 1 && strncmp(p, site, n) == 0 && p[n] == ':') {
+            char *end = NULL;
+            const long r = strtol(p + n + 1, &end, 10);
+            if (end == p + len && r == rank)
+                return spall_error_set(err, SPALL_ERR_IO,
+                                       "fault injected at '%s' on rank %d (SPALL_FAULT=%s)", site,
+                                       rank, spec);
+        }
+        p += len + (comma ? 1 : 0);
+    }
+    return SPALL_OK;
 }
 
 double par_min_double(double v)

@@ -13,7 +13,18 @@
  * Error agreement: a failure on one rank must stop every rank with one
  * message, never a hang.  Every place where ranks can fail on their own
  * (set-up, a step, a write) ends in par_agree(), a collective that hands all
- * ranks the error of the lowest failing rank; only rank 0 prints it.
+ * ranks the error of the lowest failing rank; only rank 0 prints it.  The
+ * rule that makes this hold (docs/parallel.md, "Error agreement"): every
+ * other collective a rank can reach after it may have failed alone is
+ * preceded by a par_agree(), and a rank that fails returns its error to the
+ * next par_agree() without entering any other collective.  That agreement
+ * then meets the others' next one, wherever each stands; from then on the
+ * error is marked agreed (spall_error.agreed) and travels out on every rank
+ * without further messages, however many agreement points each way out has.
+ *
+ * Fault injection (par_fault): SPALL_FAULT=site:rank[,site:rank...] makes
+ * that rank fail at that site, for the tests of the agreement
+ * (tests/cli/mpi_fault.sh; the sites are listed in docs/parallel.md).
  */
 #ifndef SPALL_CORE_PARALLEL_COMM_H
 #define SPALL_CORE_PARALLEL_COMM_H
@@ -41,6 +52,11 @@ int par_size(void);
  *  of the lowest failing rank on every rank and copies that rank's error
  *  (code, message, key) into @p err on all of them; 0 when all succeeded. */
 int par_agree(int rc, struct spall_error *err);
+
+/** Fault injection for the agreement's tests: SPALL_FAULT (a comma-separated
+ *  list of site:rank) names @p site with this rank: returns SPALL_ERR_IO with
+ *  a message naming the site and rank, else SPALL_OK.  Any rank count. */
+int par_fault(const char *site, struct spall_error *err);
 
 /** Global reductions (collective under MPI); order-independent operations only. */
 double par_min_double(double v);

@@ -188,25 +188,31 @@ static int partition(const struct sim *s, const struct bond_list *bl, int *owner
     struct par_zobjs z = {n * (size_t)rank / (size_t)size, n * (size_t)(rank + 1) / (size_t)size,
                           NULL, s->p->x0, s->p->dim, bl, 0};
     float ver = 0.0f;
-    if (Zoltan_Initialize(0, NULL, &ver) != ZOLTAN_OK)
-        return spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Initialize failed");
-    struct Zoltan_Struct *zz = par_zoltan_rcb(0);
-    if (!zz)
-        return spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
+    struct Zoltan_Struct *zz = NULL;
+    int rc = par_fault("partition", err);
+    if (!rc && Zoltan_Initialize(0, NULL, &ver) != ZOLTAN_OK)
+        rc = spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Initialize failed");
+    /* Zoltan_Create duplicates the communicator (collective), and so is
+     * the partition */
+    if (!(rc = par_agree(rc, err)) && !(zz = par_zoltan_rcb(0)))
+        rc = spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan_Create failed");
+    if ((rc = par_agree(rc, err))) {
+        Zoltan_Destroy(&zz);
+        return rc;
+    }
     par_zoltan_queries(zz, &z);
     int changes, ngid, nlid, nimp, nexp;
     ZOLTAN_ID_PTR imp_g = NULL, imp_l = NULL, exp_g = NULL, exp_l = NULL;
     int *imp_p = NULL, *imp_parts = NULL, *exp_p = NULL, *exp_parts = NULL;
     int zrc = Zoltan_LB_Partition(zz, &changes, &ngid, &nlid, &nimp, &imp_g, &imp_l, &imp_p,
                                   &imp_parts, &nexp, &exp_g, &exp_l, &exp_p, &exp_parts);
-    int rc = SPALL_OK;
     int *mine = malloc((z.hi - z.lo + 1) * sizeof *mine);
     int *counts = malloc((size_t)size * sizeof *counts), *displs = malloc((size_t)size * sizeof *displs);
-    if (zrc != ZOLTAN_OK) {
+    if (zrc != ZOLTAN_OK)
         rc = spall_error_set(err, SPALL_ERR_INTERNAL, "Zoltan RCB partition failed (%d)", zrc);
-    } else if (!mine || !counts || !displs) {
+    else if (!mine || !counts || !displs)
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory partitioning");
-    } else {
+    if (!(rc = par_agree(rc, err))) {
         for (size_t k = 0; k < z.hi - z.lo; k++)
             mine[k] = rank;
         for (int k = 0; k < nexp; k++)
@@ -515,7 +521,9 @@ int par_localize_kept(struct sim *s, const size_t *keep, size_t n_keep, size_t n
                       const int64_t *new_of_old, struct spall_error *err)
 {
     /* the model renumbers its bond rows (which needs the old list) first */
-    int rc = s->ops->localize(s->model, s, keep, n_keep, n_owned, new_of_old, err);
+    int rc = par_fault("localize", err);
+    if (!rc)
+        rc = s->ops->localize(s->model, s, keep, n_keep, n_owned, new_of_old, err);
     return rc ? rc : compact_particles(s, keep, n_keep, n_owned, err);
 }
 
@@ -534,13 +542,13 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
     int *owner = malloc((n ? n : 1) * sizeof *owner);
     int64_t *new_of_old = malloc((n ? n : 1) * sizeof *new_of_old);
     size_t *keep = malloc((n ? n : 1) * sizeof *keep);
-    if (!owner || !new_of_old || !keep) {
-        free(owner);
-        free(new_of_old);
-        free(keep);
-        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory partitioning");
-    }
-    int rc = partition(s, bl, owner, err);
+    int rc = owner && new_of_old && keep
+                 ? SPALL_OK
+                 : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory partitioning");
+    if (!rc) /* agreed inside, before Zoltan's collectives */
+        rc = partition(s, bl, owner, err);
+    else
+        rc = par_agree(rc, err); /* the agreement partition() would have made */
     size_t n_keep = 0, n_owned = 0;
     if (!rc) {
         for (size_t i = 0; i < n; i++)
@@ -555,7 +563,8 @@ static int distribute(struct sim *s, struct par_decomp *d, struct spall_error *e
     }
     if (!rc)
         rc = localize_sets(s, d, owner, new_of_old, err);
-    if (!rc)
+    /* the models' localisers may reduce over the ranks: agreed first */
+    if (!(rc = par_agree(rc, err)))
         rc = par_localize_kept(s, keep, n_keep, n_owned, new_of_old, err);
     free(owner);
     free(new_of_old);

@@ -130,7 +130,7 @@ int par_setup_halo_values(const struct sim *s, double *v, int ncomp, struct spal
     int *cnt = calloc(4 * (size_t)size, sizeof *cnt);
     int *back = calloc(5 * (size_t)size, sizeof *back); /* the answers' counts, at */
     int *owner = malloc((n ? n : 1) * sizeof *owner);
-    int rc = cnt && back && owner ? SPALL_OK
+    int rc = cnt && back && owner ? par_fault("halo_values", err)
                                   : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
     int *sdsp = cnt ? cnt + size : NULL, *rcnt = cnt ? cnt + 2 * size : NULL;
     int *rdsp = cnt ? cnt + 3 * size : NULL;
@@ -266,6 +266,7 @@ int par_setup_probe(struct sim *s, size_t k, struct spall_error *err)
 {
     struct par_setup *ps = s->setup;
     struct probe *pr = &s->probes[k];
+    int rc = SPALL_OK;
     if (k >= ps->n_probes) {
         int *o = realloc(ps->probe_owner, (k + 1) * sizeof *o);
         if (o)
@@ -277,10 +278,14 @@ int par_setup_probe(struct sim *s, size_t k, struct spall_error *err)
         if (r2)
             ps->probe_d2 = r2;
         if (!o || !g || !r2)
-            return par_agree(spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for probes"),
-                             err);
-        ps->n_probes = k + 1;
+            rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for probes");
+        else
+            ps->n_probes = k + 1;
     }
+    /* before the search's reductions: a rank that failed since the last
+     * agreement (this probe's own record, say) meets the others here */
+    if ((rc = par_agree(rc, err)))
+        return rc;
     /* the serial search over this rank's block: the first of the nearest */
     double best = INFINITY;
     size_t at = 0, n_own = 0;
@@ -313,6 +318,10 @@ int par_setup_merge_table(void **table, size_t key_size, size_t *n_rows, uint16_
                           size_t n_idx, struct spall_error *err)
 {
     const int size = par_size(), rank = par_rank();
+    /* a rank whose model failed to build its table meets the others here */
+    int rc = par_agree(SPALL_OK, err);
+    if (rc)
+        return rc;
     /* a table on every rank or on none: the storage must agree */
     const int64_t have = *table ? 1 : 0;
     const int64_t lo = par_min_i64(have), hi = -par_min_i64(-have);
@@ -326,8 +335,7 @@ int par_setup_merge_table(void **table, size_t key_size, size_t *n_rows, uint16_
     int mine = (int)(*n_rows * key_size);
     int *cnt = malloc((size_t)size * sizeof *cnt), *dsp = malloc((size_t)size * sizeof *dsp);
     uint16_t *remap = malloc((*n_rows ? *n_rows : 1) * sizeof *remap);
-    int rc = (cnt && dsp && remap) ? SPALL_OK
-                                   : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
+    rc = (cnt && dsp && remap) ? SPALL_OK : spall_error_set(err, SPALL_ERR_NOMEM, "out of memory");
     if ((rc = par_agree(rc, err))) {
         free(cnt);
         free(dsp);
@@ -610,8 +618,10 @@ int par_setup_distribute(struct sim *s, struct spall_error *err)
     /* the initial forces, BC reactions and energy account (sim_prepare
      * leaves them to here): the whole body's group sizes and sums, and the
      * block's rows are the serial ones, so this is the serial set-up */
-    rc = rigid_par_prepare(s, err); /* impactors: contact rows of the block */
-    if ((rc = par_agree(rc ? rc : sim_initial_forces(s, err), err)))
+    /* impactors: contact rows of the block; agreed before the initial
+     * forces, whose sums are collective */
+    if ((rc = par_agree(rigid_par_prepare(s, err), err)) ||
+        (rc = par_agree(sim_initial_forces(s, err), err)))
         return rc;
     ps->imbalance[0] = par_imbalance(s);
     rc = setup_partition(s, &ps->moved, err);
