@@ -79,17 +79,19 @@ int bench_run_deck(const char *name, const char *yaml, int threads, long max_ste
  * the lattice step"): 2D, one bond type, h half-bonds per particle, the
  * rest lengths compacted to @p rest_bytes (bond_list_compact_rest).  Each
  * pass streams its arrays once: a line read from beyond the core's own
- * caches is counted once, a line written (every one of them read first in
- * the same pass: no write-allocate traffic) once more for its write-back.
+ * caches is counted once, a line written once more for its write-back; a
+ * line written without being read (the forces, which the bond loop writes
+ * over: model_ops.sets_forces) is read first all the same
+ * (write-allocate).
  * The partners' positions come from the caches (rows j = i +- 1,
  * i +- n_side +- 1), as do a chunk's masses for its second component.  The
  * stencil blocks of the once-per-bond loop (lattice_half.c) read no
  * partners and no row offsets, but the state and rest index of every slot
  * (a row's upper slots share their cache lines with its lower ones); the
- * first kick, the drift and the clearing of the forces are one pass
- * (core/step_passes.c).  Valgrind's cache simulation of the step (2 MiB
- * last level, the L2 of one core) counts 252.5 B per particle-step for
- * the 250 here. */
+ * first kick and the drift are one pass (core/step_passes.c), which reads
+ * the forces without clearing them.  Valgrind's cache simulation of the
+ * step (2 MiB last level, the L2 of one core) counts 236.8 B per
+ * particle-step for the 234 here. */
 struct lattice_traffic {
     double kick_drift, force, bond, kick, check;
 };
@@ -97,9 +99,9 @@ struct lattice_traffic {
 static struct lattice_traffic lattice2d_traffic(double h, double rest_bytes)
 {
     return (struct lattice_traffic){
-        .kick_drift = 8 + 2 * (2 * 8 + 2 * 8 + 2 * 8), /* m; per dimension f read and
-                                                 cleared, v and x read and written */
-        .force = 2 * 8 + 2 * 16,         /* bond loop: x_i, f read and written */
+        .kick_drift = 8 + 2 * (8 + 2 * 8 + 2 * 8), /* m; per dimension f read, v and x
+                                                      read and written */
+        .force = 2 * 8 + 2 * 16,         /* bond loop: x_i; f written (read first) */
         .bond = h * (rest_bytes + 1),    /* and each slot's rest index and state */
         .kick = 8 + 2 * (8 + 8 + 8),                    /* m; f, v read, v written */
         .check = 8 + 2 * 8, /* NaN check and kinetic energy: m, v */
@@ -147,7 +149,7 @@ REPLAY_CLONES static double replay_range(const struct replay *r, size_t lo, size
     const double q = 0x1p-20;
     uint64_t w = 0;
     double acc = 0.0;
-    /* first kick, drift, forces cleared: m; f, v, x read, all three written */
+    /* first kick and drift: m, f read; v, x read and written */
     for (size_t c = lo; c < hi; c += REPLAY_CHUNK) {
         const size_t e = hi - c < REPLAY_CHUNK ? hi : c + REPLAY_CHUNK;
         for (int d = 0; d < 2; d++) {
@@ -157,18 +159,17 @@ REPLAY_CLONES static double replay_range(const struct replay *r, size_t lo, size
                 const double vi = v[i] + q * f[i] * m[i];
                 v[i] = vi;
                 x[i] += q * vi;
-                f[i] = 0.0;
             }
         }
     }
-    /* bond loop: x read, f read and written, the bond bytes read */
+    /* bond loop: x read, f written over, the bond bytes read */
     for (size_t c = lo; c < hi; c += REPLAY_CHUNK) {
         const size_t e = hi - c < REPLAY_CHUNK ? hi : c + REPLAY_CHUNK;
         for (int d = 0; d < 2; d++) {
             const double *restrict x = r->x[d];
             double *restrict f = r->f[d];
             for (size_t i = c; i < e; i++)
-                f[i] += q * x[i];
+                f[i] = q * x[i];
         }
         const uint64_t *restrict b = r->bonds;
         for (size_t k = bond_word(r, c); k < bond_word(r, e); k++)
