@@ -11,7 +11,9 @@
  *        bonds: both paths and their hand-over in one run.  The chain
  *        breaks in its first step (a stencil block that falls back before
  *        its pushes; on 2 and 3 threads the intact part takes them); the
- *        FCC block's order of particles has no runs.
+ *        FCC block's order of particles has no runs.  Every run also
+ *        checks that the model's force call writes the forces without
+ *        reading them (model_ops.sets_forces).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -22,10 +24,12 @@
 #include "tests/test_support.h"
 
 #include "core/bond_list.h"
+#include "core/model.h"
 #include "core/particles.h"
 #include "core/sim.h"
 #include "models/lattice/lattice.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,6 +56,32 @@ static void set_threads(int t)
 #else
     (void)t;
 #endif
+}
+
+/* The model writes the owned forces without reading them
+ * (model_ops.sets_forces: the integrator does not clear them): two force
+ * calls at the end state, one on cleared forces, one on NaNs, give the
+ * same bits (the state does not change: the step's own call at these
+ * positions broke what breaks). */
+static void check_sets_forces(struct sim *s)
+{
+    struct particles *p = s->p;
+    const size_t n = p->n_owned;
+    struct spall_error err = {0};
+    assert_true(s->ops->sets_forces);
+    double *fa = malloc((size_t)s->dim * (n ? n : 1) * sizeof *fa);
+    assert_non_null(fa);
+    particles_zero_forces(p);
+    assert_int_equal(s->ops->compute_forces(s->model, s, &err), SPALL_OK);
+    for (int d = 0; d < s->dim; d++) {
+        memcpy(fa + (size_t)d * n, p->f[d], n * sizeof *fa);
+        for (size_t i = 0; i < n; i++)
+            p->f[d][i] = NAN;
+    }
+    assert_int_equal(s->ops->compute_forces(s->model, s, &err), SPALL_OK);
+    for (int d = 0; d < s->dim; d++)
+        assert_memory_equal(p->f[d], fa + (size_t)d * n, n * sizeof *fa);
+    free(fa);
 }
 
 /* Run @p deck for @p steps on @p threads threads, the row loop only when
@@ -87,6 +117,7 @@ static struct snap run(const char *deck, long steps, int threads, bool rows)
     sim_update_energy(s);
     r.dissipated = s->energy.model_dissipated;
     r.half = lattice_used_half_loop(s->model);
+    check_sets_forces(s);
     sim_destroy(&s);
     set_threads(1);
     return r;

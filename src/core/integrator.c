@@ -328,7 +328,8 @@ static void reflect_axis(struct sim *s)
 
 /* All forces at the current state.  @p state_dt > 0: the leapfrog's force
  * call, which also advances the model's state by state_dt (compute_forces_kick).
- * @p owned_zeroed: the fused kick and drift cleared the owned forces. */
+ * @p owned_zeroed: the fused kick and drift cleared the owned forces, or
+ * the model's force call writes them (model_ops.sets_forces). */
 static int compute_all_forces(struct sim *s, double state_dt, bool owned_zeroed,
                               struct spall_error *err)
 {
@@ -579,8 +580,8 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
      * which kicks with these forces again) clearing the forces; the
      * particles whose velocity a BC sets in between are drifted again */
     const bool fused = save_prescribed(s);
-    if (fused)
-        step_kick_drift(s->p, half, dt, !pc);
+    if (fused) /* a model that sets the forces needs them not cleared */
+        step_kick_drift(s->p, half, dt, !pc && !s->ops->sets_forces);
     else
         kick(s, half);
     rigid_kick(s, half, t_mid);

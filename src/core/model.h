@@ -245,6 +245,12 @@ struct model_ops {
      *  window alone wherever the bodies lie.  false (a radius search, as
      *  peridynamics): only bodies more than a range apart are distributed. */
     bool bonds_within_bodies;
+    /** compute_forces writes the force of every owned particle, reading
+     *  none: the integrator then does not clear them before the call (one
+     *  write of the force arrays less per step).  Whatever it writes must
+     *  be what adding to cleared forces gives (0 + f: the same bits); the
+     *  contact, loads and body forces are added after it. */
+    bool sets_forces;
 };
 
 #endif

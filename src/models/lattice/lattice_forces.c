@@ -90,6 +90,7 @@ struct lattice_view lattice_make_view(const struct model *m, struct sim *sim)
     v.f1 = p->dim > 1 ? p->f[1] : NULL;
     v.f2 = p->dim > 2 ? p->f[2] : NULL;
     v.u = (const double *const *)sim_drift_velocities(sim, &v.dt_drift);
+    v.set_forces = 0;
     return v;
 }
 
@@ -528,10 +529,11 @@ static size_t half_rings(struct model *m, struct sim *sim, int dim)
 }
 
 static void drive_axial(struct model *m, struct sim *sim, int fast, int dim, int multi,
-                        int gather, const size_t *reverse)
+                        int gather, const size_t *reverse, int set)
 {
     struct lattice_view v = lattice_make_view(m, sim);
     v.reverse = reverse;
+    v.set_forces = set;
     const size_t n = sim->p->n_owned;
     const size_t w = fast ? half_rings(m, sim, dim) : 0;
     m->half_used = w > 0;
@@ -553,7 +555,7 @@ static void drive_axial(struct model *m, struct sim *sim, int fast, int dim, int
     m->half_stencil_rows = stencil_rows;
 }
 
-static void drive_angles(struct model *m, struct sim *sim)
+static void drive_angles(struct model *m, struct sim *sim, int set)
 {
     struct particles *p = sim->p;
     double *const *x = p->x;
@@ -565,14 +567,19 @@ static void drive_angles(struct model *m, struct sim *sim)
     for (size_t i = 0; i < n; i++) {
         double fi[2] = {0.0, 0.0};
         angles_row(m, mat, x, i, fi);
-        if (i < n_owned) {
+        if (i < n_owned && set) { /* the first write of the call (add_force) */
+            f[0][i] = 0.0 + fi[0];
+            f[1][i] = 0.0 + fi[1];
+        } else if (i < n_owned) {
             f[0][i] += fi[0];
             f[1][i] += fi[1];
         }
     }
 }
 
-int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
+/* The forces of the bonds and angles: added to the owned forces, or with
+ * @p set written over them (each owned row is written once per pass). */
+static int compute_forces(struct model *m, struct sim *sim, int set, struct spall_error *err)
 {
     const int dim = m->dim;
     const int gather = m->angular && dim == 2;
@@ -585,7 +592,7 @@ int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error 
     if (gather && sim->par && !(reverse = par_bhalo_reverse(sim, m->bl, &nr, err)))
         return err->code;
     if (gather) {
-        drive_angles(m, sim);
+        drive_angles(m, sim, set);
         if (sim->par) {
             const size_t nh = m->bl->offset[m->bl->n];
             const double *rb = par_bhalo_exchange(sim, m->ang_buf, 2);
@@ -593,8 +600,19 @@ int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error 
         }
     }
     const int fast = m->lp.law == LATTICE_LAW_LINEAR && m->n_mat == 1 && !m->kscale;
-    drive_axial(m, sim, fast, dim, m->layers > 1 || m->honeycomb, gather, reverse);
+    drive_axial(m, sim, fast, dim, m->layers > 1 || m->honeycomb, gather, reverse,
+                set && !gather);
     return 0;
+}
+
+int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    return compute_forces(m, sim, 0, err);
+}
+
+int lattice_set_forces(struct model *m, struct sim *sim, struct spall_error *err)
+{
+    return compute_forces(m, sim, 1, err);
 }
 
 void lattice_set_row_loop(struct model *m, bool rows)

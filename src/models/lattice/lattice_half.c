@@ -544,16 +544,17 @@ LATTICE_INLINE void ring_push(double *restrict ring, size_t start, double g[][ST
 }
 
 /* Row sums of one component over t in [t0, t1): f[t] += (ring entry + the
- * nu terms in offset order), the entry (r[t - t0]) cleared. */
+ * nu terms in offset order), with @p set f[t] = 0 + (...) without reading
+ * f (add_force), the entry (r[t - t0]) cleared. */
 LATTICE_INLINE void row_sums(double *restrict r, double g[][3][STENCIL_ROWS], size_t nu, int d,
-                             double *restrict f, size_t t0, size_t t1)
+                             double *restrict f, size_t t0, size_t t1, int set)
 {
     for (size_t t = t0; t < t1; t++) {
         double a = r[t - t0];
         r[t - t0] = 0.0;
         for (size_t k = 0; k < nu; k++)
             a += g[k][d][t];
-        f[t] += a;
+        f[t] = (set ? 0.0 : f[t]) + a;
     }
 }
 
@@ -624,8 +625,13 @@ LATTICE_INLINE int stencil_block(const struct lattice_view *v, const struct latt
                               dim > 2 ? v->f2 + i0 : NULL};
     for (int d = 0; d < dim; d++) {
         double *rd = ring + (size_t)d * w;
-        row_sums(rd + start, g, nu, d, fd[d], 0, n1);
-        row_sums(rd, g, nu, d, fd[d], n1, nb);
+        if (v->set_forces) { /* two copies: the loop then reads no f */
+            row_sums(rd + start, g, nu, d, fd[d], 0, n1, 1);
+            row_sums(rd, g, nu, d, fd[d], n1, nb, 1);
+        } else {
+            row_sums(rd + start, g, nu, d, fd[d], 0, n1, 0);
+            row_sums(rd, g, nu, d, fd[d], n1, nb, 0);
+        }
     }
     return 1;
 }

@@ -128,6 +128,10 @@ size_t lattice_half_ring(struct model *m, const struct sim *sim);
 
 /* lattice_forces.c */
 int lattice_compute_forces(struct model *m, struct sim *sim, struct spall_error *err);
+/* The same forces written over the owned ones instead of added (the same
+ * bits as on cleared forces; f is not read): the model's compute_forces
+ * (model_ops.sets_forces). */
+int lattice_set_forces(struct model *m, struct sim *sim, struct spall_error *err);
 /** Energy [J] (half of each bond + the angles centred at i) and virial
  *  stress (tension positive; 1D: xx; 2D: xx yy xy; 3D: xx yy zz xy yz xz)
  *  of particle i from the current positions; changes nothing. */

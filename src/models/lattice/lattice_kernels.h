@@ -49,6 +49,8 @@ struct lattice_view {
     double *restrict f0, *restrict f1, *restrict f2;
     const double *const *u; /* drift velocities: x_n = x - dt_drift u */
     double dt_drift;
+    int set_forces; /* add_force sets f = 0 + fi (the owned forces were not
+                       cleared: lattice_set_forces), else f += fi */
 };
 
 /** The view of the model's and the particles' arrays for one force call. */
@@ -99,9 +101,20 @@ double lattice_break_half(struct model *m, size_t i, size_t s, const struct latt
 size_t lattice_half_range(struct model *m, const struct lattice_view *v, size_t lo, size_t hi,
                         double *ring, size_t mask, int dim, int multi, int gather);
 
+/* Row i's force: every force call writes each owned row once, so "set"
+ * gives f = 0 + fi, the bits of f += fi on cleared forces (+0 + fi, also
+ * for fi = -0), without reading f. */
 LATTICE_INLINE void add_force(const struct lattice_view *v, size_t i, const int dim,
                               const double fi[3])
 {
+    if (v->set_forces) {
+        v->f0[i] = 0.0 + fi[0];
+        if (dim > 1)
+            v->f1[i] = 0.0 + fi[1];
+        if (dim > 2)
+            v->f2[i] = 0.0 + fi[2];
+        return;
+    }
     v->f0[i] += fi[0];
     if (dim > 1)
         v->f1[i] += fi[1];

@@ -510,7 +510,7 @@ static int lattice_register_fields(struct model *m, struct sim *sim, struct fiel
 
 static int lattice_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
-    return lattice_compute_forces(m, sim, err);
+    return lattice_set_forces(m, sim, err);
 }
 
 /** Stable dt: see lattice_calib.c for the bound ([Wang2010] Eq. 25). */
@@ -703,6 +703,7 @@ const struct model_ops lattice_model_ops = {
     .setup_range = lattice_setup_range,
     .setup_tables = lattice_setup_tables,
     .bonds_within_bodies = true, /* bond_list_build_shells skips other bodies */
+    .sets_forces = true,         /* lattice_set_forces */
 };
 
 const struct lattice_material *lattice_material_get(const struct model *m, int k)
