@@ -3,9 +3,11 @@
  * @brief Linear peridynamic solid (LPS, ordinary state-based PD,
  *        [Silling2007]) in 2D and 3D, deck `model.formulation: lps`.
  *
- * With omega the influence function, beta the partial volume and d the
- * dimension (in 2D the in-plane dilatation, [Le2014] uses the 3D one; both
- * give the same energy for a homogeneous deformation):
+ * With omega the influence function, beta the partial volume (the linear
+ * rule of pd_forces.c, or the cut cell fraction of partial_volume_rule
+ * cell, pd_cellvol.c) and d the dimension (in 2D the in-plane dilatation,
+ * [Le2014] uses the 3D one; both give the same energy for a homogeneous
+ * deformation):
  *   m_i     = sum_j omega beta |xi|^2 V_j                 (weighted volume)
  *   theta_i = (d / m_i) sum_j omega beta |xi| e_ij V_j,   e = |Y| - |xi|
  *   W_i     = k theta^2 / 2 + alpha / 2 sum_j omega beta (e^d)^2 V_j,
