@@ -60,6 +60,10 @@ faulted() {
     elif [ "$(grep -c "^spall: error: .*$cause" stderr.txt)" -ne 1 ] ||
         [ "$(grep -c "fault injected" stderr.txt)" -ne 1 ]; then
         echo "FAIL $site:$rank: the cause is not printed once"; cat stderr.txt; fail=1
+    elif [ "$(grep -o "$deck:[0-9]*:[0-9]*:" stderr.txt | wc -l)" -gt 1 ]; then
+        # the ranks word an agreed error alike: one location, not the
+        # failing rank's and again the others'
+        echo "FAIL $site:$rank: the location is repeated"; cat stderr.txt; fail=1
     elif [ "$want" = absent ] && [ -e "$out" ]; then
         echo "FAIL $site:$rank: output directory '$out' created"; fail=1
     else
