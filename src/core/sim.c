@@ -302,7 +302,8 @@ static int register_core_fields(struct sim *s, struct spall_error *err)
     return field_registry_add(s->fields, &d, err);
 }
 
-int sim_prepare(struct sim *s, struct spall_error *err)
+/* sim_prepare's checks and the model's set-up, before the time step. */
+static int prepare_model(struct sim *s, struct spall_error *err)
 {
     if (!s->ops || !s->model)
         return spall_error_set(err, SPALL_ERR_INPUT, "no model selected");
@@ -332,12 +333,18 @@ int sim_prepare(struct sim *s, struct spall_error *err)
         rc = s->ops->register_fields(s->model, s, s->fields, err);
     if (!rc)
         rc = fragments_register_field(s, err); /* needs the model's bonds */
-    if (rc)
-        return rc;
+    return rc;
+}
 
-    /* each rank built its window (s->setup): the whole body's limit, a
-     * reduction that a rank which failed above meets as an agreement first */
-    if (s->setup && (rc = par_agree(SPALL_OK, err)))
+int sim_prepare(struct sim *s, struct spall_error *err)
+{
+    int rc = prepare_model(s, err);
+    /* each rank built its window (s->setup): the whole body's limit below is
+     * a reduction, so a failure of one rank above is agreed first, here where
+     * every rank stands (the deck layer then words it alike on all ranks) */
+    if (s->setup)
+        rc = par_agree(rc, err);
+    if (rc)
         return rc;
     s->dt_limit = fmin(s->ops->stable_dt(s->model, s), particle_contact_stable_dt(s));
     if (s->setup)

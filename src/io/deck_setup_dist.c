@@ -125,8 +125,8 @@ int deck_setup_dist_fill(struct sim *s, const struct lattice_spec *spec, const s
     *added = s->p->n - first;
     if (!rc)
         rc = par_fault("setup_fill", err);
-    if (rc)
-        return rc;
+    if (rc) /* met by the others' first agreement in par_setup_filled */
+        return par_agree(rc, err);
     return par_setup_filled(s, &w, first, err);
 }
 
