@@ -271,8 +271,34 @@ static int relayout(struct sim *s, bool moved, struct spall_error *err)
     return par_agree(s->ops->spatial_rebuilt(s->model, s, moved, err), err);
 }
 
+/* Regathering with the current ghosts kept: every owned particle goes
+ * again to each rank it is a ghost of now (the halo's send lists, counts
+ * in 2 dim doubles per particle). */
+static int keep_sends(struct par_sghost *g, const struct par_decomp *d, int dim,
+                      struct spall_error *err)
+{
+    const int size = par_size(), w = 2 * dim;
+    size_t *idx = malloc((d->n_send ? d->n_send : 1) * sizeof *idx);
+    int *rk = malloc((d->n_send ? d->n_send : 1) * sizeof *rk);
+    int rc = idx && rk ? SPALL_OK
+                       : spall_error_set(err, SPALL_ERR_NOMEM,
+                                         "out of memory (spatial ghosts: %zu kept)", d->n_send);
+    size_t nf = 0;
+    for (int r = 0; r < size && !rc; r++)
+        for (int k = d->send_displs[r] / w; k < (d->send_displs[r] + d->send_counts[r]) / w;
+             k++) {
+            idx[nf] = d->send_idx[k];
+            rk[nf++] = r;
+        }
+    if (!rc)
+        rc = par_sghost_set_forced(g, nf, idx, rk, err);
+    free(idx);
+    free(rk);
+    return rc;
+}
+
 int par_spatial_regather(struct sim *s, double range, const struct par_spatial_model *sm,
-                         struct spall_error *err)
+                         bool keep, struct spall_error *err)
 {
     struct particles *p = s->p;
     struct par_slots sl;
@@ -288,8 +314,12 @@ int par_spatial_regather(struct sim *s, double range, const struct par_spatial_m
     struct par_sghost *g = NULL;
     if (!rc)
         rc = par_sghost_create(&g, p->dim, range, 1e-6 * range, err);
-    if ((rc = par_agree(rc, err)))
+    if (!rc && keep)
+        rc = keep_sends(g, s->par, p->dim, err);
+    if ((rc = par_agree(rc, err))) {
+        par_sghost_destroy(&g);
         return rc;
+    }
     const double *x[3] = {NULL, NULL, NULL};
     for (int c = 0; c < p->dim; c++)
         x[c] = p->x[c];
@@ -366,11 +396,12 @@ int par_ghosts_step(struct sim *s, struct spall_error *err)
 }
 
 int par_spatial_regather(struct sim *s, double range, const struct par_spatial_model *sm,
-                         struct spall_error *err)
+                         bool keep, struct spall_error *err)
 {
     (void)s;
     (void)range;
     (void)sm;
+    (void)keep;
     (void)err;
     return SPALL_OK;
 }

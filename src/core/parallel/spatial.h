@@ -93,11 +93,15 @@ int par_ghosts_step(struct sim *s, struct spall_error *err);
  *  @p range of the box of the owned particles' current positions, each
  *  with its owner's record (the engine's and the registry's arrays and
  *  sm->particle; the other fields of @p sm are not read), and the halo
- *  lists follow them.  No spatial ghosts are kept: the model's new bonds
- *  must list only particles held now, and the next migration takes the
- *  ghosts back to its bond partners.  Collective. */
+ *  lists follow them.  With @p keep, every current ghost stays a ghost as
+ *  well (the union, each ghost once, in ascending gid): a model that also
+ *  has spatial ghosts (TLSPH bodies behind an interface) finds the
+ *  partners of its current list among them again.  Without, no spatial
+ *  ghosts are kept: the model's new bonds must list only particles held
+ *  now, and the next migration takes the ghosts back to its bond
+ *  partners.  Collective. */
 int par_spatial_regather(struct sim *s, double range, const struct par_spatial_model *sm,
-                         struct spall_error *err);
+                         bool keep, struct spall_error *err);
 
 /** Spatial ghost rebuilds in the step so far (0 without spatial ghosts). */
 long par_spatial_rebuilds(const struct sim *s);

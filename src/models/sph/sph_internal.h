@@ -122,6 +122,9 @@ struct model {
     double *sr[6];         /**< sigma / rho^2 (fused pair loop, sph_fused.c) */
     double *xv[3];         /**< XSPH velocity correction (the drift velocity, sph_drift_velocity) */
     double *x_build[3];    /**< positions at the last neighbour build */
+    double *h_build;       /**< h at the last neighbour build, where h changes between
+                                builds and a list is found again off its build step
+                                (sph_h_build_kept; NULL otherwise) */
     double *wp;            /**< plastic work per particle [J] */
 
     struct sph_sym *sym;   /**< symmetry-plane ghosts (NULL: none) */
@@ -187,7 +190,19 @@ static inline bool sph_skip(const struct model *m, size_t i, int mine)
     return m->form && mine != SPH_FORM_ALL && m->form[i] != mine;
 }
 
-#define SPH_N_ARRAYS 104
+#define SPH_N_ARRAYS 105
+/** TLSPH bodies behind an interface whose reference updates grow h
+ *  (reference_update with isotropy > 0, fixed h): the kernel list's trim
+ *  reads each particle's h at the build, which a later re-reference may
+ *  have grown, so a partition, migration, re-reference or restart that
+ *  finds the list of the last build again off its build step trims with
+ *  m->h_build and splits with the build's h_max (sph_ulpar.c); only such
+ *  runs keep (and checkpoint) them. */
+static inline bool sph_h_build_kept(const struct sph_options *o)
+{
+    return o->tl.split_forms && (o->tl.reref_every || o->tl.reref_distortion > 0.0) &&
+           o->tl.reref_isotropy > 0.0 && !o->kern.variable_h;
+}
 /* sph_report.c: the model_ops entries that only read the state */
 struct model_energy;
 void sph_energy(const struct model *m, const struct sim *sim, struct model_energy *out);
@@ -305,8 +320,8 @@ void sph_tlsph_destroy(struct sph_tlsph **tl);
 
 /* sph_ulpar.c (distributed updated form on spatial ghosts, core/parallel/spatial.h) */
 /** Drop the listed pairs beyond qmax max(h_i, h_j) + @p skin_abs at the
- *  positions @p x of the build (sph_rates.c). */
-void sph_neighbors_trim(struct model *m, double *const x[3], double skin_abs);
+ *  positions @p x and smoothing lengths @p h of the build (sph_rates.c). */
+void sph_neighbors_trim(struct model *m, double *const x[3], const double *h, double skin_abs);
 /** The per-particle values a pair loop reads of its partners, by loop. */
 enum sph_halo_set {
     SPH_HALO_DENSITY, /**< before the velocity gradient: rho, h */

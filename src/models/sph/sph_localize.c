@@ -35,37 +35,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* What a distributed SPH run cannot do yet, or NULL.  TLSPH bodies behind
- * an interface (split_forms, with type: tlsph or model.body_formulation)
- * run on the spatial ghosts of the updated form's current list, which
- * every ghost build extends by the reference partners (sph_spatial_ghosts,
- * sph_tl_relayout).  Axisymmetric TLSPH needs no line: one rank refuses
- * plane: axisymmetric with the total formulation already (sph_options.c;
- * sph_axisym.c has no TLSPH loops). */
-static const char *not_distributed(const struct model *m)
-{
-    const struct sph_options *o = &m->opt;
-    /* a re-reference regathers the ghosts around the current positions
-     * (sph_tlsph_reref.c); a split run's ghosts are the spatial ones of
-     * the current list, which it would have to rebuild with them */
-    if (o->tl.split_forms && (o->tl.reref_every || o->tl.reref_distortion > 0.0))
-        return "reference updates (model.reference_update) of TLSPH bodies behind an "
-               "interface are not distributed yet;";
-    return NULL;
-}
-
-/* One line for what cannot run distributed (SPALL_OK when all can). */
-static int refuse(const struct model *m, struct spall_error *err)
-{
-    const char *what = not_distributed(m);
-    if (!what)
-        return SPALL_OK;
-    return spall_error_set(err, SPALL_ERR_INPUT,
-                           "distributed runs: SPH: %s run on one rank (without mpirun), see "
-                           "docs/parallel.md",
-                           what);
-}
-
 /* The reference list as a bond list (partners only): the halo and the
  * partition's weights (1 + partners) read it; its rows follow the list's. */
 static int halo_list(struct model *m, struct spall_error *err)
@@ -271,9 +240,7 @@ static int localize_tl(struct model *m, const size_t *keep, size_t n_keep, size_
 int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_keep,
                  size_t n_owned, const int64_t *new_of_old, struct spall_error *err)
 {
-    int rc = refuse(m, err);
-    if (!rc && m->tl)
-        rc = halo_list(m, err);
+    int rc = m->tl ? halo_list(m, err) : SPALL_OK;
     if (rc || !keep) /* only asked whether it can (and for the halo list) */
         return rc;
     /* the updated form's list is rebuilt around the spatial ghosts right
@@ -309,9 +276,6 @@ int sph_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_
  * part (mass, volume, X0, B0^-1) a particle keeps for life. */
 int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_error *err)
 {
-    int rc = refuse(m, err);
-    if (rc)
-        return rc;
     if (!m->tl)
         return sph_ul_migrate_arrays(m, m->sim, a, err);
     struct sph_tl *t = m->tl->ref;
@@ -320,8 +284,8 @@ int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall
     a->n_half = &m->tl->n_half;
     double **arr[SPH_N_ARRAYS];
     const size_t na = sph_state_arrays(m, arr);
-    if (na + 2 > PAR_MIGRATE_MAX_ARRAYS)
-        return spall_error_set(err, SPALL_ERR_INTERNAL, "SPH: %zu arrays to migrate", na + 2);
+    if (na + 5 > PAR_MIGRATE_MAX_ARRAYS)
+        return spall_error_set(err, SPALL_ERR_INTERNAL, "SPH: %zu arrays to migrate", na + 5);
     a->n_particle = 0;
     for (size_t k = 0; k < na; k++) {
         a->particle[a->n_particle] = (void **)arr[k];
@@ -331,6 +295,16 @@ int sph_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall
     a->particle_size[a->n_particle++] = TL_STRIDE * sizeof(double);
     a->particle[a->n_particle] = (void **)&t->self;
     a->particle_size[a->n_particle++] = TL_SELF * sizeof(double);
+    /* TLSPH bodies behind an interface: the interface's per-particle values
+     * of the last force call go with their particles, as in the updated
+     * form (sph_ul_migrate_arrays; sph_ul_migrated takes them as sized for
+     * the new layout) */
+    void **ia[] = {(void **)&m->ifs.e, (void **)&m->ifs.w, (void **)&m->ifs.np};
+    const size_t is[] = {sizeof *m->ifs.e, sizeof *m->ifs.w, sizeof *m->ifs.np};
+    for (size_t k = 0; k < 3 && m->form && m->ifs.e; k++) {
+        a->particle[a->n_particle] = ia[k];
+        a->particle_size[a->n_particle++] = is[k];
+    }
     a->n_bond = 2;
     a->bond[0] = (void **)&t->pair;
     a->bond_size[0] = sizeof *t->pair;

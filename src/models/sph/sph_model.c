@@ -63,6 +63,8 @@ size_t sph_state_arrays(struct model *m, double **a[SPH_N_ARRAYS])
         a[k++] = &m->xv[c];
         a[k++] = &m->x_build[c];
     }
+    if (sph_h_build_kept(&m->opt)) /* last: the other arrays keep their slots */
+        a[k++] = &m->h_build;
     return k;
 }
 

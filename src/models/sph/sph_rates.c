@@ -50,7 +50,7 @@
  * kernel of such a pair (support qmax (h_i + h_j)/2) stays zero until the
  * next rebuild, so results are unchanged.  Fixed h only (variable_h grows h
  * between builds).  Rows stay ascending; serial, O(pairs). */
-void sph_neighbors_trim(struct model *m, double *const x[3], double skin_abs)
+void sph_neighbors_trim(struct model *m, double *const x[3], const double *h, double skin_abs)
 {
     struct neighbor_list *nl = m->nl;
     const size_t n = nl->n;
@@ -61,9 +61,9 @@ void sph_neighbors_trim(struct model *m, double *const x[3], double skin_abs)
      * sph_dist2 alike) is kept: nothing to drop, no pass over the pairs. */
     bool one_h = n > 0;
     for (size_t i = 1; i < n && one_h; i++)
-        one_h = m->h[i] == m->h[0];
+        one_h = h[i] == h[0];
     if (one_h) {
-        const double reach = m->qmax * m->h[0] + skin_abs;
+        const double reach = m->qmax * h[0] + skin_abs;
         if (reach * reach >= m->nl_radius * m->nl_radius)
             return;
     }
@@ -72,7 +72,7 @@ void sph_neighbors_trim(struct model *m, double *const x[3], double skin_abs)
         size_t end = nl->offset[i + 1];
         for (size_t k = start; k < end; k++) {
             size_t j = (size_t)nl->idx[k];
-            double reach = m->qmax * (m->h[i] > m->h[j] ? m->h[i] : m->h[j]) + skin_abs;
+            double reach = m->qmax * (h[i] > h[j] ? h[i] : h[j]) + skin_abs;
             if (sph_dist2(x, dim, i, j) <= reach * reach)
                 nl->idx[w++] = nl->idx[k];
         }
@@ -120,13 +120,15 @@ int sph_neighbors_update(struct model *m, struct sim *s, bool force, struct spal
     if (rc)
         return rc;
     if (!m->opt.kern.variable_h)
-        sph_neighbors_trim(m, p->x, m->nl_radius - m->qmax * hmax);
+        sph_neighbors_trim(m, p->x, m->h, m->nl_radius - m->qmax * hmax);
     /* interface between bodies: their pairs leave the kernel list */
     if (m->opt.iface.kind != SPH_IFACE_NONE &&
         (rc = sph_interface_split(m, s, p->x, m->nl_radius - m->qmax * hmax, err)))
         return rc;
     for (int d = 0; d < dim; d++)
         memcpy(m->x_build[d], p->x[d], n * sizeof(double));
+    if (m->h_build)
+        memcpy(m->h_build, m->h, n * sizeof(double));
     if (sph_ul_view(m)) /* the partition's work, before a distributed run */
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
     m->n_builds++;

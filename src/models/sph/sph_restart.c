@@ -310,11 +310,13 @@ int sph_register_state(struct model *m, struct sim *s, struct field_state *fs,
     }
     if (!rc)
         rc = field_state_add_values(fs, "sph.wall_force", FIELD_F64, m->wall.force, 3, err);
-    /* an interface with a variable h: the last build's h_max, with which a
-     * distributed restart splits the list it rebuilds (sph_ulpar.c; one
-     * rank reads the split list).  Only there: other checkpoints keep
-     * their datasets */
-    if (!rc && m->opt.kern.variable_h && m->opt.iface.kind != SPH_IFACE_NONE)
+    /* an interface with a variable h, or TLSPH bodies behind it whose
+     * reference updates grow h: the last build's h_max, with which a
+     * distributed restart trims and splits the list it rebuilds
+     * (sph_ulpar.c; one rank reads the split list; the latter also keep
+     * each particle's h of the build, the last of sph_state_arrays).  Only
+     * there: other checkpoints keep their datasets */
+    if (!rc && (m->opt.kern.variable_h || m->h_build) && m->opt.iface.kind != SPH_IFACE_NONE)
         rc = field_state_add_values(fs, "sph.list_hmax", FIELD_F64, &m->nl_hmax, 1, err);
     void *iv[] = {&m->n_builds, &m->ax.builds, &m->cspm_fallbacks, &m->n_pairs,
                   &m->ifs.pairs};

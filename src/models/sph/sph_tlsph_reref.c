@@ -150,7 +150,11 @@ static int reref_isotropy_pass(struct model *m, struct sim *s, double smin, size
  * with what the passes and the reference read of it (x, m, the density and
  * material are the engine's; h, dx, m2 the model's), and the model's
  * arrays are sized for them (docs/parallel.md, "Re-referencing on several
- * ranks"). */
+ * ranks").  TLSPH bodies behind an interface also keep every spatial
+ * ghost, with the whole record of one (sph_spatial_ghosts), and their
+ * current list and interface pairs are found again among them: the list
+ * of the last build, from its build positions and smoothing lengths
+ * (sph_spatial_rebuilt, not moved). */
 static int reref_regather(struct model *m, struct sim *s, struct spall_error *err)
 {
     const struct particles *p = s->p;
@@ -163,14 +167,23 @@ static int reref_regather(struct model *m, struct sim *s, struct spall_error *er
     hb = par_max_double(hb);
     struct par_spatial_model sm;
     memset(&sm, 0, sizeof sm);
-    double **a[] = {&m->h, &m->dx, &m->m2};
-    for (int k = 0; k < 3; k++) {
-        sm.particle[k] = (void **)a[k];
-        sm.particle_size[k] = sizeof(double);
+    const bool split = m->opt.tl.split_forms;
+    if (split) {
+        sph_spatial_ghosts(m, &sm);
+    } else {
+        double **a[] = {&m->h, &m->dx, &m->m2};
+        for (int k = 0; k < 3; k++) {
+            sm.particle[k] = (void **)a[k];
+            sm.particle_size[k] = sizeof(double);
+        }
+        sm.n_particle = 3;
     }
-    sm.n_particle = 3;
-    int rc = par_spatial_regather(s, m->qmax * hb, &sm, err);
-    if (!rc && sph_resize_state(m, s->p->n))
+    int rc = par_spatial_regather(s, m->qmax * hb, &sm, split, err);
+    if (rc)
+        return rc;
+    if (split) /* collective (it agrees on its errors after) */
+        return par_agree(sph_spatial_rebuilt(m, s, false, err), err);
+    if (sph_resize_state(m, s->p->n))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH state, %zu particles)",
                              s->p->n);
     return par_agree(rc, err);

@@ -190,7 +190,7 @@ int sph_spatial_ghosts(struct model *m, struct par_spatial_model *sp)
         sp->particle[k] = (void **)&m->x_build[d];
         sp->particle_size[k++] = sizeof(double);
     }
-    double **a[] = {&m->h, &m->dx, &m->m2, &m->rho, &m->c};
+    double **a[] = {&m->h, &m->dx, &m->m2, &m->rho, &m->c, &m->h_build};
     for (size_t q = 0; q < sizeof a / sizeof a[0] && k < PAR_SPATIAL_MAX_ARRAYS; q++) {
         sp->particle[k] = (void **)a[q];
         sp->particle_size[k++] = sizeof(double);
@@ -270,13 +270,19 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
         rc = sph_tl_relayout(m, sim, err);
     neighbor_list_destroy(&m->nl);
     /* a build (moved) has the radius of the whole body's h_max now; after a
-     * partition or a migration the list is the last build's again, with
-     * its radius and, for the interface split, its h_max (a variable h has
-     * changed h_max since; a restart reads both, sph_restart.c) */
-    if (moved || !(m->nl_radius > 0.0) || !m->opt.kern.variable_h)
-        m->nl_hmax = hmax; /* (a fixed h: always the build's) */
-    if (moved || !(m->nl_radius > 0.0))
+     * partition, a migration or a re-reference the list is the last
+     * build's again, with its radius and, for the interface split, its
+     * h_max (a variable h, or a re-reference that grew h, has changed h_max
+     * since; a restart reads both, sph_restart.c) */
+    const bool fresh = moved || !(m->nl_radius > 0.0);
+    if (fresh || !(m->opt.kern.variable_h || m->h_build))
+        m->nl_hmax = hmax; /* (h fixed between builds: always the build's) */
+    if (fresh)
         m->nl_radius = m->qmax * hmax * (1.0 + m->opt.kern.skin);
+    /* and the trim of the build's smoothing lengths (the ghosts carry
+     * theirs, sph_spatial_ghosts) */
+    if (!rc && fresh && m->h_build)
+        memcpy(m->h_build, m->h, n * sizeof *m->h);
     /* symmetry planes: over the held particles and their images, untrimmed
      * as the serial list of sph_symmetry_update (sph_symmetry.c) */
     const bool sym = m->opt.bound.symmetry[0] || m->opt.bound.symmetry[1];
@@ -286,7 +292,8 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
                                              err);
     if (!rc) {
         if (!sym && !m->opt.kern.variable_h) /* (h grows between builds: no trim) */
-            sph_neighbors_trim(m, m->x_build, m->nl_radius - m->qmax * hmax);
+            sph_neighbors_trim(m, m->x_build, m->h_build ? m->h_build : m->h,
+                               m->nl_radius - m->qmax * m->nl_hmax);
         if (sph_rows_by_gid(m->nl, no, n, p->gid))
             rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
     }
@@ -300,8 +307,12 @@ int sph_spatial_rebuilt(struct model *m, struct sim *sim, bool moved, struct spa
         rc = sph_interface_split(m, sim, m->x_build, m->nl_radius - m->qmax * m->nl_hmax, err);
     if (!rc && sph_ul_view(m))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (SPH neighbour rows)");
-    m->n_pairs = (size_t)par_sum_u64(rc ? 0 : (uint64_t)m->nl->offset[no]); /* the serial count */
-    m->ul_pairs_all = m->n_pairs;
+    m->ul_pairs_all = (size_t)par_sum_u64(rc ? 0 : (uint64_t)m->nl->offset[no]);
+    /* the serial count: bodies split by formulation count both lists'
+     * pairs (sph_rates.c, compute_rates), also when a re-reference has
+     * just found this list again (the reference count is the last force
+     * call's until the next one, as on one rank) */
+    m->n_pairs = m->ul_pairs_all + (m->form ? sph_tlsph_pairs(m) : 0);
     if (moved)
         m->n_builds++;
     m->t_neighbor += omp_get_wtime() - t0;
