@@ -20,16 +20,25 @@
 # history.csv, fields.xdmf and bodies.xdmf byte for byte, every frame and
 # checkpoint under h5diff.
 # SPALL_TEST_LIGHT=1 (the sanitizer build, CMakeLists.txt) runs every path
-# above with 6 launches of mpirun instead of 10: the rings, the strip and the
-# two strips rebalanced on 3 ranks only (their 3-rank runs up to the first
-# repartition, and the ghost rebuilds counted there), the bar's three
-# variants on 3 ranks.
+# above with 6 launches of mpirun instead of 10 and fewer steps: the rings,
+# the strip and the two strips rebalanced on 3 ranks only (their 3-rank
+# runs up to the first repartition, and the ghost rebuilds counted there;
+# a migration rebuilds no list), the strip to 120 us (47 steps, 23 list
+# builds) and the two strips to 175 us (76 steps, the interface pairs up
+# and gone again); the bar's three variants on 3 ranks to 3 us (61 steps:
+# its list is built once, the wall and the yield act from the start).
 # Usage: mpi_sph_ul.sh SPALL SRC MPIEXEC
 set -u
 spall="$1"
 mpiexec="$3"
 # shellcheck source=lib/rank_compare.bash
 source "$2/tests/cli/lib/rank_compare.bash"
+light=${SPALL_TEST_LIGHT:-0}
+# shorten DECK.yaml's run to END (light plan)
+shorten() { # deck end
+    sed -i "s/^run: {end_time: [0-9.e-]*}\$/run: {end_time: $2}/" "$1.yaml"
+    grep -q "^run: {end_time: $2}\$" "$1.yaml" || { echo "FAIL: cannot shorten $1.yaml"; exit 1; }
+}
 cp "$2/tests/cli/decks/mpi_ul.yaml" rings.yaml
 # the bar in the updated form: the split loops with every partner value
 sed 's/^  type: tlsph$/  type: sph\n  cspm: true\n  xsph: 0.5/; /hourglass/d' \
@@ -39,17 +48,17 @@ grep -q "cspm: true" bar.yaml || { echo "FAIL: cannot make bar.yaml"; exit 1; }
 sed -i 's/^  xsph: 0.5$/  xsph: 0.5\n  artificial_stress: 0.3\n  artificial_stress_smoothing: true/' \
     bar.yaml
 grep -q "artificial_stress_smoothing" bar.yaml || { echo "FAIL: cannot make bar.yaml"; exit 1; }
+[ "$light" = 1 ] && shorten bar 3.0e-6
 sed '/time_integration: leapfrog/d; /viscosity_switch: balsara/d; /artificial_stress/d;
      s/^  cspm: true$/  density: summation\n  adaptive_dt: true/' bar.yaml > barpc.yaml
 printf "probes: [{name: tip, position: [0.0004, 0.0004, 0.0092]}]\n" >> barpc.yaml
 grep -q "density: summation" barpc.yaml || { echo "FAIL: cannot make barpc.yaml"; exit 1; }
 sed '/time_integration: leapfrog/d; /viscosity_switch: balsara/d; /artificial_stress/d; /cspm: true/d' bar.yaml > barfv.yaml
 grep -q "cspm\|leapfrog\|balsara" barfv.yaml && { echo "FAIL: cannot make barfv.yaml"; exit 1; }
-light=${SPALL_TEST_LIGHT:-0}
 serial rings
 rr=rings4 # (the run whose ghost rebuilds are counted)
 if [ "$light" = 1 ]; then
-    rr=rings_rb3 # (a migration rebuilds no list: the same count)
+    rr=rings_rb3
 else
     for n in 2 4; do
         ranks rings "$n"
@@ -70,6 +79,7 @@ serial barfv
 ranks barfv "${SPALL_MPI_RANK_COUNTS:-2}"
 # a variable h: the list radius and the ghosts' range grow with h_max
 cp "$2/tests/cli/decks/mpi_vh.yaml" vh.yaml
+[ "$light" = 1 ] && shorten vh 1.2e-4
 serial vh
 # (the ASan build sets SPALL_MPI_RANK_COUNTS=3: 3 ranks only, CMakeLists.txt)
 [ -z "${SPALL_MPI_RANK_COUNTS:-}" ] && ranks vh 2
@@ -90,6 +100,7 @@ rb=$(sed -n 's/^spatial_ghost_rebuilds: \([0-9]*\) in.*/\1/p' "$rr/run.log")
 sed "s/^output: {\(.*\)\$/output: {checkpoint: {every_steps: 10, keep: 20}, \1/" \
     "$2/tests/cli/decks/mpi_vh_if.yaml" > vhif.yaml
 grep -q "checkpoint: {every_steps: 10" vhif.yaml || { echo "FAIL: cannot make vhif.yaml"; exit 1; }
+[ "$light" = 1 ] && shorten vhif 1.75e-4
 serial vhif
 [ -z "${SPALL_MPI_RANK_COUNTS:-}" ] && ranks vhif 2
 [ "$light" = 1 ] || ranks vhif 3
