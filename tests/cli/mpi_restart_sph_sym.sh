@@ -29,10 +29,10 @@
 # and the plate to 1.5 us and 1.5 ms (48 and 56 steps; their lists rebuilt
 # 7 and 6 times after step 20), continued from step 20; the strip alone is
 # left out (its restart is the two strips'); the two strips behind the
-# interface to 95 us (42 steps, a
-# checkpoint every 4: 10 writes instead of 20; the builds at steps 30 and
-# 40 checked as before); the bar from the serial checkpoint is left out
-# (the 2-rank checkpoints equal the serial ones).
+# interface to 95 us (42 steps, a checkpoint every 4: 10 writes instead of
+# 20; the builds at steps 30 and 40 checked as before); the bar from the
+# serial checkpoint is left out (the 2-rank checkpoints equal the serial
+# ones).
 # Usage: mpi_restart_sph_sym.sh SPALL SRC MPIEXEC
 set -u
 spall="$1"
