@@ -30,7 +30,9 @@ check: build
 	@$(MAKE) --no-print-directory asan
 
 # Tests labelled no_asan in CMakeLists.txt (the heavy validation-gate groups
-# validation_pd-fracture and validation_sph-rings) run in the optimised build only.
+# validation_pd-fracture and validation_sph-rings, cli_mpi_errors, the labels
+# client and lammps) run in the optimised build only; the MPI scripts run here
+# on 3 ranks, in their light plan (docs/testing.md, "The sanitizer suite").
 asan: deps
 	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPALL_SANITIZE=ON >/dev/null
 	@cmake --build $(ASAN_BUILD) -j$(JOBS)
