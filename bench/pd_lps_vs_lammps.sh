@@ -3,7 +3,7 @@
 # models, spall `formulation: lps | eps` against LAMMPS pair peri/lps and
 # peri/eps (Debian's `lammps`): damage and probe values, and the race
 # (loop wall time, bond-steps/s, peak memory per particle).  Usage:
-#     bench/pd_lps_vs_lammps.sh [--check] [--ranks] [path/to/spall] [NX NY NZ STEPS]
+#     bench/pd_lps_vs_lammps.sh [--check] [--ranks | --mem] [path/to/spall] [NX NY NZ STEPS]
 # --check (the ctest `pd_lps_vs_lammps`, label lammps): exit 77 (skipped)
 # without `lmp`, exit 1 when a check below fails; the 1-core times are
 # printed, not checked, and the 2-core runs are left out (fast); without
@@ -12,6 +12,10 @@
 # with LAMMPS; memory = the sum of the ranks' peaks, and each rank's peak
 # against LAMMPS' largest rank, with the set-up run.log names: distributed
 # or replicated); default 2 OpenMP threads in one process.
+# --mem: only the 2-rank memory of lps and eps-elastic at the size given
+# (e.g. `--mem build/spall 72 48 48 5`: memory only, few steps): each
+# rank's peak RSS of both codes (/usr/bin/time inside mpirun, one line per
+# rank), per rank and summed; no values, no times.
 #
 # Race (as bench/pd_vs_lammps.sh): the lps and eps-elastic cases on 1 core
 # (spall 1 thread, LAMMPS `lmp` serial) and 2 cores (LAMMPS: 2 MPI ranks,
@@ -47,11 +51,12 @@
 # at 0 for step 1: every bond in tension then breaks at step 1 (peri/pmb keeps
 # its initial s0).  The set-up of a second run has the families and sets s0.
 set -euo pipefail
-CHECK=0 RANKS=0
+CHECK=0 RANKS=0 MEM=0
 while [ $# -gt 0 ]; do
     case "$1" in
         --check) CHECK=1; shift ;;
         --ranks) RANKS=1; shift ;;
+        --mem) MEM=1; shift ;;
         *) break ;;
     esac
 done
@@ -132,6 +137,36 @@ run: {{dt: 5.0e-8, dt_override: true, steps: {steps}, threads: 1}}
 output: {{history_every: {steps}, field_interval: 1.0}}
 """)
 PY
+if [ $MEM = 1 ]; then
+    for c in lps eps-elastic; do
+        ( cd "$W" && OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 \
+            /usr/bin/time -f "%M" -a -o "spall_${c}_mem.mem" "$SPALL" run "$c.yaml" \
+            > "spall_${c}_mem.out" 2>&1 ) ||
+            { echo "spall 2-rank run $c failed:"; tail -5 "$W/spall_${c}_mem.out"; exit 1; }
+        ( cd "$W" && OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 \
+            /usr/bin/time -f "%M" -a -o "lmp_${c}_mem.mem" "$LMP" -in "in.$c" \
+            -log "lmp_${c}_mem.log" -screen none > "lmp_${c}_mem.out" 2>&1 ) ||
+            { echo "lammps 2-rank run $c failed:"; tail -5 "$W/lmp_${c}_mem.out"; exit 1; }
+    done
+    python3 - "$W" <<'PY'
+import sys, re
+W = sys.argv[1]
+print(f"{'case':<12} {'code':<7} {'peak RSS per rank MiB':>22} {'sum MiB':>8} {'B/particle':>10}")
+for c in ("lps", "eps-elastic"):
+    n = int(re.search(r"^particles: (\d+)", open(f"{W}/{c}/run.log").read(), re.M).group(1))
+    setup = re.search(r"^setup: (\w+)", open(f"{W}/{c}/run.log").read(), re.M)
+    pk = {code: [float(v) * 1024 for v in open(f"{W}/{code}_{c}_mem.mem").read().split()]
+          for code in ("spall", "lmp")}
+    for code, name in (("spall", "spall"), ("lmp", "LAMMPS")):
+        v = pk[code]
+        print(f"{c:<12} {name:<7} {' / '.join(f'{x / 2**20:.1f}' for x in v):>22} "
+              f"{sum(v) / 2**20:8.1f} {sum(v) / n:10.0f}")
+    print(f"  {c} ({n} particles, spall set-up {setup.group(1) if setup else '?'}): largest rank "
+          f"{max(pk['spall']) / max(pk['lmp']):.2f} of LAMMPS', sum {sum(pk['spall']) / sum(pk['lmp']):.2f}")
+PY
+    rm -rf "$W"
+    exit 0
+fi
 # values (and the 1-core race): spall 1 thread, serial lmp
 for c in lps eps-elastic eps-plastic; do
     ( cd "$W" && OMP_NUM_THREADS=1 /usr/bin/time -f "%M" -o "spall_${c}_1.mem" \

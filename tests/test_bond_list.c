@@ -228,14 +228,17 @@ static void test_compact_rest(void **state)
         new_of_old[i] = i < 40 ? (int64_t)i : -1;
     for (size_t i = 0; i < 40; i++)
         keep[i] = i;
-    size_t *oh = NULL, nh = 0;
-    assert_int_equal(bond_list_localize(bl, keep, 40, 1, new_of_old, &oh, &nh, &err), SPALL_OK);
-    assert_int_equal(nh, bl->offset[1]);
-    for (size_t k = 0; k < nh; k++) {
+    struct bond_rows rows;
+    assert_int_equal(bond_list_localize(bl, keep, 40, 1, new_of_old, &rows, &err), SPALL_OK);
+    assert_int_equal(rows.n_half, bl->offset[1]);
+    double *kept = bond_rows_gather(&rows, before, sizeof *before);
+    assert_non_null(kept);
+    for (size_t k = 0; k < rows.n_half; k++) {
         const double r = bond_rest(bl, k);
-        assert_memory_equal(&r, &before[oh[k]], sizeof r);
+        assert_memory_equal(&r, &kept[k], sizeof r);
     }
-    free(oh);
+    free(kept);
+    bond_rows_free(&rows);
     bond_list_destroy(&bl);
 
     /* more distinct lengths than a 16-bit index holds: the doubles stay */
@@ -260,6 +263,75 @@ static void test_compact_rest(void **state)
     particles_destroy(&q);
     free(before);
     particles_destroy(&p);
+}
+
+/* bond_list_localize: rows kept in keep's order with their partners
+ * renumbered, states, types and rest lengths along, ghosts' rows empty;
+ * bond_rows_gather hands a per-half-bond array the same rows.  Ascending
+ * keep (both set-ups: compacted in place) and a shuffled one (copied)
+ * against the rows read off the untouched list. */
+static void check_localize(const size_t *keep, size_t n_keep, size_t n_owned)
+{
+    struct spall_error err = {0};
+    struct particles *p = plate();
+    struct bond_list *ref = two_shells(p), *bl = two_shells(p);
+    const size_t m = ref->offset[ref->n];
+    int64_t new_of_old[NX * NY];
+    for (size_t i = 0; i < NX * NY; i++)
+        new_of_old[i] = -1;
+    for (size_t k = 0; k < n_keep; k++)
+        new_of_old[keep[k]] = (int64_t)k;
+    double *slot = malloc(m * sizeof *slot); /* a model's array: its old slot */
+    assert_non_null(slot);
+    for (size_t s = 0; s < m; s++)
+        slot[s] = (double)s;
+    struct bond_rows rows;
+    assert_int_equal(bond_list_localize(bl, keep, n_keep, n_owned, new_of_old, &rows, &err),
+                     SPALL_OK);
+    double *got = bond_rows_gather(&rows, slot, sizeof *slot);
+    assert_non_null(got);
+    assert_int_equal(bl->n, n_keep);
+    assert_null(bl->reverse);
+    size_t w = 0;
+    for (size_t k = 0; k < n_keep; k++) {
+        assert_int_equal(bl->offset[k], w);
+        if (k < n_owned)
+            for (size_t s = ref->offset[keep[k]]; s < ref->offset[keep[k] + 1]; s++, w++) {
+                assert_int_equal(bl->partner[w], new_of_old[ref->partner[s]]);
+                assert_int_equal(bl->state[w], ref->state[s]);
+                assert_int_equal(bl->type[w], ref->type[s]);
+                assert_true(bond_rest(bl, w) == bond_rest(ref, s));
+                assert_true(got[w] == (double)s);
+            }
+        assert_int_equal(bl->offset[k + 1], w); /* a ghost's row is empty */
+    }
+    assert_int_equal(w, rows.n_half);
+    free(got);
+    free(slot);
+    bond_rows_free(&rows);
+    bond_list_destroy(&bl);
+    bond_list_destroy(&ref);
+    particles_destroy(&p);
+}
+
+static void test_localize(void **state)
+{
+    (void)state;
+    size_t keep[NX * NY];
+    size_t n = 0;
+    for (size_t i = 3; i < NX * NY; i += 3) /* owned: every third, ascending */
+        keep[n++] = i;
+    const size_t n_owned = n;
+    keep[n++] = 1; /* ghosts, any order */
+    keep[n++] = 0;
+    check_localize(keep, n, n_owned);
+    for (size_t k = 0; k + 1 < n_owned; k += 2) { /* not ascending: copied */
+        const size_t t = keep[k];
+        keep[k] = keep[k + 1];
+        keep[k + 1] = t;
+    }
+    check_localize(keep, n, n_owned);
+    check_localize(keep, 0, 0); /* nothing kept */
 }
 
 /* bond_list_build_compact: the bonds of bond_list_build and the index and
@@ -381,6 +453,7 @@ int main(void)
         cmocka_unit_test(test_reverse),
         cmocka_unit_test(test_precrack),
         cmocka_unit_test(test_compact_rest),
+        cmocka_unit_test(test_localize),
         cmocka_unit_test(test_build_compact),
         cmocka_unit_test(test_errors),
     };

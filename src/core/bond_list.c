@@ -457,75 +457,135 @@ void bond_list_replace(struct bond_list *bl, size_t n, size_t *offset, int32_t *
     bl->gen++;
 }
 
-/** array_gather of @p old (NULL: nothing), which is freed; *ok false once
- *  out of memory (then NULL, and nothing more is gathered). */
-static void *gather_free(void *old, size_t size, const size_t *idx, size_t n, int *ok)
+/* Whether the owned rows keep their old order (keep ascending), which
+ * lets every kept row move down in place: its new start is at most its
+ * old one.  Both set-ups (decomp.c, setup_dist.c) keep their owned
+ * particles in index order; anything else takes a copy. */
+static bool rows_ascending(const size_t *keep, size_t n_owned)
 {
-    void *kept = old && *ok ? array_gather(old, size, idx, n) : NULL;
-    *ok = *ok && (!old || kept);
-    free(old);
-    return kept;
+    for (size_t k = 1; k < n_owned; k++)
+        if (keep[k] <= keep[k - 1])
+            return false;
+    return true;
+}
+
+/* Row k of the new list, k < n_owned, is row keep[k] of the old one: copy
+ * the rows one after another (the elements of @p size bytes of the old
+ * slots old_offset[keep[k]] ..) to @p out, which may be @p a itself when
+ * the rows are ascending (each row moves down or stays: memmove). */
+static void rows_copy(unsigned char *out, const unsigned char *a, size_t size,
+                      const struct bond_rows *r)
+{
+    size_t w = 0;
+    for (size_t k = 0; k < r->n_owned; k++) {
+        const size_t i = r->keep[k], len = r->old_offset[i + 1] - r->old_offset[i];
+        if (len)
+            memmove(out + w * size, a + r->old_offset[i] * size, len * size);
+        w += len;
+    }
+}
+
+void *bond_rows_gather(const struct bond_rows *r, const void *a, size_t size)
+{
+    unsigned char *out = malloc((r->n_half ? r->n_half : 1) * size);
+    if (out)
+        rows_copy(out, a, size, r);
+    return out;
+}
+
+/* The kept rows of @p old (NULL: nothing) in place of it when the rows are
+ * ascending (the array shrunk to them: no second copy, the set-up's peak),
+ * else a gathered copy and the old freed; *ok false once out of memory
+ * (then NULL, and nothing more is done). */
+static void *rows_take(void *old, size_t size, const struct bond_rows *r, int *ok)
+{
+    if (!old || !*ok) {
+        free(old);
+        return NULL;
+    }
+    if (!r->ascending) {
+        void *kept = bond_rows_gather(r, old, size);
+        *ok = kept != NULL;
+        free(old);
+        return kept;
+    }
+    rows_copy(old, old, size, r);
+    void *shrunk = realloc(old, (r->n_half ? r->n_half : 1) * size);
+    return shrunk ? shrunk : old; /* a failed shrink keeps the larger block */
+}
+
+void bond_rows_free(struct bond_rows *r)
+{
+    free(r->old_offset);
+    r->old_offset = NULL;
 }
 
 int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, size_t n_owned,
-                       const int64_t *new_of_old, size_t **old_half, size_t *n_half,
+                       const int64_t *new_of_old, struct bond_rows *rows,
                        struct spall_error *err)
 {
     size_t nh = 0;
     for (size_t k = 0; k < n_owned; k++)
         nh += bl->offset[keep[k] + 1] - bl->offset[keep[k]];
     size_t *offset = calloc(n_keep + 1, sizeof *offset);
-    size_t *oh = malloc((nh ? nh : 1) * sizeof *oh);
-    int32_t *partner = malloc((nh ? nh : 1) * sizeof *partner);
-    if (!offset || !oh || !partner) {
+    if (!offset)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
+    *rows = (struct bond_rows){bl->offset, keep, n_owned, nh, rows_ascending(keep, n_owned)};
+    bl->offset = NULL; /* the rows' old starts, for the model's arrays */
+    int32_t *partner = rows->ascending ? bl->partner : malloc((nh ? nh : 1) * sizeof *partner);
+    if (!partner) {
+        bl->offset = rows->old_offset;
+        rows->old_offset = NULL;
         free(offset);
-        free(oh);
-        free(partner);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
     }
+    /* renumbered row by row; in place, each slot is read before a later
+     * row's (or its own row's later slot's) write can reach it */
     size_t w = 0;
     for (size_t k = 0; k < n_keep; k++) {
-        const size_t i = keep[k];
-        if (k < n_owned)
-            for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++, w++) {
+        if (k < n_owned) {
+            const size_t i = keep[k];
+            for (size_t s = rows->old_offset[i]; s < rows->old_offset[i + 1]; s++, w++)
                 partner[w] = (int32_t)new_of_old[bl->partner[s]];
-                oh[w] = s;
-            }
+        }
         offset[k + 1] = w;
     }
-    /* The old arrays go one by one as their kept parts are copied, so that
-     * a distributed set-up (every rank holds the whole body until here)
-     * never holds the whole list and the kept one at once: the old partners
-     * first, then each array right after its gather.  The rest lengths as
-     * they are stored: doubles, the compact index (the table stays: it
+    /* The old arrays go one by one, each as its kept rows are taken (in
+     * place when the rows keep their order, else copied), so that a
+     * distributed set-up (each rank holds its window until here) never
+     * holds the window's list and the kept one at once.  The rest lengths
+     * as they are stored: doubles, the compact index (the table stays: it
      * holds every value a kept index can name) or neither (a model that
      * keeps them elsewhere); type may be NULL likewise.  Out of memory
      * leaves a list the run can only destroy. */
-    free(bl->partner);
-    free(bl->reverse);
+    if (rows->ascending) {
+        int32_t *shrunk = realloc(partner, (nh ? nh : 1) * sizeof *partner);
+        partner = shrunk ? shrunk : partner;
+    } else {
+        free(bl->partner);
+    }
     bl->partner = NULL;
+    free(bl->reverse);
     bl->reverse = NULL;
     int ok = 1;
-    double *rest = gather_free(bl->rest, sizeof *rest, oh, nh, &ok);
-    uint16_t *ridx = gather_free(bl->rest_idx, sizeof *ridx, oh, nh, &ok);
-    uint8_t *state = gather_free(bl->state, sizeof *state, oh, nh, &ok);
-    uint8_t *type = gather_free(bl->type, sizeof *type, oh, nh, &ok);
+    double *rest = rows_take(bl->rest, sizeof *rest, rows, &ok);
+    uint16_t *ridx = rows_take(bl->rest_idx, sizeof *ridx, rows, &ok);
+    uint8_t *state = rows_take(bl->state, sizeof *state, rows, &ok);
+    uint8_t *type = rows_take(bl->type, sizeof *type, rows, &ok);
     bl->rest = NULL;
     bl->rest_idx = NULL;
     bl->state = NULL;
     bl->type = NULL;
     if (!ok || !state) {
         free(offset);
-        free(oh);
         free(partner);
         free(rest);
         free(ridx);
         free(state);
         free(type);
+        bond_rows_free(rows);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising bonds");
     }
     bond_list_replace(bl, n_keep, offset, partner, rest, ridx, state, type);
-    *old_half = oh;
-    *n_half = nh;
     return SPALL_OK;
 }

@@ -14,6 +14,7 @@
 #ifndef SPALL_BOND_LIST_H
 #define SPALL_BOND_LIST_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -59,16 +60,39 @@ static inline double bond_rest(const struct bond_list *bl, size_t k)
  *  values; an error only when out of memory. */
 int bond_list_compact_rest(struct bond_list *bl, struct spall_error *err);
 
+/** The rows a localised list kept, in the old list's numbering, for the
+ *  model's per-half-bond arrays (bond_rows_gather): row k < n_owned of the
+ *  new list is the old row keep[k], whose slots started at
+ *  old_offset[keep[k]]; ghosts' rows are empty.  A row map instead of an
+ *  old index per kept half-bond (8 B each, the distributed set-up's peak,
+ *  docs/performance.md "State-based PD: distributed set-up memory"). */
+struct bond_rows {
+    size_t *old_offset;  /**< the old list's offsets (owned: bond_rows_free) */
+    const size_t *keep;  /**< the caller's keep[0..n_owned) */
+    size_t n_owned;
+    size_t n_half;       /**< kept half-bonds: the new list's offset[n] */
+    bool ascending;      /**< keep[0..n_owned) ascending: rows move in place */
+};
+
 /** Distributed runs (model_ops.localize): keep the rows of particles
  *  keep[0..n_owned) in their order, partners renumbered by @p new_of_old,
  *  and give keep[n_owned..n_keep) (the ghosts) empty rows; the reverse map
- *  is dropped.  The struct keeps its address (the restart registry holds
- *  its members').  *old_half (free it) holds, for each of the *n_half kept
- *  half-bonds, its old index, for array_gather of the model's per-half-bond
- *  arrays. */
+ *  is dropped.  When keep[0..n_owned) is ascending (both set-ups) the
+ *  arrays are compacted in place and shrunk, so the old and the new list
+ *  never coexist.  The struct keeps its address (the restart registry
+ *  holds its members').  @p rows (bond_rows_free it; it reads @p keep)
+ *  maps the kept half-bonds to their old slots for bond_rows_gather of the
+ *  model's per-half-bond arrays. */
 int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, size_t n_owned,
-                       const int64_t *new_of_old, size_t **old_half, size_t *n_half,
+                       const int64_t *new_of_old, struct bond_rows *rows,
                        struct spall_error *err);
+
+/** A new array (free it) of the kept rows of @p a (elements of @p size
+ *  bytes, one per old half-bond), in the new list's slot order; NULL when
+ *  out of memory. */
+void *bond_rows_gather(const struct bond_rows *r, const void *a, size_t size);
+/** Free the row map's old offsets. */
+void bond_rows_free(struct bond_rows *r);
 
 /** Replace the list's arrays by new ones for @p n particles (taken over;
  *  the old ones and the reverse map are freed; the compact rest table

@@ -415,10 +415,18 @@ int lattice_fill_window(struct particles *p, const struct lattice_spec *spec,
         for (size_t l = o0; l < o1; l++)
             w->n_own += cnt[l];
         w->gid_first = (int64_t)before;
+        /* the window's sites are counted: reserve them at once (appending
+         * one by one doubles the arrays past them, up to twice the
+         * window's particle memory at the set-up's peak) */
+        size_t n_win = 0;
+        for (size_t l = l0; l < l1; l++)
+            n_win += cnt[l];
+        rc = particles_reserve(p, p->n + n_win, err);
         size_t added = 0;
         /* the limit is the whole body's (checked above), not this rank's */
-        rc = fill_layers(p, spec, region, material, &b, (long)l0, (long)l1, INFINITY, &added,
-                         err);
+        if (!rc)
+            rc = fill_layers(p, spec, region, material, &b, (long)l0, (long)l1, INFINITY,
+                             &added, err);
     }
     free(cnt);
     free(first);

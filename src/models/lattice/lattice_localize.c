@@ -29,12 +29,13 @@
  * The buffer holds 4 doubles per local half-bond: 2 for the slot's own
  * value and room for the 2 of a reverse half received from another rank
  * (at most one per local half-bond; lattice_compute_forces). */
-static int angles_localize(struct model *m, const size_t *oh, size_t nh,
+static int angles_localize(struct model *m, const struct bond_rows *rows,
                            struct spall_error *err)
 {
-    uint8_t *b = array_gather(m->ang_b, sizeof *b, oh, nh);
-    double *phi0 = array_gather(m->ang_phi0, sizeof *phi0, oh, nh);
-    uint8_t *st = array_gather(m->ang_state, sizeof *st, oh, nh);
+    const size_t nh = rows->n_half;
+    uint8_t *b = bond_rows_gather(rows, m->ang_b, sizeof *b);
+    double *phi0 = bond_rows_gather(rows, m->ang_phi0, sizeof *phi0);
+    uint8_t *st = bond_rows_gather(rows, m->ang_state, sizeof *st);
     double *buf = calloc(4 * (nh ? nh : 1), sizeof *buf);
     if (!b || !phi0 || !st || !buf) {
         free(b);
@@ -60,18 +61,19 @@ int lattice_localize(struct model *m, struct sim *sim, const size_t *keep, size_
     (void)sim;
     if (!keep) /* only asked whether it can */
         return SPALL_OK;
-    size_t *oh = NULL, nh = 0;
-    int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
+    struct bond_rows rows;
+    int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &rows, err);
     if (rc)
         return rc;
-    double *kappa = m->kappa ? array_gather(m->kappa, sizeof *kappa, oh, nh) : NULL;
+    const size_t nh = rows.n_half;
+    double *kappa = m->kappa ? bond_rows_gather(&rows, m->kappa, sizeof *kappa) : NULL;
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
     /* thermal lattice: temperatures of owned and ghosts (the halo refreshes
      * the ghosts' each conduction sub-step, lattice_thermal.c) */
-    rc = lattice_thermal_localize(m, keep, n_keep, oh, nh, err);
+    rc = lattice_thermal_localize(m, keep, n_keep, &rows, err);
     if (!rc && m->ang_b)
-        rc = angles_localize(m, oh, nh, err);
-    free(oh);
+        rc = angles_localize(m, &rows, err);
+    bond_rows_free(&rows);
     if (rc || (m->kappa && !kappa) || !diss) {
         free(kappa);
         free(diss);

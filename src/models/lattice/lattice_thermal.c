@@ -461,7 +461,7 @@ static void th_reduce(const double *rows, size_t n, int ncol, double *out, const
 }
 
 int lattice_thermal_localize(struct model *m, const size_t *keep, size_t n_keep,
-                             const size_t *oh, size_t nh, struct spall_error *err)
+                             const struct bond_rows *rows, struct spall_error *err)
 {
     struct lattice_thermal *th = m->th;
     if (!lattice_thermal_enabled(m))
@@ -475,7 +475,7 @@ int lattice_thermal_localize(struct model *m, const size_t *keep, size_t n_keep,
         if (!*pp[k])
             continue; /* kscale: only with a youngs_modulus_table */
         np[k] = k < 3 ? array_gather(*pp[k], sizeof(double), keep, n_keep)
-                      : array_gather(*pp[k], sizeof(double), oh, nh);
+                      : bond_rows_gather(rows, *pp[k], sizeof(double));
         bad |= !np[k];
     }
     if (bad) {

@@ -64,10 +64,11 @@ int lattice_thermal_register_state(struct model *m, size_t n_owned, struct field
                                    struct spall_error *err);
 int lattice_thermal_register_fields(struct model *m, struct field_registry *reg,
                                     struct spall_error *err);
+struct bond_rows;
 /** Distributed runs (lattice_localize): keep the state of particles
- *  @p keep (owned, then ghosts) and of the half-bonds @p oh. */
+ *  @p keep (owned, then ghosts) and of the half-bonds of the kept rows. */
 int lattice_thermal_localize(struct model *m, const size_t *keep, size_t n_keep,
-                             const size_t *oh, size_t nh, struct spall_error *err);
+                             const struct bond_rows *rows, struct spall_error *err);
 struct par_model_arrays;
 /** Distributed runs, migration: lend the thermal state per particle and per
  *  half-bond (appended to @p a), and after the move take the new count @p n

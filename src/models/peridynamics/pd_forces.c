@@ -268,8 +268,8 @@ PD_KERNEL_SPLIT_DIM(3)
 
 /* The kernel's table of the compact families for this step (NULL when
  * the model keeps the arrays): thr = s0 r (1 - 1e-12) with the
- * thresholds of now. */
-static int pd_kind_rows(const struct model *m, struct pd_kind_row **out, struct spall_error *err)
+ * thresholds of now; the LPS kernel reads the same rows. */
+int pd_kind_rows(const struct model *m, struct pd_kind_row **out, struct spall_error *err)
 {
     *out = NULL;
     if (!m->kind)

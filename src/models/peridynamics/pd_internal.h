@@ -190,6 +190,19 @@ int pd_compact_build(struct model *m, struct sim *sim, struct spall_error *err);
  *  must be unset (NULL) on entry. */
 int pd_kinds_from_table(struct model *m, unsigned char *tab, size_t nk,
                         struct spall_error *err);
+/** A row of the compact families' table as the force kernels read it
+ *  (bond-based pd_forces.c / pd_half.c and state-based pd_lps_kernel.c):
+ *  one cache line for a half-bond's three doubles, the rest length, the
+ *  k_coef column (the pair coefficient, or omega beta for lps / eps:
+ *  pd_lps.c lps_build_kinds) and the breaking pre-test bound
+ *  thr = s0 r PD_PRE with the thresholds of now. */
+struct pd_kind_row {
+    double rest, coef, thr;
+    unsigned type;
+};
+/** The table for this force call (free it; NULL when the model keeps the
+ *  per-half-bond arrays instead, m->kind NULL). */
+int pd_kind_rows(const struct model *m, struct pd_kind_row **out, struct spall_error *err);
 /** Bytes of the model's own arrays (families, coefficients, per-particle state)
  *  for @p n particles: the memory report of pd_describe. */
 size_t pd_model_bytes(const struct model *m, size_t n);

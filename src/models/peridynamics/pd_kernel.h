@@ -8,6 +8,8 @@
 #ifndef SPALL_PD_KERNEL_H
 #define SPALL_PD_KERNEL_H
 
+#include "models/peridynamics/pd_internal.h"
+
 #include "core/bond_list.h"
 
 #include <math.h>
@@ -36,13 +38,6 @@ static inline double pd_break_energy(int dim, double ex, double ey, double ez, d
 }
 
 #define PD_CHUNK 64
-
-/* A row of the compact families' table as the kernel reads it: one cache
- * line for the three doubles of a half-bond, and its pre-test bound. */
-struct pd_kind_row {
-    double rest, coef, thr;
-    unsigned type;
-};
 
 /* What the bond-based kernels (pd_forces.c, pd_half.c) read and write
  * besides the particle's row. */

@@ -27,8 +27,8 @@
  * copy of the reverse half's plastic extension; per particle the dilatation
  * return-map scale and d k theta / m its owner sends to the ghosts
  * (pd_lps_kernel.c). */
-static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, const size_t *oh,
-                        size_t nh, struct spall_error *err)
+static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep,
+                        const struct bond_rows *rows, struct spall_error *err)
 {
     /* afac (surface correction) is NULL without it */
     double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
@@ -47,7 +47,7 @@ static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep, con
     for (int k = 0; k < npp; k++)
         bad |= !(np[k] = array_gather(*pp[k], sizeof(double), keep, n_keep));
     for (int k = 0; k < nbb; k++)
-        bad |= !(nb[k] = array_gather(*bb[k], sizeof(double), oh, nh));
+        bad |= !(nb[k] = bond_rows_gather(rows, *bb[k], sizeof(double)));
     double *hs = NULL; /* eps: theta, scale, d k theta / m per particle, of each force call */
     if (L->ep)
         bad |= !(hs = calloc(3 * (n_keep ? n_keep : 1), sizeof *hs));
@@ -119,10 +119,9 @@ static int mixed_localize(struct model *m, const size_t *keep, size_t n_keep,
 
 /* matrix_crack: fiber_plane: per half-bond its twin's slot in the same row
  * (rows keep their order) and the stretch-broken flag (pd_plane.c) */
-static int plane_localize(struct model *m, const size_t *oh, size_t nh,
-                          struct spall_error *err)
+static int plane_localize(struct model *m, const struct bond_rows *rows, struct spall_error *err)
 {
-    uint8_t *t = array_gather(m->twin, 1, oh, nh), *f = array_gather(m->fresh, 1, oh, nh);
+    uint8_t *t = bond_rows_gather(rows, m->twin, 1), *f = bond_rows_gather(rows, m->fresh, 1);
     if (!t || !f) {
         free(t);
         free(f);
@@ -151,13 +150,14 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
         for (size_t s = 0; s < nf; s++)
             L->epr[s] = L->ep[pd_eps_rev(m, s)];
     }
-    size_t *oh = NULL, nh = 0;
-    int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
+    struct bond_rows rows;
+    int rc = bond_list_localize(m->bl, keep, n_keep, n_owned, new_of_old, &rows, err);
     if (rc)
         return rc;
+    const size_t nh = rows.n_half;
     /* per half-bond: the coefficients, or the compact families' table rows */
-    double *coef = m->coef ? array_gather(m->coef, sizeof *coef, oh, nh) : NULL;
-    uint16_t *kind = m->kind ? array_gather(m->kind, sizeof *kind, oh, nh) : NULL;
+    double *coef = m->coef ? bond_rows_gather(&rows, m->coef, sizeof *coef) : NULL;
+    uint16_t *kind = m->kind ? bond_rows_gather(&rows, m->kind, sizeof *kind) : NULL;
     size_t *n_init = array_gather(m->n_init, sizeof *n_init, keep, n_keep);
     size_t *n_init_f = array_gather(m->n_init_f, sizeof *n_init_f, keep, n_keep);
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);
@@ -165,7 +165,7 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
      * (pd_eps_init), zero as a fresh run's */
     const bool eps_fresh = m->opt.eps && !L->ep;
     if (!rc && m->opt.lps)
-        rc = lps_localize(&m->lps, keep, n_keep, oh, nh, err);
+        rc = lps_localize(&m->lps, keep, n_keep, &rows, err);
     if (!rc && eps_fresh)
         rc = pd_eps_localized(&m->lps, nh, n_keep, err);
     if (!rc && m->f_prev[0])
@@ -173,8 +173,8 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
     if (!rc && m->mm_g)
         rc = mixed_localize(m, keep, n_keep, err);
     if (!rc && m->twin)
-        rc = plane_localize(m, oh, nh, err);
-    free(oh);
+        rc = plane_localize(m, &rows, err);
+    bond_rows_free(&rows);
     if (rc || (m->coef && !coef) || (m->kind && !kind) || !n_init || !n_init_f || !diss) {
         free(coef);
         free(kind);

@@ -37,19 +37,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A row of the kind table as the kernels read it (compact families). */
-struct lps_krow {
-    double rest, ob, thr;
-    unsigned type;
-};
-
 /* What the passes read besides the row's own buffers. */
 struct lps_ctx {
     const size_t *off;
     const int32_t *partner;
     uint8_t *st;
     const uint16_t *kind;        /* NULL: the arrays rest, ob, type */
-    const struct lps_krow *ktab; /* per call: thr with the thresholds of now */
+    const struct pd_kind_row *ktab; /* per call: thr with the thresholds of now */
     const double *rest, *ob;
     const uint8_t *type;
     const double *s0tab;
@@ -101,9 +95,9 @@ lps_gather(int ncomp, const struct lps_ctx *c, size_t s0, size_t nb, struct lps_
     } while (0)
 #define LPS_GATHER_KIND(k)                                                                      \
     do {                                                                                        \
-        const struct lps_krow *r = &c->ktab[c->kind[s0 + (k)]];                                 \
+        const struct pd_kind_row *r = &c->ktab[c->kind[s0 + (k)]];                              \
         b->rb[k] = r->rest;                                                                     \
-        b->ob[k] = r->ob;                                                                       \
+        b->ob[k] = r->coef;                                                                     \
         b->tb[k] = pd_thr_or_nan(r->thr, c->st[s0 + (k)]);                                      \
     } while (0)
 #define LPS_GATHER_FULL(k)                                                                      \
@@ -334,20 +328,14 @@ static size_t lps_max_row(const struct bond_list *bl, size_t n)
 }
 
 /* The context of a call, with the kind table's pre-test bounds of now
- * (*ktab: free it). */
+ * (*ktab: free it; omega beta in its coef column). */
 static int lps_ctx_make(const struct model *m, const struct sim *sim, struct lps_ctx *c,
-                        struct lps_krow **ktab, struct spall_error *err)
+                        struct pd_kind_row **ktab, struct spall_error *err)
 {
     const struct bond_list *bl = m->bl;
-    *ktab = NULL;
-    if (m->kind) {
-        if (!(*ktab = malloc((m->n_kind ? m->n_kind : 1) * sizeof **ktab)))
-            return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the LPS forces");
-        for (size_t q = 0; q < m->n_kind; q++)
-            (*ktab)[q] = (struct lps_krow){m->k_rest[q], m->k_coef[q],
-                                           m->s0_tab[m->k_type[q]] * m->k_rest[q] * PD_PRE,
-                                           m->k_type[q]};
-    }
+    int rc = pd_kind_rows(m, ktab, err);
+    if (rc)
+        return rc;
     *c = (struct lps_ctx){bl->offset, bl->partner, bl->state, m->kind, *ktab, bl->rest,
                           m->lps.ob, bl->type, m->s0_tab, sim->p->x, sim->p->volume};
     return SPALL_OK;
@@ -641,7 +629,7 @@ static void eps_row_pass3(struct model *m, const struct sim *sim, const struct l
         if (!brk || !(e / xi > c->s0tab[lps_type_of(c, s)]))
             continue;
         c->st[s] |= BOND_BROKEN;
-        const double ob = c->kind ? c->ktab[row].ob : c->ob[s];
+        const double ob = c->kind ? c->ktab[row].coef : c->ob[s];
         const double ee = e - ep[s];
         const double t = L->alpha[i] * ee + L->bcoef[i] * xi * L->theta[i];
         m->diss[i] += 0.5 * ob * t * ee * p->volume[i] * p->volume[j];
@@ -699,7 +687,7 @@ int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
     const size_t n = sim->p->n, no = sim->p->n_owned;
     struct lps_ctx c;
-    struct lps_krow *ktab;
+    struct pd_kind_row *ktab;
     int rc = lps_ctx_make(m, sim, &c, &ktab, err);
     if (rc)
         return rc;

@@ -203,20 +203,20 @@ static int localize_tl(struct model *m, const size_t *keep, size_t n_keep, size_
     m->tl->pairs_all = t->nl->offset[t->nl->n]; /* the serial m->n_pairs (restart state) */
     struct tl_pair *prev = NULL;
     int rc = reverse_pairs(t, &prev, err);
-    size_t *oh = NULL, nh = 0;
+    struct bond_rows rows;
     if (!rc)
-        rc = bond_list_localize(m->tl->halo, keep, n_keep, n_owned, new_of_old, &oh, &nh, err);
+        rc = bond_list_localize(m->tl->halo, keep, n_keep, n_owned, new_of_old, &rows, err);
     if (rc) {
         free(prev);
         return rc;
     }
     /* per pair: the constants in both orientations; per particle: the
      * packed blocks (their reference part is set up once) */
-    struct tl_pair *npair = array_gather(t->pair, sizeof *npair, oh, nh);
-    struct tl_pair *nprev = array_gather(prev, sizeof *nprev, oh, nh);
+    struct tl_pair *npair = bond_rows_gather(&rows, t->pair, sizeof *npair);
+    struct tl_pair *nprev = bond_rows_gather(&rows, prev, sizeof *nprev);
     int64_t *serial = malloc((n_keep ? n_keep : 1) * sizeof *serial);
     free(prev);
-    free(oh);
+    bond_rows_free(&rows);
     if (!npair || !nprev || !serial || gather(&t->pk, TL_STRIDE * sizeof(double), keep, n_keep) ||
         gather(&t->self, TL_SELF * sizeof(double), keep, n_keep)) {
         free(npair);
