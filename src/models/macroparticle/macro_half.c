@@ -12,7 +12,7 @@
  * computing end and the partner, per slot of the owned rows the pair it
  * holds.  Pass 1 runs over the pairs (long vectorisable chunks): distance,
  * plastic update, pairwise Langevin force, the Mie law, and stores c = -f/r
- * and phi (+0 both when the pair does not count).  Pass 2 sums every row
+ * and phi / 2 (+0 both when the pair does not count).  Pass 2 sums every row
  * over all its slots in list order, as the full loop does, reading its
  * pairs' values; in 3D four rows at a time, a row a vector lane (each lane
  * the same operations in the same order as one row alone).
@@ -313,7 +313,9 @@ MACRO_CLONES static void half_chunk_dist(size_t nb, int dim, double *const *rest
 }
 
 /** Pair law of nb pairs at distances rd (squared r2) and elastic distances
- *  re: phi and c = -f/r, both +0 where the pair does not count (the full
+ *  re: phi / 2 (the half each end books: pass 2 adds it as the full loop
+ *  adds 0.5 phi, the same product) and c = -f/r, both +0 where the pair
+ *  does not count (the full
  *  loop's tests, without short circuits for the vectoriser; NaN distances
  *  count).  A pair with c = +-0 and phi = 0 adds only +-0 terms to the sums
  *  of pass 2, which change no sum (they start at +0 and never become -0),
@@ -331,7 +333,7 @@ MACRO_CLONES static void half_chunk_law(const struct macro_pair *w, size_t nb,
                                        !(re[k] <= 0.0));
         /* force on i along dx (attraction > 0); the masks by bits, not a
          * branch the vectoriser would have to keep around the division */
-        union { double d; uint64_t u; } ck = {.d = -fk[k] / rd[k]}, pk = {.d = ph[k]};
+        union { double d; uint64_t u; } ck = {.d = -fk[k] / rd[k]}, pk = {.d = 0.5 * ph[k]};
         ck.u &= -ok;
         pk.u &= -ok;
         c[k] = ck.d;
@@ -459,7 +461,8 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
         .m = m, .w = &w, .nl = m->nl, .x = p->x, .v = p->v, .f = p->f, .gid = p->gid,
         .dim = sim->dim, .n = n, .plastic = plastic, .mu = mu, .g = g, .dt = dt,
         .sp = m->eta_cg * sqrt(2.0 * mu * kT / dt), .sg = m->eta_cg * sqrt(2.0 * g * kT / dt),
-        .rlist2 = rl * rl, .seed = sim->seed, .step = (uint64_t)m->n_calls};
+        .rlist2 = rl * rl, .seed = sim->seed, .step = (uint64_t)m->n_calls,
+        .bounded = sim->dim == 3 && macro_half_bounded(p->x, p->n)};
     m->n_calls++;
     bool threads = false;
 #ifdef _OPENMP

@@ -27,6 +27,7 @@ struct half_ctx {
     int dim;
     size_t n;
     bool plastic;
+    bool bounded; /**< 3D: every position (owned and ghost) within +-1e300 */
     double mu, sp, g, sg, dt, rlist2;
     uint64_t seed, step;
 };
@@ -44,6 +45,10 @@ void macro_half_pass2(const struct half_ctx *h, size_t i0, size_t i1);
  *  has ended points at itself and at the zero pair, index half_pairs, whose
  *  c and phi stay +0.  Returns false when out of memory. */
 bool macro_half_groups(struct model *m, size_t n);
+
+/** Whether all n particles' three coordinates lie within +-1e300 (no NaN):
+ *  pass 2 then need not mask the pair vectors of pairs that add nothing. */
+bool macro_half_bounded(double *const *x, size_t n);
 
 /** Frees the group layout. */
 void macro_half_groups_free(struct model *m);

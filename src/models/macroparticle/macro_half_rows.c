@@ -58,7 +58,7 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
         const double dx = x0[j] - xi0, dy = dim > 1 ? x1[j] - xi1 : 0.0;
         const double dz = dim > 2 ? x2[j] - xi2 : 0.0;
         const double c = pc[q], hc = 0.5 * c;
-        A += (half_v4){c, c, c, 0.5} * (half_v4){dx, dy, dz, pphi[q]};
+        A += (half_v4){c, c, c, 1.0} * (half_v4){dx, dy, dz, pphi[q]}; /* pphi: 0.5 phi */
         B += (half_v4){hc, hc, hc, hc} * (half_v4){dx, dy, dz, dx} * (half_v4){dx, dy, dz, dy};
         C += (half_v2){hc, hc} * (half_v2){dy, dz} * (half_v2){dz, dx};
     }
@@ -80,7 +80,7 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
         const double c = pc[q];
         for (int d = 0; d < 3; d++)
             out[d] += c * dx[d];
-        out[3] += 0.5 * pphi[q];
+        out[3] += pphi[q]; /* 0.5 phi */
         for (int d = 0; d < 3; d++)
             out[4 + d] += 0.5 * c * dx[d] * dx[d];
         out[7] += 0.5 * c * dx[0] * dx[1];
@@ -163,23 +163,29 @@ static inline void half_row_finish(const struct half_ctx *h, size_t i,
 
 #if defined(__GNUC__)
 /* Step k of a group: the four lanes' partner positions xj, yj, zj and pair
- * values c, ph added to the ten sums (the operations of half_row_sums in its
- * order).  c = +-0: the force and virial terms are +-0 (no change), and +0
- * also where dx is not finite; ph is +0 where the pair does not count (pass
- * 1) and for a row that has ended (the zero pair). */
+ * values c, ph (0.5 phi) added to the ten sums (the operations of
+ * half_row_sums in its order).  c = +-0: the force and virial terms are +-0,
+ * which change no sum (they start at +0 and never become -0); @p mask: dx
+ * is then replaced by +0, for the run whose positions may be huge or not
+ * finite (x_j - x_i infinite or NaN, where 0 dx would not be 0); ph is +0
+ * where the pair does not count (pass 1) and for a row that has ended (the
+ * zero pair). */
 __attribute__((always_inline)) static inline void
 half_step4(half_v4 acc[HALF_SUMS], const half_v4 xi[3], half_v4 xj, half_v4 yj, half_v4 zj,
-           half_v4 c, half_v4 ph)
+           half_v4 c, half_v4 ph, bool mask)
 {
-    const half_m4 ok = c != 0.0;
-    const half_v4 dx = (half_v4)((half_m4)(xj - xi[0]) & ok);
-    const half_v4 dy = (half_v4)((half_m4)(yj - xi[1]) & ok);
-    const half_v4 dz = (half_v4)((half_m4)(zj - xi[2]) & ok);
+    half_v4 dx = xj - xi[0], dy = yj - xi[1], dz = zj - xi[2];
+    if (mask) {
+        const half_m4 ok = c != 0.0;
+        dx = (half_v4)((half_m4)dx & ok);
+        dy = (half_v4)((half_m4)dy & ok);
+        dz = (half_v4)((half_m4)dz & ok);
+    }
     const half_v4 hc = 0.5 * c;
     acc[0] += c * dx;
     acc[1] += c * dy;
     acc[2] += c * dz;
-    acc[3] += 0.5 * ph;
+    acc[3] += ph;
     acc[4] += hc * dx * dx;
     acc[5] += hc * dy * dy;
     acc[6] += hc * dz * dz;
@@ -205,9 +211,11 @@ half_group_finish(const struct half_ctx *h, size_t i, bool plain, const half_v4 
     }
 }
 
-/* Pass 2 of the groups [g0, g1): the steps' partners and pairs loaded
- * as vectors, their positions and values element by element. */
-MACRO_CLONES static void half_groups(const struct half_ctx *h, size_t g0, size_t g1, bool plain)
+/* Pass 2 of the groups [g0, g1): the steps' partners and pairs loaded as
+ * vectors, their positions and values element by element (AVX2 gathers
+ * instead: as many cycles or more on the machine measured). */
+__attribute__((always_inline)) static inline void
+half_groups_k(const struct half_ctx *h, size_t g0, size_t g1, bool plain, bool mask)
 {
     const struct model *m = h->m;
     const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2], *pc = m->pc, *pphi = m->pphi;
@@ -228,14 +236,55 @@ MACRO_CLONES static void half_groups(const struct half_ctx *h, size_t g0, size_t
             const half_v4 zj = {x2[j[0]], x2[j[1]], x2[j[2]], x2[j[3]]};
             const half_v4 c = {pc[q[0]], pc[q[1]], pc[q[2]], pc[q[3]]};
             const half_v4 ph = {pphi[q[0]], pphi[q[1]], pphi[q[2]], pphi[q[3]]};
-            half_step4(a, xi, xj, yj, zj, c, ph);
+            half_step4(a, xi, xj, yj, zj, c, ph, mask);
         }
         memcpy(acc, a, sizeof acc);
         half_group_finish(h, i, plain, acc);
     }
 }
 
+/* ... with the mask of dx only where a position is huge or not finite
+ * (@p bounded false): four vector operations a step fewer. */
+MACRO_CLONES static void half_groups(const struct half_ctx *h, size_t g0, size_t g1, bool plain,
+                                     bool bounded)
+{
+    if (bounded)
+        half_groups_k(h, g0, g1, plain, false);
+    else
+        half_groups_k(h, g0, g1, plain, true);
+}
+
+/* Whether every coordinate of the n particles is within +-1e300: then every
+ * x_j - x_i is finite (no NaN, no overflow), and c dx = +-0 where c = +-0. */
+MACRO_CLONES static bool half_bounded(double *const *x, size_t n)
+{
+    const double big = 1e300;
+    half_m4 in = {-1, -1, -1, -1};
+    bool ok = true;
+    for (int d = 0; d < 3; d++) {
+        size_t i = 0;
+        for (; i + 4 <= n; i += 4) {
+            half_v4 v;
+            memcpy(&v, x[d] + i, sizeof v);
+            in &= (v <= big) & (v >= -big);
+        }
+        for (; i < n; i++)
+            ok &= x[d][i] <= big && x[d][i] >= -big;
+    }
+    return ok && (in[0] & in[1] & in[2] & in[3]);
+}
 #endif
+
+bool macro_half_bounded(double *const *x, size_t n)
+{
+#if defined(__GNUC__)
+    return half_bounded(x, n);
+#else
+    (void)x;
+    (void)n;
+    return false;
+#endif
+}
 
 void macro_half_groups_free(struct model *m)
 {
@@ -303,7 +352,7 @@ void macro_half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
         /* the whole groups from i on */
         const size_t ge = (i1 < h->n - h->n % 4 ? i1 : h->n - h->n % 4) / 4;
         if (h->dim == 3 && h->m->goff && i % 4 == 0 && i / 4 < ge) {
-            half_groups(h, i / 4, ge, plain);
+            half_groups(h, i / 4, ge, plain, h->bounded);
             i = 4 * ge;
             continue;
         }

@@ -92,8 +92,8 @@ struct model {
     size_t g_cap;          /**< allocated lanes of gidx and gpid */
     double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i);
                                 +0 when it does not count; one more, the zero pair: +0 */
-    double *pphi;          /**< per pair: its energy phi; +0 when it does not count; the
-                                zero pair's +0 */
+    double *pphi;          /**< per pair: half its energy, 0.5 phi (each end's share);
+                                +0 when it does not count; the zero pair's +0 */
     double *pwp;           /**< per pair: half its plastic work of this call (plastic runs) */
     double *pfl;           /**< 3 per pair: pairwise Langevin force on hpi (pairwise damping) */
     size_t n_builds;
