@@ -71,11 +71,14 @@ void macro_half_free(struct model *m)
     free(m->pwp);
     free(m->pfl);
     free(m->hreach);
+    free(m->goff);
+    free(m->gidx);
+    free(m->gpid);
     m->hreach = NULL;
-    m->hoff = m->hps = m->hprs = NULL;
-    m->pid = NULL;
-    m->hpi = m->hpj = NULL;
-    macro_half_groups_free(m);
+    m->hoff = m->hps = m->hprs = m->goff = NULL;
+    m->pid = m->gpid = NULL;
+    m->hpi = m->hpj = m->gidx = NULL;
+    m->g_cap = 0;
     m->pc = m->pphi = m->pwp = m->pfl = NULL;
     m->half_pairs = m->half_pair_cap = 0;
     macro_half_invalidate(m, NULL);

@@ -43,14 +43,13 @@ void macro_half_pass2(const struct half_ctx *h, size_t i0, size_t i1);
  *  for group g its steps [goff[g], goff[g + 1]), step k holding slot k of
  *  each of its four rows, lane by lane (the partner, the pair); a row that
  *  has ended points at itself and at the zero pair, index half_pairs, whose
- *  c and phi stay +0.  Returns false when out of memory. */
+ *  c and phi stay +0.  Returns false when out of memory (macro_half_free
+ *  frees the arrays). */
 bool macro_half_groups(struct model *m, size_t n);
 
 /** Whether all n particles' three coordinates lie within +-1e300 (no NaN):
  *  pass 2 then need not mask the pair vectors of pairs that add nothing. */
 bool macro_half_bounded(double *const *x, size_t n);
 
-/** Frees the group layout. */
-void macro_half_groups_free(struct model *m);
 
 #endif

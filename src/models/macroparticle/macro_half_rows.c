@@ -286,17 +286,6 @@ bool macro_half_bounded(double *const *x, size_t n)
 #endif
 }
 
-void macro_half_groups_free(struct model *m)
-{
-    free(m->goff);
-    free(m->gidx);
-    free(m->gpid);
-    m->goff = NULL;
-    m->gidx = NULL;
-    m->gpid = NULL;
-    m->g_cap = 0;
-}
-
 bool macro_half_groups(struct model *m, size_t n)
 {
     const size_t ng = n / 4, *off = m->nl->offset;
@@ -321,11 +310,9 @@ bool macro_half_groups(struct model *m, size_t n)
         free(m->gpid);
         m->gidx = malloc((ne ? ne : 1) * sizeof *m->gidx);
         m->gpid = malloc((ne ? ne : 1) * sizeof *m->gpid);
-        m->g_cap = ne;
-        if (!m->gidx || !m->gpid) {
-            macro_half_groups_free(m);
-            return false;
-        }
+        m->g_cap = m->gidx && m->gpid ? ne : 0;
+        if (!m->g_cap)
+            return false; /* the caller frees the loop's arrays */
     }
     const int32_t *idx = m->nl->idx;
     const uint32_t *pid = m->pid;
