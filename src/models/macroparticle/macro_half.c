@@ -15,7 +15,8 @@
  * and phi / 2 (+0 both when the pair does not count).  Pass 2 sums every row
  * over all its slots in list order, as the full loop does, reading its
  * pairs' values; in 3D four rows at a time, a row a vector lane (each lane
- * the same operations in the same order as one row alone).
+ * the same operations in the same order as one row alone), through a slot
+ * layout by groups of four rows made with the pair list (macro_half_rows.c).
  *
  * Why the bits agree: x_i - x_j is exactly -(x_j - x_i) (IEEE subtraction),
  * so both ends of a pair compute the same r, re, phi and c; each end forms
@@ -27,8 +28,8 @@
  * work stores +0.0 where the full loop added nothing: sums that start at
  * +0.0 are never -0.0 in round-to-nearest, so adding a zero changes no bit.
  * For the same reason a pair that does not count (c = phi = +0 stored),
- * and a row of a four-row group that has ended, add +-0 terms instead of
- * being skipped.
+ * and a row of a four-row group that has ended (padded with the zero
+ * pair), add +-0 terms instead of being skipped.
  *
  * One rank: rows in blocks, pass 1 of the block's pairs then pass 2 of its
  * rows (a row's other pairs belong to rows with smaller indices, done in
