@@ -322,10 +322,14 @@ bool macro_half_groups(struct model *m, size_t n)
     for (size_t g = 0; g < ng; g++)
         for (size_t l = 0; l < 4; l++) {
             const size_t i = 4 * g + l, len = off[i + 1] - off[i];
-            for (size_t k = 0; k < goff[g + 1] - goff[g]; k++) {
-                const size_t e = 4 * (goff[g] + k) + l;
-                m->gidx[e] = k < len ? idx[off[i] + k] : (int32_t)i;
-                m->gpid[e] = k < len ? pid[off[i] + k] : zero;
+            size_t k = 0, e = 4 * goff[g] + l;
+            for (; k < len; k++, e += 4) {
+                m->gidx[e] = idx[off[i] + k];
+                m->gpid[e] = pid[off[i] + k];
+            }
+            for (; k < goff[g + 1] - goff[g]; k++, e += 4) {
+                m->gidx[e] = (int32_t)i;
+                m->gpid[e] = zero;
             }
         }
     return true;
