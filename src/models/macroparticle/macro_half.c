@@ -461,31 +461,38 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
             return rc;
     }
     const double rl = w.r_c + m->skin_ratio * w.r0;
-    const struct half_ctx h = {
+    struct half_ctx h = {
         .m = m, .w = &w, .nl = m->nl, .x = p->x, .v = p->v, .f = p->f, .gid = p->gid,
         .dim = sim->dim, .n = n, .plastic = plastic, .mu = mu, .g = g, .dt = dt,
         .sp = m->eta_cg * sqrt(2.0 * mu * kT / dt), .sg = m->eta_cg * sqrt(2.0 * g * kT / dt),
-        .rlist2 = rl * rl, .seed = sim->seed, .step = (uint64_t)m->n_calls,
-        .bounded = sim->dim == 3 && macro_half_bounded(p->x, p->n)};
+        .rlist2 = rl * rl, .seed = sim->seed, .step = (uint64_t)m->n_calls};
     m->n_calls++;
     bool threads = false;
 #ifdef _OPENMP
     threads = n >= MACRO_OMP_MIN && omp_get_max_threads() > 1;
 #endif
+    const size_t na = p->n; /* owned and ghosts: the positions pass 2 reads */
     if (!threads && !m->pgid) {
+        h.bounded = sim->dim == 3 && macro_half_bounded(p->x, 0, na);
         half_fused(&h, 0, n, m->hoff[n]);
         return SPALL_OK;
     }
     const size_t nq = m->half_pairs, nc = (nq + MACRO_CHUNK - 1) / MACRO_CHUNK;
     const bool can = !m->pgid;
     int split = can; /* rows in ranges (cleared when a range cannot be) */
-#pragma omp parallel if (threads)
+    int bounded = sim->dim == 3; /* cleared by a thread whose share is not */
+#pragma omp parallel if (threads) firstprivate(h)
     {
         size_t t = 0, nt = 1;
 #ifdef _OPENMP
         t = (size_t)omp_get_thread_num();
         nt = (size_t)omp_get_num_threads();
 #endif
+        /* the bounds scan, a share a thread, agreed at the barrier below */
+        if (sim->dim == 3 && !macro_half_bounded(p->x, na * t / nt, na * (t + 1) / nt)) {
+#pragma omp atomic write
+            bounded = 0;
+        }
         const size_t a = n * t / nt, b = n * (t + 1) / nt;
         /* rows [hb, b) have pairs that the next range reads; rows [a, lb)
          * may read the previous range's, and their own pairs are computed
@@ -499,9 +506,12 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
             split = 0;
         }
 #pragma omp barrier
-        int ranges;
+        int ranges, bd;
 #pragma omp atomic read
         ranges = split;
+#pragma omp atomic read
+        bd = bounded;
+        h.bounded = bd != 0;
         if (ranges) {
             half_pass1(&h, m->hoff[a], m->hoff[lb]);
             half_pass1(&h, m->hoff[hb], m->hoff[b]);

@@ -47,9 +47,10 @@ void macro_half_pass2(const struct half_ctx *h, size_t i0, size_t i1);
  *  frees the arrays). */
 bool macro_half_groups(struct model *m, size_t n);
 
-/** Whether all n particles' three coordinates lie within +-1e300 (no NaN):
- *  pass 2 then need not mask the pair vectors of pairs that add nothing. */
-bool macro_half_bounded(double *const *x, size_t n);
+/** Whether the three coordinates of particles [i0, i1) lie within +-1e300
+ *  (no NaN): pass 2 then need not mask the pair vectors of pairs that add
+ *  nothing. */
+bool macro_half_bounded(double *const *x, size_t i0, size_t i1);
 
 
 #endif

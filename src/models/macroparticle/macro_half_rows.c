@@ -256,7 +256,7 @@ MACRO_CLONES static void half_groups(const struct half_ctx *h, size_t g0, size_t
 
 /* Whether every coordinate of the n particles is within +-1e300: then every
  * x_j - x_i is finite (no NaN, no overflow), and c dx = +-0 where c = +-0. */
-MACRO_CLONES static bool half_bounded(double *const *x, size_t n)
+MACRO_CLONES static bool half_bounded(const double *const *x, size_t n)
 {
     const double big = 1e300;
     half_m4 in = {-1, -1, -1, -1};
@@ -275,13 +275,15 @@ MACRO_CLONES static bool half_bounded(double *const *x, size_t n)
 }
 #endif
 
-bool macro_half_bounded(double *const *x, size_t n)
+bool macro_half_bounded(double *const *x, size_t i0, size_t i1)
 {
 #if defined(__GNUC__)
-    return half_bounded(x, n);
+    const double *const y[3] = {x[0] + i0, x[1] + i0, x[2] + i0};
+    return half_bounded(y, i1 - i0);
 #else
     (void)x;
-    (void)n;
+    (void)i0;
+    (void)i1;
     return false;
 #endif
 }
