@@ -5,7 +5,9 @@
  * on one and two threads, with pair plasticity, pairwise and absolute
  * Langevin forces at a temperature, the second FCC shell inside the
  * cut-off, an undamped elastic run (the vector finish of four rows,
- * half_finish4), and neighbour-list rebuilds during the run. */
+ * half_finish4), and neighbour-list rebuilds during the run; and the bounds
+ * test that lets pass 2 leave the pair vectors of non-counting pairs
+ * unmasked (macro_half_bounded). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,6 +16,7 @@
 #include <cmocka.h>
 
 #include "core/model.h"
+#include "models/macroparticle/macro_half.h"
 #include "tests/test_support.h"
 
 #include <omp.h>
@@ -123,12 +126,43 @@ static void test_second_shell_elastic(void **state)
     compare("cutoff: 1.5, taper: 1.45, skin: 0.05", "");
 }
 
+/* macro_half_bounded: true only when every coordinate of the range lies
+ * within +-1e300; a huge, infinite or NaN value in any component and at any
+ * position (the four-lane part and the tail) makes it false. */
+static void test_bounded(void **state)
+{
+    (void)state;
+    enum { N = 11 };
+    double c[3][N];
+    for (int d = 0; d < 3; d++)
+        for (int i = 0; i < N; i++)
+            c[d][i] = (d + 1) * 1.0e-3 * i - 2.0e-3;
+    double *const x[3] = {c[0], c[1], c[2]};
+    assert_true(macro_half_bounded(x, 0, N));
+    assert_true(macro_half_bounded(x, 3, 3)); /* an empty range */
+    const double bad[] = {1.0e301, -1.0e301, INFINITY, -INFINITY, NAN};
+    for (size_t b = 0; b < sizeof bad / sizeof bad[0]; b++)
+        for (int d = 0; d < 3; d++)
+            for (int i = 0; i < N; i++) {
+                const double keep = c[d][i];
+                c[d][i] = bad[b];
+                assert_false(macro_half_bounded(x, 0, N));
+                /* a range that leaves the value out */
+                if (i > 0)
+                    assert_true(macro_half_bounded(x, 0, (size_t)i));
+                c[d][i] = keep;
+            }
+    c[1][5] = 1.0e300; /* the bound itself is inside */
+    assert_true(macro_half_bounded(x, 0, N));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_plastic_pairwise),
         cmocka_unit_test(test_second_shell_absolute),
         cmocka_unit_test(test_second_shell_elastic),
+        cmocka_unit_test(test_bounded),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -12,10 +12,11 @@
  * computing end and the partner, per slot of the owned rows the pair it
  * holds.  Pass 1 runs over the pairs (long vectorisable chunks): distance,
  * plastic update, pairwise Langevin force, the Mie law, and stores c = -f/r
- * and phi (+0 both when the pair does not count).  Pass 2 sums every row
+ * and phi / 2 (+0 both when the pair does not count).  Pass 2 sums every row
  * over all its slots in list order, as the full loop does, reading its
  * pairs' values; in 3D four rows at a time, a row a vector lane (each lane
- * the same operations in the same order as one row alone).
+ * the same operations in the same order as one row alone), through a slot
+ * layout by groups of four rows made with the pair list (macro_half_rows.c).
  *
  * Why the bits agree: x_i - x_j is exactly -(x_j - x_i) (IEEE subtraction),
  * so both ends of a pair compute the same r, re, phi and c; each end forms
@@ -27,8 +28,8 @@
  * work stores +0.0 where the full loop added nothing: sums that start at
  * +0.0 are never -0.0 in round-to-nearest, so adding a zero changes no bit.
  * For the same reason a pair that does not count (c = phi = +0 stored),
- * and a row of a four-row group that has ended, add +-0 terms instead of
- * being skipped.
+ * and a row of a four-row group that has ended (padded with the zero
+ * pair), add +-0 terms instead of being skipped.
  *
  * One rank: rows in blocks, pass 1 of the block's pairs then pass 2 of its
  * rows (a row's other pairs belong to rows with smaller indices, done in
@@ -40,7 +41,7 @@
  * range block by block as one thread does.  A distributed run (or a list
  * whose pairs span more than a range): pass 1 over all pairs, then pass 2.
  */
-#include "models/macroparticle/macro_internal.h"
+#include "models/macroparticle/macro_half.h"
 
 #include "core/neighbor.h"
 #include "core/particles.h"
@@ -71,10 +72,14 @@ void macro_half_free(struct model *m)
     free(m->pwp);
     free(m->pfl);
     free(m->hreach);
+    free(m->goff);
+    free(m->gidx);
+    free(m->gpid);
     m->hreach = NULL;
-    m->hoff = m->hps = m->hprs = NULL;
-    m->pid = NULL;
-    m->hpi = m->hpj = NULL;
+    m->hoff = m->hps = m->hprs = m->goff = NULL;
+    m->pid = m->gpid = NULL;
+    m->hpi = m->hpj = m->gidx = NULL;
+    m->g_cap = 0;
     m->pc = m->pphi = m->pwp = m->pfl = NULL;
     m->half_pairs = m->half_pair_cap = 0;
     macro_half_invalidate(m, NULL);
@@ -191,8 +196,8 @@ static void half_take(struct model *m, struct neighbor_pairs *t, size_t n)
             }
 }
 
-static int half_prepare(struct model *m, const struct particles *p, size_t n, bool plastic,
-                        bool pairwise, struct spall_error *err)
+static int half_prepare(struct model *m, const struct particles *p, size_t n, int dim,
+                        bool plastic, bool pairwise, struct spall_error *err)
 {
     const struct neighbor_list *nl = m->nl;
     /* the build's table describes this list only when no ghosts follow
@@ -225,8 +230,8 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
     const bool pg = np > m->half_pair_cap;
     const size_t pn = pg ? np : m->half_pair_cap;
     bool ok = need((void **)&m->hpi, pn, sizeof *m->hpi, pg) &&
-              need((void **)&m->pc, pn, sizeof *m->pc, pg) &&
-              need((void **)&m->pphi, pn, sizeof *m->pphi, pg) &&
+              need((void **)&m->pc, pn + 1, sizeof *m->pc, pg) &&
+              need((void **)&m->pphi, pn + 1, sizeof *m->pphi, pg) &&
               (!plastic || (need((void **)&m->hps, pn, sizeof *m->hps, pg) &&
                             need((void **)&m->hprs, pn, sizeof *m->hprs, pg) &&
                             need((void **)&m->pwp, pn, sizeof *m->pwp, pg))) &&
@@ -247,6 +252,7 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
     }
     m->half_pair_cap = pn;
     m->half_pairs = np;
+    m->pc[np] = m->pphi[np] = 0.0; /* the zero pair of pass 2's group layout */
     if (t) {
         half_take(m, t, n);
         macro_half_invalidate(m, NULL);
@@ -281,23 +287,14 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, bo
             m->hreach[n + i] = r;
         }
     }
+    if (dim == 3 && !macro_half_groups(m, n)) {
+        macro_half_free(m);
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory (macro-particle pairs)");
+    }
     m->half_ok = true;
     return SPALL_OK;
 }
 
-/* Everything one force call shares between the rows. */
-struct half_ctx {
-    struct model *m;
-    const struct macro_pair *w;
-    const struct neighbor_list *nl;
-    double *const *x, *const *v, *const *f;
-    const int64_t *gid;
-    int dim;
-    size_t n;
-    bool plastic;
-    double mu, sp, g, sg, dt, rlist2;
-    uint64_t seed, step;
-};
 
 /** Distances of the nb pairs (pi[k], pj[k]): r^2 and r, with x_j - x_i as
  *  the computing end forms it. */
@@ -320,7 +317,9 @@ MACRO_CLONES static void half_chunk_dist(size_t nb, int dim, double *const *rest
 }
 
 /** Pair law of nb pairs at distances rd (squared r2) and elastic distances
- *  re: phi and c = -f/r, both +0 where the pair does not count (the full
+ *  re: phi / 2 (the half each end books: pass 2 adds it as the full loop
+ *  adds 0.5 phi, the same product) and c = -f/r, both +0 where the pair
+ *  does not count (the full
  *  loop's tests, without short circuits for the vectoriser; NaN distances
  *  count).  A pair with c = +-0 and phi = 0 adds only +-0 terms to the sums
  *  of pass 2, which change no sum (they start at +0 and never become -0),
@@ -338,7 +337,7 @@ MACRO_CLONES static void half_chunk_law(const struct macro_pair *w, size_t nb,
                                        !(re[k] <= 0.0));
         /* force on i along dx (attraction > 0); the masks by bits, not a
          * branch the vectoriser would have to keep around the division */
-        union { double d; uint64_t u; } ck = {.d = -fk[k] / rd[k]}, pk = {.d = ph[k]};
+        union { double d; uint64_t u; } ck = {.d = -fk[k] / rd[k]}, pk = {.d = 0.5 * ph[k]};
         ck.u &= -ok;
         pk.u &= -ok;
         c[k] = ck.d;
@@ -398,267 +397,20 @@ static void half_pass1(const struct half_ctx *h, size_t q0, size_t q1)
         half_compute(h, q, q1 - q < MACRO_CHUNK ? q1 - q : MACRO_CHUNK);
 }
 
-#if defined(__GNUC__)
-/* Lane-wise sums: each lane is its own scalar sum, in the same order (a
- * vector add rounds every lane as the scalar add does). */
-typedef double half_v4 __attribute__((vector_size(32)));
-typedef double half_v2 __attribute__((vector_size(16)));
-typedef long long half_m4 __attribute__((vector_size(32)));
-#endif
-
-/* A row's sums, in this order: force x y z, energy, virial xx yy zz xy yz zx. */
-enum { HALF_SUMS = 10 };
-
-/* The sums of row i over all its slots in list order. */
-static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[HALF_SUMS])
-{
-    const struct neighbor_list *nl = h->nl;
-    const int dim = h->dim;
-    const double *x0 = h->x[0], *x1 = dim > 1 ? h->x[1] : h->x[0];
-    const double *x2 = dim > 2 ? h->x[2] : h->x[0];
-    const double *pc = h->m->pc, *pphi = h->m->pphi;
-    const uint32_t *pid = h->m->pid;
-    const double xi0 = x0[i], xi1 = dim > 1 ? x1[i] : 0.0, xi2 = dim > 2 ? x2[i] : 0.0;
-#if defined(__GNUC__)
-    /* lanes: A = force xyz and energy, B = virial xx yy zz xy, C = yz zx */
-    half_v4 A = {0, 0, 0, 0}, B = {0, 0, 0, 0};
-    half_v2 C = {0, 0};
-    for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
-        const size_t q = pid[s], j = (size_t)nl->idx[s];
-        if (pc[q] == 0.0 && pphi[q] == 0.0)
-            continue; /* does not count, or adds +-0 only */
-        const double dx = x0[j] - xi0, dy = dim > 1 ? x1[j] - xi1 : 0.0;
-        const double dz = dim > 2 ? x2[j] - xi2 : 0.0;
-        const double c = pc[q], hc = 0.5 * c;
-        A += (half_v4){c, c, c, 0.5} * (half_v4){dx, dy, dz, pphi[q]};
-        B += (half_v4){hc, hc, hc, hc} * (half_v4){dx, dy, dz, dx} * (half_v4){dx, dy, dz, dy};
-        C += (half_v2){hc, hc} * (half_v2){dy, dz} * (half_v2){dz, dx};
-    }
-    for (int k = 0; k < 4; k++) {
-        out[k] = A[k];
-        out[4 + k] = B[k];
-    }
-    out[8] = C[0];
-    out[9] = C[1];
-#else
-    for (int k = 0; k < HALF_SUMS; k++)
-        out[k] = 0.0;
-    for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
-        const size_t q = pid[s], j = (size_t)nl->idx[s];
-        if (pc[q] == 0.0 && pphi[q] == 0.0)
-            continue; /* does not count, or adds +-0 only */
-        const double dx[3] = {x0[j] - xi0, dim > 1 ? x1[j] - xi1 : 0.0,
-                              dim > 2 ? x2[j] - xi2 : 0.0};
-        const double c = pc[q];
-        for (int d = 0; d < 3; d++)
-            out[d] += c * dx[d];
-        out[3] += 0.5 * pphi[q];
-        for (int d = 0; d < 3; d++)
-            out[4 + d] += 0.5 * c * dx[d] * dx[d];
-        out[7] += 0.5 * c * dx[0] * dx[1];
-        out[8] += 0.5 * c * dx[1] * dx[2];
-        out[9] += 0.5 * c * dx[2] * dx[0];
-    }
-#endif
-}
-
-#if defined(__GNUC__)
-/* The four rows' data of one force call (half_rows4). */
-struct half_g4 {
-    const int32_t *idx;
-    const double *x0, *x1, *x2, *pc, *pphi;
-    const uint32_t *pid;
-    half_v4 xi, yi, zi;
-};
-
-/* Step k of half_rows4: slot k of each row (slot @p last, masked, for a row
- * that has ended; @p tail: some row may have). */
-/* (always inlined: called from the clones, it must be compiled in them) */
-__attribute__((always_inline)) static inline void
-half_step4(const struct half_g4 *g, const size_t s0[4], const size_t e0[4], size_t last, size_t k,
-           bool tail, half_v4 acc[HALF_SUMS])
-{
-    half_v4 xj, yj, zj, c, ph;
-    half_m4 in;
-    for (int l = 0; l < 4; l++) {
-        const bool inl = !tail || s0[l] + k < e0[l];
-        const size_t s = inl ? s0[l] + k : last;
-        const size_t q = g->pid[s], j = (size_t)g->idx[s];
-        xj[l] = g->x0[j];
-        yj[l] = g->x1[j];
-        zj[l] = g->x2[j];
-        c[l] = g->pc[q];
-        ph[l] = g->pphi[q];
-        in[l] = -(long long)inl;
-    }
-    if (tail) { /* a row that has ended adds +0 */
-        c = (half_v4)((half_m4)c & in);
-        ph = (half_v4)((half_m4)ph & in);
-    }
-    /* c = +-0: the force and virial terms are +-0 (no change), and are +0
-     * here also where dx is not finite; phi is +0 where the pair does not
-     * count (pass 1) */
-    const half_m4 ok = c != 0.0;
-    const half_v4 dx = (half_v4)((half_m4)(xj - g->xi) & ok);
-    const half_v4 dy = (half_v4)((half_m4)(yj - g->yi) & ok);
-    const half_v4 dz = (half_v4)((half_m4)(zj - g->zi) & ok);
-    const half_v4 hc = 0.5 * c;
-    acc[0] += c * dx;
-    acc[1] += c * dy;
-    acc[2] += c * dz;
-    acc[3] += 0.5 * ph;
-    acc[4] += hc * dx * dx;
-    acc[5] += hc * dy * dy;
-    acc[6] += hc * dz * dz;
-    acc[7] += hc * dx * dy;
-    acc[8] += hc * dy * dz;
-    acc[9] += hc * dz * dx;
-}
-
-/* The sums of the four rows i .. i + 3 of a 3D run at once, a row a lane:
- * step k takes slot k of every row (a row past its end, or a pair that
- * does not count, adds +0, which changes no sum: they start at +0 and
- * never become -0), so each lane runs the operations of half_row_sums on
- * its row in the same order; no shuffles between lanes.  The steps that
- * every row has run without the end test. */
-__attribute__((always_inline)) static inline void
-half_rows4(const struct half_ctx *h, size_t i, half_v4 acc[HALF_SUMS])
-{
-    const size_t *off = h->nl->offset;
-    const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2];
-    struct half_g4 g = {.idx = h->nl->idx, .x0 = x0, .x1 = x1, .x2 = x2, .pc = h->m->pc,
-                        .pphi = h->m->pphi, .pid = h->m->pid};
-    g.xi = (half_v4){x0[i], x0[i + 1], x0[i + 2], x0[i + 3]};
-    g.yi = (half_v4){x1[i], x1[i + 1], x1[i + 2], x1[i + 3]};
-    g.zi = (half_v4){x2[i], x2[i + 1], x2[i + 2], x2[i + 3]};
-    size_t s0[4], e0[4], len = 0, kin = SIZE_MAX;
-    for (int l = 0; l < 4; l++) {
-        s0[l] = off[i + (size_t)l];
-        e0[l] = off[i + (size_t)l + 1];
-        len = e0[l] - s0[l] > len ? e0[l] - s0[l] : len;
-        kin = e0[l] - s0[l] < kin ? e0[l] - s0[l] : kin;
-    }
-    const size_t last = e0[3] - (len > 0); /* a slot of the group, read by ended rows */
-    for (int k = 0; k < HALF_SUMS; k++)
-        acc[k] = (half_v4){0, 0, 0, 0};
-    for (size_t k = 0; k < kin; k++)
-        half_step4(&g, s0, e0, last, k, false, acc);
-    for (size_t k = kin; k < len; k++)
-        half_step4(&g, s0, e0, last, k, true, acc);
-}
-
-/* half_row_finish of the four rows i .. i + 3 of a run without plasticity
- * and damping, a row a lane: the same operations on the zero Langevin
- * force and plastic work (f += sum + 0, wdiss += 0 - (0 v) dt: kept, they
- * are not no-ops for -0 and non-finite values), so the same bits, with
- * vector loads and stores of the consecutive rows (about 100 instructions
- * a row less than four calls of half_row_finish). */
-__attribute__((always_inline)) static inline void half_finish4(const struct half_ctx *h, size_t i,
-                                                               const half_v4 acc[HALF_SUMS])
-{
-    struct model *m = h->m;
-    const half_v4 z = {0, 0, 0, 0};
-    half_v4 pw = z, t;
-    for (int d = 0; d < 3; d++) {
-        memcpy(&t, h->f[d] + i, sizeof t);
-        t += acc[d] + z;
-        memcpy(h->f[d] + i, &t, sizeof t);
-        memcpy(&t, h->v[d] + i, sizeof t);
-        pw += z * t;
-    }
-    memcpy(m->epot + i, &acc[3], sizeof acc[3]);
-    for (int l = 0; l < 4; l++)
-        for (int k = 0; k < 6; k++)
-            m->sig[6 * (i + (size_t)l) + (size_t)k] = acc[4 + k][l];
-    memcpy(&t, m->wdiss + i, sizeof t);
-    t += z - pw * h->dt;
-    memcpy(m->wdiss + i, &t, sizeof t);
-}
-#endif
-
-/* Row i's outputs from its sums: plastic work and Langevin forces (in list
- * order), force, energy, virial, dissipation. */
-static inline void half_row_finish(const struct half_ctx *h, size_t i,
-                                   const double sum[HALF_SUMS])
-{
-    struct model *m = h->m;
-    const struct neighbor_list *nl = h->nl;
-    const int dim = h->dim;
-    double vi[3] = {0, 0, 0}, fl[3] = {0, 0, 0};
-    for (int d = 0; d < dim; d++)
-        vi[d] = h->v[d][i];
-    double wplast = 0.0;
-    if (h->plastic)
-        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++)
-            wplast += m->pwp[m->pid[s]];
-    if (h->mu > 0.0)
-        for (size_t s = nl->offset[i]; s < nl->offset[i + 1]; s++) {
-            const size_t q = m->pid[s];
-            const bool own = (size_t)m->hpi[q] == i; /* else the partner's term, negated */
-            for (int d = 0; d < dim; d++)
-                fl[d] = own ? fl[d] + m->pfl[3 * q + (size_t)d]
-                            : fl[d] - m->pfl[3 * q + (size_t)d];
-        }
-    if (h->g > 0.0) {
-        double xr[3] = {0, 0, 0};
-        if (h->sg > 0.0)
-            macro_gauss3(h->seed, h->step, (uint64_t)h->gid[i], UINT64_MAX, xr);
-        for (int d = 0; d < dim; d++)
-            fl[d] += -h->g * vi[d] + h->sg * xr[d];
-    }
-    double pw = 0.0;
-    for (int d = 0; d < dim; d++) {
-        h->f[d][i] += sum[d] + fl[d];
-        pw += fl[d] * vi[d];
-    }
-    m->epot[i] = sum[3];
-    for (int k = 0; k < 6; k++)
-        m->sig[6 * i + k] = sum[4 + k];
-    m->wdiss[i] += wplast - pw * h->dt;
-}
-
-/* Pass 2 of rows [i0, i1): each row's sums over all its slots in list
- * order (energy, force and virial, then plastic work and Langevin force);
- * in 3D four rows at a time. */
-MACRO_CLONES static void half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
-{
-    const bool plain = !h->plastic && !(h->mu > 0.0) && !(h->g > 0.0);
-    for (size_t i = i0; i < i1;) {
-        double sum[HALF_SUMS];
-#if defined(__GNUC__)
-        if (h->dim == 3 && i1 - i >= 4) {
-            half_v4 acc[HALF_SUMS];
-            half_rows4(h, i, acc);
-            if (plain) {
-                half_finish4(h, i, acc);
-            } else {
-                for (size_t l = 0; l < 4; l++) {
-                    for (int k = 0; k < HALF_SUMS; k++)
-                        sum[k] = acc[k][l];
-                    half_row_finish(h, i + l, sum);
-                }
-            }
-            i += 4;
-            continue;
-        }
-#endif
-        half_row_sums(h, i, sum);
-        half_row_finish(h, i, sum);
-        i++;
-    }
-}
-
 /* Rows [a, b) block by block: pass 1 of the block's pairs below pair qend
  * (those from qend on were computed before), then pass 2 of its rows. */
 static void half_fused(const struct half_ctx *h, size_t a, size_t b, size_t qend)
 {
     const size_t *hoff = h->m->hoff;
-    for (size_t r = a; r < b; r += HALF_BLOCK) {
-        const size_t re = b - r < HALF_BLOCK ? b : r + HALF_BLOCK;
+    /* blocks end at multiples of HALF_BLOCK, so that they hold whole groups
+     * of four rows (pass 2) wherever the range starts */
+    for (size_t r = a; r < b;) {
+        const size_t nb = (r / HALF_BLOCK + 1) * HALF_BLOCK, re = b < nb ? b : nb;
         const size_t q1 = hoff[re] < qend ? hoff[re] : qend;
         if (hoff[r] < q1)
             half_pass1(h, hoff[r], q1);
-        half_pass2(h, r, re);
+        macro_half_pass2(h, r, re);
+        r = re;
     }
 }
 
@@ -704,12 +456,12 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
     const double g = m->damping == MACRO_DAMP_ABSOLUTE ? m->gamma_used : 0.0;
     const double mu = m->damping == MACRO_DAMP_PAIRWISE ? m->mu_used : 0.0;
     if (!m->half_ok) {
-        int rc = half_prepare(m, p, n, plastic, mu > 0.0, err);
+        int rc = half_prepare(m, p, n, sim->dim, plastic, mu > 0.0, err);
         if (rc)
             return rc;
     }
     const double rl = w.r_c + m->skin_ratio * w.r0;
-    const struct half_ctx h = {
+    struct half_ctx h = {
         .m = m, .w = &w, .nl = m->nl, .x = p->x, .v = p->v, .f = p->f, .gid = p->gid,
         .dim = sim->dim, .n = n, .plastic = plastic, .mu = mu, .g = g, .dt = dt,
         .sp = m->eta_cg * sqrt(2.0 * mu * kT / dt), .sg = m->eta_cg * sqrt(2.0 * g * kT / dt),
@@ -719,20 +471,28 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
 #ifdef _OPENMP
     threads = n >= MACRO_OMP_MIN && omp_get_max_threads() > 1;
 #endif
+    const size_t na = p->n; /* owned and ghosts: the positions pass 2 reads */
     if (!threads && !m->pgid) {
+        h.bounded = sim->dim == 3 && macro_half_bounded(p->x, 0, na);
         half_fused(&h, 0, n, m->hoff[n]);
         return SPALL_OK;
     }
     const size_t nq = m->half_pairs, nc = (nq + MACRO_CHUNK - 1) / MACRO_CHUNK;
     const bool can = !m->pgid;
     int split = can; /* rows in ranges (cleared when a range cannot be) */
-#pragma omp parallel if (threads)
+    int bounded = sim->dim == 3; /* cleared by a thread whose share is not */
+#pragma omp parallel if (threads) firstprivate(h)
     {
         size_t t = 0, nt = 1;
 #ifdef _OPENMP
         t = (size_t)omp_get_thread_num();
         nt = (size_t)omp_get_num_threads();
 #endif
+        /* the bounds scan, a share a thread, agreed at the barrier below */
+        if (sim->dim == 3 && !macro_half_bounded(p->x, na * t / nt, na * (t + 1) / nt)) {
+#pragma omp atomic write
+            bounded = 0;
+        }
         const size_t a = n * t / nt, b = n * (t + 1) / nt;
         /* rows [hb, b) have pairs that the next range reads; rows [a, lb)
          * may read the previous range's, and their own pairs are computed
@@ -746,14 +506,17 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
             split = 0;
         }
 #pragma omp barrier
-        int ranges;
+        int ranges, bd;
 #pragma omp atomic read
         ranges = split;
+#pragma omp atomic read
+        bd = bounded;
+        h.bounded = bd != 0;
         if (ranges) {
             half_pass1(&h, m->hoff[a], m->hoff[lb]);
             half_pass1(&h, m->hoff[hb], m->hoff[b]);
 #pragma omp barrier
-            half_pass2(&h, a, lb);
+            macro_half_pass2(&h, a, lb);
             half_fused(&h, lb, b, m->hoff[hb]);
         } else {
 #pragma omp for schedule(static)
@@ -762,7 +525,7 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
                                                     ? k * MACRO_CHUNK + MACRO_CHUNK : nq);
 #pragma omp for schedule(dynamic, 4)
             for (size_t r = 0; r < n; r += 64)
-                half_pass2(&h, r, n - r < 64 ? n : r + 64);
+                macro_half_pass2(&h, r, n - r < 64 ? n : r + 64);
         }
     }
     return SPALL_OK;

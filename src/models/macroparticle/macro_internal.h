@@ -83,9 +83,17 @@ struct model {
     int32_t *hreach;       /**< one rank, where the threads' row ranges meet: [0, n) per
                                 row the largest partner of the rows up to it (-1: none),
                                 [n, 2n) the smallest of the rows from it on (INT32_MAX) */
+    size_t *goff;          /**< 3D, per group of four owned rows + 1: its first step in
+                                gidx and gpid (macro_half_rows.c) */
+    int32_t *gidx;         /**< per step of a group, four lanes (one a row): the partner
+                                of the row's slot (a row that has ended: the row itself) */
+    uint32_t *gpid;        /**< the same: the slot's pair (a row that has ended: the zero
+                                pair, index half_pairs) */
+    size_t g_cap;          /**< allocated lanes of gidx and gpid */
     double *pc;            /**< per pair: c = -f/r (the force on hpi along x_j - x_i);
-                                +0 when it does not count */
-    double *pphi;          /**< per pair: its energy phi; +0 when it does not count */
+                                +0 when it does not count; one more, the zero pair: +0 */
+    double *pphi;          /**< per pair: half its energy, 0.5 phi (each end's share);
+                                +0 when it does not count; the zero pair's +0 */
     double *pwp;           /**< per pair: half its plastic work of this call (plastic runs) */
     double *pfl;           /**< 3 per pair: pairwise Langevin force on hpi (pairwise damping) */
     size_t n_builds;
