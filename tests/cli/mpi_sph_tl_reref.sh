@@ -11,7 +11,8 @@
 # checkpoints written by 2 ranks (the serial ones under h5diff) and the one
 # of step 60 (just after a re-reference that grew h_max, the list of an
 # older h_max kept until after step 75) continued on 1 (without mpirun) and
-# on 3 ranks.  Two TLSPH blocks (type: tlsph, tests/cli/decks/mpi_tl_ifc.yaml)
+# on 3 ranks; with isotropy 0.97 (h grown at more re-references) on 2 ranks
+# with a checkpoint every 5 steps.  Two TLSPH blocks (type: tlsph, tests/cli/decks/mpi_tl_ifc.yaml)
 # re-referenced every 5 steps on 3 ranks (and, but under ASan, on 2, a
 # checkpoint of 2 ranks continued on 3).
 # Usage: mpi_sph_tl_reref.sh SPALL SRC MPIEXEC
@@ -46,6 +47,16 @@ done
 rebalanced rr 3
 continued rr rr2/checkpoint_0000000060.h5 1
 continued rr rr2/checkpoint_0000000060.h5 3
+if [ -z "${SPALL_MPI_RANK_COUNTS:-}" ]; then # (not under ASan: the launches cost most)
+    # isotropy 0.97: h_max reaches 2 h_0 at step 15, and later re-references
+    # grow h of particles whose pairs the trim at the build's h decides (a
+    # checkpoint every 5 steps holds such a list at step 60)
+    sed 's/isotropy: 0.95}/isotropy: 0.97}/; s/every_steps: 15, keep: 20/every_steps: 5, keep: 40/' \
+        rr.yaml > rr97.yaml
+    grep -q "isotropy: 0.97}" rr97.yaml || { echo "FAIL: cannot make rr97.yaml"; exit 1; }
+    serial rr97
+    written_on_2 rr97
+fi
 # every body TLSPH (no updated loops): the same on the two blocks
 sed 's/, interface: bodies}$/, interface: bodies, reference_update: {every: 5}}/' \
     "$2/tests/cli/decks/mpi_tl_ifc.yaml" > tt.yaml
