@@ -48,8 +48,9 @@
  * dF/dt, F^-1 and PK1 in registers) and stage 2 (forces) with lags of the
  * list's index band b, so a partner's block is reused while cached; the
  * per-particle data live in two blocks (pk, self) instead of separate
- * arrays.  docs/performance.md has the measured effect of each step
- * (the half list: "Side by side with LAMMPS MACHDYN").
+ * arrays.  docs/performance.md ("TLSPH speed: how the sweep is built")
+ * has the measured effect of each step (the half list:
+ * docs/notes/performance-log.md, "Side by side with LAMMPS MACHDYN").
  *
  * CPU versions (docs/performance.md, "TLSPH speed: how the sweep is built"): the
  * stages are built twice (TL_CLONES, sph_tlsph_data.h), for x86-64-v3
