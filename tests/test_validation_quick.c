@@ -115,7 +115,9 @@ static const struct known_gap known_gaps[] = {
     {"pd-lps-patch", "3D sc nu = 0.30: Poisson's ratio"},
     {"pd-lps-patch", "3D sc nu = 0.45: E"},
     {"pd-lps-patch", "3D fcc nu = 0.10: Poisson's ratio"},
-    /* the LPS surface correction fits axial stretches only (pd_lps_surface.c) */
+    /* the LPS surface correction fits axial stretches only (pd_lps_surface.c): the
+     * surface families' deviatoric shear energy and the corner / edge families'
+     * off-diagonal moment, split by the case's info line; halves with a 2x larger body */
     {"pd-lps-surface", "plane stress triangular plate 11 dx, nu = 0.10: shear modulus"},
     {"pd-lps-surface", "plane stress triangular plate 11 dx, nu = 0.30: shear modulus"},
     {"pd-lps-surface", "plane stress triangular plate 11 dx, nu = 0.45: shear modulus"},
