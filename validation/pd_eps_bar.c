@@ -326,8 +326,8 @@ int pd_case_eps_bar(struct vreport *r, struct spall_error *err)
                  "slopes %.4g / %.4g GPa, max %.4g, min %.4g MPa; centre sigma_xx: slopes %.4g "
                  "/ %.4g GPa, max %.4g, min %.4g MPa, peak strain %.4g, zero stress at strain "
                  "%.4g; ramps of 2 transits: unloading slopes %.4g (centre), %.4g GPa (section), "
-                 "section max %.4g MPa", np, area, nom.E_load / 1e9, nom.E_unl / 1e9, nom.sig_max / 1e6,
-                 nom.sig_min / 1e6, sec.E_load / 1e9, sec.E_unl / 1e9, sec.sig_max / 1e6,
+                 "section max %.4g MPa", np, area, nom.E_load / 1e9, nom.E_unl / 1e9,
+                 nom.sig_max / 1e6, nom.sig_min / 1e6, sec.E_load / 1e9, sec.E_unl / 1e9, sec.sig_max / 1e6,
                  sec.sig_min / 1e6, cen.E_load / 1e9, cen.E_unl / 1e9, cen.sig_max / 1e6,
                  cen.sig_min / 1e6, cen.eps_peak, cen.eps0, ocen.E_unl / 1e9, osec.E_unl / 1e9,
                  osec.sig_max / 1e6);
