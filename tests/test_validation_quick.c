@@ -115,16 +115,19 @@ static const struct known_gap known_gaps[] = {
     {"pd-lps-patch", "3D sc nu = 0.30: Poisson's ratio"},
     {"pd-lps-patch", "3D sc nu = 0.45: E"},
     {"pd-lps-patch", "3D fcc nu = 0.10: Poisson's ratio"},
-    /* the LPS surface correction fits axial stretches only (pd_lps_surface.c) */
+    /* the LPS surface correction fits axial stretches only (pd_lps_surface.c): the
+     * surface families' deviatoric shear energy and the corner / edge families'
+     * off-diagonal moment, split by the case's info line; halves with a 2x larger body */
     {"pd-lps-surface", "plane stress triangular plate 11 dx, nu = 0.10: shear modulus"},
     {"pd-lps-surface", "plane stress triangular plate 11 dx, nu = 0.30: shear modulus"},
     {"pd-lps-surface", "plane stress triangular plate 11 dx, nu = 0.45: shear modulus"},
     {"pd-lps-surface", "3D sc cube 8 dx (cubic-corrected), nu = 0.10: shear modulus"},
     {"pd-lps-surface", "3D sc cube 8 dx (cubic-corrected), nu = 0.30: shear modulus"},
     {"pd-lps-surface", "3D sc cube 8 dx (cubic-corrected), nu = 0.45: shear modulus"},
-    /* #26 item 4: EPS strip; the LPS surface correction fits elastic axial stretches only */
-    {"pd-eps-bar", "centre: unloading elastic slope"},
-    {"pd-eps-bar", "section: unloading elastic slope (mean sigma_xx)"},
+    /* #26 item 4: EPS strip, the old drive (ramps of 2 wave transits) kept as rows: the
+     * velocity reversal's inertia in the gauge (the checked drive's 4 transits pass) */
+    {"pd-eps-bar", "ramps 2 transits: centre: unloading elastic slope"},
+    {"pd-eps-bar", "ramps 2 transits: section: unloading elastic slope"},
     /* #6 item 7c: no published length or radius for this set-up was found */
     {"sph-taylor-2d", "published final length / radius for this set-up found"},
     /* #6 item 7g: second-hand experiment; cause not separated (quick: d/20) */

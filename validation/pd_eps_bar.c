@@ -11,9 +11,17 @@
  * (isotropic family), delta = 3.015 dx, with the LPS surface correction
  * (model.surface_correction, pd_lps_surface.c; without it the section's
  * unloading slope came out 7.8 % and its plateau 7.1 % high).  Both ends (3 columns each) are
- * driven in x only, with a velocity history of smooth ramps (2 wave transits
- * long, to keep the bar quasi-static): the bar is stretched by 3 eps_Y, then
- * brought back to its original length.  Measured: the nominal stress F / A
+ * driven in x only, with a velocity history of linear ramps EB_RAMP = 4
+ * wave transits long and a constant speed until 16 transits: the bar is
+ * stretched by 3 eps_Y, then brought back to its original length.  The
+ * drive first had ramps of 2 transits (hold to 8): the velocity reversal
+ * then left inertial stresses in the gauge, the unloading slopes came out
+ * +2.06 % (centre) and +2.57 % (section) and fell with a slower drive to
+ * +0.78 / +0.22 % (ramps 4 transits) and +0.13 / -0.05 % (8 transits;
+ * 2026-12-07): the gap was the drive, not the discrete moduli (the
+ * triangular family is isotropic: pd-lps-patch's plane stress rows are
+ * exact).  Those two slopes of the old drive are kept as rows (known gaps,
+ * that cause).  Measured: the nominal stress F / A
  * (F the right grip's reaction, A = the particles of one cross-section times
  * V_i / dx) against the gauge strain between two centreline particles at
  * L/4 and 3L/4.  References (uniaxial stress, 2D J2 = von Mises in uniaxial
@@ -39,6 +47,10 @@
 #define EB_RHO 7850.0
 #define EB_SY 200.0e6
 #define EB_L 0.1
+/* ramp length in wave transits (the hold to 4 ramps): the checked drive
+ * and the old one kept as rows (file comment) */
+#define EB_RAMP 4.0
+#define EB_RAMP_OLD 2.0
 
 struct eb_sample {
     double t, eps, sig; /**< time, gauge strain, F / A at the grip */
@@ -56,11 +68,11 @@ struct eb_result {
     double E_load, E_unl, sig_max, sig_min, eps_peak, sig_peak, eps0;
 };
 
-static int eb_run(struct vreport *r, struct eb_sample **out, size_t *nout, double *area,
-                  size_t *np, struct spall_error *err)
+static int eb_run(double ramp, struct eb_sample **out, size_t *nout, double *area, size_t *np,
+                  struct spall_error *err)
 {
     const double c = sqrt(EB_E / EB_RHO), transit = EB_L / c;
-    const double tr = 2.0 * transit, t1 = 8.0 * transit, t2 = 2.0 * t1;
+    const double tr = ramp * transit, t1 = 4.0 * tr, t2 = 2.0 * t1;
     /* each end moves v (t1 - tr) by t1: total strain 2 v (t1 - tr) / L = 3 eps_Y */
     const double v = 3.0 * (EB_SY / EB_E) * EB_L / (2.0 * (t1 - tr));
     char deck[2048];
@@ -161,7 +173,6 @@ static int eb_run(struct vreport *r, struct eb_sample **out, size_t *nout, doubl
     free(sg);
     free(cut);
     sim_destroy(&s);
-    (void)r;
     if (rc) {
         free(smp);
         return rc;
@@ -222,8 +233,16 @@ int pd_case_eps_bar(struct vreport *r, struct spall_error *err)
     struct eb_sample *sm = NULL;
     size_t n = 0, np = 0;
     double area = 0.0;
-    int rc = eb_run(r, &sm, &n, &area, &np, err);
+    /* the old drive (file comment): its unloading slopes, kept as rows */
+    int rc = eb_run(EB_RAMP_OLD, &sm, &n, &area, &np, err);
     if (rc)
+        return rc;
+    struct eb_result ocen, osec;
+    eb_analyse(sm, n, 1, &ocen);
+    eb_analyse(sm, n, 3, &osec);
+    free(sm);
+    sm = NULL;
+    if ((rc = eb_run(EB_RAMP, &sm, &n, &area, &np, err)))
         return rc;
     struct eb_result nom, cen, ceq, sec;
     eb_analyse(sm, n, 0, &nom);
@@ -264,19 +283,16 @@ int pd_case_eps_bar(struct vreport *r, struct spall_error *err)
                          "residual waves of the quasi-static drive";
     const char *note_y = "1 %: the return map holds the equivalent stress on the yield surface "
                          "(2D J2: sqrt((sxx - syy)^2 + 4 sxy^2) = sigma_Y)";
-    const char *gap_s = "the LPS surface correction (pd_lps_surface.c) is fitted to elastic "
-                        "axial stretches: the surface particles' shear stiffness is not "
-                        "corrected (measured 2.6 % stiff here, 7.8 % without the correction)";
+    const char *gap_old = "ramps of 2 wave transits: the velocity reversal leaves inertial "
+                          "stress in the gauge; the same slopes with ramps of 4 transits (rows "
+                          "above) +0.78 / +0.22 %, of 8 transits +0.13 / -0.05 % (centre / "
+                          "section)";
     if ((rc = vreport_check(r, "centre: loading elastic slope", "Pa", EB_E, cen.E_load, 0.02,
                             true, src, note_c, err)))
         return rc;
     if ((rc = vreport_check(r, "centre: unloading elastic slope", "Pa", EB_E, cen.E_unl, 0.02,
                             true, src, note_c, err)))
         return rc;
-    if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, "the centre is not in uniaxial stress after the plastic flow (the "
-                         "stiffer surface keeps a lateral stress), and the velocity reversal "
-                         "sends waves through the gauge");
     if ((rc = vreport_check(r, "centre: yield, largest equivalent stress", "Pa", EB_SY,
                             ceq.sig_max, 0.01, true, src, note_y, err)) ||
         (rc = vreport_check(r, "centre: reverse yield, smallest equivalent stress", "Pa",
@@ -290,20 +306,30 @@ int pd_case_eps_bar(struct vreport *r, struct spall_error *err)
                             sec.E_unl, 0.02, true, src, "2 %: the middle cross-section, surface "
                             "particles included", err)))
         return rc;
-    if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, gap_s);
     if ((rc = vreport_check(r, "section: yield plateau (largest mean sigma_xx)", "Pa", EB_SY,
                             sec.sig_max, 0.02, true, src, "2 %: as the section slope", err)))
         return rc;
+    /* the old drive's slopes (kept: they were the case's rows until 2026-12-07) */
+    if ((rc = vreport_check(r, "ramps 2 transits: centre: unloading elastic slope", "Pa", EB_E,
+                            ocen.E_unl, 0.02, true, src, note_c, err)))
+        return rc;
     if (!r->checks[r->n - 1].pass)
-        vreport_mark_gap(r, gap_s);
+        vreport_mark_gap(r, gap_old);
+    if ((rc = vreport_check(r, "ramps 2 transits: section: unloading elastic slope", "Pa", EB_E,
+                            osec.E_unl, 0.02, true, src, "2 %: the middle cross-section, surface "
+                            "particles included", err)))
+        return rc;
+    if (!r->checks[r->n - 1].pass)
+        vreport_mark_gap(r, gap_old);
     vreport_info(r, "pd-eps-bar: %zu particles, A = %.4g m^2; grip F/A (inertia included): "
                  "slopes %.4g / %.4g GPa (load / unload), max %.4g, min %.4g MPa; section mean: "
                  "slopes %.4g / %.4g GPa, max %.4g, min %.4g MPa; centre sigma_xx: slopes %.4g "
                  "/ %.4g GPa, max %.4g, min %.4g MPa, peak strain %.4g, zero stress at strain "
-                 "%.4g", np, area, nom.E_load / 1e9, nom.E_unl / 1e9, nom.sig_max / 1e6,
-                 nom.sig_min / 1e6, sec.E_load / 1e9, sec.E_unl / 1e9, sec.sig_max / 1e6,
+                 "%.4g; ramps of 2 transits: unloading slopes %.4g (centre), %.4g GPa (section), "
+                 "section max %.4g MPa", np, area, nom.E_load / 1e9, nom.E_unl / 1e9,
+                 nom.sig_max / 1e6, nom.sig_min / 1e6, sec.E_load / 1e9, sec.E_unl / 1e9, sec.sig_max / 1e6,
                  sec.sig_min / 1e6, cen.E_load / 1e9, cen.E_unl / 1e9, cen.sig_max / 1e6,
-                 cen.sig_min / 1e6, cen.eps_peak, cen.eps0);
+                 cen.sig_min / 1e6, cen.eps_peak, cen.eps0, ocen.E_unl / 1e9, osec.E_unl / 1e9,
+                 osec.sig_max / 1e6);
     return SPALL_OK;
 }
