@@ -110,10 +110,10 @@ int canvas_write_png(struct canvas *c, const char *path, const char *what,
     return rc;
 }
 
-#define CANVAS_DEFINE(name, params, args)                 \
+#define CANVAS_DEFINE(name, params, args)                     \
     void canvas_##name(struct canvas *c CANVAS_STRIP params) \
-    {                                                      \
-        c->f->name(c->cr CANVAS_STRIP args);              \
+    {                                                        \
+        c->f->name(c->cr CANVAS_STRIP args);                 \
     }
 CANVAS_DRAW_CALLS(CANVAS_DEFINE)
 #undef CANVAS_DEFINE

@@ -22,27 +22,27 @@
  * cairo_name(cr, ...); the lists start with their comma (none: empty) */
 #define CANVAS_STRIP(...) __VA_ARGS__
 #define CANVAS_DRAW_CALLS(X)                                                              \
-    X(set_source_rgb, (, double r, double g, double b), (, r, g, b))                          \
-    X(set_source_rgba, (, double r, double g, double b, double a), (, r, g, b, a))            \
-    X(paint, (), ())                                                                  \
-    X(select_font_face, (, const char *family, cairo_font_slant_t slant,                    \
-                         cairo_font_weight_t weight), (, family, slant, weight))            \
-    X(set_font_size, (, double size), (, size))                                               \
-    X(set_line_width, (, double w), (, w))                                                    \
-    X(set_dash, (, const double *dashes, int n, double offset), (, dashes, n, offset))        \
-    X(move_to, (, double x, double y), (, x, y))                                              \
-    X(line_to, (, double x, double y), (, x, y))                                              \
-    X(rectangle, (, double x, double y, double w, double h), (, x, y, w, h))                  \
-    X(arc, (, double x, double y, double r, double a0, double a1), (, x, y, r, a0, a1))       \
-    X(stroke, (), ())                                                                 \
-    X(fill, (), ())                                                                   \
-    X(fill_preserve, (), ())                                                          \
-    X(clip, (), ())                                                                   \
-    X(save, (), ())                                                                   \
-    X(restore, (), ())                                                                \
-    X(translate, (, double x, double y), (, x, y))                                            \
-    X(rotate, (, double a), (, a))                                                            \
-    X(show_text, (, const char *s), (, s))                                                    \
+    X(set_source_rgb, (, double r, double g, double b), (, r, g, b))                      \
+    X(set_source_rgba, (, double r, double g, double b, double a), (, r, g, b, a))        \
+    X(paint, (), ())                                                                      \
+    X(select_font_face, (, const char *family, cairo_font_slant_t slant,                  \
+                         cairo_font_weight_t weight), (, family, slant, weight))          \
+    X(set_font_size, (, double size), (, size))                                           \
+    X(set_line_width, (, double w), (, w))                                                \
+    X(set_dash, (, const double *dashes, int n, double offset), (, dashes, n, offset))    \
+    X(move_to, (, double x, double y), (, x, y))                                          \
+    X(line_to, (, double x, double y), (, x, y))                                          \
+    X(rectangle, (, double x, double y, double w, double h), (, x, y, w, h))              \
+    X(arc, (, double x, double y, double r, double a0, double a1), (, x, y, r, a0, a1))   \
+    X(stroke, (), ())                                                                     \
+    X(fill, (), ())                                                                       \
+    X(fill_preserve, (), ())                                                              \
+    X(clip, (), ())                                                                       \
+    X(save, (), ())                                                                       \
+    X(restore, (), ())                                                                    \
+    X(translate, (, double x, double y), (, x, y))                                        \
+    X(rotate, (, double a), (, a))                                                        \
+    X(show_text, (, const char *s), (, s))                                                \
     X(text_extents, (, const char *s, cairo_text_extents_t *e), (, s, e))
 
 struct canvas_fns;
@@ -55,7 +55,7 @@ struct canvas {
     cairo_t *cr;
 };
 
-/** Load cairo and make a white-less (cairo's initial) w x h RGB24 canvas.
+/** Load cairo and make a w x h RGB24 image surface and its context.
  *  SPALL_ERR_IO naming the library when it cannot be loaded; on error
  *  nothing is held. */
 int canvas_open(struct canvas *c, int w, int h, struct spall_error *err);

@@ -134,7 +134,8 @@ static double estimate_spacing(const double *pos, const unsigned char *keep, siz
     return d[m / 2];
 }
 
-static void draw_colour_bar(struct canvas *cr, double x, double y, double h, double vmin, double vmax)
+static void draw_colour_bar(struct canvas *cr, double x, double y, double h, double vmin,
+                            double vmax)
 {
     const int steps = 128;
     for (int k = 0; k < steps; k++) {
