@@ -267,7 +267,8 @@ static void test_compact_rest(void **state)
 
 /* bond_list_localize: rows kept in keep's order with their partners
  * renumbered, states, types and rest lengths along, ghosts' rows empty;
- * bond_rows_gather hands a per-half-bond array the same rows.  Ascending
+ * bond_rows_gather hands a per-half-bond array the same rows, and
+ * bond_rows_take (in its place when ascending) too.  Ascending
  * keep (both set-ups: compacted in place) and a shuffled one (copied)
  * against the rows read off the untouched list. */
 static void check_localize(const size_t *keep, size_t n_keep, size_t n_owned)
@@ -290,6 +291,14 @@ static void check_localize(const size_t *keep, size_t n_keep, size_t n_owned)
                      SPALL_OK);
     double *got = bond_rows_gather(&rows, slot, sizeof *slot);
     assert_non_null(got);
+    /* bond_rows_take: the same rows, in place when ascending */
+    assert_true(m <= UINT16_MAX);
+    uint16_t *taken = malloc(m * sizeof *taken);
+    assert_non_null(taken);
+    for (size_t s = 0; s < m; s++)
+        taken[s] = (uint16_t)s;
+    taken = bond_rows_take(&rows, taken, sizeof *taken);
+    assert_non_null(taken);
     assert_int_equal(bl->n, n_keep);
     assert_null(bl->reverse);
     size_t w = 0;
@@ -302,10 +311,12 @@ static void check_localize(const size_t *keep, size_t n_keep, size_t n_owned)
                 assert_int_equal(bl->type[w], ref->type[s]);
                 assert_true(bond_rest(bl, w) == bond_rest(ref, s));
                 assert_true(got[w] == (double)s);
+                assert_int_equal(taken[w], (uint16_t)s);
             }
         assert_int_equal(bl->offset[k + 1], w); /* a ghost's row is empty */
     }
     assert_int_equal(w, rows.n_half);
+    free(taken);
     free(got);
     free(slot);
     bond_rows_free(&rows);

@@ -493,25 +493,33 @@ void *bond_rows_gather(const struct bond_rows *r, const void *a, size_t size)
     return out;
 }
 
-/* The kept rows of @p old (NULL: nothing) in place of it when the rows are
- * ascending (the array shrunk to them: no second copy, the set-up's peak),
- * else a gathered copy and the old freed; *ok false once out of memory
- * (then NULL, and nothing more is done). */
+void *bond_rows_take(const struct bond_rows *r, void *a, size_t size)
+{
+    if (!r->ascending) {
+        void *kept = bond_rows_gather(r, a, size);
+        if (kept)
+            free(a);
+        return kept;
+    }
+    rows_copy(a, a, size, r);
+    void *shrunk = realloc(a, (r->n_half ? r->n_half : 1) * size);
+    return shrunk ? shrunk : a; /* a failed shrink keeps the larger block */
+}
+
+/* bond_rows_take for the list's own arrays (NULL: nothing); *ok false once
+ * out of memory (then NULL, and nothing more is done). */
 static void *rows_take(void *old, size_t size, const struct bond_rows *r, int *ok)
 {
     if (!old || !*ok) {
         free(old);
         return NULL;
     }
-    if (!r->ascending) {
-        void *kept = bond_rows_gather(r, old, size);
-        *ok = kept != NULL;
+    void *kept = bond_rows_take(r, old, size);
+    if (!kept) {
+        *ok = 0;
         free(old);
-        return kept;
     }
-    rows_copy(old, old, size, r);
-    void *shrunk = realloc(old, (r->n_half ? r->n_half : 1) * size);
-    return shrunk ? shrunk : old; /* a failed shrink keeps the larger block */
+    return kept;
 }
 
 void bond_rows_free(struct bond_rows *r)

@@ -91,6 +91,12 @@ int bond_list_localize(struct bond_list *bl, const size_t *keep, size_t n_keep, 
  *  bytes, one per old half-bond), in the new list's slot order; NULL when
  *  out of memory. */
 void *bond_rows_gather(const struct bond_rows *r, const void *a, size_t size);
+/** The kept rows of @p a (as bond_rows_gather) in its place: when the rows
+ *  are ascending they are moved within @p a and the block shrunk (the old
+ *  and the new array never coexist: the distributed set-up's peak), else a
+ *  gathered copy and @p a freed.  NULL when out of memory, @p a then
+ *  untouched and still the caller's. */
+void *bond_rows_take(const struct bond_rows *r, void *a, size_t size);
 /** Free the row map's old offsets. */
 void bond_rows_free(struct bond_rows *r);
 

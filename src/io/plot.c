@@ -4,11 +4,11 @@
  *        format parsing, no global state; every call builds its own surface.
  */
 #include "core/mathconst.h"
+#include "io/canvas.h"
 #include "io/plot.h"
 
 #include "spall/error.h"
 
-#include <cairo.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -119,29 +119,29 @@ static void data_range(const struct plot_spec *s, struct plot_box *b)
     widen(&b->ymin, &b->ymax);
 }
 
-static void text_at(cairo_t *cr, double x, double y, const char *s, double ax, double ay)
+static void text_at(struct canvas *cr, double x, double y, const char *s, double ax, double ay)
 {
     cairo_text_extents_t e;
-    cairo_text_extents(cr, s, &e);
-    cairo_move_to(cr, x - ax * e.width - e.x_bearing, y - ay * e.height - e.y_bearing);
-    cairo_show_text(cr, s);
+    canvas_text_extents(cr, s, &e);
+    canvas_move_to(cr, x - ax * e.width - e.x_bearing, y - ay * e.height - e.y_bearing);
+    canvas_show_text(cr, s);
 }
 
-static void draw_axes(cairo_t *cr, const struct plot_spec *s, const struct plot_box *b)
+static void draw_axes(struct canvas *cr, const struct plot_spec *s, const struct plot_box *b)
 {
     double ticks[32];
     char lab[48];
-    cairo_set_font_size(cr, 12.0);
+    canvas_set_font_size(cr, 12.0);
     /* grid + ticks */
     size_t nx = plot_nice_ticks(b->xmin, b->xmax, 6, ticks, 32);
     double step = nx > 1 ? ticks[1] - ticks[0] : 1.0;
     for (size_t k = 0; k < nx; k++) {
         double x = px(b, ticks[k]);
-        cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
-        cairo_move_to(cr, x, b->y0);
-        cairo_line_to(cr, x, b->y0 + b->h);
-        cairo_stroke(cr);
-        cairo_set_source_rgb(cr, 0, 0, 0);
+        canvas_set_source_rgb(cr, 0.9, 0.9, 0.9);
+        canvas_move_to(cr, x, b->y0);
+        canvas_line_to(cr, x, b->y0 + b->h);
+        canvas_stroke(cr);
+        canvas_set_source_rgb(cr, 0, 0, 0);
         plot_format_tick(lab, sizeof lab, ticks[k], step);
         text_at(cr, x, b->y0 + b->h + 6, lab, 0.5, 0.0);
     }
@@ -149,49 +149,49 @@ static void draw_axes(cairo_t *cr, const struct plot_spec *s, const struct plot_
     step = ny > 1 ? ticks[1] - ticks[0] : 1.0;
     for (size_t k = 0; k < ny; k++) {
         double y = py(b, ticks[k]);
-        cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
-        cairo_move_to(cr, b->x0, y);
-        cairo_line_to(cr, b->x0 + b->w, y);
-        cairo_stroke(cr);
-        cairo_set_source_rgb(cr, 0, 0, 0);
+        canvas_set_source_rgb(cr, 0.9, 0.9, 0.9);
+        canvas_move_to(cr, b->x0, y);
+        canvas_line_to(cr, b->x0 + b->w, y);
+        canvas_stroke(cr);
+        canvas_set_source_rgb(cr, 0, 0, 0);
         plot_format_tick(lab, sizeof lab, ticks[k], step);
         text_at(cr, b->x0 - 6, y, lab, 1.0, 0.5);
     }
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_rectangle(cr, b->x0, b->y0, b->w, b->h);
-    cairo_stroke(cr);
-    cairo_set_font_size(cr, 13.0);
+    canvas_set_source_rgb(cr, 0, 0, 0);
+    canvas_rectangle(cr, b->x0, b->y0, b->w, b->h);
+    canvas_stroke(cr);
+    canvas_set_font_size(cr, 13.0);
     if (s->xlabel)
         text_at(cr, b->x0 + 0.5 * b->w, b->y0 + b->h + 28, s->xlabel, 0.5, 0.0);
     if (s->ylabel) {
-        cairo_save(cr);
-        cairo_translate(cr, 16, b->y0 + 0.5 * b->h);
-        cairo_rotate(cr, -SPALL_PI / 2.0);
+        canvas_save(cr);
+        canvas_translate(cr, 16, b->y0 + 0.5 * b->h);
+        canvas_rotate(cr, -SPALL_PI / 2.0);
         text_at(cr, 0, 0, s->ylabel, 0.5, 0.5);
-        cairo_restore(cr);
+        canvas_restore(cr);
     }
     if (s->title) {
-        cairo_set_font_size(cr, 14.0);
+        canvas_set_font_size(cr, 14.0);
         text_at(cr, b->x0 + 0.5 * b->w, 10, s->title, 0.5, 0.0);
     }
 }
 
-static void draw_series(cairo_t *cr, const struct plot_series *ser, const struct plot_box *b,
+static void draw_series(struct canvas *cr, const struct plot_series *ser, const struct plot_box *b,
                         const double rgb[3])
 {
-    cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+    canvas_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
     if (ser->style == PLOT_POINTS) {
         for (size_t i = 0; i < ser->n; i++) {
             if (!isfinite(ser->x[i]) || !isfinite(ser->y[i]))
                 continue;
-            cairo_arc(cr, px(b, ser->x[i]), py(b, ser->y[i]), 3.5, 0, 2 * SPALL_PI);
-            cairo_fill(cr);
+            canvas_arc(cr, px(b, ser->x[i]), py(b, ser->y[i]), 3.5, 0, 2 * SPALL_PI);
+            canvas_fill(cr);
         }
         return;
     }
     double dash[2] = {7.0, 4.0};
-    cairo_set_dash(cr, dash, ser->style == PLOT_DASHED ? 2 : 0, 0.0);
-    cairo_set_line_width(cr, 1.8);
+    canvas_set_dash(cr, dash, ser->style == PLOT_DASHED ? 2 : 0, 0.0);
+    canvas_set_line_width(cr, 1.8);
     int pen = 0;
     for (size_t i = 0; i < ser->n; i++) {
         if (!isfinite(ser->x[i]) || !isfinite(ser->y[i])) {
@@ -199,62 +199,62 @@ static void draw_series(cairo_t *cr, const struct plot_series *ser, const struct
             continue;
         }
         if (pen)
-            cairo_line_to(cr, px(b, ser->x[i]), py(b, ser->y[i]));
+            canvas_line_to(cr, px(b, ser->x[i]), py(b, ser->y[i]));
         else
-            cairo_move_to(cr, px(b, ser->x[i]), py(b, ser->y[i]));
+            canvas_move_to(cr, px(b, ser->x[i]), py(b, ser->y[i]));
         pen = 1;
     }
-    cairo_stroke(cr);
-    cairo_set_dash(cr, dash, 0, 0.0);
-    cairo_set_line_width(cr, 1.0);
+    canvas_stroke(cr);
+    canvas_set_dash(cr, dash, 0, 0.0);
+    canvas_set_line_width(cr, 1.0);
 }
 
-static void draw_refs(cairo_t *cr, const struct plot_spec *s, const struct plot_box *b)
+static void draw_refs(struct canvas *cr, const struct plot_spec *s, const struct plot_box *b)
 {
     double dash[2] = {3.0, 3.0};
-    cairo_set_font_size(cr, 11.0);
+    canvas_set_font_size(cr, 11.0);
     for (size_t k = 0; k < s->n_refs; k++) {
         const struct plot_refline *r = &s->refs[k];
         if (!isfinite(r->value))
             continue;
-        cairo_set_source_rgb(cr, 0.75, 0.1, 0.1);
-        cairo_set_dash(cr, dash, 2, 0.0);
+        canvas_set_source_rgb(cr, 0.75, 0.1, 0.1);
+        canvas_set_dash(cr, dash, 2, 0.0);
         if (r->axis == 'x') {
             double x = px(b, r->value);
-            cairo_move_to(cr, x, b->y0);
-            cairo_line_to(cr, x, b->y0 + b->h);
-            cairo_stroke(cr);
-            cairo_set_dash(cr, dash, 0, 0.0);
+            canvas_move_to(cr, x, b->y0);
+            canvas_line_to(cr, x, b->y0 + b->h);
+            canvas_stroke(cr);
+            canvas_set_dash(cr, dash, 0, 0.0);
             if (r->label) {
-                cairo_save(cr);
-                cairo_translate(cr, x + 3, b->y0 + 4 + 0.0 * (double)k);
-                cairo_rotate(cr, SPALL_PI / 2.0);
+                canvas_save(cr);
+                canvas_translate(cr, x + 3, b->y0 + 4 + 0.0 * (double)k);
+                canvas_rotate(cr, SPALL_PI / 2.0);
                 text_at(cr, 0, 0, r->label, 0.0, 1.0);
-                cairo_restore(cr);
+                canvas_restore(cr);
             }
         } else {
             double y = py(b, r->value);
-            cairo_move_to(cr, b->x0, y);
-            cairo_line_to(cr, b->x0 + b->w, y);
-            cairo_stroke(cr);
-            cairo_set_dash(cr, dash, 0, 0.0);
+            canvas_move_to(cr, b->x0, y);
+            canvas_line_to(cr, b->x0 + b->w, y);
+            canvas_stroke(cr);
+            canvas_set_dash(cr, dash, 0, 0.0);
             if (r->label)
                 text_at(cr, b->x0 + b->w - 4, y - 3, r->label, 1.0, 1.0);
         }
     }
-    cairo_set_dash(cr, dash, 0, 0.0);
+    canvas_set_dash(cr, dash, 0, 0.0);
 }
 
-static void draw_legend(cairo_t *cr, const struct plot_spec *s, const struct plot_box *b)
+static void draw_legend(struct canvas *cr, const struct plot_spec *s, const struct plot_box *b)
 {
     size_t n = 0;
     double wmax = 0.0;
-    cairo_set_font_size(cr, 12.0);
+    canvas_set_font_size(cr, 12.0);
     for (size_t k = 0; k < s->n_series; k++) {
         if (!s->series[k].label)
             continue;
         cairo_text_extents_t e;
-        cairo_text_extents(cr, s->series[k].label, &e);
+        canvas_text_extents(cr, s->series[k].label, &e);
         wmax = fmax(wmax, e.x_advance);
         n++;
     }
@@ -262,11 +262,11 @@ static void draw_legend(cairo_t *cr, const struct plot_spec *s, const struct plo
         return;
     double lw = wmax + 48, lh = 18.0 * (double)n + 8;
     double x = b->x0 + 8, y = b->y0 + 8;
-    cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-    cairo_rectangle(cr, x, y, lw, lh);
-    cairo_fill_preserve(cr);
-    cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
-    cairo_stroke(cr);
+    canvas_set_source_rgba(cr, 1, 1, 1, 0.85);
+    canvas_rectangle(cr, x, y, lw, lh);
+    canvas_fill_preserve(cr);
+    canvas_set_source_rgb(cr, 0.6, 0.6, 0.6);
+    canvas_stroke(cr);
     size_t row = 0;
     for (size_t k = 0; k < s->n_series; k++) {
         const struct plot_series *ser = &s->series[k];
@@ -289,7 +289,7 @@ static void draw_legend(cairo_t *cr, const struct plot_spec *s, const struct plo
         } else {
             draw_series(cr, &sample, &id, rgb);
         }
-        cairo_set_source_rgb(cr, 0, 0, 0);
+        canvas_set_source_rgb(cr, 0, 0, 0);
         text_at(cr, x + 40, yy, ser->label, 0.0, 0.5);
     }
 }
@@ -299,12 +299,14 @@ int plot_png(const char *path, const struct plot_spec *spec, struct spall_error 
     int w = spec->width > 0 ? spec->width : 800, h = spec->height > 0 ? spec->height : 500;
     if (w < 200 || h < 150 || w > 8000 || h > 8000)
         return spall_error_set(err, SPALL_ERR_INPUT, "plot size %d x %d px out of range", w, h);
-    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
-    cairo_t *cr = cairo_create(surf);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_paint(cr);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_line_width(cr, 1.0);
+    struct canvas canvas, *cr = &canvas;
+    int rc = canvas_open(cr, w, h, err);
+    if (rc)
+        return rc;
+    canvas_set_source_rgb(cr, 1, 1, 1);
+    canvas_paint(cr);
+    canvas_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    canvas_set_line_width(cr, 1.0);
     struct plot_box b;
     data_range(spec, &b);
     b.x0 = 80;
@@ -312,23 +314,16 @@ int plot_png(const char *path, const struct plot_spec *spec, struct spall_error 
     b.w = w - b.x0 - 20;
     b.h = h - b.y0 - 60;
     draw_axes(cr, spec, &b);
-    cairo_save(cr);
-    cairo_rectangle(cr, b.x0, b.y0, b.w, b.h);
-    cairo_clip(cr);
+    canvas_save(cr);
+    canvas_rectangle(cr, b.x0, b.y0, b.w, b.h);
+    canvas_clip(cr);
     for (size_t k = 0; k < spec->n_series; k++) {
         double rgb[3];
         plot_palette(k, rgb);
         draw_series(cr, &spec->series[k], &b, rgb);
     }
     draw_refs(cr, spec, &b);
-    cairo_restore(cr);
+    canvas_restore(cr);
     draw_legend(cr, spec, &b);
-    cairo_destroy(cr);
-    cairo_surface_flush(surf);
-    cairo_status_t st = cairo_surface_write_to_png(surf, path);
-    cairo_surface_destroy(surf);
-    if (st != CAIRO_STATUS_SUCCESS)
-        return spall_error_set(err, SPALL_ERR_IO, "cannot write plot '%s': %s", path,
-                               cairo_status_to_string(st));
-    return SPALL_OK;
+    return canvas_write_png(cr, path, "plot", err);
 }

@@ -5,13 +5,13 @@
  *        and time.
  */
 #include "core/mathconst.h"
+#include "io/canvas.h"
 #include "io/render.h"
 
 #include "io/output.h"
 #include "io/plot.h"
 #include "spall/error.h"
 
-#include <cairo.h>
 #include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
@@ -65,12 +65,12 @@ static void category_colour(double value, double rgb[3])
     rgb[2] = b[i % 6];
 }
 
-static void text_at(cairo_t *cr, double x, double y, const char *s, double ax, double ay)
+static void text_at(struct canvas *cr, double x, double y, const char *s, double ax, double ay)
 {
     cairo_text_extents_t e;
-    cairo_text_extents(cr, s, &e);
-    cairo_move_to(cr, x - ax * e.width - e.x_bearing, y - ay * e.height - e.y_bearing);
-    cairo_show_text(cr, s);
+    canvas_text_extents(cr, s, &e);
+    canvas_move_to(cr, x - ax * e.width - e.x_bearing, y - ay * e.height - e.y_bearing);
+    canvas_show_text(cr, s);
 }
 
 static void format_length(char *buf, size_t len, double L)
@@ -134,30 +134,31 @@ static double estimate_spacing(const double *pos, const unsigned char *keep, siz
     return d[m / 2];
 }
 
-static void draw_colour_bar(cairo_t *cr, double x, double y, double h, double vmin, double vmax)
+static void draw_colour_bar(struct canvas *cr, double x, double y, double h, double vmin,
+                            double vmax)
 {
     const int steps = 128;
     for (int k = 0; k < steps; k++) {
         double rgb[3];
         colormap((k + 0.5) / steps, rgb);
-        cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
-        cairo_rectangle(cr, x, y + h - (k + 1) * h / steps, 20, h / steps + 0.5);
-        cairo_fill(cr);
+        canvas_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+        canvas_rectangle(cr, x, y + h - (k + 1) * h / steps, 20, h / steps + 0.5);
+        canvas_fill(cr);
     }
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_rectangle(cr, x, y, 20, h);
-    cairo_stroke(cr);
+    canvas_set_source_rgb(cr, 0, 0, 0);
+    canvas_rectangle(cr, x, y, 20, h);
+    canvas_stroke(cr);
     double ticks[16];
     size_t nt = plot_nice_ticks(vmin, vmax, 5, ticks, 16);
     double step = nt > 1 ? ticks[1] - ticks[0] : fabs(vmax - vmin);
-    cairo_set_font_size(cr, 12.0);
+    canvas_set_font_size(cr, 12.0);
     for (size_t k = 0; k < nt; k++) {
         double yy = y + h - (ticks[k] - vmin) / (vmax - vmin) * h;
         char lab[48];
         plot_format_tick(lab, sizeof lab, ticks[k], step);
-        cairo_move_to(cr, x + 20, yy);
-        cairo_line_to(cr, x + 25, yy);
-        cairo_stroke(cr);
+        canvas_move_to(cr, x + 20, yy);
+        canvas_line_to(cr, x + 25, yy);
+        canvas_stroke(cr);
         text_at(cr, x + 28, yy, lab, 0.0, 0.5);
     }
 }
@@ -237,12 +238,16 @@ int render_points_png(const char *png_path, const struct render_points *d,
     double scale = fmin(maxw / (xmax - xmin), maxh / (ymax - ymin));
     double pw = scale * (xmax - xmin), ph = scale * (ymax - ymin);
     int W = (int)ceil(left + fmax(pw, 200.0) + right), H = (int)ceil(top + fmax(ph, 150.0) + bottom);
-    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H);
-    cairo_t *cr = cairo_create(surf);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_paint(cr);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_line_width(cr, 1.0);
+    struct canvas canvas, *cr = &canvas;
+    int rc = canvas_open(cr, W, H, err);
+    if (rc) {
+        free(keep);
+        return rc;
+    }
+    canvas_set_source_rgb(cr, 1, 1, 1);
+    canvas_paint(cr);
+    canvas_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    canvas_set_line_width(cr, 1.0);
     double rad = fmax(0.7, 0.55 * h * scale);
     for (size_t i = 0; i < n; i++) {
         if (!keep[i])
@@ -258,16 +263,16 @@ int render_points_png(const char *png_path, const struct render_points *d,
         }
         double X = left + (d->pos[3 * i] - xmin) * scale;
         double Y = top + ph - (d->pos[3 * i + 1] - ymin) * scale;
-        cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+        canvas_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
         if (rad < 2.0)
-            cairo_rectangle(cr, X - rad, Y - rad, 2 * rad, 2 * rad);
+            canvas_rectangle(cr, X - rad, Y - rad, 2 * rad, 2 * rad);
         else
-            cairo_arc(cr, X, Y, rad, 0.0, 2.0 * SPALL_PI);
-        cairo_fill(cr);
+            canvas_arc(cr, X, Y, rad, 0.0, 2.0 * SPALL_PI);
+        canvas_fill(cr);
     }
     /* header: title / label and time */
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_set_font_size(cr, 14.0);
+    canvas_set_source_rgb(cr, 0, 0, 0);
+    canvas_set_font_size(cr, 14.0);
     char buf[160];
     snprintf(buf, sizeof buf, "%s%s", d->label ? d->label : (o->title ? o->title : ""),
              is3d ? "" : "");
@@ -277,7 +282,7 @@ int render_points_png(const char *png_path, const struct render_points *d,
         text_at(cr, W - 10, 12, buf, 1.0, 0.0);
     }
     if (is3d) {
-        cairo_set_font_size(cr, 11.0);
+        canvas_set_font_size(cr, 11.0);
         snprintf(buf, sizeof buf, "slice %c = %.4g m",
                  "xyz"[o->slice_axis >= 0 && o->slice_axis < 3 ? o->slice_axis : 2], zc);
         text_at(cr, W - 10, 28, buf, 1.0, 0.0);
@@ -287,31 +292,24 @@ int render_points_png(const char *png_path, const struct render_points *d,
     double mag = pow(10.0, floor(log10(target)));
     double L = target / mag >= 5 ? 5 * mag : target / mag >= 2 ? 2 * mag : mag;
     double y_bar = top + ph + 25;
-    cairo_set_line_width(cr, 3.0);
-    cairo_move_to(cr, left, y_bar);
-    cairo_line_to(cr, left + L * scale, y_bar);
-    cairo_stroke(cr);
-    cairo_set_line_width(cr, 1.0);
+    canvas_set_line_width(cr, 3.0);
+    canvas_move_to(cr, left, y_bar);
+    canvas_line_to(cr, left + L * scale, y_bar);
+    canvas_stroke(cr);
+    canvas_set_line_width(cr, 1.0);
     format_length(buf, sizeof buf, L);
-    cairo_set_font_size(cr, 12.0);
+    canvas_set_font_size(cr, 12.0);
     text_at(cr, left + 0.5 * L * scale, y_bar + 6, buf, 0.5, 0.0);
     /* colour bar or category note */
     double bx = left + fmax(pw, 200.0) + 20, bh = fmin(fmax(ph * 0.8, 100.0), 400.0);
     if (o->categorical) {
-        cairo_set_font_size(cr, 12.0);
+        canvas_set_font_size(cr, 12.0);
         text_at(cr, bx, top + 10, "colour = id", 0.0, 0.0);
     } else {
         draw_colour_bar(cr, bx, top + 0.5 * (ph - bh), bh, vmin, vmax);
     }
-    cairo_destroy(cr);
-    cairo_surface_flush(surf);
-    cairo_status_t st = cairo_surface_write_to_png(surf, png_path);
-    cairo_surface_destroy(surf);
     free(keep);
-    if (st != CAIRO_STATUS_SUCCESS)
-        return spall_error_set(err, SPALL_ERR_IO, "cannot write picture '%s': %s", png_path,
-                               cairo_status_to_string(st));
-    return SPALL_OK;
+    return canvas_write_png(cr, png_path, "picture", err);
 }
 
 /* the dataset's "unit" attribute (empty if absent) */

@@ -156,8 +156,15 @@ int pd_localize(struct model *m, struct sim *sim, const size_t *keep, size_t n_k
         return rc;
     const size_t nh = rows.n_half;
     /* per half-bond: the coefficients, or the compact families' table rows */
-    double *coef = m->coef ? bond_rows_gather(&rows, m->coef, sizeof *coef) : NULL;
-    uint16_t *kind = m->kind ? bond_rows_gather(&rows, m->kind, sizeof *kind) : NULL;
+    /* taken in place (bond_rows_take): the window's and the rank's copies
+     * never coexist (at 165 888 particles on 2 ranks about 23 MB of window kinds
+     * next to 18 MB of kept ones: 117.7 MiB per rank from 136.8) */
+    double *coef = m->coef ? bond_rows_take(&rows, m->coef, sizeof *coef) : NULL;
+    if (coef)
+        m->coef = NULL;
+    uint16_t *kind = m->kind ? bond_rows_take(&rows, m->kind, sizeof *kind) : NULL;
+    if (kind)
+        m->kind = NULL;
     size_t *n_init = array_gather(m->n_init, sizeof *n_init, keep, n_keep);
     size_t *n_init_f = array_gather(m->n_init_f, sizeof *n_init_f, keep, n_keep);
     double *diss = array_gather(m->diss, sizeof *diss, keep, n_keep);

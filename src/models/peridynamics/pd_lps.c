@@ -212,10 +212,20 @@ static int lps_build_kinds(struct model *m, struct sim *sim, struct spall_error 
     const size_t n = bl->n, nh = bl->offset[n];
     struct distinct16 *d = NULL;
     int rc = distinct16_create(&d, PD_KIND_KEY, 65535u, err);
-    uint16_t *kind = rc ? NULL : malloc((nh ? nh : 1) * sizeof *kind);
-    if (!rc && !kind)
+    /* A compact list's rest indices (16 bits, one per half-bond) become the
+     * kinds in place, each read before its slot is overwritten: the
+     * window's set-up peak (partners, states, rest indices and kinds at
+     * once) loses one 2-byte array.  back[] maps a kind to the rest index
+     * it replaced, so an overflow can give the list its indices back. */
+    uint16_t *back = NULL, *kind = NULL;
+    if (!rc && bl->rest_idx) {
+        kind = bl->rest_idx;
+        if (!(back = malloc(65535u * sizeof *back)))
+            rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
+    } else if (!rc && !(kind = malloc((nh ? nh : 1) * sizeof *kind)))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for peridynamic bonds");
     bool fits = nh > 0; /* no bonds: the (empty) arrays, no table */
+    size_t done = 0; /* slots holding a kind */
     for (size_t i = 0; !rc && i < n && fits; i++)
         for (size_t s = bl->offset[i]; !rc && s < bl->offset[i + 1] && fits; s++) {
             const double rest = bond_rest(bl, s);
@@ -227,17 +237,31 @@ static int lps_build_kinds(struct model *m, struct sim *sim, struct spall_error 
             key[2 * sizeof(double)] = lps_type(m, sim, i, s);
             const int32_t row = distinct16_add(d, key);
             fits = row >= 0;
-            kind[s] = (uint16_t)(fits ? row : 0);
+            if (!fits)
+                break;
+            if (back)
+                back[row] = bl->rest_idx[s];
+            kind[s] = (uint16_t)row;
+            done = s + 1;
         }
     size_t nk = 0;
     unsigned char *tab = (!rc && fits) ? distinct16_take_table(d, &nk) : NULL;
     distinct16_destroy(&d);
     if (!rc && tab)
         rc = pd_kinds_from_table(m, tab, nk, err); /* frees tab */
-    if (rc || !tab) {
+    if (!rc && tab) {
+        if (kind == bl->rest_idx)
+            bl->rest_idx = NULL; /* the kinds now: m->kind owns them */
+        m->kind = kind;
+    } else if (back) { /* the list's rest indices back, as they were */
+        for (size_t s = 0; s < done; s++)
+            kind[s] = back[kind[s]];
+    } else
         free(kind);
-        if (rc)
-            return rc;
+    free(back);
+    if (rc)
+        return rc;
+    if (!m->kind) {
         /* the arrays, as pd_init builds them without the table */
         if ((rc = bond_list_expand_rest(bl, err)))
             return rc;
@@ -248,7 +272,6 @@ static int lps_build_kinds(struct model *m, struct sim *sim, struct spall_error 
                 bl->type[s] = lps_type(m, sim, i, s);
         return SPALL_OK;
     }
-    m->kind = kind;
     /* the table holds the lengths (k_rest): the list keeps none */
     bond_list_drop_rest(bl);
     return SPALL_OK;
