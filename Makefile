@@ -30,7 +30,7 @@ check: build
 	@$(MAKE) --no-print-directory asan
 
 # Tests labelled no_asan in CMakeLists.txt (the heavy validation-gate groups
-# validation_pd-fracture and validation_sph-rings, cli_mpi_errors, the labels
+# validation_pd-fracture and validation_sph-rings, the labels
 # client and lammps) run in the optimised build only; the MPI scripts run here
 # on 3 ranks, in their light plan (docs/testing.md, "The sanitizer suite").
 asan: deps

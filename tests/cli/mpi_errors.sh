@@ -10,11 +10,8 @@ spall="$1"
 src="$2"
 mpiexec="$3"
 export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
-# ASan builds (make asan): full stacks and loaded MCA components, so that
-# tests/lsan.supp can name Open MPI's own run-time state
-export OMPI_MCA_mca_base_component_disable_dlclose=1
-[ -n "${ASAN_OPTIONS:-}" ] && export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"
-[ -n "${LSAN_OPTIONS:-}" ] && export LSAN_OPTIONS="$LSAN_OPTIONS:print_suppressions=0"
+# shellcheck source=lib/asan_mpi.bash
+source "$src/tests/cli/lib/asan_mpi.bash"
 launch="timeout 120 $mpiexec --allow-run-as-root --oversubscribe -q -np 2"
 fail=0
 # the deck error cases of the suite, on two ranks
