@@ -31,6 +31,8 @@ struct bench_result {
     double halo_seconds_per_step; /**< wall seconds per step in the halo, largest rank */
     double setup_bytes_per_particle; /**< a rank's growth while building the whole body
                                           (replicated set-up) / particles of the body */
+    int uniform_mass;           /**< the run's masses were one value: its passes streamed
+                                     none (particles.mass_uniform) */
     char note[384];
 };
 

@@ -15,6 +15,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -68,8 +69,10 @@ int bench_run_deck(const char *name, const char *yaml, int threads, long max_ste
     while (!rc && !sim_done(s) && (max_steps <= 0 || s->step < max_steps))
         rc = sim_step(s, err);
     double wall = omp_get_wtime() - t0, cpu = bench_cpu_seconds() - c0;
-    if (!rc)
+    if (!rc) {
         bench_fill(s, name, threads, n_body, bonds, wall, cpu, rss0, rss1, rss2, out);
+        out->uniform_mass = s->p->mass_uniform > 0.0;
+    }
     sim_destroy(&s);
     deck_destroy(&d);
     return rc;
@@ -77,7 +80,10 @@ int bench_run_deck(const char *name, const char *yaml, int threads, long max_ste
 
 /* The lattice2d step's memory traffic (docs/performance.md, "Roofline of
  * the lattice step"): 2D, one bond type, h half-bonds per particle, the
- * rest lengths compacted to @p rest_bytes (bond_list_compact_rest).  Each
+ * rest lengths compacted to @p rest_bytes (bond_list_compact_rest), 8 B of
+ * mass per pass that reads the masses or 0 with one uniform mass
+ * (@p mass_bytes), the NaN check's kinetic sums formed in the second kick
+ * (@p sum_in_kick; a distributed run sums them per rank instead).  Each
  * pass streams its arrays once: a line read from beyond the core's own
  * caches is counted once, a line written once more for its write-back; a
  * line written without being read (the forces, which the bond loop writes
@@ -90,21 +96,21 @@ int bench_run_deck(const char *name, const char *yaml, int threads, long max_ste
  * (a row's upper slots share their cache lines with its lower ones); the
  * first kick and the drift are one pass (core/step_passes.c), which reads
  * the forces without clearing them.  Valgrind's cache simulation of the
- * step (2 MiB last level, the L2 of one core) counts 236.8 B per
- * particle-step for the 234 here. */
+ * step (2 MiB last level, the L2 of one core): docs/performance.md. */
 struct lattice_traffic {
     double kick_drift, force, bond, kick, check;
 };
 
-static struct lattice_traffic lattice2d_traffic(double h, double rest_bytes)
+static struct lattice_traffic lattice2d_traffic(double h, double rest_bytes, double mass_bytes,
+                                                bool sum_in_kick)
 {
     return (struct lattice_traffic){
-        .kick_drift = 8 + 2 * (8 + 2 * 8 + 2 * 8), /* m; per dimension f read, v and x
-                                                      read and written */
+        .kick_drift = mass_bytes + 2 * (8 + 2 * 8 + 2 * 8), /* m; per dimension f read, v
+                                                               and x read and written */
         .force = 2 * 8 + 2 * 16,         /* bond loop: x_i; f written (read first) */
         .bond = h * (rest_bytes + 1),    /* and each slot's rest index and state */
-        .kick = 8 + 2 * (8 + 8 + 8),                    /* m; f, v read, v written */
-        .check = 8 + 2 * 8, /* NaN check and kinetic energy: m, v */
+        .kick = mass_bytes + 2 * (8 + 8 + 8),           /* m; f, v read, v written */
+        .check = sum_in_kick ? 0.0 : 8 + 2 * 8, /* NaN check and kinetic energy: m, v */
     };
 }
 
@@ -117,6 +123,8 @@ static double traffic_total(const struct lattice_traffic *t)
 struct replay {
     size_t n;
     double bond_bytes; /* per particle */
+    bool mass;         /* the kicks stream m (else one uniform mass) */
+    bool check;        /* the NaN check is a pass of its own (else in the second kick) */
     double *m, *x[2], *v[2], *f[2];
     uint64_t *bonds;
 };
@@ -143,8 +151,11 @@ static size_t bond_word(const struct replay *r, size_t i)
 /* One step's passes over the thread's share [lo, hi) of the particles,
  * each array streamed as the step streams it (lattice2d_traffic), with a
  * multiply or an add where the step computes: the memory traffic alone.
+ * Without r->mass the kicks multiply by a constant (one uniform mass);
+ * without r->check the second kick also sums v (the kinetic sums).
  * Returns a sum the caller keeps (else the reads could be dropped). */
-REPLAY_CLONES static double replay_range(const struct replay *r, size_t lo, size_t hi)
+static inline double replay_passes(const struct replay *r, size_t lo, size_t hi, const bool mass,
+                                   const bool check)
 {
     const double q = 0x1p-20;
     uint64_t w = 0;
@@ -156,7 +167,7 @@ REPLAY_CLONES static double replay_range(const struct replay *r, size_t lo, size
             double *restrict x = r->x[d], *restrict v = r->v[d], *restrict f = r->f[d];
             const double *restrict m = r->m;
             for (size_t i = c; i < e; i++) {
-                const double vi = v[i] + q * f[i] * m[i];
+                const double vi = v[i] + q * f[i] * (mass ? m[i] : q);
                 v[i] = vi;
                 x[i] += q * vi;
             }
@@ -175,24 +186,36 @@ REPLAY_CLONES static double replay_range(const struct replay *r, size_t lo, size
         for (size_t k = bond_word(r, c); k < bond_word(r, e); k++)
             w += b[k];
     }
-    /* second kick: m, f read, v read and written */
+    /* second kick: m, f read, v read and written (and summed) */
     for (size_t c = lo; c < hi; c += REPLAY_CHUNK) {
         const size_t e = hi - c < REPLAY_CHUNK ? hi : c + REPLAY_CHUNK;
         for (int d = 0; d < 2; d++) {
             double *restrict v = r->v[d];
             const double *restrict f = r->f[d], *restrict m = r->m;
-            for (size_t i = c; i < e; i++)
-                v[i] += q * f[i] * m[i];
+            for (size_t i = c; i < e; i++) {
+                const double vi = v[i] + q * f[i] * (mass ? m[i] : q);
+                v[i] = vi;
+                if (!check)
+                    acc += vi;
+            }
         }
     }
     /* NaN check: m, v read */
-    for (size_t c = lo; c < hi; c += REPLAY_CHUNK) {
+    for (size_t c = lo; check && c < hi; c += REPLAY_CHUNK) {
         const size_t e = hi - c < REPLAY_CHUNK ? hi : c + REPLAY_CHUNK;
         for (int d = 0; d < 2; d++)
             for (size_t i = c; i < e; i++)
-                acc += r->m[i] * r->v[d][i];
+                acc += (mass ? r->m[i] : q) * r->v[d][i];
     }
     return acc + (double)(w & 1u);
+}
+
+REPLAY_CLONES static double replay_range(const struct replay *r, size_t lo, size_t hi)
+{
+    if (r->mass)
+        return r->check ? replay_passes(r, lo, hi, true, true)
+                        : replay_passes(r, lo, hi, true, false);
+    return r->check ? replay_passes(r, lo, hi, false, true) : replay_passes(r, lo, hi, false, false);
 }
 
 static void replay_free(struct replay *r)
@@ -209,16 +232,18 @@ static void replay_free(struct replay *r)
 /* Memory bandwidth [B/s] for the lattice2d step's own streams: its passes
  * replayed (replay_range) over arrays of its @p n particles on @p threads
  * threads, each thread sweeping the static share the step's passes give it
- * (and touching it first), best of REPLAY_REPS steps, @p bytes per
- * particle-step counted as lattice2d_traffic counts them.  The step and
- * this measurement move the same bytes through the same levels of the
+ * (and touching it first), best of REPLAY_REPS steps, the bytes per
+ * particle-step of @p tr (lattice2d_traffic; @p mass: the kicks stream the
+ * masses).  The step and this measurement move the same bytes through the same levels of the
  * memory hierarchy (a working set of the same size: on a VM with a large
  * shared L3 part of it may stay there), so the step's share of it is at
  * most 1 up to the noise of a timing.  0 when out of memory. */
 #define REPLAY_REPS 20
-static double replay_bandwidth(size_t n, double bond_bytes, double bytes, int threads)
+static double replay_bandwidth(size_t n, const struct lattice_traffic *tr, bool mass,
+                               int threads)
 {
-    struct replay r = {.n = n, .bond_bytes = bond_bytes};
+    const double bytes = traffic_total(tr);
+    struct replay r = {.n = n, .bond_bytes = tr->bond, .mass = mass, .check = tr->check > 0.0};
     const size_t nw = bond_word(&r, n);
     int ok = (r.m = malloc(n * sizeof(double))) != NULL;
     for (int d = 0; d < 2; d++) {
@@ -294,10 +319,11 @@ static int bench_lattice2d(int threads, double scale, struct bench_result *out,
     int rc = bench_run_deck("lattice2d", yaml, threads, 0, out, err);
     if (!rc) {
         const double halves = 2.0 * (double)out->bonds / (double)out->particles;
-        const struct lattice_traffic tr = lattice2d_traffic(halves, 2.0);
+        const struct lattice_traffic tr =
+            lattice2d_traffic(halves, 2.0, out->uniform_mass ? 0.0 : 8.0, par_size() == 1);
         const double bytes = traffic_total(&tr);
         /* after the run (its memory given back), not to disturb B/particle */
-        const double bw = replay_bandwidth(out->particles, tr.bond, bytes, threads);
+        const double bw = replay_bandwidth(out->particles, &tr, !out->uniform_mass, threads);
         const double rate = out->seconds > 0 ? bytes * (double)out->particles *
                                                    (double)out->steps / out->seconds
                                              : 0.0;

@@ -3,7 +3,9 @@
  * @brief The time step's ownership rules seen from the library API:
  *        sim_step itself stops an energy blow-up (not only the CLI), and
  *        the model's drift velocity (XSPH) never moves a particle whose
- *        velocity a BC prescribes.
+ *        velocity a BC prescribes.  The second kick's kinetic-energy
+ *        block sums and the passes with one uniform mass give the bits
+ *        of the separate passes.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -14,7 +16,10 @@
 
 #include "tests/test_support.h"
 
+#include "core/step_passes.h"
+
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -101,11 +106,160 @@ static void test_drift_velocity_skips_prescribed(void **state)
     sim_destroy(&s);
 }
 
+/* Owned particles with velocities, forces and masses from a fixed
+ * sequence (3 blocks and 5 more, so a block is partial and a tail is not
+ * a multiple of four lanes); with @p uniform all masses are one double. */
+static struct particles *pass_particles(bool uniform)
+{
+    struct particles *p = NULL;
+    assert_int_equal(particles_create(&p, 2, 16, NULL), SPALL_OK);
+    const size_t n = 3 * STEP_SUM_BLOCK + 5;
+    uint64_t r = 88172645463325252u;
+    for (size_t i = 0; i < n; i++) {
+        const double pos[3] = {(double)i, 0.0, 0.0};
+        assert_int_equal(particles_append(p, pos, 0, NULL, NULL), SPALL_OK);
+        double u[5];
+        for (int k = 0; k < 5; k++) { /* xorshift64: deterministic */
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            u[k] = (double)(r >> 11) * 0x1p-53 - 0.5;
+        }
+        p->v[0][i] = u[0];
+        p->v[1][i] = u[1];
+        p->f[0][i] = 1e3 * u[2];
+        p->f[1][i] = 1e3 * u[3];
+        p->mass[i] = uniform ? 1.7e-6 : 1.7e-6 * (1.5 + u[4]);
+    }
+    return p;
+}
+
+static void assert_same_doubles(const double *a, const double *b, size_t n)
+{
+    assert_memory_equal(a, b, n * sizeof *a);
+}
+
+/* step_kick_sum against step_kick then step_block_mv2 per block: the
+ * velocities and the block sums bit for bit, with masses read from the
+ * array or the one uniform mass, on the test's threads (ctest: 2); and the
+ * fused kick and drift with the uniform mass as with the array. */
+static void test_kick_sum_matches_passes(void **state)
+{
+    (void)state;
+    for (int uniform = 0; uniform < 2; uniform++) {
+        struct particles *a = pass_particles(uniform), *b = pass_particles(uniform);
+        const size_t n = a->n_owned, nb = (n + STEP_SUM_BLOCK - 1) / STEP_SUM_BLOCK;
+        a->mass_uniform = uniform ? a->mass[0] : 0.0;
+        double part[3 * 4] = {0};
+        assert_true(nb <= 4);
+        step_kick_sum(a, 3.5e-8, part);
+        step_kick(b, 3.5e-8); /* b reads the masses */
+        for (int d = 0; d < 2; d++) {
+            assert_same_doubles(a->v[d], b->v[d], n);
+            for (size_t k = 0; k < nb; k++) {
+                const size_t lo = k * STEP_SUM_BLOCK;
+                const size_t hi = lo + STEP_SUM_BLOCK < n ? lo + STEP_SUM_BLOCK : n;
+                const double ref = step_block_mv2(b->mass, b->v[d], lo, hi);
+                assert_memory_equal(&part[3 * k + (size_t)d], &ref, sizeof ref);
+            }
+        }
+        step_kick_drift(a, 3.5e-8, 7e-8, true);
+        step_kick_drift(b, 3.5e-8, 7e-8, true);
+        for (int d = 0; d < 2; d++) {
+            assert_same_doubles(a->v[d], b->v[d], n);
+            assert_same_doubles(a->x[d], b->x[d], n);
+            assert_same_doubles(a->f[d], b->f[d], n);
+        }
+        particles_destroy(&a);
+        particles_destroy(&b);
+    }
+}
+
+/* The run's first step finds the lattice's masses all equal; a mass
+ * changed afterwards (particles_masses_changed) turns the uniform passes
+ * off at the next step. */
+static void test_uniform_mass_flag(void **state)
+{
+    (void)state;
+    struct sim *s = test_build_ok(
+        "model: {type: lattice}\n"
+        "materials: {m: {density: 1000, youngs_modulus: 1.0e9, "
+        "poisson_ratio: 0.3333333333333333, failure_strain: 10}}\n"
+        "lattice: {type: triangular, spacing: 0.001}\n"
+        "body: {geometry: {box: {min: [0, 0], max: [0.02, 0.02]}}, material: m}\n"
+        "run: {steps: 4}\n");
+    struct spall_error err = {0};
+    assert_int_equal(sim_step(s, &err), SPALL_OK);
+    assert_true(s->p->mass_checked);
+    assert_true(s->p->mass_uniform > 0.0);
+    assert_memory_equal(&s->p->mass_uniform, &s->p->mass[s->p->n_owned / 2], sizeof(double));
+    s->p->mass[3] *= 1.25;
+    particles_masses_changed(s->p);
+    assert_int_equal(sim_step(s, &err), SPALL_OK);
+    assert_true(s->p->mass_checked);
+    assert_true(s->p->mass_uniform == 0.0);
+    sim_destroy(&s);
+}
+
+/* The velocity conditions applied before the second kick (its kinetic
+ * sums then see the final velocities) against after it: the same plate
+ * with a no-slip impactor far from it, which keeps the separate passes.
+ * Corner particles belong to two velocity BCs (x of both, y of one).
+ * Positions, velocities, forces, reactions, work and the energy account
+ * bit for bit. */
+static void test_velocity_bcs_before_kick(void **state)
+{
+    (void)state;
+    const char *deck =
+        "model: {type: lattice}\n"
+        "materials: {m: {density: 1000, youngs_modulus: 1.0e9, "
+        "poisson_ratio: 0.3333333333333333, failure_strain: 0.01}}\n"
+        "lattice: {type: triangular, spacing: 0.001}\n"
+        "body: {geometry: {box: {min: [0, 0], max: [0.03, 0.012]}}, material: m}\n"
+        "groups:\n"
+        "  left: {box: {min: [-1, -1], max: [0.0006, 1]}}\n"
+        "  corner: {box: {min: [-1, -1], max: [0.004, 0.0015]}}\n"
+        "  right: {box: {min: [0.0294, -1], max: [1, 1]}}\n"
+        "boundary_conditions:\n"
+        "  - {group: left, type: velocity, components: [x], value: -2.0}\n"
+        "  - {group: corner, type: velocity, components: [x, y], value: [-1.0, 0.5]}\n"
+        "  - {group: right, type: fixed}\n"
+        "run: {steps: 120}\n";
+    char with[2048];
+    snprintf(with, sizeof with, "%s%s", deck,
+             "impactors:\n"
+             "  - {name: far, shape: round_nose, position: [5.0, 5.0], radius: 0.003,\n"
+             "     axis: [0, -1], motion: prescribed, velocity: [0, 0], contact: no_slip}\n");
+    struct sim *a = test_build_ok(deck), *b = test_build_ok(with);
+    struct spall_error err = {0};
+    while (!sim_done(a)) {
+        assert_int_equal(sim_step(a, &err), SPALL_OK);
+        assert_int_equal(sim_step(b, &err), SPALL_OK);
+    }
+    assert_int_equal(a->p->n_owned, b->p->n_owned);
+    const size_t n = a->p->n_owned;
+    for (int d = 0; d < 2; d++) {
+        assert_same_doubles(a->p->x[d], b->p->x[d], n);
+        assert_same_doubles(a->p->v[d], b->p->v[d], n);
+        assert_same_doubles(a->p->f[d], b->p->f[d], n);
+    }
+    for (size_t k = 0; k < a->n_bcs; k++) {
+        assert_same_doubles(a->bcs[k].reaction, b->bcs[k].reaction, 3);
+        assert_memory_equal(&a->bcs[k].work, &b->bcs[k].work, sizeof(double));
+    }
+    assert_memory_equal(&a->energy.external, &b->energy.external, sizeof(double));
+    sim_destroy(&a);
+    sim_destroy(&b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_energy_blowup_in_sim_step),
         cmocka_unit_test(test_drift_velocity_skips_prescribed),
+        cmocka_unit_test(test_kick_sum_matches_passes),
+        cmocka_unit_test(test_uniform_mass_flag),
+        cmocka_unit_test(test_velocity_bcs_before_kick),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -150,11 +150,17 @@ static void account_body_work(struct sim *s, double dt)
  * BC needed to impose them (m dv/(dt/2) - nothing else), i.e. the reaction,
  * and accumulate the constraint's work (core/bc_work.h).  Distributed,
  * g->idx lists the owned members and the exact sums complete over all
- * ranks. */
-static void impose_velocities(struct sim *s, double t_prev, double t, double half_dt,
-                              int record)
+ * ranks.  With @p fsave, before the kick instead of after it: each member's
+ * velocity is the one the kick would give it (its expression, so its bits),
+ * its force goes to fsave (member by member in BC order; the count is
+ * returned) and becomes -0.0, with which the kick leaves the imposed
+ * velocity as it is (vb + -0.0 = vb for every vb), so a member of a second
+ * BC sees the first one's velocity, as after the kick. */
+static size_t impose_velocities(struct sim *s, double t_prev, double t, double half_dt,
+                                int record, double *fsave)
 {
     struct particles *p = s->p;
+    size_t nsave = 0;
     for (size_t k = 0; k < s->n_bcs; k++) {
         struct bc *b = &s->bcs[k];
         if (!bc_prescribes_velocity(b))
@@ -170,9 +176,15 @@ static void impose_velocities(struct sim *s, double t_prev, double t, double hal
             const double v_drift = record ? vp : vb;
             for (size_t q = 0; q < g->n; q++) {
                 size_t i = g->idx[q];
-                double dv = vb - p->v[d][i];
+                double vi = p->v[d][i];
+                if (fsave) {
+                    vi = vi + half_dt * p->f[d][i] / p->mass[i];
+                    fsave[nsave++] = p->f[d][i];
+                    p->f[d][i] = -0.0;
+                }
+                double dv = vb - vi;
                 xsum_add(&acc[d], p->mass[i] * dv / half_dt);
-                xsum_add(&acc[3], bc_constraint_work(p->mass[i], vp, p->v[d][i], vb, v_drift));
+                xsum_add(&acc[3], bc_constraint_work(p->mass[i], vp, vi, vb, v_drift));
                 p->v[d][i] = vb;
             }
         }
@@ -185,6 +197,38 @@ static void impose_velocities(struct sim *s, double t_prev, double t, double hal
         b->work += out[3];
         s->energy.external += out[3];
     }
+    return nsave;
+}
+
+/* The forces impose_velocities saved before the kick put back, last saved
+ * first (a member of two BCs gets its own force back last). */
+static void restore_prescribed_forces(struct sim *s, const double *fsave, size_t nsave)
+{
+    size_t q = nsave;
+    for (size_t k = s->n_bcs; k-- > 0;) {
+        const struct bc *b = &s->bcs[k];
+        if (!bc_prescribes_velocity(b))
+            continue;
+        const struct group *g = &s->groups[b->group];
+        for (int d = s->dim; d-- > 0;)
+            if (b->comp_mask & (1u << d))
+                for (size_t m = g->n; m-- > 0;)
+                    s->p->f[d][g->idx[m]] = fsave[--q];
+    }
+}
+
+/* Room for the kinetic-energy block sums of the owned particles. */
+static bool kinetic_room(struct sim *s)
+{
+    const size_t need = 3 * ((s->p->n_owned + STEP_SUM_BLOCK - 1) / STEP_SUM_BLOCK);
+    if (need > s->kinetic_part_cap) {
+        double *b = realloc(s->kinetic_part, need * sizeof *b);
+        if (!b)
+            return false;
+        s->kinetic_part = b;
+        s->kinetic_part_cap = need;
+    }
+    return true;
 }
 
 /* Prescribed velocities for the predicted state (no work, no reaction). */
@@ -395,7 +439,7 @@ int sim_initial_forces(struct sim *s, struct spall_error *err)
         rc = par_agree(rc, err);
     if (rc)
         return rc;
-    impose_velocities(s, 0.0, 0.0, 0.5 * s->dt, 1);
+    impose_velocities(s, 0.0, 0.0, 0.5 * s->dt, 1, NULL);
     /* the initial imposition is a set-up, not work done during the run */
     s->energy.external = 0.0;
     for (size_t k = 0; k < s->n_bcs; k++)
@@ -407,40 +451,40 @@ int sim_initial_forces(struct sim *s, struct spall_error *err)
     return SPALL_OK;
 }
 
-/* Particles per block of the kinetic-energy sum. */
-#define KINETIC_BLOCK 4096
-
 /* Find the first particle with a non-finite velocity (a non-finite position
  * makes the forces and hence the velocity non-finite in the same step).
  * The kinetic energy (only the blow-up check reads it) is summed in fixed
- * blocks of particles, the blocks in parallel and their sums in block
- * order: the same bits on any number of threads, and no serial pass over
- * the particles every step. */
-static int check_finite(const struct sim *s, size_t *bad, double *kinetic)
+ * blocks of particles (STEP_SUM_BLOCK), by the second kick
+ * (s->kinetic_fused) or here, the blocks in parallel, and their sums in
+ * block order: the same bits on any number of threads, and no serial pass
+ * over the particles every step. */
+static int check_finite(struct sim *s, size_t *bad, double *kinetic)
 {
     const struct particles *p = s->p;
     const double *m = p->mass;
-    const size_t n = p->n_owned, nb = (n + KINETIC_BLOCK - 1) / KINETIC_BLOCK;
+    const size_t n = p->n_owned, nb = (n + STEP_SUM_BLOCK - 1) / STEP_SUM_BLOCK;
     const int dim = s->dim;
     double acc[3] = {0.0, 0.0, 0.0};
-    double *part = nb > 1 ? malloc(nb * 3 * sizeof *part) : NULL;
-    if (part) {
+    double *part = s->kinetic_fused || kinetic_room(s) ? s->kinetic_part : NULL;
+    if (part && !s->kinetic_fused) {
 #pragma omp parallel for schedule(static) if (n > SPALL_OMP_MIN_PARTICLES)
         for (size_t b = 0; b < nb; b++) {
-            const size_t lo = b * KINETIC_BLOCK, hi = lo + KINETIC_BLOCK < n ? lo + KINETIC_BLOCK : n;
+            const size_t lo = b * STEP_SUM_BLOCK, hi = n - lo < STEP_SUM_BLOCK ? n : lo + STEP_SUM_BLOCK;
             for (int d = 0; d < dim; d++)
                 part[3 * b + (size_t)d] = step_block_mv2(m, p->v[d], lo, hi);
         }
+    }
+    if (part) {
         for (size_t b = 0; b < nb; b++)
             for (int d = 0; d < dim; d++)
                 acc[d] += part[3 * b + (size_t)d];
-        free(part);
-    } else { /* one block, or no memory for the block sums: the same blocks in turn */
-        for (size_t lo = 0; lo < n; lo += KINETIC_BLOCK)
+    } else { /* no memory for the block sums: the same blocks in turn */
+        for (size_t lo = 0; lo < n; lo += STEP_SUM_BLOCK)
             for (int d = 0; d < dim; d++)
                 acc[d] += step_block_mv2(m, p->v[d], lo,
-                                         lo + KINETIC_BLOCK < n ? lo + KINETIC_BLOCK : n);
+                                         n - lo < STEP_SUM_BLOCK ? n : lo + STEP_SUM_BLOCK);
     }
+    s->kinetic_fused = false;
     *kinetic = 0.0;
     for (int d = 0; d < dim; d++) {
         *kinetic += 0.5 * acc[d]; /* a NaN or Inf in v makes acc non-finite */
@@ -585,7 +629,7 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
     else
         kick(s, half);
     rigid_kick(s, half, t_mid);
-    impose_velocities(s, s->t, t_mid, half, 0);
+    impose_velocities(s, s->t, t_mid, half, 0, NULL);
     if (fused)
         prescribed_positions(s, dt, false);
     else
@@ -616,9 +660,23 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
     if (pc)
         for (int d = 0; d < s->dim; d++)
             memcpy(s->p->v[d], s->v_half[d], s->p->n_owned * sizeof(double));
-    kick(s, half);
-    rigid_kick(s, half, s->t);
-    impose_velocities(s, t_mid, s->t, half, 1);
+    /* the second kick forms the kinetic-energy sums of the NaN check with
+     * the velocities the step ends with (one pass over m and v less): the
+     * velocity conditions go first (impose_velocities' fsave), and where
+     * something after the kick sets velocities (no-slip impactors, the
+     * corrector's model stage) or the sums are per rank (par_check_finite)
+     * the check sums them itself */
+    s->kinetic_fused = fused && !pc && !s->par && !rigid_sets_velocities(s) && kinetic_room(s);
+    if (s->kinetic_fused) {
+        const size_t nsave = impose_velocities(s, t_mid, s->t, half, 1, s->drift_save);
+        step_kick_sum(s->p, half, s->kinetic_part);
+        restore_prescribed_forces(s, s->drift_save, nsave);
+        rigid_kick(s, half, s->t);
+    } else {
+        kick(s, half);
+        rigid_kick(s, half, s->t);
+        impose_velocities(s, t_mid, s->t, half, 1, NULL);
+    }
     rigid_no_slip(s, dt);
     if (pc && s->ops->advance_state &&
         (rc = s->ops->advance_state(s->model, s, dt, MODEL_STAGE_CORRECT, err)))
@@ -629,8 +687,32 @@ static int advance(struct sim *s, double dt, double landing, struct spall_error 
     return rc ? unstable_or(s, rc, err) : SPALL_OK;
 }
 
+/* particles.mass_uniform, at a run's first step and after
+ * particles_masses_changed: whether every owned mass of every rank is one
+ * positive double (a NaN mass counts as different). */
+static void check_uniform_mass(struct sim *s)
+{
+    struct particles *p = s->p;
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < p->n_owned; i++) {
+        const double m = p->mass[i];
+        lo = m < lo ? m : lo;
+        hi = m > hi ? m : hi;
+        if (m != m)
+            hi = INFINITY;
+    }
+    if (s->par) {
+        lo = par_min_double(lo);
+        hi = par_max_double(hi);
+    }
+    p->mass_uniform = lo == hi && lo > 0.0 && lo < INFINITY ? lo : 0.0;
+    p->mass_checked = 1;
+}
+
 int sim_step(struct sim *s, struct spall_error *err)
 {
+    if (!s->p->mass_checked)
+        check_uniform_mass(s);
     /* the engine owns dt: a step is shortened here, for every model, to land
      * on end_time or the driver's output time; the hooks see the step
      * actually taken in s->dt_step (sim_step_dt) and the nominal s->dt, which

@@ -117,7 +117,9 @@ struct model_ops {
     int (*compute_forces)(struct model *m, struct sim *sim, struct spall_error *err);
     /** Largest stable time step for the current state [s]. */
     double (*stable_dt)(const struct model *m, const struct sim *sim);
-    /** After the step: irreversible updates (bond breaking, damage). */
+    /** After the step: irreversible updates (bond breaking, damage).  It
+     *  changes no velocity: the integrator's second kick has already
+     *  summed the kinetic energy of the NaN check with them. */
     int (*end_step)(struct model *m, struct sim *sim, struct spall_error *err);
     /** Energies for diagnostics. */
     void (*energy)(const struct model *m, const struct sim *sim, struct model_energy *out);

@@ -104,6 +104,12 @@ int particles_append(struct particles *p, const double pos[3], int32_t material,
     return SPALL_OK;
 }
 
+void particles_masses_changed(struct particles *p)
+{
+    p->mass_checked = 0;
+    p->mass_uniform = 0.0;
+}
+
 void particles_zero_forces(struct particles *p)
 {
     /* each thread clears its own static share (the share it will fill in

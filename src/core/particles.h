@@ -44,6 +44,13 @@ struct particles {
     double *v[3];     /**< velocity */
     double *f[3];     /**< total force of the current step */
     double *mass;     /**< kg */
+    double mass_uniform; /**< > 0: every owned particle of every rank has this mass, and
+                              the integrator's passes stream no masses (the same bits:
+                              a division by the same double); 0: they read p->mass.
+                              Set at a run's first step (sim_step, a collective when
+                              distributed); whoever changes a mass during a run calls
+                              particles_masses_changed */
+    int mass_checked; /**< 1: mass_uniform describes the masses as they are */
     double *volume;   /**< m^3, volume the particle stands for */
     int64_t *gid;     /**< global id, unique over all ranks */
     int32_t *material;/**< index into the material table */
@@ -62,6 +69,13 @@ int particles_reserve(struct particles *p, size_t cap, struct spall_error *err);
  *  gid = index.  Returns its index in @p *index. */
 int particles_append(struct particles *p, const double pos[3], int32_t material,
                      size_t *index, struct spall_error *err);
+
+/** A mass was written after the run's first step: the next step looks
+ *  again whether all masses are equal (particles.mass_uniform; a
+ *  collective when distributed, so every rank calls this alike).  The
+ *  set-up before the first step needs no call, nor does migration between
+ *  ranks (the property holds over all ranks). */
+void particles_masses_changed(struct particles *p);
 
 /** Zero the force arrays of all particles. */
 void particles_zero_forces(struct particles *p);

@@ -413,6 +413,14 @@ void rigid_contact_forces(struct sim *s)
     }
 }
 
+bool rigid_sets_velocities(const struct sim *s)
+{
+    for (size_t k = 0; s->rigid && k < s->rigid->n; k++)
+        if (s->rigid->im[k].contact == RIGID_NO_SLIP)
+            return true;
+    return false;
+}
+
 void rigid_no_slip(struct sim *s, double dt)
 {
     if (!s->rigid)

@@ -99,6 +99,8 @@ void rigid_kick(struct sim *s, double half_dt, double t);
 void rigid_drift(struct sim *s, double dt);
 void rigid_contact_forces(struct sim *s);
 void rigid_no_slip(struct sim *s, double dt);
+/** Whether rigid_no_slip can set particle velocities (a no-slip impactor). */
+bool rigid_sets_velocities(const struct sim *s);
 /** Distributed runs, after the partition (and after any change of the
  *  owned set): room for one contact row per owned particle, so that the
  *  contact loops never allocate (and never fail on one rank only).  Every rank sums the contacts of all ranks in gid

@@ -64,6 +64,7 @@ void sim_destroy(struct sim **sp)
     for (int d = 0; d < 3; d++)
         free(s->v_half[d]);
     free(s->drift_save);
+    free(s->kinetic_part);
     free(s->no_drift_velocity);
     free(s->materials);
     rigid_set_destroy(&s->rigid);

@@ -156,6 +156,11 @@ struct sim {
     double *drift_save;   /**< positions of velocity-BC members over the fused kick
                                and drift (core/integrator.c) */
     size_t drift_save_cap;
+    double *kinetic_part; /**< the second kick's kinetic-energy block sums, 3 per block
+                               (core/step_passes.h, step_kick_sum) */
+    size_t kinetic_part_cap;
+    bool kinetic_fused;   /**< the step's second kick formed kinetic_part, and nothing
+                               after it changed a velocity */
     uint8_t *no_drift_velocity; /**< 1: a BC prescribes the particle's velocity, the
                                      model's drift velocity does not move it (owned) */
     uint64_t seed;        /**< random seed for stochastic features */

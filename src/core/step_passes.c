@@ -37,14 +37,21 @@ enum pass_kind { PASS_KICK, PASS_KICK_DRIFT, PASS_KICK_DRIFT_ZERO };
  * components are swept one after the other. */
 #define PASS_CHUNK 2048
 
+/* The mass of particle i: m[i], or with @p uni (particles.mass_uniform) the
+ * one mass m0 of every particle, the same double, so the same bits. */
+static inline double mass_at(const double *restrict m, double m0, size_t i, const bool uni)
+{
+    return uni ? m0 : m[i];
+}
+
 /* One component over [lo, hi): the kick, then the drift with the new
  * velocity and the clearing, as @p kind asks. */
-static inline void pass_comp(const double *restrict m, double *restrict x, double *restrict v,
-                             double *restrict f, size_t lo, size_t hi, double half_dt,
-                             double dt, const enum pass_kind kind)
+static inline void pass_comp(const double *restrict m, double m0, double *restrict x,
+                             double *restrict v, double *restrict f, size_t lo, size_t hi,
+                             double half_dt, double dt, const enum pass_kind kind, const bool uni)
 {
     for (size_t i = lo; i < hi; i++) {
-        const double vi = v[i] + half_dt * f[i] / m[i];
+        const double vi = v[i] + half_dt * f[i] / mass_at(m, m0, i, uni);
         v[i] = vi;
         if (kind != PASS_KICK)
             x[i] += dt * vi;
@@ -54,24 +61,32 @@ static inline void pass_comp(const double *restrict m, double *restrict x, doubl
 }
 
 static inline void pass_kind(const struct particles *p, size_t lo, size_t hi, double half_dt,
-                             double dt, const enum pass_kind kind)
+                             double dt, const enum pass_kind kind, const bool uni)
 {
     for (size_t c = lo; c < hi; c += PASS_CHUNK) {
         const size_t e = hi - c < PASS_CHUNK ? hi : c + PASS_CHUNK;
         for (int d = 0; d < p->dim; d++)
-            pass_comp(p->mass, p->x[d], p->v[d], p->f[d], c, e, half_dt, dt, kind);
+            pass_comp(p->mass, p->mass_uniform, p->x[d], p->v[d], p->f[d], c, e, half_dt, dt,
+                      kind, uni);
     }
 }
 
 STEP_CLONES static void pass_range(const struct particles *p, size_t lo, size_t hi,
                                    double half_dt, double dt, int kind)
 {
-    if (kind == PASS_KICK)
-        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK);
+    const bool uni = p->mass_uniform > 0.0;
+    if (kind == PASS_KICK && uni)
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK, true);
+    else if (kind == PASS_KICK)
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK, false);
+    else if (kind == PASS_KICK_DRIFT && uni)
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT, true);
     else if (kind == PASS_KICK_DRIFT)
-        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT);
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT, false);
+    else if (uni)
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT_ZERO, true);
     else
-        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT_ZERO);
+        pass_kind(p, lo, hi, half_dt, dt, PASS_KICK_DRIFT_ZERO, false);
 }
 
 STEP_CLONES static void drift_range(const struct particles *p, size_t lo, size_t hi, double dt)
@@ -160,4 +175,71 @@ STEP_CLONES double step_block_mv2(const double *restrict m, const double *restri
     for (; i < hi; i++)
         sum += m[i] * v[i] * v[i];
     return sum;
+}
+
+/* One block and component of step_kick_sum: v += half_dt f / m over
+ * [lo, hi), and the sum of m v^2 with the new velocities formed as
+ * step_block_mv2 forms it (the same lanes, combination and order). */
+static inline double kick_sum_comp(const double *restrict m, double m0, double *restrict v,
+                                   const double *restrict f, size_t lo, size_t hi,
+                                   double half_dt, const bool uni)
+{
+    double a[4] = {0.0, 0.0, 0.0, 0.0};
+    size_t i = lo;
+#if defined(__GNUC__)
+    step_v4 acc = {0.0, 0.0, 0.0, 0.0};
+    const step_v4 mu = {m0, m0, m0, m0};
+    for (; i + 4 <= hi; i += 4) {
+        step_v4 mm = mu, vv, ff;
+        if (!uni)
+            memcpy(&mm, m + i, sizeof mm);
+        memcpy(&vv, v + i, sizeof vv);
+        memcpy(&ff, f + i, sizeof ff);
+        vv = vv + half_dt * ff / mm;
+        memcpy(v + i, &vv, sizeof vv);
+        acc += mm * vv * vv;
+    }
+    memcpy(a, &acc, sizeof a);
+#else
+    for (; i + 4 <= hi; i += 4)
+        for (size_t l = 0; l < 4; l++) {
+            const double mi = mass_at(m, m0, i + l, uni);
+            const double vi = v[i + l] + half_dt * f[i + l] / mi;
+            v[i + l] = vi;
+            a[l] += mi * vi * vi;
+        }
+#endif
+    double sum = (a[0] + a[1]) + (a[2] + a[3]);
+    for (; i < hi; i++) {
+        const double mi = mass_at(m, m0, i, uni);
+        const double vi = v[i] + half_dt * f[i] / mi;
+        v[i] = vi;
+        sum += mi * vi * vi;
+    }
+    return sum;
+}
+
+STEP_CLONES static void kick_sum_range(const struct particles *p, size_t blo, size_t bhi,
+                                       double half_dt, double *part)
+{
+    const size_t n = p->n_owned;
+    const bool uni = p->mass_uniform > 0.0;
+    for (size_t b = blo; b < bhi; b++) {
+        const size_t lo = b * STEP_SUM_BLOCK, hi = n - lo < STEP_SUM_BLOCK ? n : lo + STEP_SUM_BLOCK;
+        for (int d = 0; d < p->dim; d++)
+            part[3 * b + (size_t)d] =
+                uni ? kick_sum_comp(p->mass, p->mass_uniform, p->v[d], p->f[d], lo, hi, half_dt, true)
+                    : kick_sum_comp(p->mass, 0.0, p->v[d], p->f[d], lo, hi, half_dt, false);
+    }
+}
+
+void step_kick_sum(struct particles *p, double half_dt, double *part)
+{
+    const size_t n = p->n_owned, nb = (n + STEP_SUM_BLOCK - 1) / STEP_SUM_BLOCK;
+#pragma omp parallel if (n > SPALL_OMP_MIN_PARTICLES)
+    {
+        size_t blo, bhi; /* whole blocks: a block's sum is one thread's */
+        share(nb, &blo, &bhi);
+        kick_sum_range(p, blo, bhi, half_dt, part);
+    }
 }

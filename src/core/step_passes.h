@@ -1,7 +1,8 @@
 /**
  * @file step_passes.h
  * @brief The integrator's per-particle passes (step_passes.c): kicks,
- *        drift, the kick and drift fused, the kinetic-energy block sums.
+ *        drift, the kick and drift fused, the kick with the kinetic-energy
+ *        block sums, the block sums alone.
  *        Core-internal (core/integrator.c).
  */
 #ifndef SPALL_STEP_PASSES_H
@@ -23,6 +24,16 @@ void step_drift(struct particles *p, double dt);
  *  and with @p zero_forces the owned forces cleared after the kick read
  *  them (particles_zero_forces' share of the owned rows). */
 void step_kick_drift(struct particles *p, double half_dt, double dt, bool zero_forces);
+
+/** Particles per block of the kinetic-energy sums (the NaN check's). */
+#define STEP_SUM_BLOCK 4096
+
+/** step_kick, and per block b of STEP_SUM_BLOCK owned particles and
+ *  component d the sum of m v^2 with the kicked velocities into
+ *  part[3 b + d]: step_block_mv2 of the block, bit for bit, without a
+ *  second pass over m and v (a block is summed by one thread, so the sums
+ *  do not depend on the thread count). */
+void step_kick_sum(struct particles *p, double half_dt, double *part);
 
 /** Sum of m v^2 over [lo, hi): four interleaved partial sums, combined as
  *  (a0 + a1) + (a2 + a3), then the rest in order. */
