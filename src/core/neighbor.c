@@ -131,25 +131,17 @@ static inline size_t cell_index(const struct cell_grid *g, double *const x[3], s
     return c;
 }
 
-void neighbor_column_starts(uint32_t *cnt, int nth, size_t n, size_t x0, size_t x1, size_t *tot)
-{
-    for (size_t x = x0; x < x1; x++) {
-        uint32_t s = 0;
-        for (int t = 0; t < nth; t++) {
-            const uint32_t c = cnt[(size_t)t * n + x];
-            cnt[(size_t)t * n + x] = s;
-            s += c;
-        }
-        if (tot)
-            tot[x + 1] = s;
-    }
-}
-
-void neighbor_running_sum(size_t *v, size_t x0, size_t x1, size_t *bsum, int tid, int nth)
+void neighbor_row_starts(size_t *cnt, int nth, size_t n, size_t x0, size_t x1, size_t *v,
+                         size_t *bsum, int tid)
 {
     size_t s = 0;
-    for (size_t x = x0; x < x1; x++)
-        s += v[x + 1];
+    if (nth == 1)
+        for (size_t x = x0; x < x1; x++)
+            s += cnt[x];
+    else
+        for (size_t x = x0; x < x1; x++)
+            for (int t = 0; t < nth; t++)
+                s += cnt[(size_t)t * n + x];
     bsum[tid + 1] = s;
 #pragma omp barrier
 #pragma omp single
@@ -160,10 +152,22 @@ void neighbor_running_sum(size_t *v, size_t x0, size_t x1, size_t *bsum, int tid
             bsum[t + 1] += bsum[t];
     }
     s = bsum[tid];
-    for (size_t x = x0; x < x1; x++) {
-        s += v[x + 1];
-        v[x + 1] = s;
-    }
+    if (nth == 1)
+        for (size_t x = x0; x < x1; x++) {
+            const size_t c = cnt[x];
+            cnt[x] = s;
+            s += c;
+            v[x + 1] = s;
+        }
+    else
+        for (size_t x = x0; x < x1; x++) {
+            for (int t = 0; t < nth; t++) {
+                const size_t c = cnt[(size_t)t * n + x];
+                cnt[(size_t)t * n + x] = s;
+                s += c;
+            }
+            v[x + 1] = s;
+        }
 #pragma omp barrier
 }
 
@@ -276,7 +280,7 @@ int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], doubl
     g->start = calloc(ncell + 1, sizeof *g->start);
     g->order = malloc(n * sizeof *g->order);
     size_t *bsum = calloc((size_t)nt + 1, sizeof *bsum);
-    uint32_t *cnt = malloc(ncell * (size_t)nt * sizeof *cnt); /* per thread and cell */
+    size_t *cnt = malloc(ncell * (size_t)nt * sizeof *cnt); /* per thread and cell */
     bool bad = !g->start || !g->order || !bsum || !cnt;
     for (int d = 0; d < dim; d++) {
         g->xs[d] = malloc(n * sizeof(double));
@@ -303,15 +307,14 @@ int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], doubl
         const size_t i0 = n * (size_t)tid / (size_t)nth, i1 = n * (size_t)(tid + 1) / (size_t)nth;
         const size_t c0 = ncell * (size_t)tid / (size_t)nth;
         const size_t c1 = ncell * (size_t)(tid + 1) / (size_t)nth;
-        uint32_t *my = cnt + (size_t)tid * ncell;
+        size_t *my = cnt + (size_t)tid * ncell;
         memset(my, 0, ncell * sizeof *my);
         for (size_t i = i0; i < i1; i++)
             my[cell_index(g, x, i)]++;
 #pragma omp barrier
-        neighbor_column_starts(cnt, nth, ncell, c0, c1, g->start);
-        neighbor_running_sum(g->start, c0, c1, bsum, tid, nth);
+        neighbor_row_starts(cnt, nth, ncell, c0, c1, g->start, bsum, tid);
         for (size_t i = i0; i < i1; i++) {
-            const size_t c = cell_index(g, x, i), k = g->start[c] + my[c]++;
+            const size_t c = cell_index(g, x, i), k = my[c]++;
             g->order[k] = (int32_t)i;
             for (int d = 0; d < dim; d++)
                 g->xs[d][k] = x[d][i];

@@ -28,15 +28,16 @@ struct cell_grid {
 int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], double radius,
                struct spall_error *err);
 void grid_free(struct cell_grid *g);
-/* Inside a parallel region of nth threads (all of them call these, each
- * with its own block [x0, x1) of the n rows): */
-/** the per-thread counts cnt[t * n + x] (t < nth) become each thread's
- *  start inside row x (the counts of the threads before it), and, when
- *  @p tot is not NULL, tot[x + 1] their sum; */
-void neighbor_column_starts(uint32_t *cnt, int nth, size_t n, size_t x0, size_t x1, size_t *tot);
-/** v[x + 1] (v[0] = 0) turned into its running sum, @p bsum (nth + 1) the
- *  block sums; integer sums, so the same for any split; ends at a barrier. */
-void neighbor_running_sum(size_t *v, size_t x0, size_t x1, size_t *bsum, int tid, int nth);
+/** Inside a parallel region of nth threads, all of which call it, each
+ *  with its own block [x0, x1) of the n rows: the per-thread counts
+ *  cnt[t * n + x] (t < nth) of the entries each thread puts in row x
+ *  become the rows' offsets v (v[0] = 0, v[x + 1] the end of row x) and
+ *  each thread's cursor in row x (v[x] plus the counts of the threads
+ *  before it), so that the threads fill every row in thread order.
+ *  @p bsum holds nth + 1 block sums.  Integer sums: the same for any split.
+ *  Ends at a barrier. */
+void neighbor_row_starts(size_t *cnt, int nth, size_t n, size_t x0, size_t x1, size_t *v,
+                         size_t *bsum, int tid);
 /** The argument checks of every builder (dimension, radius, sizes). */
 int neighbor_check_input(int dim, size_t n, double *const x[3], double radius,
                          struct spall_error *err);

@@ -280,7 +280,7 @@ static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t 
     int32_t *up = malloc((np ? np : 1) * sizeof *up);
     int32_t *idx = malloc((np ? 2 * np : 1) * sizeof *idx);
     uint32_t *sp = slot_out ? malloc((np ? 2 * np : 1) * sizeof *sp) : NULL;
-    uint32_t *cur = malloc((n ? n : 1) * (size_t)nt * sizeof *cur); /* row cursors */
+    size_t *cur = malloc((n ? n : 1) * (size_t)nt * sizeof *cur); /* row cursors */
     if (!lo || !first || !bsum || !low || !up || !idx || (slot_out && !sp) || !cur) {
         free(lo);
         free(first);
@@ -299,21 +299,20 @@ static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t 
         tid = omp_get_thread_num();
         nth = omp_get_num_threads();
 #endif
-        uint32_t *my = cur + (size_t)tid * n;
+        size_t *my = cur + (size_t)tid * n;
         const size_t x0 = n * (size_t)tid / (size_t)nth, x1 = n * (size_t)(tid + 1) / (size_t)nth;
         /* the lower rows (per b, its partners a < b): this thread's counts
          * of its buffers, then its starts inside each row */
         memset(my, 0, n * sizeof *my);
         for (int t = tid; t < nbuf; t += nth)
             for (size_t k = 0; k < bufs[t].n; k++)
-                my[bufs[t].ab[2 * k + 1]]++;
+                my[(size_t)bufs[t].ab[2 * k + 1]]++;
 #pragma omp barrier
-        neighbor_column_starts(cur, nth, n, x0, x1, lo);
-        neighbor_running_sum(lo, x0, x1, bsum, tid, nth);
+        neighbor_row_starts(cur, nth, n, x0, x1, lo, bsum, tid);
         for (int t = tid; t < nbuf; t += nth)
             for (size_t k = 0; k < bufs[t].n; k++) {
                 const size_t b = (size_t)bufs[t].ab[2 * k + 1];
-                low[lo[b] + my[b]++] = bufs[t].ab[2 * k];
+                low[my[b]++] = bufs[t].ab[2 * k];
             }
 #pragma omp barrier
         /* the upper rows (per a, its partners b > a) read from the lower
@@ -322,17 +321,15 @@ static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t 
         const size_t j0 = row_cut(lo, n, tid, nth), j1 = row_cut(lo, n, tid + 1, nth);
         memset(my, 0, n * sizeof *my);
         for (size_t t = lo[j0]; t < lo[j1]; t++)
-            my[low[t]]++;
+            my[(size_t)low[t]]++;
 #pragma omp barrier
-        neighbor_column_starts(cur, nth, n, x0, x1, first);
-        for (size_t x = x0; x < x1; x++)
-            off[x + 1] = first[x + 1] + (lo[x + 1] - lo[x]);
-        neighbor_running_sum(first, x0, x1, bsum, tid, nth);
-        neighbor_running_sum(off, x0, x1, bsum, tid, nth);
+        neighbor_row_starts(cur, nth, n, x0, x1, first, bsum, tid);
+        for (size_t x = x0; x < x1; x++) /* row x: its lower, then its upper part */
+            off[x + 1] = lo[x + 1] + first[x + 1];
         for (size_t j = j0; j < j1; j++)
             for (size_t t = lo[j]; t < lo[j + 1]; t++) {
                 const size_t a = (size_t)low[t];
-                up[first[a] + my[a]++] = (int32_t)j;
+                up[my[a]++] = (int32_t)j;
             }
 #pragma omp barrier
         /* the full rows, this thread's block of i ascending: the upper row
@@ -340,18 +337,26 @@ static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t 
          * the partner's cursor (off[j], then the entries of the threads
          * before) */
         const size_t i0 = row_cut(first, n, tid, nth), i1 = row_cut(first, n, tid + 1, nth);
-        memset(my, 0, n * sizeof *my);
         if (nth > 1) {
+            memset(my, 0, n * sizeof *my);
             for (size_t q = first[i0]; q < first[i1]; q++)
-                my[up[q]]++;
+                my[(size_t)up[q]]++;
 #pragma omp barrier
-            neighbor_column_starts(cur, nth, n, x0, x1, NULL);
+            for (size_t x = x0; x < x1; x++) {
+                size_t c0 = off[x];
+                for (int t = 0; t < nth; t++) {
+                    const size_t c = cur[(size_t)t * n + x];
+                    cur[(size_t)t * n + x] = c0;
+                    c0 += c;
+                }
+            }
+        } else
+            memcpy(my, off, n * sizeof *my);
 #pragma omp barrier
-        }
         for (size_t i = i0; i < i1; i++) {
             const size_t q0 = first[i], q1 = first[i + 1], h = off[i + 1] - (q1 - q0);
             for (size_t q = q0; q < q1; q++) {
-                const size_t j = (size_t)up[q], s = h + (q - q0), t = off[j] + my[j]++;
+                const size_t j = (size_t)up[q], s = h + (q - q0), t = my[j]++;
                 idx[s] = up[q];
                 idx[t] = (int32_t)i;
                 if (sp) {
