@@ -88,14 +88,32 @@ static void carry_state(const struct neighbor_list *old, const int64_t *opg, con
 
 /* Row i ascending in the partners' global ids (distributed runs: ghosts
  * follow the owned particles locally; on one rank index = gid already).
- * Rows are short (12 partners in the first FCC shell): insertion sort. */
-static void sort_rows_by_gid(struct neighbor_list *nl, const int64_t *gid)
+ * The local layout holds the owned particles [0, n_own) and then the
+ * ghosts, each in ascending gid (core/parallel/decomp.h), and a row
+ * ascends in local index: an owned run and a ghost run, each ascending in
+ * gid, so the row is in order already when one run is empty or the first
+ * ghost's gid exceeds the last owned one's (all rows but a few near the
+ * rank's boundary).  The others: insertion sort (rows are short, 12
+ * partners in the first FCC shell). */
+static void sort_rows_by_gid(struct neighbor_list *nl, const int64_t *gid, size_t n_own)
 {
     const size_t n = nl->n;
 #pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
     for (size_t i = 0; i < n; i++) {
         int32_t *r = nl->idx + nl->offset[i];
         const size_t len = nl->offset[i + 1] - nl->offset[i];
+        if (len < 2 || (size_t)r[len - 1] < n_own || (size_t)r[0] >= n_own)
+            continue; /* one run */
+        size_t lo = 1, hi = len - 1; /* the first ghost: r[lo - 1] owned, r[hi] a ghost */
+        while (lo < hi) {
+            const size_t mid = lo + (hi - lo) / 2;
+            if ((size_t)r[mid] < n_own)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        if (gid[r[lo - 1]] < gid[r[lo]])
+            continue; /* the runs in order */
         for (size_t k = 1; k < len; k++) {
             int32_t v = r[k];
             size_t q = k;
@@ -128,7 +146,7 @@ int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_
         return rc;
     }
     if (dist)
-        sort_rows_by_gid(nl, p->gid);
+        sort_rows_by_gid(nl, p->gid, p->n_owned);
     size_t ns = nl->offset[n];
     double *ndr = calloc(ns ? ns : 1, sizeof *ndr), *nka = calloc(ns ? ns : 1, sizeof *nka);
     uint8_t *nen = calloc(ns ? ns : 1, 1);
