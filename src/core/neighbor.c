@@ -3,11 +3,12 @@
  * @brief Cell-list neighbour search (see neighbor.h).
  *
  * Particles are binned into a uniform grid of cells with edge >= radius by a
- * counting sort (stable: ascending index inside a cell), and their positions
- * are copied in cell order so the scan reads contiguous memory.  The query
- * for particle i visits the 3^dim cells around its own; because cells are
- * numbered x-fastest, the three cells of one x-row are a single contiguous
- * range, so only 3^(dim-1) ranges are scanned.
+ * counting sort (stable: ascending index inside a cell; over the threads,
+ * each a block of particles placed after the blocks before it), and their
+ * positions are copied in cell order so the scan reads contiguous memory.
+ * The query for particle i visits the 3^dim cells around its own; because
+ * cells are numbered x-fastest, the three cells of one x-row are a single
+ * contiguous range, so only 3^(dim-1) ranges are scanned.
  *
  * Determinism: each row is built independently by two passes (count, then
  * fill into the slot given by the serial prefix sum) and sorted ascending, so
@@ -192,12 +193,9 @@ static int grid_bounds(int dim, size_t n, double *const x[3], int nt, double lo[
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the neighbour grid");
 #pragma omp parallel num_threads(nt)
     {
-        int tid = 0, nth = 1;
-#ifdef _OPENMP
-        tid = omp_get_thread_num();
-        nth = omp_get_num_threads();
-#endif
-        const size_t i0 = n * (size_t)tid / (size_t)nth, i1 = n * (size_t)(tid + 1) / (size_t)nth;
+        int tid, nth;
+        neighbor_team(&tid, &nth);
+        const size_t i0 = neighbor_block(n, tid, nth), i1 = neighbor_block(n, tid + 1, nth);
         struct grid_share *m = &sh[tid];
         m->has = i0 < i1;
         for (int d = 0; d < dim && m->has; d++) {
@@ -299,14 +297,10 @@ int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], doubl
      * than stored: cheaper than touching another n-sized array. */
 #pragma omp parallel num_threads(nt)
     {
-        int tid = 0, nth = 1;
-#ifdef _OPENMP
-        tid = omp_get_thread_num();
-        nth = omp_get_num_threads();
-#endif
-        const size_t i0 = n * (size_t)tid / (size_t)nth, i1 = n * (size_t)(tid + 1) / (size_t)nth;
-        const size_t c0 = ncell * (size_t)tid / (size_t)nth;
-        const size_t c1 = ncell * (size_t)(tid + 1) / (size_t)nth;
+        int tid, nth;
+        neighbor_team(&tid, &nth);
+        const size_t i0 = neighbor_block(n, tid, nth), i1 = neighbor_block(n, tid + 1, nth);
+        const size_t c0 = neighbor_block(ncell, tid, nth), c1 = neighbor_block(ncell, tid + 1, nth);
         size_t *my = cnt + (size_t)tid * ncell;
         memset(my, 0, ncell * sizeof *my);
         for (size_t i = i0; i < i1; i++)

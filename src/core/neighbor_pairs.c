@@ -24,7 +24,9 @@
  *    after its lower part, and i is appended to the lower part of each of
  *    its partners' rows, which therefore ascend too.  Every step's output
  *    depends only on the set of pairs, not on the buffer order: the list
- *    is the same for any thread count, and is neighbor_list_build's.
+ *    is the same for any thread count, and is neighbor_list_build's.  The
+ *    three steps run over the threads, each thread a block of rows and its
+ *    own cursor in every row it writes to (order_pairs).
  *
  * The pair table is the upper rows (pair q = upper slot q) with, per full
  * slot, the pair it holds; it comes out of step 2 at no extra search.
@@ -294,13 +296,10 @@ static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t 
     }
 #pragma omp parallel num_threads(nt)
     {
-        int tid = 0, nth = 1;
-#ifdef _OPENMP
-        tid = omp_get_thread_num();
-        nth = omp_get_num_threads();
-#endif
+        int tid, nth;
+        neighbor_team(&tid, &nth);
         size_t *my = cur + (size_t)tid * n;
-        const size_t x0 = n * (size_t)tid / (size_t)nth, x1 = n * (size_t)(tid + 1) / (size_t)nth;
+        const size_t x0 = neighbor_block(n, tid, nth), x1 = neighbor_block(n, tid + 1, nth);
         /* the lower rows (per b, its partners a < b): this thread's counts
          * of its buffers, then its starts inside each row */
         memset(my, 0, n * sizeof *my);
