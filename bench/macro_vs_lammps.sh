@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # Race and cross-check: spall's macro-particle model against LAMMPS
 # `pair_style mie/cut` (Debian's `lammps`) on the same FCC rod.  Usage:
-#     bench/macro_vs_lammps.sh [--check] [path/to/spall] [NPHI NH STEPS]
+#     bench/macro_vs_lammps.sh [--check] [--ranks] [path/to/spall] [NPHI NH STEPS]
 # --check (the ctest `macro_vs_lammps`, label lammps): the agreement checks
 # only (no timings); exit 77 (skipped) without `lmp`, 1 when a check fails.
+# --ranks: spall's 2-core run is 2 MPI ranks x 1 thread (rank for rank with
+# LAMMPS' 2 ranks) instead of 2 OpenMP threads in one process; the
+# agreement run is made on 2 ranks too, checked against LAMMPS as the
+# 1-rank run and its positions after 100 steps bitwise against 1 rank's.
 # Without --check a missing `lmp` is installed (Debian package, root) and the
 # throughput is measured too.
 #
@@ -35,14 +39,22 @@
 # steps, max |x_spall - x_lammps|_inf over the largest displacement, <= 1e-9
 # (and velocities, over the largest velocity); spall's 1- and 2-thread
 # positions bitwise equal.  Throughput (not --check): STEPS steps (default
-# 1000) on 1 and 2 cores (spall: OpenMP threads; LAMMPS: MPI ranks, the
-# Debian build has no OPENMP package), particle-steps/s and pair-steps/s
-# (each pair r < r_c at step 0 counted once), spall / LAMMPS per core, on
+# 1000) on 1 and 2 cores (spall: OpenMP threads, or MPI ranks with
+# --ranks; LAMMPS: MPI ranks, the Debian build has no OPENMP package),
+# particle-steps/s and pair-steps/s (each pair r < r_c at step 0 counted
+# once), spall / LAMMPS per core, on
 # the wall clock and per CPU-second (user + sys of the process: on a loaded
 # machine the wall clock measures the load more than the code).
 set -euo pipefail
-CHECK=0
-if [ "${1:-}" = "--check" ]; then CHECK=1; shift; fi
+CHECK=0 RANKS=0
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --check) CHECK=1; shift ;;
+        --ranks) RANKS=1; shift ;;
+        *) break ;;
+    esac
+done
+MPIRUN=(mpirun --allow-run-as-root --oversubscribe -np 2)
 SPALL=${1:-build/spall}
 NPHI=${2:-16}; NH=${3:-64}; STEPS=${4:-1000}
 NAME=macro_vs_lammps
@@ -93,6 +105,14 @@ run_or_show() { # $1 log file, rest: the command (run in $W); its log is shown w
 }
 run_or_show agree.out "$SPALL" run agree.yaml -o agree --threads 1
 run_or_show agree2.out "$SPALL" run agree.yaml -o agree2 --threads 2
+if [ $RANKS = 1 ]; then
+    run_or_show agree_r2.out "${MPIRUN[@]}" "$SPALL" run agree.yaml -o agree_r2 --threads 1
+    for f in position velocity force; do
+        for k in 000000 000001; do
+            h5dump -d /$f -b LE -o "$W/agree_r2_${f}_$k.bin" "$W/agree_r2/fields_$k.h5" >/dev/null
+        done
+    done
+fi
 # ---- LAMMPS data file from spall's step-0 state ---------------------------
 for f in position velocity force mass; do
     for k in 000000 000001; do
@@ -157,6 +177,10 @@ def load(name):
     a = array.array("d")
     a.frombytes(open(f"{W}/{name}.bin", "rb").read())
     return a
+import os
+runs = {"": "1 rank"}
+if os.path.exists(f"{W}/agree_r2_position_000001.bin"):
+    runs["_r2"] = "2 ranks"
 s = {k: {f: load(f"agree_{f}_{k}") for f in ("position", "velocity", "force")}
      for k in ("000000", "000001")}
 n = len(s["000000"]["position"]) // 3
@@ -196,24 +220,31 @@ def rel(a, b, scale_of):
     num = max(abs(a[3*i+d] - b[i][d]) for i in range(n) for d in range(3))
     den = max(abs(scale_of(i, d)) for i in range(n) for d in range(3))
     return num / den, num, den
-fs, fl = s["000000"]["force"], [r[6:9] for r in snaps[0]]
-ef = rel(fs, fl, lambda i, d: fl[i][d])
-x0, xs, xl = s["000000"]["position"], s["000001"]["position"], [r[0:3] for r in snaps[1]]
-ex = rel(xs, xl, lambda i, d: xl[i][d] - x0[3*i+d])
-vs, vl = s["000001"]["velocity"], [r[3:6] for r in snaps[1]]
-ev = rel(vs, vl, lambda i, d: vl[i][d])
+fl, xl, vl = [r[6:9] for r in snaps[0]], [r[0:3] for r in snaps[1]], [r[3:6] for r in snaps[1]]
+x0, xs = s["000000"]["position"], s["000001"]["position"]
 t0 = pairs_in(x0, r_on, rc)
 t1 = pairs_in(xs, r_on, rc)
 npairs = pairs_in(x0, 0.0, rc)
-x2 = load("agree2_position_000001")
-same = x2.tobytes() == xs.tobytes()
 open(f"{W}/pairs.txt", "w").write(f"{n} {npairs}\n")
 print(f"particles {n}, pairs r < r_c {npairs}; pairs in the taper [1.45, 1.5) r0: step 0 {t0}, step 100 {t1}")
-print(f"forces step 0:      max |df| {ef[1]:.3e} N / max |f| {ef[2]:.6g} N = {ef[0]:.3e} (limit 1e-12)")
-print(f"positions step 100: max |dx| {ex[1]:.3e} m / max displacement {ex[2]:.6g} m = {ex[0]:.3e} (limit 1e-9)")
-print(f"velocities step 100: max |dv| {ev[1]:.3e} m/s / max |v| {ev[2]:.6g} m/s = {ev[0]:.3e} (limit 1e-9)")
-print(f"spall 1 vs 2 threads, positions at step 100: {'bitwise equal' if same else 'DIFFERENT'}")
-ok = ef[0] <= 1e-12 and ex[0] <= 1e-9 and ev[0] <= 1e-9 and t0 == 0 and t1 == 0 and same
+ok = t0 == 0 and t1 == 0
+for tag, how in runs.items():
+    f0, x1, v1 = (load(f"agree{tag}_{f}_{k}") for f, k in
+                  (("force", "000000"), ("position", "000001"), ("velocity", "000001")))
+    ef = rel(f0, fl, lambda i, d: fl[i][d])
+    ex = rel(x1, xl, lambda i, d: xl[i][d] - x0[3*i+d])
+    ev = rel(v1, vl, lambda i, d: vl[i][d])
+    print(f"spall on {how}:")
+    print(f"forces step 0:      max |df| {ef[1]:.3e} N / max |f| {ef[2]:.6g} N = {ef[0]:.3e} (limit 1e-12)")
+    print(f"positions step 100: max |dx| {ex[1]:.3e} m / max displacement {ex[2]:.6g} m = {ex[0]:.3e} (limit 1e-9)")
+    print(f"velocities step 100: max |dv| {ev[1]:.3e} m/s / max |v| {ev[2]:.6g} m/s = {ev[0]:.3e} (limit 1e-9)")
+    ok = ok and ef[0] <= 1e-12 and ex[0] <= 1e-9 and ev[0] <= 1e-9
+for tag, how in (("agree2", "2 threads"), ("agree_r2", "2 ranks")):
+    if tag == "agree_r2" and "_r2" not in runs:
+        continue
+    same = load(f"{tag}_position_000001").tobytes() == xs.tobytes()
+    print(f"spall 1 rank 1 thread vs {how}, positions at step 100: {'bitwise equal' if same else 'DIFFERENT'}")
+    ok = ok and same
 if not ok:
     sys.exit("macro_vs_lammps: FAILED")
 print("macro_vs_lammps: agreement checks passed")
@@ -222,26 +253,32 @@ if [ $CHECK = 1 ]; then rm -rf "$W"; exit 0; fi
 # ---- throughput -----------------------------------------------------------
 lmp_input "$STEPS" 0 > "$W/in.race"
 for T in 1 2; do
-    run_or_show "race_$T.out" /usr/bin/time -f "%U %S" -o "race_$T.cpu" \
-        "$SPALL" run race.yaml -o "race_$T" --threads $T
+    if [ $T = 2 ] && [ $RANKS = 1 ]; then
+        run_or_show "race_$T.out" /usr/bin/time -f "%U %S" -o "race_$T.cpu" \
+            "${MPIRUN[@]}" "$SPALL" run race.yaml -o "race_$T" --threads 1
+    else
+        run_or_show "race_$T.out" /usr/bin/time -f "%U %S" -o "race_$T.cpu" \
+            "$SPALL" run race.yaml -o "race_$T" --threads $T
+    fi
     if [ $T = 1 ]; then
         run_or_show "lmp_race_$T.out" /usr/bin/time -f "%U %S" -o "lmp_race_$T.cpu" \
             "$LMP" -in in.race -log "lmp_race_$T.log"
     else
         run_or_show "lmp_race_$T.out" /usr/bin/time -f "%U %S" -o "lmp_race_$T.cpu" \
-            mpirun --allow-run-as-root --oversubscribe -np $T "$LMP" -in in.race \
+            "${MPIRUN[@]}" "$LMP" -in in.race \
             -log "lmp_race_$T.log"
     fi
 done
-python3 - "$W" "$STEPS" <<'PY'
+python3 - "$W" "$STEPS" "$RANKS" <<'PY'
 import sys, re
-W, steps = sys.argv[1], int(sys.argv[2])
+W, steps, ranks = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "1"
 n, npairs = map(int, open(f"{W}/pairs.txt").read().split())
 def cpu(path):
     return sum(map(float, open(path).read().split()[-2:]))
 print(f"{n} particles, {npairs} pairs (r < r_c, counted once), {steps} steps")
 print("wall: the time loop (spall run.log wall_seconds, LAMMPS 'Loop time'); CPU: user + sys "
       "of the whole process (set-up included), the fairer measure on a loaded machine")
+print("spall on 2 cores: " + ("2 MPI ranks x 1 thread" if ranks else "2 OpenMP threads, one process"))
 print(f"{'code':<7} {'cores':>5} {'wall_s':>8} {'particle-steps/s':>17} {'pair-steps/s':>13} "
       f"{'cpu_s':>8} {'particle-steps/cpu-s':>21}")
 res = {}

@@ -110,28 +110,33 @@ static void check_pairs(const struct neighbor_list *ref, int dim, const struct p
     neighbor_list_destroy(&nl2);
 }
 
-/** Build with the cell list on 1 and 2 threads and by brute force; all equal
- *  (the half-stencil builder too). */
+/** Build with the cell list on 1, 2 and 3 threads and by brute force; all
+ *  equal (the half-stencil builder too, also on 5 threads: the grid's and
+ *  the ordering's blocks split unevenly, some empty for small n). */
 static size_t check_all_equal(int dim, const struct pts *p, double radius)
 {
     struct spall_error err = {0};
-    struct neighbor_list *brute = NULL, *c1 = NULL, *c2 = NULL;
+    struct neighbor_list *brute = NULL, *c1 = NULL, *c2 = NULL, *c3 = NULL;
     assert_int_equal(neighbor_list_build_brute(&brute, dim, p->n, p->x, radius, &err), SPALL_OK);
     int saved = omp_get_max_threads();
     omp_set_num_threads(1);
     assert_int_equal(neighbor_list_build(&c1, dim, p->n, p->x, radius, &err), SPALL_OK);
     omp_set_num_threads(2);
     assert_int_equal(neighbor_list_build(&c2, dim, p->n, p->x, radius, &err), SPALL_OK);
+    omp_set_num_threads(3);
+    assert_int_equal(neighbor_list_build(&c3, dim, p->n, p->x, radius, &err), SPALL_OK);
     omp_set_num_threads(saved);
     assert_same_list(brute, c1);
     assert_same_list(brute, c2);
+    assert_same_list(brute, c3);
     assert_well_formed(c1);
-    check_pairs(brute, dim, p, radius, 1);
-    check_pairs(brute, dim, p, radius, 2);
+    for (int t = 1; t <= 5; t += t < 3 ? 1 : 2)
+        check_pairs(brute, dim, p, radius, t);
     size_t m = c1->offset[c1->n];
     neighbor_list_destroy(&brute);
     neighbor_list_destroy(&c1);
     neighbor_list_destroy(&c2);
+    neighbor_list_destroy(&c3);
     assert_null(c2);
     return m;
 }
@@ -259,6 +264,27 @@ static void test_errors(void **state)
     assert_null(nl);
     assert_null(pp.first);
     pts_free(&p);
+    /* several non-finite coordinates, on two axes and in different threads'
+     * blocks: every thread count names the one a single loop meets first
+     * (axis x before y, then the lowest index) */
+    struct pts q = pts_alloc(40);
+    for (size_t i = 0; i < 40; i++)
+        q.x[0][i] = q.x[1][i] = 0.1 * (double)i;
+    q.x[1][3] = NAN;
+    q.x[0][35] = INFINITY;
+    q.x[0][25] = NAN;
+    int saved = omp_get_max_threads();
+    for (int t = 1; t <= 5; t++) {
+        omp_set_num_threads(t);
+        assert_int_equal(neighbor_list_build(&nl, 2, 40, q.x, 1.0, &err), SPALL_ERR_INPUT);
+        assert_non_null(strstr(err.msg, "particle 25 has"));
+        assert_int_equal(neighbor_list_build_pairs(&nl, &pp, 2, 40, q.x, 1.0, &err),
+                         SPALL_ERR_INPUT);
+        assert_non_null(strstr(err.msg, "particle 25 has"));
+        assert_null(nl);
+    }
+    omp_set_num_threads(saved);
+    pts_free(&q);
 }
 
 int main(void)

@@ -3,11 +3,12 @@
  * @brief Cell-list neighbour search (see neighbor.h).
  *
  * Particles are binned into a uniform grid of cells with edge >= radius by a
- * counting sort (stable: ascending index inside a cell), and their positions
- * are copied in cell order so the scan reads contiguous memory.  The query
- * for particle i visits the 3^dim cells around its own; because cells are
- * numbered x-fastest, the three cells of one x-row are a single contiguous
- * range, so only 3^(dim-1) ranges are scanned.
+ * counting sort (stable: ascending index inside a cell; over the threads,
+ * each a block of particles placed after the blocks before it), and their
+ * positions are copied in cell order so the scan reads contiguous memory.
+ * The query for particle i visits the 3^dim cells around its own; because
+ * cells are numbered x-fastest, the three cells of one x-row are a single
+ * contiguous range, so only 3^(dim-1) ranges are scanned.
  *
  * Determinism: each row is built independently by two passes (count, then
  * fill into the slot given by the serial prefix sum) and sorted ascending, so
@@ -30,6 +31,9 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /** Rows up to this length are sorted by plain insertion sort. */
 #define NEIGHBOR_INSERTION_MAX 48
@@ -128,28 +132,130 @@ static inline size_t cell_index(const struct cell_grid *g, double *const x[3], s
     return c;
 }
 
+void neighbor_row_starts(size_t *cnt, int nth, size_t n, size_t x0, size_t x1, size_t *v,
+                         size_t *bsum, int tid)
+{
+    size_t s = 0;
+    if (nth == 1)
+        for (size_t x = x0; x < x1; x++)
+            s += cnt[x];
+    else
+        for (size_t x = x0; x < x1; x++)
+            for (int t = 0; t < nth; t++)
+                s += cnt[(size_t)t * n + x];
+    bsum[tid + 1] = s;
+#pragma omp barrier
+#pragma omp single
+    {
+        v[0] = 0;
+        bsum[0] = 0;
+        for (int t = 0; t < nth; t++)
+            bsum[t + 1] += bsum[t];
+    }
+    s = bsum[tid];
+    if (nth == 1)
+        for (size_t x = x0; x < x1; x++) {
+            const size_t c = cnt[x];
+            cnt[x] = s;
+            s += c;
+            v[x + 1] = s;
+        }
+    else
+        for (size_t x = x0; x < x1; x++) {
+            for (int t = 0; t < nth; t++) {
+                const size_t c = cnt[(size_t)t * n + x];
+                cnt[(size_t)t * n + x] = s;
+                s += c;
+            }
+            v[x + 1] = s;
+        }
+#pragma omp barrier
+}
+
+/** One thread's share of the bounds: its particles' extremes per axis and
+ *  the first of them with a non-finite coordinate per axis (n when none). */
+struct grid_share {
+    double lo[3], hi[3];
+    size_t bad[3];
+    bool has; /**< the share holds particles */
+};
+
+/** The bounds of particles [0, n) per axis over the threads, each a block
+ *  of particles, joined block by block in index order with the comparisons
+ *  of one loop (v < lo, v > hi: the first of equal extremes, +0 or -0,
+ *  wins), so the same bits as one thread; then the serial loop's errors in
+ *  its order (per axis: the first non-finite particle, then the span). */
+static int grid_bounds(int dim, size_t n, double *const x[3], int nt, double lo[3],
+                       double hi[3], struct spall_error *err)
+{
+    struct grid_share *sh = calloc((size_t)nt, sizeof *sh);
+    if (!sh)
+        return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the neighbour grid");
+#pragma omp parallel num_threads(nt)
+    {
+        int tid, nth;
+        neighbor_team(&tid, &nth);
+        const size_t i0 = neighbor_block(n, tid, nth), i1 = neighbor_block(n, tid + 1, nth);
+        struct grid_share *m = &sh[tid];
+        m->has = i0 < i1;
+        for (int d = 0; d < dim && m->has; d++) {
+            double l = x[d][i0], h = x[d][i0];
+            m->bad[d] = n;
+            for (size_t i = i0; i < i1; i++) {
+                const double v = x[d][i];
+                if (!isfinite(v)) {
+                    m->bad[d] = i;
+                    break;
+                }
+                l = v < l ? v : l;
+                h = v > h ? v : h;
+            }
+            m->lo[d] = l;
+            m->hi[d] = h;
+        }
+    }
+    int rc = SPALL_OK;
+    for (int d = 0; d < dim && !rc; d++) {
+        bool any = false;
+        for (int t = 0; t < nt && !rc; t++) {
+            if (!sh[t].has)
+                continue;
+            if (sh[t].bad[d] < n)
+                rc = spall_error_set(err, SPALL_ERR_INPUT,
+                                     "neighbour search: particle %zu has a non-finite position",
+                                     sh[t].bad[d]);
+            else if (!any) {
+                lo[d] = sh[t].lo[d];
+                hi[d] = sh[t].hi[d];
+                any = true;
+            } else {
+                lo[d] = sh[t].lo[d] < lo[d] ? sh[t].lo[d] : lo[d];
+                hi[d] = sh[t].hi[d] > hi[d] ? sh[t].hi[d] : hi[d];
+            }
+        }
+        if (!rc && !isfinite(hi[d] - lo[d]))
+            rc = spall_error_set(err, SPALL_ERR_INPUT,
+                                 "neighbour search: positions span more than a double holds");
+    }
+    free(sh);
+    return rc;
+}
+
 int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], double radius,
                struct spall_error *err)
 {
     memset(g, 0, sizeof *g);
     g->dim = dim;
+    int nt = 1;
+#ifdef _OPENMP
+    nt = omp_get_max_threads();
+#endif
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-    for (int d = 0; d < dim; d++) {
-        lo[d] = hi[d] = x[d][0];
-        for (size_t i = 0; i < n; i++) {
-            double v = x[d][i];
-            if (!isfinite(v))
-                return spall_error_set(err, SPALL_ERR_INPUT,
-                                       "neighbour search: particle %zu has a non-finite position",
-                                       i);
-            lo[d] = v < lo[d] ? v : lo[d];
-            hi[d] = v > hi[d] ? v : hi[d];
-        }
+    int rc = grid_bounds(dim, n, x, nt, lo, hi, err);
+    if (rc)
+        return rc;
+    for (int d = 0; d < dim; d++)
         g->lo[d] = lo[d];
-        if (!isfinite(hi[d] - lo[d]))
-            return spall_error_set(err, SPALL_ERR_INPUT,
-                                   "neighbour search: positions span more than a double holds");
-    }
     /* Cell edge >= radius keeps every partner within the 3^dim block; cap the
      * number of cells at ~4n + 1000 (widely spread points) by enlarging it. */
     double edge = radius;
@@ -171,32 +277,45 @@ int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], doubl
 
     g->start = calloc(ncell + 1, sizeof *g->start);
     g->order = malloc(n * sizeof *g->order);
-    bool bad = !g->start || !g->order;
+    size_t *bsum = calloc((size_t)nt + 1, sizeof *bsum);
+    size_t *cnt = malloc(ncell * (size_t)nt * sizeof *cnt); /* per thread and cell */
+    bool bad = !g->start || !g->order || !bsum || !cnt;
     for (int d = 0; d < dim; d++) {
         g->xs[d] = malloc(n * sizeof(double));
         bad = bad || !g->xs[d];
     }
     if (bad) {
+        free(bsum);
+        free(cnt);
         grid_free(g);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for %zu cells", ncell);
     }
-    /* Counting sort.  The cell of a particle is recomputed in the scatter
-     * rather than stored: cheaper than touching another n-sized array. */
-    for (size_t i = 0; i < n; i++)
-        g->start[cell_index(g, x, i) + 1]++;
-    for (size_t c = 0; c < ncell; c++)
-        g->start[c + 1] += g->start[c];
-    /* Stable scatter: particles of one cell keep ascending index order. */
-    for (size_t i = 0; i < n; i++) {
-        size_t k = g->start[cell_index(g, x, i)]++;
-        g->order[k] = (int32_t)i;
-        for (int d = 0; d < dim; d++)
-            g->xs[d][k] = x[d][i];
+    /* Counting sort over the threads, each a block of particles: its counts
+     * per cell, then its start inside each cell (the counts of the blocks
+     * before), so a cell's particles ascend in index whatever the number of
+     * threads.  The cell of a particle is recomputed in the scatter rather
+     * than stored: cheaper than touching another n-sized array. */
+#pragma omp parallel num_threads(nt)
+    {
+        int tid, nth;
+        neighbor_team(&tid, &nth);
+        const size_t i0 = neighbor_block(n, tid, nth), i1 = neighbor_block(n, tid + 1, nth);
+        const size_t c0 = neighbor_block(ncell, tid, nth), c1 = neighbor_block(ncell, tid + 1, nth);
+        size_t *my = cnt + (size_t)tid * ncell;
+        memset(my, 0, ncell * sizeof *my);
+        for (size_t i = i0; i < i1; i++)
+            my[cell_index(g, x, i)]++;
+#pragma omp barrier
+        neighbor_row_starts(cnt, nth, ncell, c0, c1, g->start, bsum, tid);
+        for (size_t i = i0; i < i1; i++) {
+            const size_t c = cell_index(g, x, i), k = my[c]++;
+            g->order[k] = (int32_t)i;
+            for (int d = 0; d < dim; d++)
+                g->xs[d][k] = x[d][i];
+        }
     }
-    /* The scatter advanced start[c] to the old start[c+1]: shift back. */
-    for (size_t c = ncell; c > 0; c--)
-        g->start[c] = g->start[c - 1];
-    g->start[0] = 0;
+    free(bsum);
+    free(cnt);
     return SPALL_OK;
 }
 

@@ -9,6 +9,9 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 struct spall_error;
 
@@ -28,6 +31,34 @@ struct cell_grid {
 int grid_build(struct cell_grid *g, int dim, size_t n, double *const x[3], double radius,
                struct spall_error *err);
 void grid_free(struct cell_grid *g);
+/** Inside a parallel region: this thread's number and the team's size
+ *  (0 and 1 without OpenMP). */
+static inline void neighbor_team(int *tid, int *nth)
+{
+    *tid = 0;
+    *nth = 1;
+#ifdef _OPENMP
+    *tid = omp_get_thread_num();
+    *nth = omp_get_num_threads();
+#endif
+}
+
+/** The start of block @p t of @p nth equal blocks of [0, n). */
+static inline size_t neighbor_block(size_t n, int t, int nth)
+{
+    return n * (size_t)t / (size_t)nth;
+}
+
+/** Inside a parallel region of nth threads, all of which call it, each
+ *  with its own block [x0, x1) of the n rows: the per-thread counts
+ *  cnt[t * n + x] (t < nth) of the entries each thread puts in row x
+ *  become the rows' offsets v (v[0] = 0, v[x + 1] the end of row x) and
+ *  each thread's cursor in row x (v[x] plus the counts of the threads
+ *  before it), so that the threads fill every row in thread order.
+ *  @p bsum holds nth + 1 block sums.  Integer sums: the same for any split.
+ *  Ends at a barrier. */
+void neighbor_row_starts(size_t *cnt, int nth, size_t n, size_t x0, size_t x1, size_t *v,
+                         size_t *bsum, int tid);
 /** The argument checks of every builder (dimension, radius, sizes). */
 int neighbor_check_input(int dim, size_t n, double *const x[3], double radius,
                          struct spall_error *err);

@@ -24,7 +24,9 @@
  *    after its lower part, and i is appended to the lower part of each of
  *    its partners' rows, which therefore ascend too.  Every step's output
  *    depends only on the set of pairs, not on the buffer order: the list
- *    is the same for any thread count, and is neighbor_list_build's.
+ *    is the same for any thread count, and is neighbor_list_build's.  The
+ *    three steps run over the threads, each thread a block of rows and its
+ *    own cursor in every row it writes to (order_pairs).
  *
  * The pair table is the upper rows (pair q = upper slot q) with, per full
  * slot, the pair it holds; it comes out of step 2 at no extra search.
@@ -235,76 +237,138 @@ void neighbor_pairs_free(struct neighbor_pairs *pp)
     memset(pp, 0, sizeof *pp);
 }
 
-/** Step 2 (serial, O(pairs), no comparisons): the full list's offsets and
- *  rows and the pair table from the buffers; false when out of memory. */
+/** Block @p t of @p nth of the rows [0, n), cut where the running count
+ *  @p cum (a prefix, cum[n] the total) passes t / nth of the total, so that
+ *  each block holds about as many entries. */
+static size_t row_cut(const size_t *cum, size_t n, int t, int nth)
+{
+    if (t <= 0)
+        return 0;
+    if (t >= nth)
+        return n;
+    const size_t want = (size_t)((double)cum[n] * t / nth);
+    size_t lo = 0, hi = n; /* the first row r with cum[r] >= want */
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if (cum[mid] < want)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/** Step 2 (O(pairs), no comparisons, over the threads): the full list's
+ *  offsets and rows and the pair table from the buffers; false when out of
+ *  memory.  Each placing step gives every thread a block of rows and a
+ *  start inside each row it writes to (the counts of the threads before
+ *  it, per row: cur, a column of n a thread), so a row's entries land in
+ *  the order of the serial loop whatever the number of threads.  Only the
+ *  lower rows, which nothing reads in order, take the buffers' order. */
 static bool order_pairs(const struct pair_buf *bufs, int nbuf, size_t n, size_t *off,
                         int32_t **idx_out, size_t **first_out, int32_t **partner_out,
                         uint32_t **slot_out)
 {
+    int nt = 1;
+#ifdef _OPENMP
+    nt = omp_get_max_threads();
+#endif
     size_t np = 0;
     for (int t = 0; t < nbuf; t++)
         np += bufs[t].n;
     size_t *lo = calloc(n + 1, sizeof *lo), *first = calloc(n + 1, sizeof *first);
+    size_t *bsum = calloc((size_t)nt + 1, sizeof *bsum);
     int32_t *low = malloc((np ? np : 1) * sizeof *low);
     int32_t *up = malloc((np ? np : 1) * sizeof *up);
     int32_t *idx = malloc((np ? 2 * np : 1) * sizeof *idx);
     uint32_t *sp = slot_out ? malloc((np ? 2 * np : 1) * sizeof *sp) : NULL;
-    size_t *ucur = malloc((n ? n : 1) * sizeof *ucur); /* row cursors */
-    if (!lo || !first || !low || !up || !idx || (slot_out && !sp) || !ucur) {
+    size_t *cur = malloc((n ? n : 1) * (size_t)nt * sizeof *cur); /* row cursors */
+    if (!lo || !first || !bsum || !low || !up || !idx || (slot_out && !sp) || !cur) {
         free(lo);
         free(first);
+        free(bsum);
         free(low);
         free(up);
         free(idx);
         free(sp);
-        free(ucur);
+        free(cur);
         return false;
     }
-    /* counts: lo[j + 1] partners below j, first[i + 1] above i */
-    for (int t = 0; t < nbuf; t++)
-        for (size_t k = 0; k < bufs[t].n; k++) {
-            first[(size_t)bufs[t].ab[2 * k] + 1]++;
-            lo[(size_t)bufs[t].ab[2 * k + 1] + 1]++;
-        }
-    off[0] = 0;
-    for (size_t i = 0; i < n; i++) {
-        off[i + 1] = off[i] + lo[i + 1] + first[i + 1];
-        lo[i + 1] += lo[i];
-        first[i + 1] += first[i];
-    }
-    /* lower rows, unordered: lo[j] is the cursor of row j (ends at the
-     * start of row j + 1) */
-    for (int t = 0; t < nbuf; t++)
-        for (size_t k = 0; k < bufs[t].n; k++)
-            low[lo[(size_t)bufs[t].ab[2 * k + 1]]++] = bufs[t].ab[2 * k];
-    /* upper rows, ascending: j ascending; lo[j] now ends row j, which
-     * starts where row j - 1 ends; the cursors of the upper rows are the
-     * first[] shifted by one, kept in lo[] 's place once read */
-    memcpy(ucur, first, n * sizeof *ucur);
-    for (size_t j = 0, b0 = 0; j < n; j++) {
-        const size_t b1 = lo[j];
-        for (size_t t = b0; t < b1; t++)
-            up[ucur[low[t]]++] = (int32_t)j;
-        b0 = b1;
-    }
-    free(low);
-    /* the full rows: i ascending, the upper row after the lower part, i
-     * appended to each partner's lower part (ucur: its cursor) */
-    memcpy(ucur, off, n * sizeof *ucur);
-    for (size_t i = 0; i < n; i++) {
-        const size_t q0 = first[i], q1 = first[i + 1], h = off[i + 1] - (q1 - q0);
-        for (size_t q = q0; q < q1; q++) {
-            const size_t j = (size_t)up[q], s = h + (q - q0), t = ucur[j]++;
-            idx[s] = up[q];
-            idx[t] = (int32_t)i;
-            if (sp) {
-                sp[s] = (uint32_t)q;
-                sp[t] = (uint32_t)q;
+#pragma omp parallel num_threads(nt)
+    {
+        int tid, nth;
+        neighbor_team(&tid, &nth);
+        size_t *my = cur + (size_t)tid * n;
+        const size_t x0 = neighbor_block(n, tid, nth), x1 = neighbor_block(n, tid + 1, nth);
+        /* the lower rows (per b, its partners a < b): this thread's counts
+         * of its buffers, then its starts inside each row */
+        memset(my, 0, n * sizeof *my);
+        for (int t = tid; t < nbuf; t += nth)
+            for (size_t k = 0; k < bufs[t].n; k++)
+                my[(size_t)bufs[t].ab[2 * k + 1]]++;
+#pragma omp barrier
+        neighbor_row_starts(cur, nth, n, x0, x1, lo, bsum, tid);
+        for (int t = tid; t < nbuf; t += nth)
+            for (size_t k = 0; k < bufs[t].n; k++) {
+                const size_t b = (size_t)bufs[t].ab[2 * k + 1];
+                low[my[b]++] = bufs[t].ab[2 * k];
+            }
+#pragma omp barrier
+        /* the upper rows (per a, its partners b > a) read from the lower
+         * rows j ascending: this thread's block of j, its counts per a,
+         * then the upper rows' offsets (first) and the full rows' (off) */
+        const size_t j0 = row_cut(lo, n, tid, nth), j1 = row_cut(lo, n, tid + 1, nth);
+        memset(my, 0, n * sizeof *my);
+        for (size_t t = lo[j0]; t < lo[j1]; t++)
+            my[(size_t)low[t]]++;
+#pragma omp barrier
+        neighbor_row_starts(cur, nth, n, x0, x1, first, bsum, tid);
+        for (size_t x = x0; x < x1; x++) /* row x: its lower, then its upper part */
+            off[x + 1] = lo[x + 1] + first[x + 1];
+        for (size_t j = j0; j < j1; j++)
+            for (size_t t = lo[j]; t < lo[j + 1]; t++) {
+                const size_t a = (size_t)low[t];
+                up[my[a]++] = (int32_t)j;
+            }
+#pragma omp barrier
+        /* the full rows, this thread's block of i ascending: the upper row
+         * after the lower part, i appended to each partner's lower part at
+         * the partner's cursor (off[j], then the entries of the threads
+         * before) */
+        const size_t i0 = row_cut(first, n, tid, nth), i1 = row_cut(first, n, tid + 1, nth);
+        if (nth > 1) {
+            memset(my, 0, n * sizeof *my);
+            for (size_t q = first[i0]; q < first[i1]; q++)
+                my[(size_t)up[q]]++;
+#pragma omp barrier
+            for (size_t x = x0; x < x1; x++) {
+                size_t c0 = off[x];
+                for (int t = 0; t < nth; t++) {
+                    const size_t c = cur[(size_t)t * n + x];
+                    cur[(size_t)t * n + x] = c0;
+                    c0 += c;
+                }
+            }
+        } else
+            memcpy(my, off, n * sizeof *my);
+#pragma omp barrier
+        for (size_t i = i0; i < i1; i++) {
+            const size_t q0 = first[i], q1 = first[i + 1], h = off[i + 1] - (q1 - q0);
+            for (size_t q = q0; q < q1; q++) {
+                const size_t j = (size_t)up[q], s = h + (q - q0), t = my[j]++;
+                idx[s] = up[q];
+                idx[t] = (int32_t)i;
+                if (sp) {
+                    sp[s] = (uint32_t)q;
+                    sp[t] = (uint32_t)q;
+                }
             }
         }
     }
-    free(ucur);
+    free(cur);
+    free(bsum);
     free(lo);
+    free(low);
     *idx_out = idx;
     if (first_out) {
         *first_out = first;

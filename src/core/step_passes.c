@@ -243,3 +243,73 @@ void step_kick_sum(struct particles *p, double half_dt, double *part)
         kick_sum_range(p, blo, bhi, half_dt, part);
     }
 }
+
+/* The largest squared displacement since the build of particles [i0, i1)
+ * (a maximum, exact in any order: the loops vectorise, the decision is the
+ * one of a serial scan; a NaN is never the maximum, as in the scan it
+ * replaces). */
+STEP_CLONES static double max_shift2(int dim, size_t i0, size_t i1, double *const x[3],
+                                     double *const xb[3])
+{
+    double d2max = 0.0;
+    if (dim == 3) {
+        const double *x0 = x[0], *x1 = x[1], *x2 = x[2];
+        const double *b0 = xb[0], *b1 = xb[1], *b2 = xb[2];
+        size_t i = i0;
+#if defined(__GNUC__)
+        /* four running maxima, a vector lane each (GCC does not vectorise a
+         * maximum reduction of doubles without fast-math), combined by the
+         * same test: a NaN never becomes one, as in the scan */
+        typedef long long m4 __attribute__((vector_size(32)));
+        step_v4 mx = {0.0, 0.0, 0.0, 0.0};
+        for (; i + 4 <= i1; i += 4) {
+            step_v4 p0, p1, p2, q0, q1, q2;
+            memcpy(&p0, x0 + i, sizeof p0);
+            memcpy(&p1, x1 + i, sizeof p1);
+            memcpy(&p2, x2 + i, sizeof p2);
+            memcpy(&q0, b0 + i, sizeof q0);
+            memcpy(&q1, b1 + i, sizeof q1);
+            memcpy(&q2, b2 + i, sizeof q2);
+            const step_v4 u0 = p0 - q0, u1 = p1 - q1, u2 = p2 - q2;
+            const step_v4 d2 = u0 * u0 + u1 * u1 + u2 * u2;
+            const m4 gt = d2 > mx;
+            mx = (step_v4)(((m4)d2 & gt) | ((m4)mx & ~gt));
+        }
+        for (int l = 0; l < 4; l++)
+            d2max = mx[l] > d2max ? mx[l] : d2max;
+#endif
+        for (; i < i1; i++) {
+            const double u0 = x0[i] - b0[i], u1 = x1[i] - b1[i], u2 = x2[i] - b2[i];
+            const double d2 = u0 * u0 + u1 * u1 + u2 * u2;
+            d2max = d2 > d2max ? d2 : d2max;
+        }
+        return d2max;
+    }
+    for (size_t i = i0; i < i1; i++) {
+        double d2 = 0.0;
+        for (int d = 0; d < dim; d++) {
+            double u = x[d][i] - xb[d][i];
+            d2 += u * u;
+        }
+        d2max = d2 > d2max ? d2 : d2max;
+    }
+    return d2max;
+}
+
+double step_max_shift2(int dim, size_t n, double *const x[3], double *const xb[3])
+{
+    double d2max = 0.0;
+#pragma omp parallel if (n > SPALL_OMP_MIN_PARTICLES)
+    {
+        size_t i0 = 0, i1 = n;
+#ifdef _OPENMP
+        const size_t nt = (size_t)omp_get_num_threads(), t = (size_t)omp_get_thread_num();
+        i0 = n * t / nt;
+        i1 = n * (t + 1) / nt;
+#endif
+        const double d = max_shift2(dim, i0, i1, x, xb);
+#pragma omp critical(step_max_shift)
+        d2max = d > d2max ? d : d2max;
+    }
+    return d2max;
+}

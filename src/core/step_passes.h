@@ -2,8 +2,9 @@
  * @file step_passes.h
  * @brief The integrator's per-particle passes (step_passes.c): kicks,
  *        drift, the kick and drift fused, the kick with the kinetic-energy
- *        block sums, the block sums alone.
- *        Core-internal (core/integrator.c).
+ *        block sums, the block sums alone, the largest shift since a list
+ *        build.  Core's (core/integrator.c, core/parallel), the shift also
+ *        the models' with Verlet lists.
  */
 #ifndef SPALL_STEP_PASSES_H
 #define SPALL_STEP_PASSES_H
@@ -38,5 +39,11 @@ void step_kick_sum(struct particles *p, double half_dt, double *part);
 /** Sum of m v^2 over [lo, hi): four interleaved partial sums, combined as
  *  (a0 + a1) + (a2 + a3), then the rest in order. */
 double step_block_mv2(const double *m, const double *v, size_t lo, size_t hi);
+
+/** The largest |x_i - xb_i|^2 over particles [0, n) (a maximum: exact in
+ *  any order, a NaN never one), over the threads: the Verlet-skin test of
+ *  a list built at xb (the macro-particle model's, and the engine's over
+ *  the owned particles of every rank, core/parallel/spatial.c). */
+double step_max_shift2(int dim, size_t n, double *const x[3], double *const xb[3]);
 
 #endif

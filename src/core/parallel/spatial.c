@@ -15,6 +15,7 @@
 #include "core/parallel/sghost.h"
 #include "core/particles.h"
 #include "core/sim.h"
+#include "core/step_passes.h"
 #include "spall/error.h"
 
 #include <limits.h>
@@ -357,16 +358,7 @@ int par_ghosts_step(struct sim *s, struct spall_error *err)
                 return rc;
         }
         const struct particles *p = s->p;
-        double d2max = 0.0;
-        for (size_t i = 0; i < p->n_owned; i++) {
-            double d2 = 0.0;
-            for (int c = 0; c < s->dim; c++) {
-                double u = p->x[c][i] - sm.xb[c][i];
-                d2 += u * u;
-            }
-            d2max = d2 > d2max ? d2 : d2max;
-        }
-        d2max = par_max_double(d2max);
+        double d2max = par_max_double(step_max_shift2(s->dim, p->n_owned, p->x, sm.xb));
         const bool due = sm.rebuild_due ? sm.rebuild_due(s->model, s, d2max)
                                         : !(4.0 * d2max < sm.skin * sm.skin);
         if (due) {

@@ -44,6 +44,7 @@
 #include "core/neighbor.h"
 #include "core/particles.h"
 #include "core/sim.h"
+#include "core/step_passes.h"
 #include "spall/error.h"
 
 #include <stdlib.h>
@@ -87,14 +88,32 @@ static void carry_state(const struct neighbor_list *old, const int64_t *opg, con
 
 /* Row i ascending in the partners' global ids (distributed runs: ghosts
  * follow the owned particles locally; on one rank index = gid already).
- * Rows are short (12 partners in the first FCC shell): insertion sort. */
-static void sort_rows_by_gid(struct neighbor_list *nl, const int64_t *gid)
+ * The local layout holds the owned particles [0, n_own) and then the
+ * ghosts, each in ascending gid (core/parallel/decomp.h), and a row
+ * ascends in local index: an owned run and a ghost run, each ascending in
+ * gid, so the row is in order already when one run is empty or the first
+ * ghost's gid exceeds the last owned one's (all rows but a few near the
+ * rank's boundary).  The others: insertion sort (rows are short, 12
+ * partners in the first FCC shell). */
+static void sort_rows_by_gid(struct neighbor_list *nl, const int64_t *gid, size_t n_own)
 {
     const size_t n = nl->n;
 #pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
     for (size_t i = 0; i < n; i++) {
         int32_t *r = nl->idx + nl->offset[i];
         const size_t len = nl->offset[i + 1] - nl->offset[i];
+        if (len < 2 || (size_t)r[len - 1] < n_own || (size_t)r[0] >= n_own)
+            continue; /* one run */
+        size_t lo = 1, hi = len - 1; /* the first ghost: r[lo - 1] owned, r[hi] a ghost */
+        while (lo < hi) {
+            const size_t mid = lo + (hi - lo) / 2;
+            if ((size_t)r[mid] < n_own)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        if (gid[r[lo - 1]] < gid[r[lo]])
+            continue; /* the runs in order */
         for (size_t k = 1; k < len; k++) {
             int32_t v = r[k];
             size_t q = k;
@@ -127,7 +146,7 @@ int macro_list_build(struct model *m, struct sim *sim, bool count, struct spall_
         return rc;
     }
     if (dist)
-        sort_rows_by_gid(nl, p->gid);
+        sort_rows_by_gid(nl, p->gid, p->n_owned);
     size_t ns = nl->offset[n];
     double *ndr = calloc(ns ? ns : 1, sizeof *ndr), *nka = calloc(ns ? ns : 1, sizeof *nka);
     uint8_t *nen = calloc(ns ? ns : 1, 1);
@@ -177,79 +196,6 @@ void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid,
     m->engaged = engaged;
 }
 
-/* The largest squared displacement since the build of particles [i0, i1)
- * (a maximum, exact in any order: the loops vectorise, the decision is the
- * one of a serial scan; a NaN is never the maximum, as in the scan it
- * replaces). */
-MACRO_CLONES static double max_shift2(int dim, size_t i0, size_t i1, double *const x[3],
-                                      double *const xb[3])
-{
-    double d2max = 0.0;
-    if (dim == 3) {
-        const double *x0 = x[0], *x1 = x[1], *x2 = x[2];
-        const double *b0 = xb[0], *b1 = xb[1], *b2 = xb[2];
-        size_t i = i0;
-#if defined(__GNUC__)
-        /* four running maxima, a vector lane each (GCC does not vectorise a
-         * maximum reduction of doubles without fast-math), combined by the
-         * same test: a NaN never becomes one, as in the scan */
-        typedef double v4 __attribute__((vector_size(32)));
-        typedef long long m4 __attribute__((vector_size(32)));
-        v4 mx = {0.0, 0.0, 0.0, 0.0};
-        for (; i + 4 <= i1; i += 4) {
-            v4 p0, p1, p2, q0, q1, q2;
-            memcpy(&p0, x0 + i, sizeof p0);
-            memcpy(&p1, x1 + i, sizeof p1);
-            memcpy(&p2, x2 + i, sizeof p2);
-            memcpy(&q0, b0 + i, sizeof q0);
-            memcpy(&q1, b1 + i, sizeof q1);
-            memcpy(&q2, b2 + i, sizeof q2);
-            const v4 u0 = p0 - q0, u1 = p1 - q1, u2 = p2 - q2;
-            const v4 d2 = u0 * u0 + u1 * u1 + u2 * u2;
-            const m4 gt = d2 > mx;
-            mx = (v4)(((m4)d2 & gt) | ((m4)mx & ~gt));
-        }
-        for (int l = 0; l < 4; l++)
-            d2max = mx[l] > d2max ? mx[l] : d2max;
-#endif
-        for (; i < i1; i++) {
-            const double u0 = x0[i] - b0[i], u1 = x1[i] - b1[i], u2 = x2[i] - b2[i];
-            const double d2 = u0 * u0 + u1 * u1 + u2 * u2;
-            d2max = d2 > d2max ? d2 : d2max;
-        }
-        return d2max;
-    }
-    for (size_t i = i0; i < i1; i++) {
-        double d2 = 0.0;
-        for (int d = 0; d < dim; d++) {
-            double u = x[d][i] - xb[d][i];
-            d2 += u * u;
-        }
-        d2max = d2 > d2max ? d2 : d2max;
-    }
-    return d2max;
-}
-
-/* The same over all n particles, a range a thread (the ranges' maxima
- * combined by the same test). */
-static double max_shift2_all(int dim, size_t n, double *const x[3], double *const xb[3])
-{
-    double d2max = 0.0;
-#pragma omp parallel if (n >= MACRO_OMP_MIN)
-    {
-        size_t i0 = 0, i1 = n;
-#ifdef _OPENMP
-        const size_t nt = (size_t)omp_get_num_threads(), t = (size_t)omp_get_thread_num();
-        i0 = n * t / nt;
-        i1 = n * (t + 1) / nt;
-#endif
-        const double d = max_shift2(dim, i0, i1, x, xb);
-#pragma omp critical(macro_max_shift)
-        d2max = d > d2max ? d : d2max;
-    }
-    return d2max;
-}
-
 int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct spall_error *err)
 {
     struct particles *p = sim->p;
@@ -258,7 +204,7 @@ int macro_neighbors_update(struct model *m, struct sim *sim, bool force, struct 
     if (!force && sim->par)
         return SPALL_OK; /* distributed: the engine's test, over all ranks (spatial.c) */
     if (!force && m->nl && m->nl->n == n &&
-        4.0 * max_shift2_all(sim->dim, n, p->x, m->xb) < skin * skin)
+        4.0 * step_max_shift2(sim->dim, n, p->x, m->xb) < skin * skin)
         return SPALL_OK;
     return macro_list_build(m, sim, true, err);
 }
