@@ -217,18 +217,25 @@ static void restore_prescribed_forces(struct sim *s, const double *fsave, size_t
     }
 }
 
+/* Room for need doubles in *buf (capacity *cap), kept between steps;
+ * false, the buffer unchanged, when memory is short. */
+static bool reserve_doubles(double **buf, size_t *cap, size_t need)
+{
+    if (need > *cap) {
+        double *b = realloc(*buf, need * sizeof *b);
+        if (!b)
+            return false;
+        *buf = b;
+        *cap = need;
+    }
+    return true;
+}
+
 /* Room for the kinetic-energy block sums of the owned particles. */
 static bool kinetic_room(struct sim *s)
 {
-    const size_t need = 3 * ((s->p->n_owned + STEP_SUM_BLOCK - 1) / STEP_SUM_BLOCK);
-    if (need > s->kinetic_part_cap) {
-        double *b = realloc(s->kinetic_part, need * sizeof *b);
-        if (!b)
-            return false;
-        s->kinetic_part = b;
-        s->kinetic_part_cap = need;
-    }
-    return true;
+    return reserve_doubles(&s->kinetic_part, &s->kinetic_part_cap,
+                           3 * ((s->p->n_owned + STEP_SUM_BLOCK - 1) / STEP_SUM_BLOCK));
 }
 
 /* Prescribed velocities for the predicted state (no work, no reaction). */
@@ -294,13 +301,8 @@ static bool save_prescribed(struct sim *s)
     for (size_t k = 0; k < s->n_bcs; k++)
         if (bc_prescribes_velocity(&s->bcs[k]))
             need += s->groups[s->bcs[k].group].n * (size_t)s->dim;
-    if (need > s->drift_save_cap) {
-        double *b = realloc(s->drift_save, need * sizeof *b);
-        if (!b)
-            return false;
-        s->drift_save = b;
-        s->drift_save_cap = need;
-    }
+    if (!reserve_doubles(&s->drift_save, &s->drift_save_cap, need))
+        return false;
     prescribed_positions(s, 0.0, true);
     return true;
 }
