@@ -70,10 +70,7 @@ static const struct vcase cases[] = {
      VKIND_VALIDATION, VGATE_FULL, NULL, impact_case_epoxy, TIER_ALL},
     {"impact-punch", "[Wang2010] sec. 3.2.3 3D vinyl ester punch-shear, no-slip and friction",
      VKIND_VALIDATION, VGATE_OFF, NULL, impact_case_punch,
-     TIER_FULL_ONLY(0.0,
-         "no configuration of it fits 3 min: the 3D punch (FCC, r0 = 2.5 mm, 9747 particles) "
-         "is its working resolution; last full values: peak 7871 N (-21 % against 10 000 N, "
-         "gap) at 3.51 mm (+67 %, gap); friction mu = 0.3: 8090 N at 4.24 mm.")},
+     TIER_ALL},
     {"thermal-conduction", "thermal lattice: 1D conduction from a fixed-temperature end vs erfc",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, thermal_case_conduction, TIER_ALL},
     {"thermal-expansion", "thermal lattice: free expansion strain alpha dT of a heated plate",
@@ -137,16 +134,10 @@ static const struct vcase cases[] = {
      VKIND_VERIFICATION, VGATE_QUICK, NULL, macro_case_thermostat, TIER_ALL},
     {"macro-rod-large", "[Saitoh] sec. 2.6 rod: tension vs compression, compressive collapse",
      VKIND_VALIDATION, VGATE_QUICK, NULL, macro_case_rod_large,
-     TIER_REDUCED(0.0,
-         "the n_phi = 8 rod (1677 particles) to +-5 %, free and clamped ends, the cut-off and "
-         "loading sweeps; last full values: free ends largest sigma_c/sigma_t - 1 = 0.0286, "
-         "collapse at 4.31 % (gap), {111} share 0.24 (gap); clamped ends 0.0175, 3.37 %, 1.00.")},
+     TIER_ALL},
     {"macro-rod-plastic", "[Saitoh] sec. 2.6 rod with Eq. 16 plasticity: yield, hardening, loop",
      VKIND_VALIDATION, VGATE_QUICK, NULL, macro_case_rod_plastic,
-     TIER_REDUCED(0.0,
-         "the n_phi = 8 rod; last full values: yield 0.97 % strain, 1304 > 1120 MPa hardening,"
-         " unloading 1.016 E0, reloading 1189 MPa (1188 MPa); the standard tier (n_phi = 4) "
-         "measured 0.87 %, 1.018 E0, 947.9 MPa (945.6 MPa) when recorded.")},
+     TIER_ALL},
 
     /* SPH (issue 6) */
     {"sph-gradient", "SPH: CSPM velocity gradient exact for linear fields (2D, 3D)",

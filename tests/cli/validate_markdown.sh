@@ -43,8 +43,8 @@ n_checks=$(grep -Eo '^[0-9]+ of [0-9]+ cases measured here, [0-9]+ checks' out.m
     { echo "FAIL $n_pass passing check rows, $n_checks checks recorded"; fail=1; }
 need "count line" '^2 of [0-9]+ cases measured here'
 # a case not run: its registry entry and how to run it
-need "not run" 'Not run for this page \(full tier only\): run it with `spall validate impact-punch`'
-need "not-run summary" '^\| \[impact-punch\]\(#impact-punch\) \| validation \| full runs only \| full only \| - \| - \| not run \|$'
+need "not run" 'Not run for this page \(full tier only\): run it with `spall validate sph-beam-large`'
+need "not-run summary" '^\| \[sph-beam-large\]\(#sph-beam-large\) \| validation \| full runs only \| full only \| - \| - \| not run \|$'
 # the tiers' flags: --quick and --full exclude each other
 "$spall" validate --quick --full pen-ode > /dev/null 2>&1
 [ $? -eq 2 ] || { echo "FAIL --quick --full accepted"; fail=1; }
