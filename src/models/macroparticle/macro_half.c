@@ -465,7 +465,8 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
         .m = m, .w = &w, .nl = m->nl, .x = p->x, .v = p->v, .f = p->f, .gid = p->gid,
         .dim = sim->dim, .n = n, .plastic = plastic, .mu = mu, .g = g, .dt = dt,
         .sp = m->eta_cg * sqrt(2.0 * mu * kT / dt), .sg = m->eta_cg * sqrt(2.0 * g * kT / dt),
-        .rlist2 = rl * rl, .seed = sim->seed, .step = (uint64_t)m->n_calls};
+        .rlist2 = rl * rl, .seed = sim->seed, .step = (uint64_t)m->n_calls,
+        .stress = !sim->stress_skip};
     m->n_calls++;
     bool threads = false;
 #ifdef _OPENMP

@@ -98,7 +98,8 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
  * vector loads and stores of the consecutive rows (about 100 instructions
  * a row less than four calls of half_row_finish). */
 __attribute__((always_inline)) static inline void half_finish4(const struct half_ctx *h, size_t i,
-                                                               const half_v4 acc[HALF_SUMS])
+                                                               const half_v4 acc[HALF_SUMS],
+                                                               bool stress)
 {
     struct model *m = h->m;
     const half_v4 z = {0, 0, 0, 0};
@@ -111,9 +112,10 @@ __attribute__((always_inline)) static inline void half_finish4(const struct half
         pw += z * t;
     }
     memcpy(m->epot + i, &acc[3], sizeof acc[3]);
-    for (int l = 0; l < 4; l++)
-        for (int k = 0; k < 6; k++)
-            m->sig[6 * (i + (size_t)l) + (size_t)k] = acc[4 + k][l];
+    if (stress)
+        for (int l = 0; l < 4; l++)
+            for (int k = 0; k < 6; k++)
+                m->sig[6 * (i + (size_t)l) + (size_t)k] = acc[4 + k][l];
     memcpy(&t, m->wdiss + i, sizeof t);
     t += z - pw * h->dt;
     memcpy(m->wdiss + i, &t, sizeof t);
@@ -121,9 +123,9 @@ __attribute__((always_inline)) static inline void half_finish4(const struct half
 #endif
 
 /* Row i's outputs from its sums: plastic work and Langevin forces (in list
- * order), force, energy, virial, dissipation. */
+ * order), force, energy, virial (when @p stress), dissipation. */
 static inline void half_row_finish(const struct half_ctx *h, size_t i,
-                                   const double sum[HALF_SUMS])
+                                   const double sum[HALF_SUMS], bool stress)
 {
     struct model *m = h->m;
     const struct neighbor_list *nl = h->nl;
@@ -156,8 +158,9 @@ static inline void half_row_finish(const struct half_ctx *h, size_t i,
         pw += fl[d] * vi[d];
     }
     m->epot[i] = sum[3];
-    for (int k = 0; k < 6; k++)
-        m->sig[6 * i + k] = sum[4 + k];
+    if (stress)
+        for (int k = 0; k < 6; k++)
+            m->sig[6 * i + k] = sum[4 + k];
     m->wdiss[i] += wplast - pw * h->dt;
 }
 
@@ -172,7 +175,7 @@ static inline void half_row_finish(const struct half_ctx *h, size_t i,
  * zero pair). */
 __attribute__((always_inline)) static inline void
 half_step4(half_v4 acc[HALF_SUMS], const half_v4 xi[3], half_v4 xj, half_v4 yj, half_v4 zj,
-           half_v4 c, half_v4 ph, bool mask)
+           half_v4 c, half_v4 ph, bool mask, bool stress)
 {
     half_v4 dx = xj - xi[0], dy = yj - xi[1], dz = zj - xi[2];
     if (mask) {
@@ -181,11 +184,13 @@ half_step4(half_v4 acc[HALF_SUMS], const half_v4 xi[3], half_v4 xj, half_v4 yj, 
         dy = (half_v4)((half_m4)dy & ok);
         dz = (half_v4)((half_m4)dz & ok);
     }
-    const half_v4 hc = 0.5 * c;
     acc[0] += c * dx;
     acc[1] += c * dy;
     acc[2] += c * dz;
     acc[3] += ph;
+    if (!stress)
+        return; /* the force and energy sums do not depend on the virial's */
+    const half_v4 hc = 0.5 * c;
     acc[4] += hc * dx * dx;
     acc[5] += hc * dy * dy;
     acc[6] += hc * dz * dz;
@@ -197,17 +202,18 @@ half_step4(half_v4 acc[HALF_SUMS], const half_v4 xi[3], half_v4 xj, half_v4 yj, 
 /* The group's rows i .. i + 3 from their sums: the vector finish of a
  * plain run, else each row's own. */
 __attribute__((always_inline)) static inline void
-half_group_finish(const struct half_ctx *h, size_t i, bool plain, const half_v4 acc[HALF_SUMS])
+half_group_finish(const struct half_ctx *h, size_t i, bool plain, bool stress,
+                  const half_v4 acc[HALF_SUMS])
 {
     if (plain) {
-        half_finish4(h, i, acc);
+        half_finish4(h, i, acc, stress);
         return;
     }
     for (size_t l = 0; l < 4; l++) {
         double sum[HALF_SUMS];
         for (int k = 0; k < HALF_SUMS; k++)
-            sum[k] = acc[k][l];
-        half_row_finish(h, i + l, sum);
+            sum[k] = stress || k < 4 ? acc[k][l] : 0.0;
+        half_row_finish(h, i + l, sum, stress);
     }
 }
 
@@ -215,7 +221,8 @@ half_group_finish(const struct half_ctx *h, size_t i, bool plain, const half_v4 
  * vectors, their positions and values element by element (AVX2 gathers
  * instead: as many cycles or more on the machine measured). */
 __attribute__((always_inline)) static inline void
-half_groups_k(const struct half_ctx *h, size_t g0, size_t g1, bool plain, bool mask)
+half_groups_k(const struct half_ctx *h, size_t g0, size_t g1, bool plain, bool mask,
+              bool stress)
 {
     const struct model *m = h->m;
     const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2], *pc = m->pc, *pphi = m->pphi;
@@ -236,22 +243,28 @@ half_groups_k(const struct half_ctx *h, size_t g0, size_t g1, bool plain, bool m
             const half_v4 zj = {x2[j[0]], x2[j[1]], x2[j[2]], x2[j[3]]};
             const half_v4 c = {pc[q[0]], pc[q[1]], pc[q[2]], pc[q[3]]};
             const half_v4 ph = {pphi[q[0]], pphi[q[1]], pphi[q[2]], pphi[q[3]]};
-            half_step4(a, xi, xj, yj, zj, c, ph, mask);
+            half_step4(a, xi, xj, yj, zj, c, ph, mask, stress);
         }
         memcpy(acc, a, sizeof acc);
-        half_group_finish(h, i, plain, acc);
+        half_group_finish(h, i, plain, stress, acc);
     }
 }
 
 /* ... with the mask of dx only where a position is huge or not finite
- * (@p bounded false): four vector operations a step fewer. */
+ * (@p bounded false): four vector operations a step fewer; without the
+ * virial's six sums on the steps whose stress nothing reads (@p stress
+ * false): 13 vector operations a step fewer and no spilled sums. */
 MACRO_CLONES static void half_groups(const struct half_ctx *h, size_t g0, size_t g1, bool plain,
-                                     bool bounded)
+                                     bool bounded, bool stress)
 {
-    if (bounded)
-        half_groups_k(h, g0, g1, plain, false);
+    if (bounded && stress)
+        half_groups_k(h, g0, g1, plain, false, true);
+    else if (bounded)
+        half_groups_k(h, g0, g1, plain, false, false);
+    else if (stress)
+        half_groups_k(h, g0, g1, plain, true, true);
     else
-        half_groups_k(h, g0, g1, plain, true);
+        half_groups_k(h, g0, g1, plain, true, false);
 }
 
 /* Whether every coordinate of the n particles is within +-1e300: then every
@@ -345,14 +358,14 @@ void macro_half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
         /* the whole groups from i on */
         const size_t ge = (i1 < h->n - h->n % 4 ? i1 : h->n - h->n % 4) / 4;
         if (h->dim == 3 && h->m->goff && i % 4 == 0 && i / 4 < ge) {
-            half_groups(h, i / 4, ge, plain, h->bounded);
+            half_groups(h, i / 4, ge, plain, h->bounded, h->stress);
             i = 4 * ge;
             continue;
         }
 #endif
         double sum[HALF_SUMS];
         half_row_sums(h, i, sum);
-        half_row_finish(h, i, sum);
+        half_row_finish(h, i, sum, true);
         i++;
     }
 }
