@@ -296,6 +296,10 @@ static int half_prepare(struct model *m, const struct particles *p, size_t n, in
 }
 
 
+#if defined(__GNUC__)
+typedef double half_d4 __attribute__((vector_size(32)));
+#endif
+
 /** Distances of the nb pairs (pi[k], pj[k]): r^2 and r, with x_j - x_i as
  *  the computing end forms it. */
 MACRO_CLONES static void half_chunk_dist(size_t nb, int dim, double *const *restrict x,
@@ -305,15 +309,35 @@ MACRO_CLONES static void half_chunk_dist(size_t nb, int dim, double *const *rest
 {
     const double *restrict x0 = x[0], *restrict x1 = dim > 1 ? x[1] : x[0];
     const double *restrict x2 = dim > 2 ? x[2] : x[0];
+    size_t k = 0;
+#if defined(__GNUC__)
+    /* 3D: four pairs a vector, each lane the scalar loop's operations in its
+     * order (the same bits).  Left to the vectoriser, the loop below runs
+     * eight pairs an iteration (the 32-bit indices set its width) and
+     * spills their sixteen indices: about 4 instructions a pair more. */
+    if (dim == 3)
+        for (; k + 4 <= nb; k += 4) {
+            const int32_t *a = pi + k, *b = pj + k;
+            const half_d4 ex = (half_d4){x0[b[0]], x0[b[1]], x0[b[2]], x0[b[3]]} -
+                               (half_d4){x0[a[0]], x0[a[1]], x0[a[2]], x0[a[3]]};
+            const half_d4 ey = (half_d4){x1[b[0]], x1[b[1]], x1[b[2]], x1[b[3]]} -
+                               (half_d4){x1[a[0]], x1[a[1]], x1[a[2]], x1[a[3]]};
+            const half_d4 ez = (half_d4){x2[b[0]], x2[b[1]], x2[b[2]], x2[b[3]]} -
+                               (half_d4){x2[a[0]], x2[a[1]], x2[a[2]], x2[a[3]]};
+            const half_d4 q = ex * ex + ey * ey + ez * ez;
+            memcpy(r2 + k, &q, sizeof q);
+        }
+#endif
     /* the loads are unconditional (x1, x2 name x[0] below 2D, 3D) so that
      * the loop vectorises; the unused components are then replaced by 0 */
-    for (size_t k = 0; k < nb; k++) {
+    for (; k < nb; k++) {
         const size_t i = (size_t)pi[k], j = (size_t)pj[k];
         const double ex = x0[j] - x0[i], fy = x1[j] - x1[i], fz = x2[j] - x2[i];
         const double ey = dim > 1 ? fy : 0.0, ez = dim > 2 ? fz : 0.0;
         r2[k] = ex * ex + ey * ey + ez * ez;
-        r[k] = sqrt(r2[k]);
     }
+    for (k = 0; k < nb; k++)
+        r[k] = sqrt(r2[k]);
 }
 
 /** Pair law of nb pairs at distances rd (squared r2) and elastic distances
