@@ -341,32 +341,17 @@ MACRO_CLONES static void half_chunk_dist(size_t nb, int dim, double *const *rest
 }
 
 /** Pair law of nb pairs at distances rd (squared r2) and elastic distances
- *  re: phi / 2 (the half each end books: pass 2 adds it as the full loop
- *  adds 0.5 phi, the same product) and c = -f/r, both +0 where the pair
- *  does not count (the full
- *  loop's tests, without short circuits for the vectoriser; NaN distances
- *  count).  A pair with c = +-0 and phi = 0 adds only +-0 terms to the sums
- *  of pass 2, which change no sum (they start at +0 and never become -0),
- *  so pass 2 may skip it: that is the skip of a pair that does not count. */
+ *  re: phi / 2 and c = -f/r, both +0 where the pair does not count
+ *  (macro_mie_pairs).  A pair with c = +-0 and phi = 0 adds only +-0 terms
+ *  to the sums of pass 2, which change no sum (they start at +0 and never
+ *  become -0), so pass 2 may skip it: that is the skip of a pair that does
+ *  not count. */
 MACRO_CLONES static void half_chunk_law(const struct macro_pair *w, size_t nb,
                                         const double *restrict r2, const double *restrict rd,
                                         const double *restrict re, double rlist2,
                                         double *restrict ph, double *restrict c)
 {
-    double fk[MACRO_CHUNK];
-    const double r_c = w->r_c;
-    macro_mie_chunk(w, nb, re, ph, fk);
-    for (size_t k = 0; k < nb; k++) {
-        const uint64_t ok = (uint64_t)(!(r2[k] >= rlist2) & (r2[k] != 0.0) & !(re[k] >= r_c) &
-                                       !(re[k] <= 0.0));
-        /* force on i along dx (attraction > 0); the masks by bits, not a
-         * branch the vectoriser would have to keep around the division */
-        union { double d; uint64_t u; } ck = {.d = -fk[k] / rd[k]}, pk = {.d = 0.5 * ph[k]};
-        ck.u &= -ok;
-        pk.u &= -ok;
-        c[k] = ck.d;
-        ph[k] = pk.d;
-    }
+    macro_mie_pairs(w, nb, r2, rd, re, rlist2, ph, c);
 }
 
 /* Pass 1 over the pairs [q0, q0 + nb), nb <= MACRO_CHUNK. */
