@@ -82,6 +82,7 @@ void macro_half_free(struct model *m)
     m->g_cap = 0;
     m->pc = m->pphi = m->pwp = m->pfl = NULL;
     m->half_pairs = m->half_pair_cap = 0;
+    m->epot_lazy = 0; /* its pair values are gone (an error or the end) */
     macro_half_invalidate(m, NULL);
 }
 
@@ -477,6 +478,9 @@ int macro_forces_half(struct model *m, struct sim *sim, struct spall_error *err)
         .rlist2 = rl * rl, .seed = sim->seed, .step = (uint64_t)m->n_calls,
         .stress = !sim->stress_skip};
     m->n_calls++;
+    /* 3D: pass 2's groups leave epot to macro_half_epot (the pair values
+     * stay until the next call) */
+    m->epot_lazy = sim->dim == 3 ? n : 0;
     bool threads = false;
 #ifdef _OPENMP
     threads = n >= MACRO_OMP_MIN && omp_get_max_threads() > 1;

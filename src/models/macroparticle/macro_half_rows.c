@@ -96,7 +96,8 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
  * force and plastic work (f += sum + 0, wdiss += 0 - (0 v) dt: kept, they
  * are not no-ops for -0 and non-finite values), so the same bits, with
  * vector loads and stores of the consecutive rows (about 100 instructions
- * a row less than four calls of half_row_finish). */
+ * a row less than four calls of half_row_finish); the energy is left to
+ * macro_half_epot (m->epot_lazy). */
 __attribute__((always_inline)) static inline void half_finish4(const struct half_ctx *h, size_t i,
                                                                const half_v4 acc[HALF_SUMS],
                                                                bool stress)
@@ -111,7 +112,6 @@ __attribute__((always_inline)) static inline void half_finish4(const struct half
         memcpy(&t, h->v[d] + i, sizeof t);
         pw += z * t;
     }
-    memcpy(m->epot + i, &acc[3], sizeof acc[3]);
     if (stress)
         for (int l = 0; l < 4; l++)
             for (int k = 0; k < 6; k++)
@@ -123,9 +123,10 @@ __attribute__((always_inline)) static inline void half_finish4(const struct half
 #endif
 
 /* Row i's outputs from its sums: plastic work and Langevin forces (in list
- * order), force, energy, virial (when @p stress), dissipation. */
+ * order), force, energy (when @p energy), virial (when @p stress),
+ * dissipation. */
 static inline void half_row_finish(const struct half_ctx *h, size_t i,
-                                   const double sum[HALF_SUMS], bool stress)
+                                   const double sum[HALF_SUMS], bool energy, bool stress)
 {
     struct model *m = h->m;
     const struct neighbor_list *nl = h->nl;
@@ -157,7 +158,8 @@ static inline void half_row_finish(const struct half_ctx *h, size_t i,
         h->f[d][i] += sum[d] + fl[d];
         pw += fl[d] * vi[d];
     }
-    m->epot[i] = sum[3];
+    if (energy)
+        m->epot[i] = sum[3];
     if (stress)
         for (int k = 0; k < 6; k++)
             m->sig[6 * i + k] = sum[4 + k];
@@ -166,16 +168,15 @@ static inline void half_row_finish(const struct half_ctx *h, size_t i,
 
 #if defined(__GNUC__)
 /* Step k of a group: the four lanes' partner positions xj, yj, zj and pair
- * values c, ph (0.5 phi) added to the ten sums (the operations of
- * half_row_sums in its order).  c = +-0: the force and virial terms are +-0,
+ * values c added to the force sums and, with @p stress, the virial's (the
+ * operations of half_row_sums in its order; the energy sum is left to
+ * macro_half_epot, which adds the same values in the same order).  c = +-0: the force and virial terms are +-0,
  * which change no sum (they start at +0 and never become -0); @p mask: dx
  * is then replaced by +0, for the run whose positions may be huge or not
- * finite (x_j - x_i infinite or NaN, where 0 dx would not be 0); ph is +0
- * where the pair does not count (pass 1) and for a row that has ended (the
- * zero pair). */
+ * finite (x_j - x_i infinite or NaN, where 0 dx would not be 0). */
 __attribute__((always_inline)) static inline void
 half_step4(half_v4 acc[HALF_SUMS], const half_v4 xi[3], half_v4 xj, half_v4 yj, half_v4 zj,
-           half_v4 c, half_v4 ph, bool mask, bool stress)
+           half_v4 c, bool mask, bool stress)
 {
     half_v4 dx = xj - xi[0], dy = yj - xi[1], dz = zj - xi[2];
     if (mask) {
@@ -187,9 +188,8 @@ half_step4(half_v4 acc[HALF_SUMS], const half_v4 xi[3], half_v4 xj, half_v4 yj, 
     acc[0] += c * dx;
     acc[1] += c * dy;
     acc[2] += c * dz;
-    acc[3] += ph;
     if (!stress)
-        return; /* the force and energy sums do not depend on the virial's */
+        return; /* the force sums do not depend on the virial's */
     const half_v4 hc = 0.5 * c;
     acc[4] += hc * dx * dx;
     acc[5] += hc * dy * dy;
@@ -212,8 +212,8 @@ half_group_finish(const struct half_ctx *h, size_t i, bool plain, bool stress,
     for (size_t l = 0; l < 4; l++) {
         double sum[HALF_SUMS];
         for (int k = 0; k < HALF_SUMS; k++)
-            sum[k] = stress || k < 4 ? acc[k][l] : 0.0;
-        half_row_finish(h, i + l, sum, stress);
+            sum[k] = stress || k < 3 ? acc[k][l] : 0.0;
+        half_row_finish(h, i + l, sum, false, stress);
     }
 }
 
@@ -225,7 +225,7 @@ half_groups_k(const struct half_ctx *h, size_t g0, size_t g1, bool plain, bool m
               bool stress)
 {
     const struct model *m = h->m;
-    const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2], *pc = m->pc, *pphi = m->pphi;
+    const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2], *pc = m->pc;
     for (size_t g = g0; g < g1; g++) {
         const size_t i = 4 * g;
         /* the running sums in a local array that nothing else sees, so that
@@ -242,8 +242,7 @@ half_groups_k(const struct half_ctx *h, size_t g0, size_t g1, bool plain, bool m
             const half_v4 yj = {x1[j[0]], x1[j[1]], x1[j[2]], x1[j[3]]};
             const half_v4 zj = {x2[j[0]], x2[j[1]], x2[j[2]], x2[j[3]]};
             const half_v4 c = {pc[q[0]], pc[q[1]], pc[q[2]], pc[q[3]]};
-            const half_v4 ph = {pphi[q[0]], pphi[q[1]], pphi[q[2]], pphi[q[3]]};
-            half_step4(a, xi, xj, yj, zj, c, ph, mask, stress);
+            half_step4(a, xi, xj, yj, zj, c, mask, stress);
         }
         memcpy(acc, a, sizeof acc);
         half_group_finish(h, i, plain, stress, acc);
@@ -287,6 +286,27 @@ MACRO_CLONES static bool half_bounded(const double *const *x, size_t n)
     return ok && (in[0] & in[1] & in[2] & in[3]);
 }
 #endif
+
+double macro_half_epot(const struct model *m, size_t i)
+{
+    /* pass 2's energy sum: from +0, each slot's 0.5 phi in list order (its
+     * groups added +0 for the steps after a row's end and its single rows
+     * skipped pairs of +-0: neither changes a sum that starts at +0) */
+    const size_t *off = m->nl->offset;
+    double e = 0.0;
+    for (size_t s = off[i]; s < off[i + 1]; s++)
+        e += m->pphi[m->pid[s]];
+    return e;
+}
+
+void macro_half_epot_sync(struct model *m)
+{
+    const size_t n = m->epot_lazy;
+#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
+    for (size_t i = 0; i < n; i++)
+        m->epot[i] = macro_half_epot(m, i);
+    m->epot_lazy = 0;
+}
 
 bool macro_half_bounded(double *const *x, size_t i0, size_t i1)
 {
@@ -365,7 +385,7 @@ void macro_half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
 #endif
         double sum[HALF_SUMS];
         half_row_sums(h, i, sum);
-        half_row_finish(h, i, sum, true);
+        half_row_finish(h, i, sum, true, true);
         i++;
     }
 }
