@@ -87,9 +87,12 @@ static inline void macro_mie(const struct macro_pair *w, double r, double *phi, 
 #define MACRO_PAIR_INLINE static inline
 #endif
 
-/** Pairs per chunk of the pair loop (macro_forces.c): the chunk's arrays
- *  stay in L1. */
-#define MACRO_CHUNK 64
+/** Most pairs a chunk of the pair loops (macro_forces.c: a row's slots,
+ *  macro_half.c: consecutive pairs): the once-per-pair loop's arrays of a
+ *  chunk (3 x 2 kB) stay in L1; 256 rather than 64 pairs a call spread the
+ *  kernels' set-up over more pairs (1.1e6 instructions a step fewer on the
+ *  race deck of bench/macro_vs_lammps.sh, docs/performance.md). */
+#define MACRO_CHUNK 256
 
 /** out[k] = s[k]^n for k < nb, n >= 1, by the multiplications of macro_ipow
  *  in the same order (the same bits), with n the same for every k so that
