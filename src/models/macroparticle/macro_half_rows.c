@@ -16,6 +16,9 @@
  * and never become -0 in round-to-nearest), without an end test.  (The
  * positions and pair values of a step by AVX2 gathers instead of element
  * loads: as many cycles on the machines measured, docs/performance.md.)
+ * The groups sum the force, and the virial only on the steps whose stress
+ * something reads (sim.stress_skip); the energy is left to its readers
+ * (macro_half_epot: the same sum from the pair values pass 1 stored).
  */
 #include "models/macroparticle/macro_half.h"
 
