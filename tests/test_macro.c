@@ -135,6 +135,55 @@ static void test_mie_chunk_bitwise(void **state)
     }
 }
 
+/* The pair values of the once-per-pair loop (macro_mie_pairs: energy and
+ * force in one loop for the written-out exponents, the switch's pairs made
+ * again) are macro_mie's, halved and divided, bit for bit, on each path, at
+ * distances below the switch, inside it and beyond the cut-off, and +0 both
+ * for the pairs that do not count (beyond the list radius, coincident,
+ * elastic distance at or beyond r_c or not positive). */
+static void test_mie_pairs_bitwise(void **state)
+{
+    (void)state;
+    const double r0 = 6.187e-4;
+    for (int variant = 0; variant < 4; variant++) {
+        static const double ex[4][2] = {{4, 9}, {6, 12}, {4, 10}, {4.5, 9.25}};
+        const bool whole = variant < 3;
+        struct macro_pair v = {.D = 0.914277, .p = ex[variant][0], .q = ex[variant][1],
+                               .r0 = r0, .r_on = 1.2 * r0, .r_c = 1.35 * r0, .e_y = INFINITY,
+                               .ip = whole ? (int)ex[variant][0] : 0,
+                               .iq = whole ? (int)ex[variant][1] : 0};
+        const size_t nb = MACRO_CHUNK - 1;
+        const double rlist2 = (1.45 * r0) * (1.45 * r0);
+        double r2[MACRO_CHUNK], rd[MACRO_CHUNK], re[MACRO_CHUNK], ph[MACRO_CHUNK],
+            c[MACRO_CHUNK];
+        int tapered = 0, out = 0;
+        for (size_t k = 0; k < nb; k++) {
+            rd[k] = r0 * (0.85 + 0.7 * (double)k / (double)nb); /* to 1.55 r0 */
+            r2[k] = rd[k] * rd[k];
+            re[k] = k % 5 == 3 ? rd[k] - 0.01 * r0 : rd[k]; /* a plastic offset */
+            tapered += re[k] > v.r_on && re[k] < v.r_c;
+        }
+        r2[7] = 0.0;        /* coincident */
+        re[11] = -1e-9;     /* elastic distance not positive */
+        re[13] = v.r_c;     /* at the cut-off */
+        assert_true(tapered > 5);
+        macro_mie_pairs(&v, nb, r2, rd, re, rlist2, ph, c);
+        for (size_t k = 0; k < nb; k++) {
+            double e, f, pe = 0.0, pc = 0.0;
+            macro_mie(&v, re[k], &e, &f);
+            if (r2[k] < rlist2 && r2[k] != 0.0 && re[k] < v.r_c && re[k] > 0.0) {
+                pe = 0.5 * e;
+                pc = -f / rd[k];
+            } else {
+                out++;
+            }
+            assert_memory_equal(&pe, &ph[k], sizeof pe);
+            assert_memory_equal(&pc, &c[k], sizeof pc);
+        }
+        assert_true(out > 5);
+    }
+}
+
 static void test_gauss(void **state)
 {
     (void)state;
@@ -271,6 +320,7 @@ int main(void)
         cmocka_unit_test(test_calibration),
         cmocka_unit_test(test_mie_kernel),
         cmocka_unit_test(test_mie_chunk_bitwise),
+        cmocka_unit_test(test_mie_pairs_bitwise),
         cmocka_unit_test(test_gauss),
         cmocka_unit_test(test_threads_bitwise),
         cmocka_unit_test(test_deck_errors),

@@ -152,6 +152,11 @@ struct sim {
                                   never; the kinetic energy alone is checked every
                                   step; the run driver: its history interval) */
     struct energy_account energy;
+    bool stress_skip;     /**< nothing reads the model's per-particle stress (virial)
+                               after the coming step: a model may leave it as it was
+                               (as LAMMPS forms its virial only on the steps that
+                               output it).  Set by the run driver (io/run.c) before
+                               each step; false (computed every step) otherwise */
     double *v_half[3];    /**< predictor-corrector scratch (owned) */
     double *drift_save;   /**< positions of velocity-BC members over the fused kick
                                and drift (core/integrator.c) */

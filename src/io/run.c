@@ -172,6 +172,29 @@ static void history_values(const struct sim *s, const struct history_layout *h, 
         v[c++] = 0.0;
 }
 
+/* Whether an output of this loop may read the model's stress after the
+ * coming step (sim.stress_skip is its negation): a history row, a frame, the
+ * last step, or any step of a run that writes checkpoints (their times are
+ * not all known in advance).  Predicted with the step's own length and
+ * landing (sim_step_length: the step takes the same), so a step that is
+ * read is never skipped; the last step is counted before a split can move
+ * it.  A checkpoint on a signal between outputs may save an older stress:
+ * nothing reads it before the next force call forms it again. */
+static bool stress_read_after_step(const struct sim *s, const struct run_output *ro,
+                                   long hist_every, double next_frame_t, bool ckpt)
+{
+    const long k = s->step + 1;
+    if (ckpt || s->adaptive_dt || k % hist_every == 0 || k >= s->n_steps + s->n_split)
+        return true;
+    if (ro->field_interval > 0.0) {
+        double landing;
+        const double h = sim_step_length(s, &landing);
+        const double t = isnan(landing) ? s->t + h : landing;
+        return t >= next_frame_t - 1e-12 * ro->field_interval;
+    }
+    return ro->field_every > 0 && k % ro->field_every == 0;
+}
+
 static void write_log_header(FILE *log, const struct spall_run_options *opt, const struct deck *d,
                              const struct sim *s, const struct run_output *ro)
 {
@@ -319,6 +342,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
     run_signals_install();
     while (!sim_done(s)) {
         s->stop_time = ro.field_interval > 0.0 ? next_frame_t : 0.0; /* frames land on time */
+        s->stress_skip = !stress_read_after_step(s, &ro, hist_every, next_frame_t, ck.opt.on);
         rc = sim_step(s, err);
         if (rc)
             break;
@@ -358,6 +382,7 @@ int spall_run(const struct spall_run_options *opt, struct spall_run_result *res,
             break;
     }
     run_signals_restore();
+    s->stress_skip = false; /* the loop's outputs are written */
     double wall = omp_get_wtime() - t0;
     progress_finish(&pr);
     res->steps = s->step;

@@ -183,6 +183,7 @@ void macro_adopt_pairs(struct model *m, struct neighbor_list *nl, int64_t *pgid,
                        double *kappa, uint8_t *engaged)
 {
     macro_par_release(m); /* a list lent to a migration probe is not kept */
+    macro_half_epot_sync(m); /* from the old list's pair values */
     macro_half_invalidate(m, NULL);
     neighbor_list_destroy(&m->nl);
     free(m->pgid);
@@ -283,6 +284,9 @@ MACRO_CLONES static void macro_chunk_pair(const struct macro_pair *w, size_t nb,
 
 int macro_compute_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
+    /* this call makes the pair values and energies anew (none is read in
+     * between): a list rebuilt now need not write the last call's first */
+    m->epot_lazy = 0;
     int rc = macro_neighbors_update(m, sim, false, err);
     if (rc)
         return rc;

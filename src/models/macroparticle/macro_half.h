@@ -28,6 +28,9 @@ struct half_ctx {
     size_t n;
     bool plastic;
     bool bounded; /**< 3D: every position (owned and ghost) within +-1e300 */
+    bool stress;  /**< form the virial (m->sig): false when nothing reads it after
+                       this step (sim.stress_skip); the groups of pass 2 then
+                       leave it as it was */
     double mu, sp, g, sg, dt, rlist2;
     uint64_t seed, step;
 };

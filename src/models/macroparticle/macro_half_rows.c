@@ -16,6 +16,9 @@
  * and never become -0 in round-to-nearest), without an end test.  (The
  * positions and pair values of a step by AVX2 gathers instead of element
  * loads: as many cycles on the machines measured, docs/performance.md.)
+ * The groups sum the force, and the virial only on the steps whose stress
+ * something reads (sim.stress_skip); the energy is left to its readers
+ * (macro_half_epot: the same sum from the pair values pass 1 stored).
  */
 #include "models/macroparticle/macro_half.h"
 
@@ -96,9 +99,11 @@ static inline void half_row_sums(const struct half_ctx *h, size_t i, double out[
  * force and plastic work (f += sum + 0, wdiss += 0 - (0 v) dt: kept, they
  * are not no-ops for -0 and non-finite values), so the same bits, with
  * vector loads and stores of the consecutive rows (about 100 instructions
- * a row less than four calls of half_row_finish). */
+ * a row less than four calls of half_row_finish); the energy is left to
+ * macro_half_epot (m->epot_lazy). */
 __attribute__((always_inline)) static inline void half_finish4(const struct half_ctx *h, size_t i,
-                                                               const half_v4 acc[HALF_SUMS])
+                                                               const half_v4 acc[HALF_SUMS],
+                                                               bool stress)
 {
     struct model *m = h->m;
     const half_v4 z = {0, 0, 0, 0};
@@ -110,10 +115,10 @@ __attribute__((always_inline)) static inline void half_finish4(const struct half
         memcpy(&t, h->v[d] + i, sizeof t);
         pw += z * t;
     }
-    memcpy(m->epot + i, &acc[3], sizeof acc[3]);
-    for (int l = 0; l < 4; l++)
-        for (int k = 0; k < 6; k++)
-            m->sig[6 * (i + (size_t)l) + (size_t)k] = acc[4 + k][l];
+    if (stress)
+        for (int l = 0; l < 4; l++)
+            for (int k = 0; k < 6; k++)
+                m->sig[6 * (i + (size_t)l) + (size_t)k] = acc[4 + k][l];
     memcpy(&t, m->wdiss + i, sizeof t);
     t += z - pw * h->dt;
     memcpy(m->wdiss + i, &t, sizeof t);
@@ -121,9 +126,10 @@ __attribute__((always_inline)) static inline void half_finish4(const struct half
 #endif
 
 /* Row i's outputs from its sums: plastic work and Langevin forces (in list
- * order), force, energy, virial, dissipation. */
+ * order), force, energy (when @p energy), virial (when @p stress),
+ * dissipation. */
 static inline void half_row_finish(const struct half_ctx *h, size_t i,
-                                   const double sum[HALF_SUMS])
+                                   const double sum[HALF_SUMS], bool energy, bool stress)
 {
     struct model *m = h->m;
     const struct neighbor_list *nl = h->nl;
@@ -155,24 +161,25 @@ static inline void half_row_finish(const struct half_ctx *h, size_t i,
         h->f[d][i] += sum[d] + fl[d];
         pw += fl[d] * vi[d];
     }
-    m->epot[i] = sum[3];
-    for (int k = 0; k < 6; k++)
-        m->sig[6 * i + k] = sum[4 + k];
+    if (energy)
+        m->epot[i] = sum[3];
+    if (stress)
+        for (int k = 0; k < 6; k++)
+            m->sig[6 * i + k] = sum[4 + k];
     m->wdiss[i] += wplast - pw * h->dt;
 }
 
 #if defined(__GNUC__)
 /* Step k of a group: the four lanes' partner positions xj, yj, zj and pair
- * values c, ph (0.5 phi) added to the ten sums (the operations of
- * half_row_sums in its order).  c = +-0: the force and virial terms are +-0,
+ * values c added to the force sums and, with @p stress, the virial's (the
+ * operations of half_row_sums in its order; the energy sum is left to
+ * macro_half_epot, which adds the same values in the same order).  c = +-0: the force and virial terms are +-0,
  * which change no sum (they start at +0 and never become -0); @p mask: dx
  * is then replaced by +0, for the run whose positions may be huge or not
- * finite (x_j - x_i infinite or NaN, where 0 dx would not be 0); ph is +0
- * where the pair does not count (pass 1) and for a row that has ended (the
- * zero pair). */
+ * finite (x_j - x_i infinite or NaN, where 0 dx would not be 0). */
 __attribute__((always_inline)) static inline void
 half_step4(half_v4 acc[HALF_SUMS], const half_v4 xi[3], half_v4 xj, half_v4 yj, half_v4 zj,
-           half_v4 c, half_v4 ph, bool mask)
+           half_v4 c, bool mask, bool stress)
 {
     half_v4 dx = xj - xi[0], dy = yj - xi[1], dz = zj - xi[2];
     if (mask) {
@@ -181,11 +188,12 @@ half_step4(half_v4 acc[HALF_SUMS], const half_v4 xi[3], half_v4 xj, half_v4 yj, 
         dy = (half_v4)((half_m4)dy & ok);
         dz = (half_v4)((half_m4)dz & ok);
     }
-    const half_v4 hc = 0.5 * c;
     acc[0] += c * dx;
     acc[1] += c * dy;
     acc[2] += c * dz;
-    acc[3] += ph;
+    if (!stress)
+        return; /* the force sums do not depend on the virial's */
+    const half_v4 hc = 0.5 * c;
     acc[4] += hc * dx * dx;
     acc[5] += hc * dy * dy;
     acc[6] += hc * dz * dz;
@@ -197,17 +205,18 @@ half_step4(half_v4 acc[HALF_SUMS], const half_v4 xi[3], half_v4 xj, half_v4 yj, 
 /* The group's rows i .. i + 3 from their sums: the vector finish of a
  * plain run, else each row's own. */
 __attribute__((always_inline)) static inline void
-half_group_finish(const struct half_ctx *h, size_t i, bool plain, const half_v4 acc[HALF_SUMS])
+half_group_finish(const struct half_ctx *h, size_t i, bool plain, bool stress,
+                  const half_v4 acc[HALF_SUMS])
 {
     if (plain) {
-        half_finish4(h, i, acc);
+        half_finish4(h, i, acc, stress);
         return;
     }
     for (size_t l = 0; l < 4; l++) {
         double sum[HALF_SUMS];
         for (int k = 0; k < HALF_SUMS; k++)
-            sum[k] = acc[k][l];
-        half_row_finish(h, i + l, sum);
+            sum[k] = stress || k < 3 ? acc[k][l] : 0.0;
+        half_row_finish(h, i + l, sum, false, stress);
     }
 }
 
@@ -215,10 +224,11 @@ half_group_finish(const struct half_ctx *h, size_t i, bool plain, const half_v4 
  * vectors, their positions and values element by element (AVX2 gathers
  * instead: as many cycles or more on the machine measured). */
 __attribute__((always_inline)) static inline void
-half_groups_k(const struct half_ctx *h, size_t g0, size_t g1, bool plain, bool mask)
+half_groups_k(const struct half_ctx *h, size_t g0, size_t g1, bool plain, bool mask,
+              bool stress)
 {
     const struct model *m = h->m;
-    const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2], *pc = m->pc, *pphi = m->pphi;
+    const double *x0 = h->x[0], *x1 = h->x[1], *x2 = h->x[2], *pc = m->pc;
     for (size_t g = g0; g < g1; g++) {
         const size_t i = 4 * g;
         /* the running sums in a local array that nothing else sees, so that
@@ -235,23 +245,28 @@ half_groups_k(const struct half_ctx *h, size_t g0, size_t g1, bool plain, bool m
             const half_v4 yj = {x1[j[0]], x1[j[1]], x1[j[2]], x1[j[3]]};
             const half_v4 zj = {x2[j[0]], x2[j[1]], x2[j[2]], x2[j[3]]};
             const half_v4 c = {pc[q[0]], pc[q[1]], pc[q[2]], pc[q[3]]};
-            const half_v4 ph = {pphi[q[0]], pphi[q[1]], pphi[q[2]], pphi[q[3]]};
-            half_step4(a, xi, xj, yj, zj, c, ph, mask);
+            half_step4(a, xi, xj, yj, zj, c, mask, stress);
         }
         memcpy(acc, a, sizeof acc);
-        half_group_finish(h, i, plain, acc);
+        half_group_finish(h, i, plain, stress, acc);
     }
 }
 
 /* ... with the mask of dx only where a position is huge or not finite
- * (@p bounded false): four vector operations a step fewer. */
+ * (@p bounded false): four vector operations a step fewer; without the
+ * virial's six sums on the steps whose stress nothing reads (@p stress
+ * false): 13 vector operations a step fewer and no spilled sums. */
 MACRO_CLONES static void half_groups(const struct half_ctx *h, size_t g0, size_t g1, bool plain,
-                                     bool bounded)
+                                     bool bounded, bool stress)
 {
-    if (bounded)
-        half_groups_k(h, g0, g1, plain, false);
+    if (bounded && stress)
+        half_groups_k(h, g0, g1, plain, false, true);
+    else if (bounded)
+        half_groups_k(h, g0, g1, plain, false, false);
+    else if (stress)
+        half_groups_k(h, g0, g1, plain, true, true);
     else
-        half_groups_k(h, g0, g1, plain, true);
+        half_groups_k(h, g0, g1, plain, true, false);
 }
 
 /* Whether every coordinate of the n particles is within +-1e300: then every
@@ -274,6 +289,27 @@ MACRO_CLONES static bool half_bounded(const double *const *x, size_t n)
     return ok && (in[0] & in[1] & in[2] & in[3]);
 }
 #endif
+
+double macro_half_epot(const struct model *m, size_t i)
+{
+    /* pass 2's energy sum: from +0, each slot's 0.5 phi in list order (its
+     * groups added +0 for the steps after a row's end and its single rows
+     * skipped pairs of +-0: neither changes a sum that starts at +0) */
+    const size_t *off = m->nl->offset;
+    double e = 0.0;
+    for (size_t s = off[i]; s < off[i + 1]; s++)
+        e += m->pphi[m->pid[s]];
+    return e;
+}
+
+void macro_half_epot_sync(struct model *m)
+{
+    const size_t n = m->epot_lazy;
+#pragma omp parallel for schedule(static) if (n >= MACRO_OMP_MIN)
+    for (size_t i = 0; i < n; i++)
+        m->epot[i] = macro_half_epot(m, i);
+    m->epot_lazy = 0;
+}
 
 bool macro_half_bounded(double *const *x, size_t i0, size_t i1)
 {
@@ -345,14 +381,14 @@ void macro_half_pass2(const struct half_ctx *h, size_t i0, size_t i1)
         /* the whole groups from i on */
         const size_t ge = (i1 < h->n - h->n % 4 ? i1 : h->n - h->n % 4) / 4;
         if (h->dim == 3 && h->m->goff && i % 4 == 0 && i / 4 < ge) {
-            half_groups(h, i / 4, ge, plain, h->bounded);
+            half_groups(h, i / 4, ge, plain, h->bounded, h->stress);
             i = 4 * ge;
             continue;
         }
 #endif
         double sum[HALF_SUMS];
         half_row_sums(h, i, sum);
-        half_row_finish(h, i, sum);
+        half_row_finish(h, i, sum, true, true);
         i++;
     }
 }

@@ -98,7 +98,14 @@ struct model {
     double *pfl;           /**< 3 per pair: pairwise Langevin force on hpi (pairwise damping) */
     size_t n_builds;
     /* per-particle outputs of the last force evaluation */
-    double *epot;          /**< J */
+    double *epot;          /**< J (rows below epot_lazy: not written, see there) */
+    size_t epot_lazy;      /**< the once-per-pair loop in 3D left epot of its owned rows
+                                [0, epot_lazy) unwritten (0: none): row i's energy is
+                                macro_half_epot (its pairs' 0.5 phi summed over its slots
+                                in list order, as pass 2 summed them: the same bits)
+                                until the next force call; macro_half_epot_sync writes
+                                them before the list or the particles' layout changes
+                                and before a checkpoint */
     double *sig;           /**< 6 per particle: virial xx yy zz xy yz xz (times volume) */
     double *wdiss;         /**< per particle dissipated energy [J] (Langevin + plastic) */
     /* strain gauge */
@@ -161,6 +168,17 @@ void macro_half_free(struct model *m);
 /** The list changed: the pair loop's arrays are made again at the next call
  *  (from @p pairs, the new list's table, when not NULL: taken over). */
 void macro_half_invalidate(struct model *m, struct neighbor_pairs *pairs);
+/** Owned row i's strain energy from the last force call's pair values
+ *  (macro_half_rows.c). */
+double macro_half_epot(const struct model *m, size_t i);
+/** epot of the rows [0, m->epot_lazy) written (macro_half_epot), then
+ *  epot_lazy = 0. */
+void macro_half_epot_sync(struct model *m);
+/** Owned particle i's strain energy of the last force call. */
+static inline double macro_epot(const struct model *m, size_t i)
+{
+    return i < m->epot_lazy ? macro_half_epot(m, i) : m->epot[i];
+}
 
 /** The plastic update of one pair slot (Eq. 16, see macro_forces.c) at
  *  distance @p r; returns the elastic distance r - dr0 and adds the half of

@@ -401,7 +401,8 @@ static void field_stress(const void *ctx, size_t n, double *out)
 static void field_energy(const void *ctx, size_t n, double *out)
 {
     const struct model *m = ctx;
-    memcpy(out, m->epot, n * sizeof(double));
+    for (size_t i = 0; i < n; i++)
+        out[i] = macro_epot(m, i);
 }
 
 static void field_slip(const void *ctx, size_t n, double *out)
@@ -521,7 +522,7 @@ static void macro_energy_fn(const struct model *m, const struct sim *sim,
     xsum_init(&acc[0]);
     xsum_init(&acc[1]);
     for (size_t i = 0; i < sim->p->n_owned; i++) {
-        xsum_add(&acc[0], m->epot[i]);
+        xsum_add(&acc[0], macro_epot(m, i));
         xsum_add(&acc[1], m->wdiss[i]);
     }
     double ew[2];

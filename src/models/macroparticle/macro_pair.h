@@ -12,6 +12,7 @@
 
 #include <Random123/philox.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -86,9 +87,12 @@ static inline void macro_mie(const struct macro_pair *w, double r, double *phi, 
 #define MACRO_PAIR_INLINE static inline
 #endif
 
-/** Pairs per chunk of the pair loop (macro_forces.c): the chunk's arrays
- *  stay in L1. */
-#define MACRO_CHUNK 64
+/** Most pairs a chunk of the pair loops (macro_forces.c: a row's slots,
+ *  macro_half.c: consecutive pairs): the once-per-pair loop's arrays of a
+ *  chunk (3 x 2 kB) stay in L1; 256 rather than 64 pairs a call spread the
+ *  kernels' set-up over more pairs (1.1e6 instructions a step fewer on the
+ *  race deck of bench/macro_vs_lammps.sh, docs/performance.md). */
+#define MACRO_CHUNK 256
 
 /** out[k] = s[k]^n for k < nb, n >= 1, by the multiplications of macro_ipow
  *  in the same order (the same bits), with n the same for every k so that
@@ -112,6 +116,28 @@ static inline void macro_ipow_chunk(size_t nb, const double *restrict s, int n,
     }
 }
 
+/** One distance of the exponents written out, 4-9 (@p lj false) or 6-12
+ *  (@p lj true): macro_mie's energy and force without the switch, with
+ *  macro_ipow's multiplications in its order (its first r = 1.0 * b is
+ *  exact and left out), so the same bits.  GCC unrolls macro_ipow's loop
+ *  only after the vectoriser has run, which would leave the chunk loops
+ *  below scalar. */
+MACRO_PAIR_INLINE void macro_mie_lane(double r0, double a, double p, double q, bool lj, double r,
+                                      double *phi, double *fr)
+{
+    const double sk = r0 / r, s2 = sk * sk, s4 = s2 * s2, s8 = s4 * s4;
+    const double spk = lj ? s2 * s4 : s4, sqk = lj ? s4 * s8 : sk * s8;
+    *phi = a * (p * sqk - q * spk);
+    *fr = a * p * q * (sqk - spk) / r;
+}
+
+/** 1: exponents 4-9 ([Saitoh]'s aluminium, every shipped material), 2: 6-12
+ *  (Lennard-Jones), written out by macro_mie_lane; 0: others. */
+static inline int macro_mie_fixed(const struct macro_pair *w)
+{
+    return w->ip == 4 && w->iq == 9 ? 1 : w->ip == 6 && w->iq == 12 ? 2 : 0;
+}
+
 /** macro_mie for nb <= MACRO_CHUNK distances r[k] in (0, r_c): energy
  *  phi[k] and force fr[k], bit for bit those of macro_mie (the same
  *  operations in the same order; the taper, rare in a crystal, in a scalar
@@ -124,23 +150,12 @@ MACRO_PAIR_INLINE void macro_mie_chunk(const struct macro_pair *w, size_t nb,
     double s[MACRO_CHUNK], sp[MACRO_CHUNK], sq[MACRO_CHUNK];
     const double r0 = w->r0, p = w->p, q = w->q, r_on = w->r_on, r_c = w->r_c;
     const double a = w->D / (q - p);
-    /* One loop with the powers in registers for exponents known here,
-     * written out as macro_ipow's multiplications in its order (its first
-     * r = 1.0 * b is exact and left out): GCC unrolls macro_ipow's loop
-     * only after the vectoriser has run, which left this loop scalar; other
-     * integer exponents power array by array, non-integer ones call pow(). */
-#define MACRO_MIE_FIXED(SP, SQ)                                                                 \
-    for (size_t k = 0; k < nb; k++) {                                                           \
-        const double sk = r0 / r[k], s2 = sk * sk, s4 = s2 * s2, s8 = s4 * s4;                  \
-        const double spk = SP, sqk = SQ;                                                        \
-        (void)s8;                                                                               \
-        phi[k] = a * (p * sqk - q * spk);                                                       \
-        fr[k] = a * p * q * (sqk - spk) / r[k];                                                 \
-    }
-    if (w->ip == 4 && w->iq == 9) { /* [Saitoh]'s aluminium, every shipped material */
-        MACRO_MIE_FIXED(s4, sk * s8)
-    } else if (w->ip == 6 && w->iq == 12) { /* Lennard-Jones */
-        MACRO_MIE_FIXED(s2 * s4, s4 * s8)
+    const int fixed = macro_mie_fixed(w);
+    /* exponents known here: one loop with the powers in registers; other
+     * integer exponents power array by array, non-integer ones call pow() */
+    if (fixed) {
+        for (size_t k = 0; k < nb; k++)
+            macro_mie_lane(r0, a, p, q, fixed == 2, r[k], &phi[k], &fr[k]);
     } else {
         for (size_t k = 0; k < nb; k++)
             s[k] = r0 / r[k];
@@ -158,7 +173,6 @@ MACRO_PAIR_INLINE void macro_mie_chunk(const struct macro_pair *w, size_t nb,
             fr[k] = a * p * q * (sq[k] - sp[k]) / r[k];
         }
     }
-#undef MACRO_MIE_FIXED
     /* the switch, for the few pairs in [r_on, r_c): a branch-free test of
      * the chunk first (vectorised), the scalar loop only when one is there */
     int any = 0;
@@ -168,6 +182,61 @@ MACRO_PAIR_INLINE void macro_mie_chunk(const struct macro_pair *w, size_t nb,
         for (size_t k = 0; k < nb; k++)
             if (r[k] > r_on && r[k] < r_c)
                 macro_taper(w, r[k], &phi[k], &fr[k]);
+}
+
+/** A pair's values in the once-per-pair loop (macro_half.c) from its energy
+ *  e and force f at the elastic distance re, the distance rd and its square
+ *  r2: half the energy *ph = 0.5 e (pass 2 adds it as the full loop adds
+ *  0.5 phi, the same product) and *c = -f/rd, both +0 where the pair does
+ *  not count (the full loop's tests, without short circuits for the
+ *  vectoriser; NaN distances count; masks by bits, not a branch the
+ *  vectoriser would have to keep around the division). */
+MACRO_PAIR_INLINE void macro_pair_values(double r2, double rd, double re, double rlist2,
+                                         double r_c, double e, double f, double *ph, double *c)
+{
+    const uint64_t ok = (uint64_t)(!(r2 >= rlist2) & (r2 != 0.0) & !(re >= r_c) & !(re <= 0.0));
+    union { double d; uint64_t u; } ck = {.d = -f / rd}, pk = {.d = 0.5 * e};
+    ck.u &= -ok;
+    pk.u &= -ok;
+    *c = ck.d;
+    *ph = pk.d;
+}
+
+/** macro_pair_values of nb <= MACRO_CHUNK pairs at distances rd[k] (squared
+ *  r2[k]) and elastic distances re[k], with macro_mie's e and f at re[k]
+ *  (the same bits as macro_mie_chunk's): for the written-out exponents in
+ *  one loop, the pairs in [r_on, r_c) then made again with the switch
+ *  (macro_mie, scalar: rare in a crystal); for the others after
+ *  macro_mie_chunk. */
+MACRO_PAIR_INLINE void macro_mie_pairs(const struct macro_pair *w, size_t nb,
+                                       const double *restrict r2, const double *restrict rd,
+                                       const double *restrict re, double rlist2,
+                                       double *restrict ph, double *restrict c)
+{
+    const double r_on = w->r_on, r_c = w->r_c;
+    const int fixed = macro_mie_fixed(w);
+    if (!fixed) {
+        double fk[MACRO_CHUNK];
+        macro_mie_chunk(w, nb, re, ph, fk);
+        for (size_t k = 0; k < nb; k++)
+            macro_pair_values(r2[k], rd[k], re[k], rlist2, r_c, ph[k], fk[k], &ph[k], &c[k]);
+        return;
+    }
+    const double r0 = w->r0, p = w->p, q = w->q, a = w->D / (q - p);
+    int any = 0;
+    for (size_t k = 0; k < nb; k++) {
+        double e, f;
+        macro_mie_lane(r0, a, p, q, fixed == 2, re[k], &e, &f);
+        any |= (re[k] > r_on) & (re[k] < r_c);
+        macro_pair_values(r2[k], rd[k], re[k], rlist2, r_c, e, f, &ph[k], &c[k]);
+    }
+    if (any)
+        for (size_t k = 0; k < nb; k++)
+            if (re[k] > r_on && re[k] < r_c) {
+                double e, f;
+                macro_mie(w, re[k], &e, &f);
+                macro_pair_values(r2[k], rd[k], re[k], rlist2, r_c, e, f, &ph[k], &c[k]);
+            }
 }
 
 /** Three standard normal numbers for key (seed, step, a, b), from the

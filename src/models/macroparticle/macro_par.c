@@ -61,6 +61,7 @@ int macro_localize(struct model *m, struct sim *sim, const size_t *keep, size_t 
 {
     if (!keep)
         return SPALL_OK;
+    macro_half_epot_sync(m); /* epot is renumbered below */
     const struct particles *p = sim->p;
     const struct neighbor_list *ol = m->nl;
     /* the owned rows, state keyed by the partner's gid (the list is rebuilt
@@ -175,6 +176,7 @@ int macro_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spa
 {
     if (!m->nl)
         return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle list not built");
+    macro_half_epot_sync(m); /* epot travels with the particles */
     adopt_migrated(m);
     macro_par_release(m);
     /* the partner list as a bond list (a zero state per pair): a migrant

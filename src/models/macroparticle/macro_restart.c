@@ -79,6 +79,7 @@ int macro_register_state(struct model *m, struct sim *sim, struct field_state *f
                          struct spall_error *err)
 {
     _Static_assert(sizeof(size_t) == 8 && sizeof(long) == 8, "counters are saved as int64");
+    macro_half_epot_sync(m); /* the checkpoint saves epot */
     const size_t n = sim->p->n, no = sim->p->n_owned;
     if (!m->nl || m->nl->n != n || (sim->par && !m->pgid))
         return spall_error_set(err, SPALL_ERR_INTERNAL, "macro-particle list not built");
