@@ -1,0 +1,291 @@
+/**
+ * @file test_pd_lps_pals.c
+ * @brief The position-aware LPS (model.surface_correction: position_aware,
+ *        src/models/peridynamics/pd_lps_pals.c, [Mitchell2015]): on a small
+ *        3D block and 2D plates, at EVERY particle (corners and edges too)
+ *        the discrete dilatation of a homogeneous strain is tr eps and the
+ *        deviatoric energy mu eps^d : eps^d, for random strains with shears;
+ *        each particle's stress of a homogeneous strain is the continuum's
+ *        (where the default LPS misses by percents at the corners); the
+ *        forces are minus the gradient of the energy; eps and pmb refuse it.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "core/fields.h"
+#include "core/model.h"
+#include "models/peridynamics/pd.h"
+#include "tests/test_support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const BODIES[] = {
+    /* 3D block: 7^3 particles, 8 corners whose families are one octant */
+    "lattice: {type: sc, spacing: 1.0e-3}\n"
+    "body: {geometry: {box: {min: [0, 0, 0], max: [0.0065, 0.0065, 0.0065]}}, material: m}\n",
+    /* 2D plates, plane stress (triangular) and plane strain (square) */
+    "lattice: {type: triangular, spacing: 1.0e-3, thickness: 1.0e-3}\n"
+    "body: {geometry: {box: {min: [0, 0], max: [0.0095, 0.0075]}}, material: m}\n",
+    "lattice: {type: square, spacing: 1.0e-3, thickness: 1.0e-3}\n"
+    "body: {geometry: {box: {min: [0, 0], max: [0.0085, 0.0065]}}, material: m}\n",
+};
+static const char *const PLANE[] = {"", "", ", plane: plane_strain"};
+
+static struct sim *build_body(int b, const char *corr, double nu)
+{
+    char deck[2048];
+    snprintf(deck, sizeof deck,
+             "model: {type: peridynamics, formulation: lps, surface_correction: %s%s}\n"
+             "materials: {m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: %g}}\n"
+             "%srun: {end_time: 1.0}\n",
+             corr, PLANE[b], nu, BODIES[b]);
+    return test_build_ok(deck);
+}
+
+/* deterministic uniform numbers in [-1, 1] */
+static double rnd(uint64_t *st)
+{
+    *st = *st * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*st >> 11) / (double)(1ULL << 52) - 1.0;
+}
+
+static void random_strain(int dim, uint64_t *st, double amp, double eps[3][3])
+{
+    memset(eps, 0, 9 * sizeof(double));
+    for (int a = 0; a < dim; a++)
+        for (int b = a; b < dim; b++)
+            eps[a][b] = eps[b][a] = amp * rnd(st);
+}
+
+/* The two identities at every particle from the influences the model holds
+ * (pd_lps_pals_half), |xi| e = xi . eps . xi of a homogeneous strain. */
+static void test_identities_every_particle(void **state)
+{
+    (void)state;
+    uint64_t st = 12345;
+    for (int b = 0; b < 3; b++)
+        for (int k = 0; k < 3; k++) {
+            const double nu = k == 0 ? 0.1 : k == 1 ? 0.3 : 0.45;
+            struct sim *s = build_body(b, "position_aware", nu);
+            const struct particles *p = s->p;
+            const struct bond_list *bl = pd_bonds(s->model);
+            const int dim = s->dim;
+            const double mu = pd_material_get(s->model, 0)->mu;
+            double worst_th = 0.0, worst_w = 0.0;
+            for (int t = 0; t < 3; t++) {
+                double eps[3][3];
+                random_strain(dim, &st, 1.0, eps);
+                double tr = 0.0, ed[3][3], dd = 0.0;
+                for (int a = 0; a < dim; a++)
+                    tr += eps[a][a];
+                for (int a = 0; a < dim; a++)
+                    for (int c = 0; c < dim; c++) {
+                        ed[a][c] = eps[a][c] - (a == c ? tr / dim : 0.0);
+                        dd += ed[a][c] * ed[a][c];
+                    }
+                for (size_t i = 0; i < p->n; i++) {
+                    double th = 0.0, wd = 0.0, om, sg;
+                    for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++) {
+                        const size_t j = (size_t)bl->partner[q];
+                        double xi[3] = {0, 0, 0}, x2 = 0.0, xex = 0.0;
+                        for (int a = 0; a < dim; a++) {
+                            xi[a] = p->x0[a][j] - p->x0[a][i];
+                            x2 += xi[a] * xi[a];
+                        }
+                        for (int a = 0; a < dim; a++)
+                            for (int c = 0; c < dim; c++)
+                                xex += xi[a] * eps[a][c] * xi[c];
+                        assert_true(pd_lps_pals_half(s->model, q, &om, &sg));
+                        th += om * xex * p->volume[j];
+                    }
+                    for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++) {
+                        const size_t j = (size_t)bl->partner[q];
+                        double xi[3] = {0, 0, 0}, x2 = 0.0, xex = 0.0;
+                        for (int a = 0; a < dim; a++) {
+                            xi[a] = p->x0[a][j] - p->x0[a][i];
+                            x2 += xi[a] * xi[a];
+                        }
+                        for (int a = 0; a < dim; a++)
+                            for (int c = 0; c < dim; c++)
+                                xex += xi[a] * eps[a][c] * xi[c];
+                        pd_lps_pals_half(s->model, q, &om, &sg);
+                        /* e^d = e - theta |xi| / d with the discrete theta */
+                        const double e = xex / sqrt(x2), edv = e - th * sqrt(x2) / dim;
+                        wd += mu * sg * edv * edv * p->volume[j];
+                    }
+                    worst_th = fmax(worst_th, fabs(th - tr));
+                    worst_w = fmax(worst_w, fabs(wd - mu * dd) / (mu * dd));
+                }
+            }
+            print_message("body %d nu %.2f: %zu particles, worst |theta - tr eps| %.2e, "
+                          "worst deviatoric energy %.2e relative\n",
+                          b, nu, p->n, worst_th, worst_w);
+            assert_true(worst_th < 1e-10);
+            assert_true(worst_w < 1e-10);
+            sim_destroy(&s);
+        }
+}
+
+/* Worst relative error over the particles of the stress under a random
+ * homogeneous strain of 1e-7 (nonlinear terms: 1e-7 relative) against
+ * kd tr eps I + 2 mu eps^d. */
+static double worst_stress(struct sim *s, uint64_t *st)
+{
+    struct particles *p = s->p;
+    const int dim = s->dim, nc = field_symtensor_ncomp(dim);
+    const struct pd_material *mt = pd_material_get(s->model, 0);
+    double eps[3][3], worst = 0.0;
+    random_strain(dim, st, 1e-7, eps);
+    for (size_t i = 0; i < p->n; i++)
+        for (int a = 0; a < dim; a++) {
+            p->x[a][i] = p->x0[a][i];
+            for (int c = 0; c < dim; c++)
+                p->x[a][i] += eps[a][c] * p->x0[c][i];
+        }
+    double tr = 0.0;
+    for (int a = 0; a < dim; a++)
+        tr += eps[a][a];
+    double want[3][3], nrm = 0.0;
+    for (int a = 0; a < dim; a++)
+        for (int c = 0; c < dim; c++) {
+            want[a][c] = 2.0 * mt->mu * (eps[a][c] - (a == c ? tr / dim : 0.0)) +
+                         (a == c ? mt->kd * tr : 0.0);
+            nrm += want[a][c] * want[a][c];
+        }
+    nrm = sqrt(nrm);
+    /* order of the stress field: xx yy (zz) xy (yz xz) */
+    static const int i3[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+    static const int i2[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+    const struct field_desc *f = field_registry_find(s->fields, "stress");
+    assert_non_null(f);
+    double *out = malloc(p->n * (size_t)nc * sizeof *out);
+    assert_non_null(out);
+    field_gather_f64(f, p->n, out);
+    for (size_t i = 0; i < p->n; i++)
+        for (int k = 0; k < nc; k++) {
+            const int *ix = dim == 3 ? i3[k] : i2[k];
+            worst = fmax(worst, fabs(out[i * (size_t)nc + (size_t)k] - want[ix[0]][ix[1]]) / nrm);
+        }
+    free(out);
+    return worst;
+}
+
+static void test_stress_every_particle(void **state)
+{
+    (void)state;
+    uint64_t st = 777;
+    for (int b = 0; b < 3; b++)
+        for (int k = 0; k < 2; k++) {
+            const double nu = k ? 0.45 : 0.2;
+            struct sim *s0 = build_body(b, "false", nu);
+            struct sim *s1 = build_body(b, "position_aware", nu);
+            uint64_t st0 = st;
+            const double w0 = worst_stress(s0, &st0), w1 = worst_stress(s1, &st);
+            print_message("body %d nu %.2f: worst stress error default %.2e, position_aware "
+                          "%.2e\n", b, nu, w0, w1);
+            assert_true(w0 > 1e-2);  /* the surface families of the default LPS */
+            assert_true(w1 < 2e-6);
+            sim_destroy(&s0);
+            sim_destroy(&s1);
+        }
+}
+
+/* Total strain energy [J] from the strain_energy field */
+static double total_energy(struct sim *s)
+{
+    const struct field_desc *f = field_registry_find(s->fields, "strain_energy");
+    assert_non_null(f);
+    double *out = malloc(s->p->n * sizeof *out);
+    assert_non_null(out);
+    field_gather_f64(f, s->p->n, out);
+    double w = 0.0;
+    for (size_t i = 0; i < s->p->n; i++)
+        w += out[i];
+    free(out);
+    return w;
+}
+
+/* t = dW / de: the force of particles at a corner, an edge and inside is
+ * minus the central difference of the total energy, under a random
+ * non-homogeneous displacement (the gamma term of P included). */
+static void test_forces_are_energy_gradient(void **state)
+{
+    (void)state;
+    uint64_t st = 4242;
+    for (int b = 0; b < 3; b++) {
+        struct sim *s = build_body(b, "position_aware", 0.3);
+        struct particles *p = s->p;
+        const int dim = s->dim;
+        for (size_t i = 0; i < p->n; i++)
+            for (int a = 0; a < dim; a++)
+                p->x[a][i] = p->x0[a][i] + 1e-7 * rnd(&st);
+        for (size_t i = 0; i < p->n; i++)
+            for (int a = 0; a < dim; a++)
+                p->f[a][i] = 0.0;
+        struct spall_error err = {0};
+        assert_int_equal(s->ops->compute_forces(s->model, s, &err), SPALL_OK);
+        const size_t picks[3] = {0, p->n / 2, (size_t)(p->n / 7)};
+        double worst = 0.0, fmaxv = 0.0;
+        for (size_t i = 0; i < p->n; i++)
+            for (int a = 0; a < dim; a++)
+                fmaxv = fmax(fmaxv, fabs(p->f[a][i]));
+        for (int q = 0; q < 3; q++)
+            for (int a = 0; a < dim; a++) {
+                const size_t i = picks[q];
+                const double x = p->x[a][i], h = 1e-10;
+                p->x[a][i] = x + h;
+                const double wp = total_energy(s);
+                p->x[a][i] = x - h;
+                const double wm = total_energy(s);
+                p->x[a][i] = x;
+                const double fd = -(wp - wm) / (2.0 * h);
+                worst = fmax(worst, fabs(fd - p->f[a][i]) / fmaxv);
+            }
+        print_message("body %d: force against -dE/dx worst %.2e of the largest force %.3e\n", b,
+                      worst, fmaxv);
+        assert_true(worst < 1e-5);
+        sim_destroy(&s);
+    }
+}
+
+static void test_refused(void **state)
+{
+    (void)state;
+    static const char *const decks[] = {
+        "model: {type: peridynamics, formulation: eps, surface_correction: position_aware}\n"
+        "materials: {m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3, "
+        "yield_stress: 1.0e6}}\n",
+        "model: {type: peridynamics, surface_correction: position_aware}\n"
+        "materials: {m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.25}}\n",
+        "model: {type: peridynamics, formulation: lps, surface_correction: sometimes}\n"
+        "materials: {m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: 0.3}}\n",
+    };
+    for (int k = 0; k < 3; k++) {
+        char deck[2048];
+        snprintf(deck, sizeof deck, "%s%srun: {end_time: 1.0}\n", decks[k], BODIES[0]);
+        struct sim *s = NULL;
+        struct spall_error err = {0};
+        assert_int_not_equal(vlat_build("test", deck, &s, &err), SPALL_OK);
+        assert_null(s);
+        print_message("refused: %s\n", err.msg);
+        assert_non_null(strstr(err.msg, k < 2 ? "position_aware is for" : "surface_correction"));
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_identities_every_particle),
+        cmocka_unit_test(test_stress_every_particle),
+        cmocka_unit_test(test_forces_are_energy_gradient),
+        cmocka_unit_test(test_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
