@@ -109,10 +109,10 @@ int pd_case_lps_surface(struct vreport *r, struct spall_error *err)
     for (int b = 0; b < 2; b++) {
         double gerr[3], kmu[3]; /* G / G_ref - 1 with the correction, k / mu */
         for (int k = 0; k < 3; k++) {
-            double E[2], nu[2], G[2];
-            for (int corr = 0; corr < 2; corr++) {
+            double E[3], nu[3], G[3]; /* false, true, position_aware */
+            for (int corr = 0; corr < 3; corr++) {
                 char deck[1024];
-                const char *sc = corr ? "true" : "false";
+                const char *sc = corr == 2 ? "position_aware" : corr ? "true" : "false";
                 if (b == 0)
                     snprintf(deck, sizeof deck,
                              "model: {type: peridynamics, formulation: lps, plane: "
@@ -168,6 +168,23 @@ int pd_case_lps_surface(struct vreport *r, struct spall_error *err)
                                  "families' off-diagonal moment gives shear a dilatation (f_dil); "
                                  "G / G_ref - 1 = f_dev + (k / mu) f_dil (info line); a 2x larger "
                                  "body halves it (nu = 0.1: plate -2.2 %, cube -4.1 %)");
+            /* position_aware (pd_lps_pals.c): fitted to every homogeneous strain */
+            snprintf(note, sizeof note,
+                     "1 %%: issue 26 item 1; position-aware influences ([Mitchell2015]) exact "
+                     "for every homogeneous strain at every particle");
+            snprintf(q, sizeof q, "%s, nu = %.2f, position_aware: E", bodies[b], nus[k]);
+            if ((rc = vreport_check(r, q, "Pa", SURF_E, E[2], 0.01, true, src, note, err)))
+                return rc;
+            snprintf(q, sizeof q, "%s, nu = %.2f, position_aware: Poisson's ratio", bodies[b],
+                     nus[k]);
+            if ((rc = vreport_check(r, q, "1", nus[k], nu[2], 0.01, true, src, note, err)))
+                return rc;
+            snprintf(q, sizeof q, "%s, nu = %.2f, position_aware: shear modulus", bodies[b],
+                     nus[k]);
+            if ((rc = vreport_check(r, q, "Pa", Gref, G[2], 0.01, true,
+                                    "E / (2 (1 + nu)); homogeneous simple shear, body-mean "
+                                    "stress", note, err)))
+                return rc;
             gerr[k] = G[1] / Gref - 1.0;
             /* bulk modulus of the dimension over mu: plane stress (1 + nu) / (1 - nu),
              * 3D 2 (1 + nu) / (3 (1 - 2 nu)) */
