@@ -1,37 +1,40 @@
 /**
  * @file pd_lps_pals.c
  * @brief Position-aware linear solid (PALS, [Mitchell2015]): deck
- *        `model.surface_correction: position_aware` with `formulation: lps`.
+ *        `model.surface_correction: position_aware` with `formulation: lps`,
+ *        2D (plane stress and plane strain).
  *
  * Each particle i has two influence functions on its own half-bonds, omega_i
  * for the dilatation and sigma_i for the deviatoric energy, each the default
  * LPS influence times a polynomial in the bond whose coefficients are the
  * Lagrange multipliers of that particle: the least change, in the norm
  * sum (w - w0)^2 / w0 V over the family, that meets linear constraints on
- * the DISCRETE family as it is (free surfaces, edges, corners and the
- * lattice's own anisotropy alike) ([Mitchell2015] sec. 3).  With ob = omega
- * beta of pd_lps.c (cubic factor included), m_i = sum ob |xi|^2 V_j, u =
- * xi / delta and phi_p(n) = n . E_p . n over an orthonormal basis E_p of
- * the deviatoric tensors (5 in 3D, 2 in 2D):
+ * the DISCRETE family as it is (free edges, corners and the lattice's own
+ * anisotropy alike) ([Mitchell2015] sec. 3, there with the energies of the
+ * coordinate strains as constraints).  With ob = omega beta of pd_lps.c
+ * (cubic factor included), m_i = sum ob |xi|^2 V_j, u = xi / delta, d = 2
+ * and phi_p(n) = n . E_p . n over an orthonormal basis E_1, E_2 of the
+ * deviatoric tensors:
  *   omega_ij = omega0 (1 + sum_b lw_b c_b(u)),  omega0 = d ob / m_i,
- *              c_b = u_k u_l (k <= l: 6 in 3D, 3 in 2D),
+ *              c_b = u_x^2, u_y^2, u_x u_y,
  *     constraints sum_j omega_ij xi (x) xi V_j = I   (dilatation exact);
  *   sigma_ij = sigma0 (1 + sum_a ls_a h_a(u)),  sigma0 = d (d + 2) ob / (2 m_i),
- *              h_a = |u|^2 phi_p phi_q (p <= q: 15 in 3D, 3 in 2D),
+ *              h_a = |u|^2 phi_p phi_q (p <= q: 3 of them),
  *     constraints sum_j sigma_ij |xi|^2 phi_p phi_q V_j = delta_pq.
  * The stationarity of the least change gives these forms (the gradient of
  * each constraint times w0), so each set of multipliers solves one small
  * symmetric system.  For a homogeneous strain eps, |xi| e = xi . eps . xi,
  * so theta_i = sum omega |xi| e V = tr eps, e^d = e - theta |xi| / d = |xi|
  * phi(eps^d), and sum sigma (e^d)^2 V = eps^d : eps^d for EVERY deviatoric
- * eps (shears and mixed strains included; [Mitchell2015] and Peridigm's Pals
- * material match the energy of the d(d+1)/2 coordinate strains only, which
- * leaves the cross terms free).  The energy of particle i
+ * eps, shears and mixed strains included (Peridigm's Pals material matches
+ * the energies of the coordinate strains only, which leaves the cross terms
+ * free).  The energy of particle i
  *   W_i = k theta_i^2 / 2 + mu sum_j sigma_ij (e^d_ij)^2 V_j
- * is then k (tr eps)^2 / 2 + mu eps^d : eps^d exactly; k is the bulk
- * modulus of the dimension (mt->kd: K in 3D, K + mu / 3 in plane strain,
- * E / (2 (1 - nu)) in plane stress, [Le2014]; mu the shear modulus, the 2D
- * energies being those of the in-plane strain).  Force state t = dW / de:
+ * is then k (tr eps)^2 / 2 + mu eps^d : eps^d exactly, the energy of the
+ * in-plane strain with k the bulk modulus of the dimension (mt->kd: K + mu
+ * / 3 in plane strain, E / (2 (1 - nu)) in plane stress, [Le2014]) and mu
+ * the shear modulus.  Force state t = dW / de ([Silling2007]'s Frechet
+ * derivative, dW = sum t de V):
  *   t_ij = omega_ij |xi| P_i + 2 mu sigma_ij e^d_ij,
  *   P_i  = k theta_i - (2 mu / d) gamma_i,  gamma_i = sum_l sigma_il |xi| e^d_il V_l
  * (gamma_i, the term from theta inside e^d, vanishes in the default LPS
@@ -40,8 +43,21 @@
  * stores per half-bond with the reverse half's (4 doubles).  The collapsed
  * stress of a homogeneous strain is k tr eps I + 2 mu eps^d exactly.
  * The influences are fixed at set-up on the whole family (before pre-cracks
- * and breaking, as the default LPS weighted volume is). Formulation eps is
+ * and breaking, as the default LPS weighted volume is).  Formulation eps is
  * refused (its return map assumes sigma proportional to omega).
+ *
+ * Stability needs sigma >= 0 (then W_i >= 0; omega's sign does not matter,
+ * k theta^2 / 2 >= 0): set-up refuses a particle whose sigma comes out
+ * negative.  In 2D the least change stays non-negative on every plate of
+ * the tests and validation cases, corners included.  In 3D it cannot at
+ * edges and corners: for an octant family (x, y, z >= 0) the constraints
+ * of target 0 on (x^2 + y^2 - 2 z^2) x y and on x^2 y z admit non-negative
+ * sigma only on bonds with x y = 0, and then the one on x^2 y^2 (target 1)
+ * fails.  Measured with the 3D form of the same construction (5 deviatoric
+ * modes, 15 multipliers): exact to 1e-14 at every particle of a 7^3 sc
+ * cube, but 6 % of its half-bonds negative, and sc and fcc cubes under an
+ * initial velocity blew up within 150 steps at every dt (an sc sphere's
+ * staircase surface has them too).  So 3D is refused at the deck.
  */
 #include "models/peridynamics/pd_internal.h"
 
@@ -73,6 +89,11 @@ int pd_surface_opts(struct model *m, const struct deck_node *params, struct spal
         return deck_error_key(err, params, "surface_correction", "surface_correction "
                               "position_aware is for formulation lps (eps: its return map "
                               "assumes one influence function)");
+    if (pals && m->sim->dim != 2) /* see the file comment */
+        return deck_error_key(err, params, "surface_correction", "surface_correction "
+                              "position_aware is for 2D runs: at the edges and corners of a 3D "
+                              "body no non-negative deviatoric influence gives every shear its "
+                              "energy, and a negative one makes the run unstable");
     if (m->opt.lps) { /* lps/eps: their own surface correction (pd_lps_surface.c) */
         m->lps.surface = on;
         m->lps.pals = pals;
@@ -82,28 +103,18 @@ int pd_surface_opts(struct model *m, const struct deck_node *params, struct spal
     return SPALL_OK;
 }
 
-#define PALS_NW 6  /* dilatation multipliers (3D) */
-#define PALS_NS 15 /* deviatoric multipliers (3D) */
-#define PALS_REC (1 + PALS_NW + PALS_NS)
+#define PALS_NW 3 /* dilatation multipliers (2D) */
+#define PALS_NS 3 /* deviatoric multipliers (2D) */
 
-/* phi_p(v) = v . E_p . v over the orthonormal deviatoric basis (unnormalised
- * v: homogeneous of degree 2); returns the count. */
-static int pals_phi(int dim, const double *v, double *phi)
+/* phi_p(v) = v . E_p . v over the orthonormal deviatoric basis of 2D,
+ * E_1 = (e_x e_x - e_y e_y) / sqrt 2, E_2 = (e_x e_y + e_y e_x) / sqrt 2
+ * (unnormalised v: homogeneous of degree 2); returns the count. */
+static int pals_phi(const double *v, double *phi)
 {
-    const double r2 = sqrt(2.0), r6 = sqrt(6.0);
-    const double x = v[0], y = v[1];
-    if (dim == 2) {
-        phi[0] = (x * x - y * y) / r2;
-        phi[1] = r2 * x * y;
-        return 2;
-    }
-    const double z = v[2];
+    const double r2 = sqrt(2.0), x = v[0], y = v[1];
     phi[0] = (x * x - y * y) / r2;
-    phi[1] = (x * x + y * y - 2.0 * z * z) / r6;
-    phi[2] = r2 * x * y;
-    phi[3] = r2 * x * z;
-    phi[4] = r2 * y * z;
-    return 5;
+    phi[1] = r2 * x * y;
+    return 2;
 }
 
 /* c_b(u) = u_k u_l, k <= l; returns the count */
@@ -122,8 +133,8 @@ static int pals_cb(int dim, const double *u, double *c)
  * *diag: which of them are p == q (their constraint target is 1) */
 static int pals_ha(int dim, const double *u, double *h, int *diag)
 {
-    double phi[5], u2 = 0.0;
-    const int np = pals_phi(dim, u, phi);
+    double phi[2], u2 = 0.0;
+    const int np = pals_phi(u, phi);
     for (int k = 0; k < dim; k++)
         u2 += u[k] * u[k];
     int q = 0;
@@ -136,45 +147,75 @@ static int pals_ha(int dim, const double *u, double *h, int *diag)
     return q;
 }
 
-/* Solve A x = r (n x n, row-major, destroyed) by Gaussian elimination with
- * partial pivoting; 1 when a pivot is below tol times the largest diagonal
- * (the family's bond directions do not determine the multipliers). */
+/* Solve A x = r for the symmetric positive semi-definite A (n x n,
+ * row-major, destroyed) by its eigen-decomposition (cyclic Jacobi): the
+ * least-norm solution over the eigenvalues above 1e-12 of the largest (a
+ * corner family held to planar bonds leaves moments that vanish on all of
+ * them, whose constraints are then met by any solution).  1 when the
+ * system has no solution (residual above 1e-9 of |r|). */
 static int pals_solve(int n, double *A, double *r)
 {
-    double big = 0.0;
-    for (int k = 0; k < n; k++)
-        big = fmax(big, fabs(A[k * n + k]));
-    for (int c = 0; c < n; c++) {
-        int piv = c;
-        for (int k = c + 1; k < n; k++)
-            if (fabs(A[k * n + c]) > fabs(A[piv * n + c]))
-                piv = k;
-        if (!(fabs(A[piv * n + c]) > 1e-12 * big))
-            return 1;
-        if (piv != c) {
-            for (int k = 0; k < n; k++) {
-                const double t = A[c * n + k];
-                A[c * n + k] = A[piv * n + k];
-                A[piv * n + k] = t;
+    double Q[PALS_NS * PALS_NS], A0[PALS_NS * PALS_NS], x[PALS_NS], rn = 0.0;
+    memcpy(A0, A, (size_t)(n * n) * sizeof *A);
+    for (int k = 0; k < n * n; k++)
+        Q[k] = k % (n + 1) == 0 ? 1.0 : 0.0;
+    for (int sweep = 0; sweep < 60; sweep++) {
+        double off = 0.0, dia = 0.0;
+        for (int p = 0; p < n; p++)
+            for (int q = 0; q < n; q++)
+                *(p == q ? &dia : &off) += A[p * n + q] * A[p * n + q];
+        if (!(off > 1e-30 * dia))
+            break;
+        for (int p = 0; p < n - 1; p++)
+            for (int q = p + 1; q < n; q++) {
+                const double apq = A[p * n + q];
+                if (apq == 0.0)
+                    continue;
+                const double th = 0.5 * (A[q * n + q] - A[p * n + p]) / apq;
+                const double t = (th >= 0.0 ? 1.0 : -1.0) / (fabs(th) + sqrt(th * th + 1.0));
+                const double c = 1.0 / sqrt(t * t + 1.0), sn = t * c;
+                for (int k = 0; k < n; k++) { /* A <- A J */
+                    const double akp = A[k * n + p], akq = A[k * n + q];
+                    A[k * n + p] = c * akp - sn * akq;
+                    A[k * n + q] = sn * akp + c * akq;
+                }
+                for (int k = 0; k < n; k++) { /* A <- J^T A */
+                    const double apk = A[p * n + k], aqk = A[q * n + k];
+                    A[p * n + k] = c * apk - sn * aqk;
+                    A[q * n + k] = sn * apk + c * aqk;
+                }
+                for (int k = 0; k < n; k++) { /* Q <- Q J */
+                    const double qkp = Q[k * n + p], qkq = Q[k * n + q];
+                    Q[k * n + p] = c * qkp - sn * qkq;
+                    Q[k * n + q] = sn * qkp + c * qkq;
+                }
             }
-            const double t = r[c];
-            r[c] = r[piv];
-            r[piv] = t;
-        }
-        for (int k = c + 1; k < n; k++) {
-            const double f = A[k * n + c] / A[c * n + c];
-            for (int l = c; l < n; l++)
-                A[k * n + l] -= f * A[c * n + l];
-            r[k] -= f * r[c];
-        }
     }
-    for (int c = n - 1; c >= 0; c--) {
-        double s = r[c];
-        for (int l = c + 1; l < n; l++)
-            s -= A[c * n + l] * r[l];
-        r[c] = s / A[c * n + c];
+    double big = 0.0;
+    for (int k = 0; k < n; k++) {
+        big = fmax(big, A[k * n + k]);
+        x[k] = 0.0;
+        rn += r[k] * r[k];
     }
-    return 0;
+    for (int k = 0; k < n; k++) {
+        const double lam = A[k * n + k];
+        if (!(lam > 1e-12 * big))
+            continue;
+        double pr = 0.0;
+        for (int l = 0; l < n; l++)
+            pr += Q[l * n + k] * r[l];
+        for (int l = 0; l < n; l++)
+            x[l] += pr / lam * Q[l * n + k];
+    }
+    double res = 0.0;
+    for (int k = 0; k < n; k++) {
+        double ax = 0.0;
+        for (int l = 0; l < n; l++)
+            ax += A0[k * n + l] * x[l];
+        res += (ax - r[k]) * (ax - r[k]);
+    }
+    memcpy(r, x, (size_t)n * sizeof *r);
+    return !(res <= 1e-18 * rn);
 }
 
 /* Bond offset xi of half-bond s of particle i, and u = xi / delta */
@@ -188,73 +229,76 @@ static void pals_bond(const struct model *m, const struct sim *sim, size_t i, si
     }
 }
 
-/* The record of particle i: m_i, the dilatation multipliers lw, the
- * deviatoric ones ls.  1 when a system is singular. */
-static int pals_record(const struct model *m, const struct sim *sim, size_t i, double *rec)
+/* The influences of row i into pw (omega_ij, sigma_ij of each half-bond s
+ * at pw[4 s], pw[4 s + 1]).  1 when a system has no solution (the family's
+ * bond directions do not determine them), 2 when some sigma_ij < 0 (W_i
+ * indefinite: see the file comment). */
+static int pals_row(const struct model *m, const struct sim *sim, size_t i, double *pw)
 {
     const struct bond_list *bl = m->bl;
     const double *V = sim->p->volume, *ob = m->lps.ob;
     const int dim = sim->dim;
-    const double d = (double)dim;
-    memset(rec, 0, PALS_REC * sizeof *rec);
+    const double d = (double)dim, d2 = m->delta * m->delta;
+    const size_t s0 = bl->offset[i], nb = bl->offset[i + 1] - s0;
     double mi = 0.0;
-    for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
+    for (size_t s = s0; s < s0 + nb; s++) {
         mi += ob[s] * bl->rest[s] * bl->rest[s] * V[bl->partner[s]];
-    rec[0] = mi;
+        pw[4 * s] = pw[4 * s + 1] = 0.0;
+    }
     if (!(mi > 0.0))
         return 0; /* no family: no force */
     double Aw[PALS_NW * PALS_NW] = {0}, rw[PALS_NW] = {0};
-    double As[PALS_NS * PALS_NS] = {0}, rs[PALS_NS] = {0};
+    double xi[3], u[3], c[PALS_NW], h[PALS_NS];
     int diag[PALS_NS], nw = 0, ns = 0;
-    const double d2 = m->delta * m->delta;
-    for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
-        double xi[3], u[3], c[PALS_NW], h[PALS_NS];
+    for (size_t s = s0; s < s0 + nb; s++) {
         pals_bond(m, sim, i, s, xi, u);
         nw = pals_cb(dim, u, c);
-        ns = pals_ha(dim, u, h, diag);
         /* w0 delta^2 V: the constraints scaled to order one */
         const double ww = d * ob[s] / mi * d2 * V[bl->partner[s]];
-        const double ws = 0.5 * d * (d + 2.0) * ob[s] / mi * d2 * V[bl->partner[s]];
         for (int a = 0; a < nw; a++) {
             rw[a] -= ww * c[a];
             for (int b = 0; b < nw; b++)
                 Aw[a * nw + b] += ww * c[a] * c[b];
         }
+    }
+    for (int a = 0; a < dim; a++)
+        rw[a] += 1.0; /* the diagonal of I (c_b lists u_k u_k first) */
+    if (pals_solve(nw, Aw, rw))
+        return 1;
+    for (size_t s = s0; s < s0 + nb; s++) {
+        pals_bond(m, sim, i, s, xi, u);
+        pals_cb(dim, u, c);
+        double f = 1.0;
+        for (int a = 0; a < nw; a++)
+            f += rw[a] * c[a];
+        pw[4 * s] = d * ob[s] / mi * f;
+    }
+    double As[PALS_NS * PALS_NS] = {0}, rs[PALS_NS] = {0};
+    for (size_t s = s0; s < s0 + nb; s++) {
+        pals_bond(m, sim, i, s, xi, u);
+        ns = pals_ha(dim, u, h, diag);
+        const double ws = 0.5 * d * (d + 2.0) * ob[s] / mi * d2 * V[bl->partner[s]];
         for (int a = 0; a < ns; a++) {
             rs[a] -= ws * h[a];
             for (int b = 0; b < ns; b++)
                 As[a * ns + b] += ws * h[a] * h[b];
         }
     }
-    for (int a = 0; a < dim; a++)
-        rw[a] += 1.0; /* the diagonal of I (c_b lists u_k u_k first) */
     for (int a = 0; a < ns; a++)
         rs[a] += diag[a] ? 1.0 : 0.0;
-    if (pals_solve(nw, Aw, rw) || pals_solve(ns, As, rs))
+    if (pals_solve(ns, As, rs))
         return 1;
-    memcpy(rec + 1, rw, (size_t)nw * sizeof *rw);
-    memcpy(rec + 1 + PALS_NW, rs, (size_t)ns * sizeof *rs);
-    return 0;
-}
-
-/* omega and sigma of half-bond s of the particle whose record is rec */
-static void pals_eval(const struct model *m, const struct sim *sim, const double *rec,
-                      size_t i, size_t s, double *om, double *sg)
-{
-    const double d = (double)sim->dim, ob = m->lps.ob[s];
-    double xi[3], u[3], c[PALS_NW], h[PALS_NS];
-    *om = *sg = 0.0;
-    if (!(rec[0] > 0.0))
-        return;
-    pals_bond(m, sim, i, s, xi, u);
-    const int nw = pals_cb(sim->dim, u, c), ns = pals_ha(sim->dim, u, h, NULL);
-    double fw = 1.0, fs = 1.0;
-    for (int a = 0; a < nw; a++)
-        fw += rec[1 + a] * c[a];
-    for (int a = 0; a < ns; a++)
-        fs += rec[1 + PALS_NW + a] * h[a];
-    *om = d * ob / rec[0] * fw;
-    *sg = 0.5 * d * (d + 2.0) * ob / rec[0] * fs;
+    int neg = 0;
+    for (size_t s = s0; s < s0 + nb; s++) {
+        pals_bond(m, sim, i, s, xi, u);
+        pals_ha(dim, u, h, NULL);
+        double f = 1.0;
+        for (int a = 0; a < ns; a++)
+            f += rs[a] * h[a];
+        pw[4 * s + 1] = 0.5 * d * (d + 2.0) * ob[s] / mi * f;
+        neg |= pw[4 * s + 1] < 0.0;
+    }
+    return neg ? 2 : 0;
 }
 
 int pd_lps_pals_init(struct model *m, struct sim *sim, struct spall_error *err)
@@ -264,47 +308,48 @@ int pd_lps_pals_init(struct model *m, struct sim *sim, struct spall_error *err)
     const struct bond_list *bl = m->bl;
     const size_t n = p->n, nh = bl->offset[n];
     const struct par_setup *ps = par_setup_window(sim);
-    double *rec = malloc((n ? n : 1) * PALS_REC * sizeof *rec);
     int rc = SPALL_OK;
-    if (!rec || !(L->pw = malloc((nh ? nh : 1) * 4 * sizeof(double))) ||
+    if (!(L->pw = malloc((nh ? nh : 1) * 4 * sizeof(double))) ||
         !(L->pp = calloc(2 * (n ? n : 1), sizeof(double))))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the position-aware LPS");
     /* A window of the distributed set-up: the block's rows and their
      * partners' are whole (two ranges of halo), and a bond reads only its
-     * two ends' records, so no exchange; a row cut by the window's edge may
-     * be singular and is read by no block row. */
+     * two ends' rows, so no exchange; a row cut by the window's edge may be
+     * singular or negative and is read by no block row. */
     int64_t bad = -1;
-    for (size_t i = 0; !rc && i < n; i++)
-        if (pals_record(m, sim, i, rec + i * PALS_REC)) {
-            memset(rec + i * PALS_REC, 0, PALS_REC * sizeof *rec);
-            if ((!ps || par_setup_in_block(ps, i)) && bad < 0)
-                bad = p->gid[i];
+    int why = 0;
+    for (size_t i = 0; !rc && i < n; i++) {
+        const int q = pals_row(m, sim, i, L->pw);
+        if (q && (!ps || par_setup_in_block(ps, i)) && bad < 0) {
+            bad = p->gid[i];
+            why = q;
         }
-    if (!rc && bad >= 0)
+    }
+    if (!rc && why == 1)
         rc = spall_error_set_key(err, SPALL_ERR_PHYSICS, "model.surface_correction",
                                  "surface_correction position_aware: the bond directions of "
                                  "particle %lld's family do not determine its influence "
                                  "functions (too few bonds: raise horizon_factor)",
                                  (long long)bad);
-    /* own half (omega_ij, sigma_ij), then the reverse half's as j set it */
-    for (size_t i = 0; !rc && i < n; i++)
-        for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++)
-            pals_eval(m, sim, rec + i * PALS_REC, i, s, &L->pw[4 * s], &L->pw[4 * s + 1]);
+    if (!rc && why == 2)
+        rc = spall_error_set_key(err, SPALL_ERR_PHYSICS, "model.surface_correction",
+                                 "surface_correction position_aware: the deviatoric influence of "
+                                 "particle %lld comes out negative on some bonds, which makes "
+                                 "its energy indefinite and the run unstable (a sharp corner "
+                                 "of the body?)",
+                                 (long long)bad);
+    /* the reverse half's (omega_ji, sigma_ji) as j set them */
     for (size_t i = 0; !rc && i < n; i++)
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
             const size_t j = (size_t)bl->partner[s];
             size_t r = bl->offset[j];
             while (r < bl->offset[j + 1] && (size_t)bl->partner[r] != i)
                 r++;
-            if (r < bl->offset[j + 1]) {
-                L->pw[4 * s + 2] = L->pw[4 * r];
-                L->pw[4 * s + 3] = L->pw[4 * r + 1];
-            } else { /* j's row cut by a window's edge: read by no block row */
-                pals_eval(m, sim, rec + j * PALS_REC, i, s, &L->pw[4 * s + 2],
-                          &L->pw[4 * s + 3]);
-            }
+            /* j's row cut by a window's edge (no reverse half): read by no block row */
+            const bool has = r < bl->offset[j + 1];
+            L->pw[4 * s + 2] = has ? L->pw[4 * r] : 0.0;
+            L->pw[4 * s + 3] = has ? L->pw[4 * r + 1] : 0.0;
         }
-    free(rec);
     if (ps) /* every window agrees before the set-up's next collective step */
         rc = par_agree(rc, err);
     return rc;
@@ -475,7 +520,7 @@ void pd_lps_pals_particle_eval(const struct model *m, const struct sim *sim, siz
     if (energy)
         *energy = w * p->volume[i];
     if (stress)
-        for (int c = 0; c < (dim == 3 ? 6 : 3); c++)
+        for (int c = 0; c < 3; c++)
             stress[c] = sg[c];
 }
 
