@@ -72,6 +72,23 @@ static void random_strain(int dim, uint64_t *st, double amp, double eps[3][3])
             eps[a][b] = eps[b][a] = amp * rnd(st);
 }
 
+/* xi . eps . xi of the reference bond i -> j (= |xi| e of the homogeneous
+ * strain eps, linearised), |xi| into *len */
+static double bond_xex(const struct particles *p, int dim, size_t i, size_t j,
+                       double eps[3][3], double *len)
+{
+    double xi[3] = {0, 0, 0}, x2 = 0.0, xex = 0.0;
+    for (int a = 0; a < dim; a++) {
+        xi[a] = p->x0[a][j] - p->x0[a][i];
+        x2 += xi[a] * xi[a];
+    }
+    for (int a = 0; a < dim; a++)
+        for (int c = 0; c < dim; c++)
+            xex += xi[a] * eps[a][c] * xi[c];
+    *len = sqrt(x2);
+    return xex;
+}
+
 /* The two identities at every particle from the influences the model holds
  * (pd_lps_pals_half), |xi| e = xi . eps . xi of a homogeneous strain. */
 static void test_identities_every_particle(void **state)
@@ -104,33 +121,19 @@ static void test_identities_every_particle(void **state)
                         dd += ed[a][c] * ed[a][c];
                     }
                 for (size_t i = 0; i < p->n; i++) {
-                    double th = 0.0, wd = 0.0;
+                    double th = 0.0, wd = 0.0, len;
                     for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++) {
                         const size_t j = (size_t)bl->partner[q];
-                        double xi[3] = {0, 0, 0}, x2 = 0.0, xex = 0.0;
-                        for (int a = 0; a < dim; a++) {
-                            xi[a] = p->x0[a][j] - p->x0[a][i];
-                            x2 += xi[a] * xi[a];
-                        }
-                        for (int a = 0; a < dim; a++)
-                            for (int c = 0; c < dim; c++)
-                                xex += xi[a] * eps[a][c] * xi[c];
+                        const double xex = bond_xex(p, dim, i, j, eps, &len);
                         assert_true(pd_lps_pals_half(s->model, q, &om, &sg));
                         th += om * xex * p->volume[j];
                     }
                     for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++) {
                         const size_t j = (size_t)bl->partner[q];
-                        double xi[3] = {0, 0, 0}, x2 = 0.0, xex = 0.0;
-                        for (int a = 0; a < dim; a++) {
-                            xi[a] = p->x0[a][j] - p->x0[a][i];
-                            x2 += xi[a] * xi[a];
-                        }
-                        for (int a = 0; a < dim; a++)
-                            for (int c = 0; c < dim; c++)
-                                xex += xi[a] * eps[a][c] * xi[c];
+                        const double xex = bond_xex(p, dim, i, j, eps, &len);
                         pd_lps_pals_half(s->model, q, &om, &sg);
                         /* e^d = e - theta |xi| / d with the discrete theta */
-                        const double e = xex / sqrt(x2), edv = e - th * sqrt(x2) / dim;
+                        const double edv = xex / len - th * len / dim;
                         wd += mu * sg * edv * edv * p->volume[j];
                     }
                     worst_th = fmax(worst_th, fabs(th - tr));

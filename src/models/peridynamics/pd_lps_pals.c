@@ -382,6 +382,18 @@ static double pals_len(const struct particles *p, int dim, size_t i, size_t j, d
     return sqrt(l2);
 }
 
+/* Half-bond s of row i past s0: broken, the energy t e / 2 of its state at
+ * i's (theta, P) of pp booked as dissipated (as pd_lps_break_rows) */
+static void pals_break(struct model *m, const struct sim *sim, size_t i, size_t s, double xi,
+                       double e)
+{
+    const struct particles *p = sim->p;
+    const struct pd_material *mt = &m->mat[p->material[i]];
+    m->bl->state[s] |= BOND_BROKEN;
+    m->diss[i] += 0.5 * pals_t(mt, m->lps.pw + 4 * s, m->lps.pp + 2 * i, (double)sim->dim, xi, e) *
+                  e * p->volume[i] * p->volume[m->bl->partner[s]];
+}
+
 /* theta, gamma and P of row i from the current positions (intact half-bonds);
  * immediate: the half-bonds past s0 broken first, the energy t e / 2 of their
  * state at the last (theta, P) booked as dissipated. */
@@ -403,9 +415,7 @@ static void pals_row_state(struct model *m, const struct sim *sim, size_t i, boo
         const double xi = bl->rest[s], e = pals_len(p, dim, i, j, r) - xi;
         const double *pw = L->pw + 4 * s;
         if (brk && e / xi > m->s0_tab[bl->type[s]]) {
-            bl->state[s] |= BOND_BROKEN;
-            m->diss[i] += 0.5 * pals_t(mt, pw, L->pp + 2 * i, d, xi, e) * e * p->volume[i] *
-                          p->volume[j];
+            pals_break(m, sim, i, s, xi, e);
             continue;
         }
         th += pw[0] * xi * e * p->volume[j];
@@ -422,25 +432,19 @@ static void pals_row_state(struct model *m, const struct sim *sim, size_t i, boo
 void pd_lps_pals_break_rows(struct model *m, const struct sim *sim, size_t i0, size_t i1)
 {
     const struct particles *p = sim->p;
-    struct bond_list *bl = m->bl;
-    const struct pd_lps *L = &m->lps;
+    const struct bond_list *bl = m->bl;
     const int dim = sim->dim;
 #pragma omp parallel for schedule(dynamic, 256)
-    for (size_t i = i0; i < i1; i++) {
-        const struct pd_material *mt = &m->mat[p->material[i]];
+    for (size_t i = i0; i < i1; i++)
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
             if (bl->state[s] & BOND_BROKEN)
                 continue;
-            const size_t j = (size_t)bl->partner[s];
             double r[3];
-            const double xi = bl->rest[s], e = pals_len(p, dim, i, j, r) - xi;
-            if (!(e / xi > m->s0_tab[bl->type[s]]))
-                continue;
-            bl->state[s] |= BOND_BROKEN;
-            m->diss[i] += 0.5 * pals_t(mt, L->pw + 4 * s, L->pp + 2 * i, (double)dim, xi, e) *
-                          e * p->volume[i] * p->volume[j];
+            const double xi = bl->rest[s];
+            const double e = pals_len(p, dim, i, (size_t)bl->partner[s], r) - xi;
+            if (e / xi > m->s0_tab[bl->type[s]])
+                pals_break(m, sim, i, s, xi, e);
         }
-    }
 }
 
 int pd_lps_pals_forces(struct model *m, struct sim *sim, struct spall_error *err)
