@@ -49,7 +49,9 @@
  * Stability needs sigma >= 0 (then W_i >= 0; omega's sign does not matter,
  * k theta^2 / 2 >= 0): set-up refuses a particle whose sigma comes out
  * negative.  In 2D the least change stays non-negative on every plate of
- * the tests and validation cases, corners included.  In 3D it cannot at
+ * the tests and validation cases, corners included, and on strips of 4
+ * rows or more (delta = 3.015 dx); strips of 2 rows (and of 3 on the
+ * triangular lattice) come out negative and are refused.  In 3D it cannot at
  * edges and corners: for an octant family (x, y, z >= 0) the constraints
  * of target 0 on (x^2 + y^2 - 2 z^2) x y and on x^2 y z admit non-negative
  * sigma only on bonds with x y = 0, and then the one on x^2 y^2 (target 1)
@@ -329,14 +331,14 @@ int pd_lps_pals_init(struct model *m, struct sim *sim, struct spall_error *err)
         rc = spall_error_set_key(err, SPALL_ERR_PHYSICS, "model.surface_correction",
                                  "surface_correction position_aware: the bond directions of "
                                  "particle %lld's family do not determine its influence "
-                                 "functions (too few bonds: raise horizon_factor)",
+                                 "functions (are they all on one line?)",
                                  (long long)bad);
     if (!rc && why == 2)
         rc = spall_error_set_key(err, SPALL_ERR_PHYSICS, "model.surface_correction",
                                  "surface_correction position_aware: the deviatoric influence of "
                                  "particle %lld comes out negative on some bonds, which makes "
-                                 "its energy indefinite and the run unstable (a sharp corner "
-                                 "of the body?)",
+                                 "its energy indefinite and the run unstable (a part of the "
+                                 "body a few rows thick, or a sharp corner?)",
                                  (long long)bad);
     /* the reverse half's (omega_ji, sigma_ji) as j set them */
     for (size_t i = 0; !rc && i < n; i++)
