@@ -42,8 +42,10 @@
  * t_ji) V_j M_ij, so a bond needs both ends' (omega, sigma), which set-up
  * stores per half-bond with the reverse half's (4 doubles).  The collapsed
  * stress of a homogeneous strain is k tr eps I + 2 mu eps^d exactly.
- * The influences are fixed at set-up on the whole family (before pre-cracks
- * and breaking, as the default LPS weighted volume is).  Formulation eps is
+ * The influences are set up on the intact family, again after each
+ * pre-crack (a pre-cut face is a free surface like the others; the default
+ * LPS weighted volume is recomputed there too), and then fixed: bonds
+ * broken during the run leave them as they are.  Formulation eps is
  * refused (its return map assumes sigma proportional to omega).
  *
  * Stability needs sigma >= 0 (then W_i >= 0; omega's sign does not matter,
@@ -65,7 +67,6 @@
 
 #include "core/bond_list.h"
 #include "core/options.h"
-#include "core/parallel/comm.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/setup_dist.h"
 #include "core/particles.h"
@@ -242,10 +243,12 @@ static int pals_row(const struct model *m, const struct sim *sim, size_t i, doub
     const int dim = sim->dim;
     const double d = (double)dim, d2 = m->delta * m->delta;
     const size_t s0 = bl->offset[i], nb = bl->offset[i + 1] - s0;
+    const uint8_t *st = bl->state;
     double mi = 0.0;
     for (size_t s = s0; s < s0 + nb; s++) {
-        mi += ob[s] * bl->rest[s] * bl->rest[s] * V[bl->partner[s]];
         pw[4 * s] = pw[4 * s + 1] = 0.0;
+        if (!(st[s] & BOND_BROKEN))
+            mi += ob[s] * bl->rest[s] * bl->rest[s] * V[bl->partner[s]];
     }
     if (!(mi > 0.0))
         return 0; /* no family: no force */
@@ -253,6 +256,8 @@ static int pals_row(const struct model *m, const struct sim *sim, size_t i, doub
     double xi[3], u[3], c[PALS_NW], h[PALS_NS];
     int diag[PALS_NS], nw = 0, ns = 0;
     for (size_t s = s0; s < s0 + nb; s++) {
+        if (st[s] & BOND_BROKEN)
+            continue;
         pals_bond(m, sim, i, s, xi, u);
         nw = pals_cb(dim, u, c);
         /* w0 delta^2 V: the constraints scaled to order one */
@@ -268,6 +273,8 @@ static int pals_row(const struct model *m, const struct sim *sim, size_t i, doub
     if (pals_solve(nw, Aw, rw))
         return 1;
     for (size_t s = s0; s < s0 + nb; s++) {
+        if (st[s] & BOND_BROKEN)
+            continue;
         pals_bond(m, sim, i, s, xi, u);
         pals_cb(dim, u, c);
         double f = 1.0;
@@ -277,6 +284,8 @@ static int pals_row(const struct model *m, const struct sim *sim, size_t i, doub
     }
     double As[PALS_NS * PALS_NS] = {0}, rs[PALS_NS] = {0};
     for (size_t s = s0; s < s0 + nb; s++) {
+        if (st[s] & BOND_BROKEN)
+            continue;
         pals_bond(m, sim, i, s, xi, u);
         ns = pals_ha(dim, u, h, diag);
         const double ws = 0.5 * d * (d + 2.0) * ob[s] / mi * d2 * V[bl->partner[s]];
@@ -292,6 +301,8 @@ static int pals_row(const struct model *m, const struct sim *sim, size_t i, doub
         return 1;
     int neg = 0;
     for (size_t s = s0; s < s0 + nb; s++) {
+        if (st[s] & BOND_BROKEN)
+            continue;
         pals_bond(m, sim, i, s, xi, u);
         pals_ha(dim, u, h, NULL);
         double f = 1.0;
@@ -311,8 +322,9 @@ int pd_lps_pals_init(struct model *m, struct sim *sim, struct spall_error *err)
     const size_t n = p->n, nh = bl->offset[n];
     const struct par_setup *ps = par_setup_window(sim);
     int rc = SPALL_OK;
-    if (!(L->pw = malloc((nh ? nh : 1) * 4 * sizeof(double))) ||
-        !(L->pp = calloc(2 * (n ? n : 1), sizeof(double))))
+    /* again after each pre-crack (pd_precrack): the arrays are kept */
+    if ((!L->pw && !(L->pw = malloc((nh ? nh : 1) * 4 * sizeof(double)))) ||
+        (!L->pp && !(L->pp = calloc(2 * (n ? n : 1), sizeof(double)))))
         rc = spall_error_set(err, SPALL_ERR_NOMEM, "out of memory for the position-aware LPS");
     /* A window of the distributed set-up: the block's rows and their
      * partners' are whole (two ranges of halo), and a bond reads only its
@@ -352,9 +364,7 @@ int pd_lps_pals_init(struct model *m, struct sim *sim, struct spall_error *err)
             L->pw[4 * s + 2] = has ? L->pw[4 * r] : 0.0;
             L->pw[4 * s + 3] = has ? L->pw[4 * r + 1] : 0.0;
         }
-    if (ps) /* every window agrees before the set-up's next collective step */
-        rc = par_agree(rc, err);
-    return rc;
+    return rc; /* no collective step: sim_prepare agrees the windows' outcome */
 }
 
 /* t_ij of half-bond s (row i) with extension e, from i's (theta, P) */

@@ -526,7 +526,7 @@ static int pd_precrack(struct model *m, struct sim *sim, const struct precrack *
     *n_cut = bond_list_apply_precrack(m->bl, sim->p, c);
     if (m->opt.lps)
         pd_lps_weights(m, sim); /* a pre-cut bond leaves the family */
-    return SPALL_OK;
+    return m->lps.pals ? pd_lps_pals_init(m, sim, err) : SPALL_OK; /* pd_lps_pals.c */
 }
 
 /* ---- fields ------------------------------------------------------------------------ */
