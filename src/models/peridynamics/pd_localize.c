@@ -56,9 +56,11 @@ static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep,
     double *hs = NULL; /* eps: theta, scale, d k theta / m per particle, of each force call */
     if (L->ep)
         bad |= !(hs = calloc(3 * (n_keep ? n_keep : 1), sizeof *hs));
-    double *ptp = NULL; /* position_aware: theta and P per particle, of each force call */
+    /* position_aware: theta and P per particle of the last force call (restart
+     * state: a restored run localises after reading its checkpoint) */
+    double *ptp = NULL;
     if (L->pp)
-        bad |= !(ptp = calloc(2 * (n_keep ? n_keep : 1), sizeof *ptp));
+        bad |= !(ptp = array_gather(L->pp, 2 * sizeof *ptp, keep, n_keep));
     if (bad) {
         for (int k = 0; k < npp; k++)
             free(np[k]);
