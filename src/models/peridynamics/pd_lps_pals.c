@@ -152,10 +152,11 @@ static int pals_ha(int dim, const double *u, double *h, int *diag)
 
 /* Solve A x = r for the symmetric positive semi-definite A (n x n,
  * row-major, destroyed) by its eigen-decomposition (cyclic Jacobi): the
- * least-norm solution over the eigenvalues above 1e-12 of the largest (a
- * corner family held to planar bonds leaves moments that vanish on all of
- * them, whose constraints are then met by any solution).  1 when the
- * system has no solution (residual above 1e-9 of |r|). */
+ * least-norm solution over the eigenvalues above 1e-12 of the largest, so
+ * that a family on which some basis function vanishes for every bond still
+ * gets the multipliers its other constraints fix (that constraint is then
+ * met, or the family refused).  1 when the system has no solution
+ * (residual above 1e-9 of |r|: e.g. all bonds on one line). */
 static int pals_solve(int n, double *A, double *r)
 {
     double Q[PALS_NS * PALS_NS], A0[PALS_NS * PALS_NS], x[PALS_NS], rn = 0.0;
