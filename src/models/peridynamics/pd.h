@@ -84,6 +84,9 @@ bool pd_mixed_state(const struct model *m, size_t i, double *beta, double *g);
  *  positions (Benzeggagh & Kenane 1996 G_c(beta); pd_mixed.c, called by the
  *  step itself). */
 void pd_mixed_update(struct model *m, const struct sim *sim);
+/** surface_correction position_aware (pd_lps_pals.c): the influences omega, sigma of
+ *  half-bond @p s as its particle holds them; false without the option. */
+bool pd_lps_pals_half(const struct model *m, size_t s, double *omega, double *sigma);
 /** Tests: the split kernel only (@p rows), every half-bond from its own row,
  *  instead of the once-per-bond loop (pd_half.c), which gives the same bits. */
 void pd_set_row_loop(struct model *m, bool rows);

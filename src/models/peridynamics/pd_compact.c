@@ -49,7 +49,7 @@ bool pd_compact_predicted(const struct model *m)
     /* lps / eps: their table holds omega beta (pd_lps_init), which their
      * surface correction scales bond by bond: the arrays then */
     return !m->opt.full_bonds && !m->opt.fiber_plane && !ortho &&
-           !(m->opt.lps && m->lps.surface);
+           !(m->opt.lps && (m->lps.surface || m->lps.pals));
 }
 
 int pd_kinds_from_table(struct model *m, unsigned char *tab, size_t nk,

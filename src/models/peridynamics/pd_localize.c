@@ -34,7 +34,8 @@ static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep,
     double **pp[5] = {&L->wvol, &L->theta, &L->alpha, &L->bcoef, &L->afac};
     const int npp = L->afac ? 5 : 4;
     /* ob is NULL in compact storage (pd_lps_init: m->kind has the rows) */
-    double **bb[3];
+    double **bb[4];
+    size_t bsz[4] = {sizeof(double), sizeof(double), sizeof(double), sizeof(double)};
     int nbb = 0;
     if (L->ob)
         bb[nbb++] = &L->ob;
@@ -42,25 +43,39 @@ static int lps_localize(struct pd_lps *L, const size_t *keep, size_t n_keep,
         bb[nbb++] = &L->ep;
         bb[nbb++] = &L->epr;
     }
-    double *np[5] = {NULL, NULL, NULL, NULL, NULL}, *nb[3] = {NULL, NULL, NULL};
+    if (L->pw) { /* position_aware: omega, sigma of both halves per half-bond */
+        bsz[nbb] = 4 * sizeof(double);
+        bb[nbb++] = &L->pw;
+    }
+    double *np[5] = {NULL, NULL, NULL, NULL, NULL}, *nb[4] = {NULL, NULL, NULL, NULL};
     int bad = 0;
     for (int k = 0; k < npp; k++)
         bad |= !(np[k] = array_gather(*pp[k], sizeof(double), keep, n_keep));
     for (int k = 0; k < nbb; k++)
-        bad |= !(nb[k] = bond_rows_gather(rows, *bb[k], sizeof(double)));
+        bad |= !(nb[k] = bond_rows_gather(rows, *bb[k], bsz[k]));
     double *hs = NULL; /* eps: theta, scale, d k theta / m per particle, of each force call */
     if (L->ep)
         bad |= !(hs = calloc(3 * (n_keep ? n_keep : 1), sizeof *hs));
+    /* position_aware: theta and P per particle of the last force call (restart
+     * state: a restored run localises after reading its checkpoint) */
+    double *ptp = NULL;
+    if (L->pp)
+        bad |= !(ptp = array_gather(L->pp, 2 * sizeof *ptp, keep, n_keep));
     if (bad) {
         for (int k = 0; k < npp; k++)
             free(np[k]);
         for (int k = 0; k < nbb; k++)
             free(nb[k]);
         free(hs);
+        free(ptp);
         return spall_error_set(err, SPALL_ERR_NOMEM, "out of memory localising the LPS state");
     }
     free(L->hs);
     L->hs = hs;
+    if (L->pp) {
+        free(L->pp);
+        L->pp = ptp;
+    }
     free(L->rloc); /* the reverse slots of the whole body's rows: epr takes over */
     free(L->rloc8);
     L->rloc = NULL;
@@ -254,6 +269,12 @@ int pd_migrate_arrays(struct model *m, struct par_model_arrays *a, struct spall_
         if (L->hs) {
             a->particle[a->n_particle] = (void **)&L->hs;
             a->particle_size[a->n_particle++] = 3 * sizeof *L->hs;
+        }
+        if (L->pw) { /* position_aware: both halves' influences; (theta, P) */
+            a->bond[a->n_bond] = (void **)&L->pw;
+            a->bond_size[a->n_bond++] = 4 * sizeof(double);
+            a->particle[a->n_particle] = (void **)&L->pp;
+            a->particle_size[a->n_particle++] = 2 * sizeof *L->pp;
         }
     }
     if (m->mm_g) { /* laminae, mixed mode */

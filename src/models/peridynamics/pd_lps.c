@@ -84,6 +84,8 @@ void pd_lps_free(struct pd_lps *L)
     free(L->rloc8);
     free(L->epr);
     free(L->hs);
+    free(L->pw);
+    free(L->pp);
 }
 
 /* Cubic harmonic of the unit bond n in the lattice frame (2D: rotated by the
@@ -316,6 +318,8 @@ int pd_lps_init(struct model *m, struct sim *sim, struct spall_error *err)
         if ((rc = pd_lps_surface_init(m, sim, err)))
             return rc;
     }
+    if (L->pals && (rc = pd_lps_pals_init(m, sim, err))) /* position_aware: the same */
+        return rc;
     pd_lps_weights(m, sim);
     return SPALL_OK;
 }
@@ -379,6 +383,10 @@ void pd_lps_break_rows(struct model *m, const struct sim *sim, size_t i0, size_t
     struct bond_list *bl = m->bl;
     const struct pd_lps *L = &m->lps;
     const int dim = p->dim;
+    if (L->pw) {
+        pd_lps_pals_break_rows(m, sim, i0, i1);
+        return;
+    }
 #pragma omp parallel for schedule(dynamic, 256)
     for (size_t i = i0; i < i1; i++)
         for (size_t s = bl->offset[i]; s < bl->offset[i + 1]; s++) {
@@ -416,6 +424,8 @@ double pd_lps_stable_dt(const struct model *m, const struct sim *sim)
     const struct pd_lps *L = &m->lps;
     const double d = (double)sim->dim;
     const size_t n = p->n;
+    if (L->pw)
+        return pd_lps_pals_stable_dt(m, sim);
     double *S = malloc((n ? n : 1) * sizeof *S);
     if (!S)
         return 0.0; /* the engine refuses a non-positive step with a message */
@@ -464,6 +474,10 @@ void pd_lps_particle_eval(const struct model *m, const struct sim *sim, size_t i
     const struct bond_list *bl = m->bl;
     const struct pd_lps *L = &m->lps;
     const int dim = sim->dim;
+    if (L->pw) {
+        pd_lps_pals_particle_eval(m, sim, i, energy, stress);
+        return;
+    }
     const double th = lps_theta(m, sim, i);
     const struct pd_material *mt = &m->mat[p->material[i]];
     double w = 0.5 * mt->kd * th * th, sg[6] = {0, 0, 0, 0, 0, 0};

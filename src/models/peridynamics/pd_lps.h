@@ -17,6 +17,7 @@ struct model;
 struct sim;
 struct spall_error;
 struct pd_cellvol;
+struct deck_node;
 
 /** Influence function omega(xi) (deck `model.influence`). */
 enum pd_influence {
@@ -35,8 +36,12 @@ struct pd_lps {
     double *alpha;  /**< deviatoric coefficient d (d + 2) mu / m_i */
     double *bcoef;  /**< coefficient of |xi| theta in the scalar force: d k / m_i - alpha / d */
     double *ob;     /**< per half-bond: omega(xi) beta(xi) */
-    bool surface;   /**< surface_correction (pd_lps_surface.c) */
+    bool surface;   /**< surface_correction true (pd_lps_surface.c) */
+    bool pals;      /**< surface_correction position_aware (pd_lps_pals.c) */
     double *afac;   /**< per particle: factor on alpha of the surface correction; NULL: 1 */
+    /* surface_correction position_aware (pd_lps_pals.c); NULL otherwise */
+    double *pw;     /**< per half-bond i->j: omega_ij, sigma_ij, omega_ji, sigma_ji */
+    double *pp;     /**< per particle (owned and ghosts): theta and P of the call */
     /* formulation eps (pd_eps.c); NULL for lps */
     double *ep;     /**< per half-bond: plastic deviatoric extension e^dp [m] */
     double *hs;     /**< per particle (owned and ghosts): theta, return-map scale and d k
@@ -59,6 +64,21 @@ void pd_lps_free(struct pd_lps *L);
 int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err);
 /** surface_correction: factors on omega and alpha near free surfaces (pd_lps_surface.c). */
 int pd_lps_surface_init(struct model *m, struct sim *sim, struct spall_error *err);
+/* pd_lps_pals.c: surface_correction position_aware ([Mitchell2015]) */
+/** Deck `model.surface_correction` (true, false, position_aware) into m's
+ *  options once the formulation is known; refuses position_aware without lps. */
+int pd_surface_opts(struct model *m, const struct deck_node *params, struct spall_error *err);
+/** Influence functions omega, sigma of every half-bond (after pd_lps_init's ob). */
+int pd_lps_pals_init(struct model *m, struct sim *sim, struct spall_error *err);
+/** Forces (and breaking) of the position-aware LPS. */
+int pd_lps_pals_forces(struct model *m, struct sim *sim, struct spall_error *err);
+/** break_order next_step of rows [i0, i1) with the position-aware force state. */
+void pd_lps_pals_break_rows(struct model *m, const struct sim *sim, size_t i0, size_t i1);
+/** Gershgorin bound of its linearised stiffness (as pd_lps_stable_dt). */
+double pd_lps_pals_stable_dt(const struct model *m, const struct sim *sim);
+/** Energy [J] and stress [Pa] of particle @p i (as pd_lps_particle_eval). */
+void pd_lps_pals_particle_eval(const struct model *m, const struct sim *sim, size_t i,
+                               double *energy, double *stress);
 /** break_order next_step: drop the bonds past s0 after this step's forces. */
 void pd_lps_break_late(struct model *m, const struct sim *sim);
 /** The same for the rows of particles [i0, i1) (the force passes break the

@@ -686,6 +686,8 @@ static int eps_forces(struct model *m, struct sim *sim, const struct lps_ctx *c,
 int pd_lps_forces(struct model *m, struct sim *sim, struct spall_error *err)
 {
     const size_t n = sim->p->n, no = sim->p->n_owned;
+    if (m->lps.pw) /* surface_correction position_aware: its own passes */
+        return pd_lps_pals_forces(m, sim, err);
     struct lps_ctx c;
     struct pd_kind_row *ktab;
     int rc = lps_ctx_make(m, sim, &c, &ktab, err);

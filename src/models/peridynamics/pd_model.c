@@ -34,7 +34,7 @@
  *                               half-bond (pd_compact.c); full: one of each
  *                               per half-bond.  Same results bit for bit.
  *     surface_correction: bool  pmb: energy method of Madenci & Oterkus 2014
- *                               sec. 4.2 (default false)
+ *                               sec. 4.2 (default false); lps also position_aware
  *     quasi_static: off | adr   adr: adaptive dynamic relaxation damping
  *                               (Kilic & Madenci 2010) on the real masses
  *     fiber_model: lattice | angular   orthotropic laminae: fiber bonds are
@@ -171,8 +171,6 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             (rc = deck_enum(params, "partial_volume_rule", false, pvr, &pr, err)) ||
             (rc = deck_enum(params, "break_order", false, bo, &b, err)) ||
             (rc = deck_enum(params, "bond_storage", false, bst, &bs, err)) ||
-            (rc = deck_bool(params, "surface_correction", false, &m->opt.surface_correction,
-                            err)) ||
             (rc = deck_enum(params, "quasi_static", false, qs, &q, err)) ||
             (rc = deck_enum(params, "fiber_model", false, fm, &f, err)) ||
             (rc = deck_long(params, "fiber_power", false, 1, 64, &pw, err)) ||
@@ -217,9 +215,9 @@ static int pd_create(struct model **out, struct sim *sim, const struct deck_node
             return deck_error_key(err, params, "formulation", "lps and eps need a 2D or 3D pmb "
                                   "run");
         }
-        if (m->opt.lps) { /* lps/eps: their own surface correction (pd_lps_surface.c) */
-            m->lps.surface = m->opt.surface_correction;
-            m->opt.surface_correction = false;
+        if ((rc = pd_surface_opts(m, params, err))) { /* pmb, or lps's own (pd_lps_pals.c) */
+            free(m);
+            return rc;
         }
         if (m->opt.variant == PD_PDLM && sim->dim != 2) {
             free(m);
@@ -528,7 +526,7 @@ static int pd_precrack(struct model *m, struct sim *sim, const struct precrack *
     *n_cut = bond_list_apply_precrack(m->bl, sim->p, c);
     if (m->opt.lps)
         pd_lps_weights(m, sim); /* a pre-cut bond leaves the family */
-    return SPALL_OK;
+    return m->lps.pals ? pd_lps_pals_init(m, sim, err) : SPALL_OK; /* pd_lps_pals.c */
 }
 
 /* ---- fields ------------------------------------------------------------------------ */
@@ -679,7 +677,7 @@ static void pd_describe(const struct model *m, const struct sim *sim, char *buf,
         sim->dim == 2 ? (m->opt.plane == PD_PLANE_STRAIN ? "plane strain" : "plane stress")
                       : sim->dim == 3 ? "3D" : "1D",
         m->opt.partial_volume ? (m->opt.cell_volumes ? "on (cell rule)" : "on") : "off",
-        (m->opt.surface_correction || m->lps.surface) ? "on" : "off",
+        m->lps.pals ? "position_aware" : (m->opt.surface_correction || m->lps.surface) ? "on" : "off",
         m->opt.quasi == PD_QS_ADR ? "adr" : "off", m->bl ? bond_list_count(m->bl) : 0);
     if (m->bl) { /* the allocations themselves: the memory target of issue 25 */
         const size_t n = sim->p->n_owned, nb = pd_model_bytes(m, n);

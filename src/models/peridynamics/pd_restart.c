@@ -2,7 +2,8 @@
  * @file pd_restart.c
  * @brief Restart state of the peridynamics model: bond states and the
  *        energy they released, the mixed-mode history, the plastic
- *        extension state of formulation eps, and the adaptive
+ *        extension state of formulation eps, the last dilatation and P of
+ *        the position-aware LPS, and the adaptive
  *        dynamic relaxation's previous forces and coefficient.  Families,
  *        reference lengths and micromodulus coefficients are rebuilt from
  *        the deck by init.
@@ -41,6 +42,12 @@ int pd_register_state(struct model *m, struct sim *sim, struct field_state *fs,
     if (!rc && m->lps.ep) /* formulation eps: the plastic extension state */
         rc = field_state_add_bond_array(fs, "pd.eps_plastic", FIELD_F64, (void **)&m->lps.ep,
                                         m->bl, 1, err);
+    /* surface_correction position_aware: theta and P of the last force call,
+     * which price a half-bond that breaks in the first call after a restart
+     * (pd_lps_pals.c) */
+    if (!rc && m->lps.pp)
+        rc = field_state_add_particle_array(fs, "pd.pals_theta_p", FIELD_F64,
+                                            (void **)&m->lps.pp, n, 2, err);
     char nm[FIELD_STATE_NAME_LEN];
     for (int d = 0; d < sim->dim && !rc; d++)
         if (m->f_prev[d]) { /* ADR: this step's and the previous step's forces */
