@@ -227,9 +227,17 @@ static int state_io(struct ck *c, const struct field_state *fs, bool write)
             continue;
         }
         long long len = ck_len(c, name);
-        if (len < 0 || (size_t)len % sl->width)
-            return ck_bad(c, "state '%s' is missing or malformed (checkpoint of another "
-                             "formulation?)", sl->name);
+        /* A slot the run registers and the file lacks: the model's options
+         * differ, or the file predates the slot.  Refused
+         * rather than started from zeros or a recomputed value, which would
+         * break the bitwise restart silently; the format version stays, as
+         * the layout is the same (docs/restart.md, "Bad checkpoints"). */
+        if (len < 0)
+            return ck_bad(c, "state '%s' is missing: a checkpoint of other model options, or "
+                             "of a spall that did not save it yet; continue with that spall "
+                             "or rerun from the start", sl->name);
+        if ((size_t)len % sl->width)
+            return ck_bad(c, "state '%s' is malformed (not a whole number of rows)", sl->name);
         if ((rc = field_state_slot_resize(sl, (size_t)len / sl->width, c->err)))
             return rc;
         rc = ck_read(c, name, sl->type, field_state_slot_data(sl), (size_t)len);

@@ -2,8 +2,9 @@
  * @file pd_restart.c
  * @brief Restart state of the peridynamics model: bond states and the
  *        energy they released, the mixed-mode history, the plastic
- *        extension state of formulation eps, the last dilatation and P of
- *        the position-aware LPS, and the adaptive
+ *        extension state of formulation eps, the dilatation of the last
+ *        force call of lps and eps (and P of the position-aware LPS), and
+ *        the adaptive
  *        dynamic relaxation's previous forces and coefficient.  Families,
  *        reference lengths and micromodulus coefficients are rebuilt from
  *        the deck by init.
@@ -42,12 +43,18 @@ int pd_register_state(struct model *m, struct sim *sim, struct field_state *fs,
     if (!rc && m->lps.ep) /* formulation eps: the plastic extension state */
         rc = field_state_add_bond_array(fs, "pd.eps_plastic", FIELD_F64, (void **)&m->lps.ep,
                                         m->bl, 1, err);
-    /* surface_correction position_aware: theta and P of the last force call,
-     * which price a half-bond that breaks in the first call after a restart
-     * (pd_lps_pals.c) */
+    /* The dilatation of the last force call prices a half-bond that breaks
+     * in the first call after a restart (break_order immediate: its t e / 2
+     * at the theta before the call, lps_row_settle of pd_lps_kernel.c; eps
+     * the same, the rest of eps' per-call state hs is rewritten by pass 1
+     * before it is read).  Default lps and eps: theta; position_aware: theta
+     * and P (pd_lps_pals.c), its own pair. */
     if (!rc && m->lps.pp)
         rc = field_state_add_particle_array(fs, "pd.pals_theta_p", FIELD_F64,
                                             (void **)&m->lps.pp, n, 2, err);
+    else if (!rc && m->opt.lps)
+        rc = field_state_add_particle_array(fs, "pd.lps_theta", FIELD_F64,
+                                            (void **)&m->lps.theta, n, 1, err);
     char nm[FIELD_STATE_NAME_LEN];
     for (int d = 0; d < sim->dim && !rc; d++)
         if (m->f_prev[d]) { /* ADR: this step's and the previous step's forces */
