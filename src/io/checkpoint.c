@@ -228,10 +228,10 @@ static int state_io(struct ck *c, const struct field_state *fs, bool write)
         }
         long long len = ck_len(c, name);
         /* A slot the run registers and the file lacks: the model's options
-         * differ, or the file predates the slot.  Refused
-         * rather than started from zeros or a recomputed value, which would
-         * break the bitwise restart silently; the format version stays, as
-         * the layout is the same (docs/restart.md, "Bad checkpoints"). */
+         * differ, or the file predates the slot.  Refused rather than
+         * started from zeros or a recomputed value, which would break the
+         * bitwise restart silently; the format version stays, as the
+         * layout is the same (docs/restart.md, "Bad checkpoints"). */
         if (len < 0)
             return ck_bad(c, "state '%s' is missing: a checkpoint of other model options, or "
                              "of a spall that did not save it yet; continue with that spall "

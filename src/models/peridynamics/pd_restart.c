@@ -4,8 +4,7 @@
  *        energy they released, the mixed-mode history, the plastic
  *        extension state of formulation eps, the dilatation of the last
  *        force call of lps and eps (and P of the position-aware LPS), and
- *        the adaptive
- *        dynamic relaxation's previous forces and coefficient.  Families,
+ *        the adaptive dynamic relaxation's previous forces and coefficient.  Families,
  *        reference lengths and micromodulus coefficients are rebuilt from
  *        the deck by init.
  */
