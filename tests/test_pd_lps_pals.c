@@ -9,8 +9,12 @@
  *        each particle's stress of a homogeneous strain is the continuum's
  *        (where the default LPS misses by tens of percents at the corners);
  *        the forces are minus the gradient of the energy; every deviatoric
- *        influence is non-negative (a stable energy); 3D, eps, pmb and strips
- *        of one and two rows refuse it.
+ *        influence is non-negative (a stable energy).  3D (sc and fcc cubes,
+ *        an sc plate of 4 layers, an fcc sphere): dilatation exact for every
+ *        strain, deviatoric energy for the coordinate and diagonal strains
+ *        at every particle, the mixed strains' error bounded, forces = -dE/dx,
+ *        free bodies stable 2000 steps.  eps, pmb, a 3D plate of 3 layers
+ *        and 2D strips of one and two rows refuse it.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -62,6 +66,33 @@ static struct sim *build_body(int b, const char *corr, double nu)
     return test_build_ok(deck);
 }
 
+/* 3D bodies at delta = 3.015 dx: sc and fcc cubes, an sc plate of four
+ * layers (3 dx thick, about delta) and an fcc sphere (a staircase surface) */
+#define NBODY3 4
+/* the measured worst of the 3D bodies' surface families is 0.75 */
+#define MIX_BOUND 0.8
+static const char *const BODIES3[NBODY3] = {
+    "lattice: {type: sc, spacing: 1.0e-3}\n"
+    "body: {geometry: {box: {min: [0, 0, 0], max: [0.0065, 0.0065, 0.0065]}}, material: m}\n",
+    "lattice: {type: fcc, spacing: 1.0e-3}\n"
+    "body: {geometry: {box: {min: [0, 0, 0], max: [0.0065, 0.0065, 0.0065]}}, material: m}\n",
+    "lattice: {type: sc, spacing: 1.0e-3}\n"
+    "body: {geometry: {box: {min: [0, 0, 0], max: [0.0105, 0.0105, 0.0035]}}, material: m}\n",
+    "lattice: {type: fcc, spacing: 1.0e-3}\n"
+    "body: {geometry: {sphere: {center: [0, 0, 0], radius: 0.0045}}, material: m}\n",
+};
+
+static struct sim *build_body3(int b, double nu, const char *extra)
+{
+    char deck[2048];
+    snprintf(deck, sizeof deck,
+             "model: {type: peridynamics, formulation: lps, surface_correction: position_aware}\n"
+             "materials: {m: {density: 1000, youngs_modulus: 1.0e9, poisson_ratio: %g}}\n"
+             "%s%srun: {%s}\n",
+             nu, BODIES3[b], extra ? extra : "", extra ? "steps: 2000" : "end_time: 1.0");
+    return test_build_ok(deck);
+}
+
 /* deterministic uniform numbers in [-1, 1] */
 static double rnd(uint64_t *st)
 {
@@ -92,6 +123,113 @@ static double bond_xex(const struct particles *p, int dim, size_t i, size_t j,
             xex += xi[a] * eps[a][c] * xi[c];
     *len = sqrt(x2);
     return xex;
+}
+
+/* Particle i's discrete dilatation *th and deviatoric energy *wd = mu sum
+ * sigma (e^d)^2 V of the homogeneous strain eps, from the influences the
+ * model holds (pd_lps_pals_half); pre-cut half-bonds are out of the family */
+static void particle_th_wd(const struct sim *s, size_t i, double eps[3][3], double mu,
+                           double *th, double *wd)
+{
+    const struct particles *p = s->p;
+    const struct bond_list *bl = pd_bonds(s->model);
+    const int dim = s->dim;
+    double om, sg, len;
+    *th = *wd = 0.0;
+    for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++) {
+        const size_t j = (size_t)bl->partner[q];
+        const double xex = bond_xex(p, dim, i, j, eps, &len);
+        assert_true(pd_lps_pals_half(s->model, q, &om, &sg));
+        if (!(bl->state[q] & BOND_BROKEN))
+            *th += om * xex * p->volume[j];
+    }
+    for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++) {
+        const size_t j = (size_t)bl->partner[q];
+        const double xex = bond_xex(p, dim, i, j, eps, &len);
+        pd_lps_pals_half(s->model, q, &om, &sg);
+        if (bl->state[q] & BOND_BROKEN)
+            continue;
+        /* e^d = e - theta |xi| / d with the discrete theta */
+        const double edv = xex / len - *th * len / dim;
+        *wd += mu * sg * edv * edv * p->volume[j];
+    }
+}
+
+/* |eps^d|^2 and tr eps of eps in dim dimensions */
+static double dev_norm2(int dim, double eps[3][3], double *tr)
+{
+    double t = 0.0, dd = 0.0;
+    for (int a = 0; a < dim; a++)
+        t += eps[a][a];
+    for (int a = 0; a < dim; a++)
+        for (int c = 0; c < dim; c++) {
+            const double e = eps[a][c] - (a == c ? t / dim : 0.0);
+            dd += e * e;
+        }
+    *tr = t;
+    return dd;
+}
+
+/* 3D ([Mitchell2015]'s constraint set, pd_lps_pals.c): at every particle of
+ * each 3D body the dilatation of every homogeneous strain is tr eps, and the
+ * deviatoric energy is mu eps^d : eps^d for the six coordinate strains
+ * (e_k e_k, sym e_k e_l) and every diagonal strain; strains mixing shears
+ * (or a shear with a diagonal part) are not constrained: their worst error
+ * is measured (and bounded, the interior's cubic symmetry making them exact
+ * there).  Every sigma >= 0. */
+static void test_3d_coordinate_strains(void **state)
+{
+    (void)state;
+    uint64_t st = 9090;
+    static const int ix[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+    for (int b = 0; b < NBODY3; b++) {
+        struct sim *s = build_body3(b, 0.3, NULL);
+        const struct particles *p = s->p;
+        const struct bond_list *bl = pd_bonds(s->model);
+        const double mu = pd_material_get(s->model, 0)->mu;
+        double om, sg, smin = INFINITY, w_coord = 0.0, w_th = 0.0, w_mix = 0.0, w_full = 0.0;
+        size_t nfull = 0; /* the largest family: complete, cubic symmetry */
+        for (size_t i = 0; i < p->n; i++)
+            nfull = bl->offset[i + 1] - bl->offset[i] > nfull ? bl->offset[i + 1] - bl->offset[i]
+                                                              : nfull;
+        for (size_t q = 0; q < bl->offset[p->n]; q++) {
+            assert_true(pd_lps_pals_half(s->model, q, &om, &sg));
+            smin = fmin(smin, sg);
+        }
+        assert_true(smin >= 0.0);
+        /* 6 coordinate strains, 3 random diagonal ones, 4 random full ones */
+        for (int t = 0; t < 13; t++) {
+            double eps[3][3] = {{0}}, tr;
+            if (t < 6)
+                eps[ix[t][0]][ix[t][1]] = eps[ix[t][1]][ix[t][0]] = 1.0;
+            else if (t < 9)
+                for (int a = 0; a < 3; a++)
+                    eps[a][a] = rnd(&st);
+            else
+                random_strain(3, &st, 1.0, eps);
+            const double dd = dev_norm2(3, eps, &tr);
+            for (size_t i = 0; i < p->n; i++) {
+                double th, wd;
+                particle_th_wd(s, i, eps, mu, &th, &wd);
+                const double rel = fabs(wd - mu * dd) / (mu * dd);
+                w_th = fmax(w_th, fabs(th - tr) / sqrt(dd + tr * tr));
+                if (t < 9)
+                    w_coord = fmax(w_coord, rel);
+                else if (bl->offset[i + 1] - bl->offset[i] < nfull)
+                    w_mix = fmax(w_mix, rel);
+                else
+                    w_full = fmax(w_full, rel);
+            }
+        }
+        print_message("3D body %d: %zu particles, min sigma %.3e, worst |theta - tr eps| %.2e, "
+                      "coordinate/diagonal energy %.2e, mixed strains %.3f relative (complete "
+                      "families %.2e)\n", b, p->n, smin, w_th, w_coord, w_mix, w_full);
+        assert_true(w_th < 1e-12);
+        assert_true(w_coord < 1e-12);
+        assert_true(w_mix < MIX_BOUND);
+        assert_true(w_full < 1e-12);
+        sim_destroy(&s);
+    }
 }
 
 /* The two identities at every particle from the influences the model holds
@@ -126,25 +264,8 @@ static void test_identities_every_particle(void **state)
                         dd += ed[a][c] * ed[a][c];
                     }
                 for (size_t i = 0; i < p->n; i++) {
-                    double th = 0.0, wd = 0.0, len;
-                    for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++) {
-                        const size_t j = (size_t)bl->partner[q];
-                        const double xex = bond_xex(p, dim, i, j, eps, &len);
-                        assert_true(pd_lps_pals_half(s->model, q, &om, &sg));
-                        if (bl->state[q] & BOND_BROKEN) /* pre-cut: out of the family */
-                            continue;
-                        th += om * xex * p->volume[j];
-                    }
-                    for (size_t q = bl->offset[i]; q < bl->offset[i + 1]; q++) {
-                        const size_t j = (size_t)bl->partner[q];
-                        const double xex = bond_xex(p, dim, i, j, eps, &len);
-                        pd_lps_pals_half(s->model, q, &om, &sg);
-                        if (bl->state[q] & BOND_BROKEN)
-                            continue;
-                        /* e^d = e - theta |xi| / d with the discrete theta */
-                        const double edv = xex / len - th * len / dim;
-                        wd += mu * sg * edv * edv * p->volume[j];
-                    }
+                    double th, wd;
+                    particle_th_wd(s, i, eps, mu, &th, &wd);
                     worst_th = fmax(worst_th, fabs(th - tr));
                     worst_w = fmax(worst_w, fabs(wd - mu * dd) / (mu * dd));
                 }
@@ -249,8 +370,9 @@ static void test_forces_are_energy_gradient(void **state)
 {
     (void)state;
     uint64_t st = 4242;
-    for (int b = 0; b < NBODY; b++) {
-        struct sim *s = build_body(b, "position_aware", 0.3);
+    for (int b = 0; b < NBODY + NBODY3; b++) { /* the 2D, then the 3D bodies */
+        struct sim *s = b < NBODY ? build_body(b, "position_aware", 0.3)
+                                  : build_body3(b - NBODY, 0.3, NULL);
         struct particles *p = s->p;
         const int dim = s->dim;
         for (size_t i = 0; i < p->n; i++)
@@ -285,6 +407,21 @@ static void test_forces_are_energy_gradient(void **state)
     }
 }
 
+/* Runs s to its end: the energy account closed to 1 % of the kinetic
+ * energy put in, strain energy stored (no growth: a bounded total) */
+static void run_free(struct sim *s, int b)
+{
+    sim_update_energy(s);
+    const double k0 = s->energy.kinetic;
+    test_run_to_end(s);
+    sim_update_energy(s);
+    print_message("body %d: kinetic %.4e -> %.4e, strain %.4e, balance %.2e of the input\n", b,
+                  k0, s->energy.kinetic, s->energy.strain, s->energy.balance / k0);
+    assert_true(k0 > 0.0 && s->energy.strain > 0.0);
+    assert_true(fabs(s->energy.balance) < 1e-2 * k0);
+    sim_destroy(&s);
+}
+
 /* A free plate of each lattice and plane set moving at the stable step of
  * pd_lps_pals_stable_dt: 5000 steps without growth, the energy account
  * closed to 1 % of the kinetic energy put in. */
@@ -301,17 +438,19 @@ static void test_free_plate_stable(void **state)
                  "initial_velocity:\n  - {group: top, value: [1.0, 2.0]}\n"
                  "run: {steps: 5000}\n",
                  PLANE[b], BODIES[b]);
-        struct sim *s = test_build_ok(deck);
-        sim_update_energy(s);
-        const double k0 = s->energy.kinetic;
-        test_run_to_end(s);
-        sim_update_energy(s);
-        print_message("body %d: kinetic %.4e -> %.4e, strain %.4e, balance %.2e of the input\n",
-                      b, k0, s->energy.kinetic, s->energy.strain, s->energy.balance / k0);
-        assert_true(k0 > 0.0 && s->energy.strain > 0.0);
-        assert_true(fabs(s->energy.balance) < 1e-2 * k0);
-        sim_destroy(&s);
+        run_free(test_build_ok(deck), b);
     }
+}
+
+/* The 3D cubes (sc, fcc) and the four-layer sc plate, the upper part
+ * moving: 2000 steps at the stable step, the account closed as in 2D. */
+static void test_3d_free_body_stable(void **state)
+{
+    (void)state;
+    for (int b = 0; b < 3; b++)
+        run_free(build_body3(b, 0.45, "groups: {top: {box: {min: [-1, 0.0035, -1], "
+                                      "max: [1, 1, 1]}}}\ninitial_velocity:\n  - {group: top, "
+                                      "value: [1.0, 2.0, -1.5]}\n"), NBODY + b);
 }
 
 static void test_refused(void **state)
@@ -323,10 +462,14 @@ static void test_refused(void **state)
     static const char *const why[] = {"position_aware is for formulation lps",
                                       "position_aware is for formulation lps",
                                       "surface_correction is true, false or position_aware",
-                                      "position_aware is for 2D runs",
+                                      "comes out negative on some bonds",
                                       "do not determine its influence functions",
                                       "comes out negative on some bonds"};
-    /* 2D strips: one row (collinear bonds), two rows (negative sigma) */
+    /* a 3D plate of three sc layers (2 dx thick, under delta: negative
+     * sigma); 2D strips: one row (collinear bonds), two rows (negative sigma) */
+    static const char *const plate3 =
+        "lattice: {type: sc, spacing: 1.0e-3}\n"
+        "body: {geometry: {box: {min: [0, 0, 0], max: [0.0105, 0.0105, 0.0025]}}, material: m}\n";
     static const char *const strip1 =
         "lattice: {type: square, spacing: 1.0e-3, thickness: 1.0e-3}\n"
         "body: {geometry: {box: {min: [0, 0], max: [0.0195, 0.0005]}}, material: m}\n";
@@ -347,7 +490,7 @@ static void test_refused(void **state)
     for (int k = 0; k < 6; k++) {
         char deck[2048];
         snprintf(deck, sizeof deck, "%s%srun: {end_time: 1.0}\n", decks[k < 4 ? k : 3],
-                 k < 4 ? cube : k == 4 ? strip1 : strip2);
+                 k < 3 ? cube : k == 3 ? plate3 : k == 4 ? strip1 : strip2);
         struct sim *s = NULL;
         struct spall_error err = {0};
         assert_int_not_equal(vlat_build("test", deck, &s, &err), SPALL_OK);
@@ -361,9 +504,11 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_identities_every_particle),
+        cmocka_unit_test(test_3d_coordinate_strains),
         cmocka_unit_test(test_stress_every_particle),
         cmocka_unit_test(test_forces_are_energy_gradient),
         cmocka_unit_test(test_free_plate_stable),
+        cmocka_unit_test(test_3d_free_body_stable),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

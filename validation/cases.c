@@ -101,10 +101,10 @@ static const struct vcase cases[] = {
          "(gap; 0.0 deg with fiber_plane), starts 0.25-0.72 mm from the tip; 20 of 21 checks "
          "pass. Standard tier: B-0-45.")},
     {"pd-lps-patch", "LPS patch test: E and nu for nu = 0.1, 0.3, 0.45, 2D and 3D; at the "
-     "default rule surface_correction position_aware meets 1 % in 2D",
+     "default rule surface_correction position_aware meets 1 % in 2D and 3D",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, pd_case_lps_patch, TIER_ALL},
     {"pd-lps-surface", "LPS surface correction: E, nu and G of small bodies with free "
-     "surfaces (true; position_aware: the 2D plate's G too)",
+     "surfaces (true; position_aware: G too)",
      VKIND_VERIFICATION, VGATE_FULL, NULL, pd_case_lps_surface, TIER_ALL},
     {"pd-interface-crack", "LPS plate of two materials: the crack runs along the weaker "
      "interface (45 deg)",

@@ -35,10 +35,10 @@
  * the cube's -4.1 / -2.0 % (nu = 0.1) and +0.25 / -0.96 % (nu = 0.45):
  * f_dev falls as 1 / L (surface layer), f_dil as 1 / L^2 (corners, edges).
  *
- * The plate's rows with surface_correction position_aware (pd_lps_pals.c,
- * [Mitchell2015]; 2D only): per-particle influences fitted to every
- * homogeneous strain, so E, nu and G are all met (the cube has no such
- * rows: refused in 3D).
+ * The rows with surface_correction position_aware (pd_lps_pals.c,
+ * [Mitchell2015]): per-particle influences fitted to every homogeneous
+ * strain (the plate) or to the six coordinate strains (the cube: uniaxial
+ * strain and simple shear are among them), so E, nu and G are all met.
  */
 #include "validation/lattice_cases.h"
 #include "validation/pd_cases.h"
@@ -106,14 +106,18 @@ static int body_moduli(const char *deck, bool plane_stress, double *E, double *n
     return SPALL_OK;
 }
 
-/* The rows of surface_correction position_aware (pd_lps_pals.c, 2D only):
- * E, nu and G of @p body at @p nu against the same references and
+/* The rows of surface_correction position_aware (pd_lps_pals.c): E, nu
+ * and G of @p body (@p dim) at @p nu against the same references and
  * tolerances as the rows of true. */
-static int pals_checks(struct vreport *r, const char *body, double nu, double E, double nu_m,
-                       double G, struct spall_error *err)
+static int pals_checks(struct vreport *r, const char *body, int dim, double nu, double E,
+                       double nu_m, double G, struct spall_error *err)
 {
-    const char *note = "1 %: issue 26 item 1; position-aware influences ([Mitchell2015]) "
-                       "exact for every homogeneous strain at every particle";
+    const char *note = dim == 2 ? "1 %: issue 26 item 1; position-aware influences "
+                                  "([Mitchell2015]) exact for every homogeneous strain at every "
+                                  "particle"
+                                : "1 %: issue 26 item 1; position-aware influences "
+                                  "([Mitchell2015]) exact for the six coordinate strains at "
+                                  "every particle";
     const char *src = "input E, nu; homogeneous uniaxial strain, body-mean stress";
     char q[128];
     snprintf(q, sizeof q, "%s, nu = %.2f, position_aware: E", body, nu);
@@ -138,8 +142,7 @@ int pd_case_lps_surface(struct vreport *r, struct spall_error *err)
         double gerr[3], kmu[3]; /* G / G_ref - 1 with the correction, k / mu */
         for (int k = 0; k < 3; k++) {
             double E[3] = {0}, nu[3] = {0}, G[3] = {0}; /* false, true, position_aware */
-            /* position_aware is for 2D runs (pd_lps_pals.c): the plate only */
-            for (int corr = 0; corr < (b == 0 ? 3 : 2); corr++) {
+            for (int corr = 0; corr < 3; corr++) {
                 char deck[1024];
                 const char *sc = corr == 2 ? "position_aware" : corr ? "true" : "false";
                 if (b == 0)
@@ -197,7 +200,7 @@ int pd_case_lps_surface(struct vreport *r, struct spall_error *err)
                                  "families' off-diagonal moment gives shear a dilatation (f_dil); "
                                  "G / G_ref - 1 = f_dev + (k / mu) f_dil (info line); a 2x larger "
                                  "body halves it (nu = 0.1: plate -2.2 %, cube -4.1 %)");
-            if (b == 0 && (rc = pals_checks(r, bodies[b], nus[k], E[2], nu[2], G[2], err)))
+            if ((rc = pals_checks(r, bodies[b], b == 0 ? 2 : 3, nus[k], E[2], nu[2], G[2], err)))
                 return rc;
             gerr[k] = G[1] / Gref - 1.0;
             /* bulk modulus of the dimension over mu: plane stress (1 + nu) / (1 - nu),

@@ -2,46 +2,67 @@
  * @file pd_lps_pals.c
  * @brief Position-aware linear solid (PALS, [Mitchell2015]): deck
  *        `model.surface_correction: position_aware` with `formulation: lps`,
- *        2D (plane stress and plane strain).
+ *        2D (plane stress and plane strain) and 3D.
  *
  * Each particle i has two influence functions on its own half-bonds, omega_i
  * for the dilatation and sigma_i for the deviatoric energy, each the default
  * LPS influence times a polynomial in the bond whose coefficients are the
  * Lagrange multipliers of that particle: the least change, in the norm
  * sum (w - w0)^2 / w0 V over the family, that meets linear constraints on
- * the DISCRETE family as it is (free edges, corners and the lattice's own
- * anisotropy alike) ([Mitchell2015] sec. 3, there with the energies of the
- * coordinate strains as constraints).  With ob = omega beta of pd_lps.c
- * (cubic factor included), m_i = sum ob |xi|^2 V_j, u = xi / delta, d = 2
- * and phi_p(n) = n . E_p . n over an orthonormal basis E_1, E_2 of the
- * deviatoric tensors:
+ * the DISCRETE family as it is (free surfaces, edges, corners and the
+ * lattice's own anisotropy alike) ([Mitchell2015] sec. 3).  With ob = omega
+ * beta of pd_lps.c (cubic factor included), m_i = sum ob |xi|^2 V_j, u =
+ * xi / delta and d the dimension:
  *   omega_ij = omega0 (1 + sum_b lw_b c_b(u)),  omega0 = d ob / m_i,
- *              c_b = u_x^2, u_y^2, u_x u_y,
+ *              c_b = u_k u_l (k <= l: 3 in 2D, 6 in 3D),
  *     constraints sum_j omega_ij xi (x) xi V_j = I   (dilatation exact);
  *   sigma_ij = sigma0 (1 + sum_a ls_a h_a(u)),  sigma0 = d (d + 2) ob / (2 m_i),
- *              h_a = |u|^2 phi_p phi_q (p <= q: 3 of them),
- *     constraints sum_j sigma_ij |xi|^2 phi_p phi_q V_j = delta_pq.
+ *     constraints sum_j sigma_ij |xi|^2 psi_a(n)^2 V_j = D_a : D_a
+ *     (h_a = |u|^2 psi_a(n)^2) for the deviatoric modes psi_a(n) = n . D_a . n
+ *     listed below, and in 2D also their cross products.
  * The stationarity of the least change gives these forms (the gradient of
  * each constraint times w0), so each set of multipliers solves one small
  * symmetric system.  For a homogeneous strain eps, |xi| e = xi . eps . xi,
- * so theta_i = sum omega |xi| e V = tr eps, e^d = e - theta |xi| / d = |xi|
- * phi(eps^d), and sum sigma (e^d)^2 V = eps^d : eps^d for EVERY deviatoric
- * eps, shears and mixed strains included (Peridigm's Pals material matches
- * the energies of the coordinate strains only, which leaves the cross terms
- * free).  The energy of particle i
+ * so theta_i = sum omega |xi| e V = tr eps for every eps, and e^d = e -
+ * theta |xi| / d = |xi| n . eps^d . n, so sum sigma (e^d)^2 V is the
+ * quadratic form the sigma constraints fix:
+ *   2D: D_1 = (e_x e_x - e_y e_y) / sqrt 2, D_2 = (e_x e_y + e_y e_x) /
+ *       sqrt 2 and every product psi_p psi_q (p <= q, targets delta_pq: 3
+ *       multipliers), so sum sigma (e^d)^2 V = eps^d : eps^d for EVERY
+ *       deviatoric eps.
+ *   3D: the deviatoric parts of the six coordinate strains, D = dev(e_k e_k)
+ *       (psi = n_k^2 - 1/3, target 2/3) and (e_k e_l + e_l e_k) / sqrt 2
+ *       (k < l, psi = sqrt 2 n_k n_l, target 1), their energies only, as
+ *       [Mitchell2015] and Peridigm's Pals: 6 multipliers.  Exact for every
+ *       diagonal strain (the three normal modes' energies fix the whole
+ *       quadratic form on the 2-dimensional space they span) and for each
+ *       simple shear; the cross terms of two shears, or of a shear and a
+ *       diagonal strain, are free: exact in a complete family (its cubic
+ *       symmetry makes them vanish), off by up to 75 % of the deviatoric
+ *       energy of a random strain at the corners of sc and fcc cubes
+ *       (tests/test_pd_lps_pals.c).  Imposing them too (all 15 products of
+ *       an orthonormal basis, as 2D does) admits no non-negative sigma at an
+ *       edge or corner: for an octant family (x, y, z >= 0) the targets 0 on
+ *       (x^2 + y^2 - 2 z^2) x y and on x^2 y z leave sigma > 0 only on bonds
+ *       with x y = 0, where the target 1 on x^2 y^2 fails (measured: 6 % of
+ *       a 7^3 sc cube's half-bonds negative, sc and fcc cubes blowing up
+ *       within 150 steps).
+ * The energy of particle i
  *   W_i = k theta_i^2 / 2 + mu sum_j sigma_ij (e^d_ij)^2 V_j
- * is then k (tr eps)^2 / 2 + mu eps^d : eps^d exactly, the energy of the
- * in-plane strain with k the bulk modulus of the dimension (mt->kd: K + mu
- * / 3 in plane strain, E / (2 (1 - nu)) in plane stress, [Le2014]) and mu
- * the shear modulus.  Force state t = dW / de ([Silling2007]'s Frechet
- * derivative, dW = sum t de V):
+ * is then k (tr eps)^2 / 2 + mu eps^d : eps^d for those strains, k the bulk
+ * modulus of the dimension (mt->kd: K in 3D, K + mu / 3 in plane strain,
+ * E / (2 (1 - nu)) in plane stress, [Le2014]) and mu the shear modulus.
+ * Force state t = dW / de ([Silling2007]'s Frechet derivative, dW = sum t
+ * de V):
  *   t_ij = omega_ij |xi| P_i + 2 mu sigma_ij e^d_ij,
  *   P_i  = k theta_i - (2 mu / d) gamma_i,  gamma_i = sum_l sigma_il |xi| e^d_il V_l
  * (gamma_i, the term from theta inside e^d, vanishes in the default LPS
  * where sigma is proportional to omega); the force F_i = V_i sum_j (t_ij +
  * t_ji) V_j M_ij, so a bond needs both ends' (omega, sigma), which set-up
  * stores per half-bond with the reverse half's (4 doubles).  The collapsed
- * stress of a homogeneous strain is k tr eps I + 2 mu eps^d exactly.
+ * stress of a homogeneous strain is k tr eps I + 2 mu eps^d exactly in 2D
+ * (in 3D where the energy is: the body-mean stress of a cube under
+ * uniaxial strain and simple shear gives E, nu and G to 1e-7, pd-lps-surface).
  * The influences are set up on the intact family, again after each
  * pre-crack (a pre-cut face is a free surface like the others; the default
  * LPS weighted volume is recomputed there too), and then fixed: bonds
@@ -50,22 +71,19 @@
  *
  * Stability needs sigma >= 0 (then W_i >= 0; omega's sign does not matter,
  * k theta^2 / 2 >= 0): set-up refuses a particle whose sigma comes out
- * negative.  In 2D the least change stays non-negative on every plate of
- * the tests and validation cases, corners included, and on strips of 4
- * rows or more (delta = 3.015 dx); strips of 2 rows (and of 3 on the
- * triangular lattice) come out negative and are refused.  In 3D it cannot at
- * edges and corners: for an octant family (x, y, z >= 0) the constraints
- * of target 0 on (x^2 + y^2 - 2 z^2) x y and on x^2 y z admit non-negative
- * sigma only on bonds with x y = 0, and then the one on x^2 y^2 (target 1)
- * fails.  Measured with the 3D form of the same construction (5 deviatoric
- * modes, 15 multipliers): exact to 1e-14 at every particle of a 7^3 sc
- * cube, but 6 % of its half-bonds negative, and sc and fcc cubes under an
- * initial velocity blew up within 150 steps at every dt (an sc sphere's
- * staircase surface has them too).  So 3D is refused at the deck.
+ * negative.  Measured at delta = 3.015 dx, the smallest sigma / sigma0 over
+ * the half-bonds: 2D plates, discs and rotated plates non-negative, corners
+ * included, and strips of 4 rows or more; strips of 2 rows (3 on the
+ * triangular lattice) negative.  3D: sc cube 7^3 and plate of 4 layers
+ * 0.112, fcc cubes 0.119, sc and fcc spheres 0.56 / 0.32, fcc plates of 7
+ * layers (4.2 dx) and more 0.119; plates thinner than about delta negative
+ * in their middle layers (sc 2 and 3 layers: -1.9, -1.2; fcc 4 and 5
+ * layers: -1.0, -0.69) and refused.
  */
 #include "models/peridynamics/pd_internal.h"
 
 #include "core/bond_list.h"
+#include "core/fields.h"
 #include "core/options.h"
 #include "core/parallel/decomp.h"
 #include "core/parallel/setup_dist.h"
@@ -92,11 +110,6 @@ int pd_surface_opts(struct model *m, const struct deck_node *params, struct spal
         return deck_error_key(err, params, "surface_correction", "surface_correction "
                               "position_aware is for formulation lps (eps: its return map "
                               "assumes one influence function)");
-    if (pals && m->sim->dim != 2) /* see the file comment */
-        return deck_error_key(err, params, "surface_correction", "surface_correction "
-                              "position_aware is for 2D runs: at the edges and corners of a 3D "
-                              "body no non-negative deviatoric influence gives every shear its "
-                              "energy, and a negative one makes the run unstable");
     if (m->opt.lps) { /* lps/eps: their own surface correction (pd_lps_surface.c) */
         m->lps.surface = on;
         m->lps.pals = pals;
@@ -106,8 +119,8 @@ int pd_surface_opts(struct model *m, const struct deck_node *params, struct spal
     return SPALL_OK;
 }
 
-#define PALS_NW 3 /* dilatation multipliers (2D) */
-#define PALS_NS 3 /* deviatoric multipliers (2D) */
+#define PALS_NW 6 /* dilatation multipliers (3 in 2D, 6 in 3D) */
+#define PALS_NS 6 /* deviatoric multipliers (3 in 2D, 6 in 3D), >= PALS_NW */
 
 /* phi_p(v) = v . E_p . v over the orthonormal deviatoric basis of 2D,
  * E_1 = (e_x e_x - e_y e_y) / sqrt 2, E_2 = (e_x e_y + e_y e_x) / sqrt 2
@@ -132,19 +145,39 @@ static int pals_cb(int dim, const double *u, double *c)
     return q;
 }
 
-/* h_a(u) = |u|^2 phi_p(n) phi_q(n) = phi_p(u) phi_q(u) / |u|^2, p <= q;
- * *diag: which of them are p == q (their constraint target is 1) */
-static int pals_ha(int dim, const double *u, double *h, int *diag)
+/* 2D: h_a(u) = |u|^2 phi_p(n) phi_q(n) = phi_p(u) phi_q(u) / |u|^2, p <= q,
+ * target delta_pq (every deviatoric strain).  3D: h_a = psi_a(u)^2 / |u|^2
+ * over the six coordinate strains' deviatoric modes psi_a(n) = n . D_a . n,
+ * D_a = dev(e_k e_k) (k = x, y, z: psi = n_k^2 - 1 / 3, target D : D = 2 / 3)
+ * and (e_k e_l + e_l e_k) / sqrt 2 (k < l: psi = sqrt 2 n_k n_l, target 1):
+ * their energies only, as Peridigm's Pals ([Mitchell2015]); *tgt the targets */
+static int pals_ha(int dim, const double *u, double *h, double *tgt)
 {
-    double phi[2], u2 = 0.0;
-    const int np = pals_phi(u, phi);
+    double u2 = 0.0;
     for (int k = 0; k < dim; k++)
         u2 += u[k] * u[k];
     int q = 0;
+    if (dim == 3) {
+        const double r2 = sqrt(2.0);
+        double psi[6];
+        for (int k = 0; k < 3; k++)
+            psi[k] = u[k] * u[k] - u2 / 3.0;
+        psi[3] = r2 * u[0] * u[1];
+        psi[4] = r2 * u[1] * u[2];
+        psi[5] = r2 * u[0] * u[2];
+        for (; q < 6; q++) {
+            if (tgt)
+                tgt[q] = q < 3 ? 2.0 / 3.0 : 1.0;
+            h[q] = psi[q] * psi[q] / u2;
+        }
+        return q;
+    }
+    double phi[2];
+    const int np = pals_phi(u, phi);
     for (int a = 0; a < np; a++)
         for (int b = a; b < np; b++) {
-            if (diag)
-                diag[q] = a == b;
+            if (tgt)
+                tgt[q] = a == b ? 1.0 : 0.0;
             h[q++] = phi[a] * phi[b] / u2;
         }
     return q;
@@ -254,8 +287,8 @@ static int pals_row(const struct model *m, const struct sim *sim, size_t i, doub
     if (!(mi > 0.0))
         return 0; /* no family: no force */
     double Aw[PALS_NW * PALS_NW] = {0}, rw[PALS_NW] = {0};
-    double xi[3], u[3], c[PALS_NW], h[PALS_NS];
-    int diag[PALS_NS], nw = 0, ns = 0;
+    double xi[3], u[3], c[PALS_NW], h[PALS_NS], tgt[PALS_NS];
+    int nw = 0, ns = 0;
     for (size_t s = s0; s < s0 + nb; s++) {
         if (st[s] & BOND_BROKEN)
             continue;
@@ -288,7 +321,7 @@ static int pals_row(const struct model *m, const struct sim *sim, size_t i, doub
         if (st[s] & BOND_BROKEN)
             continue;
         pals_bond(m, sim, i, s, xi, u);
-        ns = pals_ha(dim, u, h, diag);
+        ns = pals_ha(dim, u, h, tgt);
         const double ws = 0.5 * d * (d + 2.0) * ob[s] / mi * d2 * V[bl->partner[s]];
         for (int a = 0; a < ns; a++) {
             rs[a] -= ws * h[a];
@@ -297,7 +330,7 @@ static int pals_row(const struct model *m, const struct sim *sim, size_t i, doub
         }
     }
     for (int a = 0; a < ns; a++)
-        rs[a] += diag[a] ? 1.0 : 0.0;
+        rs[a] += tgt[a];
     if (pals_solve(ns, As, rs))
         return 1;
     int neg = 0;
@@ -537,7 +570,7 @@ void pd_lps_pals_particle_eval(const struct model *m, const struct sim *sim, siz
     if (energy)
         *energy = w * p->volume[i];
     if (stress)
-        for (int c = 0; c < 3; c++)
+        for (int c = 0; c < field_symtensor_ncomp(dim); c++)
             stress[c] = sg[c];
 }
 
