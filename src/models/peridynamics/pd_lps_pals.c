@@ -60,9 +60,12 @@
  * where sigma is proportional to omega); the force F_i = V_i sum_j (t_ij +
  * t_ji) V_j M_ij, so a bond needs both ends' (omega, sigma), which set-up
  * stores per half-bond with the reverse half's (4 doubles).  The collapsed
- * stress of a homogeneous strain is k tr eps I + 2 mu eps^d exactly in 2D
- * (in 3D where the energy is: the body-mean stress of a cube under
- * uniaxial strain and simple shear gives E, nu and G to 1e-7, pd-lps-surface).
+ * stress of a homogeneous strain is k tr eps I + 2 mu eps^d exactly in 2D.
+ * In 3D a particle's stress needs the free cross terms too: the body-mean
+ * stress of a cube under uniaxial strain and simple shear gives E, nu and G
+ * to 1e-7 (pd-lps-surface), but a random strain's stress at the edges and
+ * corners of the test bodies is off by up to 36 % of |sigma| (the default
+ * LPS: 84 %).
  * The influences are set up on the intact family, again after each
  * pre-crack (a pre-cut face is a free surface like the others; the default
  * LPS weighted volume is recomputed there too), and then fixed: bonds
