@@ -87,7 +87,7 @@ static const struct vcase cases[] = {
      VKIND_VALIDATION, VGATE_FULL, NULL, pd_case_kalthoff, TIER_ALL},
     {"pd-lamina-a", "T700 open-hole laminae A-0/45/90: crack along fibers, start",
      VKIND_VALIDATION, VGATE_QUICK, NULL, pd_case_lamina_a,
-     TIER_REDUCED(0.0,
+     TIER_REDUCED(134.0,
          "all five open-hole laminae (A-0, A-45, A-90 and two option variants, dx = 0.5 mm, "
          "10-40 s each); last full values: angle 0.0 deg (A-0, A-90, A-45 with fiber_plane), "
          "60.0 deg (A-45; gap), starts 1.88 / 0.66 / 0.22 mm; 8 of 15 checks pass, 7 gaps "
@@ -95,7 +95,7 @@ static const struct vcase cases[] = {
          "A-0.")},
     {"pd-lamina-b", "T700 line-crack laminae B-theta-alpha (mixed mode): crack along fibers",
      VKIND_VALIDATION, VGATE_QUICK, NULL, pd_case_lamina_b,
-     TIER_REDUCED(0.0,
+     TIER_REDUCED(165.0,
          "all seven line-crack laminae (B-0-90, B-90-90, B-0-30/45/60, B-45-90, B-45-90 with "
          "fiber_plane; 10-40 s each); last full values: 0.0 deg except B-45-90 at 60.0 deg "
          "(gap; 0.0 deg with fiber_plane), starts 0.25-0.72 mm from the tip; 20 of 21 checks "
@@ -126,12 +126,13 @@ static const struct vcase cases[] = {
      VKIND_VERIFICATION, VGATE_FULL, NULL, macro_case_calibration, TIER_ALL},
     {"macro-rod-elastic", "[Saitoh] sec. 2.6 rod: E and nu vs n_phi and n_h/n_phi",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, macro_case_rod_elastic,
-     TIER_REDUCED(600.0,
+     TIER_REDUCED(205.0,
          "n_phi = 2-16 (eq15) and 2-32 (lattice), the finest-rod checks and the aspect-ratio "
          "sweeps up to the 51 413-particle rod; last full values (docs/notes/validation-"
          "log.md): lattice calibration n_phi = 32: 66.92 GPa (-3.7 %, PASS); eq15 n_phi = 16: "
          "120.9 GPa (gap); 51 413-particle rod 65.20 GPa (-6.2 %, gap); nu 0.343 / 0.351 / "
-         "0.341 / 0.3345 at n_phi = 2 / 4 / 8 / 16. ~10 CPU-min.")},
+         "0.341 / 0.3345 at n_phi = 2 / 4 / 8 / 16 (the same in the full run of 2026-12-08: 376 "
+         "CPU-s).")},
     {"macro-thermostat", "[Saitoh] Langevin forces: free block settles to T (absolute, pairwise)",
      VKIND_VERIFICATION, VGATE_QUICK, NULL, macro_case_thermostat, TIER_ALL},
     {"macro-rod-large", "[Saitoh] sec. 2.6 rod: tension vs compression, compressive collapse",
@@ -146,7 +147,7 @@ static const struct vcase cases[] = {
      VKIND_VERIFICATION, VGATE_QUICK, NULL, sph_case_gradient, TIER_ALL},
     {"sph-plate", "SPH: oscillating plate period vs thin-plate theory (Gray et al. 2001)",
      VKIND_VALIDATION, VGATE_OFF, NULL, sph_case_plate,
-     TIER_REDUCED(840.0,
+     TIER_REDUCED(653.0,
          "TLSPH at 16 and 24 rows and the updated form at 10 rows; last full values: TLSPH 24 "
          "rows 0.25991 s (+2.31 %, PASS; 16 rows 0.26403 s), updated CSPM mirrored clamp 10 "
          "rows 0.27152 s (+6.88 %, gap). The standard tier (6 / 10 rows TLSPH, 6 rows updated)"
@@ -154,7 +155,7 @@ static const struct vcase cases[] = {
          "each note.")},
     {"sph-beam", "SPH: cantilever beam 1.75 kN, six kernels vs 33.59 mm ([Meng2021] Table 3.4)",
      VKIND_VALIDATION, VGATE_OFF, NULL, sph_case_beam,
-     TIER_REDUCED(522.0,
+     TIER_REDUCED(2261.0,
          "all 15 beam runs (six kernels, fixed and mirrored clamp, TLSPH) at dx = 1 mm; last "
          "full values: fixed clamp cubic 34.05, Gaussian 35.96, Wendland 35.56, double cosine "
          "34.83, hyperbolic 34.20 mm, quintic blows up (averaged AS 36.30 mm, gap), TLSPH "
