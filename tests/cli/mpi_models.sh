@@ -11,7 +11,9 @@
 #  - the same LPS plate with `surface_correction: position_aware`
 #    (pd_lps_pals.c: influences of both halves per half-bond, fixed by the
 #    distributed set-up's windows; theta and P of the owners to the ghosts
-#    each force call), also restarted on 2 ranks from a serial checkpoint.
+#    each force call), also restarted on 2 ranks from a serial checkpoint,
+#    and the 3D pre-cracked block of mpi_setup.sh in it (the coordinate-
+#    strain constraint set of 3D);
 # Each runs without mpirun and on 2 and 3 ranks, and on 3 ranks rebalanced
 # every 20 steps: history.csv, fragments.csv and fields.xdmf identical byte
 # for byte, every frame under h5diff.
@@ -37,8 +39,14 @@ sed 's/formulation: lps}/formulation: lps, surface_correction: position_aware}/;
      s/^output: {\(.*\)$/output: {checkpoint: {every_steps: 100, keep: 5}, \1/' lps.yaml > lpspa.yaml
 grep -q "surface_correction: position_aware" lpspa.yaml && grep -q "every_steps: 100" lpspa.yaml ||
     { echo "FAIL: cannot make lpspa.yaml"; exit 1; }
+# 3D position_aware: the pre-cracked sc block of mpi_setup.sh in LPS
+sed 's/^model: {type: peridynamics}$/model: {type: peridynamics, formulation: lps, surface_correction: position_aware}/;
+     s/youngs_modulus: 72.0e9, fracture_energy/youngs_modulus: 72.0e9, poisson_ratio: 0.22, fracture_energy/' \
+    "$2/tests/cli/decks/mpi_setup_pd3.yaml" > lpspa3.yaml
+grep -q "surface_correction: position_aware" lpspa3.yaml && grep -q "poisson_ratio: 0.22" lpspa3.yaml ||
+    { echo "FAIL: cannot make lpspa3.yaml"; exit 1; }
 cp "$2/tests/cli/decks/mpi_thermal.yaml" thermal.yaml
-for deck in lps lpscell lpspa thermal; do
+for deck in lps lpscell lpspa lpspa3 thermal; do
     serial $deck
 done
 ranks lpscell 2
@@ -51,7 +59,7 @@ melted=$(col thermal_serial/history.csv bonds_melted)
 awk -v b="$melted" 'BEGIN {exit !(b > 10)}' || { echo "FAIL thermal melted $melted bonds"; fail=1; }
 counts="${SPALL_MPI_RANK_COUNTS:-2 3}"
 for n in $counts; do
-    for deck in lps lpspa thermal; do
+    for deck in lps lpspa lpspa3 thermal; do
         ranks $deck "$n"
     done
 done
