@@ -174,12 +174,7 @@ static const struct vcase cases[] = {
     {"sph-taylor-3d", "SPH: 4340 steel Taylor bar 181 m/s, Johnson-Cook ([Meng2021] Table 3.6); "
      "power-law bar against FE",
      VKIND_VALIDATION, VGATE_QUICK, NULL, sph_case_taylor3d,
-     TIER_REDUCED(420.0,
-         "n = 8, 12, 16 across D0 with the length convergence and the power-law bar against FE"
-         " at n = 16; last full values: L = 34.684 mm at n = 16 (dx = 0.475 mm, +0.53 %), 0.11"
-         " % change from n = 12; power-law bar 34.437 mm (+1.02 %) and radius 4.922 mm (-0.37 "
-         "%) against FE. Standard tier: n = 8 (dx = 0.949 mm), 34.750 mm (+0.72 %) when "
-         "recorded.")},
+     TIER_ALL},
     {"sph-taylor-2d", "SPH: iron rod on a wall, Mie-Grueneisen, perfectly plastic ([Meng2021] "
      "Table 3.5), axisymmetric, against FE",
      VKIND_VALIDATION, VGATE_QUICK, NULL, sph_case_taylor2d,
@@ -194,11 +189,7 @@ static const struct vcase cases[] = {
     {"sph-debris-cloud", "SPH: Al sphere 10 mm on a 4 mm Al plate at 6.18 km/s, debris-cloud "
      "length / width, hole (axisymmetric)",
      VKIND_VALIDATION, VGATE_QUICK, NULL, sph_case_debris,
-     TIER_REDUCED(429.0,
-         "d/20, d/40, d/60 with the convergence checks; last full values: d/60 (5734 "
-         "particles) hole 27.41 mm (-11.6 %, gap), L/W 1.134 (-18.4 % against the experiment, "
-         "gap; +2.2 % against ref. [73] SPH), d/40 -> d/60 change 0.65 % (length) and 0.42 % "
-         "(width), momentum error 2.1e-5.")},
+     TIER_ALL},
 
     /* penetration (issue 7) */
     {"pen-sph-sebs", "axisymmetric SPH: steel 12-22 um into SEBS (E = 40, 50 MPa) vs Modified-CG",
